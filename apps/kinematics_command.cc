@@ -1,0 +1,196 @@
+#include "apps/kinematics_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "lib/case_file.h"
+#include "lib/kinematics.h"
+#include "lib/output.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+nlohmann::json OrNull(const std::optional<double>& v, double scale = 1.0) {
+  return v ? nlohmann::json(*v * scale) : nlohmann::json(nullptr);
+}
+
+// Row angles: θ_0, θ_N, every multiple of the step between them, and the paper's angles.
+std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const Case& c) {
+  std::vector<double> rows = {law.start_rad(), law.end_rad()};
+  const double first = std::ceil(law.start_rad() / step_rad - 1e-9);
+  for (double k = first; k * step_rad <= law.end_rad() + 1e-12; k += 1.0) {
+    rows.push_back(k * step_rad);
+  }
+  if (c.paper) rows.insert(rows.end(), c.paper->crank_rad.begin(), c.paper->crank_rad.end());
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end(),
+                         [](double a, double b) { return std::abs(a - b) < 1e-9; }),
+             rows.end());
+  return rows;
+}
+
+std::optional<double> PaperVelocityAt(const Case& c, double crank_rad) {
+  if (!c.paper) return std::nullopt;
+  for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
+    if (std::abs(c.paper->crank_rad[i] - crank_rad) < 1e-9) return c.paper->velocity_m_s[i];
+  }
+  return std::nullopt;
+}
+
+std::string Pad(const std::string& s, size_t width) {
+  return s.size() >= width ? s : std::string(width - s.size(), ' ') + s;
+}
+
+}  // namespace
+
+CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "kinematics", "Velocity and acceleration table of a lift law (like NACA TM 477's)");
+  cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
+  cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--step", o.step_deg, "table spacing in crank degrees (default 5)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--spline", o.spline,
+                  "spline kind (default: [lift] spline): " + SplineKindList());
+  cmd->add_option("--units", o.units,
+                  "table units: paper (mm, dcm/s, m/s^2) or si (m, m/s, m/s^2, m/s^3)")
+      ->check(CLI::IsMember({"paper", "si"}));
+  cmd->add_flag("--json", o.json, "print one JSON object instead of the table");
+  cmd->add_option("--csv", o.csv, "also write the table to this CSV file (atomically)");
+  return cmd;
+}
+
+int RunKinematicsCommand(const KinematicsCommandOptions& o) {
+  Case c = LoadCase(o.case_path);
+  if (o.spline) {
+    const auto kind = ParseSplineKind(*o.spline);
+    if (!kind) {
+      throw CaseError("--spline: unknown kind \"" + *o.spline + "\"; expected one of " +
+                      SplineKindList());
+    }
+    CheckSplineFits(c, *kind, "--spline");
+    if (*kind == SplineKind::kClamped && c.lift.spline.kind != SplineKind::kClamped) {
+      c.lift.spline.start_slope = c.lift.spline.end_slope = 0.0;  // at rest unless the case says
+    }
+    c.lift.spline.kind = *kind;
+  }
+  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
+  const LiftLaw law = MakeLiftLaw(c);
+  const Kinematics kin(law, speed);
+  const KinematicsSummary sum = kin.Summarize();
+  const std::vector<double> angles = RowAngles(law, o.step_deg * kDeg, c);
+  std::vector<KinematicsPoint> rows;
+  rows.reserve(angles.size());
+  for (double a : angles) rows.push_back(kin.At(a));
+
+  // Everything is computed; now compose the outputs, then write them.
+  std::ostringstream csv;
+  csv << "crank_deg,time_s,lift_mm,velocity_m_s,acceleration_m_s2,jerk_m_s3\n";
+  csv.precision(10);
+  for (const auto& r : rows) {
+    csv << r.crank_rad / kDeg << ',' << r.time_s << ',' << r.lift_m * 1e3 << ',' << r.velocity_m_s
+        << ',';
+    if (r.acceleration_m_s2) csv << *r.acceleration_m_s2;
+    csv << ',';
+    if (r.jerk_m_s3) csv << *r.jerk_m_s3;
+    csv << '\n';
+  }
+
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["speed_rpm"] = speed;
+    j["spline"] = SplineKindName(law.kind());
+    j["injection_period_s"] = sum.injection_period_s;
+    j["max_lift_mm"] = sum.max_lift_m * 1e3;
+    j["max_lift_deg"] = sum.max_lift_rad / kDeg;
+    j["mean_lift_mm"] = sum.mean_lift_m * 1e3;
+    j["rho"] = sum.rho;
+    j["max_velocity_m_s"] = sum.max_velocity_m_s;
+    j["max_velocity_deg"] = sum.max_velocity_rad / kDeg;
+    j["min_velocity_m_s"] = sum.min_velocity_m_s;
+    j["min_velocity_deg"] = sum.min_velocity_rad / kDeg;
+    j["max_acceleration_m_s2"] = OrNull(sum.max_acceleration_m_s2);
+    j["max_acceleration_deg"] = OrNull(sum.max_acceleration_rad, 1.0 / kDeg);
+    j["min_acceleration_m_s2"] = OrNull(sum.min_acceleration_m_s2);
+    j["min_acceleration_deg"] = OrNull(sum.min_acceleration_rad, 1.0 / kDeg);
+    nlohmann::json table = nlohmann::json::array();
+    for (const auto& r : rows) {
+      nlohmann::json row;
+      row["crank_deg"] = r.crank_rad / kDeg;
+      row["time_s"] = r.time_s;
+      row["lift_mm"] = r.lift_m * 1e3;
+      row["velocity_m_s"] = r.velocity_m_s;
+      row["acceleration_m_s2"] = OrNull(r.acceleration_m_s2);
+      row["jerk_m_s3"] = OrNull(r.jerk_m_s3);
+      if (auto p = PaperVelocityAt(c, r.crank_rad)) row["paper_velocity_m_s"] = *p;
+      table.push_back(row);
+    }
+    j["table"] = table;
+    out << j.dump(2) << '\n';
+  } else {
+    const bool paper = o.units == "paper";
+    out << (c.title.empty() ? c.path : c.title) << '\n';
+    out << "spline " << SplineKindName(law.kind()) << ", " << Fixed(speed, 1) << " rpm, "
+        << "injection period " << Fixed(sum.injection_period_s * 1e3, 2) << " ms\n";
+    out << "max lift " << Fixed(sum.max_lift_m * 1e3, 3) << " mm at "
+        << Fixed(sum.max_lift_rad / kDeg, 2) << " deg, mean lift "
+        << Fixed(sum.mean_lift_m * 1e3, 3) << " mm, rho " << Fixed(sum.rho, 3) << '\n';
+    out << "velocity " << Fixed(sum.max_velocity_m_s, 3) << " m/s max at "
+        << Fixed(sum.max_velocity_rad / kDeg, 2) << " deg, " << Fixed(sum.min_velocity_m_s, 3)
+        << " m/s min at " << Fixed(sum.min_velocity_rad / kDeg, 2) << " deg\n";
+    if (sum.max_acceleration_m_s2) {
+      out << "acceleration " << Fixed(*sum.max_acceleration_m_s2, 2) << " m/s^2 max at "
+          << Fixed(*sum.max_acceleration_rad / kDeg, 2) << " deg, "
+          << Fixed(*sum.min_acceleration_m_s2, 2) << " m/s^2 min at "
+          << Fixed(*sum.min_acceleration_rad / kDeg, 2) << " deg\n";
+    } else {
+      out << "acceleration unavailable: " << SplineKindName(law.kind())
+          << " is C1 only (its second derivative jumps at the knots)\n";
+    }
+    if (c.paper && c.paper->max_acceleration_m_s2) {
+      const double a_abs =
+          sum.max_acceleration_m_s2
+              ? std::max(std::abs(*sum.max_acceleration_m_s2), std::abs(*sum.min_acceleration_m_s2))
+              : NAN;
+      out << "paper: max acceleration " << Fixed(*c.paper->max_acceleration_m_s2, 1)
+          << " m/s^2; computed max |a| " << Fixed(a_abs, 2) << " m/s^2\n";
+    }
+    const bool has_paper_v = c.paper && !c.paper->velocity_m_s.empty();
+    out << '\n'
+        << Pad("crank deg", 9) << Pad(paper ? "lift mm" : "lift m", 12)
+        << Pad(paper ? "v dcm/s" : "v m/s", 12) << Pad("a m/s^2", 12);
+    if (!paper) out << Pad("j m/s^3", 14);
+    if (has_paper_v) out << Pad("paper |v|", 11) << Pad("|v|-paper", 11);
+    out << '\n';
+    for (const auto& r : rows) {
+      out << Pad(Fixed(r.crank_rad / kDeg, 2), 9);
+      if (paper) {
+        out << Pad(Fixed(r.lift_m * 1e3, 4), 12) << Pad(Fixed(r.velocity_m_s * 10.0, 3), 12);
+      } else {
+        out << Pad(Fixed(r.lift_m, 7), 12) << Pad(Fixed(r.velocity_m_s, 5), 12);
+      }
+      out << Pad(r.acceleration_m_s2 ? Fixed(*r.acceleration_m_s2, 2) : "n/a", 12);
+      if (!paper) out << Pad(r.jerk_m_s3 ? Fixed(*r.jerk_m_s3, 1) : "n/a", 14);
+      if (has_paper_v) {
+        if (auto p = PaperVelocityAt(c, r.crank_rad)) {
+          const double scale = paper ? 10.0 : 1.0;  // dcm/s or m/s
+          out << Pad(Fixed(*p * scale, paper ? 2 : 4), 11)
+              << Pad(Fixed((std::abs(r.velocity_m_s) - *p) * scale, paper ? 2 : 4), 11);
+        }
+      }
+      out << '\n';
+    }
+  }
+  if (o.csv) WriteFileAtomically(*o.csv, csv.str());
+  std::cout << out.str() << std::flush;
+  return 0;
+}
+
+}  // namespace needle

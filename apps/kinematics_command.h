@@ -1,0 +1,29 @@
+#pragma once
+/// @file
+/// `needle kinematics CASE [--rpm N] [--step DEG] [--spline KIND] [--units paper|si]
+/// [--json] [--csv FILE]`: the velocity and acceleration table of a lift law, like
+/// NACA TM 477's, with the paper's published values beside it where the case has them.
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+namespace needle {
+
+struct KinematicsCommandOptions {
+  std::string case_path;              ///< the case file
+  std::optional<double> speed_rpm;    ///< overrides [engine] speed_rpm
+  double step_deg = 5.0;              ///< table spacing, deg, > 0
+  std::optional<std::string> spline;  ///< overrides [lift] spline
+  std::string units = "paper";        ///< "paper" (mm, dcm/s, m/s²) or "si" (m, m/s, m/s², m/s³)
+  bool json = false;                  ///< print one JSON object instead of the table
+  std::optional<std::string> csv;     ///< also write the table as CSV, atomically
+};
+
+/// Registers the subcommand on `app`; `options` must outlive the parse.
+CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& options);
+
+/// Runs it, printing to stdout. Returns the exit status; throws CaseError on bad input.
+int RunKinematicsCommand(const KinematicsCommandOptions& options);
+
+}  // namespace needle

@@ -1,0 +1,37 @@
+// The `needle` command: a thin layer over the libraries. Exit status: 0 success,
+// 1 a check that fails, 2 bad input (case file, options) — one line on stderr.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "apps/kinematics_command.h"
+#include "lib/case_file.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"needle: cam-driven needle valves — kinematics, spring sizing, dynamics"};
+  app.require_subcommand(1);
+  needle::KinematicsCommandOptions kinematics;
+  CLI::App* kinematics_cmd = needle::AddKinematicsCommand(app, kinematics);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "needle: " << e.what() << " (see needle --help)\n";
+    return 2;
+  }
+  try {
+    if (kinematics_cmd->parsed()) return needle::RunKinematicsCommand(kinematics);
+  } catch (const needle::CaseError& e) {
+    std::cerr << "needle: " << e.what() << '\n';
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "needle: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "needle: error: " << e.what() << '\n';
+    return 3;
+  }
+  return 0;
+}

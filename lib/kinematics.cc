@@ -1,0 +1,56 @@
+#include "lib/kinematics.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "lib/units.h"
+
+namespace needle {
+
+Kinematics::Kinematics(const LiftLaw& law, double speed_rpm)
+    : law_(law), speed_rpm_(speed_rpm), omega_(OmegaFromRpm(speed_rpm)) {
+  if (!(speed_rpm > 0.0) || !std::isfinite(speed_rpm)) {
+    throw std::invalid_argument("speed must be a positive number of rpm, got " +
+                                std::to_string(speed_rpm));
+  }
+}
+
+KinematicsPoint Kinematics::At(double crank_rad) const {
+  KinematicsPoint p;
+  p.crank_rad = crank_rad;
+  p.time_s = (crank_rad - law_.start_rad()) / omega_;       // t = (θ − θ_0)/ω
+  p.lift_m = law_.Lift(crank_rad);                          // s
+  p.velocity_m_s = omega_ * law_.Derivative(crank_rad, 1);  // v = ω s'
+  if (law_.HasAcceleration()) {
+    p.acceleration_m_s2 = omega_ * omega_ * law_.Derivative(crank_rad, 2);   // a = ω² s''
+    p.jerk_m_s3 = omega_ * omega_ * omega_ * law_.Derivative(crank_rad, 3);  // j = ω³ s'''
+  }
+  return p;
+}
+
+KinematicsSummary Kinematics::Summarize() const {
+  KinematicsSummary s;
+  s.speed_rpm = speed_rpm_;
+  s.injection_period_s = (law_.end_rad() - law_.start_rad()) / omega_;  // T = Δθ/ω
+  const Extremum lift = law_.Max(0);
+  s.max_lift_m = lift.value;
+  s.max_lift_rad = lift.crank_rad;
+  s.mean_lift_m = law_.MeanLift();
+  s.rho = s.max_lift_m / s.mean_lift_m;  // ρ = s_max / s̄
+  const Extremum vmax = law_.Max(1), vmin = law_.Min(1);
+  s.max_velocity_m_s = omega_ * vmax.value;
+  s.max_velocity_rad = vmax.crank_rad;
+  s.min_velocity_m_s = omega_ * vmin.value;
+  s.min_velocity_rad = vmin.crank_rad;
+  if (law_.HasAcceleration()) {
+    const Extremum amax = law_.Max(2), amin = law_.Min(2);
+    s.max_acceleration_m_s2 = omega_ * omega_ * amax.value;
+    s.max_acceleration_rad = amax.crank_rad;
+    s.min_acceleration_m_s2 = omega_ * omega_ * amin.value;
+    s.min_acceleration_rad = amin.crank_rad;
+  }
+  return s;
+}
+
+}  // namespace needle

@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// Needle kinematics at a crank speed n (model.md §1–2), with ω = 2πn/60 rad/s:
+///
+///     t = (θ − θ_0)/ω,   v = ω·ds/dθ,   a = ω²·d²s/dθ²,   j = ω³·d³s/dθ³,
+///     injection period T = (θ_N − θ_0)/ω  (= lift duration in degrees / (6n)),
+///     mean lift s̄ = (1/(θ_N − θ_0))∫s dθ,  ρ = s_max / s̄  (Basu: 2.12).
+
+#include <optional>
+#include <vector>
+
+#include "lib/lift_law.h"
+
+namespace needle {
+
+/// One row of a kinematics table (SI).
+struct KinematicsPoint {
+  double crank_rad = 0.0;     ///< θ, rad
+  double time_s = 0.0;        ///< t = (θ − θ_0)/ω, s
+  double lift_m = 0.0;        ///< s(θ), m
+  double velocity_m_s = 0.0;  ///< ω s'(θ), m/s
+  /// ω² s''(θ), m/s²; empty for C¹ splines (pchip, makima).
+  std::optional<double> acceleration_m_s2;
+  /// ω³ s'''(θ), m/s³ (piecewise constant for cubics); empty for C¹ splines.
+  std::optional<double> jerk_m_s3;
+};
+
+/// The whole-lift quantities of `needle kinematics --json`.
+struct KinematicsSummary {
+  double speed_rpm = 0.0;
+  double injection_period_s = 0.0;
+  double max_lift_m = 0.0;
+  double max_lift_rad = 0.0;
+  double mean_lift_m = 0.0;
+  double rho = 0.0;  ///< max lift / mean lift
+  double max_velocity_m_s = 0.0;
+  double max_velocity_rad = 0.0;
+  double min_velocity_m_s = 0.0;
+  double min_velocity_rad = 0.0;
+  std::optional<double> max_acceleration_m_s2, max_acceleration_rad;
+  std::optional<double> min_acceleration_m_s2, min_acceleration_rad;
+};
+
+class Kinematics {
+ public:
+  /// `law` must outlive this object. speed_rpm must be positive and finite
+  /// (throws std::invalid_argument otherwise).
+  Kinematics(const LiftLaw& law, double speed_rpm);
+
+  KinematicsPoint At(double crank_rad) const;
+  KinematicsSummary Summarize() const;
+
+  double speed_rpm() const { return speed_rpm_; }
+  /// ω, rad/s.
+  double omega() const { return omega_; }
+  const LiftLaw& law() const { return law_; }
+
+ private:
+  const LiftLaw& law_;
+  double speed_rpm_;
+  double omega_;
+};
+
+}  // namespace needle

@@ -1,0 +1,65 @@
+#include "lib/piecewise_polynomial.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace needle {
+
+PiecewisePolynomial::PiecewisePolynomial(std::vector<double> breaks, Eigen::MatrixXd coefficients,
+                                         int continuity)
+    : breaks_(std::move(breaks)), coefficients_(std::move(coefficients)), continuity_(continuity) {
+  if (breaks_.size() < 2 || coefficients_.rows() != static_cast<Eigen::Index>(breaks_.size()) - 1 ||
+      coefficients_.cols() < 1) {
+    throw std::invalid_argument("PiecewisePolynomial: " + std::to_string(breaks_.size()) +
+                                " breaks need " + std::to_string(breaks_.size() - 1) +
+                                " coefficient rows, got " + std::to_string(coefficients_.rows()));
+  }
+  for (size_t i = 1; i < breaks_.size(); ++i) {
+    if (!(breaks_[i] > breaks_[i - 1])) {
+      throw std::invalid_argument("PiecewisePolynomial: breaks must increase strictly; break " +
+                                  std::to_string(i) + " is not above break " +
+                                  std::to_string(i - 1));
+    }
+  }
+}
+
+int PiecewisePolynomial::Piece(double x) const {
+  const int n = static_cast<int>(breaks_.size()) - 1;
+  // First break strictly above x, minus one: x_i ≤ x < x_{i+1}.
+  const auto it = std::upper_bound(breaks_.begin(), breaks_.end(), x);
+  const int i = static_cast<int>(it - breaks_.begin()) - 1;
+  return std::clamp(i, 0, n - 1);
+}
+
+double PiecewisePolynomial::Evaluate(double x, int derivative) const {
+  const int k_max = degree();
+  if (derivative < 0) throw std::invalid_argument("PiecewisePolynomial: negative derivative order");
+  if (derivative > k_max) return 0.0;
+  const int i = Piece(x);
+  const double t = x - breaks_[i];
+  // Horner on the d-th derivative: Σ_{k≥d} k!/(k−d)! c_k t^{k−d}.
+  double value = 0.0;
+  for (int k = k_max; k >= derivative; --k) {
+    double falling = 1.0;  // k!/(k−d)!
+    for (int j = 0; j < derivative; ++j) falling *= (k - j);
+    value = value * t + falling * coefficients_(i, k);
+  }
+  return value;
+}
+
+double PiecewisePolynomial::Integral() const {
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < coefficients_.rows(); ++i) {
+    const double h = breaks_[i + 1] - breaks_[i];
+    double hk = h;  // h^{k+1}
+    for (Eigen::Index k = 0; k < coefficients_.cols(); ++k) {
+      sum += coefficients_(i, k) * hk / static_cast<double>(k + 1);  // ∫_0^h c_k t^k dt
+      hk *= h;
+    }
+  }
+  return sum;
+}
+
+}  // namespace needle

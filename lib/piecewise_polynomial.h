@@ -1,0 +1,45 @@
+#pragma once
+/// @file
+/// A piecewise polynomial on strictly increasing breaks x_0 < … < x_N:
+///
+///     p(x) = Σ_{k=0}^{K} c_{i,k} (x − x_i)^k   for x_i ≤ x < x_{i+1},  i = 0..N−1,
+///
+/// the common representation of every spline in needle. Derivatives are exact:
+/// p^(d)(x) = Σ_{k≥d} k!/(k−d)! c_{i,k} (x − x_i)^{k−d}.
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace needle {
+
+class PiecewisePolynomial {
+ public:
+  /// `breaks`: N+1 strictly increasing abscissae; `coefficients`: N rows, K+1 columns
+  /// (column k multiplies (x − x_i)^k); `continuity`: the highest derivative order that is
+  /// continuous across the breaks (1 for C¹ Hermite, 2 for cubic splines, 4 for quintic).
+  /// Throws std::invalid_argument when the sizes disagree or breaks do not increase.
+  PiecewisePolynomial(std::vector<double> breaks, Eigen::MatrixXd coefficients, int continuity);
+
+  /// p^(derivative)(x), derivative 0..K. Outside [x_0, x_N] the end pieces are extended.
+  double Evaluate(double x, int derivative = 0) const;
+
+  /// Index i of the piece with x_i ≤ x < x_{i+1} (0 below x_0, N−1 at and above x_N).
+  int Piece(double x) const;
+
+  /// ∫_{x_0}^{x_N} p(x) dx, exact.
+  double Integral() const;
+
+  const std::vector<double>& breaks() const { return breaks_; }
+  const Eigen::MatrixXd& coefficients() const { return coefficients_; }
+  /// Polynomial degree K of the pieces.
+  int degree() const { return static_cast<int>(coefficients_.cols()) - 1; }
+  /// Highest continuous derivative order across the breaks.
+  int continuity() const { return continuity_; }
+
+ private:
+  std::vector<double> breaks_;
+  Eigen::MatrixXd coefficients_;
+  int continuity_;
+};
+
+}  // namespace needle

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian packages needle builds and tests with. Safe to run twice:
+# only packages that are missing are installed; nothing is downloaded otherwise.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev          # splines: banded / dense linear algebra
+  libboost-dev           # Odeint (header-only) and Boost.Math
+  libsundials-dev        # CVODE
+  libgtest-dev libgmock-dev
+  libtomlplusplus-dev    # case files
+  libcli11-dev           # command line
+  nlohmann-json3-dev     # JSON output
+  libbenchmark-dev       # micro-benchmarks
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
