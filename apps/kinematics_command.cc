@@ -163,6 +163,21 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
           << " m/s^2; computed max |a| " << Fixed(a_abs, 2) << " m/s^2\n";
     }
     const bool has_paper_v = c.paper && !c.paper->velocity_m_s.empty();
+    if (has_paper_v) {
+      double total = 0, worst = -1, worst_deg = 0;
+      for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
+        const double dev = std::abs(std::abs(kin.At(c.paper->crank_rad[i]).velocity_m_s) -
+                                    c.paper->velocity_m_s[i]);  // | |v| − v_paper |
+        total += dev;
+        if (dev > worst) {
+          worst = dev;
+          worst_deg = c.paper->crank_rad[i] / kDeg;
+        }
+      }
+      out << "paper velocity (" << c.paper->crank_rad.size() << " points): mean |deviation| "
+          << Fixed(10.0 * total / c.paper->crank_rad.size(), 2) << " dcm/s, largest "
+          << Fixed(10.0 * worst, 2) << " dcm/s at " << Fixed(worst_deg, 1) << " deg\n";
+    }
     out << '\n'
         << Pad("crank deg", 9) << Pad(paper ? "lift mm" : "lift m", 12)
         << Pad(paper ? "v dcm/s" : "v m/s", 12) << Pad("a m/s^2", 12);

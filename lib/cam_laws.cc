@@ -28,9 +28,9 @@ std::string CamLaw::name() const {
 }
 
 double CamLaw::Derivative(double theta, int order) const {
-  if (theta <= 0.0 || theta >= beta_) {
+  if (theta < 0.0 || theta > beta_) {  // at rest outside; the ends belong to the rise
     if (order > 0) return 0.0;
-    return theta <= 0.0 ? 0.0 : height_;
+    return theta < 0.0 ? 0.0 : height_;
   }
   const double u = theta / beta_;
   const double scale = height_ / std::pow(beta_, order);  // d/dθ = (1/β) d/du

@@ -1,0 +1,160 @@
+// Case files: every bundled case loads; every kind of bad input gives its exact one-line
+// message naming the file, the key and what was expected.
+#include "lib/case_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+const std::string kGood = R"(
+title = "test"
+[engine]
+speed_rpm = 400
+[lift]
+crank_deg = [-10, 0, 10, 20, 30]
+lift_mm = [0, 1, 2, 1, 0]
+)";
+
+std::string Error(const std::string& text) {
+  try {
+    ParseCase(text, "t.toml");
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string Replace(std::string s, const std::string& from, const std::string& to) {
+  const auto at = s.find(from);
+  if (at == std::string::npos) throw std::logic_error("test fixture lacks " + from);
+  return s.replace(at, from.size(), to);
+}
+
+TEST(CaseFileTest, EveryBundledCaseLoadsAndBuilds) {
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(NEEDLE_SOURCE_DIR) + "/cases")) {
+    if (e.path().extension() != ".toml") continue;
+    const Case c = LoadCase(e.path().string());
+    EXPECT_GT(c.engine.speed_rpm, 0) << e.path();
+    EXPECT_NO_THROW(MakeLiftLaw(c)) << e.path();
+    ++n;
+  }
+  EXPECT_GE(n, 14);
+}
+
+TEST(CaseFileTest, ReadsUnitsIntoSi) {
+  const Case c = ParseCase(kGood, "t.toml");
+  EXPECT_EQ(c.title, "test");
+  EXPECT_DOUBLE_EQ(c.engine.speed_rpm, 400);
+  EXPECT_DOUBLE_EQ(c.lift.table.lift_m[2], 2e-3);
+  EXPECT_DOUBLE_EQ(c.lift.table.crank_rad[0], -10 * kDeg);
+  EXPECT_EQ(c.lift.spline.kind, SplineKind::kNotAKnot);
+  EXPECT_NEAR(c.lift.spline.sigma, 1e-5 / std::sqrt(12.0), 1e-20);
+  EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
+                          "lift_mm = [0, 1, 2, 1, 0]\ncrank_rad = [0, 1, 2, 3, 4]")),
+            "t.toml: [lift] crank_rad: given twice, also as crank_deg; keep one");
+}
+
+TEST(CaseFileTest, NormalCurveScalesToTheMaximumLift) {
+  const Case c = ParseCase(R"(
+[engine]
+speed_rpm = 125
+[lift]
+normal_curve = "basu"
+max_lift_mm = 3.67
+)",
+                           "t.toml");
+  EXPECT_NEAR(c.lift.table.lift_m[7], 3.67e-3, 1e-15);
+  EXPECT_NEAR(c.lift.table.lift_m[3], 0.21 * 3.67e-3, 1e-15);
+  EXPECT_EQ(c.lift.source, "basu normal curve");
+}
+
+TEST(CaseFileTest, ClampedEndSlopes) {
+  const Case c = ParseCase(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
+                                   "lift_mm = [0, 1, 2, 1, 0]\nspline = \"clamped\"\n"
+                                   "end_slope_mm_deg = [0.1, -0.2]"),
+                           "t.toml");
+  EXPECT_NEAR(c.lift.spline.start_slope, 0.1e-3 / kDeg, 1e-15);
+  EXPECT_NEAR(c.lift.spline.end_slope, -0.2e-3 / kDeg, 1e-15);
+  EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
+                          "lift_mm = [0, 1, 2, 1, 0]\nend_slope = \"at-rest\"")),
+            "t.toml: [lift] end_slope: applies to spline = \"clamped\" only");
+}
+
+TEST(CaseFileTest, MalformedToml) {
+  EXPECT_EQ(Error("[engine\nspeed_rpm = 1"),
+            "t.toml:1:8: malformed TOML: Error while parsing table header: expected ']', saw "
+            "'\\n'");
+}
+
+TEST(CaseFileTest, MissingSectionsAndKeys) {
+  EXPECT_EQ(Error("[lift]\ncrank_deg=[0,1]\nlift_mm=[0,1]"),
+            "t.toml: [engine] speed_rpm: section [engine] is missing; it needs speed_rpm");
+  EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "")),
+            "t.toml: [engine] speed: missing; expected speed_rpm");
+  EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]", "")),
+            "t.toml: [lift] lift_mm: missing; expected an array of lifts, one per crank angle");
+}
+
+TEST(CaseFileTest, UnknownKeysSectionsAndUnits) {
+  EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rpm = 400\nbore_mm = 3")),
+            "t.toml: [engine] bore_mm: unknown key in this section");
+  EXPECT_EQ(Error(kGood + "[valve]\nx = 1\n"),
+            "t.toml: valve: unknown section (known: title, [engine], [lift], [paper])");
+  EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rps = 400")),
+            "t.toml: [engine] speed_rps: unit suffix 'rps' is not a unit of rotation speed "
+            "(expected speed_rpm)");
+  EXPECT_EQ(Error(Replace(kGood, "lift_mm", "lift_in")),
+            "t.toml: [lift] lift_in: unit suffix 'in' is not a unit of length (expected lift_mm "
+            "or lift_cm or lift_m or lift_um)");
+  EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed = 400")),
+            "t.toml: [engine] speed: needs a unit suffix: speed_rpm");
+}
+
+TEST(CaseFileTest, BadValues) {
+  EXPECT_EQ(Error(Replace(kGood, "[-10, 0, 10, 20, 30]", "[-10, 0, 10, 10, 30]")),
+            "t.toml: [lift] crank_deg: angles must increase strictly, but entry 3 (10) follows "
+            "entry 2 (10)");
+  EXPECT_EQ(Error(Replace(kGood, "[-10, 0, 10, 20, 30]", "[-10, 0, 10, 5, 30]")),
+            "t.toml: [lift] crank_deg: angles must increase strictly, but entry 3 (5) follows "
+            "entry 2 (10)");
+  EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, nan, 1, 0]")),
+            "t.toml: [lift] lift_mm[2]: is NaN; expected a finite number");
+  EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, -2, 1, 0]")),
+            "t.toml: [lift] lift_mm: entry 2 is negative (-2); lift is measured from the seat");
+  EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, 2, 1]")),
+            "t.toml: [lift] lift_mm: has 4 values but crank_deg has 5");
+  EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, \"2\", 1, 0]")),
+            "t.toml: [lift] lift_mm[2]: expected a number");
+  EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rpm = -400")),
+            "t.toml: [engine] speed_rpm: must be positive, got -400");
+  EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rpm = inf")),
+            "t.toml: [engine] speed_rpm: is infinite; expected a finite number");
+}
+
+TEST(CaseFileTest, SplineKindAndPointCount) {
+  EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
+                          "lift_mm = [0, 1, 2, 1, 0]\nspline = \"akima\"")),
+            "t.toml: [lift] spline: unknown kind \"akima\"; expected one of natural, not-a-knot, "
+            "clamped, quintic, pchip, makima, smoothing");
+  EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
+                          "lift_mm = [0, 1, 2, 1, 0]\nspline = \"quintic\"")),
+            "t.toml: [lift] spline: \"quintic\" needs at least 6 points, the lift table has 5");
+}
+
+TEST(CaseFileTest, UnreadableFile) {
+  try {
+    LoadCase("/no/such/case.toml");
+    FAIL();
+  } catch (const CaseError& e) {
+    EXPECT_STREQ(e.what(), "/no/such/case.toml: cannot open the case file for reading");
+  }
+}
+
+}  // namespace
+}  // namespace needle

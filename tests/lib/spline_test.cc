@@ -1,0 +1,301 @@
+// Exactness and structure of each spline kind on non-uniform knots.
+#include "lib/spline.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace needle {
+namespace {
+
+// Non-uniform knots on [−0.3, 0.7] (rad-sized), spacing varying by a factor ~3.
+std::vector<double> Knots(int n) {
+  std::vector<double> x;
+  for (int i = 0; i <= n; ++i) {
+    const double u = static_cast<double>(i) / n;
+    x.push_back(-0.3 + u + (0.35 / n) * std::sin(7.0 * u) * (i > 0 && i < n));
+  }
+  return x;
+}
+
+double Cubic(double x, int d) {  // p = 1 − 2x + 3x² − 4x³
+  switch (d) {
+    case 0: return 1 - 2 * x + 3 * x * x - 4 * x * x * x;
+    case 1: return -2 + 6 * x - 12 * x * x;
+    case 2: return 6 - 24 * x;
+    default: return -24;
+  }
+}
+
+double Quintic(double x, int d) {  // p = 0.5 + x − x² + 2x³ + 3x⁴ − 5x⁵
+  const double c[6] = {0.5, 1, -1, 2, 3, -5};
+  double v = 0;
+  for (int k = d; k <= 5; ++k) {
+    double f = 1;
+    for (int j = 0; j < d; ++j) f *= (k - j);
+    v += f * c[k] * std::pow(x, k - d);
+  }
+  return v;
+}
+
+std::vector<double> Sample(const std::vector<double>& x, double (*f)(double, int)) {
+  std::vector<double> y;
+  for (double xi : x) y.push_back(f(xi, 0));
+  return y;
+}
+
+TEST(SplineTest, NotAKnotReproducesCubicExactly) {
+  const auto x = Knots(9);
+  SplineOptions o;
+  o.kind = SplineKind::kNotAKnot;
+  const auto s = BuildSpline(x, Sample(x, Cubic), o);
+  for (double t = -0.3; t <= 0.7; t += 0.0137) {
+    for (int d = 0; d <= 3; ++d) EXPECT_NEAR(s.Evaluate(t, d), Cubic(t, d), 1e-10) << t << " d" << d;
+  }
+}
+
+TEST(SplineTest, ClampedWithTrueSlopesReproducesCubicExactly) {
+  const auto x = Knots(7);
+  SplineOptions o;
+  o.kind = SplineKind::kClamped;
+  o.start_slope = Cubic(x.front(), 1);
+  o.end_slope = Cubic(x.back(), 1);
+  const auto s = BuildSpline(x, Sample(x, Cubic), o);
+  for (double t = -0.3; t <= 0.7; t += 0.0137) {
+    for (int d = 0; d <= 3; ++d) EXPECT_NEAR(s.Evaluate(t, d), Cubic(t, d), 1e-10) << t << " d" << d;
+  }
+}
+
+TEST(SplineTest, ClampedAtRestHasZeroEndSlopes) {
+  const auto x = Knots(6);
+  SplineOptions o;
+  o.kind = SplineKind::kClamped;
+  const auto s = BuildSpline(x, Sample(x, Cubic), o);
+  EXPECT_NEAR(s.Evaluate(x.front(), 1), 0.0, 1e-12);
+  EXPECT_NEAR(s.Evaluate(x.back(), 1), 0.0, 1e-12);
+}
+
+TEST(SplineTest, NaturalHasZeroEndCurvatureAndReproducesLines) {
+  const auto x = Knots(6);
+  SplineOptions o;
+  o.kind = SplineKind::kNatural;
+  const auto s = BuildSpline(x, Sample(x, Cubic), o);
+  EXPECT_NEAR(s.Evaluate(x.front(), 2), 0.0, 1e-10);
+  EXPECT_NEAR(s.Evaluate(x.back(), 2), 0.0, 1e-10);
+  std::vector<double> line;
+  for (double xi : x) line.push_back(2.0 - 3.0 * xi);
+  const auto l = BuildSpline(x, line, o);
+  EXPECT_NEAR(l.Evaluate(0.123), 2.0 - 3.0 * 0.123, 1e-13);
+  EXPECT_NEAR(l.Evaluate(0.123, 1), -3.0, 1e-12);
+}
+
+TEST(SplineTest, QuinticReproducesQuinticExactlyAndIsC4) {
+  const auto x = Knots(10);
+  SplineOptions o;
+  o.kind = SplineKind::kQuintic;
+  const auto s = BuildSpline(x, Sample(x, Quintic), o);
+  EXPECT_EQ(s.continuity(), 4);
+  for (double t = -0.3; t <= 0.7; t += 0.0111) {
+    for (int d = 0; d <= 3; ++d) {
+      EXPECT_NEAR(s.Evaluate(t, d), Quintic(t, d), 1e-8 * (1 + std::abs(Quintic(t, d)))) << t;
+    }
+  }
+}
+
+TEST(SplineTest, QuinticIsC4AcrossKnotsOnArbitraryData) {
+  const auto x = Knots(12);
+  std::vector<double> y;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (size_t i = 0; i < x.size(); ++i) y.push_back(u(rng));
+  SplineOptions o;
+  o.kind = SplineKind::kQuintic;
+  const auto s = BuildSpline(x, y, o);
+  for (size_t i = 1; i + 1 < x.size(); ++i) {
+    const double e = 1e-9;
+    for (int d = 0; d <= 4; ++d) {
+      const double left = s.Evaluate(x[i] - e, d), right = s.Evaluate(x[i] + e, d);
+      EXPECT_NEAR(left, right, 1e-4 * (1 + std::abs(left))) << "knot " << i << " d" << d;
+    }
+  }
+}
+
+TEST(SplineTest, EveryInterpolatingKindPassesThroughTheData) {
+  const auto x = Knots(11);
+  std::vector<double> y;
+  for (double xi : x) y.push_back(std::exp(xi) * std::sin(3 * xi) + 2);
+  for (SplineKind kind : AllSplineKinds()) {
+    if (kind == SplineKind::kSmoothing) continue;
+    SplineOptions o;
+    o.kind = kind;
+    const auto s = BuildSpline(x, y, o);
+    for (size_t i = 0; i < x.size(); ++i) {
+      EXPECT_NEAR(s.Evaluate(x[i]), y[i], 1e-12) << SplineKindName(kind) << " at knot " << i;
+    }
+  }
+}
+
+TEST(SplineTest, PchipAndMakimaAreC1WithoutAcceleration) {
+  for (SplineKind kind : {SplineKind::kPchip, SplineKind::kMakima}) {
+    EXPECT_FALSE(HasAcceleration(kind));
+    const auto x = Knots(8);
+    std::vector<double> y;
+    for (double xi : x) y.push_back(xi * xi * xi);
+    SplineOptions o;
+    o.kind = kind;
+    const auto s = BuildSpline(x, y, o);
+    EXPECT_EQ(s.continuity(), 1);
+    for (size_t i = 1; i + 1 < x.size(); ++i) {  // slope continuous across knots
+      EXPECT_NEAR(s.Evaluate(x[i] - 1e-12, 1), s.Evaluate(x[i], 1), 1e-9);
+    }
+  }
+  for (SplineKind kind : {SplineKind::kNatural, SplineKind::kNotAKnot, SplineKind::kClamped,
+                          SplineKind::kQuintic, SplineKind::kSmoothing}) {
+    EXPECT_TRUE(HasAcceleration(kind)) << SplineKindName(kind);
+  }
+}
+
+TEST(SplineTest, PchipPreservesMonotonicityAndExtremaWhereCubicsOvershoot) {
+  // A step-like table: the interpolating cubic overshoots, pchip must not.
+  const std::vector<double> x = {0, 1, 2, 2.5, 3, 4, 6};
+  const std::vector<double> y = {0, 0, 0.1, 1.0, 1.0, 1.0, 1.0};
+  SplineOptions pchip;
+  pchip.kind = SplineKind::kPchip;
+  SplineOptions cubic;
+  cubic.kind = SplineKind::kNotAKnot;
+  const auto p = BuildSpline(x, y, pchip);
+  const auto c = BuildSpline(x, y, cubic);
+  double prev = -1, cubic_max = 0, cubic_min = 0;
+  for (double t = 0; t <= 6; t += 0.001) {
+    const double v = p.Evaluate(t);
+    EXPECT_GE(v, prev - 1e-14) << t;
+    EXPECT_LE(v, 1.0 + 1e-14);
+    EXPECT_GE(v, -1e-14);
+    prev = v;
+    cubic_max = std::max(cubic_max, c.Evaluate(t));
+    cubic_min = std::min(cubic_min, c.Evaluate(t));
+  }
+  EXPECT_GT(cubic_max, 1.01);  // the cubic does overshoot, so the test can tell them apart
+}
+
+TEST(SplineTest, MakimaReproducesLinesAndQuadraticsOnUniformKnots) {
+  std::vector<double> x, y;
+  for (int i = 0; i <= 8; ++i) {
+    x.push_back(i * 0.5);
+    y.push_back(3.0 - 2.0 * x.back());
+  }
+  SplineOptions o;
+  o.kind = SplineKind::kMakima;
+  const auto s = BuildSpline(x, y, o);
+  EXPECT_NEAR(s.Evaluate(1.3), 3.0 - 2.6, 1e-13);
+  EXPECT_NEAR(s.Evaluate(3.9, 1), -2.0, 1e-12);
+}
+
+TEST(SplineTest, SmoothingMeetsTheDiscrepancyPrinciple) {
+  // Noisy samples of a smooth curve with known σ: the fit's weighted residual is N+1.
+  std::vector<double> x, y;
+  std::mt19937 rng(42);
+  const double sigma = 0.01;
+  std::normal_distribution<double> noise(0, sigma);
+  for (int i = 0; i <= 40; ++i) {
+    x.push_back(i * 0.05);
+    y.push_back(std::sin(2 * x.back()) + noise(rng));
+  }
+  SplineOptions o;
+  o.kind = SplineKind::kSmoothing;
+  o.sigma = sigma;
+  const auto s = BuildSpline(x, y, o);
+  double r = 0, err = 0, raw = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    r += std::pow((y[i] - s.Evaluate(x[i])) / sigma, 2);
+    err += std::pow(s.Evaluate(x[i]) - std::sin(2 * x[i]), 2);
+    raw += std::pow(y[i] - std::sin(2 * x[i]), 2);
+  }
+  EXPECT_NEAR(r, 41.0, 1e-6);
+  EXPECT_LT(err, raw);  // the smoothed values are nearer the truth than the data
+  EXPECT_EQ(s.continuity(), 2);
+  EXPECT_NEAR(s.Evaluate(x.front(), 2), 0.0, 1e-9);  // natural ends
+}
+
+TEST(SplineTest, SmoothingOfDataWithinNoiseOfALineIsTheLine) {
+  const std::vector<double> x = {0, 1, 2, 3, 4};
+  const std::vector<double> y = {1.0, 1.001, 0.999, 1.0005, 1.0};
+  SplineOptions o;
+  o.kind = SplineKind::kSmoothing;
+  o.sigma = 0.01;
+  const auto s = BuildSpline(x, y, o);
+  EXPECT_NEAR(s.Evaluate(2.5, 2), 0.0, 1e-12);
+  EXPECT_NEAR(s.Evaluate(2.5, 1), s.Evaluate(0.5, 1), 1e-12);
+}
+
+TEST(SplineTest, SmoothingGcvGivesAFiniteC2Fit) {
+  std::vector<double> x, y;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0, 0.02);
+  for (int i = 0; i <= 30; ++i) {
+    x.push_back(i * 0.1);
+    y.push_back(std::cos(x.back()) + noise(rng));
+  }
+  SplineOptions o;
+  o.kind = SplineKind::kSmoothing;
+  o.sigma = 0.02;
+  o.smoothing_rule = SmoothingRule::kGcv;
+  const auto s = BuildSpline(x, y, o);
+  double err = 0, raw = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    err += std::pow(s.Evaluate(x[i]) - std::cos(x[i]), 2);
+    raw += std::pow(y[i] - std::cos(x[i]), 2);
+  }
+  EXPECT_LT(err, raw);
+}
+
+TEST(SplineTest, RejectsBadInputWithAClearMessage) {
+  SplineOptions o;
+  o.kind = SplineKind::kQuintic;
+  try {
+    BuildSpline({0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}, o);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "quintic spline needs at least 6 points, got 5");
+  }
+  o.kind = SplineKind::kNatural;
+  try {
+    BuildSpline({0, 1, 1, 3}, {0, 1, 2, 3}, o);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "natural spline: abscissae must increase strictly; point 2 is not above point 1");
+  }
+  try {
+    BuildSpline({0, 1, 2}, {0, NAN, 2}, o);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "natural spline: point 1 is not finite");
+  }
+  o.sigma = -1;
+  EXPECT_THROW(BuildSpline({0, 1, 2}, {0, 1, 2}, o), std::invalid_argument);
+}
+
+TEST(SplineTest, TwoPointTablesGiveTheLineWhereTheKindAllowsIt) {
+  for (SplineKind kind : {SplineKind::kNatural, SplineKind::kPchip, SplineKind::kMakima}) {
+    SplineOptions o;
+    o.kind = kind;
+    const auto s = BuildSpline({0.0, 2.0}, {1.0, 5.0}, o);
+    EXPECT_NEAR(s.Evaluate(0.5), 2.0, 1e-14) << SplineKindName(kind);
+    EXPECT_NEAR(s.Evaluate(1.5, 1), 2.0, 1e-14) << SplineKindName(kind);
+  }
+}
+
+TEST(SplineTest, LargeTablesUseTheSparseSolverAndStayExact) {
+  const auto x = Knots(400);  // 401 points: past the dense-solver threshold
+  for (SplineKind kind : {SplineKind::kNotAKnot, SplineKind::kQuintic}) {
+    SplineOptions o;
+    o.kind = kind;
+    const auto s = BuildSpline(x, Sample(x, Cubic), o);
+    EXPECT_NEAR(s.Evaluate(0.2345, 2), Cubic(0.2345, 2), 1e-6) << SplineKindName(kind);
+  }
+}
+
+}  // namespace
+}  // namespace needle
