@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "apps/kinematics_command.h"
+#include "apps/spring_command.h"
 #include "lib/case_file.h"
 
 int main(int argc, char** argv) {
@@ -11,6 +12,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   needle::KinematicsCommandOptions kinematics;
   CLI::App* kinematics_cmd = needle::AddKinematicsCommand(app, kinematics);
+  needle::SpringCommandOptions spring;
+  CLI::App* spring_cmd = needle::AddSpringCommand(app, spring);
+  needle::DesignCommandOptions design;
+  CLI::App* design_cmd = needle::AddDesignCommand(app, design);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -23,6 +28,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (kinematics_cmd->parsed()) return needle::RunKinematicsCommand(kinematics);
+    if (spring_cmd->parsed()) return needle::RunSpringCommand(spring);
+    if (design_cmd->parsed()) return needle::RunDesignCommand(design);
   } catch (const needle::CaseError& e) {
     std::cerr << "needle: " << e.what() << '\n';
     return 2;

@@ -49,6 +49,7 @@ class SectionReader {
       if (key.size() <= name.size() + 1 || key.compare(0, name.size() + 1, name + "_") != 0) {
         continue;
       }
+      if (BelongsToLongerName(key, name)) continue;  // `fuel_density_g_cm3` is not `fuel_…`
       const std::string unit = key.substr(name.size() + 1);
       const auto units = UnitSuffixes(dimension);
       if (std::find(units.begin(), units.end(), unit) == units.end()) {
@@ -108,6 +109,9 @@ class SectionReader {
   // Declares a plain key (no unit) the section knows, so FindQuantity does not mistake it.
   void Known(const std::string& key) { known_plain_.insert(key); }
 
+  // Declares a quantity name that extends a shorter one (`fuel_density` beside `fuel`).
+  void Declare(const std::string& name) { declared_.insert(name); }
+
   // Every key must have been read.
   void Finish() const {
     if (!table_) return;
@@ -120,6 +124,15 @@ class SectionReader {
 
  private:
   bool IsOtherQuantity(const std::string& key) const { return known_plain_.count(key) > 0; }
+
+  bool BelongsToLongerName(const std::string& key, const std::string& name) const {
+    for (const std::string& other : declared_) {
+      if (other.size() > name.size() && key.compare(0, other.size() + 1, other + "_") == 0) {
+        return true;
+      }
+    }
+    return false;
+  }
 
   static std::string Suggestions(const std::string& name, Dimension dimension) {
     std::string out;
@@ -148,7 +161,107 @@ class SectionReader {
   std::string section_;
   std::set<std::string> used_;
   std::set<std::string> known_plain_;
+  std::set<std::string> declared_;
 };
+
+// A required or optional quantity that must be positive; the message names the key as written.
+double Positive(SectionReader& r, const std::string& name, Dimension dimension, double si_to_shown,
+                const std::string& shown_key) {
+  const double v = r.Quantity(name, dimension);
+  if (!(v > 0.0)) r.Fail(shown_key, "must be positive, got " + Number(v * si_to_shown));
+  return v;
+}
+
+NeedleSection ReadNeedle(SectionReader r) {
+  NeedleSection n;
+  n.mass_kg = r.Quantity("mass", Dimension::kMass);
+  if (!(n.mass_kg > 0.0)) r.Fail("mass_kg", "must be positive, got " + Number(n.mass_kg));
+  n.diameter_m = r.OptionalQuantity("diameter", Dimension::kLength);
+  if (n.diameter_m && !(*n.diameter_m > 0.0)) {
+    r.Fail("diameter_mm", "must be positive, got " + Number(*n.diameter_m * 1e3));
+  }
+  n.gas_force_N = r.OptionalQuantity("gas_force", Dimension::kForce).value_or(0.0);
+  r.Finish();
+  return n;
+}
+
+HelicalGeometry ReadHelical(SectionReader& r) {
+  HelicalGeometry g;
+  g.wire_m = Positive(r, "wire", Dimension::kLength, 1e3, "wire_mm");
+  g.coil_m = Positive(r, "coil", Dimension::kLength, 1e3, "coil_mm");
+  const auto coils = r.OptionalNumber("active_coils");
+  if (!coils) r.Fail("active_coils", "missing; the helical check needs the number of active coils");
+  if (!(*coils >= 2.0))
+    r.Fail("active_coils", "must be at least 2 (EN 13906-1), got " + Number(*coils));
+  g.active_coils = *coils;
+  g.free_length_m = Positive(r, "free_length", Dimension::kLength, 1e3, "free_length_mm");
+  g.shear_modulus_Pa =
+      Positive(r, "shear_modulus", Dimension::kPressure, 1e-9, "shear_modulus_GPa");
+  if (auto rho = r.OptionalQuantity("density", Dimension::kDensity)) {
+    if (!(*rho > 0.0)) r.Fail("density_kg_m3", "must be positive, got " + Number(*rho));
+    g.density_kg_m3 = *rho;
+  }
+  g.tensile_Pa = Positive(r, "tensile", Dimension::kPressure, 1e-6, "tensile_MPa");
+  const double index = g.coil_m / g.wire_m;
+  if (index < 4.0 || index > 20.0) {
+    r.Fail("coil_mm", "spring index D/d = " + Number(index) +
+                          " is outside 4…20 (EN 13906-1); change the wire or the coil diameter");
+  }
+  if (auto ends = r.OptionalString("ends")) {
+    if (*ends == "closed-ground") {
+      g.ends = SpringEnds::kClosedGround;
+    } else if (*ends == "closed") {
+      g.ends = SpringEnds::kClosed;
+    } else if (*ends == "open-ground") {
+      g.ends = SpringEnds::kOpenGround;
+    } else if (*ends == "open") {
+      g.ends = SpringEnds::kOpen;
+    } else {
+      r.Fail("ends", "expected \"closed-ground\", \"closed\", \"open-ground\" or \"open\", got \"" +
+                         *ends + "\"");
+    }
+  }
+  if (auto corr = r.OptionalString("stress_correction")) {
+    if (*corr != "bergstrasser" && *corr != "wahl") {
+      r.Fail("stress_correction", "expected \"bergstrasser\" or \"wahl\", got \"" + *corr + "\"");
+    }
+    g.wahl = *corr == "wahl";
+  }
+  if (auto f = r.OptionalNumber("allowable_stress_fraction")) {
+    if (!(*f > 0.0 && *f <= 1.0)) {
+      r.Fail("allowable_stress_fraction", "must be in (0, 1], got " + Number(*f));
+    }
+    g.allowable_fraction = *f;
+  }
+  return g;
+}
+
+SpringSection ReadSpring(SectionReader r) {
+  SpringSection sp;
+  sp.preload_N = r.Quantity("preload", Dimension::kForce);
+  if (sp.preload_N < 0.0)
+    r.Fail("preload", "must not be negative, got " + Number(sp.preload_N) + " N");
+  sp.rate_N_m = r.OptionalQuantity("rate", Dimension::kStiffness);
+  if (sp.rate_N_m && *sp.rate_N_m < 0.0) {
+    r.Fail("rate", "must not be negative, got " + Number(*sp.rate_N_m) + " N/m");
+  }
+  if (auto s = r.OptionalNumber("safety_factor")) {
+    if (!(*s >= 1.0)) r.Fail("safety_factor", "must be at least 1, got " + Number(*s));
+    sp.safety_factor = *s;
+  }
+  if (auto f = r.OptionalNumber("overspeed_factor")) {
+    if (!(*f >= 1.0)) r.Fail("overspeed_factor", "must be at least 1, got " + Number(*f));
+    sp.overspeed_factor = *f;
+  }
+  if (r.FindQuantity("wire", Dimension::kLength)) {
+    sp.helical = ReadHelical(r);
+  }
+  if (!sp.rate_N_m && !sp.helical) {
+    r.Fail("rate", "missing; give rate_N_mm (or rate_N_m, rate_kgf_mm …) or the helical geometry");
+  }
+  r.Finish();
+  return sp;
+}
 
 EngineSection ReadEngine(SectionReader r) {
   if (!r.present()) r.Fail("speed_rpm", "section [engine] is missing; it needs speed_rpm");
@@ -271,6 +384,7 @@ PaperSection ReadPaper(SectionReader r) {
   p.max_acceleration_m_s2 = r.OptionalQuantity("max_acceleration", Dimension::kAcceleration);
   p.inertia_force_N = r.OptionalQuantity("inertia_force", Dimension::kForce);
   p.mean_lift_m = r.OptionalQuantity("mean_lift", Dimension::kLength);
+  p.spring_preload_N = r.OptionalQuantity("spring_preload", Dimension::kForce);
   r.Finish();
   return p;
 }
@@ -298,7 +412,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
     throw CaseError(path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
                     ": malformed TOML: " + description);
   }
-  static const std::set<std::string> kSections = {"engine", "lift", "paper"};
+  static const std::set<std::string> kSections = {"engine", "lift", "needle", "spring", "paper"};
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title") {
@@ -307,7 +421,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
     }
     if (!kSections.count(key)) {
       throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
-                      " (known: title, [engine], [lift], [paper])");
+                      " (known: title, [engine], [lift], [needle], [spring], [paper])");
     }
   }
   Case c;
@@ -315,6 +429,12 @@ Case ParseCase(const std::string& text, const std::string& path) {
   c.title = root["title"].value_or(std::string());
   c.engine = ReadEngine(SectionReader(Section(root, path, "engine"), path, "engine"));
   c.lift = ReadLift(SectionReader(Section(root, path, "lift"), path, "lift"));
+  if (const toml::table* needle = Section(root, path, "needle")) {
+    c.needle = ReadNeedle(SectionReader(needle, path, "needle"));
+  }
+  if (const toml::table* spring = Section(root, path, "spring")) {
+    c.spring = ReadSpring(SectionReader(spring, path, "spring"));
+  }
   if (const toml::table* paper = Section(root, path, "paper")) {
     c.paper = ReadPaper(SectionReader(paper, path, "paper"));
   }
@@ -338,6 +458,132 @@ void CheckSplineFits(const Case& c, SplineKind kind, const std::string& where) {
     throw CaseError(c.path + ": " + where + ": \"" + SplineKindName(kind) + "\" needs at least " +
                     std::to_string(need) + " points, the lift table has " + std::to_string(have));
   }
+}
+
+DesignInputs ParseDesignInputs(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    std::string description(e.description());
+    for (char& ch : description) {
+      if (ch == '\n') ch = ' ';
+    }
+    throw CaseError(path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
+                    ": malformed TOML: " + description);
+  }
+  for (const auto& [k, node] : root) {
+    const std::string key(k.str());
+    if (key == "title" || key == "engine" || key == "design") continue;
+    throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
+                    " (known: title, [engine], [design])");
+  }
+  DesignInputs d;
+  d.path = path;
+  d.title = root["title"].value_or(std::string());
+  SectionReader e(Section(root, path, "engine"), path, "engine");
+  if (!e.present())
+    e.Fail("power_hp", "section [engine] is missing; it needs power_hp and speed_rpm");
+  d.power_W = Positive(e, "power", Dimension::kPower, 1.0, "power_hp");
+  d.speed_rpm = Positive(e, "speed", Dimension::kRotationSpeed, 1.0, "speed_rpm");
+  if (auto cycle = e.OptionalString("cycle")) {
+    if (*cycle != "four-stroke" && *cycle != "two-stroke") {
+      e.Fail("cycle", "expected \"four-stroke\" or \"two-stroke\", got \"" + *cycle + "\"");
+    }
+    d.cycle = *cycle;
+  }
+  e.Finish();
+  SectionReader r(Section(root, path, "design"), path, "design");
+  r.Declare("fuel_density");
+  auto positive = [&](const std::string& name, Dimension dim, double shown, const std::string& key,
+                      double& into) {
+    if (auto v = r.OptionalQuantity(name, dim)) {
+      if (!(*v > 0.0)) r.Fail(key, "must be positive, got " + Number(*v * shown));
+      into = *v;
+    }
+  };
+  auto number = [&](const std::string& key, double lo, double& into) {
+    if (auto v = r.OptionalNumber(key)) {
+      if (!(*v > lo)) r.Fail(key, "must be above " + Number(lo) + ", got " + Number(*v));
+      into = *v;
+    }
+  };
+  if (auto v = r.OptionalQuantity("fuel", Dimension::kSpecificFuel)) {
+    if (!(*v > 0.0)) r.Fail("fuel_g_hp_h", "must be positive, got " + Number(*v));
+    d.fuel_g_hp_h = *v;
+  }
+  positive("fuel_density", Dimension::kDensity, 1e-3, "fuel_density_g_cm3", d.fuel_density_kg_m3);
+  positive("injection_crank", Dimension::kAngle, 180.0 / kPi, "injection_crank_deg",
+           d.injection_crank_rad);
+  positive("injection_air_pressure", Dimension::kPressure, 1.0 / 101325.0,
+           "injection_air_pressure_atm", d.injection_air_pressure_Pa);
+  positive("cylinder_pressure", Dimension::kPressure, 1.0 / 101325.0, "cylinder_pressure_atm",
+           d.cylinder_pressure_Pa);
+  if (auto t = r.OptionalQuantity("air_temperature", Dimension::kTemperature)) {
+    if (!(*t > 0.0)) r.Fail("air_temperature", "must be above absolute zero");
+    d.air_temperature_K = *t;
+  }
+  number("velocity_coefficient", 0.0, d.velocity_coefficient);
+  if (d.velocity_coefficient > 1.0) {
+    r.Fail("velocity_coefficient", "must be at most 1, got " + Number(d.velocity_coefficient));
+  }
+  if (auto a = r.OptionalString("atomizer")) {
+    if (*a != "disk" && *a != "sleeve")
+      r.Fail("atomizer", "expected \"disk\" or \"sleeve\", got \"" + *a + "\"");
+    d.atomizer = *a;
+  }
+  if (auto ratio = r.OptionalString("pressure_ratio")) {
+    if (*ratio != "absolute" && *ratio != "gauge") {
+      r.Fail("pressure_ratio", "expected \"absolute\" or \"gauge\", got \"" + *ratio + "\"");
+    }
+    d.gauge_ratio = *ratio == "gauge";
+  }
+  if (auto m = r.OptionalNumber("mixing_ratio")) {
+    if (!(*m > 0.0)) r.Fail("mixing_ratio", "must be positive, got " + Number(*m));
+    d.mixing_ratio = *m;
+  }
+  positive("cam_peripheral_velocity", Dimension::kVelocity, 1.0, "cam_peripheral_velocity_m_s",
+           d.cam_peripheral_velocity_m_s);
+  number("disk_to_roller", 1.0, d.disk_to_roller);
+  if (auto holes = r.OptionalNumber("nozzle_holes")) {
+    if (!(*holes >= 1.0) || *holes != std::floor(*holes)) {
+      r.Fail("nozzle_holes", "must be a whole number ≥ 1, got " + Number(*holes));
+    }
+    d.nozzle_holes = static_cast<int>(*holes);
+  }
+  if (auto v = r.OptionalQuantity("discharge_passage", Dimension::kLength)) {
+    if (!(*v > 0.0)) r.Fail("discharge_passage_mm", "must be positive, got " + Number(*v * 1e3));
+    d.discharge_passage_m = *v;
+  }
+  positive("max_lift_limit", Dimension::kLength, 1e3, "max_lift_limit_mm", d.max_lift_limit_m);
+  if (auto list = r.OptionalQuantityArray("passage_candidates", Dimension::kLength)) {
+    if (list->empty()) r.Fail("passage_candidates_mm", "must not be empty");
+    for (double v : *list) {
+      if (!(v > 0.0)) r.Fail("passage_candidates_mm", "every diameter must be positive");
+    }
+    d.passage_candidates_m = *list;
+  }
+  if (auto v = r.OptionalQuantity("needle_diameter", Dimension::kLength)) {
+    if (!(*v > 0.0)) r.Fail("needle_diameter_mm", "must be positive, got " + Number(*v * 1e3));
+    d.needle_diameter_m = *v;
+  }
+  if (auto v = r.OptionalQuantity("cam_disk", Dimension::kLength)) {
+    if (!(*v > 0.0)) r.Fail("cam_disk_mm", "must be positive, got " + Number(*v * 1e3));
+    d.cam_disk_m = *v;
+  }
+  number("rho", 1.0, d.rho);
+  number("nozzle_ratio", 0.0, d.nozzle_ratio);
+  r.Finish();
+  return d;
+}
+
+DesignInputs LoadDesignInputs(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError(path + ": cannot open the engine file for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return ParseDesignInputs(buffer.str(), path);
 }
 
 LiftLaw MakeLiftLaw(const Case& c) {

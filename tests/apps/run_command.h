@@ -1,11 +1,12 @@
 #pragma once
 // Runs the needle binary in a shell and captures its stdout, stderr and exit status.
+#include <sys/wait.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace needle::testing {
 
@@ -25,8 +26,10 @@ inline std::string Slurp(const std::string& path) {
 // `args` is appended to the binary's path as shell words.
 inline Result RunNeedle(const std::string& args) {
   static int counter = 0;
-  const std::string base = "/tmp/needle_cli_" + std::to_string(getpid()) + "_" + std::to_string(counter++);
-  const std::string cmd = std::string(NEEDLE_BINARY) + " " + args + " >" + base + ".out 2>" + base + ".err";
+  const std::string base =
+      "/tmp/needle_cli_" + std::to_string(getpid()) + "_" + std::to_string(counter++);
+  const std::string cmd =
+      std::string(NEEDLE_BINARY) + " " + args + " >" + base + ".out 2>" + base + ".err";
   const int raw = std::system(cmd.c_str());
   Result r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

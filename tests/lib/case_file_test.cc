@@ -37,8 +37,14 @@ std::string Replace(std::string s, const std::string& from, const std::string& t
 
 TEST(CaseFileTest, EveryBundledCaseLoadsAndBuilds) {
   int n = 0;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(NEEDLE_SOURCE_DIR) + "/cases")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(NEEDLE_SOURCE_DIR) + "/cases")) {
     if (e.path().extension() != ".toml") continue;
+    if (e.path().stem().string().size() > 7 &&
+        e.path().stem().string().substr(e.path().stem().string().size() - 7) == "-engine") {
+      EXPECT_NO_THROW(LoadDesignInputs(e.path().string())) << e.path();  // for `needle design`
+      continue;
+    }
     const Case c = LoadCase(e.path().string());
     EXPECT_GT(c.engine.speed_rpm, 0) << e.path();
     EXPECT_NO_THROW(MakeLiftLaw(c)) << e.path();
@@ -105,7 +111,8 @@ TEST(CaseFileTest, UnknownKeysSectionsAndUnits) {
   EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rpm = 400\nbore_mm = 3")),
             "t.toml: [engine] bore_mm: unknown key in this section");
   EXPECT_EQ(Error(kGood + "[valve]\nx = 1\n"),
-            "t.toml: valve: unknown section (known: title, [engine], [lift], [paper])");
+            "t.toml: valve: unknown section (known: title, [engine], [lift], [needle], [spring], "
+            "[paper])");
   EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rps = 400")),
             "t.toml: [engine] speed_rps: unit suffix 'rps' is not a unit of rotation speed "
             "(expected speed_rpm)");
@@ -145,6 +152,34 @@ TEST(CaseFileTest, SplineKindAndPointCount) {
   EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
                           "lift_mm = [0, 1, 2, 1, 0]\nspline = \"quintic\"")),
             "t.toml: [lift] spline: \"quintic\" needs at least 6 points, the lift table has 5");
+}
+
+TEST(CaseFileTest, NeedleAndSpringSections) {
+  const std::string spring = kGood + R"(
+[needle]
+mass_kg = 2.0
+diameter_mm = 12.8
+[spring]
+preload_kgf = 176
+rate_N_mm = 40
+)";
+  const Case c = ParseCase(spring, "t.toml");
+  EXPECT_DOUBLE_EQ(c.needle->mass_kg, 2.0);
+  EXPECT_DOUBLE_EQ(c.spring->preload_N, 176 * kKgf);
+  EXPECT_DOUBLE_EQ(*c.spring->rate_N_m, 4e4);
+  EXPECT_DOUBLE_EQ(c.spring->safety_factor, 1.5);
+  EXPECT_EQ(Error(Replace(spring, "mass_kg = 2.0", "mass_kg = 0")),
+            "t.toml: [needle] mass_kg: must be positive, got 0");
+  EXPECT_EQ(Error(Replace(spring, "diameter_mm = 12.8", "diameter_mm = -1")),
+            "t.toml: [needle] diameter_mm: must be positive, got -1");
+  EXPECT_EQ(Error(Replace(spring, "rate_N_mm = 40", "")),
+            "t.toml: [spring] rate: missing; give rate_N_mm (or rate_N_m, rate_kgf_mm …) or the "
+            "helical geometry");
+  EXPECT_EQ(Error(Replace(spring, "rate_N_mm = 40",
+                          "wire_mm = 2\ncoil_mm = 50\nactive_coils = 6\nfree_length_mm = 80\n"
+                          "shear_modulus_GPa = 79\ntensile_MPa = 1600")),
+            "t.toml: [spring] coil_mm: spring index D/d = 25 is outside 4…20 (EN 13906-1); change "
+            "the wire or the coil diameter");
 }
 
 TEST(CaseFileTest, UnreadableFile) {

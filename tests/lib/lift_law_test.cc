@@ -3,10 +3,10 @@
 #include "lib/lift_law.h"
 
 #include <gtest/gtest.h>
+#include <toml++/toml.h>
 
 #include <cmath>
 #include <random>
-#include <toml++/toml.h>
 
 #include "lib/cam_laws.h"
 #include "lib/case_file.h"
@@ -98,7 +98,8 @@ double DecelerationSpread(const LiftTable& table, SplineKind kind) {
   const int trials = 60;
   for (int k = 0; k < trials; ++k) {
     LiftTable t = table;
-    for (size_t i = 1; i + 1 < t.lift_m.size(); ++i) t.lift_m[i] = std::max(0.0, t.lift_m[i] + u(rng));
+    for (size_t i = 1; i + 1 < t.lift_m.size(); ++i)
+      t.lift_m[i] = std::max(0.0, t.lift_m[i] + u(rng));
     SplineOptions o;
     o.kind = kind;
     const double a = LiftLaw(t, o).Min(2).value;

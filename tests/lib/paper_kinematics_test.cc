@@ -24,7 +24,8 @@ double MeanVelocityDeviation(const std::string& name, SplineKind kind) {
   const Kinematics kin(law, c.engine.speed_rpm);
   double sum = 0;
   for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
-    sum += std::abs(std::abs(kin.At(c.paper->crank_rad[i]).velocity_m_s) - c.paper->velocity_m_s[i]);
+    sum +=
+        std::abs(std::abs(kin.At(c.paper->crank_rad[i]).velocity_m_s) - c.paper->velocity_m_s[i]);
   }
   return sum / c.paper->crank_rad.size();
 }

@@ -66,8 +66,8 @@ const CamLaw kPoly345(CamLawKind::kPoly345, kHeight, kBeta);
 
 TEST(SplineConvergenceTest, PrintsTheErrorTable) {
   // Not an assertion: the table this suite checks, for the log and README.
-  std::printf("%-18s %-11s %11s %11s %11s %11s %11s\n", "law", "spline", "v err 5deg",
-              "v err 1deg", "a err 5deg", "a err 1deg", "a 1deg rnd");
+  std::printf("%-18s %-11s %11s %11s %11s %11s %11s\n", "law", "spline", "v err 5deg", "v err 1deg",
+              "a err 5deg", "a err 1deg", "a 1deg rnd");
   for (const CamLaw* law : {&kCycloidal, &kHarmonic, &kPoly345}) {
     for (SplineKind kind : AllSplineKinds()) {
       const Errors e5 = Measure(*law, kind, 5.0), e1 = Measure(*law, kind, 1.0);

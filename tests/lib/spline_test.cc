@@ -21,10 +21,14 @@ std::vector<double> Knots(int n) {
 
 double Cubic(double x, int d) {  // p = 1 − 2x + 3x² − 4x³
   switch (d) {
-    case 0: return 1 - 2 * x + 3 * x * x - 4 * x * x * x;
-    case 1: return -2 + 6 * x - 12 * x * x;
-    case 2: return 6 - 24 * x;
-    default: return -24;
+    case 0:
+      return 1 - 2 * x + 3 * x * x - 4 * x * x * x;
+    case 1:
+      return -2 + 6 * x - 12 * x * x;
+    case 2:
+      return 6 - 24 * x;
+    default:
+      return -24;
   }
 }
 
@@ -51,7 +55,8 @@ TEST(SplineTest, NotAKnotReproducesCubicExactly) {
   o.kind = SplineKind::kNotAKnot;
   const auto s = BuildSpline(x, Sample(x, Cubic), o);
   for (double t = -0.3; t <= 0.7; t += 0.0137) {
-    for (int d = 0; d <= 3; ++d) EXPECT_NEAR(s.Evaluate(t, d), Cubic(t, d), 1e-10) << t << " d" << d;
+    for (int d = 0; d <= 3; ++d)
+      EXPECT_NEAR(s.Evaluate(t, d), Cubic(t, d), 1e-10) << t << " d" << d;
   }
 }
 
@@ -63,7 +68,8 @@ TEST(SplineTest, ClampedWithTrueSlopesReproducesCubicExactly) {
   o.end_slope = Cubic(x.back(), 1);
   const auto s = BuildSpline(x, Sample(x, Cubic), o);
   for (double t = -0.3; t <= 0.7; t += 0.0137) {
-    for (int d = 0; d <= 3; ++d) EXPECT_NEAR(s.Evaluate(t, d), Cubic(t, d), 1e-10) << t << " d" << d;
+    for (int d = 0; d <= 3; ++d)
+      EXPECT_NEAR(s.Evaluate(t, d), Cubic(t, d), 1e-10) << t << " d" << d;
   }
 }
 

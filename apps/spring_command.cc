@@ -1,0 +1,305 @@
+#include "apps/spring_command.h"
+
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "lib/case_file.h"
+#include "lib/kinematics.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/basu_formula.h"
+#include "spring/design_chain.h"
+#include "spring/helical_spring.h"
+#include "spring/quasi_static.h"
+
+namespace needle {
+namespace {
+
+nlohmann::json Finite(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+std::string PassFail(bool ok) { return ok ? "pass" : "FAIL"; }
+
+}  // namespace
+
+CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "spring",
+      "Spring check: Basu's formula, quasi-static lift-off, preload sizing, helical spring");
+  cmd->add_option("CASE", o.case_path, "case file (TOML) with [needle] and [spring]")->required();
+  cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--json", o.json, "print one JSON object");
+  return cmd;
+}
+
+int RunSpringCommand(const SpringCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  if (!c.needle)
+    throw CaseError(
+        c.path +
+        ": [needle] mass_kg: section [needle] is missing; the spring check needs the moving mass");
+  if (!c.spring)
+    throw CaseError(
+        c.path +
+        ": [spring] preload: section [spring] is missing; the spring check needs preload and rate");
+  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
+  const LiftLaw law = MakeLiftLaw(c);
+  if (!law.HasAcceleration()) {
+    throw CaseError(
+        c.path + ": [lift] spline: \"" + SplineKindName(law.kind()) +
+        "\" has no acceleration; the spring check needs a C2 spline (not-a-knot, natural, "
+        "clamped, quintic or smoothing)");
+  }
+  const Kinematics kin(law, speed);
+  const KinematicsSummary sum = kin.Summarize();
+  const double omega = kin.omega();
+
+  RigidTrain train;
+  train.mass_kg = c.needle->mass_kg;
+  train.preload_N = c.spring->preload_N;
+  train.gas_force_N = c.needle->gas_force_N;
+  std::optional<HelicalSpringCheck> helical;
+  if (c.spring->helical) {
+    try {
+      helical = CheckHelicalSpring(*c.spring->helical, c.spring->preload_N, sum.max_lift_m, speed,
+                                   c.engine.cycle == "four-stroke");
+    } catch (const std::invalid_argument& e) {
+      throw CaseError(c.path + ": [spring]: " + e.what());
+    }
+  }
+  train.rate_N_m = c.spring->rate_N_m ? *c.spring->rate_N_m : helical->rate_N_m;
+
+  const double a_abs =
+      std::max(std::abs(*sum.max_acceleration_m_s2), std::abs(*sum.min_acceleration_m_s2));
+  const double a_deg = (std::abs(*sum.max_acceleration_m_s2) >= std::abs(*sum.min_acceleration_m_s2)
+                            ? *sum.max_acceleration_rad
+                            : *sum.min_acceleration_rad) /
+                       kDeg;
+  const double inertia_N = train.mass_kg * a_abs;
+  std::optional<double> basu_N;
+  if (c.needle->diameter_m) basu_N = BasuPreloadN(*c.needle->diameter_m, sum.injection_period_s);
+  const ForceMinimum fmin = MinQuasiStaticForce(law, train, omega);
+  const double n_qs = QuasiStaticLiftoffRpm(law, train);
+  const double required_N =
+      RequiredPreloadN(law, train, omega, c.spring->safety_factor, c.spring->overspeed_factor);
+  const double margin =
+      required_N > 0 ? 100.0 * (train.preload_N - required_N) / required_N : INFINITY;
+  const bool preload_ok = train.preload_N >= required_N;
+  const bool ok = preload_ok && (!helical || helical->pass());
+
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["speed_rpm"] = speed;
+    j["spline"] = SplineKindName(law.kind());
+    j["injection_period_s"] = sum.injection_period_s;
+    j["basu_preload_kgf"] = basu_N ? nlohmann::json(*basu_N / kKgf) : nlohmann::json(nullptr);
+    j["actual_preload_kgf"] = train.preload_N / kKgf;
+    j["deviation_percent"] = basu_N ? nlohmann::json(100.0 * (train.preload_N - *basu_N) / *basu_N)
+                                    : nlohmann::json(nullptr);
+    j["max_abs_acceleration_m_s2"] = a_abs;
+    j["max_abs_acceleration_deg"] = a_deg;
+    j["inertia_force_kgf"] = inertia_N / kKgf;
+    j["spring_rate_N_mm"] = train.rate_N_m * 1e-3;
+    j["min_quasi_static_force_N"] = fmin.force_N;
+    j["min_quasi_static_force_deg"] = fmin.crank_rad / kDeg;
+    j["liftoff_rpm_quasi_static"] = Finite(n_qs);
+    j["safety_factor"] = c.spring->safety_factor;
+    j["overspeed_factor"] = c.spring->overspeed_factor;
+    j["required_preload_N"] = required_N;
+    j["required_preload_kgf"] = required_N / kKgf;
+    j["preload_margin_percent"] = Finite(margin);
+    j["pass"] = ok;
+    if (helical) {
+      const auto& h = *helical;
+      j["helical"] = {{"rate_N_mm", h.rate_N_m * 1e-3},
+                      {"index", h.index},
+                      {"stress_correction", h.wahl ? "wahl" : "bergstrasser"},
+                      {"correction_factor", h.correction_factor},
+                      {"stress_preload_MPa", h.stress_preload_Pa * 1e-6},
+                      {"stress_full_lift_MPa", h.stress_full_lift_Pa * 1e-6},
+                      {"allowable_stress_MPa", h.allowable_stress_Pa * 1e-6},
+                      {"total_coils", h.total_coils},
+                      {"solid_length_mm", h.solid_length_m * 1e3},
+                      {"length_preload_mm", h.length_preload_m * 1e3},
+                      {"length_full_lift_mm", h.length_full_lift_m * 1e3},
+                      {"clearance_full_lift_mm", h.clearance_full_lift_m * 1e3},
+                      {"min_clearance_mm", h.min_clearance_m * 1e3},
+                      {"surge_hz", h.surge_hz},
+                      {"cam_hz", h.cam_hz},
+                      {"surge_ratio", h.surge_ratio},
+                      {"stress_ok", h.stress_ok},
+                      {"clearance_ok", h.clearance_ok},
+                      {"surge_ok", h.surge_ok},
+                      {"pass", h.pass()}};
+    }
+    out << j.dump(2) << '\n';
+  } else {
+    out << (c.title.empty() ? c.path : c.title) << '\n';
+    out << "speed " << Fixed(speed, 1) << " rpm, spline " << SplineKindName(law.kind())
+        << ", injection period " << Fixed(sum.injection_period_s, 4) << " s\n\n";
+    if (basu_N) {
+      out << "Basu's formula (d = " << Fixed(*c.needle->diameter_m * 1e3, 1)
+          << " mm): " << Fixed(*basu_N / kKgf, 1) << " kgf; the case's spring "
+          << Fixed(train.preload_N / kKgf, 1) << " kgf ("
+          << Fixed(100.0 * (train.preload_N - *basu_N) / *basu_N, 1) << " %)\n";
+    }
+    out << "inertia force m*max|a| = " << Fixed(train.mass_kg, 2) << " kg x " << Fixed(a_abs, 2)
+        << " m/s^2 (at " << Fixed(a_deg, 1) << " deg) = " << Fixed(inertia_N / kKgf, 2) << " kgf\n";
+    out << "quasi-static contact force: min " << Fixed(fmin.force_N, 1) << " N at "
+        << Fixed(fmin.crank_rad / kDeg, 2) << " deg (spring rate "
+        << Fixed(train.rate_N_m * 1e-3, 2) << " N/mm)\n";
+    out << "quasi-static lift-off speed n_qs = "
+        << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm (" + Fixed(n_qs / speed, 2) + " x rated)"
+                                : "none (never decelerates)")
+        << '\n';
+    out << "required preload (S = " << Fixed(c.spring->safety_factor, 2) << " at "
+        << Fixed(c.spring->overspeed_factor, 2) << " x " << Fixed(speed, 0)
+        << " rpm): " << Fixed(required_N, 1) << " N = " << Fixed(required_N / kKgf, 2)
+        << " kgf; margin of the case's spring "
+        << (std::isfinite(margin) ? Fixed(margin, 1) + " %" : "unbounded") << " -> "
+        << PassFail(preload_ok) << '\n';
+    if (helical) {
+      const auto& h = *helical;
+      out << "\nhelical spring (" << (h.wahl ? "Wahl" : "Bergstrasser") << " correction "
+          << Fixed(h.correction_factor, 3) << ")\n"
+          << "  rate " << Fixed(h.rate_N_m * 1e-3, 2) << " N/mm, index D/d " << Fixed(h.index, 2)
+          << ", total coils " << Fixed(h.total_coils, 1) << '\n'
+          << "  shear stress " << Fixed(h.stress_preload_Pa * 1e-6, 0) << " MPa at preload, "
+          << Fixed(h.stress_full_lift_Pa * 1e-6, 0) << " MPa at full lift, allowable "
+          << Fixed(h.allowable_stress_Pa * 1e-6, 0) << " MPa -> " << PassFail(h.stress_ok) << '\n'
+          << "  length " << Fixed(h.length_preload_m * 1e3, 1) << " mm at preload, "
+          << Fixed(h.length_full_lift_m * 1e3, 1) << " mm at full lift, solid "
+          << Fixed(h.solid_length_m * 1e3, 1) << " mm; coil gaps "
+          << Fixed(h.clearance_full_lift_m * 1e3, 2) << " mm against S_a "
+          << Fixed(h.min_clearance_m * 1e3, 2) << " mm -> " << PassFail(h.clearance_ok) << '\n'
+          << "  surge " << Fixed(h.surge_hz, 1) << " Hz, cam " << Fixed(h.cam_hz, 3)
+          << " Hz, ratio " << Fixed(h.surge_ratio, 1) << " (>= 13) -> " << PassFail(h.surge_ok)
+          << '\n';
+    }
+    out << "\nspring check: " << (ok ? "pass" : "FAIL") << '\n';
+  }
+  std::cout << out.str() << std::flush;
+  return ok ? 0 : 1;
+}
+
+CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& o) {
+  CLI::App* cmd =
+      app.add_subcommand("design", "Basu's design chain from engine data to cam, valve and spring");
+  cmd->add_option("ENGINE", o.engine_path, "engine file (TOML) with [engine] and [design]")
+      ->required();
+  cmd->add_flag("--json", o.json, "print one JSON object, every quantity with its unit in the key");
+  return cmd;
+}
+
+int RunDesignCommand(const DesignCommandOptions& o) {
+  const DesignInputs in = LoadDesignInputs(o.engine_path);
+  DesignResult r;
+  try {
+    r = RunDesignChain(in);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(in.path + ": [design]: " + e.what());
+  }
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["engine"] = in.path;
+    j["power_hp"] = in.power_W / 735.49875;
+    j["speed_rpm"] = in.speed_rpm;
+    j["atomizer"] = in.atomizer;
+    j["fuel_per_cycle_g"] = r.fuel_per_cycle_g;
+    j["fuel_per_cycle_cm3"] = r.fuel_per_cycle_cm3;
+    j["mixing_ratio"] = r.mixing_ratio;
+    j["air_per_cycle_cm3"] = r.air_per_cycle_cm3;
+    j["air_expanded_cm3"] = r.air_expanded_cm3;
+    j["mixture_cm3"] = r.mixture_cm3;
+    j["injection_period_s"] = r.injection_period_s;
+    j["pressure_ratio"] = r.pressure_ratio;
+    j["air_velocity_m_s"] = r.air_velocity_m_s;
+    j["mean_cross_section_mm2"] = r.mean_cross_section_m2 * 1e6;
+    nlohmann::json trials = nlohmann::json::array();
+    for (const auto& t : r.trials) {
+      trials.push_back({{"discharge_passage_mm", t.passage_m * 1e3},
+                        {"mean_lift_mm", Finite(t.mean_lift_m * 1e3)},
+                        {"max_lift_mm", Finite(t.max_lift_m * 1e3)},
+                        {"accepted", t.accepted}});
+    }
+    j["passage_trials"] = trials;
+    j["discharge_passage_mm"] = r.discharge_passage_m * 1e3;
+    j["mean_lift_mm"] = r.mean_lift_m * 1e3;
+    j["max_lift_mm"] = r.max_lift_m * 1e3;
+    nlohmann::json table = nlohmann::json::array();
+    for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i) {
+      table.push_back({{"crank_deg", r.lift_table.crank_rad[i] / kDeg},
+                       {"lift_mm", r.lift_table.lift_m[i] * 1e3}});
+    }
+    j["lift_table"] = table;
+    j["cam_disk_computed_mm"] = r.cam_disk_computed_m * 1e3;
+    j["cam_disk_mm"] = r.cam_disk_m * 1e3;
+    j["roller_mm"] = r.roller_m * 1e3;
+    j["passage_height_mm"] = r.passage_height_m * 1e3;
+    j["needle_diameter_suggested_mm"] = r.needle_diameter_suggested_m * 1e3;
+    j["needle_diameter_mm"] = r.needle_diameter_m * 1e3;
+    j["cage_diameter_mm"] = r.cage_diameter_m * 1e3;
+    j["spring_preload_kgf"] = r.spring_preload_N / kKgf;
+    j["spring_preload_N"] = r.spring_preload_N;
+    j["max_lift_cross_section_mm2"] = r.max_lift_cross_section_m2 * 1e6;
+    j["nozzle_cross_section_mm2"] = r.nozzle_cross_section_m2 * 1e6;
+    j["nozzle_holes"] = r.nozzle_holes;
+    j["nozzle_hole_mm"] = r.nozzle_hole_m * 1e3;
+    out << j.dump(2) << '\n';
+  } else {
+    out << (in.title.empty() ? in.path : in.title) << '\n'
+        << Fixed(in.power_W / 735.49875, 1) << " HP_i per cylinder, " << Fixed(in.speed_rpm, 1)
+        << " rpm, " << in.cycle << ", " << in.atomizer << " atomizer\n\n"
+        << "fuel per working cycle      " << Fixed(r.fuel_per_cycle_g, 3)
+        << " g = " << Fixed(r.fuel_per_cycle_cm3, 3) << " cm3\n"
+        << "mixing ratio                " << Fixed(r.mixing_ratio, 2)
+        << (r.mixing_ratio_from_line ? " (Basu's line)" : " (given)") << '\n'
+        << "injection air (p1, T1)      " << Fixed(r.air_per_cycle_cm3, 1) << " cm3\n"
+        << "expanded to p0              " << Fixed(r.air_expanded_cm3, 1) << " cm3; mixture "
+        << Fixed(r.mixture_cm3, 1) << " cm3\n"
+        << "outflow velocity w0         " << Fixed(r.air_velocity_m_s, 1)
+        << " m/s (p0/p1 = " << Fixed(r.pressure_ratio, 4) << ")\n"
+        << "injection period            " << Fixed(r.injection_period_s, 4) << " s\n"
+        << "mean cross-section          " << Fixed(r.mean_cross_section_m2 * 1e6, 2) << " mm2\n";
+    for (const auto& t : r.trials) {
+      out << "  passage " << Fixed(t.passage_m * 1e3, 1) << " mm: ";
+      if (std::isnan(t.mean_lift_m)) {
+        out << "its largest cross-section is below the mean -> rejected\n";
+        continue;
+      }
+      out << "mean lift " << Fixed(t.mean_lift_m * 1e3, 3) << " mm, max lift "
+          << Fixed(t.max_lift_m * 1e3, 3) << " mm -> " << (t.accepted ? "taken" : "rejected")
+          << '\n';
+    }
+    out << "maximum lift (rho " << Fixed(in.rho, 2) << ")        " << Fixed(r.max_lift_m * 1e3, 3)
+        << " mm\n"
+        << "lift table (normal curve)  ";
+    for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i) {
+      out << ' ' << Fixed(r.lift_table.crank_rad[i] / kDeg, 0) << ":"
+          << Fixed(r.lift_table.lift_m[i] * 1e3, 3);
+    }
+    out << "\ncam disk                    " << Fixed(r.cam_disk_computed_m * 1e3, 1)
+        << " mm computed, " << Fixed(r.cam_disk_m * 1e3, 1) << " mm adopted; roller "
+        << Fixed(r.roller_m * 1e3, 1) << " mm\n"
+        << "discharge passage height    " << Fixed(r.passage_height_m * 1e3, 2) << " mm\n"
+        << "needle diameter             " << Fixed(r.needle_diameter_m * 1e3, 2)
+        << " mm (2d = " << Fixed(r.needle_diameter_suggested_m * 1e3, 1) << " mm); cage "
+        << Fixed(r.cage_diameter_m * 1e3, 1) << " mm\n"
+        << "spring preload (formula)    " << Fixed(r.spring_preload_N / kKgf, 1)
+        << " kgf = " << Fixed(r.spring_preload_N, 0) << " N\n"
+        << "cross-section at max lift   " << Fixed(r.max_lift_cross_section_m2 * 1e6, 2) << " mm2\n"
+        << "nozzle cross-section        " << Fixed(r.nozzle_cross_section_m2 * 1e6, 2) << " mm2 in "
+        << r.nozzle_holes << " holes of " << Fixed(r.nozzle_hole_m * 1e3, 3) << " mm\n";
+  }
+  std::cout << out.str() << std::flush;
+  return 0;
+}
+
+}  // namespace needle

@@ -1,0 +1,68 @@
+#include "spring/helical_spring.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "lib/units.h"
+
+namespace needle {
+
+double StressCorrection(double w, bool wahl) {
+  if (wahl) return (4.0 * w - 1.0) / (4.0 * w - 4.0) + 0.615 / w;  // Wahl
+  return (w + 0.5) / (w - 0.75);                                   // Bergsträsser
+}
+
+HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N, double max_lift_m,
+                                      double speed_rpm, bool four_stroke) {
+  HelicalSpringCheck c;
+  const double d = g.wire_m, D = g.coil_m, n = g.active_coils;
+  c.rate_N_m = g.shear_modulus_Pa * std::pow(d, 4) / (8.0 * std::pow(D, 3) * n);  // G d⁴/(8D³n)
+  c.index = D / d;
+  c.wahl = g.wahl;
+  c.correction_factor = StressCorrection(c.index, g.wahl);
+  const double tau_per_N = c.correction_factor * 8.0 * D / (kPi * d * d * d);  // k·8D/(πd³)
+  c.stress_preload_Pa = tau_per_N * preload_N;
+  c.stress_full_lift_Pa = tau_per_N * (preload_N + c.rate_N_m * max_lift_m);
+  c.allowable_stress_Pa = g.allowable_fraction * g.tensile_Pa;
+  switch (g.ends) {
+    case SpringEnds::kClosedGround:
+      c.total_coils = n + 2.0;
+      c.solid_length_m = c.total_coils * d;
+      break;
+    case SpringEnds::kClosed:
+      c.total_coils = n + 2.0;
+      c.solid_length_m = (c.total_coils + 1.5) * d;
+      break;
+    case SpringEnds::kOpenGround:
+      c.total_coils = n + 1.0;
+      c.solid_length_m = c.total_coils * d;
+      break;
+    case SpringEnds::kOpen:
+      c.total_coils = n;
+      c.solid_length_m = (n + 1.0) * d;
+      break;
+  }
+  const double preload_deflection = preload_N / c.rate_N_m;
+  if (preload_deflection >= g.free_length_m - c.solid_length_m) {
+    throw std::invalid_argument(
+        "the preload compresses the spring to solid or beyond: preload deflection " +
+        std::to_string(preload_deflection * 1e3) + " mm, free length " +
+        std::to_string(g.free_length_m * 1e3) + " mm, solid length " +
+        std::to_string(c.solid_length_m * 1e3) + " mm; use a longer spring or fewer coils");
+  }
+  c.length_preload_m = g.free_length_m - preload_deflection;
+  c.length_full_lift_m = c.length_preload_m - max_lift_m;
+  c.clearance_full_lift_m = c.length_full_lift_m - c.solid_length_m;
+  c.min_clearance_m = (0.0015 * D * D / d + 0.1 * d) * n;  // S_a = (0.0015 D²/d + 0.1 d) n
+  c.surge_hz =
+      d / (2.0 * kPi * n * D * D) * std::sqrt(g.shear_modulus_Pa / (2.0 * g.density_kg_m3));
+  c.cam_hz = speed_rpm / (four_stroke ? 120.0 : 60.0);
+  c.surge_ratio = c.surge_hz / c.cam_hz;
+  c.stress_ok = c.stress_full_lift_Pa <= c.allowable_stress_Pa;
+  c.clearance_ok = c.clearance_full_lift_m >= c.min_clearance_m;
+  c.surge_ok = c.surge_ratio >= kMinSurgeRatio;
+  return c;
+}
+
+}  // namespace needle

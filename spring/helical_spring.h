@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Check of a helical compression valve spring (EN 13906-1 where it speaks):
+///
+///     rate            R = G d⁴ / (8 D³ n)
+///     index           w = D/d, 4 ≤ w ≤ 20
+///     shear stress    τ = k · 8 F D / (π d³),
+///                     k = (w + 0.5)/(w − 0.75) (Bergsträsser) or (4w − 1)/(4w − 4) + 0.615/w
+///                     (Wahl)
+///     solid length    L_c = n_t d (closed, ground), (n_t + 1.5) d (closed), (n + 1) d (open),
+///                     (n + 1) d with n_t = n + 1 (open, ground); n_t = n + 2 for closed ends
+///     minimum gaps    S_a = (0.0015 D²/d + 0.1 d) n at the largest deflection
+///     surge           f_e = d/(2π n D²) · √(G/(2ρ))   (fixed at both ends, first mode)
+///     cam frequency   f_cam = n_rpm/120 (four-stroke), n_rpm/60 (two-stroke)
+///
+/// Passes when τ at full lift ≤ allowable fraction · R_m, the gaps at full lift ≥ S_a, and
+/// f_e/f_cam ≥ 13.
+
+#include "lib/case_file.h"
+
+namespace needle {
+
+/// The surge ratio a valve spring must reach (f_e / f_cam).
+constexpr double kMinSurgeRatio = 13.0;
+
+struct HelicalSpringCheck {
+  double rate_N_m = 0.0;
+  double index = 0.0;              ///< w = D/d
+  double correction_factor = 0.0;  ///< k (Bergsträsser or Wahl)
+  bool wahl = false;
+  double stress_preload_Pa = 0.0;
+  double stress_full_lift_Pa = 0.0;
+  double allowable_stress_Pa = 0.0;
+  double total_coils = 0.0;
+  double solid_length_m = 0.0;
+  double length_preload_m = 0.0;       ///< L0 − P0/R
+  double length_full_lift_m = 0.0;     ///< L0 − P0/R − h_max
+  double clearance_full_lift_m = 0.0;  ///< length at full lift − L_c
+  double min_clearance_m = 0.0;        ///< S_a
+  double surge_hz = 0.0;
+  double cam_hz = 0.0;
+  double surge_ratio = 0.0;
+  bool stress_ok = false, clearance_ok = false, surge_ok = false;
+  bool pass() const { return stress_ok && clearance_ok && surge_ok; }
+};
+
+/// Stress-correction factor k for index w (> 0.75): Bergsträsser, or Wahl when `wahl`.
+double StressCorrection(double index, bool wahl);
+
+/// Checks `g` carrying `preload_N` at the seat and preload + R·max_lift at full lift.
+/// speed_rpm and `four_stroke` set the cam frequency. Throws std::invalid_argument when the
+/// preload already compresses the spring beyond its free length.
+HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N, double max_lift_m,
+                                      double speed_rpm, bool four_stroke);
+
+}  // namespace needle

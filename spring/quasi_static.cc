@@ -1,0 +1,118 @@
+#include "spring/quasi_static.h"
+
+#include <boost/math/tools/minima.hpp>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "lib/spline.h"
+
+namespace needle {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Smallest f(θ) on [θ_0, θ_N]: 64 samples per spline piece, then Brent's method on the
+// bracket around the best sample. f may be +∞ where it is undefined.
+ForceMinimum Minimize(const LiftLaw& law, const std::function<double(double)>& f) {
+  const auto& x = law.spline().breaks();
+  const int per_piece = 64;
+  double best_x = x.front(), best = f(x.front());
+  double best_lo = x.front(), best_hi = x.front();
+  for (size_t i = 0; i + 1 < x.size(); ++i) {
+    for (int k = 0; k <= per_piece; ++k) {
+      const double t = x[i] + (x[i + 1] - x[i]) * k / per_piece;
+      const double v = f(t);
+      if (v < best) {
+        best = v;
+        best_x = t;
+        best_lo = x[i] + (x[i + 1] - x[i]) * std::max(0, k - 1) / per_piece;
+        best_hi = x[i] + (x[i + 1] - x[i]) * std::min(per_piece, k + 1) / per_piece;
+      }
+    }
+  }
+  if (std::isfinite(best) && best_hi > best_lo) {
+    const auto r = boost::math::tools::brent_find_minima(f, best_lo, best_hi, 50);
+    if (r.second < best) {
+      best = r.second;
+      best_x = r.first;
+    }
+  }
+  return {best, best_x};
+}
+
+}  // namespace
+
+void RigidTrain::Validate() const {
+  if (!(mass_kg > 0.0) || !std::isfinite(mass_kg)) {
+    throw std::invalid_argument("mass must be positive, got " + std::to_string(mass_kg) + " kg");
+  }
+  if (!(preload_N >= 0.0) || !std::isfinite(preload_N)) {
+    throw std::invalid_argument("preload must not be negative, got " + std::to_string(preload_N) +
+                                " N");
+  }
+  if (!(rate_N_m >= 0.0) || !std::isfinite(rate_N_m)) {
+    throw std::invalid_argument("spring rate must not be negative, got " +
+                                std::to_string(rate_N_m) + " N/m");
+  }
+  if (!std::isfinite(gas_force_N)) throw std::invalid_argument("gas force must be finite");
+}
+
+void RequireAcceleration(const LiftLaw& law) {
+  if (!law.HasAcceleration()) {
+    throw std::invalid_argument(
+        "the " + SplineKindName(law.kind()) +
+        " spline is C1 only and has no acceleration; quasi-static forces "
+        "need a C2 spline (not-a-knot, natural, clamped, quintic, smoothing)");
+  }
+}
+
+double QuasiStaticForce(const LiftLaw& law, const RigidTrain& train, double omega,
+                        double crank_rad) {
+  const double a = omega * omega * law.Derivative(crank_rad, 2);  // a = ω² s''
+  return train.mass_kg * a + train.preload_N + train.rate_N_m * law.Lift(crank_rad) -
+         train.gas_force_N;  // m a + P₀ + k s − F_g
+}
+
+ForceMinimum MinQuasiStaticForce(const LiftLaw& law, const RigidTrain& train, double omega) {
+  RequireAcceleration(law);
+  train.Validate();
+  return Minimize(law, [&](double th) { return QuasiStaticForce(law, train, omega, th); });
+}
+
+double QuasiStaticLiftoffRpm(const LiftLaw& law, const RigidTrain& train) {
+  RequireAcceleration(law);
+  train.Validate();
+  // g(θ) = (P₀ + k s − F_g)/(m |s''|) where s'' < 0; n_qs = (60/2π)·√(min g).
+  const auto g = [&](double th) {
+    const double s2 = law.Derivative(th, 2);
+    if (!(s2 < 0.0)) return kInf;
+    const double net = train.preload_N + train.rate_N_m * law.Lift(th) - train.gas_force_N;
+    return net / (train.mass_kg * -s2);
+  };
+  const ForceMinimum m = Minimize(law, g);
+  if (!std::isfinite(m.force_N)) return kInf;
+  if (m.force_N <= 0.0) return 0.0;
+  return 60.0 / (2.0 * 3.14159265358979323846) * std::sqrt(m.force_N);  // ω → rpm
+}
+
+double RequiredPreloadN(const LiftLaw& law, const RigidTrain& train, double omega,
+                        double safety_factor, double overspeed_factor) {
+  RequireAcceleration(law);
+  train.Validate();
+  const double w = overspeed_factor * omega;
+  // −h(θ) minimised ⇔ h(θ) = S m (fω)² |s''| − k s + F_g maximised where s'' < 0.
+  const auto minus_h = [&](double th) {
+    const double s2 = law.Derivative(th, 2);
+    if (!(s2 < 0.0)) return kInf;
+    return -(safety_factor * train.mass_kg * w * w * -s2 - train.rate_N_m * law.Lift(th) +
+             train.gas_force_N);
+  };
+  const ForceMinimum m = Minimize(law, minus_h);
+  if (!std::isfinite(m.force_N)) return std::max(0.0, train.gas_force_N);
+  return std::max(0.0, -m.force_N);
+}
+
+}  // namespace needle

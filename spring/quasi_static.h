@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// The rigid-train (quasi-static) contact force and what follows from it (model.md §6):
+///
+///     F_qs(θ) = m·a(θ) + P₀ + k·s(θ) − F_g,      a = ω² d²s/dθ²,
+///     n_qs = (60/2π) · √( min_{s''<0} (P₀ + k·s − F_g) / (m·|d²s/dθ²|) ),
+///
+/// and the least preload that keeps S·m·|a| below the spring's net force wherever the
+/// needle decelerates, at the overspeed f·n:
+///
+///     P₀,req = max_{s''<0} ( S·m·(fω)²·|d²s/dθ²| − k·s + F_g ).
+
+#include "lib/lift_law.h"
+
+namespace needle {
+
+/// The train as the quasi-static check sees it. All SI.
+struct RigidTrain {
+  double mass_kg = 0.0;      ///< moving mass m, > 0
+  double preload_N = 0.0;    ///< spring preload P₀ at the seat, ≥ 0
+  double rate_N_m = 0.0;     ///< spring rate k, ≥ 0
+  double gas_force_N = 0.0;  ///< F_g, opening positive
+
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void Validate() const;
+};
+
+/// F_qs(θ) at crank speed ω (rad/s), N. Needs a C² lift law.
+double QuasiStaticForce(const LiftLaw& law, const RigidTrain& train, double omega,
+                        double crank_rad);
+
+struct ForceMinimum {
+  double force_N = 0.0;
+  double crank_rad = 0.0;
+};
+
+/// The smallest F_qs over [θ_0, θ_N] and where it falls, to ~1e-10 rad.
+ForceMinimum MinQuasiStaticForce(const LiftLaw& law, const RigidTrain& train, double omega);
+
+/// n_qs in rpm: +∞ when s'' is never negative; 0 when the spring's net force P₀ + k·s − F_g
+/// is not positive somewhere the needle decelerates.
+double QuasiStaticLiftoffRpm(const LiftLaw& law, const RigidTrain& train);
+
+/// P₀,req in N (≥ 0) at crank speed ω·overspeed_factor with safety factor S.
+double RequiredPreloadN(const LiftLaw& law, const RigidTrain& train, double omega,
+                        double safety_factor, double overspeed_factor);
+
+/// Throws std::invalid_argument when the law has no continuous second derivative (pchip,
+/// makima): quasi-static forces need acceleration.
+void RequireAcceleration(const LiftLaw& law);
+
+}  // namespace needle

@@ -1,0 +1,109 @@
+// Quasi-static contact force, lift-off speed and preload sizing against closed forms.
+#include "spring/quasi_static.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lib/cam_laws.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+// A harmonic rise-and-fall sampled finely: s = (H/2)(1 − cos(2πθ/β)) on [0, β], whose
+// s'' = (H/2)(2π/β)² cos(2πθ/β) is most negative, −(H/2)(2π/β)², at the crest θ = β/2.
+LiftLaw HarmonicEvent(double h, double beta) {
+  LiftTable t;
+  for (int i = 0; i <= 400; ++i) {
+    const double th = beta * i / 400.0;
+    t.crank_rad.push_back(th);
+    t.lift_m.push_back(0.5 * h * (1.0 - std::cos(2.0 * kPi * th / beta)));
+  }
+  SplineOptions o;
+  o.kind = SplineKind::kQuintic;
+  return LiftLaw(t, o);
+}
+
+constexpr double kH = 3e-3, kBeta = 60 * kDeg;
+
+TEST(QuasiStaticTest, MinimumForceOfAHarmonicEventWithoutRateIsAtTheCrest) {
+  const LiftLaw law = HarmonicEvent(kH, kBeta);
+  RigidTrain train{2.0, 500.0, 0.0, 0.0};
+  const double omega = OmegaFromRpm(600);
+  const double w = 2 * kPi / kBeta;
+  const ForceMinimum m = MinQuasiStaticForce(law, train, omega);
+  EXPECT_NEAR(m.force_N, 500.0 - 2.0 * omega * omega * 0.5 * kH * w * w,
+              1e-6);  // P₀ − m ω² H/2 (2π/β)²
+  EXPECT_NEAR(m.crank_rad, kBeta / 2, 1e-6);
+}
+
+TEST(QuasiStaticTest, LiftoffSpeedClosedFormAndConsistentWithTheMinimumForce) {
+  const LiftLaw law = HarmonicEvent(kH, kBeta);
+  const RigidTrain train{2.0, 500.0, 0.0, 50.0};
+  const double w = 2 * kPi / kBeta;
+  // k = 0: n_qs = (60/2π)·√((P₀ − F_g)/(m·(H/2)(2π/β)²)).
+  const double expected = 60 / (2 * kPi) * std::sqrt(450.0 / (2.0 * 0.5 * kH * w * w));
+  const double n_qs = QuasiStaticLiftoffRpm(law, train);
+  EXPECT_NEAR(n_qs, expected, 1e-6 * expected);
+  EXPECT_NEAR(MinQuasiStaticForce(law, train, OmegaFromRpm(n_qs)).force_N, 0.0, 1e-6);
+}
+
+TEST(QuasiStaticTest, SpringRateRaisesTheLiftoffSpeed) {
+  const LiftLaw law = HarmonicEvent(kH, kBeta);
+  const RigidTrain soft{2.0, 500.0, 0.0, 0.0}, stiff{2.0, 500.0, 1e5, 0.0};
+  const double n_soft = QuasiStaticLiftoffRpm(law, soft),
+               n_stiff = QuasiStaticLiftoffRpm(law, stiff);
+  EXPECT_GT(n_stiff, n_soft);
+  EXPECT_NEAR(MinQuasiStaticForce(law, stiff, OmegaFromRpm(n_stiff)).force_N, 0.0, 1e-6);
+  // The minimum of (P₀ + k s)/(m|s''|) for a harmonic event is at the crest too: closed form.
+  const double w = 2 * kPi / kBeta;
+  EXPECT_NEAR(n_stiff, 60 / (2 * kPi) * std::sqrt((500.0 + 1e5 * kH) / (2.0 * 0.5 * kH * w * w)),
+              1e-4);
+}
+
+TEST(QuasiStaticTest, RequiredPreloadClosedForm) {
+  const LiftLaw law = HarmonicEvent(kH, kBeta);
+  const RigidTrain train{2.0, 0.0, 2e4, 10.0};
+  const double omega = OmegaFromRpm(500), w = 2 * kPi / kBeta;
+  // h(θ) = S m (fω)² (H/2) w² cos(wθ)·(−1) − k (H/2)(1 − cos wθ) + F_g on the decelerating part;
+  // S m (fω)² H/2 w² > k H/2 here, so the maximum is at the crest: S m (fω)² (H/2) w² − k H + F_g.
+  const double expected = 1.5 * 2.0 * std::pow(1.2 * omega, 2) * 0.5 * kH * w * w - 2e4 * kH + 10.0;
+  EXPECT_NEAR(RequiredPreloadN(law, train, omega, 1.5, 1.2), expected, 1e-6);
+  // With that preload the margin condition holds with equality at the crest.
+  RigidTrain sized = train;
+  sized.preload_N = expected;
+  const double f = 1.2 * omega;
+  const double lhs = sized.preload_N + 2e4 * kH - 10.0;
+  EXPECT_NEAR(lhs, 1.5 * 2.0 * f * f * 0.5 * kH * w * w, 1e-6);
+}
+
+TEST(QuasiStaticTest, NoDecelerationMeansNoLiftoff) {
+  LiftTable t;
+  for (int i = 0; i <= 10; ++i) {
+    t.crank_rad.push_back(i * 0.01);
+    t.lift_m.push_back(1e-3 * i * i * 0.01);  // s'' > 0 everywhere
+  }
+  SplineOptions o;
+  const LiftLaw law(t, o);
+  EXPECT_TRUE(std::isinf(QuasiStaticLiftoffRpm(law, RigidTrain{1.0, 10.0, 0.0, 0.0})));
+}
+
+TEST(QuasiStaticTest, RejectsC1SplinesAndBadTrains) {
+  LiftTable t{{0, 0.1, 0.2, 0.3}, {0, 1e-3, 1e-3, 0}};
+  SplineOptions o;
+  o.kind = SplineKind::kPchip;
+  const LiftLaw law(t, o);
+  EXPECT_THROW(QuasiStaticLiftoffRpm(law, RigidTrain{1.0, 1.0, 0.0, 0.0}), std::invalid_argument);
+  o.kind = SplineKind::kNotAKnot;
+  const LiftLaw ok(t, o);
+  try {
+    QuasiStaticLiftoffRpm(ok, RigidTrain{0.0, 1.0, 0.0, 0.0});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "mass must be positive, got 0.000000 kg");
+  }
+}
+
+}  // namespace
+}  // namespace needle
