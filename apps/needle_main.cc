@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "apps/dynamics_command.h"
 #include "apps/kinematics_command.h"
 #include "apps/spring_command.h"
 #include "lib/case_file.h"
@@ -16,6 +17,10 @@ int main(int argc, char** argv) {
   CLI::App* spring_cmd = needle::AddSpringCommand(app, spring);
   needle::DesignCommandOptions design;
   CLI::App* design_cmd = needle::AddDesignCommand(app, design);
+  needle::SimulateCommandOptions simulate;
+  CLI::App* simulate_cmd = needle::AddSimulateCommand(app, simulate);
+  needle::OverspeedCommandOptions overspeed;
+  CLI::App* overspeed_cmd = needle::AddOverspeedCommand(app, overspeed);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -30,6 +35,8 @@ int main(int argc, char** argv) {
     if (kinematics_cmd->parsed()) return needle::RunKinematicsCommand(kinematics);
     if (spring_cmd->parsed()) return needle::RunSpringCommand(spring);
     if (design_cmd->parsed()) return needle::RunDesignCommand(design);
+    if (simulate_cmd->parsed()) return needle::RunSimulateCommand(simulate);
+    if (overspeed_cmd->parsed()) return needle::RunOverspeedCommand(overspeed);
   } catch (const needle::CaseError& e) {
     std::cerr << "needle: " << e.what() << '\n';
     return 2;

@@ -263,6 +263,95 @@ SpringSection ReadSpring(SectionReader r) {
   return sp;
 }
 
+TrainSection ReadTrain(SectionReader r) {
+  TrainSection t;
+  t.contact_stiffness_N_m = r.Quantity("contact_stiffness", Dimension::kStiffness);
+  if (!(t.contact_stiffness_N_m > 0.0)) {
+    r.Fail("contact_stiffness",
+           "must be positive, got " + Number(t.contact_stiffness_N_m) + " N/m");
+  }
+  t.seat_stiffness_N_m =
+      r.OptionalQuantity("seat_stiffness", Dimension::kStiffness).value_or(t.contact_stiffness_N_m);
+  if (!(t.seat_stiffness_N_m > 0.0)) {
+    r.Fail("seat_stiffness", "must be positive, got " + Number(t.seat_stiffness_N_m) + " N/m");
+  }
+  for (auto [key, into] :
+       {std::pair<const char*, double*>{"contact_damping_ratio", &t.contact_damping_ratio},
+        {"seat_damping_ratio", &t.seat_damping_ratio}}) {
+    if (auto z = r.OptionalNumber(key)) {
+      if (!(*z >= 0.0)) r.Fail(key, "must not be negative, got " + Number(*z));
+      *into = *z;
+    }
+  }
+  if (auto play = r.OptionalQuantity("play", Dimension::kLength)) {
+    if (!(*play >= 0.0)) r.Fail("play_mm", "must not be negative, got " + Number(*play * 1e3));
+    t.play_m = *play;
+  }
+  r.Known("ramp");
+  const auto ramp = r.OptionalString("ramp");
+  const auto ramp_angle = r.OptionalQuantity("ramp", Dimension::kAngle);
+  if (ramp && *ramp != "tangent")
+    r.Fail("ramp", "expected \"tangent\" or ramp_deg = <angle>, got \"" + *ramp + "\"");
+  if (ramp && ramp_angle) r.Fail("ramp", "give ramp = \"tangent\" or ramp_deg, not both");
+  if (ramp_angle) {
+    if (!(*ramp_angle > 0.0))
+      r.Fail("ramp_deg", "must be positive, got " + Number(*ramp_angle / kDeg));
+    t.linear_ramp = true;
+    t.ramp_rad = *ramp_angle;
+  }
+  r.Finish();
+  return t;
+}
+
+SolverSection ReadSolver(SectionReader r) {
+  SolverSection s;
+  if (auto m = r.OptionalString("method")) {
+    if (*m != "auto" && *m != "dopri5" && *m != "cvode-bdf" && *m != "cvode-adams") {
+      r.Fail("method",
+             "expected \"auto\", \"dopri5\", \"cvode-bdf\" or \"cvode-adams\", got \"" + *m + "\"");
+    }
+    s.method = *m;
+  }
+  if (auto rtol = r.OptionalNumber("rtol")) {
+    if (!(*rtol >= 1e-14 && *rtol <= 1e-2))
+      r.Fail("rtol", "must be in [1e-14, 1e-2], got " + Number(*rtol));
+    s.rtol = *rtol;
+  }
+  if (auto atol = r.OptionalQuantity("atol", Dimension::kLength)) {
+    if (!(*atol > 0.0)) r.Fail("atol", "must be positive");
+    s.atol_m = *atol;
+  }
+  for (auto [key, into] :
+       {std::pair<const char*, long*>{"max_steps", &s.max_steps}, {"max_events", &s.max_events}}) {
+    if (auto v = r.OptionalNumber(key)) {
+      if (!(*v >= 1.0) || *v != std::floor(*v))
+        r.Fail(key, "must be a whole number ≥ 1, got " + Number(*v));
+      *into = static_cast<long>(*v);
+    }
+  }
+  s.start_rad = r.OptionalQuantity("start", Dimension::kAngle);
+  s.end_rad = r.OptionalQuantity("end", Dimension::kAngle);
+  if (s.start_rad && s.end_rad && !(*s.end_rad > *s.start_rad)) {
+    r.Fail("end_deg", "must be after start_deg");
+  }
+  r.Finish();
+  return s;
+}
+
+OverspeedSection ReadOverspeed(SectionReader r) {
+  OverspeedSection o;
+  o.from_rpm = r.OptionalQuantity("from", Dimension::kRotationSpeed);
+  o.to_rpm = r.OptionalQuantity("to", Dimension::kRotationSpeed);
+  if (o.from_rpm && !(*o.from_rpm > 0.0))
+    r.Fail("from_rpm", "must be positive, got " + Number(*o.from_rpm));
+  if (o.from_rpm && o.to_rpm && !(*o.to_rpm > *o.from_rpm)) {
+    r.Fail("to_rpm", "the sweep range is empty: to_rpm (" + Number(*o.to_rpm) +
+                         ") must exceed from_rpm (" + Number(*o.from_rpm) + ")");
+  }
+  r.Finish();
+  return o;
+}
+
 EngineSection ReadEngine(SectionReader r) {
   if (!r.present()) r.Fail("speed_rpm", "section [engine] is missing; it needs speed_rpm");
   EngineSection e;
@@ -412,7 +501,8 @@ Case ParseCase(const std::string& text, const std::string& path) {
     throw CaseError(path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
                     ": malformed TOML: " + description);
   }
-  static const std::set<std::string> kSections = {"engine", "lift", "needle", "spring", "paper"};
+  static const std::set<std::string> kSections = {"engine", "lift",   "needle",    "spring",
+                                                  "train",  "solver", "overspeed", "paper"};
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title") {
@@ -421,7 +511,8 @@ Case ParseCase(const std::string& text, const std::string& path) {
     }
     if (!kSections.count(key)) {
       throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
-                      " (known: title, [engine], [lift], [needle], [spring], [paper])");
+                      " (known: title, [engine], [lift], [needle], [spring], [train], [solver], "
+                      "[overspeed], [paper])");
     }
   }
   Case c;
@@ -434,6 +525,13 @@ Case ParseCase(const std::string& text, const std::string& path) {
   }
   if (const toml::table* spring = Section(root, path, "spring")) {
     c.spring = ReadSpring(SectionReader(spring, path, "spring"));
+  }
+  if (const toml::table* t = Section(root, path, "train"))
+    c.train = ReadTrain(SectionReader(t, path, "train"));
+  if (const toml::table* t = Section(root, path, "solver"))
+    c.solver = ReadSolver(SectionReader(t, path, "solver"));
+  if (const toml::table* t = Section(root, path, "overspeed")) {
+    c.overspeed = ReadOverspeed(SectionReader(t, path, "overspeed"));
   }
   if (const toml::table* paper = Section(root, path, "paper")) {
     c.paper = ReadPaper(SectionReader(paper, path, "paper"));

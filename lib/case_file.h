@@ -18,6 +18,12 @@
 ///               active_coils, free_length_mm, shear_modulus_GPa, density_kg_m3 = 7850,
 ///               tensile_MPa, ends = "closed-ground" | "closed" | "open-ground" | "open",
 ///               stress_correction = "bergstrasser" | "wahl", allowable_stress_fraction = 0.5
+///     [train]   contact_stiffness_N_m (k_c), contact_damping_ratio = 0.05, seat_stiffness_N_m (=
+///     k_c),
+///               seat_damping_ratio = 0.05, play_mm = 0, ramp = "tangent" | ramp_deg
+///     [solver]  method = "auto" | "dopri5" | "cvode-bdf" | "cvode-adams", rtol = 1e-8, atol_mm,
+///               max_steps = 2e6, max_events = 1e5, start_deg, end_deg (window)
+///     [overspeed] from_rpm, to_rpm
 ///     [paper]   published values to compare with: crank_deg + velocity_dcm_s (magnitudes),
 ///               max_acceleration_m_s2, inertia_force_kgf, mean_lift_mm
 ///
@@ -93,6 +99,32 @@ struct SpringSection {
   std::optional<HelicalGeometry> helical;  ///< present when wire_mm etc. are given
 };
 
+/// [train]: contacts and roller play of the dynamic model (model.md §3–4).
+struct TrainSection {
+  double contact_stiffness_N_m = 0.0;   ///< k_c, > 0 (required)
+  double contact_damping_ratio = 0.05;  ///< ζ_c, ≥ 0
+  double seat_stiffness_N_m = 0.0;      ///< k_s, > 0 (default: k_c)
+  double seat_damping_ratio = 0.05;     ///< ζ_s, ≥ 0
+  double play_m = 0.0;                  ///< roller play δ, ≥ 0
+  bool linear_ramp = false;             ///< `ramp_deg` given (else tangent ramps)
+  double ramp_rad = 0.0;                ///< ramp length when linear
+};
+
+/// [solver]: how the dynamics is integrated.
+struct SolverSection {
+  std::string method = "auto";               ///< "auto", "dopri5", "cvode-bdf", "cvode-adams"
+  double rtol = 1e-8;                        ///< relative tolerance
+  std::optional<double> atol_m;              ///< absolute tolerance (default rtol·1 mm)
+  long max_steps = 2000000;                  ///< step budget
+  long max_events = 100000;                  ///< event budget
+  std::optional<double> start_rad, end_rad;  ///< window override
+};
+
+/// [overspeed]: the lift-off sweep.
+struct OverspeedSection {
+  std::optional<double> from_rpm, to_rpm;
+};
+
 struct Case {
   std::string path;   ///< the file it came from, for messages
   std::string title;  ///< optional one-line description
@@ -100,6 +132,9 @@ struct Case {
   LiftSection lift;
   std::optional<NeedleSection> needle;
   std::optional<SpringSection> spring;
+  std::optional<TrainSection> train;
+  std::optional<SolverSection> solver;
+  std::optional<OverspeedSection> overspeed;
   std::optional<PaperSection> paper;
 };
 

@@ -1,0 +1,247 @@
+#include "apps/dynamics_command.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "dynamics/overspeed.h"
+#include "dynamics/simulation.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/quasi_static.h"
+
+namespace needle {
+namespace {
+
+nlohmann::json Finite(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+SimulationOptions Options(const Case& c, const std::optional<std::string>& method,
+                          const std::optional<double>& rtol) {
+  SimulationOptions o = OptionsFromCase(c);
+  if (method) {
+    if (*method != "auto" && *method != "dopri5" && *method != "cvode-bdf" &&
+        *method != "cvode-adams") {
+      throw CaseError("--method: unknown method \"" + *method +
+                      "\"; expected auto, dopri5, cvode-bdf or cvode-adams");
+    }
+    o.method = *method;
+  }
+  if (rtol) {
+    if (!(*rtol >= 1e-14 && *rtol <= 1e-2))
+      throw CaseError("--rtol: must be in [1e-14, 1e-2], got " + std::to_string(*rtol));
+    o.integrator.rtol = *rtol;
+    if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = *rtol * 1e-3;
+  }
+  return o;
+}
+
+double QuasiStaticLiftoff(const Scene& s) {
+  return QuasiStaticLiftoffRpm(*s.law, RigidTrain{s.train.mass_kg, s.train.preload_N,
+                                                  s.train.rate_N_m, s.train.gas_force_N});
+}
+
+}  // namespace
+
+CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "simulate", "Dynamic run: lift-off episodes, impacts, forces, energy audit");
+  cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
+  cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--method", o.method,
+                  "auto, dopri5, cvode-bdf or cvode-adams (default: [solver] method or auto)");
+  cmd->add_option("--rtol", o.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");
+  cmd->add_flag("--dynamic", o.dynamic,
+                "run the dynamics even where the rigid answer would be reported");
+  cmd->add_flag("--json", o.json, "print one JSON object");
+  cmd->add_option("--csv", o.csv, "write the time series to this CSV file (atomically)");
+  return cmd;
+}
+
+int RunSimulateCommand(const SimulateCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  const Scene scene = MakeScene(c);
+  SimulationOptions sim = Options(c, o.method, o.rtol);
+  sim.force_dynamic = o.dynamic;
+  sim.record_series = o.csv.has_value();
+  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
+  const SimulationResult r = Simulate(scene, speed, sim);
+
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["speed_rpm"] = speed;
+    j["method"] = r.method;
+    j["method_reason"] = r.method_reason;
+    j["skipped_dynamics"] = r.skipped;
+    j["liftoff"] = r.liftoff();
+    nlohmann::json episodes = nlohmann::json::array();
+    for (const Episode& e : r.episodes) {
+      episodes.push_back({{"kind", e.kind},
+                          {"start_deg", e.start_rad / kDeg},
+                          {"end_deg", e.end_rad / kDeg},
+                          {"max_gap_mm", e.max_gap_m * 1e3},
+                          {"impact", e.impact}});
+    }
+    j["episodes"] = episodes;
+    nlohmann::json impacts = nlohmann::json::array();
+    for (const Impact& i : r.impacts) {
+      impacts.push_back(
+          {{"kind", i.kind}, {"crank_deg", i.crank_rad / kDeg}, {"speed_m_s", i.speed_m_s}});
+    }
+    j["impacts"] = impacts;
+    j["max_lift_mm"] = r.max_lift_m * 1e3;
+    j["max_lift_deg"] = r.max_lift_rad / kDeg;
+    j["max_contact_force_N"] = r.max_contact_force_N;
+    j["min_contact_force_during_lift_N"] = r.min_contact_force_during_lift_N;
+    j["max_seat_force_N"] = r.max_seat_force_N;
+    j["energy_residual"] = r.skipped ? nlohmann::json(nullptr) : nlohmann::json(r.energy_residual);
+    j["steps"] = r.stats.steps;
+    j["rhs_evaluations"] = r.stats.rhs_evaluations;
+    j["events"] = r.stats.events;
+    j["rtol"] = sim.integrator.rtol;
+    j["window_start_deg"] = r.window_start_rad / kDeg;
+    j["window_end_deg"] = r.window_end_rad / kDeg;
+    j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoff(scene));
+    out << j.dump(2) << '\n';
+  } else {
+    out << (c.title.empty() ? c.path : c.title) << '\n'
+        << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
+        << ")\n";
+    if (!r.skipped) {
+      out << "window " << Fixed(r.window_start_rad / kDeg, 2) << " .. "
+          << Fixed(r.window_end_rad / kDeg, 2) << " deg; rtol " << sim.integrator.rtol << "; "
+          << r.stats.steps << " steps, " << r.stats.rhs_evaluations << " rhs evaluations, "
+          << r.stats.events << " events; energy residual " << r.energy_residual << '\n';
+    }
+    out << "max lift " << Fixed(r.max_lift_m * 1e3, 4) << " mm at "
+        << Fixed(r.max_lift_rad / kDeg, 2) << " deg\n"
+        << "contact force: max " << Fixed(r.max_contact_force_N, 1) << " N, min during the lift "
+        << Fixed(r.min_contact_force_during_lift_N, 1) << " N; max seat force "
+        << Fixed(r.max_seat_force_N, 1) << " N\n";
+    out << (r.liftoff() ? "LIFT-OFF: the needle leaves the cam\n" : "no lift-off\n");
+    for (const Episode& e : r.episodes) {
+      out << "  " << e.kind << " " << Fixed(e.start_rad / kDeg, 3) << " .. "
+          << Fixed(e.end_rad / kDeg, 3) << " deg, largest gap " << Fixed(e.max_gap_m * 1e3, 4)
+          << " mm\n";
+    }
+    for (const Impact& i : r.impacts) {
+      out << "  impact " << i.kind << " at " << Fixed(i.crank_rad / kDeg, 4) << " deg, "
+          << Fixed(i.speed_m_s, 4) << " m/s\n";
+    }
+  }
+  if (o.csv) {
+    std::ostringstream csv;
+    csv.precision(10);
+    csv << "crank_deg,time_s,lift_mm,velocity_m_s,cam_mm,contact_force_N,seat_force_N\n";
+    for (const SeriesPoint& p : r.series) {
+      csv << p.crank_rad / kDeg << ',' << p.time_s << ',' << p.lift_m * 1e3 << ',' << p.velocity_m_s
+          << ',' << p.cam_m * 1e3 << ',' << p.contact_force_N << ',' << p.seat_force_N << '\n';
+    }
+    if (r.skipped) throw CaseError("--csv: the dynamic run was skipped (" + r.method_reason + ")");
+    WriteFileAtomically(*o.csv, csv.str());
+  }
+  std::cout << out.str() << std::flush;
+  return r.liftoff() ? 1 : 0;
+}
+
+CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
+  CLI::App* cmd =
+      app.add_subcommand("overspeed", "Search the dynamic lift-off speed n_dyn beside n_qs");
+  cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
+  cmd->add_option("--from", o.from_rpm,
+                  "start of the sweep, rpm (default: [overspeed] from_rpm or the rated speed)");
+  cmd->add_option("--to", o.to_rpm,
+                  "end of the sweep, rpm (default: [overspeed] to_rpm or 2 x n_qs)");
+  cmd->add_option("--method", o.method, "auto, dopri5, cvode-bdf or cvode-adams");
+  cmd->add_option("--rtol", o.rtol, "relative tolerance");
+  cmd->add_option("--threads", o.threads, "threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--json", o.json, "print one JSON object");
+  return cmd;
+}
+
+int RunOverspeedCommand(const OverspeedCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  const Scene scene = MakeScene(c);
+  const double n_qs = QuasiStaticLiftoff(scene);
+  OverspeedOptions opt;
+  opt.simulation = Options(c, o.method, o.rtol);
+  opt.threads = o.threads;
+  opt.from_rpm = o.from_rpm.value_or(c.overspeed && c.overspeed->from_rpm ? *c.overspeed->from_rpm
+                                                                          : c.engine.speed_rpm);
+  const double default_to = std::isfinite(n_qs) ? 2.0 * n_qs : 4.0 * c.engine.speed_rpm;
+  opt.to_rpm =
+      o.to_rpm.value_or(c.overspeed && c.overspeed->to_rpm ? *c.overspeed->to_rpm : default_to);
+  if (!(opt.from_rpm > 0.0))
+    throw CaseError("--from: must be positive, got " + std::to_string(opt.from_rpm));
+  if (!(opt.to_rpm > opt.from_rpm)) {
+    throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
+                    " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
+  }
+  const bool bar = isatty(STDOUT_FILENO) && isatty(STDERR_FILENO);
+  const auto progress = [&](int done, int total) {
+    if (!bar) return;
+    const int width = 30, filled = std::min(width, width * done / std::max(1, total));
+    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
+              << done << " runs" << std::flush;
+  };
+  const OverspeedResult r = OverspeedSearch(scene, opt, progress);
+  if (bar) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
+
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["from_rpm"] = opt.from_rpm;
+    j["to_rpm"] = opt.to_rpm;
+    j["liftoff_rpm_quasi_static"] = Finite(n_qs);
+    j["liftoff_rpm_dynamic"] = r.n_dyn_rpm ? nlohmann::json(*r.n_dyn_rpm) : nlohmann::json(nullptr);
+    j["bracket_rpm"] = {r.bracket_low_rpm, r.bracket_high_rpm};
+    j["lifts_off_at_start"] = r.lifts_off_at_start;
+    j["threads"] = r.threads;
+    nlohmann::json rows = nlohmann::json::array();
+    for (const OverspeedRow& row : r.rows) {
+      rows.push_back({{"speed_rpm", row.speed_rpm},
+                      {"min_contact_force_N", row.min_contact_force_N},
+                      {"jump_deg", row.jump_deg},
+                      {"max_gap_mm", row.max_gap_mm},
+                      {"max_impact_speed_m_s", row.max_impact_speed_m_s},
+                      {"lifts_off", row.lifts_off}});
+    }
+    j["rows"] = rows;
+    out << j.dump(2) << '\n';
+  } else {
+    out << (c.title.empty() ? c.path : c.title) << '\n'
+        << "sweep " << Fixed(opt.from_rpm, 1) << " .. " << Fixed(opt.to_rpm, 1) << " rpm on "
+        << r.threads << " threads\n"
+        << "quasi-static lift-off n_qs = "
+        << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
+        << "dynamic lift-off n_dyn = ";
+    if (r.n_dyn_rpm) {
+      out << Fixed(*r.n_dyn_rpm, 1) << " rpm"
+          << (r.lifts_off_at_start ? " (already at the start of the range)" : "") << " (bracket "
+          << Fixed(r.bracket_low_rpm, 2) << " .. " << Fixed(r.bracket_high_rpm, 2) << ")\n";
+    } else {
+      out << "none in the range\n";
+    }
+    out << "\n  speed rpm  min Fc N   jump deg  max gap mm  max impact m/s\n";
+    for (const OverspeedRow& row : r.rows) {
+      char line[160];
+      std::snprintf(line, sizeof line, "%11.2f %9.1f %10.3f %11.4f %15.4f%s\n", row.speed_rpm,
+                    row.min_contact_force_N, row.jump_deg, row.max_gap_mm, row.max_impact_speed_m_s,
+                    row.lifts_off ? "  lift-off" : "");
+      out << line;
+    }
+  }
+  std::cout << out.str() << std::flush;
+  return r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
+}
+
+}  // namespace needle

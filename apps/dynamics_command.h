@@ -1,0 +1,39 @@
+#pragma once
+/// @file
+/// `needle simulate CASE [--rpm N] [--method KIND] [--rtol X] [--dynamic] [--json] [--csv FILE]`
+/// and `needle overspeed CASE [--from RPM] [--to RPM] [--threads N] [--json]`.
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+namespace needle {
+
+struct SimulateCommandOptions {
+  std::string case_path;
+  std::optional<double> speed_rpm;
+  std::optional<std::string> method;
+  std::optional<double> rtol;
+  bool dynamic = false;  ///< run the dynamics even where the rigid answer would stand
+  bool json = false;
+  std::optional<std::string> csv;
+};
+
+CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& options);
+/// Exit 1 when the needle lifts off (a jump episode) at the speed simulated.
+int RunSimulateCommand(const SimulateCommandOptions& options);
+
+struct OverspeedCommandOptions {
+  std::string case_path;
+  std::optional<double> from_rpm, to_rpm;
+  std::optional<std::string> method;
+  std::optional<double> rtol;
+  int threads = 0;
+  bool json = false;
+};
+
+CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& options);
+/// Exit 1 when the needle lifts off at or below the case's rated speed.
+int RunOverspeedCommand(const OverspeedCommandOptions& options);
+
+}  // namespace needle

@@ -1,0 +1,79 @@
+#include "dynamics/cam_input.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "lib/units.h"
+
+namespace needle {
+
+CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp_rad)
+    : law_(law), play_(play_m) {
+  if (!(play_m >= 0.0) || !std::isfinite(play_m)) {
+    throw std::invalid_argument("roller play must not be negative, got " +
+                                std::to_string(play_m * 1e3) + " mm");
+  }
+  const double th0 = law.start_rad(), thn = law.end_rad();
+  s0_ = law.spline().Evaluate(th0);
+  sn_ = law.spline().Evaluate(thn);
+  slope0_ = law.spline().Evaluate(th0, 1);
+  slopen_ = law.spline().Evaluate(thn, 1);
+  rise_start_ = th0;
+  fall_end_ = thn;
+  if (play_m > 0.0) {
+    if (ramp == RampKind::kTangent) {
+      if (!(slope0_ > 0.0) || !(slopen_ < 0.0)) {
+        throw std::invalid_argument(
+            "tangent ramps need a rising start and a falling end, but the lift law's end slopes "
+            "are " +
+            std::to_string(slope0_ * 1e3 * kDeg) + " and " + std::to_string(slopen_ * 1e3 * kDeg) +
+            " mm/deg: a zero end slope cannot reach the base circle; use another spline kind "
+            "(e.g. not-a-knot or natural) or give ramp_deg");
+      }
+      rise_start_ = th0 - (s0_ + play_m) / slope0_;  // s0 + s0'(θ − θ0) = −δ
+      fall_end_ = thn + (sn_ + play_m) / -slopen_;   // sn + sn'(θ − θN) = −δ
+    } else {
+      if (!(ramp_rad > 0.0)) {
+        throw std::invalid_argument("ramp_deg must be positive, got " +
+                                    std::to_string(ramp_rad / kDeg));
+      }
+      rise_start_ = th0 - ramp_rad;
+      fall_end_ = thn + ramp_rad;
+      slope0_ = (s0_ + play_m) / ramp_rad;   // from −δ to s(θ0) over X
+      slopen_ = -(sn_ + play_m) / ramp_rad;  // from s(θN) to −δ over X
+    }
+  }
+  breaks_ = law.spline().breaks();
+  if (play_m > 0.0) {
+    breaks_.insert(breaks_.begin(), rise_start_);
+    breaks_.push_back(fall_end_);
+  }
+  std::sort(breaks_.begin(), breaks_.end());
+}
+
+// Every piece is half-open on the right, [a, b): at a break the value after it is used, so an
+// integration step that starts at a break sees the right-hand side it will integrate.
+double CamInput::U(double th) const {
+  const double th0 = law_.start_rad(), thn = law_.end_rad();
+  if (th >= th0 && th < thn) return law_.spline().Evaluate(th);
+  if (play_ == 0.0) return th < th0 ? s0_ : sn_;
+  if (th < th0) return std::max(-play_, s0_ + slope0_ * (th - th0));  // ramp, then base circle
+  return std::max(-play_, sn_ + slopen_ * (th - thn));
+}
+
+double CamInput::Slope(double th) const {
+  const double th0 = law_.start_rad(), thn = law_.end_rad();
+  if (th >= th0 && th < thn) return law_.spline().Evaluate(th, 1);
+  if (play_ == 0.0) return 0.0;
+  if (th < th0) return th >= rise_start_ ? slope0_ : 0.0;
+  return th < fall_end_ ? slopen_ : 0.0;
+}
+
+double CamInput::Curvature(double th) const {
+  if (th >= law_.start_rad() && th < law_.end_rad()) return law_.spline().Evaluate(th, 2);
+  return 0.0;
+}
+
+}  // namespace needle

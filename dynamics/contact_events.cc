@@ -1,0 +1,95 @@
+#include "dynamics/contact_events.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace needle {
+
+EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState& x, double t) {
+  const Contacts c = train.Evaluate(x, t);
+  return {c.g_c, c.f_c_raw, c.g_s, c.f_s_raw, x[0] - kSeparationLift_m, mode.cam ? 1.0 : c.g_c_rate,
+          x[1]};
+}
+
+ContactMode ModeFromSigns(const std::array<int, kEventCount>& s) {
+  return {s[0] > 0 && s[1] > 0, s[2] > 0 && s[3] > 0};
+}
+
+Recorder::Recorder(const NeedleTrain& train, bool record_series)
+    : train_(train), record_series_(record_series) {}
+
+void Recorder::Update(double t, const TrainState& x, ContactMode mode) {
+  const Contacts c = train_.Evaluate(x, t);
+  const double fc = train_.CamForce(c, mode), fs = train_.SeatForce(c, mode);
+  const LiftLaw& law = train_.cam().law();
+  const double th = c.crank_rad;
+  const bool in_table = th >= law.start_rad() && th <= law.end_rad();
+  if (x[0] > max_lift_) {
+    max_lift_ = x[0];
+    max_lift_rad_ = th;
+  }
+  max_fc_ = std::max(max_fc_, fc);
+  max_fs_ = std::max(max_fs_, fs);
+  if (in_table) min_fc_lift_ = std::min(min_fc_lift_, fc);
+  // Separation episode: inside [θ0, θN], the cam not pushing and y > 1 µm.
+  const bool separated = in_table && !mode.cam && x[0] > kSeparationLift_m;
+  if (separated && !separated_) {
+    Episode e;
+    e.start_rad = th;
+    e.kind = law.Derivative(th, 2) < 0.0 ? "jump" : "bounce";
+    e.max_gap_m = x[0] - c.u;
+    episodes_.push_back(e);
+  } else if (!separated && separated_) {
+    episodes_.back().end_rad = std::min(th, law.end_rad());
+  }
+  if (separated) episodes_.back().max_gap_m = std::max(episodes_.back().max_gap_m, x[0] - c.u);
+  separated_ = separated;
+  if (record_series_) {
+    series_.push_back({th, t, x[0], x[1], c.u, fc, fs});
+  }
+}
+
+void Recorder::Start(double t, const TrainState& x, ContactMode mode) {
+  cam_touched_ = train_.Evaluate(x, t).g_c > 0.0;
+  Update(t, x, mode);
+}
+
+void Recorder::Sample(double t, const TrainState& x, ContactMode mode) { Update(t, x, mode); }
+
+void Recorder::Crossing(int index, int direction, double t, const TrainState& x, ContactMode mode) {
+  const Contacts c = train_.Evaluate(x, t);
+  if (index == 0 && direction > 0) {  // cam onset
+    impacts_.push_back(
+        {cam_touched_ ? "recontact" : "lash", c.crank_rad, std::max(0.0, c.g_c_rate)});
+    cam_touched_ = true;
+    if (separated_) episodes_.back().impact = static_cast<int>(impacts_.size()) - 1;
+  } else if (index == 2 && direction > 0) {  // seat onset
+    impacts_.push_back(
+        {seat_landed_ ? "seat-bounce" : "seat", c.crank_rad, std::max(0.0, c.g_s_rate)});
+    seat_landed_ = true;
+  }
+  Update(t, x, mode);
+}
+
+void Recorder::Finish(double t, const TrainState& x, ContactMode mode) {
+  Update(t, x, mode);
+  if (separated_) episodes_.back().end_rad = train_.Angle(t);
+}
+
+double Recorder::jump_rad() const {
+  double sum = 0.0;
+  for (const Episode& e : episodes_) {
+    if (e.kind == "jump") sum += e.end_rad - e.start_rad;
+  }
+  return sum;
+}
+
+double Recorder::longest_jump_rad() const {
+  double best = 0.0;
+  for (const Episode& e : episodes_) {
+    if (e.kind == "jump") best = std::max(best, e.end_rad - e.start_rad);
+  }
+  return best;
+}
+
+}  // namespace needle

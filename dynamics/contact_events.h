@@ -1,0 +1,99 @@
+#pragma once
+/// @file
+/// Events of the needle train, written as signed functions of the state (SUNDIALS style),
+/// and the record they feed (model.md §6):
+///
+///   0  g_c            cam penetration          (upward crossing: an impact on the cam)
+///   1  k_c g_c + c_c ġ_c   cam force branch     (with 0: the cam pushes iff both > 0)
+///   2  g_s            seat penetration         (upward crossing: an impact on the seat)
+///   3  k_s g_s + c_s ġ_s   seat force branch
+///   4  y − 1 µm       the separation threshold of an episode
+///   5  ġ_c            while the cam does not push: its upward crossing is the largest gap
+///   6  ẏ              its downward crossing is a local maximum of the lift
+///
+/// Functions 0–3 decide the contact mode; 4–6 only observe. The record keeps separation
+/// episodes (jump or bounce), impacts (lash, recontact, seat, seat-bounce), extremes, and the
+/// time series only when asked.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "dynamics/needle_train.h"
+
+namespace needle {
+
+constexpr int kEventCount = 7;
+constexpr int kModeEvents = 4;  ///< events 0..3 switch the mode
+/// Lift above which a needle off the cam counts as separated, m (model.md §6: 1 µm).
+constexpr double kSeparationLift_m = 1e-6;
+
+using EventValues = std::array<double, kEventCount>;
+
+/// The event functions at (t, x) in `mode`.
+EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState& x, double t);
+
+/// The mode implied by the signs of events 0–3.
+ContactMode ModeFromSigns(const std::array<int, kEventCount>& signs);
+
+struct Episode {
+  std::string kind;  ///< "jump" (begins where s'' < 0) or "bounce"
+  double start_rad = 0.0;
+  double end_rad = 0.0;
+  double max_gap_m = 0.0;  ///< largest y − u
+  int impact = -1;         ///< index of the impact that ends it, −1 if none
+};
+
+struct Impact {
+  std::string kind;  ///< "lash", "recontact", "seat", "seat-bounce"
+  double crank_rad = 0.0;
+  double speed_m_s = 0.0;  ///< approach speed ġ at onset, ≥ 0
+};
+
+struct SeriesPoint {
+  double crank_rad, time_s, lift_m, velocity_m_s, cam_m, contact_force_N, seat_force_N;
+};
+
+/// What a run records. Observers keep output apart from integration: integrators call
+/// Sample() at step ends (and a few dense points) and Crossing() at located events.
+class Recorder {
+ public:
+  Recorder(const NeedleTrain& train, bool record_series);
+
+  /// The initial state: a needle already on the cam has no lash to take up.
+  void Start(double t, const TrainState& x, ContactMode mode);
+  void Sample(double t, const TrainState& x, ContactMode mode);
+  /// An event function `index` crossed zero at t in direction ±1; `mode` is the mode after.
+  void Crossing(int index, int direction, double t, const TrainState& x, ContactMode mode);
+  /// Closes an open episode at the end of the run.
+  void Finish(double t, const TrainState& x, ContactMode mode);
+
+  const std::vector<Episode>& episodes() const { return episodes_; }
+  const std::vector<Impact>& impacts() const { return impacts_; }
+  const std::vector<SeriesPoint>& series() const { return series_; }
+  double max_lift_m() const { return max_lift_; }
+  double max_lift_rad() const { return max_lift_rad_; }
+  double max_contact_force_N() const { return max_fc_; }
+  double min_contact_force_during_lift_N() const { return min_fc_lift_; }
+  double max_seat_force_N() const { return max_fs_; }
+  /// Total length of jump episodes, rad.
+  double jump_rad() const;
+  /// Longest jump episode, rad.
+  double longest_jump_rad() const;
+
+ private:
+  void Update(double t, const TrainState& x, ContactMode mode);
+
+  const NeedleTrain& train_;
+  bool record_series_;
+  std::vector<Episode> episodes_;
+  std::vector<Impact> impacts_;
+  std::vector<SeriesPoint> series_;
+  bool separated_ = false;
+  bool cam_touched_ = false;  // any cam onset yet (lash vs recontact)
+  bool seat_landed_ = false;  // any seat onset yet (seat vs seat-bounce)
+  double max_lift_ = -1e300, max_lift_rad_ = 0.0;
+  double max_fc_ = 0.0, min_fc_lift_ = 1e300, max_fs_ = 0.0;
+};
+
+}  // namespace needle

@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// The integrators behind one interface. Each integrates a NeedleTrain from its static
+/// equilibrium over [0, t_end] with event location, stepping exactly to every break of the
+/// cam input, and feeds a Recorder:
+///
+///   kDopri5   Boost.Odeint Dormand–Prince 5(4), dense output; events located by TOMS 748 on
+///             the dense output to machine precision, integration restarted there
+///   kCvodeBdf SUNDIALS CVODE, BDF with a dense linear solver; CVodeRootInit rootfinding and
+///             CVodeReInit after each switch; CVodeSetStopTime at every break
+///   kCvodeAdams  the same with Adams–Moulton (non-stiff)
+
+#include <string>
+
+#include "dynamics/contact_events.h"
+
+namespace needle {
+
+enum class Method { kDopri5, kCvodeBdf, kCvodeAdams };
+
+std::string MethodName(Method m);
+
+/// Options of one integration. Every field has a default; Validate() checks them.
+struct IntegratorOptions {
+  double rtol = 1e-8;        ///< relative tolerance, 1e-14 … 1e-2
+  double atol_m = 1e-11;     ///< absolute tolerance on the states (lift scale), > 0
+  long max_steps = 2000000;  ///< step budget; exceeding it throws with a message
+  long max_events = 100000;  ///< event budget (mode switches); exceeding it throws
+  void Validate() const;
+};
+
+struct IntegrationStats {
+  long steps = 0;            ///< accepted steps
+  long rhs_evaluations = 0;  ///< right-hand-side evaluations
+  long events = 0;           ///< located events (mode switches and observations)
+  TrainState final_state{};
+  double final_time = 0.0;
+};
+
+/// Integrates `train` from `x0` over [0, t_end]. Throws std::runtime_error when a budget is
+/// exceeded, naming the angle it stopped at and what to do.
+IntegrationStats Integrate(Method method, NeedleTrain& train, const TrainState& x0, double t_end,
+                           Recorder& recorder, const IntegratorOptions& options);
+
+IntegrationStats IntegrateDopri5(NeedleTrain& train, const TrainState& x0, double t_end,
+                                 Recorder& recorder, const IntegratorOptions& options);
+IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& x0, double t_end,
+                                Recorder& recorder, const IntegratorOptions& options);
+
+/// Times (s from θ_a) of the cam input's breaks strictly inside (0, t_end), sorted.
+std::vector<double> BreakTimes(const NeedleTrain& train, double t_end);
+
+/// Signs of the event functions (v > 0 → +1, else −1).
+std::array<int, kEventCount> Signs(const EventValues& v);
+
+}  // namespace needle

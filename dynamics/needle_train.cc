@@ -1,0 +1,106 @@
+#include "dynamics/needle_train.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace needle {
+namespace {
+
+void Require(bool ok, const std::string& field, double value, const std::string& rule) {
+  if (!ok) {
+    throw std::invalid_argument("TrainParameters." + field + " = " + std::to_string(value) + ": " +
+                                rule);
+  }
+}
+
+}  // namespace
+
+void TrainParameters::Validate() const {
+  Require(mass_kg > 0.0 && std::isfinite(mass_kg), "mass_kg", mass_kg, "must be positive");
+  Require(preload_N >= 0.0 && std::isfinite(preload_N), "preload_N", preload_N,
+          "must not be negative");
+  Require(rate_N_m >= 0.0 && std::isfinite(rate_N_m), "rate_N_m", rate_N_m, "must not be negative");
+  Require(std::isfinite(gas_force_N), "gas_force_N", gas_force_N, "must be finite");
+  Require(contact_stiffness_N_m > 0.0 && std::isfinite(contact_stiffness_N_m),
+          "contact_stiffness_N_m", contact_stiffness_N_m, "must be positive");
+  Require(contact_damping_ratio >= 0.0 && std::isfinite(contact_damping_ratio),
+          "contact_damping_ratio", contact_damping_ratio, "must not be negative");
+  Require(seat_stiffness_N_m > 0.0 && std::isfinite(seat_stiffness_N_m), "seat_stiffness_N_m",
+          seat_stiffness_N_m, "must be positive");
+  Require(seat_damping_ratio >= 0.0 && std::isfinite(seat_damping_ratio), "seat_damping_ratio",
+          seat_damping_ratio, "must not be negative");
+}
+
+double TrainParameters::contact_damping() const {
+  return 2.0 * contact_damping_ratio * std::sqrt(contact_stiffness_N_m * mass_kg);  // 2ζ√(km)
+}
+
+double TrainParameters::seat_damping() const {
+  return 2.0 * seat_damping_ratio * std::sqrt(seat_stiffness_N_m * mass_kg);
+}
+
+NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double omega,
+                         double theta_a_rad)
+    : cam_(cam), p_(p), omega_(omega), theta_a_(theta_a_rad) {
+  p_.Validate();
+  if (!(omega > 0.0) || !std::isfinite(omega)) {
+    throw std::invalid_argument("NeedleTrain: ω must be positive, got " + std::to_string(omega));
+  }
+  c_c_ = p_.contact_damping();
+  c_s_ = p_.seat_damping();
+}
+
+Contacts NeedleTrain::Evaluate(const TrainState& x, double t) const {
+  Contacts c;
+  c.crank_rad = Angle(t);
+  c.u = cam_.U(c.crank_rad);
+  c.u_slope = cam_.Slope(c.crank_rad);
+  c.g_c = c.u - x[0];                                                // g_c = u − y
+  c.g_c_rate = omega_ * c.u_slope - x[1];                            // ġ_c = ω u' − ẏ
+  c.f_c_raw = p_.contact_stiffness_N_m * c.g_c + c_c_ * c.g_c_rate;  // k_c g + c_c ġ
+  c.g_s = -x[0];                                                     // g_s = −y
+  c.g_s_rate = -x[1];
+  c.f_s_raw = p_.seat_stiffness_N_m * c.g_s + c_s_ * c.g_s_rate;
+  return c;
+}
+
+void NeedleTrain::operator()(const TrainState& x, TrainState& dxdt, double t) const {
+  ++evaluations_;
+  const Contacts c = Evaluate(x, t);
+  const double fc = CamForce(c, mode_), fs = SeatForce(c, mode_);
+  dxdt[0] = x[1];
+  dxdt[1] = (fc + fs - (p_.preload_N + p_.rate_N_m * x[0]) + p_.gas_force_N) / p_.mass_kg;  // ÿ
+  dxdt[2] = fc * omega_ * c.u_slope;                                                        // Ẇ
+  const double gc_plus = std::max(0.0, c.g_c), gs_plus = std::max(0.0, c.g_s);
+  dxdt[3] = (fc - p_.contact_stiffness_N_m * gc_plus) * c.g_c_rate +
+            (fs - p_.seat_stiffness_N_m * gs_plus) * c.g_s_rate;  // Ḋ
+}
+
+double NeedleTrain::Energy(const TrainState& x, double t) const {
+  const Contacts c = Evaluate(x, t);
+  const double y = x[0];
+  const double gc = std::max(0.0, c.g_c), gs = std::max(0.0, c.g_s);
+  return 0.5 * p_.mass_kg * x[1] * x[1] + p_.preload_N * y + 0.5 * p_.rate_N_m * y * y -
+         p_.gas_force_N * y + 0.5 * p_.contact_stiffness_N_m * gc * gc +
+         0.5 * p_.seat_stiffness_N_m * gs * gs;
+}
+
+TrainState NeedleTrain::EquilibriumStart() const {
+  const double net = p_.preload_N - p_.gas_force_N;  // P₀ − F_g
+  const double u_a = cam_.U(theta_a_);
+  double y0;
+  if (cam_.play_m() > 0.0) {
+    y0 = -net / (p_.seat_stiffness_N_m + p_.rate_N_m);  // seat only
+    if (u_a - y0 > 0.0) {  // the seat sinks below the base circle: cam and seat share the load
+      y0 = (p_.contact_stiffness_N_m * u_a - net) /
+           (p_.contact_stiffness_N_m + p_.seat_stiffness_N_m + p_.rate_N_m);
+    }
+  } else {
+    y0 = (p_.contact_stiffness_N_m * u_a - net) /
+         (p_.contact_stiffness_N_m + p_.seat_stiffness_N_m + p_.rate_N_m);
+  }
+  return {y0, 0.0, 0.0, 0.0};
+}
+
+}  // namespace needle

@@ -1,0 +1,134 @@
+#include "dynamics/overspeed.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "lib/units.h"
+
+namespace needle {
+
+void OverspeedOptions::Validate() const {
+  if (!(from_rpm > 0.0))
+    throw std::invalid_argument("overspeed: from_rpm must be positive, got " +
+                                std::to_string(from_rpm));
+  if (!(to_rpm > from_rpm)) {
+    throw std::invalid_argument("overspeed: the sweep range is empty: to_rpm (" +
+                                std::to_string(to_rpm) + ") must exceed from_rpm (" +
+                                std::to_string(from_rpm) + ")");
+  }
+  if (!(resolution_rpm > 0.0))
+    throw std::invalid_argument("overspeed: resolution_rpm must be positive");
+  if (grid_points < 2) throw std::invalid_argument("overspeed: grid_points must be at least 2");
+}
+
+OverspeedRow RowFromResult(const SimulationResult& r) {
+  OverspeedRow row;
+  row.speed_rpm = r.speed_rpm;
+  row.min_contact_force_N = r.min_contact_force_during_lift_N;
+  row.jump_deg = r.jump_rad / kDeg;
+  row.longest_jump_deg = r.longest_jump_rad / kDeg;
+  for (const Episode& e : r.episodes) row.max_gap_mm = std::max(row.max_gap_mm, e.max_gap_m * 1e3);
+  for (const Impact& i : r.impacts)
+    row.max_impact_speed_m_s = std::max(row.max_impact_speed_m_s, i.speed_m_s);
+  row.lifts_off = r.longest_jump_rad >= kMinJump_rad;
+  return row;
+}
+
+namespace {
+
+// Runs the speeds on up to `threads` threads; rethrows the first failure.
+std::vector<OverspeedRow> RunAll(const Scene& scene, const std::vector<double>& speeds,
+                                 const SimulationOptions& sim, int threads) {
+  std::vector<OverspeedRow> rows(speeds.size());
+  std::vector<std::exception_ptr> errors(speeds.size());
+  auto work = [&](size_t first) {
+    for (size_t i = first; i < speeds.size(); i += static_cast<size_t>(threads)) {
+      try {
+        rows[i] = RowFromResult(Simulate(scene, speeds[i], sim));
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads && k < static_cast<int>(speeds.size()); ++k)
+    pool.emplace_back(work, k);
+  work(0);
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  return rows;
+}
+
+}  // namespace
+
+OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
+                                const std::function<void(int, int)>& progress) {
+  o.Validate();
+  OverspeedResult result;
+  SimulationOptions sim = o.simulation;
+  sim.force_dynamic = true;  // lift-off is a dynamic question
+  sim.record_series = false;
+  const int hw = static_cast<int>(std::thread::hardware_concurrency());
+  const int threads = o.threads > 0 ? o.threads : std::max(1, hw);
+  result.threads = threads;
+  std::vector<double> grid;
+  for (int i = 0; i < o.grid_points; ++i) {
+    grid.push_back(o.from_rpm + (o.to_rpm - o.from_rpm) * i / (o.grid_points - 1));
+  }
+  const int estimate =
+      o.grid_points +
+      3 * static_cast<int>(
+              std::ceil(std::log2((o.to_rpm - o.from_rpm) / o.grid_points / o.resolution_rpm) + 1));
+  int done = 0;
+  std::vector<OverspeedRow> rows = RunAll(scene, grid, sim, threads);
+  done += static_cast<int>(rows.size());
+  if (progress) progress(done, estimate);
+  result.rows = rows;
+  int hit = -1;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].lifts_off) {
+      hit = static_cast<int>(i);
+      break;
+    }
+  }
+  if (hit == 0) {
+    result.lifts_off_at_start = true;
+    result.n_dyn_rpm = o.from_rpm;
+    result.bracket_low_rpm = result.bracket_high_rpm = o.from_rpm;
+  } else if (hit > 0) {
+    double lo = grid[hit - 1], hi = grid[hit];
+    while (hi - lo > o.resolution_rpm) {
+      // k-section: `threads` interior speeds at once.
+      std::vector<double> speeds;
+      for (int k = 1; k <= threads; ++k) speeds.push_back(lo + (hi - lo) * k / (threads + 1));
+      const std::vector<OverspeedRow> more = RunAll(scene, speeds, sim, threads);
+      done += static_cast<int>(more.size());
+      if (progress) progress(done, std::max(done, estimate));
+      double new_lo = lo, new_hi = hi;
+      for (size_t k = 0; k < more.size(); ++k) {
+        if (more[k].lifts_off) {
+          new_hi = speeds[k];
+          break;
+        }
+        new_lo = speeds[k];
+      }
+      lo = new_lo;
+      hi = new_hi;
+      result.rows.insert(result.rows.end(), more.begin(), more.end());
+    }
+    result.n_dyn_rpm = hi;
+    result.bracket_low_rpm = lo;
+    result.bracket_high_rpm = hi;
+  }
+  std::sort(result.rows.begin(), result.rows.end(),
+            [](const OverspeedRow& a, const OverspeedRow& b) { return a.speed_rpm < b.speed_rpm; });
+  return result;
+}
+
+}  // namespace needle

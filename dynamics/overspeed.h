@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// The overspeed search (model.md §6): the dynamic lift-off speed n_dyn is the lowest speed
+/// in [from, to] at which a `jump` episode at least 0.1° long appears, found to 0.5 rpm. A
+/// grid brackets it and a k-section (k = the threads) narrows the bracket; every speed of a
+/// grid or of a k-section round is independent, so they run on all cores.
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "dynamics/simulation.h"
+
+namespace needle {
+
+/// Shortest jump that counts as lift-off, rad (0.1°).
+constexpr double kMinJump_rad = 0.1 * 3.14159265358979323846 / 180.0;
+
+struct OverspeedRow {
+  double speed_rpm = 0.0;
+  double min_contact_force_N = 0.0;  ///< during the lift
+  double jump_deg = 0.0;             ///< total length of jump episodes
+  double longest_jump_deg = 0.0;
+  double max_gap_mm = 0.0;
+  double max_impact_speed_m_s = 0.0;
+  bool lifts_off = false;  ///< a jump of at least 0.1°
+};
+
+struct OverspeedOptions {
+  double from_rpm = 0.0;        ///< start of the range, > 0
+  double to_rpm = 0.0;          ///< end, > from
+  double resolution_rpm = 0.5;  ///< bracket width at which the search stops
+  int grid_points = 12;         ///< speeds of the bracketing grid, ≥ 2
+  int threads = 0;              ///< 0: all cores
+  SimulationOptions simulation;
+  void Validate() const;
+};
+
+struct OverspeedResult {
+  std::vector<OverspeedRow> rows;   ///< every speed run, sorted
+  std::optional<double> n_dyn_rpm;  ///< lowest lift-off speed found (upper end of the bracket)
+  double bracket_low_rpm = 0.0, bracket_high_rpm = 0.0;
+  bool lifts_off_at_start = false;  ///< already lifts off at from_rpm
+  int threads = 1;
+};
+
+/// `progress(done, total_estimate)` is called after each run (from the calling thread).
+OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& options,
+                                const std::function<void(int, int)>& progress = {});
+
+/// One row from one run.
+OverspeedRow RowFromResult(const SimulationResult& r);
+
+}  // namespace needle

@@ -1,0 +1,188 @@
+#include "dynamics/simulation.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "lib/units.h"
+#include "spring/quasi_static.h"
+
+namespace needle {
+namespace {
+
+// Above this many contact oscillations per cam event the train is stiff: BDF.
+constexpr double kStiffOscillations = 2000.0;
+// The rigid answer stands in when contact oscillates this often per event and the
+// quasi-static force never falls below this fraction of the preload.
+constexpr double kRigidOscillations = 1000.0;
+constexpr double kRigidMargin = 0.5;
+
+}  // namespace
+
+bool SimulationResult::liftoff() const {
+  for (const Episode& e : episodes) {
+    if (e.kind == "jump") return true;
+  }
+  return false;
+}
+
+Scene MakeScene(const Case& c) {
+  if (!c.needle)
+    throw CaseError(
+        c.path +
+        ": [needle] mass_kg: section [needle] is missing; the dynamics needs the moving mass");
+  if (!c.spring)
+    throw CaseError(
+        c.path +
+        ": [spring] preload: section [spring] is missing; the dynamics needs preload and rate");
+  if (!c.train)
+    throw CaseError(c.path +
+                    ": [train] contact_stiffness: section [train] is missing; the dynamics needs "
+                    "the contact stiffness");
+  Scene s;
+  s.law = std::make_unique<LiftLaw>(MakeLiftLaw(c));
+  if (!s.law->HasAcceleration()) {
+    throw CaseError(c.path + ": [lift] spline: \"" + SplineKindName(s.law->kind()) +
+                    "\" is C1 only; the dynamics needs a C2 spline (not-a-knot, natural, clamped, "
+                    "quintic, smoothing)");
+  }
+  try {
+    s.cam = std::make_unique<CamInput>(
+        *s.law, c.train->play_m, c.train->linear_ramp ? RampKind::kLinear : RampKind::kTangent,
+        c.train->ramp_rad);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(c.path + ": [train] ramp: " + e.what());
+  }
+  s.train.mass_kg = c.needle->mass_kg;
+  s.train.gas_force_N = c.needle->gas_force_N;
+  s.train.preload_N = c.spring->preload_N;
+  if (c.spring->rate_N_m) {
+    s.train.rate_N_m = *c.spring->rate_N_m;
+  } else {
+    const HelicalGeometry& g = *c.spring->helical;
+    s.train.rate_N_m =
+        g.shear_modulus_Pa * std::pow(g.wire_m, 4) / (8.0 * std::pow(g.coil_m, 3) * g.active_coils);
+  }
+  s.train.contact_stiffness_N_m = c.train->contact_stiffness_N_m;
+  s.train.contact_damping_ratio = c.train->contact_damping_ratio;
+  s.train.seat_stiffness_N_m = c.train->seat_stiffness_N_m;
+  s.train.seat_damping_ratio = c.train->seat_damping_ratio;
+  if (c.solver) {
+    s.start_rad = c.solver->start_rad;
+    s.end_rad = c.solver->end_rad;
+  }
+  return s;
+}
+
+SimulationOptions OptionsFromCase(const Case& c) {
+  SimulationOptions o;
+  if (c.solver) {
+    o.method = c.solver->method;
+    o.integrator.rtol = c.solver->rtol;
+    o.integrator.atol_m = c.solver->atol_m.value_or(c.solver->rtol * 1e-3);
+    o.integrator.max_steps = c.solver->max_steps;
+    o.integrator.max_events = c.solver->max_events;
+  } else {
+    o.integrator.atol_m = o.integrator.rtol * 1e-3;
+  }
+  return o;
+}
+
+double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm) {
+  const double omega_c =
+      std::sqrt((scene.train.contact_stiffness_N_m + scene.train.rate_N_m) / scene.train.mass_kg);
+  const double event_s = (scene.law->end_rad() - scene.law->start_rad()) / OmegaFromRpm(speed_rpm);
+  return omega_c * event_s / (2.0 * kPi);
+}
+
+SimulationResult Simulate(const Scene& scene, double speed_rpm, const SimulationOptions& o) {
+  if (!(speed_rpm > 0.0) || !std::isfinite(speed_rpm)) {
+    throw std::invalid_argument("speed must be positive, got " + std::to_string(speed_rpm) +
+                                " rpm");
+  }
+  SimulationResult r;
+  r.speed_rpm = speed_rpm;
+  const double omega = OmegaFromRpm(speed_rpm);
+  const double theta_a = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
+  const double theta_b = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
+  r.window_start_rad = theta_a;
+  r.window_end_rad = theta_b;
+  const double oscillations = ContactOscillationsPerEvent(scene, speed_rpm);
+  const std::string stiffness = "the contact oscillates " +
+                                std::to_string(static_cast<long>(std::lround(oscillations))) +
+                                " times per cam event";
+
+  // Skip the dynamics where the rigid answer is the answer.
+  RigidTrain rigid{scene.train.mass_kg, scene.train.preload_N, scene.train.rate_N_m,
+                   scene.train.gas_force_N};
+  const ForceMinimum fmin = MinQuasiStaticForce(*scene.law, rigid, omega);
+  if (!o.force_dynamic && scene.cam->play_m() == 0.0 && oscillations >= kRigidOscillations &&
+      fmin.force_N >= kRigidMargin * scene.train.preload_N && scene.train.preload_N > 0.0) {
+    r.skipped = true;
+    r.method = "rigid";
+    r.method_reason = "dynamic run skipped: " + stiffness +
+                      " and the quasi-static contact force never falls below " +
+                      std::to_string(static_cast<int>(kRigidMargin * 100)) +
+                      " % of the preload (min " + std::to_string(fmin.force_N) +
+                      " N); no roller play; use --dynamic to run it";
+    const Extremum top = scene.law->Max(0);
+    r.max_lift_m = top.value;
+    r.max_lift_rad = top.crank_rad;
+    r.min_contact_force_during_lift_N = fmin.force_N;
+    // Largest F_qs over the lift: −min of −F_qs (sampled finely; F_qs is smooth).
+    double fmax = 0.0;
+    for (int k = 0; k <= 2000; ++k) {
+      const double th =
+          scene.law->start_rad() + (scene.law->end_rad() - scene.law->start_rad()) * k / 2000.0;
+      fmax = std::max(fmax, QuasiStaticForce(*scene.law, rigid, omega, th));
+    }
+    r.max_contact_force_N = fmax;
+    r.max_seat_force_N = scene.train.preload_N - scene.train.gas_force_N;
+    return r;
+  }
+
+  Method method;
+  if (o.method == "auto") {
+    method = oscillations > kStiffOscillations ? Method::kCvodeBdf : Method::kDopri5;
+    r.method_reason = "auto: " + stiffness +
+                      (method == Method::kCvodeBdf ? " (> 2000: stiff, BDF)"
+                                                   : " (≤ 2000: explicit Dormand–Prince)");
+  } else if (o.method == "dopri5") {
+    method = Method::kDopri5;
+    r.method_reason = "asked for";
+  } else if (o.method == "cvode-bdf") {
+    method = Method::kCvodeBdf;
+    r.method_reason = "asked for";
+  } else if (o.method == "cvode-adams") {
+    method = Method::kCvodeAdams;
+    r.method_reason = "asked for";
+  } else {
+    throw std::invalid_argument("unknown method \"" + o.method +
+                                "\"; expected auto, dopri5, cvode-bdf or cvode-adams");
+  }
+  r.method = MethodName(method);
+
+  NeedleTrain train(*scene.cam, scene.train, omega, theta_a);
+  const TrainState x0 = train.EquilibriumStart();
+  Recorder recorder(train, o.record_series);
+  const double t_end = (theta_b - theta_a) / omega;
+  r.stats = Integrate(method, train, x0, t_end, recorder, o.integrator);
+
+  r.episodes = recorder.episodes();
+  r.impacts = recorder.impacts();
+  r.series = recorder.series();
+  r.max_lift_m = recorder.max_lift_m();
+  r.max_lift_rad = recorder.max_lift_rad();
+  r.max_contact_force_N = recorder.max_contact_force_N();
+  r.min_contact_force_during_lift_N = recorder.min_contact_force_during_lift_N();
+  r.max_seat_force_N = recorder.max_seat_force_N();
+  r.jump_rad = recorder.jump_rad();
+  r.longest_jump_rad = recorder.longest_jump_rad();
+  // Energy audit: r = |E(t) − E(0) − W + D| / max(|W|, |E(0)|).
+  const TrainState& xf = r.stats.final_state;
+  const double e0 = train.Energy(x0, 0.0), e1 = train.Energy(xf, r.stats.final_time);
+  const double scale = std::max(std::abs(xf[2]), std::abs(e0));
+  r.energy_residual = scale > 0.0 ? std::abs(e1 - e0 - xf[2] + xf[3]) / scale : 0.0;
+  return r;
+}
+
+}  // namespace needle

@@ -1,0 +1,70 @@
+#pragma once
+/// @file
+/// One dynamic run of a scene at one speed (model.md §5–6): window [θ_a, θ_b] with
+/// θ_a = rise start − 5°, θ_b = fall end + 20°; static-equilibrium start; the method chosen
+/// by the stiffness of the scene when `auto`; the rigid answer reported instead of a dynamic
+/// run when the scene does not need one, with the reason, unless the dynamics is forced.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynamics/cam_input.h"
+#include "dynamics/contact_events.h"
+#include "dynamics/integrator.h"
+#include "dynamics/needle_train.h"
+#include "lib/case_file.h"
+
+namespace needle {
+
+/// Everything a run needs that does not depend on the speed. Owns its lift law.
+struct Scene {
+  std::unique_ptr<LiftLaw> law;
+  std::unique_ptr<CamInput> cam;
+  TrainParameters train;
+  std::optional<double> start_rad, end_rad;  ///< window override
+};
+
+/// Builds the scene of a case with [needle], [spring] and [train]; throws CaseError naming
+/// the missing section or the invalid value.
+Scene MakeScene(const Case& c);
+
+/// Options of a run. Every field has a default.
+struct SimulationOptions {
+  std::string method = "auto";   ///< "auto", "dopri5", "cvode-bdf", "cvode-adams"
+  IntegratorOptions integrator;  ///< tolerances and budgets
+  bool record_series = false;    ///< keep the time series (for --csv)
+  bool force_dynamic = false;    ///< never report the rigid answer instead
+};
+
+struct SimulationResult {
+  double speed_rpm = 0.0;
+  std::string method;         ///< the method used ("rigid" when skipped)
+  std::string method_reason;  ///< why that method
+  bool skipped = false;       ///< the rigid answer stands in for a dynamic run
+  double window_start_rad = 0.0, window_end_rad = 0.0;
+  std::vector<Episode> episodes;
+  std::vector<Impact> impacts;
+  std::vector<SeriesPoint> series;
+  double max_lift_m = 0.0, max_lift_rad = 0.0;
+  double max_contact_force_N = 0.0;
+  double min_contact_force_during_lift_N = 0.0;
+  double max_seat_force_N = 0.0;
+  double energy_residual = 0.0;
+  double jump_rad = 0.0;  ///< total length of jump episodes
+  double longest_jump_rad = 0.0;
+  IntegrationStats stats;
+  bool liftoff() const;  ///< any jump episode
+};
+
+/// Contact oscillations per cam event, √((k_c + k)/m)·(θ_N − θ_0)/(2π ω): the stiffness measure
+/// `auto` decides by.
+double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm);
+
+SimulationResult Simulate(const Scene& scene, double speed_rpm, const SimulationOptions& options);
+
+/// The options a case's [solver] section asks for.
+SimulationOptions OptionsFromCase(const Case& c);
+
+}  // namespace needle
