@@ -24,7 +24,9 @@ CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp
   fall_end_ = thn;
   if (play_m > 0.0) {
     if (ramp == RampKind::kTangent) {
-      if (!(slope0_ > 0.0) || !(slopen_ < 0.0)) {
+      // A slope below 1e-9 of the mean one is zero up to roundoff (clamped at-rest ends).
+      const double tiny = 1e-9 * (law.Max(0).value + play_m) / (thn - th0);
+      if (!(slope0_ > tiny) || !(slopen_ < -tiny)) {
         throw std::invalid_argument(
             "tangent ramps need a rising start and a falling end, but the lift law's end slopes "
             "are " +

@@ -13,7 +13,7 @@ namespace {
 constexpr double kStiffOscillations = 2000.0;
 // The rigid answer stands in when contact oscillates this often per event and the
 // quasi-static force never falls below this fraction of the preload.
-constexpr double kRigidOscillations = 1000.0;
+constexpr double kRigidOscillations = 500.0;
 constexpr double kRigidMargin = 0.5;
 
 }  // namespace

@@ -60,7 +60,10 @@ class SectionReader {
       if (found) Fail(key, "given twice, also as " + found->first + "; keep one");
       found = std::make_pair(key, unit);
     }
-    if (found) used_.insert(found->first);
+    if (found) {
+      used_.insert(found->first);
+      last_key_ = found->first;
+    }
     return found;
   }
 
@@ -112,6 +115,9 @@ class SectionReader {
   // Declares a quantity name that extends a shorter one (`fuel_density` beside `fuel`).
   void Declare(const std::string& name) { declared_.insert(name); }
 
+  // The key (with its unit) of the quantity found last, for messages.
+  const std::string& last_key() const { return last_key_; }
+
   // Every key must have been read.
   void Finish() const {
     if (!table_) return;
@@ -162,6 +168,7 @@ class SectionReader {
   std::set<std::string> used_;
   std::set<std::string> known_plain_;
   std::set<std::string> declared_;
+  std::string last_key_;
 };
 
 // A required or optional quantity that must be positive; the message names the key as written.
@@ -240,10 +247,10 @@ SpringSection ReadSpring(SectionReader r) {
   SpringSection sp;
   sp.preload_N = r.Quantity("preload", Dimension::kForce);
   if (sp.preload_N < 0.0)
-    r.Fail("preload", "must not be negative, got " + Number(sp.preload_N) + " N");
+    r.Fail(r.last_key(), "must not be negative, got " + Number(sp.preload_N) + " N");
   sp.rate_N_m = r.OptionalQuantity("rate", Dimension::kStiffness);
   if (sp.rate_N_m && *sp.rate_N_m < 0.0) {
-    r.Fail("rate", "must not be negative, got " + Number(*sp.rate_N_m) + " N/m");
+    r.Fail(r.last_key(), "must not be negative, got " + Number(*sp.rate_N_m) + " N/m");
   }
   if (auto s = r.OptionalNumber("safety_factor")) {
     if (!(*s >= 1.0)) r.Fail("safety_factor", "must be at least 1, got " + Number(*s));
@@ -267,13 +274,13 @@ TrainSection ReadTrain(SectionReader r) {
   TrainSection t;
   t.contact_stiffness_N_m = r.Quantity("contact_stiffness", Dimension::kStiffness);
   if (!(t.contact_stiffness_N_m > 0.0)) {
-    r.Fail("contact_stiffness",
-           "must be positive, got " + Number(t.contact_stiffness_N_m) + " N/m");
+    r.Fail(r.last_key(), "must be positive, got " + Number(t.contact_stiffness_N_m) + " N/m");
   }
-  t.seat_stiffness_N_m =
-      r.OptionalQuantity("seat_stiffness", Dimension::kStiffness).value_or(t.contact_stiffness_N_m);
-  if (!(t.seat_stiffness_N_m > 0.0)) {
-    r.Fail("seat_stiffness", "must be positive, got " + Number(t.seat_stiffness_N_m) + " N/m");
+  if (auto ks = r.OptionalQuantity("seat_stiffness", Dimension::kStiffness)) {
+    if (!(*ks > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*ks) + " N/m");
+    t.seat_stiffness_N_m = *ks;
+  } else {
+    t.seat_stiffness_N_m = t.contact_stiffness_N_m;
   }
   for (auto [key, into] :
        {std::pair<const char*, double*>{"contact_damping_ratio", &t.contact_damping_ratio},

@@ -199,3 +199,129 @@ TEST(NeedleCliSpringTest, DesignBadInputExitsTwo) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+using testing::Case;
+using testing::RunNeedle;
+
+TEST(NeedleCliDynamicsTest, SimulateJsonHasTheDocumentedKeys) {
+  const auto r = RunNeedle("simulate " + Case("basu-example2.toml") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key :
+       {"speed_rpm", "method", "liftoff", "episodes", "impacts", "max_lift_mm", "max_lift_deg",
+        "max_contact_force_N", "min_contact_force_during_lift_N", "max_seat_force_N",
+        "energy_residual", "steps", "rhs_evaluations", "events"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_FALSE(j["liftoff"].get<bool>());
+  EXPECT_EQ(j["impacts"][0]["kind"], "lash");
+  for (const char* key : {"kind", "crank_deg", "speed_m_s"})
+    EXPECT_TRUE(j["impacts"][0].contains(key));
+}
+
+TEST(NeedleCliDynamicsTest, LiftOffExitsOneAndListsTheJump) {
+  const auto r = RunNeedle("simulate " + Case("basu-example2.toml") + " --rpm 1500 --json");
+  EXPECT_EQ(r.status, 1) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["liftoff"].get<bool>());
+  bool jump = false;
+  for (const auto& e : j["episodes"]) {
+    jump = jump || e["kind"] == "jump";
+    for (const char* key : {"start_deg", "end_deg", "max_gap_mm"}) EXPECT_TRUE(e.contains(key));
+  }
+  EXPECT_TRUE(jump);
+}
+
+TEST(NeedleCliDynamicsTest, CsvTimeSeriesOnlyWhenAsked) {
+  const std::string csv = "/tmp/needle_cli_series_" + std::to_string(getpid()) + ".csv";
+  const auto r = RunNeedle("simulate " + Case("basu-example2.toml") + " --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string text = testing::Slurp(csv);
+  EXPECT_EQ(
+      text.rfind("crank_deg,time_s,lift_mm,velocity_m_s,cam_mm,contact_force_N,seat_force_N\n", 0),
+      0u);
+  EXPECT_GT(std::count(text.begin(), text.end(), '\n'), 1000);
+  std::remove(csv.c_str());
+}
+
+TEST(NeedleCliDynamicsTest, OverspeedReportsBothSpeeds) {
+  const auto r = RunNeedle("overspeed " + Case("basu-cam4-light-spring.toml") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["liftoff_rpm_dynamic"].is_number());
+  EXPECT_TRUE(j["liftoff_rpm_quasi_static"].is_number());
+  for (const char* key :
+       {"speed_rpm", "min_contact_force_N", "jump_deg", "max_gap_mm", "max_impact_speed_m_s"}) {
+    EXPECT_TRUE(j["rows"][0].contains(key)) << key;
+  }
+}
+
+// Writes a variant of Example 2 with one line replaced and returns needle's stderr and status.
+testing::Result BadTrain(const std::string& from, const std::string& to,
+                         const std::string& command = "simulate") {
+  std::string text = testing::Slurp(Case("basu-example2.toml"));
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("fixture lacks " + from);
+  text.replace(at, from.size(), to);
+  const std::string path = "/tmp/needle_cli_train_" + std::to_string(getpid()) + ".toml";
+  {
+    std::ofstream f(path);
+    f << text;
+  }
+  auto r = RunNeedle(command + " " + path);
+  std::remove(path.c_str());
+  const auto colon = r.err.find(".toml: ");
+  if (colon != std::string::npos) r.err = r.err.substr(colon + 7);
+  return r;
+}
+
+TEST(NeedleCliDynamicsTest, BadTrainInputIsOneLineAndExitTwo) {
+  struct Bad {
+    std::string from, to, message;
+  };
+  const Bad cases[] = {
+      {"mass_kg = 1.2", "mass_kg = 0", "[needle] mass_kg: must be positive, got 0\n"},
+      {"contact_stiffness_N_m = 2e8", "contact_stiffness_N_m = -2e8",
+       "[train] contact_stiffness_N_m: must be positive, got -2e+08 N/m\n"},
+      {"play_mm = 0.5", "play_mm = -0.5", "[train] play_mm: must not be negative, got -0.5\n"},
+      {"contact_damping_ratio = 0.05", "contact_damping_ratio = -0.05",
+       "[train] contact_damping_ratio: must not be negative, got -0.05\n"},
+  };
+  for (const Bad& b : cases) {
+    const auto r = BadTrain(b.from, b.to);
+    EXPECT_EQ(r.status, 2) << b.to;
+    EXPECT_EQ(r.err, b.message);
+  }
+  const auto tangent =
+      BadTrain("ramp_deg = 10", "ramp = \"tangent\"\n[lift]\nspline = \"clamped\"");
+  EXPECT_EQ(tangent.status, 2);
+  const auto clamped = BadTrain("spline = \"not-a-knot\"", "spline = \"clamped\"");
+  // Clamped at rest with linear ramps is fine; with tangent ramps it is not.
+  EXPECT_EQ(clamped.status, 0) << clamped.err;
+  std::string text = testing::Slurp(Case("basu-example2.toml"));
+  text.replace(text.find("spline = \"not-a-knot\""), 21, "spline = \"clamped\"");
+  text.replace(text.find("ramp_deg = 10"), 13, "ramp = \"tangent\"");
+  const std::string path = "/tmp/needle_cli_tangent_" + std::to_string(getpid()) + ".toml";
+  {
+    std::ofstream f(path);
+    f << text;
+  }
+  const auto t = RunNeedle("simulate " + path);
+  EXPECT_EQ(t.status, 2);
+  EXPECT_NE(t.err.find("[train] ramp: tangent ramps need a rising start and a falling end"),
+            std::string::npos)
+      << t.err;
+  EXPECT_NE(t.err.find("or give ramp_deg"), std::string::npos);
+  std::remove(path.c_str());
+  const auto empty = BadTrain("to_rpm = 2000", "to_rpm = 300", "overspeed");
+  EXPECT_EQ(empty.status, 2);
+  EXPECT_EQ(
+      empty.err,
+      "[overspeed] to_rpm: the sweep range is empty: to_rpm (300) must exceed from_rpm (400)\n");
+}
+
+}  // namespace
+}  // namespace needle

@@ -1,0 +1,77 @@
+// The cam as the needle sees it (model.md §3).
+#include "dynamics/cam_input.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+LiftLaw Law(SplineKind kind = SplineKind::kNotAKnot) {
+  LiftTable t;
+  for (int i = 0; i <= 4; ++i) {  // s = 2 mm · sin(πθ/0.4): end slopes ±π/0.4 · 2 mm
+    t.crank_rad.push_back(0.1 * i);
+    t.lift_m.push_back(2e-3 * std::sin(3.14159265358979323846 * 0.1 * i / 0.4));
+  }
+  SplineOptions o;
+  o.kind = kind;
+  return LiftLaw(t, o);
+}
+
+TEST(CamInputTest, WithoutPlayTheEndsHoldTheTableValues) {
+  const LiftLaw law = Law();
+  const CamInput cam(law, 0.0, RampKind::kTangent, 0.0);
+  EXPECT_EQ(cam.U(-0.5), 0.0);
+  EXPECT_EQ(cam.Slope(-0.5), 0.0);
+  EXPECT_NEAR(cam.U(0.2), 2e-3, 1e-15);
+  EXPECT_EQ(cam.U(0.5), cam.U(0.4));
+  EXPECT_EQ(cam.rise_start_rad(), 0.0);
+  EXPECT_EQ(cam.fall_end_rad(), 0.4);
+}
+
+TEST(CamInputTest, TangentRampsReachTheBaseCircle) {
+  const LiftLaw law = Law();
+  const double play = 0.5e-3;
+  const CamInput cam(law, play, RampKind::kTangent, 0.0);
+  const double s0 = law.spline().Evaluate(0.0, 1), sn = law.spline().Evaluate(0.4, 1);
+  EXPECT_NEAR(cam.rise_start_rad(), -play / s0, 1e-15);  // 0 + s0'(θ − 0) = −δ
+  EXPECT_NEAR(cam.fall_end_rad(), 0.4 + play / -sn, 1e-15);
+  EXPECT_NEAR(cam.U(cam.rise_start_rad() - 0.1), -play, 1e-18);
+  EXPECT_NEAR(cam.U(0.5 * cam.rise_start_rad()), -0.5 * play, 1e-15);
+  EXPECT_NEAR(cam.Slope(0.5 * cam.rise_start_rad()), s0, 1e-15);  // C¹ at θ0
+  EXPECT_EQ(cam.Breaks().front(), cam.rise_start_rad());
+  EXPECT_EQ(cam.Breaks().back(), cam.fall_end_rad());
+}
+
+TEST(CamInputTest, LinearRamps) {
+  const LiftLaw law = Law();
+  const CamInput cam(law, 0.4e-3, RampKind::kLinear, 0.2);
+  EXPECT_NEAR(cam.U(-0.1), -0.2e-3, 1e-15);  // halfway up from −δ to s(θ0) = 0
+  EXPECT_NEAR(cam.Slope(-0.1), 0.4e-3 / 0.2, 1e-15);
+  EXPECT_NEAR(cam.U(0.5), (law.spline().Evaluate(0.4) - 0.4e-3) / 2, 1e-15);
+  EXPECT_NEAR(cam.U(0.7), -0.4e-3, 1e-15);
+  // Pieces are half-open: at a break the value after it.
+  EXPECT_EQ(cam.Slope(-0.2), 0.4e-3 / 0.2);
+  EXPECT_EQ(cam.Slope(cam.fall_end_rad()), 0.0);
+}
+
+TEST(CamInputTest, ZeroEndSlopeCannotReachTheBaseCircle) {
+  const LiftLaw law = Law(SplineKind::kClamped);  // at rest: zero end slopes
+  try {
+    CamInput(law, 0.5e-3, RampKind::kTangent, 0.0);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("a zero end slope cannot reach the base circle; use another spline kind"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("or give ramp_deg"), std::string::npos);
+  }
+  EXPECT_THROW(CamInput(law, -1e-3, RampKind::kLinear, 0.1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace needle

@@ -1,0 +1,82 @@
+// The overspeed search: n_dyn against n_qs, and the parallel sweep against the serial one.
+#include "dynamics/overspeed.h"
+
+#include <gtest/gtest.h>
+
+#include "spring/quasi_static.h"
+
+namespace needle {
+namespace {
+
+const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
+
+double Nqs(const Scene& s) {
+  return QuasiStaticLiftoffRpm(*s.law, RigidTrain{s.train.mass_kg, s.train.preload_N,
+                                                  s.train.rate_N_m, s.train.gas_force_N});
+}
+
+OverspeedResult Search(const Scene& s, double from, double to, int threads) {
+  OverspeedOptions o;
+  o.from_rpm = from;
+  o.to_rpm = to;
+  o.threads = threads;
+  o.simulation.integrator.rtol = 1e-8;
+  o.simulation.integrator.atol_m = 1e-11;
+  return OverspeedSearch(s, o);
+}
+
+TEST(OverspeedTest, LightSpringLiftsOffNearItsQuasiStaticSpeed) {
+  const Case c = LoadCase(kCases + "basu-cam4-light-spring.toml");
+  const Scene s = MakeScene(c);
+  const double n_qs = Nqs(s);
+  const OverspeedResult r = Search(s, 400, 1200, 2);
+  ASSERT_TRUE(r.n_dyn_rpm.has_value());
+  EXPECT_LE(r.bracket_high_rpm - r.bracket_low_rpm, 0.5);
+  EXPECT_LE(*r.n_dyn_rpm, n_qs * 1.02);
+  EXPECT_GE(*r.n_dyn_rpm, n_qs * 0.9);
+  // Every row below the bracket is free of lift-off, every row above it lifts off.
+  for (const OverspeedRow& row : r.rows) {
+    if (row.speed_rpm <= r.bracket_low_rpm) {
+      EXPECT_FALSE(row.lifts_off) << row.speed_rpm;
+    }
+    if (row.speed_rpm >= r.bracket_high_rpm) {
+      EXPECT_TRUE(row.lifts_off) << row.speed_rpm;
+    }
+  }
+}
+
+TEST(OverspeedTest, LashVibrationBringsLiftOffBelowTheQuasiStaticSpeed) {
+  // Example 2's stated train (0.5 mm play on 10° ramps): the lash impact sets the train
+  // ringing, and the needle leaves the cam about 2 % below n_qs.
+  const Case c = LoadCase(kCases + "basu-example2.toml");
+  const Scene s = MakeScene(c);
+  const double n_qs = Nqs(s);
+  const OverspeedResult r = Search(s, 400, 2000, 2);
+  ASSERT_TRUE(r.n_dyn_rpm.has_value());
+  EXPECT_LT(*r.n_dyn_rpm, n_qs * 0.99);
+  EXPECT_GT(*r.n_dyn_rpm, n_qs * 0.9);
+}
+
+TEST(OverspeedTest, ParallelAndSerialSweepsAgree) {
+  const Case c = LoadCase(kCases + "basu-cam4-light-spring.toml");
+  const Scene s = MakeScene(c);
+  const OverspeedResult a = Search(s, 500, 800, 1), b = Search(s, 500, 800, 2);
+  ASSERT_TRUE(a.n_dyn_rpm && b.n_dyn_rpm);
+  EXPECT_NEAR(*a.n_dyn_rpm, *b.n_dyn_rpm, 0.5);
+}
+
+TEST(OverspeedTest, EmptyRangeIsRejected) {
+  const Case c = LoadCase(kCases + "basu-cam4-light-spring.toml");
+  const Scene s = MakeScene(c);
+  try {
+    Search(s, 800, 800, 1);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "overspeed: the sweep range is empty: to_rpm (800.000000) must exceed from_rpm "
+                 "(800.000000)");
+  }
+}
+
+}  // namespace
+}  // namespace needle

@@ -1,0 +1,160 @@
+// Whole runs: the quasi-static limit, lash take-up, agreement of the integrators, the energy
+// audit on every bundled scene, skipping, and budgets.
+#include "dynamics/simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "lib/units.h"
+#include "spring/quasi_static.h"
+
+namespace needle {
+namespace {
+
+const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
+
+SimulationOptions Options(const std::string& method, double rtol, bool series = false) {
+  SimulationOptions o;
+  o.method = method;
+  o.integrator.rtol = rtol;
+  o.integrator.atol_m = rtol * 1e-3;
+  o.force_dynamic = true;
+  o.record_series = series;
+  return o;
+}
+
+TEST(SimulationTest, StiffTrainAtLowSpeedFollowsTheQuasiStaticForce) {
+  // Contact frequency ≫ cam frequency and no play: F_c(θ) = F_qs(θ) − m g̈ − k g with
+  // g ≈ F/k_c, so |F_c − F_qs| ≲ (k/k_c)|F| + transients. Stated bound: 0.1 % of max F_qs
+  // beyond 1° from the ends of the table.
+  Case c = LoadCase(kCases + "basu-cam4-stiff-train.toml");
+  const Scene s = MakeScene(c);
+  const double rpm = 100;
+  const SimulationResult r = Simulate(*&s, rpm, Options("dopri5", 1e-9, true));
+  const RigidTrain rigid{s.train.mass_kg, s.train.preload_N, s.train.rate_N_m, s.train.gas_force_N};
+  const double omega = OmegaFromRpm(rpm);
+  double fmax = 0, worst = 0;
+  int compared = 0;
+  for (const SeriesPoint& p : r.series) {
+    if (p.crank_rad < s.law->start_rad() + kDeg || p.crank_rad > s.law->end_rad() - kDeg) continue;
+    const double fqs = QuasiStaticForce(*s.law, rigid, omega, p.crank_rad);
+    fmax = std::max(fmax, fqs);
+    worst = std::max(worst, std::abs(p.contact_force_N + p.seat_force_N - fqs));
+    ++compared;
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_LT(worst, 1e-3 * fmax) << "worst " << worst << " N of " << fmax << " N";
+  EXPECT_FALSE(r.liftoff());
+}
+
+// A scene with play and linear ramps, the needle resting on its seat until the ramp lifts it.
+Scene LashScene(double play_m, double ramp_deg) {
+  Case c = LoadCase(kCases + "basu-example2.toml");
+  c.train->play_m = play_m;
+  c.train->linear_ramp = true;
+  c.train->ramp_rad = ramp_deg * kDeg;
+  return MakeScene(c);
+}
+
+TEST(SimulationTest, LashTakeUpStrikesAtOmegaTimesTheRampSlope) {
+  const Scene s = LashScene(0.5e-3, 10.0);
+  const double rpm = 400, omega = OmegaFromRpm(rpm);
+  // Resting on the seat: y₀ = −P₀/(k_s + k). The ramp rises from −δ at θ₀ − X with slope
+  // (s(θ₀) + δ)/X; it meets the needle where u = y₀.
+  const double y0 = -s.train.preload_N / (s.train.seat_stiffness_N_m + s.train.rate_N_m);
+  const double slope = (0.0 + 0.5e-3) / (10.0 * kDeg);
+  const double theta_contact = s.law->start_rad() - 10.0 * kDeg + (y0 + 0.5e-3) / slope;
+  for (const char* method : {"dopri5", "cvode-bdf"}) {
+    const SimulationResult r = Simulate(s, rpm, Options(method, 1e-10));
+    ASSERT_FALSE(r.impacts.empty());
+    EXPECT_EQ(r.impacts[0].kind, "lash");
+    EXPECT_NEAR(r.impacts[0].speed_m_s, omega * slope, 1e-9 * omega * slope) << method;
+    EXPECT_NEAR(r.impacts[0].crank_rad / kDeg, theta_contact / kDeg, 1e-7) << method;
+  }
+}
+
+TEST(SimulationTest, TheTwoIntegratorsAgreeOnEventAnglesTo1e6Degrees) {
+  Case c = LoadCase(kCases + "basu-example2.toml");
+  const Scene s = MakeScene(c);
+  const SimulationResult a = Simulate(s, 1400, Options("dopri5", 1e-12));
+  const SimulationResult b = Simulate(s, 1400, Options("cvode-bdf", 1e-12));
+  ASSERT_EQ(a.impacts.size(), b.impacts.size());
+  ASSERT_GE(a.impacts.size(), 3u);
+  for (size_t i = 0; i < a.impacts.size(); ++i) {
+    EXPECT_EQ(a.impacts[i].kind, b.impacts[i].kind);
+    EXPECT_NEAR(a.impacts[i].crank_rad / kDeg, b.impacts[i].crank_rad / kDeg, 1e-6) << i;
+  }
+  ASSERT_EQ(a.episodes.size(), b.episodes.size());
+  for (size_t i = 0; i < a.episodes.size(); ++i) {
+    EXPECT_EQ(a.episodes[i].kind, b.episodes[i].kind);
+    EXPECT_NEAR(a.episodes[i].start_rad / kDeg, b.episodes[i].start_rad / kDeg, 1e-6) << i;
+    EXPECT_NEAR(a.episodes[i].end_rad / kDeg, b.episodes[i].end_rad / kDeg, 1e-6) << i;
+  }
+  EXPECT_TRUE(a.liftoff());  // 1400 rpm is above n_dyn for this scene
+}
+
+TEST(SimulationTest, EnergyResidualBelow1e8AtRtol1e10OnEveryBundledScene) {
+  int scenes = 0;
+  for (const auto& e : std::filesystem::directory_iterator(kCases)) {
+    if (e.path().extension() != ".toml" ||
+        e.path().stem().string().find("-engine") != std::string::npos)
+      continue;
+    const Case c = LoadCase(e.path().string());
+    if (!c.train) continue;
+    const Scene s = MakeScene(c);
+    SimulationOptions o = Options("auto", 1e-10);
+    const SimulationResult r = Simulate(s, c.engine.speed_rpm, o);
+    EXPECT_LT(r.energy_residual, 1e-8) << e.path() << " (" << r.method << ")";
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 4);
+}
+
+TEST(SimulationTest, StiffSceneReportsTheRigidAnswerWithItsReason) {
+  const Case c = LoadCase(kCases + "basu-cam4-stiff-train.toml");
+  const Scene s = MakeScene(c);
+  SimulationOptions o;
+  const SimulationResult r = Simulate(s, 400, o);
+  EXPECT_TRUE(r.skipped);
+  EXPECT_EQ(r.method, "rigid");
+  EXPECT_NE(
+      r.method_reason.find("dynamic run skipped: the contact oscillates 942 times per cam event"),
+      std::string::npos)
+      << r.method_reason;
+  EXPECT_EQ(r.stats.steps, 0);
+  o.force_dynamic = true;
+  const SimulationResult d = Simulate(s, 400, o);
+  EXPECT_FALSE(d.skipped);
+  EXPECT_NEAR(d.max_lift_m, r.max_lift_m, 2e-6);  // the rigid answer is right to 2 µm
+}
+
+TEST(SimulationTest, AutoPicksByStiffnessAndSaysWhy) {
+  const Case c = LoadCase(kCases + "basu-example2.toml");
+  Scene s = MakeScene(c);
+  SimulationOptions o;
+  EXPECT_EQ(Simulate(s, 400, o).method, "dopri5");
+  s.train.contact_stiffness_N_m = 1e12;  // ~3300 oscillations per event
+  const SimulationResult r = Simulate(s, 400, o);
+  EXPECT_EQ(r.method, "cvode-bdf");
+  EXPECT_NE(r.method_reason.find("> 2000: stiff, BDF"), std::string::npos) << r.method_reason;
+}
+
+TEST(SimulationTest, StepBudgetStopsWithAMessage) {
+  const Case c = LoadCase(kCases + "basu-example2.toml");
+  const Scene s = MakeScene(c);
+  SimulationOptions o = Options("dopri5", 1e-8);
+  o.integrator.max_steps = 50;
+  try {
+    Simulate(s, 400, o);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("after 50 steps (the budget [solver] max_steps)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace needle
