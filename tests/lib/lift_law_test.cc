@@ -16,7 +16,7 @@
 namespace needle {
 namespace {
 
-const std::string kPaper = std::string(NEEDLE_SHARED_DIR) + "/paper-data/basu-tm477.toml";
+const std::string kPaper = std::string(NEEDLE_SHARED_DIR) + "/basu-tm477.toml";
 const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
 
 TEST(LiftLawTest, NormalCurveMatchesThePaperTable) {

@@ -13,7 +13,7 @@ namespace needle {
 namespace {
 
 const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
-const std::string kPaper = std::string(NEEDLE_SHARED_DIR) + "/paper-data/basu-tm477.toml";
+const std::string kPaper = std::string(NEEDLE_SHARED_DIR) + "/basu-tm477.toml";
 
 double Paper(const char* section, const char* key) {
   static const toml::table t = toml::parse_file(kPaper);
