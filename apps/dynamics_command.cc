@@ -24,11 +24,10 @@ SimulationOptions Options(const Case& c, const std::optional<std::string>& metho
                           const std::optional<double>& rtol) {
   SimulationOptions o = OptionsFromCase(c);
   if (method) {
-    if (*method != "auto" && *method != "dopri5" && *method != "cvode-bdf" &&
-        *method != "cvode-adams") {
-      throw CaseError("--method: unknown method \"" + *method +
-                      "\"; expected auto, dopri5, cvode-bdf or cvode-adams");
+    if (*method != "auto" && !ParseMethod(*method)) {
+      throw CaseError("--method: unknown method \"" + *method + "\"; expected " + MethodList());
     }
+
     o.method = *method;
   }
   if (rtol) {

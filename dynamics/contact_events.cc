@@ -20,7 +20,9 @@ Recorder::Recorder(const NeedleTrain& train, bool record_series)
 
 void Recorder::Update(double t, const TrainState& x, ContactMode mode) {
   const Contacts c = train_.Evaluate(x, t);
-  const double fc = train_.CamForce(c, mode), fs = train_.SeatForce(c, mode);
+  (void)mode;
+  const double fc = train_.AppliedCamForce(c), fs = train_.AppliedSeatForce(c);
+
   const LiftLaw& law = train_.cam().law();
   const double th = c.crank_rad;
   const bool in_table = th >= law.start_rad() && th <= law.end_rad();
@@ -32,7 +34,8 @@ void Recorder::Update(double t, const TrainState& x, ContactMode mode) {
   max_fs_ = std::max(max_fs_, fs);
   if (in_table) min_fc_lift_ = std::min(min_fc_lift_, fc);
   // Separation episode: inside [θ0, θN], the cam not pushing and y > 1 µm.
-  const bool separated = in_table && !mode.cam && x[0] > kSeparationLift_m;
+  const bool separated = in_table && !(fc > 0.0) && x[0] > kSeparationLift_m;
+
   if (separated && !separated_) {
     Episode e;
     e.start_rad = th;
@@ -52,6 +55,12 @@ void Recorder::Update(double t, const TrainState& x, ContactMode mode) {
 void Recorder::Start(double t, const TrainState& x, ContactMode mode) {
   cam_touched_ = train_.Evaluate(x, t).g_c > 0.0;
   Update(t, x, mode);
+}
+
+void Recorder::GridSample(double t, const TrainState& x, ContactMode mode) {
+  const Contacts c = train_.Evaluate(x, t);
+  (void)mode;
+  grid_.push_back({t, x[0], train_.AppliedCamForce(c)});
 }
 
 void Recorder::Sample(double t, const TrainState& x, ContactMode mode) { Update(t, x, mode); }

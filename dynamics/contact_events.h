@@ -54,6 +54,11 @@ struct SeriesPoint {
   double crank_rad, time_s, lift_m, velocity_m_s, cam_m, contact_force_N, seat_force_N;
 };
 
+/// The state at one requested time (benchmarks compare runs on a common grid).
+struct GridPoint {
+  double time_s = 0.0, lift_m = 0.0, contact_force_N = 0.0;
+};
+
 /// What a run records. Observers keep output apart from integration: integrators call
 /// Sample() at step ends (and a few dense points) and Crossing() at located events.
 class Recorder {
@@ -71,6 +76,15 @@ class Recorder {
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
   const std::vector<SeriesPoint>& series() const { return series_; }
+
+  /// Asks integrators to report the state at these times (sorted); empty: none.
+  void set_grid(std::vector<double> times) { grid_times_ = std::move(times); }
+  const std::vector<double>& grid_times() const { return grid_times_; }
+  /// Integrators call this for every grid time, in order, with the dense state there.
+  void GridSample(double t, const TrainState& x, ContactMode mode);
+  /// Index of the next grid time not yet reported.
+  size_t next_grid() const { return grid_.size(); }
+  const std::vector<GridPoint>& grid() const { return grid_; }
   double max_lift_m() const { return max_lift_; }
   double max_lift_rad() const { return max_lift_rad_; }
   double max_contact_force_N() const { return max_fc_; }
@@ -89,6 +103,9 @@ class Recorder {
   std::vector<Episode> episodes_;
   std::vector<Impact> impacts_;
   std::vector<SeriesPoint> series_;
+  std::vector<double> grid_times_;
+  std::vector<GridPoint> grid_;
+
   bool separated_ = false;
   bool cam_touched_ = false;  // any cam onset yet (lash vs recontact)
   bool seat_landed_ = false;  // any seat onset yet (seat vs seat-bounce)

@@ -10,6 +10,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -113,7 +114,8 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   o.Validate();
   IntegrationStats stats;
   const long rhs_before = train.evaluations();
-  const std::vector<double> breaks = BreakTimes(train, t_end);
+  const Breaks all_breaks = BreakTimes(train, t_end);
+  const std::vector<double>& breaks = all_breaks.times;
   size_t next_break = 0;
 
   std::array<int, kEventCount> signs = Signs(Events(train, train.mode(), x0, 0.0));
@@ -141,6 +143,8 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   auto set_stop = [&]() {
     while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
     const double stop = next_break < breaks.size() ? breaks[next_break] : t_end;
+    train.set_segment_end(next_break < breaks.size() ? all_breaks.angles[next_break]
+                                                     : std::numeric_limits<double>::infinity());
     Check(CVodeSetStopTime(cvode.mem, stop), "CVodeSetStopTime");
     return stop;
   };
@@ -195,6 +199,8 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
     t_prev = t;
   }
   recorder.Finish(t, ToState(y.v), data.mode);
+  train.set_segment_end(std::numeric_limits<double>::infinity());
+
   stats.rhs_evaluations = train.evaluations() - rhs_before;
   stats.final_state = ToState(y.v);
   stats.final_time = t;

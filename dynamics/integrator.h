@@ -10,15 +10,20 @@
 ///             CVodeReInit after each switch; CVodeSetStopTime at every break
 ///   kCvodeAdams  the same with Adams–Moulton (non-stiff)
 
+#include <optional>
 #include <string>
 
 #include "dynamics/contact_events.h"
 
 namespace needle {
 
-enum class Method { kDopri5, kCvodeBdf, kCvodeAdams };
+enum class Method { kDopri5, kRkf78, kRosenbrock4, kCvodeBdf, kCvodeAdams, kBaselineDopri5 };
 
+/// "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams", "baseline-dopri5".
 std::string MethodName(Method m);
+std::optional<Method> ParseMethod(const std::string& name);
+/// "auto, dopri5, rkf78, …" for messages.
+std::string MethodList();
 
 /// Options of one integration. Every field has a default; Validate() checks them.
 struct IntegratorOptions {
@@ -44,13 +49,29 @@ IntegrationStats Integrate(Method method, NeedleTrain& train, const TrainState& 
 
 IntegrationStats IntegrateDopri5(NeedleTrain& train, const TrainState& x0, double t_end,
                                  Recorder& recorder, const IntegratorOptions& options);
+/// Dopri5, Rkf78 or Rosenbrock4 with event location.
+IntegrationStats IntegrateOdeint(Method method, NeedleTrain& train, const TrainState& x0,
+                                 double t_end, Recorder& recorder,
+                                 const IntegratorOptions& options);
+/// Dormand–Prince with max(0, …) inside the right-hand side, no events, no breaks: the
+/// baseline the event location is measured against. Reports grid samples and step ends.
+IntegrationStats IntegrateBaseline(NeedleTrain& train, const TrainState& x0, double t_end,
+                                   Recorder& recorder, const IntegratorOptions& options);
 IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& x0, double t_end,
                                 Recorder& recorder, const IntegratorOptions& options);
 
-/// Times (s from θ_a) of the cam input's breaks strictly inside (0, t_end), sorted.
-std::vector<double> BreakTimes(const NeedleTrain& train, double t_end);
+/// The cam input's breaks strictly inside (0, t_end), sorted: times (s from θ_a) and the
+/// exact break angles (rad) they stand for.
+struct Breaks {
+  std::vector<double> times, angles;
+};
+Breaks BreakTimes(const NeedleTrain& train, double t_end);
 
 /// Signs of the event functions (v > 0 → +1, else −1).
 std::array<int, kEventCount> Signs(const EventValues& v);
+
+/// Throws the budget message (shared by the integrators).
+[[noreturn]] void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train,
+                                  double t);
 
 }  // namespace needle

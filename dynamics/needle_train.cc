@@ -54,8 +54,10 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
 Contacts NeedleTrain::Evaluate(const TrainState& x, double t) const {
   Contacts c;
   c.crank_rad = Angle(t);
-  c.u = cam_.U(c.crank_rad);
-  c.u_slope = cam_.Slope(c.crank_rad);
+  const double th = CamAngle(c.crank_rad);
+  c.u = cam_.U(th);
+  c.u_slope = cam_.Slope(th);
+
   c.g_c = c.u - x[0];                                                // g_c = u − y
   c.g_c_rate = omega_ * c.u_slope - x[1];                            // ġ_c = ω u' − ẏ
   c.f_c_raw = p_.contact_stiffness_N_m * c.g_c + c_c_ * c.g_c_rate;  // k_c g + c_c ġ
@@ -65,10 +67,59 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t) const {
   return c;
 }
 
+double NeedleTrain::CamAngle(double crank_rad) const {
+  // At the end of a segment, the cam's value from the left (its pieces are [a, b)).
+  if (crank_rad >= segment_end_) {
+    return std::nextafter(segment_end_, -std::numeric_limits<double>::infinity());
+  }
+  return crank_rad;
+}
+
+double NeedleTrain::AppliedCamForce(const Contacts& c) const {
+  if (gated_) return c.g_c > 0.0 ? std::max(0.0, c.f_c_raw) : 0.0;  // max(0, k g + c ġ)
+  return CamForce(c, mode_);
+}
+
+double NeedleTrain::AppliedSeatForce(const Contacts& c) const {
+  if (gated_) return c.g_s > 0.0 ? std::max(0.0, c.f_s_raw) : 0.0;
+  return SeatForce(c, mode_);
+}
+
+void NeedleTrain::Jacobian(const TrainState& x, double t, std::array<double, 16>& J,
+                           TrainState& dfdt) const {
+  const Contacts c = Evaluate(x, t);
+  const double m = p_.mass_kg, w = omega_;
+  const double up = c.u_slope, upp = cam_.Curvature(CamAngle(c.crank_rad));
+  const double ac = mode_.cam ? 1.0 : 0.0, as = mode_.seat ? 1.0 : 0.0;
+  const double kc = p_.contact_stiffness_N_m, ks = p_.seat_stiffness_N_m;
+  J.fill(0.0);
+  dfdt.fill(0.0);
+  J[0 * 4 + 1] = 1.0;                                     // ∂ẏ/∂ẏ
+  J[1 * 4 + 0] = (-kc * ac - ks * as - p_.rate_N_m) / m;  // ∂ÿ/∂y
+  J[1 * 4 + 1] = (-c_c_ * ac - c_s_ * as) / m;            // ∂ÿ/∂ẏ
+  const double fc = ac * c.f_c_raw;
+  const double dfc_dt = ac * (kc * w * up + c_c_ * w * w * upp);  // ∂F_c/∂t
+  dfdt[1] = dfc_dt / m;
+  J[2 * 4 + 0] = -kc * ac * w * up;  // Ẇ = F_c ω u'
+  J[2 * 4 + 1] = -c_c_ * ac * w * up;
+  dfdt[2] = dfc_dt * w * up + fc * w * w * upp;
+  // Ḋ = A_c ġ_c + A_s ġ_s with A = F − k g⁺ (F from the mode). With ∂g_c/∂y = −1,
+  // ∂ġ_c/∂ẏ = −1, ∂g_c/∂t = ω u', ∂ġ_c/∂t = ω² u'' (and g_s = −y, ġ_s = −ẏ):
+  //   ∂A_c/∂y = −k_c a_c + k_c [g_c > 0],   ∂A_c/∂ẏ = −c_c a_c,
+  //   ∂A_c/∂t = a_c (k_c ω u' + c_c ω² u'') − k_c [g_c > 0] ω u'.
+  const double pc = c.g_c > 0.0 ? 1.0 : 0.0, ps = c.g_s > 0.0 ? 1.0 : 0.0;
+  const double a_c = fc - kc * std::max(0.0, c.g_c);
+  const double a_s = as * c.f_s_raw - ks * std::max(0.0, c.g_s);
+  J[3 * 4 + 0] = c.g_c_rate * (-kc * ac + kc * pc) + c.g_s_rate * (-ks * as + ks * ps);
+  J[3 * 4 + 1] = c.g_c_rate * (-c_c_ * ac) - a_c + c.g_s_rate * (-c_s_ * as) - a_s;
+  dfdt[3] = (dfc_dt - kc * pc * w * up) * c.g_c_rate + a_c * w * w * upp;
+}
+
 void NeedleTrain::operator()(const TrainState& x, TrainState& dxdt, double t) const {
   ++evaluations_;
   const Contacts c = Evaluate(x, t);
-  const double fc = CamForce(c, mode_), fs = SeatForce(c, mode_);
+  const double fc = AppliedCamForce(c), fs = AppliedSeatForce(c);
+
   dxdt[0] = x[1];
   dxdt[1] = (fc + fs - (p_.preload_N + p_.rate_N_m * x[0]) + p_.gas_force_N) / p_.mass_kg;  // ÿ
   dxdt[2] = fc * omega_ * c.u_slope;                                                        // Ẇ

@@ -15,6 +15,7 @@
 /// that the right-hand side is smooth inside every step.
 
 #include <array>
+#include <limits>
 
 #include "dynamics/cam_input.h"
 
@@ -78,17 +79,36 @@ class NeedleTrain {
   const TrainParameters& parameters() const { return p_; }
   const CamInput& cam() const { return cam_; }
 
+  /// The integrators step to every break of the cam input. Inside a segment [a, b) the cam is
+  /// evaluated on its own side of b: a stage that lands exactly on b sees the limit from the
+  /// left, not the piece after the break. +∞ (the default) disables the clamp.
+  void set_segment_end(double crank_rad) { segment_end_ = crank_rad; }
   void set_mode(ContactMode m) { mode_ = m; }
   ContactMode mode() const { return mode_; }
+  /// Gated: the forces take F = max(0, k g + c ġ) for g > 0 inside the right-hand side,
+  /// ignoring the mode (the no-event baseline of the benchmarks).
+  void set_gated(bool gated) { gated_ = gated; }
+  /// The forces the right-hand side uses at `c` (mode or gate).
+  double AppliedCamForce(const Contacts& c) const;
+  double AppliedSeatForce(const Contacts& c) const;
+  /// ∂f/∂x (row-major 4×4) and ∂f/∂t of the right-hand side in the current mode.
+  void Jacobian(const TrainState& x, double t, std::array<double, 16>& dfdx,
+                TrainState& dfdt) const;
   /// Right-hand-side evaluations so far.
   long evaluations() const { return evaluations_; }
 
  private:
+  double CamAngle(double crank_rad) const;
+
   const CamInput& cam_;
+
   TrainParameters p_;
   double omega_, theta_a_;
   double c_c_, c_s_;
   ContactMode mode_;
+  bool gated_ = false;
+  double segment_end_ = std::numeric_limits<double>::infinity();
+
   mutable long evaluations_ = 0;
 };
 

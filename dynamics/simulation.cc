@@ -146,19 +146,13 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     r.method_reason = "auto: " + stiffness +
                       (method == Method::kCvodeBdf ? " (> 2000: stiff, BDF)"
                                                    : " (≤ 2000: explicit Dormand–Prince)");
-  } else if (o.method == "dopri5") {
-    method = Method::kDopri5;
-    r.method_reason = "asked for";
-  } else if (o.method == "cvode-bdf") {
-    method = Method::kCvodeBdf;
-    r.method_reason = "asked for";
-  } else if (o.method == "cvode-adams") {
-    method = Method::kCvodeAdams;
+  } else if (auto m = ParseMethod(o.method)) {
+    method = *m;
     r.method_reason = "asked for";
   } else {
-    throw std::invalid_argument("unknown method \"" + o.method +
-                                "\"; expected auto, dopri5, cvode-bdf or cvode-adams");
+    throw std::invalid_argument("unknown method \"" + o.method + "\"; expected " + MethodList());
   }
+
   r.method = MethodName(method);
 
   NeedleTrain train(*scene.cam, scene.train, omega, theta_a);

@@ -313,10 +313,15 @@ TrainSection ReadTrain(SectionReader r) {
 SolverSection ReadSolver(SectionReader r) {
   SolverSection s;
   if (auto m = r.OptionalString("method")) {
-    if (*m != "auto" && *m != "dopri5" && *m != "cvode-bdf" && *m != "cvode-adams") {
+    static const std::set<std::string> kMethods = {
+        "auto", "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams", "baseline-dopri5"};
+    if (!kMethods.count(*m)) {
       r.Fail("method",
-             "expected \"auto\", \"dopri5\", \"cvode-bdf\" or \"cvode-adams\", got \"" + *m + "\"");
+             "expected one of auto, dopri5, rkf78, rosenbrock4, cvode-bdf, cvode-adams, "
+             "baseline-dopri5; got \"" +
+                 *m + "\"");
     }
+
     s.method = *m;
   }
   if (auto rtol = r.OptionalNumber("rtol")) {
