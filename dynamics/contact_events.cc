@@ -7,8 +7,16 @@ namespace needle {
 
 EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState& x, double t) {
   const Contacts c = train.Evaluate(x, t);
-  return {c.g_c, c.f_c_raw, c.g_s, c.f_s_raw, x[0] - kSeparationLift_m, mode.cam ? 1.0 : c.g_c_rate,
-          x[1]};
+  // 5 and 6 only observe a lifted needle: at rest their arguments are zero up to roundoff
+  // and would flip sign at every step.
+  const bool lifted = x[0] > kSeparationLift_m;
+  return {c.g_c,
+          c.f_c_raw,
+          c.g_s,
+          c.f_s_raw,
+          x[0] - kSeparationLift_m,
+          (mode.cam || !lifted) ? 1.0 : c.g_c_rate,
+          lifted ? x[1] : 1.0};
 }
 
 ContactMode ModeFromSigns(const std::array<int, kEventCount>& s) {

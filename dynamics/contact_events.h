@@ -8,8 +8,10 @@
 ///   2  g_s            seat penetration         (upward crossing: an impact on the seat)
 ///   3  k_s g_s + c_s ġ_s   seat force branch
 ///   4  y − 1 µm       the separation threshold of an episode
-///   5  ġ_c            while the cam does not push: its upward crossing is the largest gap
-///   6  ẏ              its downward crossing is a local maximum of the lift
+///   5  ġ_c            while the cam does not push and y > 1 µm: its upward crossing is the
+///                     largest gap (+1 otherwise)
+///   6  ẏ              while y > 1 µm: its downward crossing is a local maximum of the lift
+
 ///
 /// Functions 0–3 decide the contact mode; 4–6 only observe. The record keeps separation
 /// episodes (jump or bounce), impacts (lash, recontact, seat, seat-bounce), extremes, and the

@@ -81,7 +81,18 @@ class SmoothingProblem {
   }
 
   Fit Solve(double lambda) const {
-    const Eigen::VectorXd g = SolveSparse(n_ - 1, Matrix(lambda), QtTimes(y_), "smoothing spline");
+    Eigen::VectorXd g;
+    if (n_ - 1 <= kDense) {
+      // Small tables: R and QᵀQ are formed once; each λ is one Cholesky of a dense SPD matrix.
+      if (r_.size() == 0) FormDense();
+      const Eigen::MatrixXd a = r_ + (lambda * sigma2_) * qtq_;
+      const Eigen::LLT<Eigen::MatrixXd> llt(a);
+      if (llt.info() != Eigen::Success) throw std::runtime_error("smoothing spline: LLT failed");
+      g = llt.solve(qty_);
+    } else {
+      g = SolveSparse(n_ - 1, Matrix(lambda), QtTimes(y_), "smoothing spline");
+    }
+
     Fit fit;
     fit.f = y_ - lambda * sigma2_ * QTimes(g);  // f = y − λW⁻¹Qγ
     fit.gamma = Eigen::VectorXd::Zero(n_ + 1);
@@ -151,6 +162,23 @@ class SmoothingProblem {
   int points() const { return n_ + 1; }
 
  private:
+  static constexpr int kDense = 64;
+
+  void FormDense() const {
+    const int m = n_ - 1;
+    r_ = Eigen::MatrixXd::Zero(m, m);
+    qtq_ = Eigen::MatrixXd::Zero(m, m);
+    for (const auto& t : Matrix(0.0)) r_(t.row(), t.col()) += t.value();  // R alone
+    Eigen::MatrixXd q(n_ + 1, m);
+    for (int j = 0; j < m; ++j) q.col(j) = QTimes(Eigen::VectorXd::Unit(m, j));
+    qtq_ = q.transpose() * q;
+
+    qty_ = QtTimes(y_);
+  }
+
+  mutable Eigen::MatrixXd r_, qtq_;
+  mutable Eigen::VectorXd qty_;
+
   std::vector<double> x_;
   int n_;
   double sigma2_;

@@ -1,0 +1,404 @@
+// needle-bench: run time against error, and the performance targets (issue 5).
+//
+//   needle-bench dynamics   --out DIR   work-precision of every integrator on three scenes
+//   needle-bench kinematics --out DIR   spline error against table spacing and build time
+//   needle-bench targets                the four performance targets, met or missed by how much
+//   needle-bench all        --out DIR   all three, and DIR/summary.md
+//
+// Times are medians over repeated runs on one core (the overspeed speed-up uses two).
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "apps/work_precision.h"
+#include "dynamics/overspeed.h"
+#include "lib/cam_laws.h"
+#include "lib/case_file.h"
+#include "lib/kinematics.h"
+#include "lib/output.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+std::string CaseDir() { return std::string(NEEDLE_SOURCE_DIR) + "/cases/"; }
+
+struct BenchScene {
+  std::string name, file, note;
+  double rpm;
+};
+
+const std::vector<BenchScene>& Scenes() {
+  static const std::vector<BenchScene> scenes = {
+      {"soft", "basu-cam4-light-spring.toml",
+       "light train, no play, 52 contact oscillations per event", 400},
+      {"stiff", "basu-cam4-stiff-train.toml", "stiff train, 942 contact oscillations per event",
+       400},
+      {"liftoff", "basu-example2.toml",
+       "0.5 mm play on 10-degree ramps at 1500 rpm: lash impact and lift-off", 1500},
+  };
+  return scenes;
+}
+
+const std::vector<Method>& Methods() {
+  static const std::vector<Method> m = {Method::kDopri5,      Method::kRkf78,
+                                        Method::kRosenbrock4, Method::kCvodeBdf,
+                                        Method::kCvodeAdams,  Method::kBaselineDopri5};
+  return m;
+}
+
+template <typename F>
+double MedianSeconds(F&& f, int repeats) {
+  std::vector<double> s;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(s.begin(), s.end());
+  return s[s.size() / 2];
+}
+
+struct Row {
+  std::string scene, method;
+  double rtol, ms;
+  long steps, rhs, events;
+  RunErrors err;
+  double energy;
+  std::string failure;
+};
+
+// Cost (ms or rhs) to reach a lift error on the Pareto front of one method, interpolated in
+// log-log between the two runs that bracket it; NaN when never reached.
+double CostToReach(const std::vector<Row>& rows, const std::string& method, double target_m,
+                   bool rhs) {
+  std::vector<std::pair<double, double>> pts;  // (error, cost)
+  for (const Row& r : rows) {
+    if (r.method != method || !r.failure.empty() || !std::isfinite(r.err.lift_m)) continue;
+    pts.push_back({std::max(r.err.lift_m, 1e-16), rhs ? double(r.rhs) : r.ms});
+  }
+  std::sort(pts.begin(), pts.end(), [](auto a, auto b) { return a.second < b.second; });
+  double best_err = INFINITY;
+  std::vector<std::pair<double, double>> front;  // errors falling as cost rises
+  for (auto p : pts) {
+    if (p.first < best_err) {
+      front.push_back(p);
+      best_err = p.first;
+    }
+  }
+  for (size_t i = 0; i < front.size(); ++i) {
+    if (front[i].first <= target_m) {
+      if (i == 0) return front[0].second;
+      const auto [e0, c0] = front[i - 1];
+      const auto [e1, c1] = front[i];
+      const double w = (std::log(target_m) - std::log(e0)) / (std::log(e1) - std::log(e0));
+      return std::exp(std::log(c0) + w * (std::log(c1) - std::log(c0)));
+    }
+  }
+  return NAN;
+}
+
+std::string Num(double v, int digits = 3) {
+  if (!std::isfinite(v)) return "–";
+  std::ostringstream s;
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
+  std::ostringstream md;
+  md << "## Dynamics: work against precision\n\n"
+     << "Reference: Dormand–Prince with event location at rtol 1e-13 (its own uncertainty: the\n"
+     << "largest lift difference to Rosenbrock 4 at 1e-13, shown per scene). Errors on 2001 "
+        "points\n"
+     << "of the window; times are medians of " << repeats << " runs on one core.\n\n";
+  std::vector<double> tolerances;
+  for (int e = 3; e <= 12; ++e) {
+    if (quick && e % 3 != 0) continue;
+    tolerances.push_back(std::pow(10.0, -e));
+  }
+  for (const BenchScene& bs : Scenes()) {
+    const Case c = LoadCase(CaseDir() + bs.file);
+    const Scene scene = MakeScene(c);
+    const std::vector<double> grid = WindowGrid(scene, bs.rpm, 2000);
+    const MeasuredRun ref = MeasureRun(scene, bs.rpm, Method::kDopri5, 1e-13, grid, 1);
+    const MeasuredRun check = MeasureRun(scene, bs.rpm, Method::kRosenbrock4, 1e-13, grid, 1);
+    const RunErrors ref_err = CompareRuns(check, ref);
+    std::vector<Row> rows;
+    for (Method m : Methods()) {
+      for (double rtol : tolerances) {
+        const MeasuredRun run = MeasureRun(scene, bs.rpm, m, rtol, grid, repeats);
+        Row r{bs.name,
+              run.method,
+              rtol,
+              run.median_seconds * 1e3,
+              run.stats.steps,
+              run.stats.rhs_evaluations,
+              run.stats.events,
+              CompareRuns(run, ref),
+              run.energy_residual,
+              run.failure};
+        if (m == Method::kBaselineDopri5) r.err.event_rad.reset();
+        rows.push_back(r);
+        std::cerr << bs.name << " " << run.method << " " << rtol << ": " << Num(r.ms)
+                  << " ms, lift error " << Num(r.err.lift_m * 1e6) << " um"
+                  << (run.failure.empty() ? "" : " FAILED: " + run.failure) << '\n';
+      }
+    }
+    std::ostringstream csv;
+    csv << "scene,method,rtol,median_ms,steps,rhs_evaluations,events,lift_error_um,contact_force_"
+           "error_N,"
+           "event_angle_error_deg,impacts,reference_impacts,energy_residual,failure\n";
+    for (const Row& r : rows) {
+      csv << r.scene << ',' << r.method << ',' << r.rtol << ',' << r.ms << ',' << r.steps << ','
+          << r.rhs << ',' << r.events << ',' << r.err.lift_m * 1e6 << ',' << r.err.force_N << ','
+          << (r.err.event_rad ? std::to_string(*r.err.event_rad / kDeg) : "") << ','
+          << r.err.event_count << ',' << r.err.reference_event_count << ',' << r.energy << ",\""
+          << r.failure << "\"\n";
+    }
+    WriteFileAtomically(out_dir + "/work-precision-" + bs.name + ".csv", csv.str());
+
+    const double oscillations = ContactOscillationsPerEvent(scene, bs.rpm);
+    const std::string auto_pick = oscillations > 2000 ? "cvode-bdf" : "dopri5";
+    md << "### " << bs.name << ": " << bs.note << "\n\n"
+       << "Reference uncertainty: " << Num(ref_err.lift_m * 1e6)
+       << " µm of lift. Impacts in the reference: " << ref.impacts.size() << ". `auto` picks "
+       << auto_pick << " (" << Num(oscillations, 4) << " contact oscillations per event).\n\n"
+       << "| method | ms to 1 µm | ms to 1 nm | rhs to 1 µm | rhs to 1 nm "
+          "|\n|---|---|---|---|---|\n";
+    std::string fastest_um, fastest_nm;
+    double best_um = INFINITY, best_nm = INFINITY;
+    for (Method m : Methods()) {
+      const std::string name = MethodName(m);
+      const double t_um = CostToReach(rows, name, 1e-6, false),
+                   t_nm = CostToReach(rows, name, 1e-9, false);
+      md << "| " << name << " | " << Num(t_um) << " | " << Num(t_nm) << " | "
+         << Num(CostToReach(rows, name, 1e-6, true)) << " | "
+         << Num(CostToReach(rows, name, 1e-9, true)) << " |\n";
+      if (t_um < best_um) best_um = t_um, fastest_um = name;
+      if (t_nm < best_nm) best_nm = t_nm, fastest_nm = name;
+    }
+    const double auto_um = CostToReach(rows, auto_pick, 1e-6, false),
+                 auto_nm = CostToReach(rows, auto_pick, 1e-9, false);
+    md << "\nFastest to 1 µm: **" << fastest_um << "** (" << Num(best_um) << " ms); to 1 nm: **"
+       << fastest_nm << "** (" << Num(best_nm) << " ms). `auto` (" << auto_pick << ") needs "
+       << Num(auto_um) << " ms and " << Num(auto_nm) << " ms: " << Num(auto_um / best_um, 2)
+       << "× and " << Num(auto_nm / best_nm, 2) << "× the fastest.\n";
+    const double ev_um = CostToReach(rows, "dopri5", 1e-6, true),
+                 base_um = CostToReach(rows, "baseline-dopri5", 1e-6, true);
+    const double ev_01 = CostToReach(rows, "dopri5", 1e-7, true),
+                 base_01 = CostToReach(rows, "baseline-dopri5", 1e-7, true);
+    md << "Event location against the baseline (max(0, …) inside the right-hand side, no events), "
+       << "right-hand-side evaluations at equal lift error: 1 µm " << Num(ev_um, 4) << " against "
+       << Num(base_um, 4) << " (" << Num(base_um / ev_um, 2) << "×), 0.1 µm " << Num(ev_01, 4)
+       << " against " << Num(base_01, 4) << " (" << Num(base_01 / ev_01, 2) << "×).\n\n";
+    md << "Largest event-angle error and energy residual by tolerance (dopri5 / cvode-bdf):\n\n| "
+          "rtol | dopri5 event deg | "
+          "dopri5 energy | cvode-bdf event deg | cvode-bdf energy |\n|---|---|---|---|---|\n";
+    for (double rtol : tolerances) {
+      auto find = [&](const std::string& name) -> const Row* {
+        for (const Row& r : rows)
+          if (r.method == name && r.rtol == rtol) return &r;
+        return nullptr;
+      };
+      const Row* a = find("dopri5");
+      const Row* b = find("cvode-bdf");
+      auto ev = [](const Row* r) {
+        if (!r || !r->failure.empty()) return std::string("failed");
+        return r->err.event_rad ? Num(*r->err.event_rad / kDeg, 2)
+                                : "impacts differ (" + std::to_string(r->err.event_count) + " vs " +
+                                      std::to_string(r->err.reference_event_count) + ")";
+      };
+      md << "| " << Num(rtol, 1) << " | " << ev(a) << " | " << (a ? Num(a->energy, 2) : "–")
+         << " | " << ev(b) << " | " << (b ? Num(b->energy, 2) : "–") << " |\n";
+    }
+    md << '\n';
+  }
+  return md.str();
+}
+
+std::string RunKinematics(const std::string& out_dir, int repeats) {
+  std::ostringstream csv, md;
+  csv << "law,spline,spacing_deg,rounding_mm,velocity_rel_error,acceleration_rel_error,build_us,"
+         "table_1000_us\n";
+  const double beta = 60.0 * kDeg, h = 2.5e-3, omega = OmegaFromRpm(400);
+  for (CamLawKind k : {CamLawKind::kCycloidal, CamLawKind::kHarmonic, CamLawKind::kPoly345}) {
+    const CamLaw law(k, h, beta);
+    for (SplineKind kind : AllSplineKinds()) {
+      for (double step : {5.0, 2.5, 1.25, 1.0, 0.5}) {
+        for (double rounding : {0.0, 0.01}) {
+          LiftTable t;
+          const int n = static_cast<int>(std::lround(60.0 / step));
+          for (int i = 0; i <= n; ++i) {
+            double s = law.Lift(beta * i / n);
+            if (rounding > 0) s = std::round(s / (rounding * 1e-3)) * rounding * 1e-3;
+            t.crank_rad.push_back(beta * i / n);
+            t.lift_m.push_back(s);
+          }
+          SplineOptions o;
+          o.kind = kind;
+          const LiftLaw lift(t, o);
+          double ev = 0, ea = 0, sv = 0, sa = 0;
+          for (int i = 0; i <= 3000; ++i) {
+            const double th = beta * i / 3000.0;
+            ev = std::max(ev, std::abs(lift.Derivative(th, 1) - law.Derivative(th, 1)));
+            sv = std::max(sv, std::abs(law.Derivative(th, 1)));
+            if (lift.HasAcceleration()) {
+              ea = std::max(ea, std::abs(lift.Derivative(th, 2) - law.Derivative(th, 2)));
+              sa = std::max(sa, std::abs(law.Derivative(th, 2)));
+            }
+          }
+          const double build = MedianSeconds([&] { LiftLaw l(t, o); }, repeats * 20);
+          double sink = 0;
+          const double table = MedianSeconds(
+              [&] {
+                const Kinematics kin(lift, 400);
+                for (int i = 0; i < 1000; ++i) {
+                  const KinematicsPoint p = kin.At(beta * i / 999.0);
+                  sink += p.lift_m + p.velocity_m_s + p.acceleration_m_s2.value_or(0.0) +
+                          p.jerk_m_s3.value_or(0.0);
+                }
+              },
+              repeats * 20);
+          (void)omega;
+          if (sink == 12345.678) std::cerr << "";
+          csv << law.name() << ',' << SplineKindName(kind) << ',' << step << ',' << rounding << ','
+              << ev / sv << ',' << (lift.HasAcceleration() ? std::to_string(ea / sa) : "") << ','
+              << build * 1e6 << ',' << table * 1e6 << '\n';
+        }
+      }
+    }
+  }
+  WriteFileAtomically(out_dir + "/kinematics.csv", csv.str());
+  md << "## Kinematics\n\nRelative velocity and acceleration error of each spline against "
+        "closed-form rises, by table "
+        "spacing, exact and rounded to 0.01 mm, with build and 1000-row table times: "
+        "`kinematics.csv`.\n\n";
+  return md.str();
+}
+
+std::string RunTargets(int repeats) {
+  std::ostringstream md;
+  md << "## Performance targets (one core unless stated)\n\n| target | measured | goal | verdict "
+        "|\n|---|---|---|---|\n";
+  auto verdict = [](double measured, double goal) {
+    return measured <= goal ? std::string("met") : "missed by " + Num(measured / goal, 3) + "×";
+  };
+  // 1. Example 1 to a lift error of 0.1 µm.
+  {
+    const Case c = LoadCase(CaseDir() + "basu-example1.toml");
+    const Scene scene = MakeScene(c);
+    const std::vector<double> grid = WindowGrid(scene, 125, 2000);
+    const MeasuredRun ref = MeasureRun(scene, 125, Method::kDopri5, 1e-13, grid, 1);
+    double best_ms = INFINITY;
+    std::string best;
+    for (Method m :
+         {Method::kDopri5, Method::kRosenbrock4, Method::kCvodeBdf, Method::kCvodeAdams}) {
+      for (int e = 4; e <= 12; ++e) {
+        const double rtol = std::pow(10.0, -e);
+        const MeasuredRun run = MeasureRun(scene, 125, m, rtol, grid, repeats);
+        if (!run.failure.empty()) continue;
+        if (CompareRuns(run, ref).lift_m <= 0.1e-6) {
+          // Time it without the grid: what a user's run costs.
+          const MeasuredRun bare = MeasureRun(scene, 125, m, rtol, {}, repeats);
+          if (bare.median_seconds * 1e3 < best_ms) {
+            best_ms = bare.median_seconds * 1e3;
+            best = MethodName(m) + " at rtol " + Num(rtol, 1);
+          }
+          break;
+        }
+      }
+    }
+    md << "| Example 1 simulated to a lift error ≤ 0.1 µm | " << Num(best_ms) << " ms (" << best
+       << ") | ≤ 1 ms | " << verdict(best_ms, 1.0) << " |\n";
+  }
+  // 2. Overspeed search to 0.5 rpm, one core and two.
+  {
+    const Case c = LoadCase(CaseDir() + "basu-cam4-light-spring.toml");
+    const Scene scene = MakeScene(c);
+    OverspeedOptions o;
+    o.from_rpm = 400;
+    o.to_rpm = 1200;
+    o.simulation = OptionsFromCase(c);
+    o.threads = 1;
+    const double one = MedianSeconds([&] { OverspeedSearch(scene, o); }, repeats) * 1e3;
+    o.threads = 2;
+    const double two = MedianSeconds([&] { OverspeedSearch(scene, o); }, repeats) * 1e3;
+    md << "| overspeed search of `basu-cam4-light-spring` to 0.5 rpm (rtol 1e-8) | " << Num(one)
+       << " ms on one core; " << Num(two) << " ms on two (speed-up " << Num(one / two, 3)
+       << "×) | ≤ 50 ms | " << verdict(one, 50.0) << " |\n";
+  }
+  // 3. Spline build plus a 1000-row table, every kind, on cam 4.
+  {
+    const Case c = LoadCase(CaseDir() + "basu-cam4.toml");
+    double worst = 0;
+    std::string worst_kind;
+    for (SplineKind kind : AllSplineKinds()) {
+      SplineOptions o = c.lift.spline;
+      o.kind = kind;
+      double sink = 0;
+      const double s = MedianSeconds(
+          [&] {
+            const LiftLaw law(c.lift.table, o);
+            const Kinematics kin(law, 400);
+            for (int i = 0; i < 1000; ++i) {
+              const KinematicsPoint p =
+                  kin.At(law.start_rad() + (law.end_rad() - law.start_rad()) * i / 999.0);
+              sink += p.velocity_m_s + p.acceleration_m_s2.value_or(0.0);
+            }
+          },
+          repeats * 40);
+      if (sink == 1.2345) std::cerr << "";
+      if (s > worst) worst = s, worst_kind = SplineKindName(kind);
+    }
+    md << "| spline build + 1000-row table (slowest kind: " << worst_kind << ") | "
+       << Num(worst * 1e6) << " µs | ≤ 50 µs | " << verdict(worst * 1e6, 50.0) << " |\n";
+  }
+  md << "\nThe event-location target (≥ 3× fewer right-hand-side evaluations than the baseline at "
+        "equal lift error) "
+        "is read off the dynamics tables above.\n\n";
+  return md.str();
+}
+
+}  // namespace
+}  // namespace needle
+
+int main(int argc, char** argv) {
+  CLI::App app{"needle-bench: run time against error for needle's integrators and splines"};
+  app.require_subcommand(1);
+  std::string out = "bench";
+  int repeats = 5;
+  bool quick = false;
+  auto* dyn = app.add_subcommand("dynamics", "work-precision of every integrator on three scenes");
+  auto* kin =
+      app.add_subcommand("kinematics", "spline error against spacing, build and table time");
+  auto* tgt = app.add_subcommand("targets", "the performance targets");
+  auto* all = app.add_subcommand("all", "everything, and OUT/summary.md");
+  for (auto* c : {dyn, kin, tgt, all}) {
+    c->add_option("--out", out, "output folder (default bench)");
+    c->add_option("--repeats", repeats, "timed repeats per configuration (median)")
+        ->check(CLI::PositiveNumber);
+    c->add_flag("--quick", quick, "tolerances 1e-3, 1e-6, 1e-9, 1e-12 only");
+  }
+  CLI11_PARSE(app, argc, argv);
+  try {
+    std::filesystem::create_directories(out);
+    std::string md;
+    if (dyn->parsed() || all->parsed()) md += needle::RunDynamics(out, repeats, quick);
+    if (kin->parsed() || all->parsed()) md += needle::RunKinematics(out, repeats);
+    if (tgt->parsed() || all->parsed()) md += needle::RunTargets(repeats);
+    needle::WriteFileAtomically(out + "/summary.md", md);
+    std::cout << md;
+  } catch (const std::exception& e) {
+    std::cerr << "needle-bench: " << e.what() << '\n';
+    return 2;
+  }
+  return 0;
+}
