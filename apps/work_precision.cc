@@ -13,9 +13,10 @@ std::vector<double> WindowGrid(const Scene& scene, double speed_rpm, int n) {
   const double theta_a = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
   const double theta_b = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
   const double t_end = (theta_b - theta_a) / omega;
+  // Cell midpoints: the forces jump at the breaks of the cam input (round angles), where a
+  // one-sided value from either side would be right; midpoints keep the grid off them.
   std::vector<double> grid;
-  for (int i = 0; i <= n; ++i) grid.push_back(t_end * i / n);
-  grid.back() = std::nextafter(t_end, 0.0);  // inside the run
+  for (int i = 0; i <= n; ++i) grid.push_back(t_end * (i + 0.5) / (n + 1));
   return grid;
 }
 

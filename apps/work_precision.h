@@ -43,7 +43,7 @@ MeasuredRun MeasureRun(const Scene& scene, double speed_rpm, Method method, doub
 /// Errors of `run` against `reference` (same grid).
 RunErrors CompareRuns(const MeasuredRun& run, const MeasuredRun& reference);
 
-/// `n` + 1 grid times spanning the scene's window at `speed_rpm`.
+/// `n` + 1 grid times inside the scene's window at `speed_rpm` (cell midpoints).
 std::vector<double> WindowGrid(const Scene& scene, double speed_rpm, int n);
 
 }  // namespace needle

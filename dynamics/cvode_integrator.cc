@@ -116,6 +116,12 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   const long rhs_before = train.evaluations();
   const Breaks all_breaks = BreakTimes(train, t_end);
   const std::vector<double>& breaks = all_breaks.times;
+  const std::vector<double>& grid = recorder.grid_times();
+  size_t next_grid = 0;
+  while (next_grid < grid.size() && grid[next_grid] <= 0.0)
+    recorder.GridSample(grid[next_grid++], x0,
+                        ModeFromSigns(Signs(Events(train, train.mode(), x0, 0.0))));
+
   size_t next_break = 0;
 
   std::array<int, kEventCount> signs = Signs(Events(train, train.mode(), x0, 0.0));
@@ -161,7 +167,16 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
                                "scene may chatter; try a looser rtol or raise max_steps");
     }
     TrainState x = ToState(y.v);
-    // Dense samples inside the step for the extremes (CVodeGetDky on the step just taken).
+    // Grid times reached by this step, then dense samples inside it for the extremes
+    // (CVodeGetDky on the step just taken).
+    while (next_grid < grid.size() && grid[next_grid] <= t) {
+      if (grid[next_grid] < t) {
+        Check(CVodeGetDky(cvode.mem, grid[next_grid], 0, dky.v), "CVodeGetDky");
+        recorder.GridSample(grid[next_grid++], ToState(dky.v), data.mode);
+      } else {
+        recorder.GridSample(grid[next_grid++], x, data.mode);
+      }
+    }
     for (int k = 1; k <= 3 && t > t_prev; ++k) {
       const double tk = t_prev + (t - t_prev) * k / 4.0;
       if (CVodeGetDky(cvode.mem, tk, 0, dky.v) == CV_SUCCESS)
@@ -192,8 +207,30 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
     } else {
       recorder.Sample(t, x, data.mode);
       if (flag == CV_TSTOP_RETURN && t < t_end) {
-        Check(CVodeReInit(cvode.mem, t, y.v), "CVodeReInit");  // the far side of a break
-        stop = set_stop();
+        // The far side of a break: the cam's slope may jump there, and with it the force
+        // branches k g + c ġ. CVODE's rootfinding restarts from the new values after
+        // CVodeReInit and would never report a sign that flipped at the break itself, so
+        // the signs are brought up to date here, each flip recorded as an event.
+        stop = set_stop();  // moves the cam to the right-hand side of the break
+        for (int pass = 0; pass < 3; ++pass) {
+          const EventValues v = Events(train, data.mode, x, t);
+          bool changed = false;
+          for (int i = 0; i < kEventCount; ++i) {
+            const int s = v[i] > 0.0 ? 1 : -1;
+            if (s == signs[i]) continue;
+            signs[i] = s;
+            changed = true;
+            if (++stats.events > o.max_events) ThrowOverBudget("events", o.max_events, train, t);
+            const ContactMode next = ModeFromSigns(signs);
+            if (next.cam != data.mode.cam || next.seat != data.mode.seat) {
+              data.mode = next;
+              train.set_mode(next);
+            }
+            recorder.Crossing(i, s, t, x, data.mode);
+          }
+          if (!changed) break;
+        }
+        Check(CVodeReInit(cvode.mem, t, y.v), "CVodeReInit");
       }
     }
     t_prev = t;

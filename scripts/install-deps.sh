@@ -13,6 +13,7 @@ packages=(
   libcli11-dev           # command line
   nlohmann-json3-dev     # JSON output
   libbenchmark-dev       # micro-benchmarks
+  gnuplot-nox            # work-precision plots (scripts/bench.sh)
 )
 
 missing=()

@@ -1,0 +1,71 @@
+// Google Benchmark micro-benchmarks of needle's hot paths: spline construction per kind,
+// a 1000-row kinematics table, one right-hand-side evaluation, one dynamic run.
+//   ./build/needle-micro-bench [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include "dynamics/simulation.h"
+#include "lib/case_file.h"
+#include "lib/kinematics.h"
+
+namespace needle {
+namespace {
+
+const Case& Cam4() {
+  static const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-cam4.toml");
+  return c;
+}
+
+void BM_SplineBuild(benchmark::State& state) {
+  SplineOptions o = Cam4().lift.spline;
+  o.kind = AllSplineKinds()[state.range(0)];
+  state.SetLabel(SplineKindName(o.kind));
+  for (auto _ : state) benchmark::DoNotOptimize(LiftLaw(Cam4().lift.table, o));
+}
+BENCHMARK(BM_SplineBuild)->DenseRange(0, 6);
+
+void BM_Table1000(benchmark::State& state) {
+  SplineOptions o = Cam4().lift.spline;
+  o.kind = AllSplineKinds()[state.range(0)];
+  state.SetLabel(SplineKindName(o.kind));
+  const LiftLaw law(Cam4().lift.table, o);
+  const Kinematics kin(law, 400);
+  for (auto _ : state) {
+    for (int i = 0; i < 1000; ++i) {
+      benchmark::DoNotOptimize(
+          kin.At(law.start_rad() + (law.end_rad() - law.start_rad()) * i / 999.0));
+    }
+  }
+}
+BENCHMARK(BM_Table1000)->DenseRange(0, 6);
+
+void BM_RightHandSide(benchmark::State& state) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml");
+  const Scene s = MakeScene(c);
+  NeedleTrain train(*s.cam, s.train, 41.9, -0.5);
+  train.set_mode({true, false});
+  TrainState x{1e-3, 0.1, 0.0, 0.0}, d;
+  double t = 0.01;
+  for (auto _ : state) {
+    train(x, d, t);
+    benchmark::DoNotOptimize(d);
+    t += 1e-9;
+  }
+}
+BENCHMARK(BM_RightHandSide);
+
+void BM_SimulateExample1(benchmark::State& state) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1.toml");
+  const Scene s = MakeScene(c);
+  SimulationOptions o;
+  o.method = "dopri5";
+  o.force_dynamic = true;
+  o.integrator.rtol = 1e-4;
+  o.integrator.atol_m = 1e-7;
+  for (auto _ : state) benchmark::DoNotOptimize(Simulate(s, 125, o));
+}
+BENCHMARK(BM_SimulateExample1)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace needle
+
+BENCHMARK_MAIN();

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Regenerates the benchmark evidence: bench/*.csv, bench/*.svg and BENCHMARKS.md.
+#   bash scripts/bench.sh [--quick]
+# Builds first (scripts/setup.sh). Runs on one core except the overspeed speed-up (two).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh >/dev/null
+mkdir -p bench
+./build/needle-bench all --out bench --repeats 7 "$@" 2>bench/log.txt >/dev/null
+
+for scene in soft stiff liftoff; do
+  for what in lift force; do
+    if [[ $what == lift ]]; then col=8; label="largest lift error (µm)"; else col=9; label="largest contact-force error (N)"; fi
+    gnuplot <<GP
+set datafile separator ","
+set terminal svg size 760,520 font "sans,12"
+set output "bench/work-precision-${scene}-${what}.svg"
+set title "needle: ${scene} scene, run time against ${what} error"
+set logscale xy
+set format y "10^{%L}"
+set xlabel "median run time (ms), one core"
+set ylabel "${label}"
+set key outside right
+set grid
+methods = "dopri5 rkf78 rosenbrock4 cvode-bdf cvode-adams baseline-dopri5"
+plot for [m in methods] "bench/work-precision-${scene}.csv" \
+  using (strcol(2) eq m && strcol(14) eq "" ? \$4 : NaN):(\$${col} > 0 ? \$${col} : NaN) \
+  with linespoints title m
+GP
+  done
+done
+
+{
+  cat <<'HEAD'
+# Benchmarks
+
+Regenerate with `bash scripts/bench.sh` (about 10 s after the build); it writes the CSV files
+and plots in `bench/` and this page from `bench/summary.md`. Numbers below are from the last
+run on a 2-core machine of the project's kind; timings vary by a few tens of percent from run
+to run. Plots: `bench/work-precision-<scene>-lift.svg` and `-force.svg`.
+
+HEAD
+  cat bench/summary.md
+} > BENCHMARKS.md.tmp && mv BENCHMARKS.md.tmp BENCHMARKS.md
+echo "wrote bench/ and BENCHMARKS.md"
