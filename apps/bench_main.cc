@@ -119,7 +119,14 @@ std::string Num(double v, int digits = 3) {
   return s.str();
 }
 
+// Baseline/event RHS ratios at a lift error of 0.1 µm, per scene, for the targets table.
+std::vector<std::pair<std::string, double>>& EventRatios() {
+  static std::vector<std::pair<std::string, double>> ratios;
+  return ratios;
+}
+
 std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
+
   std::ostringstream md;
   md << "## Dynamics: work against precision\n\n"
      << "Reference: Dormand–Prince with event location at rtol 1e-13 (its own uncertainty: the\n"
@@ -206,6 +213,7 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
                  base_f = CostToReachForce(rows, "baseline-dopri5", 1.0);
     md << "At equal contact-force error (1 N): " << Num(ev_f, 4) << " against " << Num(base_f, 4)
        << " (" << Num(base_f / ev_f, 2) << "×). ";
+    EventRatios().push_back({bs.name, base_01 / ev_01});
     md << "Event location against the baseline (max(0, …) inside the right-hand side, no events), "
        << "right-hand-side evaluations at equal lift error: 1 µm " << Num(ev_um, 4) << " against "
        << Num(base_um, 4) << " (" << Num(base_um / ev_um, 2) << "×), 0.1 µm " << Num(ev_01, 4)
@@ -338,10 +346,19 @@ std::string RunTargets(int repeats) {
     o.from_rpm = 400;
     o.to_rpm = 1200;
     o.simulation = OptionsFromCase(c);
-    o.threads = 1;
-    const double one = MedianSeconds([&] { OverspeedSearch(scene, o); }, repeats) * 1e3;
-    o.threads = 2;
-    const double two = MedianSeconds([&] { OverspeedSearch(scene, o); }, repeats) * 1e3;
+    // Interleaved one- and two-thread runs, medians of each: background load hits both alike.
+    std::vector<double> ones, twos;
+    for (int r = 0; r < 3 * repeats; ++r) {
+      o.threads = 1 + r % 2;
+      const auto t0 = std::chrono::steady_clock::now();
+      OverspeedSearch(scene, o);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      (o.threads == 1 ? ones : twos).push_back(ms);
+    }
+    std::sort(ones.begin(), ones.end());
+    std::sort(twos.begin(), twos.end());
+    const double one = ones[ones.size() / 2], two = twos[twos.size() / 2];
+
     md << "| overspeed search of `basu-cam4-light-spring` to 0.5 rpm (rtol 1e-8) | " << Num(one)
        << " ms on one core; " << Num(two) << " ms on two (speed-up " << Num(one / two, 3)
        << "×) | ≤ 50 ms | " << verdict(one, 50.0) << " |\n";
@@ -372,9 +389,20 @@ std::string RunTargets(int repeats) {
     md << "| spline build + 1000-row table (slowest kind: " << worst_kind << ") | "
        << Num(worst * 1e6) << " µs | ≤ 50 µs | " << verdict(worst * 1e6, 50.0) << " |\n";
   }
-  md << "\nThe event-location target (≥ 3× fewer right-hand-side evaluations than the baseline at "
-        "equal lift error) "
-        "is read off the dynamics tables above.\n\n";
+  if (!EventRatios().empty()) {
+    std::string measured;
+    double best = 0;
+    for (const auto& [scene, ratio] : EventRatios()) {
+      measured += (measured.empty() ? "" : ", ") + scene + " " + Num(ratio, 2) + "×";
+      best = std::max(best, ratio);
+    }
+    md << "| event location: baseline / event-located right-hand-side evaluations at a lift error of "
+          "0.1 µm | "
+       << measured << " | ≥ 3× | "
+       << (best >= 3.0 ? "met" : "missed: at most " + Num(best, 2) + "× of 3×") << " |\n";
+  }
+  md << '\n';
+
   return md.str();
 }
 
