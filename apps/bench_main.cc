@@ -126,7 +126,6 @@ std::vector<std::pair<std::string, double>>& EventRatios() {
 }
 
 std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
-
   std::ostringstream md;
   md << "## Dynamics: work against precision\n\n"
      << "Reference: Dormand–Prince with event location at rtol 1e-13 (its own uncertainty: the\n"
@@ -352,7 +351,8 @@ std::string RunTargets(int repeats) {
       o.threads = 1 + r % 2;
       const auto t0 = std::chrono::steady_clock::now();
       OverspeedSearch(scene, o);
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       (o.threads == 1 ? ones : twos).push_back(ms);
     }
     std::sort(ones.begin(), ones.end());
@@ -396,7 +396,8 @@ std::string RunTargets(int repeats) {
       measured += (measured.empty() ? "" : ", ") + scene + " " + Num(ratio, 2) + "×";
       best = std::max(best, ratio);
     }
-    md << "| event location: baseline / event-located right-hand-side evaluations at a lift error of "
+    md << "| event location: baseline / event-located right-hand-side evaluations at a lift error "
+          "of "
           "0.1 µm | "
        << measured << " | ≥ 3× | "
        << (best >= 3.0 ? "met" : "missed: at most " + Num(best, 2) + "× of 3×") << " |\n";

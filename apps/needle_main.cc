@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "apps/cam_command.h"
 #include "apps/dynamics_command.h"
 #include "apps/kinematics_command.h"
 #include "apps/spring_command.h"
@@ -21,6 +22,10 @@ int main(int argc, char** argv) {
   CLI::App* simulate_cmd = needle::AddSimulateCommand(app, simulate);
   needle::OverspeedCommandOptions overspeed;
   CLI::App* overspeed_cmd = needle::AddOverspeedCommand(app, overspeed);
+  needle::SynthCommandOptions synth;
+  CLI::App* synth_cmd = needle::AddSynthCommand(app, synth);
+  needle::ProfileCommandOptions profile;
+  CLI::App* profile_cmd = needle::AddProfileCommand(app, profile);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -37,6 +42,8 @@ int main(int argc, char** argv) {
     if (design_cmd->parsed()) return needle::RunDesignCommand(design);
     if (simulate_cmd->parsed()) return needle::RunSimulateCommand(simulate);
     if (overspeed_cmd->parsed()) return needle::RunOverspeedCommand(overspeed);
+    if (synth_cmd->parsed()) return needle::RunSynthCommand(synth);
+    if (profile_cmd->parsed()) return needle::RunProfileCommand(profile);
   } catch (const needle::CaseError& e) {
     std::cerr << "needle: " << e.what() << '\n';
     return 2;

@@ -364,6 +364,30 @@ OverspeedSection ReadOverspeed(SectionReader r) {
   return o;
 }
 
+ProfileSection ReadProfile(SectionReader r) {
+  ProfileSection p;
+  p.base_radius_m = Positive(r, "base_radius", Dimension::kLength, 1e3, "base_radius_mm");
+  if (auto v = r.OptionalQuantity("roller_radius", Dimension::kLength)) {
+    if (!(*v >= 0.0)) r.Fail(r.last_key(), "must not be negative");
+    p.roller_radius_m = *v;
+  }
+  p.offset_m = r.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
+  if (!(std::abs(p.offset_m) < p.base_radius_m + p.roller_radius_m)) {
+    r.Fail("offset", "must be smaller than base radius plus roller radius");
+  }
+  if (auto l = r.OptionalNumber("lever_ratio")) {
+    if (!(*l > 0.0)) r.Fail("lever_ratio", "must be positive, got " + Number(*l));
+    p.lever_ratio = *l;
+  }
+  if (auto n = r.OptionalNumber("points")) {
+    if (!(*n >= 8 && *n <= 1e6) || *n != std::floor(*n))
+      r.Fail("points", "must be a whole number in 8…1e6");
+    p.points = static_cast<int>(*n);
+  }
+  r.Finish();
+  return p;
+}
+
 EngineSection ReadEngine(SectionReader r) {
   if (!r.present()) r.Fail("speed_rpm", "section [engine] is missing; it needs speed_rpm");
   EngineSection e;
@@ -513,8 +537,8 @@ Case ParseCase(const std::string& text, const std::string& path) {
     throw CaseError(path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
                     ": malformed TOML: " + description);
   }
-  static const std::set<std::string> kSections = {"engine", "lift",   "needle",    "spring",
-                                                  "train",  "solver", "overspeed", "paper"};
+  static const std::set<std::string> kSections = {
+      "engine", "lift", "needle", "spring", "train", "solver", "overspeed", "profile", "paper"};
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title") {
@@ -524,7 +548,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
     if (!kSections.count(key)) {
       throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
                       " (known: title, [engine], [lift], [needle], [spring], [train], [solver], "
-                      "[overspeed], [paper])");
+                      "[overspeed], [profile], [paper])");
     }
   }
   Case c;
@@ -545,6 +569,8 @@ Case ParseCase(const std::string& text, const std::string& path) {
   if (const toml::table* t = Section(root, path, "overspeed")) {
     c.overspeed = ReadOverspeed(SectionReader(t, path, "overspeed"));
   }
+  if (const toml::table* t = Section(root, path, "profile"))
+    c.profile = ReadProfile(SectionReader(t, path, "profile"));
   if (const toml::table* paper = Section(root, path, "paper")) {
     c.paper = ReadPaper(SectionReader(paper, path, "paper"));
   }
@@ -686,6 +712,88 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
   number("nozzle_ratio", 0.0, d.nozzle_ratio);
   r.Finish();
   return d;
+}
+
+SynthesisFile LoadSynthesisFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError(path + ": cannot open the synthesis file for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  toml::table root;
+  try {
+    root = toml::parse(buffer.str(), path);
+  } catch (const toml::parse_error& e) {
+    std::string description(e.description());
+    for (char& ch : description) {
+      if (ch == '\n') ch = ' ';
+    }
+    throw CaseError(path + ":" + std::to_string(e.source().begin.line) + ":" +
+                    std::to_string(e.source().begin.column) + ": malformed TOML: " + description);
+  }
+  for (const auto& [k, node] : root) {
+    const std::string key(k.str());
+    if (key == "title" || key == "rise" || key == "limits" || key == "checks" || key == "output")
+      continue;
+    throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
+                    " (known: title, [rise], [limits], [checks], [output])");
+  }
+  SynthesisFile f;
+  f.path = path;
+  f.title = root["title"].value_or(std::string());
+  SectionReader rise(Section(root, path, "rise"), path, "rise");
+  if (!rise.present())
+    rise.Fail("angle_deg", "section [rise] is missing; it needs angle_deg and lift_mm");
+  f.rise_rad = Positive(rise, "angle", Dimension::kAngle, 180.0 / kPi, "angle_deg");
+  f.height_m = Positive(rise, "lift", Dimension::kLength, 1e3, "lift_mm");
+  if (auto st = rise.OptionalQuantity("step", Dimension::kAngle)) {
+    if (!(*st > 0.0 && *st < f.rise_rad / 10))
+      rise.Fail(rise.last_key(), "must be positive and below a tenth of the rise");
+    f.step_rad = *st;
+  }
+  rise.Finish();
+  SectionReader lim(Section(root, path, "limits"), path, "limits");
+  if (!lim.present())
+    lim.Fail("acceleration", "section [limits] is missing; it needs acceleration and deceleration");
+  if (auto v = lim.OptionalQuantity("speed", Dimension::kSlope)) {
+    if (!(*v > 0.0)) lim.Fail(lim.last_key(), "must be positive");
+    f.speed_limit = *v;
+  }
+  f.accel_limit = Positive(lim, "acceleration", Dimension::kSlope2, 1e3, "acceleration_mm_rad2");
+  f.decel_limit = Positive(lim, "deceleration", Dimension::kSlope2, 1e3, "deceleration_mm_rad2");
+  if (auto v = lim.OptionalQuantity("jerk", Dimension::kSlope3)) {
+    if (!(*v > 0.0)) lim.Fail(lim.last_key(), "must be positive");
+    f.jerk_limit = *v;
+  }
+  lim.Finish();
+  if (const toml::table* t = Section(root, path, "checks")) {
+    SectionReader ch(t, path, "checks");
+    f.base_radius_m = ch.OptionalQuantity("base_radius", Dimension::kLength);
+    f.roller_radius_m = ch.OptionalQuantity("roller_radius", Dimension::kLength);
+    f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
+    f.max_pressure_angle_rad = ch.OptionalQuantity("max_pressure_angle", Dimension::kAngle);
+    if (f.max_pressure_angle_rad && !f.base_radius_m)
+      ch.Fail("base_radius", "the pressure-angle check needs base_radius_mm");
+    ch.Finish();
+  }
+  if (const toml::table* t = Section(root, path, "output")) {
+    SectionReader o(t, path, "output");
+    if (auto fall = o.OptionalString("fall")) {
+      if (*fall != "mirror" && *fall != "none") o.Fail("fall", "expected \"mirror\" or \"none\"");
+      f.mirror_fall = *fall == "mirror";
+    }
+    f.crank_start_rad = o.OptionalQuantity("crank_start", Dimension::kAngle).value_or(0.0);
+    if (auto n = o.OptionalQuantity("speed", Dimension::kRotationSpeed)) {
+      if (!(*n > 0.0)) o.Fail("speed_rpm", "must be positive");
+      f.speed_rpm = *n;
+    }
+    if (auto cyc = o.OptionalString("cycle")) {
+      if (*cyc != "four-stroke" && *cyc != "two-stroke")
+        o.Fail("cycle", "expected \"four-stroke\" or \"two-stroke\"");
+      f.cycle = *cyc;
+    }
+    o.Finish();
+  }
+  return f;
 }
 
 DesignInputs LoadDesignInputs(const std::string& path) {

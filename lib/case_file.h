@@ -125,6 +125,15 @@ struct OverspeedSection {
   std::optional<double> from_rpm, to_rpm;
 };
 
+/// [profile]: the cam that drives the needle, for `needle profile`.
+struct ProfileSection {
+  double base_radius_m = 0.0;    ///< base-circle radius, > 0
+  double roller_radius_m = 0.0;  ///< roller radius, ≥ 0
+  double offset_m = 0.0;         ///< follower offset
+  double lever_ratio = 1.0;      ///< roller travel per needle travel (rocker), > 0
+  int points = 720;              ///< points over one cam revolution
+};
+
 struct Case {
   std::string path;   ///< the file it came from, for messages
   std::string title;  ///< optional one-line description
@@ -135,6 +144,7 @@ struct Case {
   std::optional<TrainSection> train;
   std::optional<SolverSection> solver;
   std::optional<OverspeedSection> overspeed;
+  std::optional<ProfileSection> profile;
   std::optional<PaperSection> paper;
 };
 
@@ -168,7 +178,26 @@ struct DesignInputs {
   double nozzle_ratio = 0.95;               ///< nozzle / valve cross-section at max lift
 };
 
+/// A synthesis specification (`needle synth SPEC.toml`): [rise] angle_deg, lift_mm, step_deg;
+/// [limits] speed_mm_rad, acceleration_mm_rad2, deceleration_mm_rad2, jerk_mm_rad3;
+/// [checks] base_radius_mm, roller_radius_mm, offset_mm, max_pressure_angle_deg;
+/// [output] fall = "mirror" | "none", crank_start_deg, speed_rpm, cycle (for --case).
+struct SynthesisFile {
+  std::string path, title;
+  double rise_rad = 0.0, height_m = 0.0, step_rad = 0.0;
+  double speed_limit = 1e300, accel_limit = 0.0, decel_limit = 0.0, jerk_limit = 1e300;
+  std::optional<double> base_radius_m, roller_radius_m;
+  double offset_m = 0.0;
+  std::optional<double> max_pressure_angle_rad;
+  bool mirror_fall = true;
+  double crank_start_rad = 0.0;
+  double speed_rpm = 1000.0;
+  std::string cycle = "four-stroke";
+};
+SynthesisFile LoadSynthesisFile(const std::string& path);
+
 /// Reads an engine file for the design chain; throws CaseError like LoadCase.
+
 DesignInputs LoadDesignInputs(const std::string& path);
 DesignInputs ParseDesignInputs(const std::string& text, const std::string& path);
 

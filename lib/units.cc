@@ -59,6 +59,10 @@ std::vector<Unit> Units(Dimension dimension) {
       return {{"hp", kMetricHp}, {"kW", 1e3}};
     case Dimension::kSpecificFuel:
       return {{"g_hp_h", 1.0}};
+    case Dimension::kSlope2:
+      return {{"mm_rad2", 1e-3}, {"m_rad2", 1.0}};
+    case Dimension::kSlope3:
+      return {{"mm_rad3", 1e-3}, {"m_rad3", 1.0}};
   }
   return {};
 }
@@ -115,7 +119,12 @@ std::string DimensionName(Dimension dimension) {
       return "power";
     case Dimension::kSpecificFuel:
       return "specific fuel consumption";
+    case Dimension::kSlope2:
+      return "second derivative of lift by angle";
+    case Dimension::kSlope3:
+      return "third derivative of lift by angle";
   }
+
   return "?";
 }
 

@@ -42,6 +42,9 @@ enum class Dimension {
   kVolume,         ///< cm3, m3
   kPower,          ///< hp (metric horsepower, 735.49875 W), kW
   kSpecificFuel,   ///< g_hp_h (grams per metric horsepower-hour), kept in g/(hp·h)
+  kSlope2,         ///< length per angle²: mm_rad2, m_rad2 (a cam law's S'')
+  kSlope3,         ///< length per angle³: mm_rad3, m_rad3 (a cam law's S''')
+
 };
 
 /// Name of a dimension for messages ("length", "force", …).

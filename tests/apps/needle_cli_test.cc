@@ -325,3 +325,64 @@ TEST(NeedleCliDynamicsTest, BadTrainInputIsOneLineAndExitTwo) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+using testing::Case;
+using testing::RunNeedle;
+
+TEST(NeedleCliCamTest, SynthReportsTheConstantSpeedSectionAndWritesACase) {
+  const std::string out = "/tmp/needle_cli_synth_" + std::to_string(getpid()) + ".toml";
+  const auto r = RunNeedle("synth " + Case("matec-2018-synth.toml") + " --json --case " + out);
+  // With an 8.25 mm roller on the 10 mm base circle the law undercuts near the crest: the
+  // check fails (exit 1) but the law and the case are still written.
+  EXPECT_EQ(r.status, 1) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["speed_limit_active"].get<bool>());
+  EXPECT_NEAR(j["max_S1_mm_rad"].get<double>(), 7.6, 1e-9);
+  EXPECT_NEAR(j["constant_speed_length_deg"].get<double>(), 57.614, 0.001);
+  EXPECT_TRUE(j["undercut"].get<bool>());
+  const auto k = RunNeedle("kinematics " + out + " --json");
+  EXPECT_EQ(k.status, 0) << k.err;
+  std::remove(out.c_str());
+}
+
+TEST(NeedleCliCamTest, InfeasibleSynthesisIsRefusedWithTheLeastSmax) {
+  std::string text = testing::Slurp(Case("matec-2018-synth.toml"));
+  text.replace(text.find("speed_mm_rad = 7.6"), 18, "speed_mm_rad = 7.2");
+  const std::string path = "/tmp/needle_cli_synth_bad_" + std::to_string(getpid()) + ".toml";
+  {
+    std::ofstream f(path);
+    f << text;
+  }
+  const auto r = RunNeedle("synth " + path);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(
+      r.err.find("[limits]: infeasible: S'max × rise angle = 7.916813 mm is not more than the "
+                 "displacement "
+                 "8.000000 mm; the least S'max that fits with these acceleration limits is 7.57"),
+      std::string::npos)
+      << r.err;
+  std::remove(path.c_str());
+}
+
+TEST(NeedleCliCamTest, ProfileOfBasusExample1Cam) {
+  const std::string csv = "/tmp/needle_cli_profile_" + std::to_string(getpid()) + ".csv";
+  const auto r = RunNeedle("profile " + Case("basu-example1.toml") + " --json --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(j["undercut"].get<bool>());
+  EXPECT_LT(std::abs(j["max_pressure_angle_deg"].get<double>()), 10.0);
+  const std::string text = testing::Slurp(csv);
+  EXPECT_EQ(text.rfind("cam_deg,x_mm,y_mm\n", 0), 0u);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1 + 1440);
+  std::remove(csv.c_str());
+  const auto none = RunNeedle("profile " + Case("basu-cam4.toml"));
+  EXPECT_EQ(none.status, 2);
+  EXPECT_EQ(none.err, "needle: " + Case("basu-cam4.toml") +
+                          ": [profile] base_radius_mm: section [profile] is missing\n");
+}
+
+}  // namespace
+}  // namespace needle

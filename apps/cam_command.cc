@@ -1,0 +1,281 @@
+#include "apps/cam_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "dynamics/cam_input.h"
+#include "lib/cam_profile.h"
+#include "lib/cam_synthesis.h"
+#include "lib/case_file.h"
+#include "lib/output.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+// The rise, with its mirrored fall when asked: S(2Φ − φ), S' negated, S'' kept, S''' negated.
+SynthesizedLaw WithFall(const SynthesizedLaw& rise) {
+  SynthesizedLaw law = rise;
+  const double end = rise.phi.back();
+  for (size_t k = rise.phi.size() - 1; k-- > 0;) {
+    law.phi.push_back(2 * end - rise.phi[k]);
+    law.s.push_back(rise.s[k]);
+    law.s1.push_back(-rise.s1[k]);
+    law.s2.push_back(rise.s2[k]);
+    law.s3.push_back(-rise.s3[k + 1]);
+  }
+  return law;
+}
+
+// S, S', S'' between the steps, linearly; the base circle outside.
+Displacement TableDisplacement(const SynthesizedLaw& law) {
+  return [&law](double psi) {
+    if (psi <= law.phi.front() || psi >= law.phi.back())
+      return std::array<double, 3>{0.0, 0.0, 0.0};
+    const size_t i = std::upper_bound(law.phi.begin(), law.phi.end(), psi) - law.phi.begin();
+    const double w = (psi - law.phi[i - 1]) / (law.phi[i] - law.phi[i - 1]);
+    auto lerp = [&](const std::vector<double>& v) { return v[i - 1] + w * (v[i] - v[i - 1]); };
+    return std::array<double, 3>{lerp(law.s), lerp(law.s1), lerp(law.s2)};
+  };
+}
+
+struct Extreme {
+  double value = -INFINITY, at = 0.0;
+};
+
+}  // namespace
+
+CLI::App* AddSynthCommand(CLI::App& app, SynthCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "synth", "Synthesize a cam law under derivative limits (constant-speed section)");
+  cmd->add_option("SPEC", o.spec_path,
+                  "synthesis file (TOML): [rise], [limits], [checks], [output]")
+      ->required();
+  cmd->add_flag("--json", o.json, "print one JSON object");
+  cmd->add_option("--csv", o.csv,
+                  "write the law (cam_deg, S_mm, S1_mm_rad, S2_mm_rad2, S3_mm_rad3)");
+  cmd->add_option("--case", o.case_out, "write the law as a needle case file");
+  return cmd;
+}
+
+int RunSynthCommand(const SynthCommandOptions& o) {
+  const SynthesisFile f = LoadSynthesisFile(o.spec_path);
+  SynthesisSpec spec;
+  spec.rise_rad = f.rise_rad;
+  spec.height_m = f.height_m;
+  spec.step_rad = f.step_rad;
+  spec.speed_limit = f.speed_limit;
+  spec.accel_limit = f.accel_limit;
+  spec.decel_limit = f.decel_limit;
+  spec.jerk_limit = f.jerk_limit;
+  SynthesizedLaw rise;
+  try {
+    rise = SynthesizeRise(spec);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(f.path + ": [limits]: " + e.what());
+  }
+  const SynthesizedLaw law = f.mirror_fall ? WithFall(rise) : rise;
+  Extreme s1, s2, s2n, s3;
+  for (size_t i = 0; i < rise.phi.size(); ++i) {
+    if (rise.s1[i] > s1.value) s1 = {rise.s1[i], rise.phi[i]};
+    if (rise.s2[i] > s2.value) s2 = {rise.s2[i], rise.phi[i]};
+    if (-rise.s2[i] > s2n.value) s2n = {-rise.s2[i], rise.phi[i]};
+    const bool junction_jump = i == rise.junction + 1 && !rise.speed_limit_active;
+    if (i > 0 && !junction_jump && std::abs(rise.s3[i]) > s3.value)
+      s3 = {std::abs(rise.s3[i]), rise.phi[i]};
+  }
+  std::optional<CamProfile> profile;
+  bool ok = true;
+  if (f.base_radius_m) {
+    FollowerGeometry g;
+    g.base_radius_m = *f.base_radius_m;
+    g.roller_radius_m = f.roller_radius_m.value_or(0.0);
+    g.offset_m = f.offset_m;
+    profile = MakeCamProfile(TableDisplacement(law), g, 7200);
+    if (f.max_pressure_angle_rad &&
+        std::abs(profile->max_pressure_angle_rad) > *f.max_pressure_angle_rad)
+      ok = false;
+    if (profile->undercut) ok = false;
+  }
+  std::ostringstream out;
+  const double mm = 1e3;
+  if (o.json) {
+    nlohmann::json j;
+    j["spec"] = f.path;
+    j["rise_deg"] = f.rise_rad / kDeg;
+    j["lift_mm"] = f.height_m * mm;
+    j["limits_used_fraction"] = rise.scale;
+    j["speed_limit_active"] = rise.speed_limit_active;
+    j["constant_speed_start_deg"] = rise.constant_start_rad / kDeg;
+    j["constant_speed_end_deg"] = rise.constant_end_rad / kDeg;
+    j["constant_speed_length_deg"] = rise.constant_length_rad() / kDeg;
+    j["max_S1_mm_rad"] = s1.value * mm;
+    j["max_S1_deg"] = s1.at / kDeg;
+    j["max_S2_mm_rad2"] = s2.value * mm;
+    j["max_S2_deg"] = s2.at / kDeg;
+    j["min_S2_mm_rad2"] = -s2n.value * mm;
+    j["min_S2_deg"] = s2n.at / kDeg;
+    j["max_abs_S3_mm_rad3"] = s3.value * mm;
+    j["max_abs_S3_deg"] = s3.at / kDeg;
+    j["steps"] = rise.phi.size() - 1;
+    if (profile) {
+      j["max_pressure_angle_deg"] = profile->max_pressure_angle_rad / kDeg;
+      j["max_pressure_angle_at_deg"] = profile->max_pressure_angle_at_rad / kDeg;
+      j["min_profile_radius_mm"] = profile->min_profile_radius_m * mm;
+      j["min_profile_radius_at_deg"] = profile->min_profile_radius_at_rad / kDeg;
+      j["undercut"] = profile->undercut;
+    }
+    j["pass"] = ok;
+    out << j.dump(2) << '\n';
+  } else {
+    out << (f.title.empty() ? f.path : f.title) << '\n'
+        << "rise " << Fixed(f.height_m * mm, 3) << " mm in " << Fixed(f.rise_rad / kDeg, 2)
+        << " deg of cam, " << rise.phi.size() - 1 << " steps; limits used at "
+        << Fixed(100 * rise.scale, 2) << " %\n";
+    if (rise.speed_limit_active) {
+      out << "constant-speed section at S'max = " << Fixed(f.speed_limit * mm, 3) << " mm/rad from "
+          << Fixed(rise.constant_start_rad / kDeg, 3) << " to "
+          << Fixed(rise.constant_end_rad / kDeg, 3) << " deg ("
+          << Fixed(rise.constant_length_rad() / kDeg, 3) << " deg)\n";
+    } else {
+      out << "S' limit not active: no constant-speed section\n";
+    }
+    out << "max S' " << Fixed(s1.value * mm, 4) << " mm/rad at " << Fixed(s1.at / kDeg, 2)
+        << " deg; S'' " << Fixed(s2.value * mm, 2) << " at " << Fixed(s2.at / kDeg, 2)
+        << " deg and " << Fixed(-s2n.value * mm, 2) << " mm/rad2 at " << Fixed(s2n.at / kDeg, 2)
+        << " deg; max |S'''| " << Fixed(s3.value * mm, 1) << " mm/rad3 at "
+        << Fixed(s3.at / kDeg, 2) << " deg\n";
+    if (profile) {
+      out << "pressure angle max " << Fixed(profile->max_pressure_angle_rad / kDeg, 2) << " deg at "
+          << Fixed(profile->max_pressure_angle_at_rad / kDeg, 2) << " deg"
+          << (f.max_pressure_angle_rad
+                  ? " (limit " + Fixed(*f.max_pressure_angle_rad / kDeg, 1) + ")"
+                  : "")
+          << "; "
+          << "profile radius min " << Fixed(profile->min_profile_radius_m * mm, 3) << " mm; "
+          << (profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
+    }
+    out << (ok ? "checks pass\n" : "a check FAILS\n");
+  }
+  if (o.csv) {
+    std::ostringstream csv;
+    csv.precision(12);
+    csv << "cam_deg,S_mm,S1_mm_rad,S2_mm_rad2,S3_mm_rad3\n";
+    for (size_t i = 0; i < law.phi.size(); ++i) {
+      csv << law.phi[i] / kDeg << ',' << law.s[i] * mm << ',' << law.s1[i] * mm << ','
+          << law.s2[i] * mm << ',' << law.s3[i] * mm << '\n';
+    }
+    WriteFileAtomically(*o.csv, csv.str());
+  }
+  if (o.case_out) {
+    // Every 10th step (and the last), as crank angles: ×2 for a four-stroke cam.
+    const double k = f.cycle == "four-stroke" ? 2.0 : 1.0;
+    std::ostringstream c, angles, lifts;
+    angles.precision(10);
+    lifts.precision(10);
+    for (size_t i = 0; i < law.phi.size(); i += 10) {
+      angles << (i ? ", " : "") << (f.crank_start_rad + k * law.phi[i]) / kDeg;
+      lifts << (i ? ", " : "") << std::max(0.0, law.s[i]) * mm;
+    }
+    if ((law.phi.size() - 1) % 10 != 0) {
+      angles << ", " << (f.crank_start_rad + k * law.phi.back()) / kDeg;
+      lifts << ", " << std::max(0.0, law.s.back()) * mm;
+    }
+    c << "# Written by `needle synth " << f.path << "`.\n"
+      << "title = \"" << (f.title.empty() ? "synthesized law" : f.title)
+      << "\"\n\n[engine]\nspeed_rpm = " << f.speed_rpm << "\ncycle = \"" << f.cycle
+      << "\"\n\n[lift]\ncrank_deg = [" << angles.str() << "]\nlift_mm = [" << lifts.str()
+      << "]\nspline = \"not-a-knot\"\nresolution_mm = 0.000001\n";
+    if (f.base_radius_m) {
+      c << "\n[profile]\nbase_radius_mm = " << *f.base_radius_m * mm
+        << "\nroller_radius_mm = " << f.roller_radius_m.value_or(0.0) * mm
+        << "\noffset_mm = " << f.offset_m * mm << "\n";
+    }
+    WriteFileAtomically(*o.case_out, c.str());
+  }
+  std::cout << out.str() << std::flush;
+  return ok ? 0 : 1;
+}
+
+CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "profile", "Cam profile for a roller follower: coordinates, pressure angle, undercut");
+  cmd->add_option("CASE", o.case_path, "case file with [lift] and [profile] (and [train] play)")
+      ->required();
+  cmd->add_flag("--json", o.json, "print one JSON object");
+  cmd->add_option("--csv", o.csv, "write cam_deg, x_mm, y_mm for manufacture");
+  return cmd;
+}
+
+int RunProfileCommand(const ProfileCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  if (!c.profile)
+    throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
+  const LiftLaw law = MakeLiftLaw(c);
+  const double play = c.train ? c.train->play_m : 0.0;
+  std::unique_ptr<CamInput> cam;
+  try {
+    cam = std::make_unique<CamInput>(
+        law, play, c.train && c.train->linear_ramp ? RampKind::kLinear : RampKind::kTangent,
+        c.train ? c.train->ramp_rad : 0.0);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(c.path + ": [train] ramp: " + e.what());
+  }
+  // Cam angle ψ = 0 at the start of the rise; four-stroke: θ = θ_start + 2ψ.
+  const double k = c.engine.cycle == "four-stroke" ? 2.0 : 1.0;
+  const double theta0 = cam->rise_start_rad();
+  const Displacement disp = [&](double psi) {
+    const double th = theta0 + k * psi;
+    return std::array<double, 3>{cam->U(th) + play, k * cam->Slope(th), k * k * cam->Curvature(th)};
+  };
+  FollowerGeometry g;
+  g.base_radius_m = c.profile->base_radius_m;
+  g.roller_radius_m = c.profile->roller_radius_m;
+  g.offset_m = c.profile->offset_m;
+  g.lever_ratio = c.profile->lever_ratio;
+  const CamProfile p = MakeCamProfile(disp, g, c.profile->points);
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["base_radius_mm"] = g.base_radius_m * 1e3;
+    j["roller_radius_mm"] = g.roller_radius_m * 1e3;
+    j["offset_mm"] = g.offset_m * 1e3;
+    j["lever_ratio"] = g.lever_ratio;
+    j["roller_play_mm"] = play * 1e3;
+    j["cam_angle_zero_crank_deg"] = theta0 / kDeg;
+    j["max_pressure_angle_deg"] = p.max_pressure_angle_rad / kDeg;
+    j["max_pressure_angle_at_cam_deg"] = p.max_pressure_angle_at_rad / kDeg;
+    j["min_profile_radius_mm"] = p.min_profile_radius_m * 1e3;
+    j["min_profile_radius_at_cam_deg"] = p.min_profile_radius_at_rad / kDeg;
+    j["undercut"] = p.undercut;
+    j["points"] = p.points.size();
+    out << j.dump(2) << '\n';
+  } else {
+    out << (c.title.empty() ? c.path : c.title) << '\n'
+        << "base circle " << Fixed(g.base_radius_m * 2e3, 1) << " mm diameter, roller "
+        << Fixed(g.roller_radius_m * 2e3, 1) << " mm, offset " << Fixed(g.offset_m * 1e3, 2)
+        << " mm, lever " << Fixed(g.lever_ratio, 3) << ", play " << Fixed(play * 1e3, 3)
+        << " mm; cam 0 deg at crank " << Fixed(theta0 / kDeg, 2) << " deg\n"
+        << "pressure angle max " << Fixed(p.max_pressure_angle_rad / kDeg, 3) << " deg at cam "
+        << Fixed(p.max_pressure_angle_at_rad / kDeg, 2) << " deg\n"
+        << "profile radius of curvature min " << Fixed(p.min_profile_radius_m * 1e3, 3)
+        << " mm at cam " << Fixed(p.min_profile_radius_at_rad / kDeg, 2) << " deg; "
+        << (p.undercut ? "UNDERCUT" : "no undercut") << '\n';
+  }
+  if (o.csv) {
+    std::ostringstream csv;
+    csv.precision(10);
+    csv << "cam_deg,x_mm,y_mm\n";
+    for (const ProfilePoint& q : p.points)
+      csv << q.cam_rad / kDeg << ',' << q.x_m * 1e3 << ',' << q.y_m * 1e3 << '\n';
+    WriteFileAtomically(*o.csv, csv.str());
+  }
+  std::cout << out.str() << std::flush;
+  return p.undercut ? 1 : 0;
+}
+
+}  // namespace needle

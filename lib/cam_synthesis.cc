@@ -1,0 +1,215 @@
+#include "lib/cam_synthesis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace needle {
+namespace {
+
+struct Point {
+  double s = 0.0, s1 = 0.0, s2 = 0.0;
+};
+
+// One side formed from rest with limits (a, j, vmax): the next point.
+Point Advance(const Point& p, double a, double j, double vmax, double h) {
+  double s2 = std::min(a, p.s2 + j * h);  // largest S'' allowed by |S''| ≤ a and the jerk
+  if (vmax < 1e299) {
+    // Keep S'_i + S''_i²/(2j) ≤ vmax, with S'_i = S'_{i−1} + h(S''_{i−1} + S''_i)/2:
+    // S''²/(2j) + (h/2) S'' + (S'_{i−1} + h S''_{i−1}/2 − vmax) ≤ 0.
+    const double qa = (j < 1e299) ? 1.0 / (2.0 * j) : 0.0;
+    const double qb = 0.5 * h;
+    const double qc = p.s1 + 0.5 * h * p.s2 - vmax;
+    double root;
+    if (qa > 0.0) {
+      const double disc = qb * qb - 4.0 * qa * qc;
+      root = disc >= 0.0 ? (-qb + std::sqrt(disc)) / (2.0 * qa) : -1e300;
+    } else {
+      root = -qc / qb;
+    }
+    s2 = std::min(s2, root);
+    s2 = std::max({s2, p.s2 - j * h, 0.0});  // cannot come down faster than the jerk allows
+  }
+  Point n;
+  n.s2 = s2;
+  n.s1 = p.s1 + 0.5 * h * (p.s2 + s2);  // trapezoidal (2)
+  if (vmax < 1e299) n.s1 = std::min(n.s1, vmax);
+  n.s = p.s + 0.5 * h * (p.s1 + n.s1);  // trapezoidal (3)
+  return n;
+}
+
+struct Formed {
+  std::vector<Point> a, c;    // side A forward, side C backward (from the end of the rise)
+  double constant_rad = 0.0;  // constant-speed length
+  double total_rad = 0.0;
+  bool speed_active = false;
+};
+
+// Forms both sides with the limits scaled by alpha; the rise angle comes out. Gives up with
+// total_rad = +∞ once the sides are longer than `give_up_rad`.
+Formed Form(const SynthesisSpec& spec, double alpha, double vmax, double h,
+            double give_up_rad = INFINITY) {
+  Formed f;
+  f.a.push_back({});
+  f.c.push_back({});
+  const double aa = alpha * spec.accel_limit, ac = alpha * spec.decel_limit;
+  const double j = spec.jerk_limit < 1e299 ? alpha * spec.jerk_limit : 1e300;
+  const size_t budget =
+      std::isfinite(give_up_rad) ? static_cast<size_t>(give_up_rad / h) + 3 : 50000000;
+  auto at_speed = [&](const Point& p) {
+    return vmax < 1e299 && p.s1 >= vmax * (1 - 1e-12) && p.s2 <= 0.0;
+  };
+  while (f.a.size() + f.c.size() < budget) {
+    const Point& pa = f.a.back();
+    const Point& pc = f.c.back();
+    if (pa.s + pc.s >= spec.height_m) break;  // the sides meet
+    const bool a_done = at_speed(pa), c_done = at_speed(pc);
+    if (a_done && c_done) {  // both at S'max: the rest at constant speed
+      f.speed_active = true;
+      f.constant_rad = (spec.height_m - pa.s - pc.s) / vmax;  // φ₀ = ΔS / S'max (5)
+      break;
+    }
+    if (!a_done && (c_done || pa.s1 <= pc.s1)) {
+      f.a.push_back(Advance(pa, aa, j, vmax, h));
+    } else {
+      f.c.push_back(Advance(pc, ac, j, vmax, h));
+    }
+  }
+  if (f.a.size() + f.c.size() >= budget) {
+    f.total_rad = INFINITY;
+    return f;
+  }
+  f.total_rad = h * static_cast<double>(f.a.size() - 1 + f.c.size() - 1) + f.constant_rad;
+  return f;
+}
+
+}  // namespace
+
+void SynthesisSpec::Validate() const {
+  auto req = [](bool ok, const std::string& field, double v, const std::string& rule) {
+    if (!ok)
+      throw std::invalid_argument("SynthesisSpec." + field + " = " + std::to_string(v) + ": " +
+                                  rule);
+  };
+  req(rise_rad > 0.0 && std::isfinite(rise_rad), "rise_rad", rise_rad, "must be positive");
+  req(height_m > 0.0 && std::isfinite(height_m), "height_m", height_m, "must be positive");
+  req(step_rad >= 0.0 && step_rad < rise_rad, "step_rad", step_rad, "must be in [0, rise)");
+  req(speed_limit > 0.0, "speed_limit", speed_limit, "must be positive");
+  req(accel_limit > 0.0 && std::isfinite(accel_limit), "accel_limit", accel_limit,
+      "must be positive");
+  req(decel_limit > 0.0 && std::isfinite(decel_limit), "decel_limit", decel_limit,
+      "must be positive");
+  req(jerk_limit > 0.0, "jerk_limit", jerk_limit, "must be positive");
+}
+
+double LeastSpeedLimit(const SynthesisSpec& spec) {
+  const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
+  double lo = spec.height_m / spec.rise_rad, hi = lo;  // S'max·Φ ≥ H at the very least
+  while (Form(spec, 1.0, hi, h, 2 * spec.rise_rad).total_rad > spec.rise_rad) {
+    hi *= 2.0;
+    if (hi > 1e6 * lo) return INFINITY;  // the acceleration limits alone are too tight
+  }
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (Form(spec, 1.0, mid, h, 2 * spec.rise_rad).total_rad > spec.rise_rad ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
+  spec.Validate();
+  const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
+  const double vmax = spec.speed_limit;
+  if (vmax < 1e299 && vmax * spec.rise_rad <= spec.height_m) {
+    throw std::invalid_argument(
+        "infeasible: S'max × rise angle = " + std::to_string(vmax * spec.rise_rad * 1e3) +
+        " mm is not more than the displacement " + std::to_string(spec.height_m * 1e3) +
+        " mm; the least S'max that fits with these acceleration limits is " +
+        std::to_string(LeastSpeedLimit(spec) * 1e3) + " mm/rad");
+  }
+  const Formed full = Form(spec, 1.0, vmax, h, 2 * spec.rise_rad);
+  if (full.total_rad > spec.rise_rad) {
+    const double least = LeastSpeedLimit(spec);
+    throw std::invalid_argument(
+        "infeasible: with the full limits the shortest rise of " +
+        std::to_string(spec.height_m * 1e3) + " mm takes " +
+        std::to_string(full.total_rad * 180.0 / 3.14159265358979323846) + " deg, more than " +
+        std::to_string(spec.rise_rad * 180.0 / 3.14159265358979323846) + " deg" +
+        (std::isfinite(least) && vmax < 1e299
+             ? "; the least S'max that fits is " + std::to_string(least * 1e3) + " mm/rad"
+             : "; raise the acceleration or jerk limits"));
+  }
+  // Smallest α ≤ 1 whose rise still fits in Φ (the rise angle falls as α grows): bracket by
+  // quartering, then bisect.
+  const double give_up = 2 * spec.rise_rad;
+  double lo = 0.25, hi = 1.0;
+  while (Form(spec, lo, vmax, h, give_up).total_rad <= spec.rise_rad) {
+    hi = lo;
+    lo *= 0.25;
+    if (lo < 1e-12)
+      throw std::invalid_argument("synthesis: the limits are far larger than the rise needs");
+  }
+  for (int k = 0; k < 100 && hi - lo > 1e-13 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (Form(spec, mid, vmax, h, give_up).total_rad > spec.rise_rad ? lo : hi) = mid;
+  }
+
+  const Formed f = Form(spec, hi, vmax, h);
+
+  // Assemble: side A forward, the constant section, side C reversed.
+  SynthesizedLaw law;
+  law.scale = hi;
+  law.speed_limit_active = f.speed_active;
+  for (size_t i = 0; i < f.a.size(); ++i) {
+    law.phi.push_back(h * i);
+    law.s.push_back(f.a[i].s);
+    law.s1.push_back(f.a[i].s1);
+    law.s2.push_back(f.a[i].s2);
+  }
+  law.junction = law.phi.size() - 1;
+  const double phi_a = h * (f.a.size() - 1);
+  const double s_a = f.a.back().s;
+  law.constant_start_rad = phi_a;
+  law.constant_end_rad = phi_a + f.constant_rad;
+  // The constant-speed section, at the same step (S is linear there).
+  const int inner = static_cast<int>(std::floor(f.constant_rad / h - 1e-9));
+  for (int m = 1; m <= inner; ++m) {
+    law.phi.push_back(phi_a + h * m);
+    law.s.push_back(s_a + vmax * h * m);
+    law.s1.push_back(vmax);
+    law.s2.push_back(0.0);
+  }
+
+  const double phi_c0 = phi_a + f.constant_rad;
+  const double c_total = f.c.back().s;  // displacement of side C
+  const double s_c0 = s_a + (f.speed_active ? f.constant_rad * vmax : 0.0);
+  const double end_s = s_c0 + c_total;
+  for (size_t k = 0; k < f.c.size(); ++k) {
+    const size_t i = f.c.size() - 1 - k;  // from the junction back to the end at rest
+    const double phi = phi_c0 + h * k;
+    if (k == 0 && f.constant_rad == 0.0) continue;  // the junction point is side A's last
+    law.phi.push_back(phi);
+    law.s.push_back(end_s - f.c[i].s);
+    law.s1.push_back(f.c[i].s1);
+    law.s2.push_back(-f.c[i].s2);
+  }
+  // Close the angle and the height exactly: stretch φ by c ≥ 1 and scale S by H/S_end ≤ 1.
+  const double c = spec.rise_rad / law.phi.back();
+  const double k = spec.height_m / law.s.back();
+  for (size_t i = 0; i < law.phi.size(); ++i) {
+    law.phi[i] *= c;
+    law.s[i] *= k;
+    law.s1[i] *= k / c;
+    law.s2[i] *= k / (c * c);
+  }
+  law.constant_start_rad *= c;
+  law.constant_end_rad *= c;
+  law.s3.assign(law.phi.size(), 0.0);
+  for (size_t i = 1; i < law.phi.size(); ++i) {
+    law.s3[i] = (law.s2[i] - law.s2[i - 1]) / (law.phi[i] - law.phi[i - 1]);  // (1), k = 3
+  }
+  return law;
+}
+
+}  // namespace needle

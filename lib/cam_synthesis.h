@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Numerical synthesis of a rise law S(φ) under limits on its derivatives, with a section of
+/// constant maximum speed when the limit on S' is active (MATEC Web Conf. 226, 01031, 2018).
+/// φ is the cam angle (rad), S the follower displacement (m), S' = dS/dφ and so on.
+///
+/// Both sides of the rise are formed step by step from their ends at rest, A forward with
+/// S'' ≥ 0 and C backward with S'' ≤ 0, each step taking the largest |S''| the limits allow:
+///
+///     |S''_i| ≤ a (a⁺ on side A, a⁻ on side C),   |S''_i − S''_{i−1}| / Δφ ≤ j   (S''' limit),
+///     S'_i = S'_{i−1} + Δφ (S''_i + S''_{i−1})/2,   S_i = S_{i−1} + Δφ (S'_i + S'_{i−1})/2,
+///
+/// always advancing the side whose S' is lower, so that the two meet where S' agrees. With a
+/// limit S'max, each side also keeps S'_i + S''_i²/(2j) ≤ S'max (so that S'' can come back to
+/// zero exactly at S'max) and stops there; the displacement left over is covered at constant
+/// speed over φ₀ = ΔS / S'max. All limits are scaled by one factor α ≤ 1 (found by bisection)
+/// so that the rise takes exactly the given angle; the law is then stretched by at most one
+/// step to close the angle exactly, which only lowers every derivative.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace needle {
+
+/// The specification of a rise. Every field has a default where one makes sense.
+struct SynthesisSpec {
+  double rise_rad = 0.0;       ///< angular length of the rise Φ, cam rad, > 0
+  double height_m = 0.0;       ///< displacement H, m, > 0
+  double step_rad = 0.0;       ///< step Δφ; 0: Φ/4000
+  double speed_limit = 1e300;  ///< S'max, m/rad (default: none)
+  double accel_limit = 0.0;    ///< a⁺, largest positive S'', m/rad², > 0
+  double decel_limit = 0.0;    ///< a⁻, largest |S''| where negative, m/rad², > 0
+  double jerk_limit = 1e300;   ///< j, largest |S'''|, m/rad³ (default: none)
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void Validate() const;
+};
+
+struct SynthesizedLaw {
+  std::vector<double> phi, s, s1, s2, s3;  ///< φ (rad), S (m), S', S'', S''' on the steps
+  double scale = 1.0;                      ///< α, the fraction of the limits used
+  bool speed_limit_active = false;
+  double constant_start_rad = 0.0, constant_end_rad = 0.0;  ///< the constant-speed section
+  double constant_length_rad() const { return constant_end_rad - constant_start_rad; }
+  /// Index where side A ends and side C begins (the junction), or the constant section starts.
+  size_t junction = 0;
+};
+
+/// Forms the rise. Throws std::invalid_argument when the limits cannot raise H within Φ, with
+/// the shortest rise they allow and the least S'max (or acceleration scale) that would fit.
+SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec);
+
+/// The smallest S'max with which the rise fits (the other limits as given), m/rad.
+double LeastSpeedLimit(const SynthesisSpec& spec);
+
+}  // namespace needle

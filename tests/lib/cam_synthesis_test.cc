@@ -1,0 +1,123 @@
+// Cam-law synthesis with a constant-maximum-speed section (MATEC 2018).
+#include "lib/cam_synthesis.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+// The paper's case: 8 mm in 63° of cam, S'max = 7.6 mm/rad. The paper gives no limits on
+// S'' and S'''; 250 mm/rad² and 20 000 mm/rad³ are ours (stated in cases/matec-2018-synth.toml).
+SynthesisSpec Paper() {
+  SynthesisSpec s;
+  s.rise_rad = 63.0 * kDeg;
+  s.height_m = 8e-3;
+  s.speed_limit = 7.6e-3;
+  s.accel_limit = 0.25;
+  s.decel_limit = 0.25;
+  s.jerk_limit = 20.0;
+  return s;
+}
+
+void ExpectWithinLimits(const SynthesizedLaw& law, const SynthesisSpec& s) {
+  for (size_t i = 0; i < law.phi.size(); ++i) {
+    EXPECT_LE(law.s1[i], s.speed_limit * (1 + 1e-12)) << i;
+    EXPECT_GE(law.s1[i], -1e-15) << i;
+    EXPECT_LE(law.s2[i], s.accel_limit * (1 + 1e-12)) << i;
+    EXPECT_GE(law.s2[i], -s.decel_limit * (1 + 1e-12)) << i;
+    if (i > 0 && !(i == law.junction + 1 && !law.speed_limit_active)) {
+      EXPECT_LE(std::abs(law.s3[i]), s.jerk_limit * (1 + 1e-9)) << i;
+    }
+    if (i > 0) {
+      EXPECT_GT(law.phi[i], law.phi[i - 1]);
+    }
+  }
+}
+
+TEST(CamSynthesisTest, PaperCaseHasAConstantSpeedSectionAtSmax) {
+  const SynthesisSpec s = Paper();
+  const SynthesizedLaw law = SynthesizeRise(s);
+  ExpectWithinLimits(law, s);
+  EXPECT_TRUE(law.speed_limit_active);
+  EXPECT_NEAR(law.phi.back(), s.rise_rad, 1e-15);
+  EXPECT_NEAR(law.s.back(), s.height_m, 1e-15);
+  EXPECT_EQ(law.s1.front(), 0.0);
+  EXPECT_NEAR(law.s1.back(), 0.0, 1e-12);
+  // On the section S' = S'max to rounding, S'' = 0, and φ₀ = ΔS/S'max.
+  int inside = 0;
+  for (size_t i = 0; i < law.phi.size(); ++i) {
+    if (law.phi[i] > law.constant_start_rad + 1e-9 && law.phi[i] < law.constant_end_rad - 1e-9) {
+      EXPECT_NEAR(law.s1[i], s.speed_limit, 1e-12 * s.speed_limit);
+      EXPECT_EQ(law.s2[i], 0.0);
+      ++inside;
+    }
+  }
+  EXPECT_GT(inside, 100);
+  const double s_start = law.s[law.junction];
+  double s_end = 0;
+  for (size_t i = 0; i < law.phi.size(); ++i) {
+    if (std::abs(law.phi[i] - law.constant_end_rad) < 1e-12) s_end = law.s[i];
+  }
+  EXPECT_NEAR(law.constant_length_rad(), (s_end - s_start) / s.speed_limit, 1e-9);
+  std::printf("paper case: constant-speed section %.3f..%.3f deg (%.3f deg), limits used %.4f\n",
+              law.constant_start_rad / kDeg, law.constant_end_rad / kDeg,
+              law.constant_length_rad() / kDeg, law.scale);
+}
+
+TEST(CamSynthesisTest, WithoutAnActiveSpeedLimitThereIsNoConstantSection) {
+  SynthesisSpec s = Paper();
+  s.speed_limit = 1e300;  // the earlier scheme [3, 4]
+  const SynthesizedLaw law = SynthesizeRise(s);
+  ExpectWithinLimits(law, s);
+  EXPECT_FALSE(law.speed_limit_active);
+  EXPECT_EQ(law.constant_length_rad(), 0.0);
+  // Equal limits on both sides: the junction (S'' changes sign) at half the rise, and S' peaks
+  // there.
+  EXPECT_NEAR(law.phi[law.junction], s.rise_rad / 2, 2 * s.rise_rad / 4000);
+  size_t peak = 0;
+  for (size_t i = 0; i < law.s1.size(); ++i) {
+    if (law.s1[i] > law.s1[peak]) peak = i;
+  }
+  EXPECT_NEAR(law.phi[peak], s.rise_rad / 2, 2 * s.rise_rad / 4000);
+  EXPECT_GT(law.s1[peak], 7.6e-3);  // faster than the limit the other case imposes
+}
+
+TEST(CamSynthesisTest, InfeasibleSpecIsRefusedWithTheLeastSmaxThatWorks) {
+  SynthesisSpec s = Paper();
+  s.speed_limit = 7.2e-3;  // 7.2 mm/rad × 63° = 7.92 mm < 8 mm
+  try {
+    SynthesizeRise(s);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(
+                  "infeasible: S'max × rise angle = 7.916813 mm is not more than the "
+                  "displacement 8.000000 mm; the least S'max that fits",
+                  0),
+              0u)
+        << e.what();
+  }
+  const double least = LeastSpeedLimit(s);
+  EXPECT_GT(least, 8e-3 / s.rise_rad);
+  s.speed_limit = least * 1.001;
+  EXPECT_NO_THROW(SynthesizeRise(s));
+  s.speed_limit = least * 0.999;
+  EXPECT_THROW(SynthesizeRise(s), std::invalid_argument);
+}
+
+TEST(CamSynthesisTest, SpecIsValidated) {
+  SynthesisSpec s = Paper();
+  s.accel_limit = 0.0;
+  try {
+    SynthesizeRise(s);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "SynthesisSpec.accel_limit = 0.000000: must be positive");
+  }
+}
+
+}  // namespace
+}  // namespace needle
