@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "apps/cam_command.h"
+#include "apps/check_command.h"
 #include "apps/dynamics_command.h"
 #include "apps/kinematics_command.h"
 #include "apps/spring_command.h"
@@ -12,6 +13,8 @@
 int main(int argc, char** argv) {
   CLI::App app{"needle: cam-driven needle valves — kinematics, spring sizing, dynamics"};
   app.require_subcommand(1);
+  needle::CheckCommandOptions check;
+  CLI::App* check_cmd = needle::AddCheckCommand(app, check);
   needle::KinematicsCommandOptions kinematics;
   CLI::App* kinematics_cmd = needle::AddKinematicsCommand(app, kinematics);
   needle::SpringCommandOptions spring;
@@ -37,6 +40,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    if (check_cmd->parsed()) return needle::RunCheckCommand(check);
     if (kinematics_cmd->parsed()) return needle::RunKinematicsCommand(kinematics);
     if (spring_cmd->parsed()) return needle::RunSpringCommand(spring);
     if (design_cmd->parsed()) return needle::RunDesignCommand(design);

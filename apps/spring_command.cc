@@ -13,6 +13,7 @@
 #include "spring/design_chain.h"
 #include "spring/helical_spring.h"
 #include "spring/quasi_static.h"
+#include "spring/spring_check.h"
 
 namespace needle {
 namespace {
@@ -38,58 +39,22 @@ CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& o) {
 
 int RunSpringCommand(const SpringCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
-  if (!c.needle)
-    throw CaseError(
-        c.path +
-        ": [needle] mass_kg: section [needle] is missing; the spring check needs the moving mass");
-  if (!c.spring)
-    throw CaseError(
-        c.path +
-        ": [spring] preload: section [spring] is missing; the spring check needs preload and rate");
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   const LiftLaw law = MakeLiftLaw(c);
-  if (!law.HasAcceleration()) {
-    throw CaseError(
-        c.path + ": [lift] spline: \"" + SplineKindName(law.kind()) +
-        "\" has no acceleration; the spring check needs a C2 spline (not-a-knot, natural, "
-        "clamped, quintic or smoothing)");
-  }
-  const Kinematics kin(law, speed);
-  const KinematicsSummary sum = kin.Summarize();
-  const double omega = kin.omega();
-
-  RigidTrain train;
-  train.mass_kg = c.needle->mass_kg;
-  train.preload_N = c.spring->preload_N;
-  train.gas_force_N = c.needle->gas_force_N;
-  std::optional<HelicalSpringCheck> helical;
-  if (c.spring->helical) {
-    try {
-      helical = CheckHelicalSpring(*c.spring->helical, c.spring->preload_N, sum.max_lift_m, speed,
-                                   c.engine.cycle == "four-stroke");
-    } catch (const std::invalid_argument& e) {
-      throw CaseError(c.path + ": [spring]: " + e.what());
-    }
-  }
-  train.rate_N_m = c.spring->rate_N_m ? *c.spring->rate_N_m : helical->rate_N_m;
-
-  const double a_abs =
-      std::max(std::abs(*sum.max_acceleration_m_s2), std::abs(*sum.min_acceleration_m_s2));
-  const double a_deg = (std::abs(*sum.max_acceleration_m_s2) >= std::abs(*sum.min_acceleration_m_s2)
-                            ? *sum.max_acceleration_rad
-                            : *sum.min_acceleration_rad) /
-                       kDeg;
-  const double inertia_N = train.mass_kg * a_abs;
-  std::optional<double> basu_N;
-  if (c.needle->diameter_m) basu_N = BasuPreloadN(*c.needle->diameter_m, sum.injection_period_s);
-  const ForceMinimum fmin = MinQuasiStaticForce(law, train, omega);
-  const double n_qs = QuasiStaticLiftoffRpm(law, train);
-  const double required_N =
-      RequiredPreloadN(law, train, omega, c.spring->safety_factor, c.spring->overspeed_factor);
-  const double margin =
-      required_N > 0 ? 100.0 * (train.preload_N - required_N) / required_N : INFINITY;
-  const bool preload_ok = train.preload_N >= required_N;
-  const bool ok = preload_ok && (!helical || helical->pass());
+  const SpringCheckResult check = CheckSpring(c, law, speed);
+  const KinematicsSummary& sum = check.kinematics;
+  const RigidTrain& train = check.train;
+  const std::optional<HelicalSpringCheck>& helical = check.helical;
+  const std::optional<double>& basu_N = check.basu_preload_N;
+  const double a_abs = check.max_abs_acceleration_m_s2;
+  const double a_deg = check.max_abs_acceleration_rad / kDeg;
+  const double inertia_N = check.inertia_force_N;
+  const ForceMinimum& fmin = check.min_quasi_static;
+  const double n_qs = check.liftoff_rpm_quasi_static;
+  const double required_N = check.required_preload_N;
+  const double margin = check.preload_margin_percent;
+  const bool preload_ok = check.preload_ok;
+  const bool ok = check.pass;
 
   std::ostringstream out;
   if (o.json) {

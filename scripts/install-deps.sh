@@ -13,7 +13,8 @@ packages=(
   libcli11-dev           # command line
   nlohmann-json3-dev     # JSON output
   libbenchmark-dev       # micro-benchmarks
-  gnuplot-nox            # work-precision plots (scripts/bench.sh)
+  gnuplot-nox            # figures: needle check reports, scripts/bench.sh
+  clang libclang-rt-14-dev  # libFuzzer target for the case loader
 )
 
 missing=()

@@ -1,0 +1,329 @@
+#include "apps/check_command.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "apps/report.h"
+#include "dynamics/overspeed.h"
+#include "dynamics/simulation.h"
+#include "lib/case_file.h"
+#include "lib/kinematics.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/spring_check.h"
+
+namespace needle {
+namespace {
+
+std::string Row(const std::string& name, const std::string& value) {
+  return "<tr><th>" + Escape(name) + "</th><td>" + value + "</td></tr>";
+}
+
+std::string Verdict(bool ok) {
+  return ok ? "<span class=\"pass\">pass</span>" : "<span class=\"fail\">FAIL</span>";
+}
+
+std::string Num(double v, int digits) {
+  return std::isfinite(v) ? Fixed(v, digits) : std::string("none");
+}
+
+std::string Sci(double v) {
+  std::ostringstream s;
+  s.precision(3);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "check", "The main job: check a scene end to end and write an HTML report");
+  cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
+  cmd->add_option("--out", o.out_dir, "folder for the report (default: the current folder)");
+  cmd->add_option("--rpm", o.speed_rpm, "rated speed in rpm (default: [engine] speed_rpm)")
+      ->check(CLI::PositiveNumber);
+  return cmd;
+}
+
+int RunCheckCommand(const CheckCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  if (!std::filesystem::is_directory(o.out_dir)) {
+    throw CaseError("--out: " + o.out_dir + " is not a folder");
+  }
+  if (!GnuplotAvailable()) {
+    throw std::runtime_error(
+        "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
+        "or bash scripts/install-deps.sh)");
+  }
+  const double rpm = o.speed_rpm.value_or(c.engine.speed_rpm);
+  const LiftLaw law = MakeLiftLaw(c);
+  const Kinematics kin(law, rpm);
+  const KinematicsSummary sum = kin.Summarize();
+  std::vector<std::string> skipped, log;
+  bool ok = true;
+
+  Report report("needle check: " + (c.title.empty() ? c.path : c.title));
+  std::ostringstream summary;
+  summary << "<h2>Scene</h2><table>" << Row("case", Escape(c.path))
+          << Row("rated speed", Fixed(rpm, 1) + " rpm") << Row("cycle", Escape(c.engine.cycle))
+          << Row("lift law", Escape(c.lift.source) + ", " +
+                                 std::to_string(c.lift.table.crank_rad.size()) +
+                                 " points, spline " + SplineKindName(law.kind()))
+          << Row("injection period", Fixed(sum.injection_period_s * 1e3, 2) + " ms")
+          << Row("max lift", Fixed(sum.max_lift_m * 1e3, 3) + " mm at " +
+                                 Fixed(sum.max_lift_rad / kDeg, 2) + "°")
+          << Row("max velocity", Fixed(sum.max_velocity_m_s, 3) + " m/s at " +
+                                     Fixed(sum.max_velocity_rad / kDeg, 2) + "°");
+  if (sum.max_acceleration_m_s2) {
+    summary << Row("acceleration", Fixed(*sum.max_acceleration_m_s2, 2) + " m/s² max at " +
+                                       Fixed(*sum.max_acceleration_rad / kDeg, 2) + "°, " +
+                                       Fixed(*sum.min_acceleration_m_s2, 2) + " m/s² min at " +
+                                       Fixed(*sum.min_acceleration_rad / kDeg, 2) + "°");
+  }
+  summary << "</table>";
+
+  // Figure 1: lift, velocity, acceleration, with the paper's velocities as markers.
+  Series kinematic{"kin", {}}, paper{"paper", {}};
+  const double th0 = law.start_rad(), thn = law.end_rad();
+  for (int i = 0; i <= 400; ++i) {
+    const KinematicsPoint p = kin.At(th0 + (thn - th0) * i / 400.0);
+    kinematic.rows.push_back(
+        {p.crank_rad / kDeg, p.lift_m * 1e3, p.velocity_m_s, p.acceleration_m_s2.value_or(NAN)});
+  }
+  if (c.paper) {
+    for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
+      const double v = kin.At(c.paper->crank_rad[i]).velocity_m_s;
+      paper.rows.push_back(
+          {c.paper->crank_rad[i] / kDeg, (v < 0 ? -1.0 : 1.0) * c.paper->velocity_m_s[i]});
+    }
+  }
+  if (paper.rows.empty()) paper.rows.push_back({NAN, NAN});
+
+  // The spring check.
+  std::optional<SpringCheckResult> spring;
+  if (c.needle && c.spring && law.HasAcceleration()) {
+    spring = CheckSpring(c, law, rpm);
+    ok = ok && spring->pass;
+  } else {
+    skipped.push_back(!law.HasAcceleration()
+                          ? "spring check: the spline is C¹ only (no acceleration)"
+                          : "spring check: the case has no [needle] and [spring] sections");
+  }
+
+  // The dynamics: one run at the rated speed, and the overspeed sweep.
+  std::optional<SimulationResult> run;
+  std::optional<OverspeedResult> sweep;
+  std::optional<Scene> scene;
+  double n_qs = NAN, overspeed_rpm = rpm * (c.spring ? c.spring->overspeed_factor : 1.2);
+  if (c.train && c.needle && c.spring && law.HasAcceleration()) {
+    scene = MakeScene(c);
+    SimulationOptions sim = OptionsFromCase(c);
+    sim.force_dynamic = true;  // the report shows the dynamic force
+    sim.record_series = true;
+    run = Simulate(*scene, rpm, sim);
+    if (scene->cam->play_m() == 0.0)
+      skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
+    n_qs = spring->liftoff_rpm_quasi_static;
+    OverspeedOptions os;
+    os.simulation = OptionsFromCase(c);
+    os.from_rpm = c.overspeed && c.overspeed->from_rpm ? *c.overspeed->from_rpm : rpm;
+    os.to_rpm = c.overspeed && c.overspeed->to_rpm
+                    ? *c.overspeed->to_rpm
+                    : (std::isfinite(n_qs) ? std::max(2.0 * n_qs, 2.0 * rpm) : 4.0 * rpm);
+    const bool bar = isatty(STDOUT_FILENO) && isatty(STDERR_FILENO);
+    sweep = OverspeedSearch(*scene, os, [&](int done, int total) {
+      if (!bar) return;
+      const int width = 30, filled = std::min(width, width * done / std::max(1, total));
+      std::cerr << "\roverspeed [" << std::string(filled, '#') << std::string(width - filled, ' ')
+                << "] " << done << std::flush;
+    });
+    if (bar) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
+    if (run->liftoff()) ok = false;
+    if (sweep->n_dyn_rpm && *sweep->n_dyn_rpm <= overspeed_rpm) ok = false;
+  } else {
+    skipped.push_back(
+        "dynamics and overspeed: the case has no [train] section (contact stiffness, play)");
+  }
+
+  // ---- the report ----
+  report.AddHtml(std::string("<p>Overall: ") + Verdict(ok) + "</p>");
+  report.AddHtml(summary.str());
+  if (!skipped.empty()) {
+    std::string s = "<h2>Skipped</h2><ul class=\"skip\">";
+    for (const auto& k : skipped) s += "<li>" + Escape(k) + "</li>";
+    report.AddHtml(s + "</ul>");
+  }
+  report.AddHtml("<h2>Kinematics</h2>");
+  report.AddFigure(
+      "Lift, velocity and acceleration against crank angle at " + Fixed(rpm, 0) + " rpm" +
+          (c.paper && !c.paper->crank_rad.empty() ? "; points: the paper's velocities" : ""),
+      {kinematic, paper},
+      "set multiplot layout 3,1\nset lmargin 12\nunset key\nset ylabel 'lift (mm)'\nset format x "
+      "''\n"
+      "plot $kin using 1:2 with lines lw 2\nset ylabel 'velocity (m/s)'\n"
+      "plot $kin using 1:3 with lines lw 2, $paper using 1:2 with points pt 7 ps 0.8\n"
+      "set ylabel 'acceleration (m/s²)'\nset format x '%g'\nset xlabel 'crank angle (deg)'\n"
+      "plot $kin using 1:4 with lines lw 2\nunset multiplot");
+
+  if (spring) {
+    const SpringCheckResult& s = *spring;
+    std::ostringstream t;
+    t << "<h2>Spring</h2><table>";
+    if (s.basu_preload_N) {
+      t << Row("Basu's formula",
+               Fixed(*s.basu_preload_N / kKgf, 1) + " kgf; the case's spring " +
+                   Fixed(s.train.preload_N / kKgf, 1) + " kgf (" +
+                   Fixed(100 * (s.train.preload_N - *s.basu_preload_N) / *s.basu_preload_N, 1) +
+                   " %)");
+    }
+    t << Row("inertia force m·max|a|",
+             Fixed(s.inertia_force_N / kKgf, 2) + " kgf (" + Fixed(s.inertia_force_N, 1) + " N)")
+      << Row("spring rate", Fixed(s.train.rate_N_m * 1e-3, 2) + " N/mm")
+      << Row("min quasi-static contact force", Fixed(s.min_quasi_static.force_N, 1) + " N at " +
+                                                   Fixed(s.min_quasi_static.crank_rad / kDeg, 2) +
+                                                   "°")
+      << Row("quasi-static lift-off n_qs", Num(s.liftoff_rpm_quasi_static, 1) + " rpm")
+      << Row("required preload (S " + Fixed(c.spring->safety_factor, 2) + " at " +
+                 Fixed(c.spring->overspeed_factor, 2) + " n)",
+             Fixed(s.required_preload_N, 1) + " N; margin " +
+                 (std::isfinite(s.preload_margin_percent)
+                      ? Fixed(s.preload_margin_percent, 1) + " %"
+                      : std::string("unbounded (the rate alone suffices)")) +
+                 " " + Verdict(s.preload_ok));
+    if (s.helical) {
+      const HelicalSpringCheck& h = *s.helical;
+      t << Row("helical: shear stress at full lift",
+               Fixed(h.stress_full_lift_Pa * 1e-6, 0) + " MPa of " +
+                   Fixed(h.allowable_stress_Pa * 1e-6, 0) + " MPa " + Verdict(h.stress_ok))
+        << Row("helical: coil gaps at full lift",
+               Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm, need " +
+                   Fixed(h.min_clearance_m * 1e3, 2) + " mm " + Verdict(h.clearance_ok))
+        << Row("helical: surge frequency", Fixed(h.surge_hz, 1) + " Hz, " +
+                                               Fixed(h.surge_ratio, 1) + "× the cam's " +
+                                               Verdict(h.surge_ok));
+    }
+    t << Row("spring check", Verdict(s.pass)) << "</table>";
+    report.AddHtml(t.str());
+  }
+
+  if (run) {
+    const SimulationResult& r = *run;
+    std::ostringstream d;
+    d << "<h2>Dynamics at " << Fixed(rpm, 0) << " rpm</h2><table>"
+      << Row("solver", Escape(r.method) + " (" + Escape(r.method_reason) + "), rtol " +
+                           Sci(OptionsFromCase(c).integrator.rtol))
+      << Row("steps, right-hand sides, events", std::to_string(r.stats.steps) + ", " +
+                                                    std::to_string(r.stats.rhs_evaluations) + ", " +
+                                                    std::to_string(r.stats.events))
+      << Row("energy residual", Sci(r.energy_residual))
+
+      << Row("lift-off at the rated speed", r.liftoff() ? "<span class=\"fail\">yes</span>" : "no")
+      << Row("max contact force", Fixed(r.max_contact_force_N, 1) + " N; min during the lift " +
+                                      Fixed(r.min_contact_force_during_lift_N, 1) + " N");
+    for (const Impact& i : r.impacts) {
+      d << Row("impact: " + i.kind,
+               Fixed(i.crank_rad / kDeg, 3) + "°, " + Fixed(i.speed_m_s, 4) + " m/s");
+    }
+    for (const Episode& e : r.episodes) {
+      d << Row("episode: " + e.kind, Fixed(e.start_rad / kDeg, 3) + "° to " +
+                                         Fixed(e.end_rad / kDeg, 3) + "°, largest gap " +
+                                         Fixed(e.max_gap_m * 1e3, 4) + " mm");
+    }
+    d << "</table>";
+    report.AddHtml(d.str());
+    const RigidTrain& rigid = spring->train;
+    Series force{"force", {}}, motion{"motion", {}}, impacts{"impacts", {}}, shade{"shade", {}};
+    const double omega = OmegaFromRpm(rpm);
+    for (size_t k = 0; k < r.series.size(); k += std::max<size_t>(1, r.series.size() / 3000)) {
+      const SeriesPoint& p = r.series[k];
+      const bool in = p.crank_rad >= law.start_rad() && p.crank_rad <= law.end_rad();
+      force.rows.push_back({p.crank_rad / kDeg, p.contact_force_N,
+                            in ? QuasiStaticForce(law, rigid, omega, p.crank_rad) : NAN});
+      motion.rows.push_back({p.crank_rad / kDeg, p.lift_m * 1e3, p.cam_m * 1e3});
+    }
+    for (const Impact& i : r.impacts) {
+      impacts.rows.push_back(
+          {i.crank_rad / kDeg,
+           (i.kind.rfind("seat", 0) == 0 ? 0.0 : kin.At(i.crank_rad).lift_m * 1e3)});
+    }
+    if (impacts.rows.empty()) impacts.rows.push_back({NAN, NAN});
+    std::string rects;
+    for (const Episode& e : r.episodes) {
+      rects += "set object rect from " + Fixed(e.start_rad / kDeg, 4) + ", graph 0 to " +
+               Fixed(e.end_rad / kDeg, 4) + ", graph 1 fc rgb '#ffcccc' fs solid 0.6 behind\n";
+    }
+    report.AddFigure(
+        "Contact force: quasi-static F_qs (rigid train) and dynamic F_c; lift-off episodes shaded",
+        {force},
+        rects +
+            "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
+            "plot $force using 1:3 with lines lw 2 title 'quasi-static', $force using 1:2 with "
+            "lines lw 1 title 'dynamic'");
+    report.AddFigure("Needle lift against the cam input u(θ); impacts marked", {motion, impacts},
+                     "set xlabel 'crank angle (deg)'\nset ylabel 'lift (mm)'\nset key top right\n"
+                     "plot $motion using 1:3 with lines lw 2 title 'cam u', $motion using 1:2 with "
+                     "lines lw 1 title 'needle y', "
+                     "$impacts using 1:2 with points pt 7 ps 1.2 title 'impacts'");
+  }
+  if (sweep) {
+    const OverspeedResult& s = *sweep;
+    Series rows{"rows", {}};
+    for (const OverspeedRow& row : s.rows)
+      rows.rows.push_back({row.speed_rpm, row.min_contact_force_N, row.jump_deg});
+    std::string marks;
+    if (std::isfinite(n_qs))
+      marks += "set arrow from " + Fixed(n_qs, 2) + ", graph 0 to " + Fixed(n_qs, 2) +
+               ", graph 1 nohead dt 2 lc rgb '#555555'\nset label 'n_qs' at " + Fixed(n_qs, 2) +
+               ", graph 0.95 offset 0.5,0\n";
+    if (s.n_dyn_rpm)
+      marks += "set arrow from " + Fixed(*s.n_dyn_rpm, 2) + ", graph 0 to " +
+               Fixed(*s.n_dyn_rpm, 2) + ", graph 1 nohead lc rgb '#bb0000'\nset label 'n_dyn' at " +
+               Fixed(*s.n_dyn_rpm, 2) + ", graph 0.85 offset 0.5,0 tc rgb '#bb0000'\n";
+    report.AddFigure(
+        "Overspeed: minimum contact force during the lift and total jump length against speed",
+        {rows},
+        marks +
+            "set xlabel 'speed (rpm)'\nset ylabel 'min contact force (N)'\nset y2label 'jump "
+            "(deg)'\n"
+            "set y2tics\nset ytics nomirror\nset key top center\n"
+            "plot $rows using 1:2 with linespoints lw 2 title 'min contact force', $rows using 1:3 "
+            "axes x1y2 "
+            "with linespoints title 'jump length'");
+    std::ostringstream t;
+    t << "<h2>Overspeed</h2><table>" << Row("quasi-static lift-off n_qs", Num(n_qs, 1) + " rpm")
+      << Row("dynamic lift-off n_dyn", s.n_dyn_rpm ? Fixed(*s.n_dyn_rpm, 1) + " rpm (bracket " +
+                                                         Fixed(s.bracket_low_rpm, 2) + "–" +
+                                                         Fixed(s.bracket_high_rpm, 2) + ")"
+                                                   : "none in the range")
+      << Row("overspeed to check", Fixed(overspeed_rpm, 1) + " rpm " +
+                                       Verdict(!(s.n_dyn_rpm && *s.n_dyn_rpm <= overspeed_rpm)))
+      << "</table>";
+    report.AddHtml(t.str());
+  }
+
+  const std::string name = std::filesystem::path(c.path).stem().string() + ".html";
+  const std::string path = (std::filesystem::path(o.out_dir) / name).string();
+  WriteFileAtomically(path, report.Html());
+  std::cout << (c.title.empty() ? c.path : c.title) << '\n';
+  for (const auto& k : skipped) std::cout << "skipped: " << k << '\n';
+  if (spring) std::cout << "spring check: " << (spring->pass ? "pass" : "FAIL") << '\n';
+  if (run)
+    std::cout << "lift-off at " << Fixed(rpm, 0) << " rpm: " << (run->liftoff() ? "YES" : "no")
+              << '\n';
+  if (sweep) {
+    std::cout << "n_qs " << Num(n_qs, 1) << " rpm, n_dyn "
+              << (sweep->n_dyn_rpm ? Fixed(*sweep->n_dyn_rpm, 1) + " rpm"
+                                   : std::string("none in the range"))
+              << '\n';
+  }
+  std::cout << "report: " << path << " (" << report.figures() << " figures)\n"
+            << "overall: " << (ok ? "pass" : "FAIL") << '\n';
+  return ok ? 0 : 1;
+}
+
+}  // namespace needle

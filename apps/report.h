@@ -1,0 +1,43 @@
+#pragma once
+/// @file
+/// A self-contained HTML report: sections of HTML and figures drawn by gnuplot (svg terminal),
+/// embedded inline, written atomically as one file.
+
+#include <string>
+#include <vector>
+
+namespace needle {
+
+/// One data series for a figure: columns of numbers written to a temporary file.
+struct Series {
+  std::string name;
+  std::vector<std::vector<double>> rows;
+};
+
+class Report {
+ public:
+  explicit Report(std::string title);
+
+  void AddHtml(const std::string& html);
+  /// Draws a figure: `script` is gnuplot after the terminal is set; it reads the series as
+  /// files named in `$name` placeholders ($lift, $force, …). Throws std::runtime_error naming
+  /// gnuplot's failure.
+  void AddFigure(const std::string& caption, const std::vector<Series>& data, std::string script);
+  int figures() const { return figures_; }
+
+  /// The whole HTML document.
+  std::string Html() const;
+
+ private:
+  std::string title_;
+  std::vector<std::string> parts_;
+  int figures_ = 0;
+};
+
+/// True when gnuplot can be run.
+bool GnuplotAvailable();
+
+/// HTML-escapes text.
+std::string Escape(const std::string& text);
+
+}  // namespace needle

@@ -1,0 +1,146 @@
+// `needle check`: what it runs and skips, exit statuses, the report file; and the report in a
+// real browser (headless Chromium), skipped with a message where Chromium is not installed.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "run_command.h"
+
+namespace needle {
+namespace {
+
+using testing::Case;
+using testing::RunNeedle;
+
+std::string TempDir(const std::string& tag) {
+  const std::string dir = "/tmp/needle_check_" + tag + "_" + std::to_string(getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+int Count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(CheckReportTest, KinematicsOnlyCaseSaysWhatItSkipped) {
+  const std::string dir = TempDir("cam4");
+  const auto r = RunNeedle("check " + Case("basu-cam4.toml") + " --out " + dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("skipped: spring check: the case has no [needle] and [spring] sections"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("skipped: dynamics and overspeed: the case has no [train] section"),
+            std::string::npos);
+  const std::string html = testing::Slurp(dir + "/basu-cam4.html");
+  EXPECT_EQ(Count(html, "<svg"), 1);
+  EXPECT_NE(html.find("crank angle (deg)"), std::string::npos);  // axes with units
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CheckReportTest, FullSceneHasEveryFigureAndPasses) {
+  const std::string dir = TempDir("ex1");
+  const auto r = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("report: " + dir + "/basu-example1.html (4 figures)"), std::string::npos)
+      << r.out;
+  const std::string html = testing::Slurp(dir + "/basu-example1.html");
+  EXPECT_EQ(Count(html, "<svg"), 4);
+  for (const char* label :
+       {"lift (mm)", "velocity (m/s)", "contact force (N)", "speed (rpm)", "jump (deg)"}) {
+    EXPECT_NE(html.find(label), std::string::npos) << label;
+  }
+  EXPECT_NE(html.find("energy residual"), std::string::npos);
+  EXPECT_NE(html.find("dopri5"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CheckReportTest, LiftOffAtTheRatedSpeedFailsWithExitOne) {
+  const std::string dir = TempDir("ex2");
+  const auto r = RunNeedle("check " + Case("basu-example2.toml") + " --out " + dir + " --rpm 1400");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.out.find("lift-off at 1400 rpm: YES"), std::string::npos);
+  EXPECT_NE(r.out.find("overall: FAIL"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CheckReportTest, BadInputLeavesNoReport) {
+  const std::string dir = TempDir("bad");
+  const std::string bad = dir + "/broken.toml";
+  {
+    std::ofstream f(bad);
+    f << "[engine]\nspeed_rpm = 400\n[lift]\ncrank_deg = [0, 1]\nlift_mm = [0, nan]\n";
+  }
+  const auto r = RunNeedle("check " + bad + " --out " + dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "needle: " + bad + ": [lift] lift_mm[1]: is NaN; expected a finite number\n");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/broken.html"));
+  const auto nodir = RunNeedle("check " + Case("basu-cam4.toml") + " --out /no/such/folder");
+  EXPECT_EQ(nodir.status, 2);
+  EXPECT_EQ(nodir.err, "needle: --out: /no/such/folder is not a folder\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CheckReportTest, HelpDocumentsEveryCommandAndOption) {
+  const auto top = RunNeedle("--help");
+  EXPECT_EQ(top.status, 0);
+  for (const char* cmd :
+       {"check", "kinematics", "spring", "design", "simulate", "overspeed", "synth", "profile"}) {
+    EXPECT_NE(top.out.find(cmd), std::string::npos) << cmd;
+    EXPECT_EQ(RunNeedle(std::string(cmd) + " --help").status, 0) << cmd;
+  }
+  const auto check = RunNeedle("check --help");
+  for (const char* opt : {"--out", "--rpm"})
+    EXPECT_NE(check.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(CheckReportTest, ReportRendersInHeadlessChromium) {
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
+    GTEST_SKIP()
+        << "chromium is not installed (apt-get install chromium): browser rendering not tested";
+  }
+  const std::string dir = TempDir("browser");
+  ASSERT_EQ(RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir).status, 0);
+  const std::string flags =
+      "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking "
+      "--disable-component-update --disable-sync --user-data-dir=" +
+      dir + "/profile ";
+  const std::string page = "file://" + dir + "/basu-example1.html";
+  // The DOM Chromium built: every figure is an inline <svg> with drawn paths.
+  const std::string dom = dir + "/dom.html";
+  ASSERT_EQ(std::system(("timeout 120 chromium " + flags + "--dump-dom " + page + " >" + dom +
+                         " 2>/dev/null")
+                            .c_str()),
+            0);
+  const std::string text = testing::Slurp(dom);
+  EXPECT_EQ(Count(text, "<svg"), 4);
+  EXPECT_GE(Count(text, "<path"), 20);
+  EXPECT_NE(text.find("Overall: <span class=\"pass\">pass</span>"), std::string::npos);
+  // And a screenshot of the whole page: a PNG of the asked size with real content in it.
+  const std::string png = dir + "/report.png";
+  ASSERT_EQ(std::system(("timeout 120 chromium " + flags + "--window-size=1000,3400 --screenshot=" +
+                         png + " " + page + " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  const std::string bytes = testing::Slurp(png);
+  ASSERT_GT(bytes.size(), 24u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  auto be32 = [&](size_t at) {
+    return (static_cast<unsigned char>(bytes[at]) << 24) |
+           (static_cast<unsigned char>(bytes[at + 1]) << 16) |
+           (static_cast<unsigned char>(bytes[at + 2]) << 8) |
+           static_cast<unsigned char>(bytes[at + 3]);
+  };
+  EXPECT_EQ(be32(16), 1000u);        // IHDR width
+  EXPECT_EQ(be32(20), 3400u);        // IHDR height
+  EXPECT_GT(bytes.size(), 100000u);  // four plots and tables compress to well over 100 kB
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace needle
