@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -514,7 +515,87 @@ PaperSection ReadPaper(SectionReader r) {
   return p;
 }
 
+// toml++ 3.3.0 (Debian 12) reaches TOML_UNREACHABLE, undefined behaviour, for some non-ASCII
+// characters where it looks for whitespace (marzer/tomlplusplus#295, fixed upstream after
+// 3.3.0; found here by the case-loader fuzzer). TOML allows non-ASCII only inside comments and
+// strings, so such text is refused here, before toml++ sees it: outside comments and strings,
+// and at the start of a line continued by a backslash inside a multi-line basic string.
+void CheckTomlText(const std::string& text, const std::string& path) {
+  enum class State { kNormal, kComment, kBasic, kLiteral, kMultiBasic, kMultiLiteral };
+  State state = State::kNormal;
+  int line = 1, column = 0;
+  bool after_continuation = false;  // inside """…""", after a line-ending backslash
+  for (size_t i = 0; i < text.size(); ++i) {
+    const unsigned char ch = static_cast<unsigned char>(text[i]);
+    ++column;
+    auto starts = [&](const char* s) { return text.compare(i, std::strlen(s), s) == 0; };
+    auto fail = [&](const std::string& what) {
+      throw CaseError(path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + what);
+    };
+    if (ch == '\n') {
+      ++line;
+      column = 0;
+      if (state == State::kComment) state = State::kNormal;
+      continue;
+    }
+    switch (state) {
+      case State::kNormal:
+        if (ch >= 0x80) fail("non-ASCII character outside a string or comment (TOML allows it only there)");
+        if (ch == '#') state = State::kComment;
+        if (starts("\"\"\"")) {
+          state = State::kMultiBasic;
+          i += 2;
+        } else if (starts("'''")) {
+          state = State::kMultiLiteral;
+          i += 2;
+        } else if (ch == '"') {
+          state = State::kBasic;
+        } else if (ch == '\'') {
+          state = State::kLiteral;
+        }
+        break;
+      case State::kComment:
+        break;
+      case State::kBasic:
+        if (ch == '\\' && i + 1 < text.size()) {
+          ++i;
+        } else if (ch == '"') {
+          state = State::kNormal;
+        }
+        break;
+      case State::kLiteral:
+        if (ch == '\'') state = State::kNormal;
+        break;
+      case State::kMultiBasic:
+        if (after_continuation) {
+          if (ch >= 0x80) fail("non-ASCII character right after a line-ending backslash in a multi-line string");
+          if (ch != ' ' && ch != '\t' && ch != '\r') after_continuation = false;
+        }
+        if (ch == '\\') {
+          size_t j = i + 1;
+          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r')) ++j;
+          if (j < text.size() && text[j] == '\n') {
+            after_continuation = true;
+          } else if (i + 1 < text.size()) {
+            ++i;
+          }
+        } else if (starts("\"\"\"")) {
+          state = State::kNormal;
+          i += 2;
+        }
+        break;
+      case State::kMultiLiteral:
+        if (starts("'''")) {
+          state = State::kNormal;
+          i += 2;
+        }
+        break;
+    }
+  }
+}
+
 const toml::table* Section(const toml::table& root, const std::string& file, const char* name) {
+
   const toml::node* node = root.get(name);
   if (!node) return nullptr;
   const toml::table* t = node->as_table();
@@ -525,6 +606,7 @@ const toml::table* Section(const toml::table& root, const std::string& file, con
 }  // namespace
 
 Case ParseCase(const std::string& text, const std::string& path) {
+  CheckTomlText(text, path);
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -597,6 +679,7 @@ void CheckSplineFits(const Case& c, SplineKind kind, const std::string& where) {
 }
 
 DesignInputs ParseDesignInputs(const std::string& text, const std::string& path) {
+  CheckTomlText(text, path);
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -719,6 +802,7 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
   if (!in) throw CaseError(path + ": cannot open the synthesis file for reading");
   std::ostringstream buffer;
   buffer << in.rdbuf();
+  CheckTomlText(buffer.str(), path);
   toml::table root;
   try {
     root = toml::parse(buffer.str(), path);

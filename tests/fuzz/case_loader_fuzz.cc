@@ -1,0 +1,24 @@
+// libFuzzer target for the case loader: any bytes as a case file. A rejection must be a
+// CaseError whose message is one line naming the file; anything else (another exception, a
+// crash, a hang, a sanitizer report) is a finding.
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "lib/case_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const needle::Case c = needle::ParseCase(text, "fuzz.toml");
+    const needle::LiftLaw law = needle::MakeLiftLaw(c);
+    (void)law.MeanLift();
+  } catch (const needle::CaseError& e) {
+    const std::string m = e.what();
+    if (m.rfind("fuzz.toml", 0) != 0 || m.find('\n') != std::string::npos) __builtin_trap();
+  } catch (...) {
+    __builtin_trap();  // every rejection must be a CaseError
+  }
+  return 0;
+}
