@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "apps/progress_bar.h"
 #include "apps/report.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
@@ -135,14 +136,11 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     os.to_rpm = c.overspeed && c.overspeed->to_rpm
                     ? *c.overspeed->to_rpm
                     : (std::isfinite(n_qs) ? std::max(2.0 * n_qs, 2.0 * rpm) : 4.0 * rpm);
-    const bool bar = isatty(STDOUT_FILENO) && isatty(STDERR_FILENO);
-    sweep = OverspeedSearch(*scene, os, [&](int done, int total) {
-      if (!bar) return;
-      const int width = 30, filled = std::min(width, width * done / std::max(1, total));
-      std::cerr << "\roverspeed [" << std::string(filled, '#') << std::string(width - filled, ' ')
-                << "] " << done << std::flush;
-    });
-    if (bar) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
+    {
+      ProgressBar bar("overspeed");
+      sweep = OverspeedSearch(*scene, os, [&](int done, int total) { bar.Update(done, total); });
+    }
+
     if (run->liftoff()) ok = false;
     if (sweep->n_dyn_rpm && *sweep->n_dyn_rpm <= overspeed_rpm) ok = false;
   } else {

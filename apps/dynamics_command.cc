@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/progress_bar.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/output.h"
@@ -184,15 +185,11 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
     throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
                     " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
   }
-  const bool bar = isatty(STDOUT_FILENO) && isatty(STDERR_FILENO);
-  const auto progress = [&](int done, int total) {
-    if (!bar) return;
-    const int width = 30, filled = std::min(width, width * done / std::max(1, total));
-    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
-              << done << " runs" << std::flush;
-  };
-  const OverspeedResult r = OverspeedSearch(scene, opt, progress);
-  if (bar) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
+  OverspeedResult r;
+  {
+    ProgressBar bar("overspeed");
+    r = OverspeedSearch(scene, opt, [&](int done, int total) { bar.Update(done, total); });
+  }
 
   std::ostringstream out;
   if (o.json) {

@@ -51,10 +51,8 @@ MeasuredRun MeasureRun(const Scene& scene, double speed_rpm, Method method, doub
     if (r == 0) {
       m.grid = recorder.grid();
       m.impacts = recorder.impacts();
-      const TrainState& xf = m.stats.final_state;
-      const double e0 = train.Energy(x0, 0.0), e1 = train.Energy(xf, m.stats.final_time);
-      const double scale = std::max(std::abs(xf[2]), std::abs(e0));
-      m.energy_residual = scale > 0.0 ? std::abs(e1 - e0 - xf[2] + xf[3]) / scale : 0.0;
+      m.energy_residual = train.EnergyResidual(x0, m.stats.final_state, m.stats.final_time);
+
       if (seconds.back() > 0.5) break;  // slow configurations: one run is enough
     }
   }

@@ -137,6 +137,12 @@ double NeedleTrain::Energy(const TrainState& x, double t) const {
          0.5 * p_.seat_stiffness_N_m * gs * gs;
 }
 
+double NeedleTrain::EnergyResidual(const TrainState& x0, const TrainState& xt, double t) const {
+  const double e0 = Energy(x0, 0.0), e1 = Energy(xt, t);
+  const double scale = std::max(std::abs(xt[2]), std::abs(e0));  // max(|W|, |E(0)|)
+  return scale > 0.0 ? std::abs(e1 - e0 - xt[2] + xt[3]) / scale : 0.0;
+}
+
 TrainState NeedleTrain::EquilibriumStart() const {
   const double net = p_.preload_N - p_.gas_force_N;  // P₀ − F_g
   const double u_a = cam_.U(theta_a_);

@@ -70,6 +70,10 @@ class NeedleTrain {
   }
   /// E of the audit (J).
   double Energy(const TrainState& x, double t) const;
+  /// The audit's residual |E(t) − E(0) − W + D| / max(|W|, |E(0)|) between the start x0 (t = 0)
+  /// and the state xt at time t, whose W and D are the integrated work and dissipation.
+  double EnergyResidual(const TrainState& x0, const TrainState& xt, double t) const;
+
   /// The static-equilibrium start (model.md §5): y₀ and the mode it rests in.
   TrainState EquilibriumStart() const;
 

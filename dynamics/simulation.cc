@@ -171,11 +171,8 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   r.max_seat_force_N = recorder.max_seat_force_N();
   r.jump_rad = recorder.jump_rad();
   r.longest_jump_rad = recorder.longest_jump_rad();
-  // Energy audit: r = |E(t) − E(0) − W + D| / max(|W|, |E(0)|).
-  const TrainState& xf = r.stats.final_state;
-  const double e0 = train.Energy(x0, 0.0), e1 = train.Energy(xf, r.stats.final_time);
-  const double scale = std::max(std::abs(xf[2]), std::abs(e0));
-  r.energy_residual = scale > 0.0 ? std::abs(e1 - e0 - xf[2] + xf[3]) / scale : 0.0;
+  r.energy_residual = train.EnergyResidual(x0, r.stats.final_state, r.stats.final_time);
+
   return r;
 }
 

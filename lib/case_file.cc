@@ -530,7 +530,8 @@ void CheckTomlText(const std::string& text, const std::string& path) {
     ++column;
     auto starts = [&](const char* s) { return text.compare(i, std::strlen(s), s) == 0; };
     auto fail = [&](const std::string& what) {
-      throw CaseError(path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + what);
+      throw CaseError(path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
+                      what);
     };
     if (ch == '\n') {
       ++line;
@@ -540,7 +541,8 @@ void CheckTomlText(const std::string& text, const std::string& path) {
     }
     switch (state) {
       case State::kNormal:
-        if (ch >= 0x80) fail("non-ASCII character outside a string or comment (TOML allows it only there)");
+        if (ch >= 0x80)
+          fail("non-ASCII character outside a string or comment (TOML allows it only there)");
         if (ch == '#') state = State::kComment;
         if (starts("\"\"\"")) {
           state = State::kMultiBasic;
@@ -568,7 +570,8 @@ void CheckTomlText(const std::string& text, const std::string& path) {
         break;
       case State::kMultiBasic:
         if (after_continuation) {
-          if (ch >= 0x80) fail("non-ASCII character right after a line-ending backslash in a multi-line string");
+          if (ch >= 0x80)
+            fail("non-ASCII character right after a line-ending backslash in a multi-line string");
           if (ch != ' ' && ch != '\t' && ch != '\r') after_continuation = false;
         }
         if (ch == '\\') {
@@ -595,7 +598,6 @@ void CheckTomlText(const std::string& text, const std::string& path) {
 }
 
 const toml::table* Section(const toml::table& root, const std::string& file, const char* name) {
-
   const toml::node* node = root.get(name);
   if (!node) return nullptr;
   const toml::table* t = node->as_table();
@@ -603,13 +605,21 @@ const toml::table* Section(const toml::table& root, const std::string& file, con
   return t;
 }
 
-}  // namespace
+// Reads a whole file; CaseError naming it when it cannot be read.
+std::string ReadFile(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError(path + ": cannot open the " + what + " for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw CaseError(path + ": read error");
+  return buffer.str();
+}
 
-Case ParseCase(const std::string& text, const std::string& path) {
+// Parses TOML text; a malformed document is one CaseError line with its position.
+toml::table ParseToml(const std::string& text, const std::string& path) {
   CheckTomlText(text, path);
-  toml::table root;
   try {
-    root = toml::parse(text, path);
+    return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     const auto& where = e.source().begin;
     std::string description(e.description());
@@ -619,6 +629,12 @@ Case ParseCase(const std::string& text, const std::string& path) {
     throw CaseError(path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
                     ": malformed TOML: " + description);
   }
+}
+
+}  // namespace
+
+Case ParseCase(const std::string& text, const std::string& path) {
+  const toml::table root = ParseToml(text, path);
   static const std::set<std::string> kSections = {
       "engine", "lift", "needle", "spring", "train", "solver", "overspeed", "profile", "paper"};
   for (const auto& [k, node] : root) {
@@ -660,14 +676,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
   return c;
 }
 
-Case LoadCase(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(path + ": cannot open the case file for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw CaseError(path + ": read error");
-  return ParseCase(buffer.str(), path);
-}
+Case LoadCase(const std::string& path) { return ParseCase(ReadFile(path, "case file"), path); }
 
 void CheckSplineFits(const Case& c, SplineKind kind, const std::string& where) {
   const int need = MinimumPoints(kind);
@@ -679,19 +688,7 @@ void CheckSplineFits(const Case& c, SplineKind kind, const std::string& where) {
 }
 
 DesignInputs ParseDesignInputs(const std::string& text, const std::string& path) {
-  CheckTomlText(text, path);
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    const auto& where = e.source().begin;
-    std::string description(e.description());
-    for (char& ch : description) {
-      if (ch == '\n') ch = ' ';
-    }
-    throw CaseError(path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
-                    ": malformed TOML: " + description);
-  }
+  const toml::table root = ParseToml(text, path);
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title" || key == "engine" || key == "design") continue;
@@ -798,22 +795,7 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
 }
 
 SynthesisFile LoadSynthesisFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(path + ": cannot open the synthesis file for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  CheckTomlText(buffer.str(), path);
-  toml::table root;
-  try {
-    root = toml::parse(buffer.str(), path);
-  } catch (const toml::parse_error& e) {
-    std::string description(e.description());
-    for (char& ch : description) {
-      if (ch == '\n') ch = ' ';
-    }
-    throw CaseError(path + ":" + std::to_string(e.source().begin.line) + ":" +
-                    std::to_string(e.source().begin.column) + ": malformed TOML: " + description);
-  }
+  const toml::table root = ParseToml(ReadFile(path, "synthesis file"), path);
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title" || key == "rise" || key == "limits" || key == "checks" || key == "output")
@@ -881,11 +863,7 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
 }
 
 DesignInputs LoadDesignInputs(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(path + ": cannot open the engine file for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return ParseDesignInputs(buffer.str(), path);
+  return ParseDesignInputs(ReadFile(path, "engine file"), path);
 }
 
 LiftLaw MakeLiftLaw(const Case& c) {

@@ -250,6 +250,8 @@ TEST(NeedleCliDynamicsTest, CsvTimeSeriesOnlyWhenAsked) {
 TEST(NeedleCliDynamicsTest, OverspeedReportsBothSpeeds) {
   const auto r = RunNeedle("overspeed " + Case("basu-cam4-light-spring.toml") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // no progress bar in a pipe
+
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["liftoff_rpm_dynamic"].is_number());
   EXPECT_TRUE(j["liftoff_rpm_quasi_static"].is_number());
