@@ -71,6 +71,13 @@ int RunSynthCommand(const SynthCommandOptions& o) {
   spec.accel_limit = f.accel_limit;
   spec.decel_limit = f.decel_limit;
   spec.jerk_limit = f.jerk_limit;
+  if (f.base_radius_m && f.offset_m == 0.0) {  // the steering caps assume a radial follower
+    spec.base_radius_m = *f.base_radius_m;
+    spec.roller_radius_m = f.roller_radius_m.value_or(0.0);
+    spec.max_pressure_angle_rad = f.max_pressure_angle_rad.value_or(0.0);
+    spec.min_profile_radius_m = f.min_profile_radius_m.value_or(-1.0);
+  }
+
   SynthesizedLaw rise;
   try {
     rise = SynthesizeRise(spec);
@@ -109,6 +116,9 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     j["lift_mm"] = f.height_m * mm;
     j["limits_used_fraction"] = rise.scale;
     j["speed_limit_active"] = rise.speed_limit_active;
+    j["pressure_angle_cap_tighter"] = rise.pressure_angle_limited;
+    j["curvature_cap_tighter"] = rise.curvature_limited;
+
     j["constant_speed_start_deg"] = rise.constant_start_rad / kDeg;
     j["constant_speed_end_deg"] = rise.constant_end_rad / kDeg;
     j["constant_speed_length_deg"] = rise.constant_length_rad() / kDeg;

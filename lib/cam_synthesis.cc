@@ -12,9 +12,32 @@ struct Point {
   double s = 0.0, s1 = 0.0, s2 = 0.0;
 };
 
+// Caps on S' and |S''| from the cam geometry at a point of a side (s_abs: the displacement
+// from the base circle; convex: the side where S'' < 0).
+struct Caps {
+  double vmax = 1e300, amax = 1e300;
+  bool v_bound = false, a_bound = false;
+};
+
+Caps GeometryCaps(const SynthesisSpec& spec, double s_abs, double s1, bool convex) {
+  Caps c;
+  if (!(spec.base_radius_m > 0.0)) return c;
+  const double r = spec.base_radius_m + spec.roller_radius_m + s_abs;  // R = r_b + r_r + S
+  if (spec.max_pressure_angle_rad > 0.0)
+    c.vmax = r * std::tan(spec.max_pressure_angle_rad);  // tan φ = S'/R
+  if (convex && spec.min_profile_radius_m >= 0.0) {
+    // (R² + S'²)^{3/2} / (R² + 2S'² − R S'') ≥ ρ  ⇔  −S'' ≤ ((R² + S'²)^{3/2}/ρ − R² − 2S'²)/R
+    const double rho = spec.roller_radius_m + spec.min_profile_radius_m;
+    if (rho > 0.0)
+      c.amax = std::max(0.0, (std::pow(r * r + s1 * s1, 1.5) / rho - r * r - 2 * s1 * s1) / r);
+  }
+  return c;
+}
+
 // One side formed from rest with limits (a, j, vmax): the next point.
 Point Advance(const Point& p, double a, double j, double vmax, double h) {
   double s2 = std::min(a, p.s2 + j * h);  // largest S'' allowed by |S''| ≤ a and the jerk
+
   if (vmax < 1e299) {
     // Keep S'_i + S''_i²/(2j) ≤ vmax, with S'_i = S'_{i−1} + h(S''_{i−1} + S''_i)/2:
     // S''²/(2j) + (h/2) S'' + (S'_{i−1} + h S''_{i−1}/2 − vmax) ≤ 0.
@@ -40,7 +63,9 @@ Point Advance(const Point& p, double a, double j, double vmax, double h) {
 }
 
 struct Formed {
-  std::vector<Point> a, c;    // side A forward, side C backward (from the end of the rise)
+  bool v_bound = false, a_bound = false;  // a geometry cap bound somewhere
+  std::vector<Point> a, c;  // side A forward, side C backward (from the end of the rise)
+
   double constant_rad = 0.0;  // constant-speed length
   double total_rad = 0.0;
   bool speed_active = false;
@@ -70,11 +95,15 @@ Formed Form(const SynthesisSpec& spec, double alpha, double vmax, double h,
       f.constant_rad = (spec.height_m - pa.s - pc.s) / vmax;  // φ₀ = ΔS / S'max (5)
       break;
     }
-    if (!a_done && (c_done || pa.s1 <= pc.s1)) {
-      f.a.push_back(Advance(pa, aa, j, vmax, h));
-    } else {
-      f.c.push_back(Advance(pc, ac, j, vmax, h));
-    }
+    // The side with the lower S' advances, under the user limits and the geometry caps.
+    const bool advance_a = !a_done && (c_done || pa.s1 <= pc.s1);
+    const Point p = advance_a ? pa : pc;
+    const Caps caps = GeometryCaps(spec, advance_a ? p.s : spec.height_m - p.s, p.s1, !advance_a);
+    const double a_user = advance_a ? aa : ac;
+    f.v_bound = f.v_bound || caps.vmax < vmax;
+    f.a_bound = f.a_bound || caps.amax < a_user;
+    (advance_a ? f.a : f.c)
+        .push_back(Advance(p, std::min(a_user, caps.amax), j, std::min(vmax, caps.vmax), h));
   }
   if (f.a.size() + f.c.size() >= budget) {
     f.total_rad = INFINITY;
@@ -138,8 +167,11 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
         std::to_string(spec.rise_rad * 180.0 / 3.14159265358979323846) + " deg" +
         (std::isfinite(least) && vmax < 1e299
              ? "; the least S'max that fits is " + std::to_string(least * 1e3) + " mm/rad"
-             : "; raise the acceleration or jerk limits"));
+             : "; raise the acceleration or jerk limits") +
+        (spec.base_radius_m > 0.0 ? " (with the pressure-angle and curvature limits of the cam)"
+                                  : ""));
   }
+
   // Smallest α ≤ 1 whose rise still fits in Φ (the rise angle falls as α grows): bracket by
   // quartering, then bisect.
   const double give_up = 2 * spec.rise_rad;
@@ -161,6 +193,12 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   SynthesizedLaw law;
   law.scale = hi;
   law.speed_limit_active = f.speed_active;
+  law.pressure_angle_limited = f.v_bound;
+  law.curvature_limited = f.a_bound;
+
+  law.pressure_angle_limited = f.v_bound;
+  law.curvature_limited = f.a_bound;
+
   for (size_t i = 0; i < f.a.size(); ++i) {
     law.phi.push_back(h * i);
     law.s.push_back(f.a[i].s);

@@ -32,6 +32,15 @@ struct SynthesisSpec {
   double accel_limit = 0.0;    ///< a⁺, largest positive S'', m/rad², > 0
   double decel_limit = 0.0;    ///< a⁻, largest |S''| where negative, m/rad², > 0
   double jerk_limit = 1e300;   ///< j, largest |S'''|, m/rad³ (default: none)
+  /// Limits that depend on the cam and follower, applied at every step as caps on S' and
+  /// S'' (radial roller follower: offset 0). Active when base_radius_m > 0.
+  double base_radius_m = 0.0;           ///< r_b
+  double roller_radius_m = 0.0;         ///< r_r
+  double max_pressure_angle_rad = 0.0;  ///< φmax > 0: S' ≤ (r_b + r_r + S)·tan φmax
+  /// ρmin ≥ 0: on convex stretches (S'' < 0) the pitch radius (R² + S'²)^{3/2}/(R² + 2S'² − R S'')
+  /// with R = r_b + r_r + S stays ≥ r_r + ρmin, so the profile keeps a radius of at least ρmin
+  /// (no undercut). Negative: no curvature limit.
+  double min_profile_radius_m = -1.0;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
 };
@@ -40,6 +49,9 @@ struct SynthesizedLaw {
   std::vector<double> phi, s, s1, s2, s3;  ///< φ (rad), S (m), S', S'', S''' on the steps
   double scale = 1.0;                      ///< α, the fraction of the limits used
   bool speed_limit_active = false;
+  bool pressure_angle_limited = false;  ///< the pressure-angle cap bound S' somewhere
+  bool curvature_limited = false;       ///< the curvature cap bound S'' somewhere
+
   double constant_start_rad = 0.0, constant_end_rad = 0.0;  ///< the constant-speed section
   double constant_length_rad() const { return constant_end_rad - constant_start_rad; }
   /// Index where side A ends and side C begins (the junction), or the constant section starts.

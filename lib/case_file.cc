@@ -837,6 +837,11 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
     f.roller_radius_m = ch.OptionalQuantity("roller_radius", Dimension::kLength);
     f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
     f.max_pressure_angle_rad = ch.OptionalQuantity("max_pressure_angle", Dimension::kAngle);
+    f.min_profile_radius_m = ch.OptionalQuantity("min_profile_radius", Dimension::kLength);
+    if (f.min_profile_radius_m && !f.base_radius_m) {
+      ch.Fail("base_radius", "the curvature limit needs base_radius_mm");
+    }
+
     if (f.max_pressure_angle_rad && !f.base_radius_m)
       ch.Fail("base_radius", "the pressure-angle check needs base_radius_mm");
     ch.Finish();

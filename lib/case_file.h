@@ -180,7 +180,9 @@ struct DesignInputs {
 
 /// A synthesis specification (`needle synth SPEC.toml`): [rise] angle_deg, lift_mm, step_deg;
 /// [limits] speed_mm_rad, acceleration_mm_rad2, deceleration_mm_rad2, jerk_mm_rad3;
-/// [checks] base_radius_mm, roller_radius_mm, offset_mm, max_pressure_angle_deg;
+/// [checks] base_radius_mm, roller_radius_mm, offset_mm, max_pressure_angle_deg,
+/// min_profile_radius_mm (the last two steer every step; offset must then be 0);
+
 /// [output] fall = "mirror" | "none", crank_start_deg, speed_rpm, cycle (for --case).
 struct SynthesisFile {
   std::string path, title;
@@ -189,6 +191,8 @@ struct SynthesisFile {
   std::optional<double> base_radius_m, roller_radius_m;
   double offset_m = 0.0;
   std::optional<double> max_pressure_angle_rad;
+  std::optional<double> min_profile_radius_m;  ///< steer S'' so the profile keeps this radius
+
   bool mirror_fall = true;
   double crank_start_rad = 0.0;
   double speed_rpm = 1000.0;

@@ -121,3 +121,61 @@ TEST(CamSynthesisTest, SpecIsValidated) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+TEST(CamSynthesisStepLimitsTest, CurvatureLimitSteersEveryStepAndAvoidsTheUndercut) {
+  // Radial roller follower r_r = 8.25 mm. On the paper's 10 mm base circle the law undercuts;
+  // with the curvature limit steering each step (profile radius ≥ 0) the paper's 63° become
+  // infeasible, and the message names the least S'max that would fit.
+  SynthesisSpec s = Paper();
+  s.base_radius_m = 0.010;
+  s.roller_radius_m = 0.00825;
+  s.min_profile_radius_m = 0.0;
+  try {
+    SynthesizeRise(s);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the least S'max that fits is 7.94"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("with the pressure-angle and curvature limits of the cam"),
+              std::string::npos);
+  }
+  // On a 30 mm base circle it fits; the cap binds near the crest, and every convex step keeps
+  // a profile radius ≥ 0 while the derivative limits still hold.
+  s.base_radius_m = 0.030;
+  const SynthesizedLaw law = SynthesizeRise(s);
+  EXPECT_TRUE(law.curvature_limited);
+  ExpectWithinLimits(law, s);
+  double min_radius = 1e9;
+  for (size_t i = 0; i < law.phi.size(); ++i) {
+    if (law.s2[i] >= 0.0) continue;
+    const double r = s.base_radius_m + s.roller_radius_m + law.s[i], v = law.s1[i];
+    min_radius =
+        std::min(min_radius, std::pow(r * r + v * v, 1.5) / (r * r + 2 * v * v - r * law.s2[i]) -
+                                 s.roller_radius_m);
+  }
+  EXPECT_GE(min_radius, -1e-9);
+  EXPECT_LT(min_radius, 1e-5);  // and it is the binding limit: the radius comes down to it
+}
+
+TEST(CamSynthesisStepLimitsTest, PressureAngleLimitSteersEveryStep) {
+  SynthesisSpec s = Paper();
+  s.base_radius_m = 0.030;
+  s.roller_radius_m = 0.00825;
+  s.max_pressure_angle_rad = 11.0 * kDeg;  // the unsteered law reaches 11.19°
+  const SynthesizedLaw law = SynthesizeRise(s);
+  EXPECT_TRUE(law.pressure_angle_limited);
+  double worst = 0;
+  for (size_t i = 0; i < law.phi.size(); ++i) {
+    worst =
+        std::max(worst, std::atan(law.s1[i] / (s.base_radius_m + s.roller_radius_m + law.s[i])));
+  }
+  EXPECT_LE(worst, 11.0 * kDeg + 1e-12);
+  EXPECT_GT(worst, 10.99 * kDeg);
+  ExpectWithinLimits(law, s);
+}
+
+}  // namespace
+}  // namespace needle

@@ -190,17 +190,20 @@ rate_N_mm = 40
 TEST(CaseFileTest, NonAsciiOutsideStringsAndCommentsIsRefusedBeforeTomlSeesIt) {
   // toml++ 3.3.0 has undefined behaviour on such input (marzer/tomlplusplus#295; found by our
   // fuzzer with "\xca\x89" at the start of a line): the loader refuses it first.
-  EXPECT_EQ(Error("[engine]\nspeed_rpm = 400\n\xca\x89ycle = 1\n"),
-            "t.toml:3:1: non-ASCII character outside a string or comment (TOML allows it only there)");
-  EXPECT_EQ(Error("s = \"\"\"\\\n\xc2\xa7\"\"\"\n"),
-            "t.toml:2:1: non-ASCII character right after a line-ending backslash in a multi-line string");
+  EXPECT_EQ(
+      Error("[engine]\nspeed_rpm = 400\n\xca\x89ycle = 1\n"),
+      "t.toml:3:1: non-ASCII character outside a string or comment (TOML allows it only there)");
+  EXPECT_EQ(
+      Error("s = \"\"\"\\\n\xc2\xa7\"\"\"\n"),
+      "t.toml:2:1: non-ASCII character right after a line-ending backslash in a multi-line string");
   // In comments and strings it is fine.
-  const Case c = ParseCase("title = \"Basu: 0.5 mm at 0\xc2\xb0\"  # \xcf\x80\n" + kGood.substr(kGood.find("[engine]")), "t.toml");
+  const Case c = ParseCase(
+      "title = \"Basu: 0.5 mm at 0\xc2\xb0\"  # \xcf\x80\n" + kGood.substr(kGood.find("[engine]")),
+      "t.toml");
   EXPECT_EQ(c.title, "Basu: 0.5 mm at 0\xc2\xb0");
 }
 
 TEST(CaseFileTest, UnreadableFile) {
-
   try {
     LoadCase("/no/such/case.toml");
     FAIL();
