@@ -77,6 +77,15 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     spec.max_pressure_angle_rad = f.max_pressure_angle_rad.value_or(0.0);
     spec.min_profile_radius_m = f.min_profile_radius_m.value_or(-1.0);
   }
+  // The cam turns at half the crank speed in a four-stroke engine.
+  const double cam_omega = OmegaFromRpm(f.speed_rpm) / (f.cycle == "four-stroke" ? 2.0 : 1.0);
+  if (f.min_spring_reserve) {
+    spec.min_spring_reserve = *f.min_spring_reserve;
+    spec.spring_preload_N = *f.spring_preload_N;
+    spec.spring_rate_N_m = f.spring_rate_N_m.value_or(0.0);
+    spec.moving_mass_kg = *f.moving_mass_kg;
+    spec.cam_omega = cam_omega;
+  }
 
   SynthesizedLaw rise;
   try {
@@ -106,6 +115,35 @@ int RunSynthCommand(const SynthCommandOptions& o) {
         std::abs(profile->max_pressure_angle_rad) > *f.max_pressure_angle_rad)
       ok = false;
     if (profile->undercut) ok = false;
+  }
+  // Spring reserve K = (P₀ + k S)/(m ω² |S''|) where S'' < 0, and the Hertz line-contact stress
+  // σ = √(F E*/(π L R*)), F = P₀ + k S + m ω² S'', 1/R* = 1/ρ + 1/r_r (ρ signed, + convex),
+  // E* = E/(2(1 − ν²)) for two bodies of the same steel.
+  Extreme reserve{INFINITY, 0.0}, hertz;
+  const bool have_spring = f.spring_preload_N && f.moving_mass_kg;
+  if (have_spring) {
+    const double p0 = *f.spring_preload_N, k = f.spring_rate_N_m.value_or(0.0),
+                 m = *f.moving_mass_kg;
+    for (size_t i = 0; i < rise.phi.size(); ++i) {
+      if (rise.s2[i] >= 0.0) continue;
+      const double factor = (p0 + k * rise.s[i]) / (m * cam_omega * cam_omega * -rise.s2[i]);
+      if (factor < reserve.value) reserve = {factor, rise.phi[i]};
+    }
+    if (f.min_spring_reserve && reserve.value < *f.min_spring_reserve * (1 - 1e-9)) ok = false;
+    if (profile && f.contact_length_m) {
+      const Displacement d = TableDisplacement(law);
+      const double rr = f.roller_radius_m.value_or(0.0);
+      for (const ProfilePoint& q : profile->points) {
+        const auto sv = d(q.cam_rad);
+        const double force =
+            p0 + k * sv[0] + m * cam_omega * cam_omega * sv[2];  // F = P₀ + kS + mω²S''
+        const double sigma = HertzLineStress(force, q.profile_radius_m, rr > 0.0 ? rr : INFINITY,
+                                             f.elastic_modulus_Pa, f.poisson, *f.contact_length_m);
+        if (sigma > hertz.value) hertz = {sigma, q.cam_rad};
+      }
+
+      if (f.max_contact_stress_Pa && hertz.value > *f.max_contact_stress_Pa) ok = false;
+    }
   }
   std::ostringstream out;
   const double mm = 1e3;
@@ -138,6 +176,16 @@ int RunSynthCommand(const SynthCommandOptions& o) {
       j["min_profile_radius_at_deg"] = profile->min_profile_radius_at_rad / kDeg;
       j["undercut"] = profile->undercut;
     }
+    if (have_spring) {
+      j["min_spring_reserve"] =
+          std::isfinite(reserve.value) ? nlohmann::json(reserve.value) : nlohmann::json(nullptr);
+      j["min_spring_reserve_deg"] = reserve.at / kDeg;
+      j["spring_reserve_cap_tighter"] = rise.spring_reserve_limited;
+    }
+    if (std::isfinite(hertz.value) && hertz.value > 0) {
+      j["max_contact_stress_MPa"] = hertz.value * 1e-6;
+      j["max_contact_stress_deg"] = hertz.at / kDeg;
+    }
     j["pass"] = ok;
     out << j.dump(2) << '\n';
   } else {
@@ -167,6 +215,21 @@ int RunSynthCommand(const SynthCommandOptions& o) {
           << "; "
           << "profile radius min " << Fixed(profile->min_profile_radius_m * mm, 3) << " mm; "
           << (profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
+    }
+    if (have_spring) {
+      out << "spring reserve min " << Fixed(reserve.value, 3) << " at "
+          << Fixed(reserve.at / kDeg, 2) << " deg"
+          << (f.min_spring_reserve
+                  ? " (limit " + Fixed(*f.min_spring_reserve, 2) + ", steering every step)"
+                  : "")
+          << '\n';
+    }
+    if (std::isfinite(hertz.value) && hertz.value > 0) {
+      out << "contact (Hertz) stress max " << Fixed(hertz.value * 1e-6, 0) << " MPa at cam "
+          << Fixed(hertz.at / kDeg, 2) << " deg"
+          << (f.max_contact_stress_Pa ? " (limit " + Fixed(*f.max_contact_stress_Pa * 1e-6, 0) + ")"
+                                      : "")
+          << '\n';
     }
     out << (ok ? "checks pass\n" : "a check FAILS\n");
   }

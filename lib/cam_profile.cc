@@ -18,6 +18,14 @@ void FollowerGeometry::Validate() const {
   if (!(lever_ratio > 0.0)) throw std::invalid_argument("lever ratio must be positive");
 }
 
+double HertzLineStress(double force_N, double radius1_m, double radius2_m, double modulus_Pa,
+                       double poisson, double length_m) {
+  const double inv_r = 1.0 / radius1_m + 1.0 / radius2_m;  // 1/R*
+  if (!(force_N > 0.0) || !(inv_r > 0.0)) return 0.0;
+  const double e_star = modulus_Pa / (2.0 * (1.0 - poisson * poisson));  // E*
+  return std::sqrt(force_N * e_star * inv_r / (kPi * length_m));
+}
+
 CamProfile MakeCamProfile(const Displacement& disp, const FollowerGeometry& g, int n) {
   g.Validate();
   if (n < 8) throw std::invalid_argument("a cam profile needs at least 8 points");

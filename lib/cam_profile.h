@@ -50,4 +50,11 @@ struct CamProfile {
 /// The profile on `n` equal steps of a full turn starting at ψ = 0.
 CamProfile MakeCamProfile(const Displacement& s, const FollowerGeometry& g, int n);
 
+/// Hertz line contact between two cylinders of the same material (Pa):
+///     σ = √(F E* / (π L R*)),   1/R* = 1/ρ₁ + 1/ρ₂ (signed: concave negative),
+///     E* = E / (2(1 − ν²)).
+/// 0 when F ≤ 0 (no contact) or the surfaces conform (1/R* ≤ 0).
+double HertzLineStress(double force_N, double radius1_m, double radius2_m, double modulus_Pa,
+                       double poisson, double length_m);
+
 }  // namespace needle

@@ -16,20 +16,33 @@ struct Point {
 // from the base circle; convex: the side where S'' < 0).
 struct Caps {
   double vmax = 1e300, amax = 1e300;
-  bool v_bound = false, a_bound = false;
+  bool reserve_bound = false;  // the spring reserve set amax
 };
 
 Caps GeometryCaps(const SynthesisSpec& spec, double s_abs, double s1, bool convex) {
   Caps c;
+  if (convex && spec.min_spring_reserve > 0.0) {
+    // (P₀ + k S) ≥ K m ω² |S''|  ⇔  |S''| ≤ (P₀ + k S)/(K m ω²)
+    c.amax = (spec.spring_preload_N + spec.spring_rate_N_m * s_abs) /
+             (spec.min_spring_reserve * spec.moving_mass_kg * spec.cam_omega * spec.cam_omega);
+    c.reserve_bound = true;
+  }
   if (!(spec.base_radius_m > 0.0)) return c;
   const double r = spec.base_radius_m + spec.roller_radius_m + s_abs;  // R = r_b + r_r + S
-  if (spec.max_pressure_angle_rad > 0.0)
+  if (spec.max_pressure_angle_rad > 0.0) {
     c.vmax = r * std::tan(spec.max_pressure_angle_rad);  // tan φ = S'/R
+  }
   if (convex && spec.min_profile_radius_m >= 0.0) {
     // (R² + S'²)^{3/2} / (R² + 2S'² − R S'') ≥ ρ  ⇔  −S'' ≤ ((R² + S'²)^{3/2}/ρ − R² − 2S'²)/R
     const double rho = spec.roller_radius_m + spec.min_profile_radius_m;
-    if (rho > 0.0)
-      c.amax = std::max(0.0, (std::pow(r * r + s1 * s1, 1.5) / rho - r * r - 2 * s1 * s1) / r);
+    if (rho > 0.0) {
+      const double cap =
+          std::max(0.0, (std::pow(r * r + s1 * s1, 1.5) / rho - r * r - 2 * s1 * s1) / r);
+      if (cap < c.amax) {
+        c.amax = cap;
+        c.reserve_bound = false;
+      }
+    }
   }
   return c;
 }
@@ -63,7 +76,7 @@ Point Advance(const Point& p, double a, double j, double vmax, double h) {
 }
 
 struct Formed {
-  bool v_bound = false, a_bound = false;  // a geometry cap bound somewhere
+  bool v_bound = false, a_bound = false, reserve_bound = false;  // a cap was the tighter limit
   std::vector<Point> a, c;  // side A forward, side C backward (from the end of the rise)
 
   double constant_rad = 0.0;  // constant-speed length
@@ -98,10 +111,14 @@ Formed Form(const SynthesisSpec& spec, double alpha, double vmax, double h,
     // The side with the lower S' advances, under the user limits and the geometry caps.
     const bool advance_a = !a_done && (c_done || pa.s1 <= pc.s1);
     const Point p = advance_a ? pa : pc;
-    const Caps caps = GeometryCaps(spec, advance_a ? p.s : spec.height_m - p.s, p.s1, !advance_a);
+    // The caps grow with the displacement from the base circle. Side C is formed backwards, so
+    // its next point lies lower than the current one: evaluate there, bounded conservatively.
     const double a_user = advance_a ? aa : ac;
+    const double s_abs = advance_a ? p.s : spec.height_m - (p.s + h * p.s1 + h * h * a_user);
+    const Caps caps = GeometryCaps(spec, s_abs, p.s1, !advance_a);
     f.v_bound = f.v_bound || caps.vmax < vmax;
-    f.a_bound = f.a_bound || caps.amax < a_user;
+    f.a_bound = f.a_bound || (caps.amax < a_user && !caps.reserve_bound);
+    f.reserve_bound = f.reserve_bound || (caps.amax < a_user && caps.reserve_bound);
     (advance_a ? f.a : f.c)
         .push_back(Advance(p, std::min(a_user, caps.amax), j, std::min(vmax, caps.vmax), h));
   }
@@ -195,9 +212,11 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   law.speed_limit_active = f.speed_active;
   law.pressure_angle_limited = f.v_bound;
   law.curvature_limited = f.a_bound;
+  law.spring_reserve_limited = f.reserve_bound;
 
   law.pressure_angle_limited = f.v_bound;
   law.curvature_limited = f.a_bound;
+  law.spring_reserve_limited = f.reserve_bound;
 
   for (size_t i = 0; i < f.a.size(); ++i) {
     law.phi.push_back(h * i);

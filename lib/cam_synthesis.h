@@ -41,6 +41,11 @@ struct SynthesisSpec {
   /// with R = r_b + r_r + S stays ≥ r_r + ρmin, so the profile keeps a radius of at least ρmin
   /// (no undercut). Negative: no curvature limit.
   double min_profile_radius_m = -1.0;
+  /// Spring reserve K > 0: on the decelerating side the spring force must stay K times the
+  /// inertia force, (P₀ + k·S) ≥ K·m·ω²·|S''|, a cap |S''| ≤ (P₀ + k·S)/(K·m·ω²). Needs the
+  /// spring, the moving mass and the cam speed ω (rad/s). 0: no such limit.
+  double min_spring_reserve = 0.0;
+  double spring_preload_N = 0.0, spring_rate_N_m = 0.0, moving_mass_kg = 0.0, cam_omega = 0.0;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
 };
@@ -51,6 +56,8 @@ struct SynthesizedLaw {
   bool speed_limit_active = false;
   bool pressure_angle_limited = false;  ///< the pressure-angle cap bound S' somewhere
   bool curvature_limited = false;       ///< the curvature cap bound S'' somewhere
+
+  bool spring_reserve_limited = false;  ///< the spring-reserve cap bound S'' somewhere
 
   double constant_start_rad = 0.0, constant_end_rad = 0.0;  ///< the constant-speed section
   double constant_length_rad() const { return constant_end_rad - constant_start_rad; }

@@ -841,6 +841,26 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
     if (f.min_profile_radius_m && !f.base_radius_m) {
       ch.Fail("base_radius", "the curvature limit needs base_radius_mm");
     }
+    f.spring_preload_N = ch.OptionalQuantity("spring_preload", Dimension::kForce);
+    f.spring_rate_N_m = ch.OptionalQuantity("spring_rate", Dimension::kStiffness);
+    f.moving_mass_kg = ch.OptionalQuantity("moving_mass", Dimension::kMass);
+    f.min_spring_reserve = ch.OptionalNumber("min_spring_reserve");
+    if (f.min_spring_reserve && !(f.spring_preload_N && f.moving_mass_kg)) {
+      ch.Fail("min_spring_reserve",
+              "needs spring_preload_N (or _kgf), moving_mass_kg and [output] speed_rpm");
+    }
+    if (f.min_spring_reserve && !(*f.min_spring_reserve > 0.0))
+      ch.Fail("min_spring_reserve", "must be positive");
+    f.contact_length_m = ch.OptionalQuantity("contact_length", Dimension::kLength);
+    if (auto e = ch.OptionalQuantity("elastic_modulus", Dimension::kPressure))
+      f.elastic_modulus_Pa = *e;
+    if (auto nu = ch.OptionalNumber("poisson")) f.poisson = *nu;
+    f.max_contact_stress_Pa = ch.OptionalQuantity("max_contact_stress", Dimension::kPressure);
+    if (f.max_contact_stress_Pa &&
+        !(f.contact_length_m && f.spring_preload_N && f.moving_mass_kg && f.base_radius_m)) {
+      ch.Fail("max_contact_stress",
+              "needs contact_length_mm, spring_preload, moving_mass_kg and base_radius_mm");
+    }
 
     if (f.max_pressure_angle_rad && !f.base_radius_m)
       ch.Fail("base_radius", "the pressure-angle check needs base_radius_mm");

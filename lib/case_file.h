@@ -192,6 +192,11 @@ struct SynthesisFile {
   double offset_m = 0.0;
   std::optional<double> max_pressure_angle_rad;
   std::optional<double> min_profile_radius_m;  ///< steer S'' so the profile keeps this radius
+  /// Spring reserve (steers S'' on the decelerating side) and contact stress (checked):
+  std::optional<double> spring_preload_N, spring_rate_N_m, moving_mass_kg, min_spring_reserve;
+  std::optional<double> contact_length_m;  ///< roller width in contact, for Hertz stress
+  double elastic_modulus_Pa = 210e9, poisson = 0.3;
+  std::optional<double> max_contact_stress_Pa;
 
   bool mirror_fall = true;
   double crank_start_rad = 0.0;

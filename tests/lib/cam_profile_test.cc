@@ -81,3 +81,23 @@ TEST(CamProfileTest, SmallBaseCircleWithLargeRollerUndercuts) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+TEST(CamProfileTest, HertzLineStressByHand) {
+  // 1000 N between a 10 mm cam radius and an 8.25 mm roller, 10 mm long, steel (210 GPa, 0.3):
+  // E* = 210e9/(2·0.91) = 115.4 GPa, 1/R* = 100 + 121.2 = 221.2 /m,
+  // σ = √(1000 · 115.4e9 · 221.2 / (π · 0.01)) = 901 MPa.
+  EXPECT_NEAR(HertzLineStress(1000, 0.010, 0.00825, 210e9, 0.3, 0.010) * 1e-6, 901.4, 0.5);
+  // Doubling the force raises it by √2; a concave cam radius lowers it; no force, no stress.
+  EXPECT_NEAR(HertzLineStress(2000, 0.010, 0.00825, 210e9, 0.3, 0.010) /
+                  HertzLineStress(1000, 0.010, 0.00825, 210e9, 0.3, 0.010),
+              std::sqrt(2.0), 1e-12);
+  EXPECT_LT(HertzLineStress(1000, -0.05, 0.00825, 210e9, 0.3, 0.010),
+            HertzLineStress(1000, 0.05, 0.00825, 210e9, 0.3, 0.010));
+  EXPECT_EQ(HertzLineStress(-1, 0.01, 0.01, 210e9, 0.3, 0.01), 0.0);
+}
+
+}  // namespace
+}  // namespace needle

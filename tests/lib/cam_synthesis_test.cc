@@ -179,3 +179,32 @@ TEST(CamSynthesisStepLimitsTest, PressureAngleLimitSteersEveryStep) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+TEST(CamSynthesisStepLimitsTest, SpringReserveSteersTheDeceleration) {
+  // A fuel-pump plunger of 0.2 kg on a 500 N, 20 N/mm spring at 1000 rpm of cam: with
+  // K = 1.5 the decelerating side keeps (P₀ + kS) ≥ 1.5·m·ω²·|S''| at every step.
+  SynthesisSpec s = Paper();
+  s.min_spring_reserve = 1.5;
+  s.spring_preload_N = 500;
+  s.spring_rate_N_m = 20e3;
+  s.moving_mass_kg = 0.2;
+  s.cam_omega = OmegaFromRpm(1000);
+  const SynthesizedLaw law = SynthesizeRise(s);
+  EXPECT_TRUE(law.spring_reserve_limited);
+  double worst = INFINITY;
+  for (size_t i = 0; i < law.phi.size(); ++i) {
+    if (law.s2[i] < 0.0) {
+      worst =
+          std::min(worst, (500 + 20e3 * law.s[i]) / (0.2 * s.cam_omega * s.cam_omega * -law.s2[i]));
+    }
+  }
+  EXPECT_GE(worst, 1.5 * (1 - 1e-9));
+  EXPECT_LT(worst, 1.51);  // binding
+  ExpectWithinLimits(law, s);
+}
+
+}  // namespace
+}  // namespace needle
