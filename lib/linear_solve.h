@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Solves the sparse, banded systems A·x = b that spline construction produces.
-/// Small systems (n ≤ 64) go to a dense LU with partial pivoting, larger ones to Eigen's
+/// Small systems (n ≤ 32) go to a dense LU with partial pivoting, larger ones to Eigen's
 /// SparseLU: both O(n) memory per row of band and fast where each is used.
 
 #include <Eigen/Core>
