@@ -37,7 +37,10 @@ done
 Regenerate with `bash scripts/bench.sh` (about 10 s after the build); it writes the CSV files
 and plots in `bench/` and this page from `bench/summary.md`. Numbers below are from the last
 run on a 2-core machine of the project's kind; timings vary by a few tens of percent from run
-to run. Plots: `bench/work-precision-<scene>-lift.svg` and `-force.svg`.
+to run; the two-core speed-up of the overspeed search most of all (1.1–1.6×: on this machine
+two independent processes of the same simulations slow each other down by 1.3–1.6×). Plots:
+`bench/work-precision-<scene>-lift.svg` and `-force.svg`.
+
 
 HEAD
   cat bench/summary.md
