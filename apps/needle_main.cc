@@ -1,7 +1,11 @@
 // The `needle` command: a thin layer over the libraries. Exit status: 0 success,
-// 1 a check that fails, 2 bad input (case file, options) — one line on stderr.
+// 1 a check that fails, 2 bad input (case file, options) — one line on stderr, 3 an internal
+// error.
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <iostream>
+#include <memory>
+#include <vector>
 
 #include "apps/cam_command.h"
 #include "apps/check_command.h"
@@ -10,25 +14,36 @@
 #include "apps/spring_command.h"
 #include "lib/case_file.h"
 
+namespace {
+
+// A subcommand: its parsed flag and how to run it with the options it filled in.
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+template <typename Options>
+Command Register(CLI::App& app, CLI::App* (*add)(CLI::App&, Options&), int (*run)(const Options&)) {
+  auto options = std::make_shared<Options>();
+  CLI::App* sub = add(app, *options);
+  return {sub, [options, run] { return run(*options); }};
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"needle: cam-driven needle valves — kinematics, spring sizing, dynamics"};
   app.require_subcommand(1);
-  needle::CheckCommandOptions check;
-  CLI::App* check_cmd = needle::AddCheckCommand(app, check);
-  needle::KinematicsCommandOptions kinematics;
-  CLI::App* kinematics_cmd = needle::AddKinematicsCommand(app, kinematics);
-  needle::SpringCommandOptions spring;
-  CLI::App* spring_cmd = needle::AddSpringCommand(app, spring);
-  needle::DesignCommandOptions design;
-  CLI::App* design_cmd = needle::AddDesignCommand(app, design);
-  needle::SimulateCommandOptions simulate;
-  CLI::App* simulate_cmd = needle::AddSimulateCommand(app, simulate);
-  needle::OverspeedCommandOptions overspeed;
-  CLI::App* overspeed_cmd = needle::AddOverspeedCommand(app, overspeed);
-  needle::SynthCommandOptions synth;
-  CLI::App* synth_cmd = needle::AddSynthCommand(app, synth);
-  needle::ProfileCommandOptions profile;
-  CLI::App* profile_cmd = needle::AddProfileCommand(app, profile);
+  const std::vector<Command> commands = {
+      Register(app, needle::AddCheckCommand, needle::RunCheckCommand),
+      Register(app, needle::AddKinematicsCommand, needle::RunKinematicsCommand),
+      Register(app, needle::AddSpringCommand, needle::RunSpringCommand),
+      Register(app, needle::AddDesignCommand, needle::RunDesignCommand),
+      Register(app, needle::AddSimulateCommand, needle::RunSimulateCommand),
+      Register(app, needle::AddOverspeedCommand, needle::RunOverspeedCommand),
+      Register(app, needle::AddSynthCommand, needle::RunSynthCommand),
+      Register(app, needle::AddProfileCommand, needle::RunProfileCommand),
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -40,14 +55,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (check_cmd->parsed()) return needle::RunCheckCommand(check);
-    if (kinematics_cmd->parsed()) return needle::RunKinematicsCommand(kinematics);
-    if (spring_cmd->parsed()) return needle::RunSpringCommand(spring);
-    if (design_cmd->parsed()) return needle::RunDesignCommand(design);
-    if (simulate_cmd->parsed()) return needle::RunSimulateCommand(simulate);
-    if (overspeed_cmd->parsed()) return needle::RunOverspeedCommand(overspeed);
-    if (synth_cmd->parsed()) return needle::RunSynthCommand(synth);
-    if (profile_cmd->parsed()) return needle::RunProfileCommand(profile);
+    for (const Command& c : commands) {
+      if (c.app->parsed()) return c.run();
+    }
   } catch (const needle::CaseError& e) {
     std::cerr << "needle: " << e.what() << '\n';
     return 2;

@@ -214,10 +214,6 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   law.curvature_limited = f.a_bound;
   law.spring_reserve_limited = f.reserve_bound;
 
-  law.pressure_angle_limited = f.v_bound;
-  law.curvature_limited = f.a_bound;
-  law.spring_reserve_limited = f.reserve_bound;
-
   for (size_t i = 0; i < f.a.size(); ++i) {
     law.phi.push_back(h * i);
     law.s.push_back(f.a[i].s);
