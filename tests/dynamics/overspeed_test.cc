@@ -80,3 +80,30 @@ TEST(OverspeedTest, EmptyRangeIsRejected) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+TEST(OverspeedTest, EveryBundledSceneLiftsOffAtOrBelowItsQuasiStaticSpeed) {
+  // n_dyn ≤ n_qs·(1 + 2 %) on the bundled scenes with a train (the dynamics can only add to
+  // the rigid train's deceleration demand here: vibration, lash).
+  for (const char* name :
+       {"basu-example1.toml", "basu-example2.toml", "basu-cam4-light-spring.toml"}) {
+    const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + name);
+    const Scene s = MakeScene(c);
+    const double n_qs = QuasiStaticLiftoffRpm(
+        *s.law,
+        RigidTrain{s.train.mass_kg, s.train.preload_N, s.train.rate_N_m, s.train.gas_force_N});
+    OverspeedOptions o;
+    o.from_rpm = c.overspeed->from_rpm.value();
+    o.to_rpm = c.overspeed->to_rpm.value();
+    o.simulation = OptionsFromCase(c);
+    const OverspeedResult r = OverspeedSearch(s, o);
+    ASSERT_TRUE(r.n_dyn_rpm.has_value()) << name;
+    EXPECT_LE(*r.n_dyn_rpm, n_qs * 1.02) << name;
+    std::printf("%s: n_qs %.1f rpm, n_dyn %.1f rpm\n", name, n_qs, *r.n_dyn_rpm);
+  }
+}
+
+}  // namespace
+}  // namespace needle
