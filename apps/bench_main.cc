@@ -252,7 +252,7 @@ std::string RunKinematics(const std::string& out_dir, int repeats) {
 
   csv << "law,spline,spacing_deg,rounding_mm,velocity_rel_error,acceleration_rel_error,build_us,"
          "table_1000_us\n";
-  const double beta = 60.0 * kDeg, h = 2.5e-3, omega = OmegaFromRpm(400);
+  const double beta = 60.0 * kDeg, h = 2.5e-3;
   for (CamLawKind k : {CamLawKind::kCycloidal, CamLawKind::kHarmonic, CamLawKind::kPoly345}) {
     const CamLaw law(k, h, beta);
     for (SplineKind kind : AllSplineKinds()) {
@@ -280,19 +280,17 @@ std::string RunKinematics(const std::string& out_dir, int repeats) {
             }
           }
           const double build = MedianSeconds([&] { LiftLaw l(t, o); }, repeats * 20);
-          double sink = 0;
+          volatile double sink = 0;  // keeps the timed evaluations from being optimised away
           const double table = MedianSeconds(
               [&] {
                 const Kinematics kin(lift, 400);
                 for (int i = 0; i < 1000; ++i) {
                   const KinematicsPoint p = kin.At(beta * i / 999.0);
-                  sink += p.lift_m + p.velocity_m_s + p.acceleration_m_s2.value_or(0.0) +
-                          p.jerk_m_s3.value_or(0.0);
+                  sink = sink + p.lift_m + p.velocity_m_s + p.acceleration_m_s2.value_or(0.0) +
+                         p.jerk_m_s3.value_or(0.0);
                 }
               },
               repeats * 20);
-          (void)omega;
-          if (sink == 12345.678) std::cerr << "";
           csv << law.name() << ',' << SplineKindName(kind) << ',' << step << ',' << rounding << ','
               << ev / sv << ',' << (lift.HasAcceleration() ? std::to_string(ea / sa) : "") << ','
               << build * 1e6 << ',' << table * 1e6 << '\n';
@@ -397,7 +395,7 @@ std::string RunTargets(int repeats) {
     for (SplineKind kind : AllSplineKinds()) {
       SplineOptions o = c.lift.spline;
       o.kind = kind;
-      double sink = 0;
+      volatile double sink = 0;  // keeps the timed evaluations from being optimised away
       const double s = MedianSeconds(
           [&] {
             const LiftLaw law(c.lift.table, o);
@@ -405,11 +403,10 @@ std::string RunTargets(int repeats) {
             for (int i = 0; i < 1000; ++i) {
               const KinematicsPoint p =
                   kin.At(law.start_rad() + (law.end_rad() - law.start_rad()) * i / 999.0);
-              sink += p.velocity_m_s + p.acceleration_m_s2.value_or(0.0);
+              sink = sink + p.velocity_m_s + p.acceleration_m_s2.value_or(0.0);
             }
           },
           repeats * 40);
-      if (sink == 1.2345) std::cerr << "";
       if (s > worst) worst = s, worst_kind = SplineKindName(kind);
     }
     md << "| spline build + 1000-row table (slowest kind: " << worst_kind << ") | "

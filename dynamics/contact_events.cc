@@ -26,9 +26,8 @@ ContactMode ModeFromSigns(const std::array<int, kEventCount>& s) {
 Recorder::Recorder(const NeedleTrain& train, bool record_series)
     : train_(train), record_series_(record_series) {}
 
-void Recorder::Update(double t, const TrainState& x, ContactMode mode) {
+void Recorder::Update(double t, const TrainState& x) {
   const Contacts c = train_.Evaluate(x, t);
-  (void)mode;
   const double fc = train_.AppliedCamForce(c), fs = train_.AppliedSeatForce(c);
 
   const LiftLaw& law = train_.cam().law();
@@ -60,20 +59,19 @@ void Recorder::Update(double t, const TrainState& x, ContactMode mode) {
   }
 }
 
-void Recorder::Start(double t, const TrainState& x, ContactMode mode) {
+void Recorder::Start(double t, const TrainState& x) {
   cam_touched_ = train_.Evaluate(x, t).g_c > 0.0;
-  Update(t, x, mode);
+  Update(t, x);
 }
 
-void Recorder::GridSample(double t, const TrainState& x, ContactMode mode) {
+void Recorder::GridSample(double t, const TrainState& x) {
   const Contacts c = train_.Evaluate(x, t);
-  (void)mode;
   grid_.push_back({t, x[0], train_.AppliedCamForce(c)});
 }
 
-void Recorder::Sample(double t, const TrainState& x, ContactMode mode) { Update(t, x, mode); }
+void Recorder::Sample(double t, const TrainState& x) { Update(t, x); }
 
-void Recorder::Crossing(int index, int direction, double t, const TrainState& x, ContactMode mode) {
+void Recorder::Crossing(int index, int direction, double t, const TrainState& x) {
   const Contacts c = train_.Evaluate(x, t);
   if (index == 0 && direction > 0) {  // cam onset
     impacts_.push_back(
@@ -85,11 +83,11 @@ void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
         {seat_landed_ ? "seat-bounce" : "seat", c.crank_rad, std::max(0.0, c.g_s_rate)});
     seat_landed_ = true;
   }
-  Update(t, x, mode);
+  Update(t, x);
 }
 
-void Recorder::Finish(double t, const TrainState& x, ContactMode mode) {
-  Update(t, x, mode);
+void Recorder::Finish(double t, const TrainState& x) {
+  Update(t, x);
   if (separated_) episodes_.back().end_rad = train_.Angle(t);
 }
 

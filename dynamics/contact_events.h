@@ -26,7 +26,6 @@
 namespace needle {
 
 constexpr int kEventCount = 7;
-constexpr int kModeEvents = 4;  ///< events 0..3 switch the mode
 /// Lift above which a needle off the cam counts as separated, m (model.md §6: 1 µm).
 constexpr double kSeparationLift_m = 1e-6;
 
@@ -68,12 +67,13 @@ class Recorder {
   Recorder(const NeedleTrain& train, bool record_series);
 
   /// The initial state: a needle already on the cam has no lash to take up.
-  void Start(double t, const TrainState& x, ContactMode mode);
-  void Sample(double t, const TrainState& x, ContactMode mode);
-  /// An event function `index` crossed zero at t in direction ±1; `mode` is the mode after.
-  void Crossing(int index, int direction, double t, const TrainState& x, ContactMode mode);
+  void Start(double t, const TrainState& x);
+  void Sample(double t, const TrainState& x);
+  /// An event function `index` crossed zero at t in direction ±1. The train must already be in
+  /// the mode after the crossing: the record takes its forces from the train.
+  void Crossing(int index, int direction, double t, const TrainState& x);
   /// Closes an open episode at the end of the run.
-  void Finish(double t, const TrainState& x, ContactMode mode);
+  void Finish(double t, const TrainState& x);
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
@@ -83,7 +83,7 @@ class Recorder {
   void set_grid(std::vector<double> times) { grid_times_ = std::move(times); }
   const std::vector<double>& grid_times() const { return grid_times_; }
   /// Integrators call this for every grid time, in order, with the dense state there.
-  void GridSample(double t, const TrainState& x, ContactMode mode);
+  void GridSample(double t, const TrainState& x);
   /// Index of the next grid time not yet reported.
   size_t next_grid() const { return grid_.size(); }
   const std::vector<GridPoint>& grid() const { return grid_; }
@@ -98,7 +98,7 @@ class Recorder {
   double longest_jump_rad() const;
 
  private:
-  void Update(double t, const TrainState& x, ContactMode mode);
+  void Update(double t, const TrainState& x);
 
   const NeedleTrain& train_;
   bool record_series_;

@@ -16,7 +16,6 @@
 #include <string>
 
 #include "dynamics/integrator.h"
-#include "lib/units.h"
 
 namespace needle {
 namespace {
@@ -117,18 +116,15 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   const Breaks all_breaks = BreakTimes(train, t_end);
   const std::vector<double>& breaks = all_breaks.times;
   const std::vector<double>& grid = recorder.grid_times();
-  size_t next_grid = 0;
-  while (next_grid < grid.size() && grid[next_grid] <= 0.0)
-    recorder.GridSample(grid[next_grid++], x0,
-                        ModeFromSigns(Signs(Events(train, train.mode(), x0, 0.0))));
-
-  size_t next_break = 0;
+  size_t next_grid = 0, next_break = 0;
 
   std::array<int, kEventCount> signs = Signs(Events(train, train.mode(), x0, 0.0));
   UserData data{&train, ModeFromSigns(signs)};
   train.set_mode(data.mode);
   signs = Signs(Events(train, data.mode, x0, 0.0));
-  recorder.Start(0.0, x0, data.mode);
+  recorder.Start(0.0, x0);
+  while (next_grid < grid.size() && grid[next_grid] <= 0.0)
+    recorder.GridSample(grid[next_grid++], x0);
 
   Context context;
   Vector y(4, context.ctx);
@@ -157,55 +153,52 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   double stop = set_stop();
   double t_prev = 0.0;
   int found[kEventCount];
+  // One event function takes its new sign at (t, x): the mode follows the signs, and the train
+  // is switched before the crossing is recorded (the record takes the train's forces).
+  auto flip = [&](int i, int sign, const TrainState& x) {
+    if (++stats.events > o.max_events) ThrowOverBudget("events", o.max_events, train, t);
+    signs[i] = sign;
+    const ContactMode next = ModeFromSigns(signs);
+    const bool switched = next.cam != data.mode.cam || next.seat != data.mode.seat;
+    if (switched) {
+      data.mode = next;
+      train.set_mode(next);
+      signs[5] = Events(train, next, x, t)[5] > 0.0 ? 1 : -1;  // event 5 depends on the mode
+    }
+    recorder.Crossing(i, sign, t, x);
+    return switched;
+  };
   while (t < t_end) {
     const int flag = CVode(cvode.mem, stop, y.v, &t, CV_ONE_STEP);
     Check(flag, "CVode");
-    if (++stats.steps > o.max_steps) {
-      throw std::runtime_error("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
-                               " deg after " + std::to_string(o.max_steps) +
-                               " steps (the budget [solver] max_steps): the "
-                               "scene may chatter; try a looser rtol or raise max_steps");
-    }
+    if (++stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, t);
     TrainState x = ToState(y.v);
     // Grid times reached by this step, then dense samples inside it for the extremes
     // (CVodeGetDky on the step just taken).
     while (next_grid < grid.size() && grid[next_grid] <= t) {
       if (grid[next_grid] < t) {
         Check(CVodeGetDky(cvode.mem, grid[next_grid], 0, dky.v), "CVodeGetDky");
-        recorder.GridSample(grid[next_grid++], ToState(dky.v), data.mode);
+        recorder.GridSample(grid[next_grid++], ToState(dky.v));
       } else {
-        recorder.GridSample(grid[next_grid++], x, data.mode);
+        recorder.GridSample(grid[next_grid++], x);
       }
     }
     for (int k = 1; k <= 3 && t > t_prev; ++k) {
       const double tk = t_prev + (t - t_prev) * k / 4.0;
-      if (CVodeGetDky(cvode.mem, tk, 0, dky.v) == CV_SUCCESS)
-        recorder.Sample(tk, ToState(dky.v), data.mode);
+      if (CVodeGetDky(cvode.mem, tk, 0, dky.v) == CV_SUCCESS) recorder.Sample(tk, ToState(dky.v));
     }
     if (flag == CV_ROOT_RETURN) {
       Check(CVodeGetRootInfo(cvode.mem, found), "CVodeGetRootInfo");
+      bool switched = false;
       for (int i = 0; i < kEventCount; ++i) {
-        if (found[i] == 0) continue;
-        if (++stats.events > o.max_events) {
-          throw std::runtime_error("simulation stopped at " +
-                                   std::to_string(train.Angle(t) / kDeg) + " deg after " +
-                                   std::to_string(o.max_events) +
-                                   " events (the budget [solver] max_events): "
-                                   "the scene chatters; raise the seat damping or max_events");
-        }
-        signs[i] = found[i] > 0 ? 1 : -1;
-        recorder.Crossing(i, signs[i], t, x, ModeFromSigns(signs));
+        if (found[i] != 0) switched = flip(i, found[i] > 0 ? 1 : -1, x) || switched;
       }
-      const ContactMode next = ModeFromSigns(signs);
-      if (next.cam != data.mode.cam || next.seat != data.mode.seat) {
-        data.mode = next;
-        train.set_mode(next);
-        signs[5] = Events(train, next, x, t)[5] > 0.0 ? 1 : -1;
+      if (switched) {
         Check(CVodeReInit(cvode.mem, t, y.v), "CVodeReInit");
         stop = set_stop();
       }
     } else {
-      recorder.Sample(t, x, data.mode);
+      recorder.Sample(t, x);
       if (flag == CV_TSTOP_RETURN && t < t_end) {
         // The far side of a break: the cam's slope may jump there, and with it the force
         // branches k g + c ġ. CVODE's rootfinding restarts from the new values after
@@ -216,17 +209,10 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
           const EventValues v = Events(train, data.mode, x, t);
           bool changed = false;
           for (int i = 0; i < kEventCount; ++i) {
-            const int s = v[i] > 0.0 ? 1 : -1;
-            if (s == signs[i]) continue;
-            signs[i] = s;
+            const int sign = v[i] > 0.0 ? 1 : -1;
+            if (sign == signs[i]) continue;
+            flip(i, sign, x);
             changed = true;
-            if (++stats.events > o.max_events) ThrowOverBudget("events", o.max_events, train, t);
-            const ContactMode next = ModeFromSigns(signs);
-            if (next.cam != data.mode.cam || next.seat != data.mode.seat) {
-              data.mode = next;
-              train.set_mode(next);
-            }
-            recorder.Crossing(i, s, t, x, data.mode);
           }
           if (!changed) break;
         }
@@ -235,7 +221,7 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
     }
     t_prev = t;
   }
-  recorder.Finish(t, ToState(y.v), data.mode);
+  recorder.Finish(t, ToState(y.v));
   train.set_segment_end(std::numeric_limits<double>::infinity());
 
   stats.rhs_evaluations = train.evaluations() - rhs_before;

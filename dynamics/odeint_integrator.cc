@@ -261,9 +261,9 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
   ContactMode mode = ModeFromSigns(signs);
   train.set_mode(mode);
   signs = Signs(Events(train, mode, x0, 0.0));  // event 5 depends on the mode
-  recorder.Start(0.0, x0, mode);
+  recorder.Start(0.0, x0);
   while (next_grid < grid.size() && grid[next_grid] <= 0.0)
-    recorder.GridSample(grid[next_grid++], x0, mode);
+    recorder.GridSample(grid[next_grid++], x0);
 
   // First step: a small fraction of the fastest contact period; the stepper adapts.
   const TrainParameters& p = train.parameters();
@@ -333,7 +333,7 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
       if (++stats.events > o.max_events) ThrowOverBudget("events", o.max_events, train, first_t);
       while (next_grid < grid.size() && grid[next_grid] <= first_t) {
         dense.CalcState(grid[next_grid], xs);
-        recorder.GridSample(grid[next_grid++], xs, mode);
+        recorder.GridSample(grid[next_grid++], xs);
       }
       signs[first] = -signs[first];
       dense.CalcState(first_t, xs);
@@ -344,7 +344,7 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
         train.set_mode(mode);
         signs[5] = Events(train, mode, xs, first_t)[5] > 0.0 ? 1 : -1;  // depends on the mode
       }
-      recorder.Crossing(first, signs[first], first_t, xs, mode);
+      recorder.Crossing(first, signs[first], first_t, xs);
       if (switched) {
         restart = first_t;
         break;
@@ -359,20 +359,20 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
     }
     while (next_grid < grid.size() && grid[next_grid] <= t1) {
       dense.CalcState(grid[next_grid], xs);
-      recorder.GridSample(grid[next_grid++], xs, mode);
+      recorder.GridSample(grid[next_grid++], xs);
     }
     // A few dense samples for the extremes, then the step end.
     for (int k = 1; k <= 3; ++k) {
       const double tk = t0 + (t1 - t0) * k / 4.0;
       dense.CalcState(tk, xs);
-      recorder.Sample(tk, xs, mode);
+      recorder.Sample(tk, xs);
     }
     t = t1;
     x = x_end;
-    recorder.Sample(t, x, mode);
+    recorder.Sample(t, x);
     if (at_segment_end && t < t_end) dense.Initialize(x, t, dense.CurrentStep());  // past the break
   }
-  recorder.Finish(t, x, mode);
+  recorder.Finish(t, x);
   train.set_segment_end(std::numeric_limits<double>::infinity());
   stats.rhs_evaluations = train.evaluations() - rhs_before;
   stats.final_state = x;
@@ -415,7 +415,7 @@ IntegrationStats IntegrateBaseline(NeedleTrain& train, const TrainState& x0, dou
   IntegrationStats stats;
   const long rhs_before = train.evaluations();
   train.set_gated(true);
-  recorder.Start(0.0, x0, train.mode());
+  recorder.Start(0.0, x0);
   // Output times: the grid, or else 400 points; the integrator does not stop at breaks or
   // switches: that is what the baseline is for.
   std::vector<double> times = recorder.grid_times();
@@ -430,8 +430,8 @@ IntegrationStats IntegrateBaseline(NeedleTrain& train, const TrainState& x0, dou
   double last_t = 0.0;
   const auto observer = [&](const TrainState& s, double t) {
     while (next_grid < grid.size() && grid[next_grid] <= t + 1e-15)
-      recorder.GridSample(grid[next_grid++], s, train.mode());
-    recorder.Sample(t, s, train.mode());
+      recorder.GridSample(grid[next_grid++], s);
+    recorder.Sample(t, s);
     last = s;
     last_t = t;
   };
@@ -444,7 +444,7 @@ IntegrationStats IntegrateBaseline(NeedleTrain& train, const TrainState& x0, dou
       odeint::integrate_times(dense, std::ref(train), x, times.begin(), times.end(),
                               std::min(t_end, 0.01 / fastest), observer));
   if (stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, t_end);
-  recorder.Finish(last_t, last, train.mode());
+  recorder.Finish(last_t, last);
   train.set_gated(false);
   stats.rhs_evaluations = train.evaluations() - rhs_before;
   stats.final_state = last;
