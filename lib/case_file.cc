@@ -518,13 +518,14 @@ PaperSection ReadPaper(SectionReader r) {
 // toml++ 3.3.0 (Debian 12) reaches TOML_UNREACHABLE, undefined behaviour, for some non-ASCII
 // characters where it looks for whitespace (marzer/tomlplusplus#295, fixed upstream after
 // 3.3.0; found here by the case-loader fuzzer). TOML allows non-ASCII only inside comments and
-// strings, so such text is refused here, before toml++ sees it: outside comments and strings,
-// and at the start of a line continued by a backslash inside a multi-line basic string.
+// strings, so any other is refused here, before toml++ sees it. The scan is conservative: a
+// quote opens a string only where TOML lets a string start (line start, or after = [ , { .),
+// and multi-line strings, where toml++ also skips whitespace, take no non-ASCII at all.
 void CheckTomlText(const std::string& text, const std::string& path) {
   enum class State { kNormal, kComment, kBasic, kLiteral, kMultiBasic, kMultiLiteral };
   State state = State::kNormal;
   int line = 1, column = 0;
-  bool after_continuation = false;  // inside """…""", after a line-ending backslash
+  char last = '\n';  // last non-blank character seen in the normal state
   for (size_t i = 0; i < text.size(); ++i) {
     const unsigned char ch = static_cast<unsigned char>(text[i]);
     ++column;
@@ -537,60 +538,62 @@ void CheckTomlText(const std::string& text, const std::string& path) {
       ++line;
       column = 0;
       if (state == State::kComment) state = State::kNormal;
+      if (state == State::kNormal) last = '\n';
       continue;
     }
     switch (state) {
-      case State::kNormal:
+      case State::kNormal: {
         if (ch >= 0x80)
           fail("non-ASCII character outside a string or comment (TOML allows it only there)");
-        if (ch == '#') state = State::kComment;
-        if (starts("\"\"\"")) {
-          state = State::kMultiBasic;
+        const bool string_may_start = std::strchr("\n=[,{.", last) != nullptr;
+        if (ch == '#') {
+          state = State::kComment;
+        } else if (string_may_start && (starts("\"\"\"") || starts("'''"))) {
+          state = ch == '"' ? State::kMultiBasic : State::kMultiLiteral;
           i += 2;
-        } else if (starts("'''")) {
-          state = State::kMultiLiteral;
-          i += 2;
-        } else if (ch == '"') {
+          column += 2;
+        } else if (string_may_start && ch == '"') {
           state = State::kBasic;
-        } else if (ch == '\'') {
+        } else if (string_may_start && ch == '\'') {
           state = State::kLiteral;
+        } else if (ch != ' ' && ch != '\t' && ch != '\r') {
+          last = static_cast<char>(ch);
         }
         break;
+      }
       case State::kComment:
         break;
       case State::kBasic:
-        if (ch == '\\' && i + 1 < text.size()) {
+        if (ch == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
           ++i;
+          ++column;
         } else if (ch == '"') {
           state = State::kNormal;
+          last = '"';
         }
         break;
       case State::kLiteral:
-        if (ch == '\'') state = State::kNormal;
+        if (ch == '\'') {
+          state = State::kNormal;
+          last = '\'';
+        }
         break;
       case State::kMultiBasic:
-        if (after_continuation) {
-          if (ch >= 0x80)
-            fail("non-ASCII character right after a line-ending backslash in a multi-line string");
-          if (ch != ' ' && ch != '\t' && ch != '\r') after_continuation = false;
-        }
-        if (ch == '\\') {
-          size_t j = i + 1;
-          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r')) ++j;
-          if (j < text.size() && text[j] == '\n') {
-            after_continuation = true;
-          } else if (i + 1 < text.size()) {
-            ++i;
-          }
-        } else if (starts("\"\"\"")) {
-          state = State::kNormal;
-          i += 2;
-        }
-        break;
       case State::kMultiLiteral:
-        if (starts("'''")) {
+        if (ch >= 0x80) {
+          fail(
+              "non-ASCII character in a multi-line string (not accepted: toml++ 3.3.0 mishandles "
+              "it)");
+        }
+        if (state == State::kMultiBasic && ch == '\\' && i + 1 < text.size() &&
+            text[i + 1] != '\n') {
+          ++i;
+          ++column;
+        } else if (starts(state == State::kMultiBasic ? "\"\"\"" : "'''")) {
           state = State::kNormal;
+          last = '"';
           i += 2;
+          column += 2;
         }
         break;
     }

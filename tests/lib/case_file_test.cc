@@ -193,9 +193,13 @@ TEST(CaseFileTest, NonAsciiOutsideStringsAndCommentsIsRefusedBeforeTomlSeesIt) {
   EXPECT_EQ(
       Error("[engine]\nspeed_rpm = 400\n\xca\x89ycle = 1\n"),
       "t.toml:3:1: non-ASCII character outside a string or comment (TOML allows it only there)");
-  EXPECT_EQ(
-      Error("s = \"\"\"\\\n\xc2\xa7\"\"\"\n"),
-      "t.toml:2:1: non-ASCII character right after a line-ending backslash in a multi-line string");
+  EXPECT_EQ(Error("s = \"\"\"\\\n\xc2\xa7\"\"\"\n"),
+            "t.toml:2:1: non-ASCII character in a multi-line string (not accepted: toml++ 3.3.0 "
+            "mishandles it)");
+  // A quote after a number opens no string (found by the fuzzer: 2.2''''' then non-ASCII).
+  EXPECT_EQ(Error("a = [2.2'''''%S\xd1\x8e]\n"),
+            "t.toml:1:16: non-ASCII character outside a string or comment (TOML allows it only "
+            "there)");
   // In comments and strings it is fine.
   const Case c = ParseCase(
       "title = \"Basu: 0.5 mm at 0\xc2\xb0\"  # \xcf\x80\n" + kGood.substr(kGood.find("[engine]")),
