@@ -19,10 +19,13 @@ nlohmann::json OrNull(const std::optional<double>& v, double scale = 1.0) {
 }
 
 // Row angles: θ_0, θ_N, every multiple of the step between them, and the paper's angles.
+// The table's first and last angle, the open lift's ends, every multiple of the step between,
+// and the paper's angles.
 std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const Case& c) {
-  std::vector<double> rows = {law.start_rad(), law.end_rad()};
-  const double first = std::ceil(law.start_rad() / step_rad - 1e-9);
-  for (double k = first; k * step_rad <= law.end_rad() + 1e-12; k += 1.0) {
+  const double lo = law.table_start_rad(), hi = law.table_end_rad();
+  std::vector<double> rows = {lo, hi, law.start_rad(), law.end_rad()};
+  const double first = std::ceil(lo / step_rad - 1e-9);
+  for (double k = first; k * step_rad <= hi + 1e-12; k += 1.0) {
     rows.push_back(k * step_rad);
   }
   if (c.paper) rows.insert(rows.end(), c.paper->crank_rad.begin(), c.paper->crank_rad.end());
@@ -62,11 +65,26 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
       ->check(CLI::IsMember({"paper", "si"}));
   cmd->add_flag("--json", o.json, "print one JSON object instead of the table");
   cmd->add_option("--csv", o.csv, "also write the table to this CSV file (atomically)");
+  cmd->add_option("--cycle", o.cycle, "a bare CSV table: four-stroke (default) or two-stroke")
+      ->check(CLI::IsMember({"four-stroke", "two-stroke"}));
+  cmd->add_option("--noise-mm", o.noise_mm,
+                  "a bare CSV table: standard deviation of its readings in mm (default: "
+                  "estimated)")
+      ->check(CLI::PositiveNumber);
   return cmd;
 }
 
 int RunKinematicsCommand(const KinematicsCommandOptions& o) {
-  Case c = LoadCase(o.case_path);
+  const bool bare_csv = IsCsvPath(o.case_path);
+  if (bare_csv && !o.speed_rpm) {
+    throw CaseError("--rpm: " + o.case_path +
+                    " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
+  }
+  Case c = bare_csv ? CaseFromLiftCsv(o.case_path, o.cycle) : LoadCase(o.case_path);
+  if (o.noise_mm) {
+    if (!bare_csv) throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
+    c.lift.noise_m = *o.noise_mm * 1e-3;
+  }
   if (o.spline) {
     const auto kind = ParseSplineKind(*o.spline);
     if (!kind) {
@@ -78,8 +96,10 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
       c.lift.spline.start_slope = c.lift.spline.end_slope = 0.0;  // at rest unless the case says
     }
     c.lift.spline.kind = *kind;
+    c.lift.spline_given = true;
   }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
+  const LiftLawChoice choice = CaseLiftChoice(c);
   const LiftLaw law = MakeLiftLaw(c);
   const Kinematics kin(law, speed);
   const KinematicsSummary sum = kin.Summarize();
@@ -107,6 +127,17 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
     j["case"] = c.path;
     j["speed_rpm"] = speed;
     j["spline"] = SplineKindName(law.kind());
+    j["spline_reason"] = choice.reason;
+    j["noise_mm"] = choice.noise_m * 1e3;
+    j["noise_source"] = choice.noise_source;
+    j["measured"] = choice.measured;
+    j["points"] = c.lift.table.crank_rad.size();
+    j["open_deg"] = sum.open_rad / kDeg;
+    j["close_deg"] = sum.close_rad / kDeg;
+    j["closed_level_mm"] = law.closed_level_m() * 1e3;
+    j["undershoot_mm"] = law.undershoot_m() * 1e3;
+    j["undershoot_deg"] = law.undershoot_m() > 0 ? nlohmann::json(law.undershoot_rad() / kDeg)
+                                                  : nlohmann::json(nullptr);
     j["injection_period_s"] = sum.injection_period_s;
     j["max_lift_mm"] = sum.max_lift_m * 1e3;
     j["max_lift_deg"] = sum.max_lift_rad / kDeg;
@@ -137,8 +168,17 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
   } else {
     const bool paper = o.units == "paper";
     out << (c.title.empty() ? c.path : c.title) << '\n';
-    out << "spline " << SplineKindName(law.kind()) << ", " << Fixed(speed, 1) << " rpm, "
-        << "injection period " << Fixed(sum.injection_period_s * 1e3, 2) << " ms\n";
+    out << "spline " << SplineKindName(law.kind()) << ": " << choice.reason << '\n';
+    out << "open lift " << Fixed(sum.open_rad / kDeg, 2) << " to " << Fixed(sum.close_rad / kDeg, 2)
+        << " deg";
+    if (law.closed_level_m() > 0) out << " (where the lift exceeds " << Fixed(law.closed_level_m() * 1e3, 4) << " mm, 3 sigma)";
+    out << ", " << Fixed(speed, 1) << " rpm, injection period "
+        << Fixed(sum.injection_period_s * 1e3, 2) << " ms\n";
+    if (law.undershoot_m() > 0) {
+      out << "WARNING: the spline dips " << Fixed(law.undershoot_m() * 1e3, 4)
+          << " mm below the seat at " << Fixed(law.undershoot_rad() / kDeg, 2)
+          << " deg inside the open lift; try another spline kind\n";
+    }
     out << "max lift " << Fixed(sum.max_lift_m * 1e3, 3) << " mm at "
         << Fixed(sum.max_lift_rad / kDeg, 2) << " deg, mean lift "
         << Fixed(sum.mean_lift_m * 1e3, 3) << " mm, rho " << Fixed(sum.rho, 3) << '\n';

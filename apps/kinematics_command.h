@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `needle kinematics CASE [--rpm N] [--step DEG] [--spline KIND] [--units paper|si]
-/// [--json] [--csv FILE]`: the velocity and acceleration table of a lift law, like
+/// [--json] [--csv FILE] [--cycle C] [--noise-mm X]`: the velocity and acceleration table of a lift law, like
 /// NACA TM 477's, with the paper's published values beside it where the case has them.
 
 #include <CLI/CLI.hpp>
@@ -18,6 +18,9 @@ struct KinematicsCommandOptions {
   std::string units = "paper";        ///< "paper" (mm, dcm/s, m/s²) or "si" (m, m/s, m/s², m/s³)
   bool json = false;                  ///< print one JSON object instead of the table
   std::optional<std::string> csv;     ///< also write the table as CSV, atomically
+  /// A bare CSV lift table as CASE: its cycle (for cam_deg columns) and its noise σ, mm.
+  std::string cycle = "four-stroke";
+  std::optional<double> noise_mm;
 };
 
 /// Registers the subcommand on `app`; `options` must outlive the parse.

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
+#include "lib/input_file.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -404,12 +406,13 @@ EngineSection ReadEngine(SectionReader r) {
   return e;
 }
 
-LiftSection ReadLift(SectionReader r) {
+LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_stroke) {
   if (!r.present())
     r.Fail("crank_deg", "section [lift] is missing; it needs crank_deg and lift_mm");
   LiftSection lift;
   r.Known("end_slope");
   const auto normal = r.OptionalString("normal_curve");
+  const auto csv = r.OptionalString("csv");
   const auto crank = r.OptionalQuantityArray("crank", Dimension::kAngle);
   const auto values = r.OptionalQuantityArray("lift", Dimension::kLength);
   const auto max_lift = r.OptionalQuantity("max_lift", Dimension::kLength);
@@ -422,6 +425,16 @@ LiftSection ReadLift(SectionReader r) {
       r.Fail("max_lift_mm", "must be positive, got " + Number(*max_lift * 1e3));
     lift.table = BasuNormalCurve(*max_lift);
     lift.source = "basu normal curve";
+  } else if (csv) {
+    if (crank || values) r.Fail("csv", "give either csv or crank_deg + lift_mm, not both");
+    if (max_lift) r.Fail("max_lift_mm", "only used with normal_curve = \"basu\"");
+    if (csv->empty()) r.Fail("csv", "expected the path of a CSV file");
+    const std::filesystem::path p(*csv);
+    const std::string full =
+        p.is_absolute() ? p.string()
+                        : (std::filesystem::path(case_path).parent_path() / p).string();
+    lift.table = ReadLiftCsv(full, four_stroke);
+    lift.source = "csv " + full;
   } else {
     if (max_lift) r.Fail("max_lift_mm", "only used with normal_curve = \"basu\"");
     if (!crank) r.Fail("crank_deg", "missing; expected an array of crank angles (or normal_curve)");
@@ -439,12 +452,6 @@ LiftSection ReadLift(SectionReader r) {
                                 ")");
       }
     }
-    for (size_t i = 0; i < values->size(); ++i) {
-      if ((*values)[i] < 0.0) {
-        r.Fail("lift_mm", "entry " + std::to_string(i) + " is negative (" +
-                              Number((*values)[i] * 1e3) + "); lift is measured from the seat");
-      }
-    }
     lift.table = {*crank, *values};
     lift.source = "table";
   }
@@ -453,17 +460,37 @@ LiftSection ReadLift(SectionReader r) {
     if (!kind)
       r.Fail("spline", "unknown kind \"" + *spline + "\"; expected one of " + SplineKindList());
     lift.spline.kind = *kind;
+    lift.spline_given = true;
   }
   if (auto res = r.OptionalQuantity("resolution", Dimension::kLength)) {
     if (!(*res > 0.0)) r.Fail("resolution_mm", "must be positive, got " + Number(*res * 1e3));
     lift.resolution_m = *res;
+    lift.resolution_given = true;
+  }
+  if (auto noise = r.OptionalQuantity("noise", Dimension::kLength)) {
+    if (!(*noise > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*noise * 1e3) + " mm");
+    lift.noise_m = *noise;
+  }
+  lift.open_rad = r.OptionalQuantity("open", Dimension::kAngle);
+  lift.close_rad = r.OptionalQuantity("close", Dimension::kAngle);
+  const double first = lift.table.crank_rad.front(), last = lift.table.crank_rad.back();
+  if (lift.open_rad && !(*lift.open_rad >= first && *lift.open_rad < last)) {
+    r.Fail("open_deg", "must lie inside the table (" + Number(first / kDeg) + " to " +
+                           Number(last / kDeg) + " deg), got " + Number(*lift.open_rad / kDeg));
+  }
+  if (lift.close_rad && !(*lift.close_rad > first && *lift.close_rad <= last)) {
+    r.Fail("close_deg", "must lie inside the table (" + Number(first / kDeg) + " to " +
+                            Number(last / kDeg) + " deg), got " + Number(*lift.close_rad / kDeg));
+  }
+  if (lift.open_rad && lift.close_rad && !(*lift.close_rad > *lift.open_rad)) {
+    r.Fail("close_deg", "must be after open_deg");
   }
   lift.spline.sigma = lift.resolution_m / std::sqrt(12.0);  // σ of a uniform rounding error
   const auto end_slope_name = r.OptionalString("end_slope");
   const auto end_slopes = r.OptionalQuantityArray("end_slope", Dimension::kSlope);
   if (end_slope_name || end_slopes) {
     const std::string key = end_slope_name ? "end_slope" : "end_slope_mm_deg";
-    if (lift.spline.kind != SplineKind::kClamped) {
+    if (lift.spline.kind != SplineKind::kClamped || !lift.spline_given) {
       r.Fail(key, "applies to spline = \"clamped\" only");
     }
     if (end_slope_name && end_slopes) r.Fail(key, "give end_slope or end_slope_mm_deg, not both");
@@ -608,16 +635,6 @@ const toml::table* Section(const toml::table& root, const std::string& file, con
   return t;
 }
 
-// Reads a whole file; CaseError naming it when it cannot be read.
-std::string ReadFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(path + ": cannot open the " + what + " for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw CaseError(path + ": read error");
-  return buffer.str();
-}
-
 // Parses TOML text; a malformed document is one CaseError line with its position.
 toml::table ParseToml(const std::string& text, const std::string& path) {
   CheckTomlText(text, path);
@@ -656,7 +673,8 @@ Case ParseCase(const std::string& text, const std::string& path) {
   c.path = path;
   c.title = root["title"].value_or(std::string());
   c.engine = ReadEngine(SectionReader(Section(root, path, "engine"), path, "engine"));
-  c.lift = ReadLift(SectionReader(Section(root, path, "lift"), path, "lift"));
+  c.lift = ReadLift(SectionReader(Section(root, path, "lift"), path, "lift"), path,
+                    c.engine.cycle == "four-stroke");
   if (const toml::table* needle = Section(root, path, "needle")) {
     c.needle = ReadNeedle(SectionReader(needle, path, "needle"));
   }
@@ -675,11 +693,11 @@ Case ParseCase(const std::string& text, const std::string& path) {
   if (const toml::table* paper = Section(root, path, "paper")) {
     c.paper = ReadPaper(SectionReader(paper, path, "paper"));
   }
-  CheckSplineFits(c, c.lift.spline.kind, "[lift] spline");
+  if (c.lift.spline_given) CheckSplineFits(c, c.lift.spline.kind, "[lift] spline");
   return c;
 }
 
-Case LoadCase(const std::string& path) { return ParseCase(ReadFile(path, "case file"), path); }
+Case LoadCase(const std::string& path) { return ParseCase(ReadInputFile(path, "case file"), path); }
 
 void CheckSplineFits(const Case& c, SplineKind kind, const std::string& where) {
   const int need = MinimumPoints(kind);
@@ -798,7 +816,7 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
 }
 
 SynthesisFile LoadSynthesisFile(const std::string& path) {
-  const toml::table root = ParseToml(ReadFile(path, "synthesis file"), path);
+  const toml::table root = ParseToml(ReadInputFile(path, "synthesis file"), path);
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title" || key == "rise" || key == "limits" || key == "checks" || key == "output")
@@ -891,12 +909,39 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
 }
 
 DesignInputs LoadDesignInputs(const std::string& path) {
-  return ParseDesignInputs(ReadFile(path, "engine file"), path);
+  return ParseDesignInputs(ReadInputFile(path, "engine file"), path);
+}
+
+bool IsCsvPath(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return ext == ".csv";
+}
+
+Case CaseFromLiftCsv(const std::string& path, const std::string& cycle) {
+  Case c;
+  c.path = path;
+  c.engine.cycle = cycle;
+  c.lift.table = ReadLiftCsv(path, cycle == "four-stroke");
+  c.lift.source = "csv " + path;
+  return c;
+}
+
+LiftLawChoice CaseLiftChoice(const Case& c) {
+  LiftDataOptions o;
+  if (c.lift.spline_given) o.kind = c.lift.spline.kind;
+  o.spline = c.lift.spline;
+  o.noise_m = c.lift.noise_m;
+  if (c.lift.resolution_given) o.resolution_m = c.lift.resolution_m;
+  o.open_rad = c.lift.open_rad;
+  o.close_rad = c.lift.close_rad;
+  return ChooseLiftLaw(c.lift.table, o);
 }
 
 LiftLaw MakeLiftLaw(const Case& c) {
   try {
-    return LiftLaw(c.lift.table, c.lift.spline);
+    return LiftLaw(c.lift.table, CaseLiftChoice(c).law);
   } catch (const std::exception& e) {
     throw CaseError(c.path + ": [lift]: " + e.what());
   }

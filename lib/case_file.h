@@ -6,10 +6,12 @@
 ///
 ///     title = "…"                      optional
 ///     [engine]  speed_rpm, cycle = "four-stroke" | "two-stroke"
-///     [lift]    crank_deg + lift_mm   |   normal_curve = "basu" + max_lift_mm
-///               spline = "not-a-knot" (default) | natural | clamped | quintic | pchip |
-///                        makima | smoothing
+///     [lift]    crank_deg + lift_mm  |  csv = "file.csv"  |  normal_curve = "basu" + max_lift_mm
+///               spline = natural | not-a-knot | clamped | quintic | pchip | makima | smoothing
+///                        (default: chosen from the data, lib/lift_data.h)
+///               noise_mm (σ of the readings; estimated for a dense table when absent)
 ///               resolution_mm = 0.01 (table rounding; σ = resolution/√12 for smoothing)
+///               open_deg, close_deg (the open lift; detected when absent)
 ///               end_slope = "at-rest" | end_slope_mm_deg = [start, end]   (clamped only)
 ///               smoothing = "discrepancy" (default) | "gcv"              (smoothing only)
 ///     [needle]  mass_kg, diameter_mm, gas_force_N = 0
@@ -34,16 +36,12 @@
 #include <string>
 #include <vector>
 
+#include "lib/case_error.h"
+#include "lib/lift_data.h"
 #include "lib/lift_law.h"
 #include "lib/spline.h"
 
 namespace needle {
-
-/// A case-file problem; what() is one line naming the file, the key and what was expected.
-class CaseError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct EngineSection {
   double speed_rpm = 0.0;             ///< rated crank speed, rpm, > 0
@@ -51,10 +49,14 @@ struct EngineSection {
 };
 
 struct LiftSection {
-  LiftTable table;       ///< the lift table in SI (from crank_deg/lift_mm or the normal curve)
-  SplineOptions spline;  ///< spline kind and its options
+  LiftTable table;  ///< the lift table in SI (from crank_deg/lift_mm, csv or the normal curve)
+  SplineOptions spline;       ///< spline kind and its options
+  bool spline_given = false;  ///< `spline` stated (else chosen from the data: lib/lift_data.h)
   double resolution_m = 1e-5;  ///< rounding of the table's lifts, m (paper: 0.01 mm)
-  std::string source;          ///< "table" or "basu normal curve"
+  bool resolution_given = false;   ///< `resolution_mm` stated
+  std::optional<double> noise_m;   ///< `noise_mm`: σ of the readings, m
+  std::optional<double> open_rad, close_rad;  ///< `open_deg`, `close_deg`: the open lift
+  std::string source;  ///< "table", "csv FILE" or "basu normal curve"
 };
 
 struct PaperSection {
@@ -217,6 +219,16 @@ Case LoadCase(const std::string& path);
 
 /// As LoadCase, from text already in memory; `path` is used in messages only.
 Case ParseCase(const std::string& text, const std::string& path);
+
+/// The spline, noise and open-lift rule for the case's lift data (lib/lift_data.h).
+LiftLawChoice CaseLiftChoice(const Case& c);
+
+/// True when `path` ends in ".csv" (any case): a bare lift table rather than a case file.
+bool IsCsvPath(const std::string& path);
+
+/// A case made of a bare CSV lift table (ReadLiftCsv) and nothing else: speed 0 (the caller
+/// states it), `cycle` as given, the spline chosen from the data.
+Case CaseFromLiftCsv(const std::string& path, const std::string& cycle);
 
 /// Builds the lift law of a case, turning spline-construction failures into CaseError.
 LiftLaw MakeLiftLaw(const Case& c);

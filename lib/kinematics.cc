@@ -19,7 +19,7 @@ Kinematics::Kinematics(const LiftLaw& law, double speed_rpm)
 KinematicsPoint Kinematics::At(double crank_rad) const {
   KinematicsPoint p;
   p.crank_rad = crank_rad;
-  p.time_s = (crank_rad - law_.start_rad()) / omega_;       // t = (θ − θ_0)/ω
+  p.time_s = (crank_rad - law_.start_rad()) / omega_;       // t = (θ − θ_open)/ω
   p.lift_m = law_.Lift(crank_rad);                          // s
   p.velocity_m_s = omega_ * law_.Derivative(crank_rad, 1);  // v = ω s'
   if (law_.HasAcceleration()) {
@@ -32,6 +32,8 @@ KinematicsPoint Kinematics::At(double crank_rad) const {
 KinematicsSummary Kinematics::Summarize() const {
   KinematicsSummary s;
   s.speed_rpm = speed_rpm_;
+  s.open_rad = law_.start_rad();
+  s.close_rad = law_.end_rad();
   s.injection_period_s = (law_.end_rad() - law_.start_rad()) / omega_;  // T = Δθ/ω
   const Extremum lift = law_.Max(0);
   s.max_lift_m = lift.value;

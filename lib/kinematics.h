@@ -2,9 +2,11 @@
 /// @file
 /// Needle kinematics at a crank speed n (model.md §1–2), with ω = 2πn/60 rad/s:
 ///
-///     t = (θ − θ_0)/ω,   v = ω·ds/dθ,   a = ω²·d²s/dθ²,   j = ω³·d³s/dθ³,
-///     injection period T = (θ_N − θ_0)/ω  (= lift duration in degrees / (6n)),
-///     mean lift s̄ = (1/(θ_N − θ_0))∫s dθ,  ρ = s_max / s̄  (Basu: 2.12).
+///     t = (θ − θ_open)/ω,   v = ω·ds/dθ,   a = ω²·d²s/dθ²,   j = ω³·d³s/dθ³,
+///     injection period T = (θ_close − θ_open)/ω  (= open lift in degrees / (6n)),
+///     mean lift s̄ = (1/(θ_close − θ_open))∫s dθ,  ρ = s_max / s̄  (Basu: 2.12),
+///
+/// every extreme taken over the open lift [θ_open, θ_close] only (lib/lift_law.h).
 
 #include <optional>
 #include <vector>
@@ -16,7 +18,7 @@ namespace needle {
 /// One row of a kinematics table (SI).
 struct KinematicsPoint {
   double crank_rad = 0.0;     ///< θ, rad
-  double time_s = 0.0;        ///< t = (θ − θ_0)/ω, s
+  double time_s = 0.0;        ///< t = (θ − θ_open)/ω, s
   double lift_m = 0.0;        ///< s(θ), m
   double velocity_m_s = 0.0;  ///< ω s'(θ), m/s
   /// ω² s''(θ), m/s²; empty for C¹ splines (pchip, makima).
@@ -28,6 +30,8 @@ struct KinematicsPoint {
 /// The whole-lift quantities of `needle kinematics --json`.
 struct KinematicsSummary {
   double speed_rpm = 0.0;
+  double open_rad = 0.0;   ///< θ_open, rad
+  double close_rad = 0.0;  ///< θ_close, rad
   double injection_period_s = 0.0;
   double max_lift_m = 0.0;
   double max_lift_rad = 0.0;

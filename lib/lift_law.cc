@@ -1,7 +1,9 @@
 #include "lib/lift_law.h"
 
+#include <algorithm>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -26,26 +28,129 @@ LiftTable BasuNormalCurve(double max_lift_m) {
 
 namespace {
 
-PiecewisePolynomial Build(const LiftTable& table, const SplineOptions& options) {
+std::string Mm(double m) {
+  std::ostringstream out;
+  out << m * 1e3;
+  return out.str();
+}
+
+std::string Deg(double rad) {
+  std::ostringstream out;
+  out << rad / kDeg;
+  return out.str();
+}
+
+void CheckReadings(const LiftTable& table, double allowance_m) {
   for (size_t i = 0; i < table.lift_m.size(); ++i) {
-    if (table.lift_m[i] < 0.0) {
-      throw std::invalid_argument("lift " + std::to_string(i) + " is negative (" +
-                                  std::to_string(table.lift_m[i] * 1e3) +
-                                  " mm): lift is measured from the seat and cannot be below it");
+    if (table.lift_m[i] < -allowance_m) {
+      std::string what = "entry " + std::to_string(i) + " of the lifts is negative (" + Mm(table.lift_m[i]) +
+                         " mm): lift is measured from the seat and cannot be below it";
+      if (allowance_m > 0.0) {
+        what += " by more than the noise allows (4 sigma = " + Mm(allowance_m) + " mm)";
+      }
+      throw std::invalid_argument(what);
     }
   }
-  return BuildSpline(table.crank_rad, table.lift_m, options);
+}
+
+// First θ in [from, to] (searching towards `to`) where f(θ) > level, located by sampling each
+// piece and TOMS 748; nullopt when f never exceeds it.
+std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, bool forward) {
+  const auto& x = p.breaks();
+  auto f = [&](double t) { return p.Evaluate(t) - level; };
+  const int samples = 32;
+  const int n = static_cast<int>(x.size()) - 1;
+  double prev = forward ? x.front() : x.back();
+  if (f(prev) > 0.0) return prev;
+  for (int step = 0; step < n; ++step) {
+    const int i = forward ? step : n - 1 - step;
+    for (int k = 1; k <= samples; ++k) {
+      const double t = forward ? x[i] + (x[i + 1] - x[i]) * k / samples
+                               : x[i + 1] - (x[i + 1] - x[i]) * k / samples;
+      if (f(t) > 0.0) {
+        std::uintmax_t it = 100;
+        const double lo = std::min(prev, t), hi = std::max(prev, t);
+        const auto r = boost::math::tools::toms748_solve(
+            f, lo, hi, boost::math::tools::eps_tolerance<double>(50), it);
+        return 0.5 * (r.first + r.second);
+      }
+      prev = t;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
 
 LiftLaw::LiftLaw(LiftTable table, const SplineOptions& options)
-    : table_(std::move(table)), kind_(options.kind), spline_(Build(table_, options)) {}
+    : LiftLaw(std::move(table), LiftLawOptions{options}) {}
+
+LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
+    : table_(std::move(table)),
+      kind_(options.spline.kind),
+      closed_level_m_(options.closed_level_m),
+      spline_(std::vector<double>{0.0, 1.0}, Eigen::MatrixXd::Zero(1, 1), 0) {
+  const auto& th = table_.crank_rad;
+  const auto& s = table_.lift_m;
+  if (th.size() != s.size() || th.empty()) {
+    throw std::invalid_argument("the lift table needs as many lifts as crank angles");
+  }
+  CheckReadings(table_, options.negative_allowance_m);
+  PiecewisePolynomial full = spline_;
+  if (options.closed_level_m > 0.0) {
+    // Measured: the whole table shapes the curve; open where it exceeds the closed level.
+    full = BuildSpline(th, s, options.spline);
+    const auto open = FirstAbove(full, options.closed_level_m, true);
+    const auto close = FirstAbove(full, options.closed_level_m, false);
+    if (!open || !close || !(*close > *open)) {
+      throw std::invalid_argument("the fitted lift never rises above the closed level (" +
+                                  Mm(options.closed_level_m) +
+                                  " mm, 3 sigma of the noise): no open lift in the table");
+    }
+    open_rad_ = *open;
+    close_rad_ = *close;
+  } else {
+    // Exact: from the last zero before the rise to the first zero after the fall.
+    size_t first = 0, last = s.size() - 1;
+    while (first + 1 < s.size() && s[first] <= 0.0 && s[first + 1] <= 0.0) ++first;
+    while (last > first && s[last] <= 0.0 && s[last - 1] <= 0.0) --last;
+    if (last <= first || *std::max_element(s.begin(), s.end()) <= 0.0) {
+      throw std::invalid_argument("the lift table never opens: every lift is zero");
+    }
+    const std::vector<double> x(th.begin() + first, th.begin() + last + 1);
+    const std::vector<double> y(s.begin() + first, s.begin() + last + 1);
+    if (first > 0 || last + 1 < s.size()) {
+      if (static_cast<int>(x.size()) < MinimumPoints(options.spline.kind)) {
+        throw std::invalid_argument(
+            "the open lift (" + Deg(x.front()) + "° to " + Deg(x.back()) + "°) has " +
+            std::to_string(x.size()) + " points; \"" + SplineKindName(options.spline.kind) +
+            "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
+      }
+    }
+    full = BuildSpline(x, y, options.spline);
+    open_rad_ = x.front();
+    close_rad_ = x.back();
+  }
+  if (options.open_rad) open_rad_ = *options.open_rad;
+  if (options.close_rad) close_rad_ = *options.close_rad;
+  const double lo = full.breaks().front(), hi = full.breaks().back();
+  if (!(open_rad_ >= lo && close_rad_ <= hi && open_rad_ < close_rad_)) {
+    throw std::invalid_argument("the open lift " + Deg(open_rad_) + "° to " + Deg(close_rad_) +
+                                "° must lie inside the fitted table (" + Deg(lo) + "° to " +
+                                Deg(hi) + "°) and open before it closes");
+  }
+  spline_ = full.Restrict(open_rad_, close_rad_);
+  const Extremum low = Min(0);
+  if (low.value < 0.0) {
+    undershoot_m_ = -low.value;
+    undershoot_rad_ = low.crank_rad;
+  }
+}
 
 double LiftLaw::Lift(double crank_rad) const { return Derivative(crank_rad, 0); }
 
 double LiftLaw::Derivative(double crank_rad, int order) const {
-  if (crank_rad < start_rad() || crank_rad > end_rad()) return 0.0;  // closed outside
+  if (crank_rad < open_rad_ || crank_rad > close_rad_) return 0.0;  // closed outside
   return spline_.Evaluate(crank_rad, order);
 }
 

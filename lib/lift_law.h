@@ -1,10 +1,18 @@
 #pragma once
 /// @file
-/// The lift law s(θ) of the needle (model.md §2): a spline through a table of crank angle
-/// θ_i (rad, strictly increasing) and lift s_i (m), closed (s = 0) outside [θ_0, θ_N]:
+/// The lift law s(θ) of the needle (model.md §2, docs/model.md): a spline through a table of
+/// crank angle θ_i (rad, strictly increasing) and lift s_i (m), closed (s = 0) outside the open
+/// lift [θ_open, θ_close] ⊆ [θ_0, θ_N]:
 ///
-///     s(θ) = spline(θ) on [θ_0, θ_N],  0 elsewhere;   dᵏs/dθᵏ from the spline, exact.
+///     s(θ) = spline(θ) on [θ_open, θ_close],  0 elsewhere;   dᵏs/dθᵏ from the spline, exact.
+///
+/// The open lift of an exact table (closed level 0) runs from the last zero before the rise to
+/// the first zero after the fall, and the spline is built on that part of the table only, so
+/// padded zeros neither count nor shape it. For measured data (closed level h > 0, the noise
+/// band of the seated needle) the spline is built on the whole table and the open lift runs
+/// from the first to the last crossing of h. A case may state θ_open and θ_close itself.
 
+#include <optional>
 #include <vector>
 
 #include "lib/piecewise_polynomial.h"
@@ -28,12 +36,30 @@ struct Extremum {
   double value = 0.0;      ///< dᵏs/dθᵏ there, m/radᵏ
 };
 
+/// How a lift law is built from its table. Every field has a default.
+struct LiftLawOptions {
+  /// The spline and its options.
+  SplineOptions spline;
+  /// Closed level h, m, ≥ 0: 0 for an exact table (open from its last leading zero to its first
+  /// trailing zero); > 0 for measured data (open where the fitted curve exceeds h).
+  double closed_level_m = 0.0;
+  /// Readings down to −allowance, m (≥ 0), are accepted as noise of a seated needle; below that
+  /// a reading is an error. 0 for exact tables.
+  double negative_allowance_m = 0.0;
+  /// θ_open and θ_close stated by the case, rad, inside [θ_0, θ_N]; detected when absent.
+  std::optional<double> open_rad, close_rad;
+};
+
 /// A lift law: table plus spline. Immutable after construction.
 class LiftLaw {
  public:
-  /// Builds the spline of `options.kind` through the table. Throws std::invalid_argument
-  /// when the table is invalid for that kind (see BuildSpline) or a lift is negative.
+  /// Builds the spline of `options.kind` through the table, as an exact table. Throws
+  /// std::invalid_argument when the table is invalid for that kind (see BuildSpline) or a lift
+  /// is negative.
   LiftLaw(LiftTable table, const SplineOptions& options);
+  /// Builds the law as `options` say (see LiftLawOptions). Throws std::invalid_argument naming
+  /// the entry or the angle when the table does not fit them.
+  LiftLaw(LiftTable table, const LiftLawOptions& options);
 
   /// Lift s(θ), m; 0 outside [θ_0, θ_N].
   double Lift(double crank_rad) const;
@@ -43,12 +69,20 @@ class LiftLaw {
   /// True when s'' is continuous (all kinds but pchip and makima).
   bool HasAcceleration() const { return spline_.continuity() >= 2; }
 
-  /// θ_0 and θ_N, rad.
-  double start_rad() const { return table_.crank_rad.front(); }
-  double end_rad() const { return table_.crank_rad.back(); }
-  /// Mean lift over [θ_0, θ_N]: (1/(θ_N − θ_0)) ∫ s dθ, m.
+  /// θ_open and θ_close, rad: where the needle leaves and reaches its seat.
+  double start_rad() const { return open_rad_; }
+  double end_rad() const { return close_rad_; }
+  /// θ_0 and θ_N of the table, rad.
+  double table_start_rad() const { return table_.crank_rad.front(); }
+  double table_end_rad() const { return table_.crank_rad.back(); }
+  /// The closed level h the open lift was detected with, m (0: exact table).
+  double closed_level_m() const { return closed_level_m_; }
+  /// How far the spline dips below zero inside the open lift, m (0 when it does not), and where.
+  double undershoot_m() const { return undershoot_m_; }
+  double undershoot_rad() const { return undershoot_rad_; }
+  /// Mean lift over the open lift: (1/(θ_close − θ_open)) ∫ s dθ, m.
   double MeanLift() const;
-  /// Largest and smallest dᵏs/dθᵏ on [θ_0, θ_N], k = 0..2, located to ~1e-12 rad.
+  /// Largest and smallest dᵏs/dθᵏ on [θ_open, θ_close], k = 0..2, located to ~1e-12 rad.
   Extremum Max(int order) const;
   Extremum Min(int order) const;
 
@@ -61,7 +95,10 @@ class LiftLaw {
 
   LiftTable table_;
   SplineKind kind_;
-  PiecewisePolynomial spline_;
+  double closed_level_m_ = 0.0;
+  PiecewisePolynomial spline_;  // restricted to [θ_open, θ_close]
+  double open_rad_ = 0.0, close_rad_ = 0.0;
+  double undershoot_m_ = 0.0, undershoot_rad_ = 0.0;
 };
 
 }  // namespace needle

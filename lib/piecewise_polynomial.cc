@@ -62,4 +62,35 @@ double PiecewisePolynomial::Integral() const {
   return sum;
 }
 
+PiecewisePolynomial PiecewisePolynomial::Restrict(double a, double b) const {
+  if (!(a >= breaks_.front() && b <= breaks_.back() && a < b)) {
+    throw std::invalid_argument("PiecewisePolynomial::Restrict: [" + std::to_string(a) + ", " +
+                                std::to_string(b) + "] is not inside [" +
+                                std::to_string(breaks_.front()) + ", " +
+                                std::to_string(breaks_.back()) + "]");
+  }
+  const int first = Piece(a);
+  std::vector<double> x = {a};
+  for (size_t i = first + 1; i < breaks_.size() && breaks_[i] < b; ++i) x.push_back(breaks_[i]);
+  x.push_back(b);
+  const int pieces = static_cast<int>(x.size()) - 1;
+  const Eigen::Index k_count = coefficients_.cols();
+  Eigen::MatrixXd c(pieces, k_count);
+  for (int p = 0; p < pieces; ++p) c.row(p) = coefficients_.row(first + p);
+  // Taylor shift of the first piece: Σ c_k (t + d)^k = Σ_j (Σ_{k≥j} C(k, j) d^{k−j} c_k) t^j.
+  const double d = a - breaks_[first];
+  if (d != 0.0) {
+    for (Eigen::Index j = 0; j < k_count; ++j) {
+      double sum = 0.0, binom = 1.0, power = 1.0;  // C(k, j), d^{k−j} for k = j, j+1, …
+      for (Eigen::Index k = j; k < k_count; ++k) {
+        sum += binom * power * coefficients_(first, k);
+        binom = binom * static_cast<double>(k + 1) / static_cast<double>(k + 1 - j);
+        power *= d;
+      }
+      c(0, j) = sum;
+    }
+  }
+  return PiecewisePolynomial(std::move(x), std::move(c), continuity_);
+}
+
 }  // namespace needle

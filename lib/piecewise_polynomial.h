@@ -29,6 +29,11 @@ class PiecewisePolynomial {
   /// ∫_{x_0}^{x_N} p(x) dx, exact.
   double Integral() const;
 
+  /// The same polynomial on [a, b] only (x_0 ≤ a < b ≤ x_N): breaks a, the x_i strictly inside,
+  /// b; the first piece re-expanded about a (Taylor shift), values unchanged to round-off.
+  /// Throws std::invalid_argument outside those bounds.
+  PiecewisePolynomial Restrict(double a, double b) const;
+
   const std::vector<double>& breaks() const { return breaks_; }
   const Eigen::MatrixXd& coefficients() const { return coefficients_; }
   /// Polynomial degree K of the pieces.

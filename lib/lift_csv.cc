@@ -1,0 +1,128 @@
+// Lift tables from CSV files (lib/lift_data.h).
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "lib/case_error.h"
+#include "lib/input_file.h"
+#include "lib/lift_data.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+std::string Trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r");
+  if (a == std::string::npos) return "";
+  const size_t b = s.find_last_not_of(" \t\r");
+  return s.substr(a, b - a + 1);
+}
+
+std::vector<std::string> Fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) out.push_back(Trim(field));
+  if (!line.empty() && line.back() == ',') out.push_back("");
+  return out;
+}
+
+}  // namespace
+
+LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool four_stroke) {
+  auto fail = [&](int line, int column, const std::string& what) -> void {
+    std::string where = path + ":" + std::to_string(line);
+    if (column > 0) where += ":" + std::to_string(column);
+    throw CaseError(where + ": " + what);
+  };
+  std::istringstream in(text);
+  std::string raw;
+  int line = 0;
+  int angle_col = -1, lift_col = -1, columns = 0;
+  double angle_scale = 0.0, lift_scale = 0.0;
+  std::string angle_name, lift_name;
+  LiftTable t;
+  int last_line = 0;
+  while (std::getline(in, raw)) {
+    ++line;
+    const std::string s = Trim(raw);
+    if (s.empty() || s[0] == '#') continue;
+    const std::vector<std::string> f = Fields(s);
+    if (angle_col < 0 && lift_col < 0 && columns == 0) {  // the header
+      columns = static_cast<int>(f.size());
+      for (int k = 0; k < columns; ++k) {
+        const std::string& name = f[k];
+        if (name == "crank_deg" || name == "cam_deg") {
+          if (angle_col >= 0) fail(line, k + 1, "two angle columns; keep one");
+          angle_col = k;
+          angle_name = name;
+          angle_scale = kDeg * (name == "cam_deg" ? (four_stroke ? 2.0 : 1.0) : 1.0);
+        } else if (name == "lift_mm" || name == "lift_um" || name == "lift_in" ||
+                   name == "lift_m") {
+          if (lift_col >= 0) fail(line, k + 1, "two lift columns; keep one");
+          lift_col = k;
+          lift_name = name;
+          lift_scale = name == "lift_in" ? 25.4e-3 : ToSi(Dimension::kLength, name.substr(5), 1.0);
+        } else if (name == "crank" || name == "cam" || name == "lift" || name == "angle") {
+          fail(line, k + 1,
+               "column '" + name + "' needs a unit: " +
+                   (name == "lift" ? "lift_mm, lift_um or lift_in" : "crank_deg or cam_deg"));
+        } else {
+          fail(line, k + 1,
+               "unknown column '" + name +
+                   "'; expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, "
+                   "lift_in)");
+        }
+      }
+      if (angle_col < 0) fail(line, 0, "the header has no angle column; expected crank_deg or cam_deg");
+      if (lift_col < 0) fail(line, 0, "the header has no lift column; expected lift_mm, lift_um or lift_in");
+      continue;
+    }
+    if (static_cast<int>(f.size()) != columns) {
+      fail(line, 0, "expected " + std::to_string(columns) + " fields, got " +
+                        std::to_string(f.size()));
+    }
+    double v[2];
+    const int cols[2] = {angle_col, lift_col};
+    const std::string names[2] = {angle_name, lift_name};
+    for (int k = 0; k < 2; ++k) {
+      const std::string& field = f[cols[k]];
+      char* end = nullptr;
+      errno = 0;
+      const double x = field.empty() ? NAN : std::strtod(field.c_str(), &end);
+      if (field.empty() || end != field.c_str() + field.size()) {
+        fail(line, cols[k] + 1, "'" + field + "' is not a number (column " + names[k] + ")");
+      }
+      if (!std::isfinite(x) || errno == ERANGE) {
+        fail(line, cols[k] + 1,
+             "'" + field + "' is not a finite number (column " + names[k] + ")");
+      }
+      v[k] = x;
+    }
+    const double angle = v[0] * angle_scale, lift = v[1] * lift_scale;
+    if (!t.crank_rad.empty() && !(angle > t.crank_rad.back())) {
+      std::ostringstream a, b;
+      a << v[0];
+      b << t.crank_rad.back() / angle_scale;
+      fail(line, angle_col + 1,
+           angle_name + " " + a.str() + " does not increase after " + b.str() + " (line " +
+               std::to_string(last_line) + "); angles must increase strictly");
+    }
+    t.crank_rad.push_back(angle);
+    t.lift_m.push_back(lift);
+    last_line = line;
+  }
+  if (columns == 0) fail(line, 0, "no header; expected crank_deg (or cam_deg) and lift_mm");
+  if (t.crank_rad.size() < 2) {
+    fail(line, 0, "has " + std::to_string(t.crank_rad.size()) +
+                      " row(s) of data; a lift table needs at least 2");
+  }
+  return t;
+}
+
+LiftTable ReadLiftCsv(const std::string& path, bool four_stroke) {
+  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, four_stroke);
+}
+
+}  // namespace needle
