@@ -62,6 +62,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
         "or bash scripts/install-deps.sh)");
   }
   const double rpm = o.speed_rpm.value_or(c.engine.speed_rpm);
+  const LiftLawChoice choice = CaseLiftChoice(c);
   const LiftLaw law = MakeLiftLaw(c);
   const Kinematics kin(law, rpm);
   const KinematicsSummary sum = kin.Summarize();
@@ -75,8 +76,21 @@ int RunCheckCommand(const CheckCommandOptions& o) {
           << Row("lift law", Escape(c.lift.source) + ", " +
                                  std::to_string(c.lift.table.crank_rad.size()) +
                                  " points, spline " + SplineKindName(law.kind()))
-          << Row("injection period", Fixed(sum.injection_period_s * 1e3, 2) + " ms")
-          << Row("max lift", Fixed(sum.max_lift_m * 1e3, 3) + " mm at " +
+          << Row("spline chosen", Escape(choice.reason))
+          << Row("open lift", Fixed(sum.open_rad / kDeg, 2) + "° to " +
+                                  Fixed(sum.close_rad / kDeg, 2) + "°" +
+                                  (law.closed_level_m() > 0
+                                       ? " (where the lift exceeds " +
+                                             Fixed(law.closed_level_m() * 1e3, 4) + " mm, 3σ)"
+                                       : std::string(" (last zero before the rise to first zero "
+                                                     "after the fall)")))
+          << Row("injection period", Fixed(sum.injection_period_s * 1e3, 2) + " ms");
+  if (law.undershoot_m() > 0) {
+    summary << Row("WARNING", "the spline dips " + Fixed(law.undershoot_m() * 1e3, 4) +
+                                  " mm below the seat at " + Fixed(law.undershoot_rad() / kDeg, 2) +
+                                  "° inside the open lift; try another spline kind");
+  }
+  summary << Row("max lift", Fixed(sum.max_lift_m * 1e3, 3) + " mm at " +
                                  Fixed(sum.max_lift_rad / kDeg, 2) + "°")
           << Row("max velocity", Fixed(sum.max_velocity_m_s, 3) + " m/s at " +
                                      Fixed(sum.max_velocity_rad / kDeg, 2) + "°");
@@ -88,13 +102,17 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   }
   summary << "</table>";
 
-  // Figure 1: lift, velocity, acceleration, with the paper's velocities as markers.
-  Series kinematic{"kin", {}}, paper{"paper", {}};
-  const double th0 = law.start_rad(), thn = law.end_rad();
-  for (int i = 0; i <= 400; ++i) {
-    const KinematicsPoint p = kin.At(th0 + (thn - th0) * i / 400.0);
+  // Figure 1: lift, velocity, acceleration over the spline, with the table's points (or the
+  // measured readings) and the paper's velocities as markers.
+  Series kinematic{"kin", {}}, paper{"paper", {}}, points{"points", {}};
+  const double th0 = law.table_start_rad(), thn = law.table_end_rad();
+  for (int i = 0; i <= 600; ++i) {
+    const KinematicsPoint p = kin.At(th0 + (thn - th0) * i / 600.0);
     kinematic.rows.push_back(
         {p.crank_rad / kDeg, p.lift_m * 1e3, p.velocity_m_s, p.acceleration_m_s2.value_or(NAN)});
+  }
+  for (size_t i = 0; i < c.lift.table.crank_rad.size(); ++i) {
+    points.rows.push_back({c.lift.table.crank_rad[i] / kDeg, c.lift.table.lift_m[i] * 1e3});
   }
   if (c.paper) {
     for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
@@ -104,6 +122,10 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     }
   }
   if (paper.rows.empty()) paper.rows.push_back({NAN, NAN});
+  if (!law.HasAcceleration()) {
+    skipped.push_back("acceleration panel and table column: the " + SplineKindName(law.kind()) +
+                      " spline is C¹ only (its second derivative jumps at the knots)");
+  }
 
   // The spring check.
   std::optional<SpringCheckResult> spring;
@@ -157,16 +179,60 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     report.AddHtml(s + "</ul>");
   }
   report.AddHtml("<h2>Kinematics</h2>");
+  const bool accel = law.HasAcceleration();
+  const std::string points_label =
+      c.lift.table.crank_rad.size() >= static_cast<size_t>(kDenseTablePoints) ? "readings"
+                                                                              : "table";
   report.AddFigure(
-      "Lift, velocity and acceleration against crank angle at " + Fixed(rpm, 0) + " rpm" +
-          (c.paper && !c.paper->crank_rad.empty() ? "; points: the paper's velocities" : ""),
-      {kinematic, paper},
-      "set multiplot layout 3,1\nset lmargin 12\nunset key\nset ylabel 'lift (mm)'\nset format x "
-      "''\n"
-      "plot $kin using 1:2 with lines lw 2\nset ylabel 'velocity (m/s)'\n"
-      "plot $kin using 1:3 with lines lw 2, $paper using 1:2 with points pt 7 ps 0.8\n"
-      "set ylabel 'acceleration (m/s²)'\nset format x '%g'\nset xlabel 'crank angle (deg)'\n"
-      "plot $kin using 1:4 with lines lw 2\nunset multiplot");
+      "Lift, velocity" + std::string(accel ? " and acceleration" : "") +
+          " against crank angle at " + Fixed(rpm, 0) + " rpm; points: the lift " + points_label +
+          (c.paper && !c.paper->crank_rad.empty() ? " and the paper's velocities" : "") +
+          "; dashed: the open lift",
+      {kinematic, paper, points},
+      std::string(accel ? "set multiplot layout 3,1\n" : "set multiplot layout 2,1\n") +
+          "set lmargin 12\nunset key\nset arrow from " + Fixed(law.start_rad() / kDeg, 3) +
+          ", graph 0 to " + Fixed(law.start_rad() / kDeg, 3) +
+          ", graph 1 nohead dt 2 lc rgb '#888888'\nset arrow from " +
+          Fixed(law.end_rad() / kDeg, 3) + ", graph 0 to " + Fixed(law.end_rad() / kDeg, 3) +
+          ", graph 1 nohead dt 2 lc rgb '#888888'\nset ylabel 'lift (mm)'\nset format x ''\n"
+          "plot $kin using 1:2 with lines lw 2, $points using 1:2 with points pt 6 ps 0.6\n"
+          "set ylabel 'velocity (m/s)'\n" +
+          (accel ? "" : "set format x '%g'\nset xlabel 'crank angle (deg)'\n") +
+          "plot $kin using 1:3 with lines lw 2, $paper using 1:2 with points pt 7 ps 0.8\n" +
+          (accel ? "set ylabel 'acceleration (m/s²)'\nset format x '%g'\nset xlabel 'crank angle "
+                   "(deg)'\nplot $kin using 1:4 with lines lw 2\n"
+                 : "") +
+          "unset multiplot",
+      accel ? 900 : 620);
+
+  // The velocity and acceleration table, like the paper's.
+  {
+    std::ostringstream t;
+    t << "<h2>Kinematics table at " << Fixed(rpm, 0)
+      << " rpm</h2><table class=\"grid\"><tr><th>crank angle (deg)</th><th>lift (mm)</th>"
+         "<th>velocity (dcm/s)</th><th>acceleration (m/s²)</th>"
+      << (c.paper && !c.paper->crank_rad.empty() ? "<th>paper |v| (dcm/s)</th>" : "") << "</tr>";
+    std::vector<double> rows;
+    for (double d = std::ceil(th0 / kDeg / 5.0) * 5.0; d <= thn / kDeg + 1e-9; d += 5.0) {
+      rows.push_back(d * kDeg);
+    }
+    for (double a : rows) {
+      const KinematicsPoint p = kin.At(a);
+      t << "<tr><td>" << Fixed(a / kDeg, 1) << "</td><td>" << Fixed(p.lift_m * 1e3, 3)
+        << "</td><td>" << Fixed(p.velocity_m_s * 10.0, 2) << "</td><td>"
+        << (p.acceleration_m_s2 ? Fixed(*p.acceleration_m_s2, 2) : std::string("n/a")) << "</td>";
+      if (c.paper && !c.paper->crank_rad.empty()) {
+        std::string pv;
+        for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
+          if (std::abs(c.paper->crank_rad[i] - a) < 1e-9)
+            pv = Fixed(c.paper->velocity_m_s[i] * 10, 2);
+        }
+        t << "<td>" << pv << "</td>";
+      }
+      t << "</tr>";
+    }
+    report.AddHtml(t.str() + "</table>");
+  }
 
   if (spring) {
     const SpringCheckResult& s = *spring;

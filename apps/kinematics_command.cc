@@ -82,7 +82,8 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
   }
   Case c = bare_csv ? CaseFromLiftCsv(o.case_path, o.cycle) : LoadCase(o.case_path);
   if (o.noise_mm) {
-    if (!bare_csv) throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
+    if (!bare_csv)
+      throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
     c.lift.noise_m = *o.noise_mm * 1e-3;
   }
   if (o.spline) {
@@ -137,7 +138,7 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
     j["closed_level_mm"] = law.closed_level_m() * 1e3;
     j["undershoot_mm"] = law.undershoot_m() * 1e3;
     j["undershoot_deg"] = law.undershoot_m() > 0 ? nlohmann::json(law.undershoot_rad() / kDeg)
-                                                  : nlohmann::json(nullptr);
+                                                 : nlohmann::json(nullptr);
     j["injection_period_s"] = sum.injection_period_s;
     j["max_lift_mm"] = sum.max_lift_m * 1e3;
     j["max_lift_deg"] = sum.max_lift_rad / kDeg;
@@ -171,7 +172,8 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
     out << "spline " << SplineKindName(law.kind()) << ": " << choice.reason << '\n';
     out << "open lift " << Fixed(sum.open_rad / kDeg, 2) << " to " << Fixed(sum.close_rad / kDeg, 2)
         << " deg";
-    if (law.closed_level_m() > 0) out << " (where the lift exceeds " << Fixed(law.closed_level_m() * 1e3, 4) << " mm, 3 sigma)";
+    if (law.closed_level_m() > 0)
+      out << " (where the lift exceeds " << Fixed(law.closed_level_m() * 1e3, 4) << " mm, 3 sigma)";
     out << ", " << Fixed(speed, 1) << " rpm, injection period "
         << Fixed(sum.injection_period_s * 1e3, 2) << " ms\n";
     if (law.undershoot_m() > 0) {

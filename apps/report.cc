@@ -41,7 +41,7 @@ Report::Report(std::string title) : title_(std::move(title)) {}
 void Report::AddHtml(const std::string& html) { parts_.push_back(html); }
 
 void Report::AddFigure(const std::string& caption, const std::vector<Series>& data,
-                       std::string script) {
+                       std::string script, int height_px) {
   char pattern[] = "/tmp/needle-report-XXXXXX";
   const char* dir = mkdtemp(pattern);
   if (!dir) throw std::runtime_error("report: cannot create a temporary folder for gnuplot");
@@ -65,7 +65,7 @@ void Report::AddFigure(const std::string& caption, const std::vector<Series>& da
   const std::string gp = (folder / "figure.gp").string();
   {
     std::ofstream out(gp);
-    out << "set terminal svg size 860,420 font 'sans,12' background rgb 'white'\n"
+    out << "set terminal svg size 860," << height_px << " font 'sans,12' background rgb 'white'\n"
         << "set output '" << svg << "'\nset grid\n"
         << script << "\nunset output\n";
   }

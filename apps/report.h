@@ -21,8 +21,9 @@ class Report {
   void AddHtml(const std::string& html);
   /// Draws a figure: `script` is gnuplot after the terminal is set; it reads the series as
   /// files named in `$name` placeholders ($lift, $force, …). Throws std::runtime_error naming
-  /// gnuplot's failure.
-  void AddFigure(const std::string& caption, const std::vector<Series>& data, std::string script);
+  /// gnuplot's failure. `height_px`: the figure's height (860 px wide).
+  void AddFigure(const std::string& caption, const std::vector<Series>& data, std::string script,
+                 int height_px = 420);
   int figures() const { return figures_; }
 
   /// The whole HTML document.

@@ -430,9 +430,9 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
     if (max_lift) r.Fail("max_lift_mm", "only used with normal_curve = \"basu\"");
     if (csv->empty()) r.Fail("csv", "expected the path of a CSV file");
     const std::filesystem::path p(*csv);
-    const std::string full =
-        p.is_absolute() ? p.string()
-                        : (std::filesystem::path(case_path).parent_path() / p).string();
+    const std::string full = p.is_absolute()
+                                 ? p.string()
+                                 : (std::filesystem::path(case_path).parent_path() / p).string();
     lift.table = ReadLiftCsv(full, four_stroke);
     lift.source = "csv " + full;
   } else {
@@ -468,7 +468,8 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
     lift.resolution_given = true;
   }
   if (auto noise = r.OptionalQuantity("noise", Dimension::kLength)) {
-    if (!(*noise > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*noise * 1e3) + " mm");
+    if (!(*noise > 0.0))
+      r.Fail(r.last_key(), "must be positive, got " + Number(*noise * 1e3) + " mm");
     lift.noise_m = *noise;
   }
   lift.open_rad = r.OptionalQuantity("open", Dimension::kAngle);

@@ -49,14 +49,14 @@ struct EngineSection {
 };
 
 struct LiftSection {
-  LiftTable table;  ///< the lift table in SI (from crank_deg/lift_mm, csv or the normal curve)
-  SplineOptions spline;       ///< spline kind and its options
-  bool spline_given = false;  ///< `spline` stated (else chosen from the data: lib/lift_data.h)
-  double resolution_m = 1e-5;  ///< rounding of the table's lifts, m (paper: 0.01 mm)
-  bool resolution_given = false;   ///< `resolution_mm` stated
-  std::optional<double> noise_m;   ///< `noise_mm`: σ of the readings, m
+  LiftTable table;       ///< the lift table in SI (from crank_deg/lift_mm, csv or the normal curve)
+  SplineOptions spline;  ///< spline kind and its options
+  bool spline_given = false;      ///< `spline` stated (else chosen from the data: lib/lift_data.h)
+  double resolution_m = 1e-5;     ///< rounding of the table's lifts, m (paper: 0.01 mm)
+  bool resolution_given = false;  ///< `resolution_mm` stated
+  std::optional<double> noise_m;  ///< `noise_mm`: σ of the readings, m
   std::optional<double> open_rad, close_rad;  ///< `open_deg`, `close_deg`: the open lift
-  std::string source;  ///< "table", "csv FILE" or "basu normal curve"
+  std::string source;                         ///< "table", "csv FILE" or "basu normal curve"
 };
 
 struct PaperSection {

@@ -75,13 +75,15 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
                    "lift_in)");
         }
       }
-      if (angle_col < 0) fail(line, 0, "the header has no angle column; expected crank_deg or cam_deg");
-      if (lift_col < 0) fail(line, 0, "the header has no lift column; expected lift_mm, lift_um or lift_in");
+      if (angle_col < 0)
+        fail(line, 0, "the header has no angle column; expected crank_deg or cam_deg");
+      if (lift_col < 0)
+        fail(line, 0, "the header has no lift column; expected lift_mm, lift_um or lift_in");
       continue;
     }
     if (static_cast<int>(f.size()) != columns) {
-      fail(line, 0, "expected " + std::to_string(columns) + " fields, got " +
-                        std::to_string(f.size()));
+      fail(line, 0,
+           "expected " + std::to_string(columns) + " fields, got " + std::to_string(f.size()));
     }
     double v[2];
     const int cols[2] = {angle_col, lift_col};
@@ -95,8 +97,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
         fail(line, cols[k] + 1, "'" + field + "' is not a number (column " + names[k] + ")");
       }
       if (!std::isfinite(x) || errno == ERANGE) {
-        fail(line, cols[k] + 1,
-             "'" + field + "' is not a finite number (column " + names[k] + ")");
+        fail(line, cols[k] + 1, "'" + field + "' is not a finite number (column " + names[k] + ")");
       }
       v[k] = x;
     }
@@ -115,8 +116,9 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
   }
   if (columns == 0) fail(line, 0, "no header; expected crank_deg (or cam_deg) and lift_mm");
   if (t.crank_rad.size() < 2) {
-    fail(line, 0, "has " + std::to_string(t.crank_rad.size()) +
-                      " row(s) of data; a lift table needs at least 2");
+    fail(line, 0,
+         "has " + std::to_string(t.crank_rad.size()) +
+             " row(s) of data; a lift table needs at least 2");
   }
   return t;
 }

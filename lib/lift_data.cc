@@ -74,8 +74,7 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& o) {
   if (o.kind) {
     c.law.spline.kind = *o.kind;
     c.reason = std::string("stated in the case; ") +
-               (c.measured ? "measured data, " : "exact table, ") +
-               points + ", " + noise;
+               (c.measured ? "measured data, " : "exact table, ") + points + ", " + noise;
     return c;
   }
   if (c.measured) {
@@ -84,8 +83,8 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& o) {
                std::string(": measured data, ") + noise + "; smoothing spline";
     return c;
   }
-  const bool at_rest = !table.lift_m.empty() && table.lift_m.front() == 0.0 &&
-                       table.lift_m.back() == 0.0;
+  const bool at_rest =
+      !table.lift_m.empty() && table.lift_m.front() == 0.0 && table.lift_m.back() == 0.0;
   if (at_rest) {
     c.law.spline.kind = SplineKind::kClamped;
     c.law.spline.start_slope = c.law.spline.end_slope = 0.0;

@@ -42,21 +42,21 @@ double EstimateNoise(const std::vector<double>& crank_rad, const std::vector<dou
 
 /// What a case says about its lift data. Every field has a default (nothing stated).
 struct LiftDataOptions {
-  std::optional<SplineKind> kind;      ///< stated spline kind
-  SplineOptions spline;                ///< end slopes and smoothing rule (kind ignored)
-  std::optional<double> noise_m;       ///< stated σ of the readings, m, > 0
-  std::optional<double> resolution_m;  ///< stated rounding of the readings, m, > 0
+  std::optional<SplineKind> kind;             ///< stated spline kind
+  SplineOptions spline;                       ///< end slopes and smoothing rule (kind ignored)
+  std::optional<double> noise_m;              ///< stated σ of the readings, m, > 0
+  std::optional<double> resolution_m;         ///< stated rounding of the readings, m, > 0
   std::optional<double> open_rad, close_rad;  ///< stated θ_open, θ_close
 };
 
 /// The law chosen for a table, and why.
 struct LiftLawChoice {
-  LiftLawOptions law;           ///< what the LiftLaw is built with
-  bool measured = false;        ///< measured data (closed level 3σ) or an exact table
-  double noise_m = 0.0;         ///< σ used, m
-  std::string noise_source;     ///< "stated", "estimated" or "rounding"
+  LiftLawOptions law;                       ///< what the LiftLaw is built with
+  bool measured = false;                    ///< measured data (closed level 3σ) or an exact table
+  double noise_m = 0.0;                     ///< σ used, m
+  std::string noise_source;                 ///< "stated", "estimated" or "rounding"
   std::optional<double> estimated_noise_m;  ///< σ̂ when estimated
-  std::string reason;           ///< one line: which spline and why
+  std::string reason;                       ///< one line: which spline and why
 };
 
 /// Decides the spline, σ and the open-lift rule for `table` (see the file comment).

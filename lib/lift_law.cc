@@ -43,7 +43,8 @@ std::string Deg(double rad) {
 void CheckReadings(const LiftTable& table, double allowance_m) {
   for (size_t i = 0; i < table.lift_m.size(); ++i) {
     if (table.lift_m[i] < -allowance_m) {
-      std::string what = "entry " + std::to_string(i) + " of the lifts is negative (" + Mm(table.lift_m[i]) +
+      std::string what = "entry " + std::to_string(i) + " of the lifts is negative (" +
+                         Mm(table.lift_m[i]) +
                          " mm): lift is measured from the seat and cannot be below it";
       if (allowance_m > 0.0) {
         what += " by more than the noise allows (4 sigma = " + Mm(allowance_m) + " mm)";
@@ -121,10 +122,10 @@ LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
     const std::vector<double> y(s.begin() + first, s.begin() + last + 1);
     if (first > 0 || last + 1 < s.size()) {
       if (static_cast<int>(x.size()) < MinimumPoints(options.spline.kind)) {
-        throw std::invalid_argument(
-            "the open lift (" + Deg(x.front()) + "° to " + Deg(x.back()) + "°) has " +
-            std::to_string(x.size()) + " points; \"" + SplineKindName(options.spline.kind) +
-            "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
+        throw std::invalid_argument("the open lift (" + Deg(x.front()) + "° to " + Deg(x.back()) +
+                                    "°) has " + std::to_string(x.size()) + " points; \"" +
+                                    SplineKindName(options.spline.kind) + "\" needs at least " +
+                                    std::to_string(MinimumPoints(options.spline.kind)));
       }
     }
     full = BuildSpline(x, y, options.spline);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "run_command.h"
 
@@ -56,6 +57,53 @@ TEST(CheckReportTest, FullSceneHasEveryFigureAndPasses) {
   }
   EXPECT_NE(html.find("energy residual"), std::string::npos);
   EXPECT_NE(html.find("dopri5"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// Job 3 of the report: the velocity and acceleration table like the paper's, the table's points
+// over the spline; a C¹ spline leaves out the acceleration panel and says so.
+TEST(CheckReportTest, KinematicsTableAndPointsAndC1Splines) {
+  const std::string dir = TempDir("kin");
+  const auto r = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = testing::Slurp(dir + "/basu-example1.html");
+  EXPECT_NE(html.find("<h2>Kinematics table at 125 rpm</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<th>velocity (dcm/s)</th><th>acceleration (m/s²)</th>"), std::string::npos);
+  // The crest row of Example 1: 3.670 mm at 20°, the table's own value.
+  EXPECT_NE(html.find("<tr><td>20.0</td><td>3.670</td>"), std::string::npos);
+  EXPECT_NE(html.find("points: the lift table"), std::string::npos);
+  const std::string pchip = dir + "/pchip.toml";
+  {
+    std::ifstream in(Case("basu-cam4.toml"));
+    std::stringstream s;
+    s << in.rdbuf();
+    std::string text = s.str();
+    text.replace(text.find("spline = \"not-a-knot\""), 21, "spline = \"pchip\"");
+    std::ofstream(pchip) << text;
+  }
+  const auto p = RunNeedle("check " + pchip + " --out " + dir);
+  EXPECT_EQ(p.status, 0) << p.err;
+  EXPECT_NE(p.out.find("skipped: acceleration panel and table column: the pchip spline is C¹ "
+                       "only (its second derivative jumps at the knots)"),
+            std::string::npos)
+      << p.out;
+  const std::string phtml = testing::Slurp(dir + "/pchip.html");
+  EXPECT_EQ(Count(phtml, "<svg"), 1);
+  EXPECT_EQ(phtml.find("acceleration (m/s²)'"), std::string::npos);
+  EXPECT_NE(phtml.find("<td>n/a</td>"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// A case whose lift comes from a CSV of measured readings: checked end to end.
+TEST(CheckReportTest, MeasuredCsvCase) {
+  const std::string dir = TempDir("measured");
+  const auto r = RunNeedle("check " + Case("measured-cycloidal.toml") + " --out " + dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string html = testing::Slurp(dir + "/measured-cycloidal.html");
+  EXPECT_NE(html.find("dense table (191 points): measured data, noise 0.0048 mm (estimated); "
+                      "smoothing spline"),
+            std::string::npos);
+  EXPECT_NE(html.find("points: the lift readings"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

@@ -5,6 +5,8 @@
 // give the extreme accelerations within 6 %, n_qs within 3 %, σ within 30 % and the injection
 // period within the detection allowance derived below. The same tables are bundled as CSV in
 // cases/ (`NEEDLE_REGENERATE=1 build/tests/lib/lift_data_test` rewrites them).
+#include "lib/lift_data.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,7 +18,6 @@
 
 #include "lib/case_file.h"
 #include "lib/kinematics.h"
-#include "lib/lift_data.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"
 
@@ -28,7 +29,7 @@ struct Law {
   std::string name;
   double height_mm, rise_deg, fall_deg;
   bool rise_cycloidal, fall_cycloidal;  // else 3-4-5 polynomial
-  double accel_bound;                    // relative error of the extreme accelerations met
+  double accel_bound;                   // relative error of the extreme accelerations met
 
   // s and d²s/dθ² (θ in rad) at θ deg; the normalised shape f(ξ) and f''(ξ) of each side.
   static double Shape(bool cycloidal, double xi, int d) {
@@ -100,8 +101,9 @@ double ExactNqs(const Law& law, const TrainValues& t) {
   double best = 1e300;
   for (double deg = 0; deg <= law.duration_deg(); deg += 1e-4) {
     const double s2 = law.Lift_mm(deg, 2) * 1e-3;
-    if (s2 < 0) best = std::min(best, (t.preload_N + t.rate_N_m * law.Lift_mm(deg) * 1e-3) /
-                                          (t.mass_kg * -s2));
+    if (s2 < 0)
+      best =
+          std::min(best, (t.preload_N + t.rate_N_m * law.Lift_mm(deg) * 1e-3) / (t.mass_kg * -s2));
   }
   return 60.0 / (2 * kPi) * std::sqrt(best);
 }
