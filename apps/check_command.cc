@@ -66,7 +66,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   const LiftLaw law = MakeLiftLaw(c);
   const Kinematics kin(law, rpm);
   const KinematicsSummary sum = kin.Summarize();
-  std::vector<std::string> skipped, log;
+  std::vector<std::string> skipped, log, failing;
   bool ok = true;
 
   Report report("needle check: " + (c.title.empty() ? c.path : c.title));
@@ -132,6 +132,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   if (c.needle && c.spring && law.HasAcceleration()) {
     spring = CheckSpring(c, law, rpm);
     ok = ok && spring->pass;
+    for (const std::string& f : spring->failures) failing.push_back("spring check: " + f);
   } else {
     skipped.push_back(!law.HasAcceleration()
                           ? "spring check: the spline is C¹ only (no acceleration)"
@@ -163,8 +164,17 @@ int RunCheckCommand(const CheckCommandOptions& o) {
       sweep = OverspeedSearch(*scene, os, [&](int done, int total) { bar.Update(done, total); });
     }
 
-    if (run->liftoff()) ok = false;
-    if (sweep->n_dyn_rpm && *sweep->n_dyn_rpm <= overspeed_rpm) ok = false;
+    if (run->liftoff()) {
+      ok = false;
+      failing.push_back("dynamics: the needle lifts off the cam at the rated speed " +
+                        Fixed(rpm, 0) + " rpm");
+    }
+    if (sweep->n_dyn_rpm && *sweep->n_dyn_rpm <= overspeed_rpm) {
+      ok = false;
+      failing.push_back("overspeed: n_dyn " + Fixed(*sweep->n_dyn_rpm, 1) + " rpm is at or below " +
+                        Fixed(overspeed_rpm, 1) +
+                        " rpm (the overspeed factor times the rated speed)");
+    }
   } else {
     skipped.push_back(
         "dynamics and overspeed: the case has no [train] section (contact stiffness, play)");
@@ -172,6 +182,11 @@ int RunCheckCommand(const CheckCommandOptions& o) {
 
   // ---- the report ----
   report.AddHtml(std::string("<p>Overall: ") + Verdict(ok) + "</p>");
+  if (!failing.empty()) {
+    std::string s = "<h2>Failing</h2><ul class=\"fail-list\">";
+    for (const auto& f : failing) s += "<li>" + Escape(f) + "</li>";
+    report.AddHtml(s + "</ul>");
+  }
   report.AddHtml(summary.str());
   if (!skipped.empty()) {
     std::string s = "<h2>Skipped</h2><ul class=\"skip\">";
@@ -271,6 +286,11 @@ int RunCheckCommand(const CheckCommandOptions& o) {
                                                Fixed(h.surge_ratio, 1) + "× the cam's " +
                                                Verdict(h.surge_ok));
     }
+    t << Row("combustion load F_g", Fixed(s.gas_force_N / kKgf, 1) + " kgf (" +
+                                        Escape(s.gas_source) + "); preload against S·F_g " +
+                                        Verdict(s.combustion_ok))
+      << Row("Basu's formula tolerance",
+             Fixed(s.basu_tolerance_percent, 1) + " % " + Verdict(s.basu_ok));
     t << Row("spring check", Verdict(s.pass)) << "</table>";
     report.AddHtml(t.str());
   }
@@ -385,6 +405,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
                                    : std::string("none in the range"))
               << '\n';
   }
+  for (const auto& f : failing) std::cout << "fails: " << f << '\n';
   std::cout << "report: " << path << " (" << report.figures() << " figures)\n"
             << "overall: " << (ok ? "pass" : "FAIL") << '\n';
   return ok ? 0 : 1;

@@ -87,7 +87,8 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
                           {"start_deg", e.start_rad / kDeg},
                           {"end_deg", e.end_rad / kDeg},
                           {"max_gap_mm", e.max_gap_m * 1e3},
-                          {"impact", e.impact}});
+                          {"impact", e.impact},
+                          {"open", e.open}});
     }
     j["episodes"] = episodes;
     nlohmann::json impacts = nlohmann::json::array();
@@ -129,7 +130,7 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
     for (const Episode& e : r.episodes) {
       out << "  " << e.kind << " " << Fixed(e.start_rad / kDeg, 3) << " .. "
           << Fixed(e.end_rad / kDeg, 3) << " deg, largest gap " << Fixed(e.max_gap_m * 1e3, 4)
-          << " mm\n";
+          << " mm" << (e.open ? " (still open when the run ended)" : "") << '\n';
     }
     for (const Impact& i : r.impacts) {
       out << "  impact " << i.kind << " at " << Fixed(i.crank_rad / kDeg, 4) << " deg, "

@@ -79,6 +79,14 @@ int RunSpringCommand(const SpringCommandOptions& o) {
     j["required_preload_N"] = required_N;
     j["required_preload_kgf"] = required_N / kKgf;
     j["preload_margin_percent"] = Finite(margin);
+    j["gas_force_N"] = check.gas_force_N;
+    j["gas_source"] = check.gas_source;
+    j["combustion_ok"] = check.combustion_ok;
+    j["combustion_margin_percent"] = Finite(check.combustion_margin_percent);
+    j["basu_tolerance_percent"] = check.basu_tolerance_percent;
+    j["basu_ok"] = check.basu_ok;
+    j["preload_ok"] = preload_ok;
+    j["failures"] = check.failures;
     j["pass"] = ok;
     if (helical) {
       const auto& h = *helical;
@@ -112,8 +120,15 @@ int RunSpringCommand(const SpringCommandOptions& o) {
       out << "Basu's formula (d = " << Fixed(*c.needle->diameter_m * 1e3, 1)
           << " mm): " << Fixed(*basu_N / kKgf, 1) << " kgf; the case's spring "
           << Fixed(train.preload_N / kKgf, 1) << " kgf ("
-          << Fixed(100.0 * (train.preload_N - *basu_N) / *basu_N, 1) << " %)\n";
+          << Fixed(100.0 * (train.preload_N - *basu_N) / *basu_N, 1) << " %; tolerance "
+          << Fixed(check.basu_tolerance_percent, 1) << " %) -> " << PassFail(check.basu_ok) << '\n';
     }
+    out << "combustion load F_g = " << Fixed(check.gas_force_N / kKgf, 1) << " kgf ("
+        << check.gas_source << "); preload against S x F_g: margin "
+        << (std::isfinite(check.combustion_margin_percent)
+                ? Fixed(check.combustion_margin_percent, 1) + " %"
+                : std::string("unbounded"))
+        << " -> " << PassFail(check.combustion_ok) << '\n';
     out << "inertia force m*max|a| = " << Fixed(train.mass_kg, 2) << " kg x " << Fixed(a_abs, 2)
         << " m/s^2 (at " << Fixed(a_deg, 1) << " deg) = " << Fixed(inertia_N / kKgf, 2) << " kgf\n";
     out << "quasi-static contact force: min " << Fixed(fmin.force_N, 1) << " N at "
@@ -148,6 +163,7 @@ int RunSpringCommand(const SpringCommandOptions& o) {
           << '\n';
     }
     out << "\nspring check: " << (ok ? "pass" : "FAIL") << '\n';
+    for (const std::string& f : check.failures) out << "  fails: " << f << '\n';
   }
   std::cout << out.str() << std::flush;
   return ok ? 0 : 1;

@@ -41,7 +41,9 @@ void Recorder::Update(double t, const TrainState& x) {
   max_fs_ = std::max(max_fs_, fs);
   if (in_table) min_fc_lift_ = std::min(min_fc_lift_, fc);
   // Separation episode: inside [θ0, θN], the cam not pushing and y > 1 µm.
-  const bool separated = in_table && !(fc > 0.0) && x[0] > kSeparationLift_m;
+  // An episode begins inside [θ0, θN]; one still open at θN goes on until the needle is back
+  // on the cam or on its seat (model.md §6).
+  const bool separated = (in_table || separated_) && !(fc > 0.0) && x[0] > kSeparationLift_m;
 
   if (separated && !separated_) {
     Episode e;
@@ -50,9 +52,15 @@ void Recorder::Update(double t, const TrainState& x) {
     e.max_gap_m = x[0] - c.u;
     episodes_.push_back(e);
   } else if (!separated && separated_) {
-    episodes_.back().end_rad = std::min(th, law.end_rad());
+    episodes_.back().end_rad = th;
   }
-  if (separated) episodes_.back().max_gap_m = std::max(episodes_.back().max_gap_m, x[0] - c.u);
+  if (separated) {
+    Episode& e = episodes_.back();
+    e.max_gap_m = std::max(e.max_gap_m, x[0] - c.u);
+    // model.md §6: a jump is any separation that reaches the deceleration zone, wherever it
+    // began — a rebound in the acceleration zone that carries on over the crest is lift-off.
+    if (law.Derivative(th, 2) < 0.0) e.kind = "jump";
+  }
   separated_ = separated;
   if (record_series_) {
     series_.push_back({th, t, x[0], x[1], c.u, fc, fs});
@@ -88,7 +96,10 @@ void Recorder::Crossing(int index, int direction, double t, const TrainState& x)
 
 void Recorder::Finish(double t, const TrainState& x) {
   Update(t, x);
-  if (separated_) episodes_.back().end_rad = train_.Angle(t);
+  if (separated_) {
+    episodes_.back().end_rad = train_.Angle(t);
+    episodes_.back().open = true;  // still off cam and seat when the run ends: reported
+  }
 }
 
 double Recorder::jump_rad() const {

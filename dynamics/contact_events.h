@@ -38,11 +38,13 @@ EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState&
 ContactMode ModeFromSigns(const std::array<int, kEventCount>& signs);
 
 struct Episode {
-  std::string kind;  ///< "jump" (begins where s'' < 0) or "bounce"
+  /// "jump" (any part of it where s'' < 0 inside the table: model.md §6) or "bounce"
+  std::string kind;
   double start_rad = 0.0;
   double end_rad = 0.0;
   double max_gap_m = 0.0;  ///< largest y − u
   int impact = -1;         ///< index of the impact that ends it, −1 if none
+  bool open = false;       ///< still separated when the run ended (end_rad = the run's end)
 };
 
 struct Impact {

@@ -190,7 +190,35 @@ NeedleSection ReadNeedle(SectionReader r) {
   if (n.diameter_m && !(*n.diameter_m > 0.0)) {
     r.Fail("diameter_mm", "must be positive, got " + Number(*n.diameter_m * 1e3));
   }
-  n.gas_force_N = r.OptionalQuantity("gas_force", Dimension::kForce).value_or(0.0);
+  // The gas load (model.md §4): stated, or a combustion pressure on the needle's area, by
+  // default Basu's 35 kg/cm² ("the spring must be strong enough to withstand the combustion
+  // pressure"); 0 without a diameter.
+  const auto gas = r.OptionalQuantity("gas_force", Dimension::kForce);
+  const std::string gas_key = gas ? r.last_key() : "";
+  const auto pressure = r.OptionalQuantity("combustion_pressure", Dimension::kPressure);
+  if (gas && pressure) {
+    r.Fail(gas_key, "give gas_force or combustion_pressure, not both");
+  }
+  if (pressure && !(*pressure >= 0.0)) {
+    r.Fail(r.last_key(), "must not be negative, got " + Number(*pressure) + " Pa");
+  }
+  if (pressure && !n.diameter_m) {
+    r.Fail(r.last_key(), "needs diameter_mm (the load is the pressure on the needle's area)");
+  }
+  const double area = n.diameter_m ? kPi * *n.diameter_m * *n.diameter_m / 4.0 : 0.0;
+  if (gas) {
+    n.gas_force_N = *gas;
+    n.gas_source = "stated";
+  } else if (pressure) {
+    n.gas_force_N = *pressure * area;
+    n.gas_source = "combustion pressure " + Number(*pressure * 1e-5) + " bar on the needle";
+  } else if (n.diameter_m) {
+    n.gas_force_N = 35.0 * kKgf * 1e4 * area;  // 35 kg/cm² on π d²/4
+    n.gas_source = "Basu's 35 kg/cm2 on the needle";
+  } else {
+    n.gas_force_N = 0.0;
+    n.gas_source = "none (no needle diameter)";
+  }
   r.Finish();
   return n;
 }
@@ -262,6 +290,11 @@ SpringSection ReadSpring(SectionReader r) {
   if (auto f = r.OptionalNumber("overspeed_factor")) {
     if (!(*f >= 1.0)) r.Fail("overspeed_factor", "must be at least 1, got " + Number(*f));
     sp.overspeed_factor = *f;
+  }
+  if (auto t = r.OptionalNumber("basu_tolerance_percent")) {
+    if (!(*t >= 0.0 && *t <= 100.0))
+      r.Fail("basu_tolerance_percent", "must be in 0…100, got " + Number(*t));
+    sp.basu_tolerance_percent = *t;
   }
   if (r.FindQuantity("wire", Dimension::kLength)) {
     sp.helical = ReadHelical(r);

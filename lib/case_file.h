@@ -14,7 +14,8 @@
 ///               open_deg, close_deg (the open lift; detected when absent)
 ///               end_slope = "at-rest" | end_slope_mm_deg = [start, end]   (clamped only)
 ///               smoothing = "discrepancy" (default) | "gcv"              (smoothing only)
-///     [needle]  mass_kg, diameter_mm, gas_force_N = 0
+///     [needle]  mass_kg, diameter_mm, gas_force_N | combustion_pressure_bar (or _kgf_cm2, _MPa…);
+///               default gas load: Basu's 35 kg/cm² on the needle diameter, 0 without one
 ///     [spring]  preload_kgf | preload_N, rate_N_mm (or from the geometry), safety_factor = 1.5,
 ///               overspeed_factor = 1.2; helical geometry: wire_mm, coil_mm (mean),
 ///               active_coils, free_length_mm, shear_modulus_GPa, density_kg_m3 = 7850,
@@ -73,6 +74,9 @@ struct NeedleSection {
   double mass_kg = 0.0;  ///< moving mass m (needle, disks, lever, a third of the spring), > 0
   std::optional<double> diameter_m;  ///< needle diameter d (Basu's formula), > 0
   double gas_force_N = 0.0;          ///< constant gas force F_g, opening positive
+  /// Where F_g comes from: "stated", "combustion pressure … on d", "Basu's 35 kg/cm² on d",
+  /// or "none (no needle diameter)".
+  std::string gas_source;
 };
 
 /// End type of a helical compression spring (EN 13906-1).
@@ -94,10 +98,12 @@ struct HelicalGeometry {
 
 /// [spring]: the valve spring and the sizing rule.
 struct SpringSection {
-  double preload_N = 0.0;                  ///< P0 at the seated position, ≥ 0
-  std::optional<double> rate_N_m;          ///< k; from the geometry when absent
-  double safety_factor = 1.5;              ///< S of the preload sizing, ≥ 1
-  double overspeed_factor = 1.2;           ///< f: sizing speed f·n, ≥ 1
+  double preload_N = 0.0;          ///< P0 at the seated position, ≥ 0
+  std::optional<double> rate_N_m;  ///< k; from the geometry when absent
+  double safety_factor = 1.5;      ///< S of the preload sizing, ≥ 1
+  double overspeed_factor = 1.2;   ///< f: sizing speed f·n, ≥ 1
+  /// How far the preload may fall below Basu's formula and pass, percent (spring_check.h).
+  double basu_tolerance_percent = 10.0;
   std::optional<HelicalGeometry> helical;  ///< present when wire_mm etc. are given
 };
 

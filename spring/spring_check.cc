@@ -1,6 +1,7 @@
 #include "spring/spring_check.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "lib/units.h"
 #include "spring/basu_formula.h"
@@ -58,7 +59,56 @@ SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rp
           ? 100.0 * (r.train.preload_N - r.required_preload_N) / r.required_preload_N
           : INFINITY;
   r.preload_ok = r.train.preload_N >= r.required_preload_N;
-  r.pass = r.preload_ok && (!r.helical || r.helical->pass());
+  const double S = c.spring->safety_factor;
+  r.gas_force_N = r.train.gas_force_N;
+  r.gas_source = c.needle->gas_source;
+  r.combustion_ok = r.train.preload_N >= S * r.gas_force_N;
+  r.combustion_margin_percent =
+      r.gas_force_N > 0 ? 100.0 * (r.train.preload_N - S * r.gas_force_N) / (S * r.gas_force_N)
+                        : INFINITY;
+  r.basu_tolerance_percent = c.spring->basu_tolerance_percent;
+  if (r.basu_preload_N) {
+    r.basu_deviation_percent = 100.0 * (r.train.preload_N - *r.basu_preload_N) / *r.basu_preload_N;
+    r.basu_ok = *r.basu_deviation_percent >= -r.basu_tolerance_percent;
+  }
+  auto fixed = [](double v, int digits) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return std::string(buf);
+  };
+  if (!r.combustion_ok) {
+    r.failures.push_back("combustion load: the preload " + fixed(r.train.preload_N / kKgf, 1) +
+                         " kgf does not withstand S x F_g = " + fixed(S, 2) + " x " +
+                         fixed(r.gas_force_N / kKgf, 1) + " kgf (" + r.gas_source + "), margin " +
+                         fixed(r.combustion_margin_percent, 1) + " %");
+  }
+  if (!r.basu_ok) {
+    r.failures.push_back("Basu's formula: the preload " + fixed(r.train.preload_N / kKgf, 1) +
+                         " kgf is " + fixed(-*r.basu_deviation_percent, 1) + " % below " +
+                         fixed(*r.basu_preload_N / kKgf, 1) + " kgf (tolerance " +
+                         fixed(r.basu_tolerance_percent, 1) + " %)");
+  }
+  if (!r.preload_ok) {
+    r.failures.push_back("inertia sizing: the preload " + fixed(r.train.preload_N, 1) +
+                         " N is below the required " + fixed(r.required_preload_N, 1) +
+                         " N, margin " + fixed(r.preload_margin_percent, 1) + " %");
+  }
+  if (r.helical && !r.helical->pass()) {
+    r.failures.push_back(std::string("helical spring: ") +
+                         (!r.helical->stress_ok ? "shear stress above the allowable; " : "") +
+                         (!r.helical->clearance_ok ? "coil gaps below S_a; " : "") +
+                         (!r.helical->surge_ok ? "surge ratio below 13" : ""));
+  }
+  for (double v : {r.inertia_force_N, r.min_quasi_static.force_N, r.required_preload_N,
+                   r.gas_force_N, r.train.preload_N}) {
+    if (!std::isfinite(v)) {
+      throw CaseError(c.path +
+                      ": [needle]/[spring]: a spring-check quantity is not finite (inertia force "
+                      "m·max|a|, contact force or required preload overflows); check mass_kg, "
+                      "preload and rate for absurd values");
+    }
+  }
+  r.pass = r.failures.empty();
   return r;
 }
 

@@ -3,8 +3,17 @@
 /// The spring check of a case at one speed (what `needle spring` prints and `needle check`
 /// reports): Basu's formula beside the case's spring, the inertia force m·max|a|, the
 /// quasi-static contact force and lift-off speed, the preload sizing, the helical check.
+///
+/// A passing check means all of (model.md §7): the preload withstands the combustion load
+/// with the safety factor, P₀ ≥ S·F_g; the preload is not below Basu's formula by more than
+/// `basu_tolerance_percent` (10 % by default: Basu found built springs within 3 % of it, and his
+/// own Example 2 adopts 176 kgf against the formula's 185 kgf, −5 %, so a tolerance must allow
+/// the paper's own design, with a margin, and no more); the inertia sizing P₀ ≥ P₀,req; and the
+/// helical checks.
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "lib/case_file.h"
 #include "lib/kinematics.h"
@@ -25,7 +34,15 @@ struct SpringCheckResult {
   double required_preload_N = 0.0;
   double preload_margin_percent = 0.0;  ///< +∞ when nothing is required
   bool preload_ok = false;
+  double gas_force_N = 0.0;                ///< F_g, the combustion load
+  std::string gas_source;                  ///< where F_g comes from
+  double combustion_margin_percent = 0.0;  ///< 100·(P₀ − S·F_g)/(S·F_g); +∞ when F_g ≤ 0
+  bool combustion_ok = true;               ///< P₀ ≥ S·F_g
+  std::optional<double> basu_deviation_percent;  ///< 100·(P₀ − P_Basu)/P_Basu
+  double basu_tolerance_percent = 10.0;
+  bool basu_ok = true;  ///< deviation ≥ −tolerance (true without a diameter)
   std::optional<HelicalSpringCheck> helical;
+  std::vector<std::string> failures;  ///< one line per failing sub-check, with its margin
   bool pass = false;
 };
 

@@ -388,3 +388,49 @@ TEST(NeedleCliCamTest, ProfileOfBasusExample1Cam) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// The spring verdict (model.md §7): a spring 80 % below Basu's formula, too weak for the
+// combustion load, fails, naming both.
+TEST(SpringVerdictTest, WeakSpringOfANewEngineFails) {
+  const auto r = testing::RunNeedle("spring " + testing::Case("new-engine-weak-spring.toml"));
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.out.find("Basu's formula (d = 14.0 mm): 206.2 kgf; the case's spring 40.0 kgf "
+                       "(-80.6 %; tolerance 10.0 %) -> FAIL"),
+            std::string::npos)
+      << r.out;
+  // π·1.4²/4 cm² × 35 kg/cm² = 53.9 kgf.
+  EXPECT_NE(r.out.find("combustion load F_g = 53.9 kgf (Basu's 35 kg/cm2 on the needle)"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("  fails: Basu's formula: the preload 40.0 kgf is 80.6 % below 206.2 kgf "
+                       "(tolerance 10.0 %)"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("spring check: FAIL"), std::string::npos);
+  const auto j =
+      testing::RunNeedle("spring --json " + testing::Case("new-engine-weak-spring.toml"));
+  EXPECT_NE(j.out.find("\"basu_ok\": false"), std::string::npos);
+  EXPECT_NE(j.out.find("\"combustion_ok\": false"), std::string::npos);
+  // Basu's own Example 2 (−5.0 %) passes within the tolerance.
+  const auto ex2 = testing::RunNeedle("spring " + testing::Case("basu-example2.toml"));
+  EXPECT_EQ(ex2.status, 0) << ex2.out;
+  EXPECT_NE(ex2.out.find("(-5.0 %; tolerance 10.0 %) -> pass"), std::string::npos) << ex2.out;
+}
+
+// A separation that begins as a rebound where s'' ≥ 0 and carries on over the crest is
+// lift-off (model.md §6), and one still open when the run ends is reported as such.
+TEST(LiftOffTest, ReboundOverTheCrestIsAJumpAndAnOpenEpisodeIsReported) {
+  const auto r = testing::RunNeedle("simulate " + testing::Case("basu-cam4-light-spring.toml") +
+                                    " --rpm 4000");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("LIFT-OFF: the needle leaves the cam"), std::string::npos) << r.out;
+  // Starts at 6.28°, in the acceleration zone (s'' > 0 up to ≈ 12°), and spans the crest.
+  EXPECT_NE(r.out.find("  jump 6.279 .. 60.000 deg, largest gap 7.7000 mm (still open when the "
+                       "run ended)"),
+            std::string::npos)
+      << r.out;
+}
+
+}  // namespace
+}  // namespace needle

@@ -61,9 +61,11 @@ Scene LashScene(double play_m, double ramp_deg) {
 TEST(SimulationTest, LashTakeUpStrikesAtOmegaTimesTheRampSlope) {
   const Scene s = LashScene(0.5e-3, 10.0);
   const double rpm = 400, omega = OmegaFromRpm(rpm);
-  // Resting on the seat: y₀ = −P₀/(k_s + k). The ramp rises from −δ at θ₀ − X with slope
-  // (s(θ₀) + δ)/X; it meets the needle where u = y₀.
-  const double y0 = -s.train.preload_N / (s.train.seat_stiffness_N_m + s.train.rate_N_m);
+  // Resting on the seat: y₀ = −(P₀ − F_g)/(k_s + k) (model.md §5; F_g is Basu's gas load on
+  // Example 2's needle). The ramp rises from −δ at θ₀ − X with slope (s(θ₀) + δ)/X; it meets
+  // the needle where u = y₀.
+  const double y0 =
+      -(s.train.preload_N - s.train.gas_force_N) / (s.train.seat_stiffness_N_m + s.train.rate_N_m);
   const double slope = (0.0 + 0.5e-3) / (10.0 * kDeg);
   const double theta_contact = s.law->start_rad() - 10.0 * kDeg + (y0 + 0.5e-3) / slope;
   for (const char* method : {"dopri5", "cvode-bdf"}) {
