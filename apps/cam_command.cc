@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "dynamics/cam_input.h"
+#include "dynamics/case_profile.h"
 #include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"
 #include "lib/case_file.h"
@@ -288,28 +289,10 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
   if (!c.profile)
     throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
   const LiftLaw law = MakeLiftLaw(c);
+  const FollowerGeometry g = CaseFollower(c);
   const double play = c.train ? c.train->play_m : 0.0;
-  std::unique_ptr<CamInput> cam;
-  try {
-    cam = std::make_unique<CamInput>(
-        law, play, c.train && c.train->linear_ramp ? RampKind::kLinear : RampKind::kTangent,
-        c.train ? c.train->ramp_rad : 0.0);
-  } catch (const std::invalid_argument& e) {
-    throw CaseError(c.path + ": [train] ramp: " + e.what());
-  }
-  // Cam angle ψ = 0 at the start of the rise; four-stroke: θ = θ_start + 2ψ.
-  const double k = c.engine.cycle == "four-stroke" ? 2.0 : 1.0;
-  const double theta0 = cam->rise_start_rad();
-  const Displacement disp = [&](double psi) {
-    const double th = theta0 + k * psi;
-    return std::array<double, 3>{cam->U(th) + play, k * cam->Slope(th), k * k * cam->Curvature(th)};
-  };
-  FollowerGeometry g;
-  g.base_radius_m = c.profile->base_radius_m;
-  g.roller_radius_m = c.profile->roller_radius_m;
-  g.offset_m = c.profile->offset_m;
-  g.lever_ratio = c.profile->lever_ratio;
-  const CamProfile p = MakeCamProfile(disp, g, c.profile->points);
+  double theta0 = 0.0;
+  const CamProfile p = MakeCaseProfile(c, law, &theta0);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -329,12 +312,12 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
     out << j.dump(2) << '\n';
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
-        << "base circle " << Fixed(g.base_radius_m * 2e3, 1) << " mm diameter, roller "
-        << Fixed(g.roller_radius_m * 2e3, 1) << " mm, offset " << Fixed(g.offset_m * 1e3, 2)
+        << "base circle radius " << Fixed(g.base_radius_m * 1e3, 2) << " mm, roller radius "
+        << Fixed(g.roller_radius_m * 1e3, 2) << " mm, offset " << Fixed(g.offset_m * 1e3, 2)
         << " mm, lever " << Fixed(g.lever_ratio, 3) << ", play " << Fixed(play * 1e3, 3)
         << " mm; cam 0 deg at crank " << Fixed(theta0 / kDeg, 2) << " deg\n"
-        << "pressure angle max " << Fixed(p.max_pressure_angle_rad / kDeg, 3) << " deg at cam "
-        << Fixed(p.max_pressure_angle_at_rad / kDeg, 2) << " deg\n"
+        << "pressure angle largest |phi| " << Fixed(std::abs(p.max_pressure_angle_rad) / kDeg, 3)
+        << " deg at cam " << Fixed(p.max_pressure_angle_at_rad / kDeg, 2) << " deg\n"
         << "profile radius of curvature min " << Fixed(p.min_profile_radius_m * 1e3, 3)
         << " mm at cam " << Fixed(p.min_profile_radius_at_rad / kDeg, 2) << " deg; "
         << (p.undercut ? "UNDERCUT" : "no undercut") << '\n';

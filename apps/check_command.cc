@@ -9,6 +9,7 @@
 
 #include "apps/progress_bar.h"
 #include "apps/report.h"
+#include "dynamics/case_profile.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/case_file.h"
@@ -178,6 +179,20 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   } else {
     skipped.push_back(
         "dynamics and overspeed: the case has no [train] section (contact stiffness, play)");
+  }
+
+  // The cam profile, when the case has [profile].
+  std::optional<CamProfile> profile;
+  if (c.profile) {
+    profile = MakeCaseProfile(c, law);
+    if (profile->undercut) {
+      ok = false;
+      failing.push_back("cam profile: the profile undercuts (least radius " +
+                        Fixed(profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
+                        Fixed(profile->min_profile_radius_at_rad / kDeg, 1) + "°)");
+    }
+  } else {
+    skipped.push_back("cam profile: the case has no [profile] section");
   }
 
   // ---- the report ----
@@ -354,6 +369,20 @@ int RunCheckCommand(const CheckCommandOptions& o) {
                      "lines lw 1 title 'needle y', "
                      "$impacts using 1:2 with points pt 7 ps 1.2 title 'impacts'");
   }
+  if (profile) {
+    std::ostringstream t;
+    t << "<h2>Cam profile</h2><table>"
+      << Row("largest |pressure angle|",
+             Fixed(std::abs(profile->max_pressure_angle_rad) / kDeg, 2) + "° at cam " +
+                 Fixed(profile->max_pressure_angle_at_rad / kDeg, 1) + "°")
+      << Row("least profile radius (convex)",
+             Fixed(profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
+                 Fixed(profile->min_profile_radius_at_rad / kDeg, 1) + "°")
+      << Row("undercut", profile->undercut ? "<span class=\"fail\">UNDERCUT</span>"
+                                           : "<span class=\"pass\">none</span>")
+      << "</table>";
+    report.AddHtml(t.str());
+  }
   if (sweep) {
     const OverspeedResult& s = *sweep;
     Series rows{"rows", {}};
@@ -396,6 +425,8 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   std::cout << (c.title.empty() ? c.path : c.title) << '\n';
   for (const auto& k : skipped) std::cout << "skipped: " << k << '\n';
   if (spring) std::cout << "spring check: " << (spring->pass ? "pass" : "FAIL") << '\n';
+  if (profile)
+    std::cout << "cam profile: " << (profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
   if (run)
     std::cout << "lift-off at " << Fixed(rpm, 0) << " rpm: " << (run->liftoff() ? "YES" : "no")
               << '\n';

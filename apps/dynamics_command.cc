@@ -162,8 +162,12 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
                   "end of the sweep, rpm (default: [overspeed] to_rpm or 2 x n_qs)");
   cmd->add_option("--method", o.method, "auto, dopri5, cvode-bdf or cvode-adams");
   cmd->add_option("--rtol", o.rtol, "relative tolerance");
-  cmd->add_option("--threads", o.threads, "threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
+      ->check(CLI::Range(0, 4096));
+  cmd->add_option("--step-rpm", o.step_rpm,
+                  "scan step: speeds are scanned upward from --from in this step (default 2.5 % "
+                  "of --from, at least 1 rpm)")
+      ->check(CLI::Range(1e-3, 1e6));
   cmd->add_flag("--json", o.json, "print one JSON object");
   return cmd;
 }
@@ -175,13 +179,18 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   OverspeedOptions opt;
   opt.simulation = Options(c, o.method, o.rtol);
   opt.threads = o.threads;
+  opt.step_rpm = o.step_rpm.value_or(0.0);
   opt.from_rpm = o.from_rpm.value_or(c.overspeed && c.overspeed->from_rpm ? *c.overspeed->from_rpm
                                                                           : c.engine.speed_rpm);
   const double default_to = std::isfinite(n_qs) ? 2.0 * n_qs : 4.0 * c.engine.speed_rpm;
   opt.to_rpm =
       o.to_rpm.value_or(c.overspeed && c.overspeed->to_rpm ? *c.overspeed->to_rpm : default_to);
-  if (!(opt.from_rpm > 0.0))
-    throw CaseError("--from: must be positive, got " + std::to_string(opt.from_rpm));
+  if (!(opt.from_rpm > 0.0) || !std::isfinite(opt.from_rpm) || opt.from_rpm > 1e7)
+    throw CaseError("--from: expected a speed in (0, 1e7] rpm, got " +
+                    std::to_string(opt.from_rpm));
+  if (!std::isfinite(opt.to_rpm) || opt.to_rpm > 1e9)
+    throw CaseError("--to: expected a finite speed up to 1e9 rpm, got " +
+                    std::to_string(opt.to_rpm));
   if (!(opt.to_rpm > opt.from_rpm)) {
     throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
                     " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
@@ -203,6 +212,9 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
     j["bracket_rpm"] = {r.bracket_low_rpm, r.bracket_high_rpm};
     j["lifts_off_at_start"] = r.lifts_off_at_start;
     j["threads"] = r.threads;
+    j["step_rpm"] = r.step_rpm;
+    j["status"] = r.status;
+    j["scanned_to_rpm"] = r.scanned_to_rpm;
     nlohmann::json rows = nlohmann::json::array();
     for (const OverspeedRow& row : r.rows) {
       rows.push_back({{"speed_rpm", row.speed_rpm},
@@ -217,7 +229,8 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "sweep " << Fixed(opt.from_rpm, 1) << " .. " << Fixed(opt.to_rpm, 1) << " rpm on "
-        << r.threads << " threads\n"
+        << r.threads << " threads, scanned upward in steps of " << Fixed(r.step_rpm, 2)
+        << " rpm (a lift-off window narrower than that can be missed)\n"
         << "quasi-static lift-off n_qs = "
         << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
         << "dynamic lift-off n_dyn = ";
@@ -225,6 +238,9 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
       out << Fixed(*r.n_dyn_rpm, 1) << " rpm"
           << (r.lifts_off_at_start ? " (already at the start of the range)" : "") << " (bracket "
           << Fixed(r.bracket_low_rpm, 2) << " .. " << Fixed(r.bracket_high_rpm, 2) << ")\n";
+    } else if (r.status == "budget") {
+      out << "none up to " << Fixed(r.scanned_to_rpm, 1) << " rpm, where the scan budget ("
+          << opt.max_speeds << " speeds) ended it; give a larger --step-rpm or a smaller --to\n";
     } else {
       out << "none in the range\n";
     }

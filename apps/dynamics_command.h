@@ -29,6 +29,7 @@ struct OverspeedCommandOptions {
   std::optional<std::string> method;
   std::optional<double> rtol;
   int threads = 0;
+  std::optional<double> step_rpm;  ///< scan step Δn (default 2.5 % of --from, at least 1 rpm)
   bool json = false;
 };
 

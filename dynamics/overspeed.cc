@@ -6,6 +6,7 @@
 #include <exception>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 
 #include "lib/units.h"
@@ -23,7 +24,10 @@ void OverspeedOptions::Validate() const {
   }
   if (!(resolution_rpm > 0.0))
     throw std::invalid_argument("overspeed: resolution_rpm must be positive");
-  if (grid_points < 2) throw std::invalid_argument("overspeed: grid_points must be at least 2");
+  if (!(step_rpm >= 0.0) || !std::isfinite(step_rpm))
+    throw std::invalid_argument("overspeed: step_rpm must be positive (or 0 for the default)");
+  if (max_speeds < 1) throw std::invalid_argument("overspeed: max_speeds must be at least 1");
+  if (!std::isfinite(to_rpm)) throw std::invalid_argument("overspeed: to_rpm must be finite");
 }
 
 OverspeedRow RowFromResult(const SimulationResult& r) {
@@ -63,7 +67,13 @@ std::vector<OverspeedRow> RunAll(const Scene& scene, const std::vector<double>& 
     }
   };
   std::vector<std::thread> pool;
-  for (int k = 1; k < threads && k < static_cast<int>(speeds.size()); ++k) pool.emplace_back(work);
+  for (int k = 1; k < threads && k < static_cast<int>(speeds.size()); ++k) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // no more threads to be had: the ones running share the queue
+    }
+  }
   work();
 
   for (auto& t : pool) t.join();
@@ -83,34 +93,52 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
   sim.force_dynamic = true;  // lift-off is a dynamic question
   sim.record_series = false;
   const int hw = static_cast<int>(std::thread::hardware_concurrency());
-  const int threads = o.threads > 0 ? o.threads : std::max(1, hw);
+  // More threads than cores do not help: the runs are compute-bound.
+  const int cores = std::max(1, hw);
+  const int threads = o.threads > 0 ? std::min(o.threads, cores) : cores;
   result.threads = threads;
-  std::vector<double> grid;
-  for (int i = 0; i < o.grid_points; ++i) {
-    grid.push_back(o.from_rpm + (o.to_rpm - o.from_rpm) * i / (o.grid_points - 1));
-  }
-  const int estimate =
-      o.grid_points +
-      3 * static_cast<int>(
-              std::ceil(std::log2((o.to_rpm - o.from_rpm) / o.grid_points / o.resolution_rpm) + 1));
+  const double step = o.step_rpm > 0.0 ? o.step_rpm : std::max(1.0, 0.025 * o.from_rpm);
+  result.step_rpm = step;
+  const int estimate = static_cast<int>(
+      std::min<double>(o.max_speeds, std::ceil((o.to_rpm - o.from_rpm) / step) + 1 + 3 * threads));
   int done = 0;
-  std::vector<OverspeedRow> rows = RunAll(scene, grid, sim, threads);
-  done += static_cast<int>(rows.size());
-  if (progress) progress(done, estimate);
-  result.rows = rows;
-  int hit = -1;
-  for (size_t i = 0; i < rows.size(); ++i) {
-    if (rows[i].lifts_off) {
-      hit = static_cast<int>(i);
+  // Scan upward, `threads` speeds at a time, to the first lift-off.
+  double lo = 0.0, hi = 0.0;
+  bool found = false;
+  long index = 0;
+  while (!found) {
+    std::vector<double> speeds;
+    for (int k = 0; k < threads; ++k, ++index) {
+      const double n = std::min(o.from_rpm + step * static_cast<double>(index), o.to_rpm);
+      if (!speeds.empty() && n <= speeds.back()) break;
+      if (index >= o.max_speeds) break;
+      speeds.push_back(n);
+    }
+    if (speeds.empty()) break;
+    const std::vector<OverspeedRow> rows = RunAll(scene, speeds, sim, threads);
+    done += static_cast<int>(rows.size());
+    if (progress) progress(done, std::max(done, estimate));
+    for (size_t k = 0; k < rows.size(); ++k) {
+      result.rows.push_back(rows[k]);
+      result.scanned_to_rpm = speeds[k];
+      if (rows[k].lifts_off) {
+        found = true;
+        hi = speeds[k];
+        lo = k > 0 ? speeds[k - 1] : speeds[k] - step;
+        break;
+      }
+    }
+    if (found || speeds.back() >= o.to_rpm) break;
+    if (index >= o.max_speeds) {
+      result.status = "budget";
       break;
     }
   }
-  if (hit == 0) {
+  if (found && hi <= o.from_rpm) {
     result.lifts_off_at_start = true;
     result.n_dyn_rpm = o.from_rpm;
     result.bracket_low_rpm = result.bracket_high_rpm = o.from_rpm;
-  } else if (hit > 0) {
-    double lo = grid[hit - 1], hi = grid[hit];
+  } else if (found) {
     while (hi - lo > o.resolution_rpm) {
       // k-section: `threads` interior speeds at once.
       std::vector<double> speeds;
@@ -133,6 +161,8 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
     result.n_dyn_rpm = hi;
     result.bracket_low_rpm = lo;
     result.bracket_high_rpm = hi;
+  } else if (result.status != "budget") {
+    result.status = "none";
   }
   std::sort(result.rows.begin(), result.rows.end(),
             [](const OverspeedRow& a, const OverspeedRow& b) { return a.speed_rpm < b.speed_rpm; });

@@ -1,12 +1,17 @@
 #pragma once
 /// @file
 /// The overspeed search (model.md §6): the dynamic lift-off speed n_dyn is the lowest speed
-/// in [from, to] at which a `jump` episode at least 0.1° long appears, found to 0.5 rpm. A
-/// grid brackets it and a k-section (k = the threads) narrows the bracket; every speed of a
-/// grid or of a k-section round is independent, so they run on all cores.
+/// in [from, to] at which a `jump` episode at least 0.1° long appears, found to 0.5 rpm. The
+/// speeds are scanned upward from `from` in steps of Δn (`step_rpm`; default 2.5 % of `from`,
+/// at least 1 rpm), as many at once as there are threads, until the first lift-off; a
+/// k-section (k = the threads) then narrows that bracket. So the answer does not depend on `to`
+/// for any `to` above it; a lift-off window narrower than Δn can be missed, and Δn is reported.
+/// At most `max_speeds` speeds are scanned: past that the search ends with the status
+/// `budget` and the speed it reached.
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "dynamics/simulation.h"
@@ -30,8 +35,9 @@ struct OverspeedOptions {
   double from_rpm = 0.0;        ///< start of the range, > 0
   double to_rpm = 0.0;          ///< end, > from
   double resolution_rpm = 0.5;  ///< bracket width at which the search stops
-  int grid_points = 12;         ///< speeds of the bracketing grid, ≥ 2
-  int threads = 0;              ///< 0: all cores
+  double step_rpm = 0.0;        ///< scan step Δn, rpm; 0: 2.5 % of from_rpm, at least 1
+  int max_speeds = 5000;        ///< scan budget (speeds), ≥ 1
+  int threads = 0;              ///< 0: all cores; more than the cores are capped to them
   SimulationOptions simulation;
   void Validate() const;
 };
@@ -42,6 +48,9 @@ struct OverspeedResult {
   double bracket_low_rpm = 0.0, bracket_high_rpm = 0.0;
   bool lifts_off_at_start = false;  ///< already lifts off at from_rpm
   int threads = 1;
+  double step_rpm = 0.0;         ///< the scan step Δn used
+  std::string status = "found";  ///< "found", "none" (none up to to_rpm) or "budget"
+  double scanned_to_rpm = 0.0;   ///< highest speed scanned
 };
 
 /// `progress(done, total_estimate)` is called after each run (from the calling thread).

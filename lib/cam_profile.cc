@@ -64,7 +64,8 @@ CamProfile MakeCamProfile(const Displacement& disp, const FollowerGeometry& g, i
       p.min_profile_radius_m = q.profile_radius_m;
       p.min_profile_radius_at_rad = psi;
     }
-    if (q.pitch_radius_m > 0.0 && q.pitch_radius_m < g.roller_radius_m) p.undercut = true;
+    // A profile radius of zero is a cusp: undercut as much as a negative one.
+    if (q.pitch_radius_m > 0.0 && q.pitch_radius_m <= g.roller_radius_m) p.undercut = true;
     p.points.push_back(q);
   }
   return p;

@@ -107,6 +107,36 @@ TEST(CheckReportTest, MeasuredCsvCase) {
   std::filesystem::remove_all(dir);
 }
 
+// `check` checks the cam profile when the case has [profile]: an undercut fails the check.
+TEST(CheckReportTest, UndercutCamFailsTheCheck) {
+  const std::string dir = TempDir("undercut");
+  const std::string path = dir + "/undercut.toml";
+  {
+    std::ifstream in(Case("basu-cam4.toml"));
+    std::stringstream s;
+    s << in.rdbuf();
+    std::ofstream(path) << s.str() << "[profile]\nbase_radius_mm = 8\nroller_radius_mm = 12\n";
+  }
+  const auto p = RunNeedle("profile " + path);
+  EXPECT_EQ(p.status, 1);
+  EXPECT_NE(p.out.find("UNDERCUT"), std::string::npos);
+  const auto r = RunNeedle("check " + path + " --out " + dir);
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("cam profile: UNDERCUT"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("fails: cam profile: the profile undercuts (least radius -10.48 mm"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("overall: FAIL"), std::string::npos);
+  const std::string html = testing::Slurp(dir + "/undercut.html");
+  EXPECT_NE(html.find("<h2>Failing</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2>Cam profile</h2>"), std::string::npos);
+  // Without [profile] the check says it skipped the profile.
+  const auto k = RunNeedle("check " + Case("basu-cam4.toml") + " --out " + dir);
+  EXPECT_NE(k.out.find("skipped: cam profile: the case has no [profile] section"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CheckReportTest, LiftOffAtTheRatedSpeedFailsWithExitOne) {
   const std::string dir = TempDir("ex2");
   const auto r = RunNeedle("check " + Case("basu-example2.toml") + " --out " + dir + " --rpm 1400");

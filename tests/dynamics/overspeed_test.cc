@@ -107,3 +107,42 @@ TEST(OverspeedTest, EveryBundledSceneLiftsOffAtOrBelowItsQuasiStaticSpeed) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// model.md §6: n_dyn does not depend on the top of the searched range — speeds are scanned
+// upward in steps of Δn from the start, whatever the end.
+TEST(OverspeedScanTest, NdynDoesNotDependOnTheTopOfTheRange) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-cam4-light-spring.toml");
+  const Scene s = MakeScene(c);
+  OverspeedOptions o;
+  o.from_rpm = 400;
+  o.simulation = OptionsFromCase(c);
+  std::optional<double> first;
+  for (double to : {2000.0, 60000.0, 1e6}) {
+    o.to_rpm = to;
+    const OverspeedResult r = OverspeedSearch(s, o);
+    ASSERT_TRUE(r.n_dyn_rpm) << to;
+    EXPECT_EQ(r.status, "found");
+    EXPECT_DOUBLE_EQ(r.step_rpm, 10.0);  // 2.5 % of 400 rpm
+    EXPECT_LE(r.bracket_high_rpm - r.bracket_low_rpm, 0.5);
+    if (!first) first = *r.n_dyn_rpm;
+    EXPECT_DOUBLE_EQ(*r.n_dyn_rpm, *first) << to;
+  }
+  // Just below n_qs (639.7 rpm), as the light spring's dynamics lifts off a little early.
+  EXPECT_NEAR(*first, 635.9, 0.5);
+  // The scan budget ends a search that finds nothing with a status, not an error.
+  o.to_rpm = 1e6;
+  o.from_rpm = 400;
+  o.step_rpm = 1.0;
+  o.max_speeds = 50;
+  const OverspeedResult b = OverspeedSearch(s, o);
+  EXPECT_FALSE(b.n_dyn_rpm);
+  EXPECT_EQ(b.status, "budget");
+  EXPECT_DOUBLE_EQ(b.scanned_to_rpm, 449.0);
+  EXPECT_EQ(b.rows.size(), 50u);
+}
+
+}  // namespace
+}  // namespace needle

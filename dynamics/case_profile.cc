@@ -1,0 +1,43 @@
+#include "dynamics/case_profile.h"
+
+#include <memory>
+#include <stdexcept>
+
+#include "dynamics/cam_input.h"
+
+namespace needle {
+
+FollowerGeometry CaseFollower(const Case& c) {
+  if (!c.profile)
+    throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
+  FollowerGeometry g;
+  g.base_radius_m = c.profile->base_radius_m;
+  g.roller_radius_m = c.profile->roller_radius_m;
+  g.offset_m = c.profile->offset_m;
+  g.lever_ratio = c.profile->lever_ratio;
+  return g;
+}
+
+CamProfile MakeCaseProfile(const Case& c, const LiftLaw& law, double* cam_zero_crank_rad) {
+  const FollowerGeometry g = CaseFollower(c);
+  const double play = c.train ? c.train->play_m : 0.0;
+  std::unique_ptr<CamInput> cam;
+  try {
+    cam = std::make_unique<CamInput>(
+        law, play, c.train && c.train->linear_ramp ? RampKind::kLinear : RampKind::kTangent,
+        c.train ? c.train->ramp_rad : 0.0);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(c.path + ": [train] ramp: " + e.what());
+  }
+  // Cam angle ψ = 0 at the start of the rise; four-stroke: θ = θ_start + 2ψ.
+  const double k = c.engine.cycle == "four-stroke" ? 2.0 : 1.0;
+  const double theta0 = cam->rise_start_rad();
+  if (cam_zero_crank_rad) *cam_zero_crank_rad = theta0;
+  const Displacement disp = [&](double psi) {
+    const double th = theta0 + k * psi;
+    return std::array<double, 3>{cam->U(th) + play, k * cam->Slope(th), k * k * cam->Curvature(th)};
+  };
+  return MakeCamProfile(disp, g, c.profile->points);
+}
+
+}  // namespace needle
