@@ -466,7 +466,11 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
     const std::string full = p.is_absolute()
                                  ? p.string()
                                  : (std::filesystem::path(case_path).parent_path() / p).string();
-    lift.table = ReadLiftCsv(full, four_stroke);
+    try {
+      lift.table = ReadLiftCsv(full, four_stroke);
+    } catch (const CaseError& e) {
+      r.Fail("csv", e.what());  // "CASE: [lift] csv: TABLE:LINE:COLUMN: what"
+    }
     lift.source = "csv " + full;
   } else {
     if (max_lift) r.Fail("max_lift_mm", "only used with normal_curve = \"basu\"");

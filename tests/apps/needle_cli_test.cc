@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "run_command.h"
@@ -430,6 +431,40 @@ TEST(LiftOffTest, ReboundOverTheCrestIsAJumpAndAnOpenEpisodeIsReported) {
                        "run ended)"),
             std::string::npos)
       << r.out;
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A bad CSV table: exit 2, one line naming the case, the key, the table, line and column; a
+// bare CSV names the table itself; a bare CSV needs --rpm.
+TEST(MeasuredCsvCliTest, BadTablesExitTwoWithOneLine) {
+  const std::string dir = "/tmp/needle_csv_" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/bad.csv") << "crank_deg,lift_mm\n0,0\n1,abc\n";
+  std::ofstream(dir + "/case.toml") << "[engine]\nspeed_rpm = 600\n[lift]\ncsv = \"bad.csv\"\n";
+  const auto r = testing::RunNeedle("kinematics " + dir + "/case.toml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "needle: " + dir + "/case.toml: [lift] csv: " + dir +
+                       "/bad.csv:3:2: 'abc' is not a number (column lift_mm)\n");
+  const auto bare = testing::RunNeedle("kinematics " + dir + "/bad.csv --rpm 500");
+  EXPECT_EQ(bare.status, 2);
+  EXPECT_EQ(bare.err, "needle: " + dir + "/bad.csv:3:2: 'abc' is not a number (column lift_mm)\n");
+  const auto norpm = testing::RunNeedle("kinematics " + testing::Case("measured-cycloidal.csv"));
+  EXPECT_EQ(norpm.status, 2);
+  EXPECT_NE(norpm.err.find("--rpm: "), std::string::npos) << norpm.err;
+  // The bundled table, bare: smoothed, with the reason and σ in the JSON.
+  const auto ok = testing::RunNeedle("kinematics " + testing::Case("measured-cycloidal.csv") +
+                                     " --rpm 600 --json");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"spline\": \"smoothing\""), std::string::npos);
+  EXPECT_NE(ok.out.find("\"spline_reason\": \"dense table (191 points): measured data"),
+            std::string::npos);
+  EXPECT_NE(ok.out.find("\"noise_source\": \"estimated\""), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
