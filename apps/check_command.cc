@@ -210,9 +210,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   }
   report.AddHtml("<h2>Kinematics</h2>");
   const bool accel = law.HasAcceleration();
-  const std::string points_label =
-      c.lift.table.crank_rad.size() >= static_cast<size_t>(kDenseTablePoints) ? "readings"
-                                                                              : "table";
+  const std::string points_label = choice.measured ? "readings" : "table";
   report.AddFigure(
       "Lift, velocity" + std::string(accel ? " and acceleration" : "") +
           " against crank angle at " + Fixed(rpm, 0) + " rpm; points: the lift " + points_label +
@@ -242,22 +240,15 @@ int RunCheckCommand(const CheckCommandOptions& o) {
       << " rpm</h2><table class=\"grid\"><tr><th>crank angle (deg)</th><th>lift (mm)</th>"
          "<th>velocity (dcm/s)</th><th>acceleration (m/s²)</th>"
       << (c.paper && !c.paper->crank_rad.empty() ? "<th>paper |v| (dcm/s)</th>" : "") << "</tr>";
-    std::vector<double> rows;
     for (double d = std::ceil(th0 / kDeg / 5.0) * 5.0; d <= thn / kDeg + 1e-9; d += 5.0) {
-      rows.push_back(d * kDeg);
-    }
-    for (double a : rows) {
+      const double a = d * kDeg;
       const KinematicsPoint p = kin.At(a);
       t << "<tr><td>" << Fixed(a / kDeg, 1) << "</td><td>" << Fixed(p.lift_m * 1e3, 3)
         << "</td><td>" << Fixed(p.velocity_m_s * 10.0, 2) << "</td><td>"
         << (p.acceleration_m_s2 ? Fixed(*p.acceleration_m_s2, 2) : std::string("n/a")) << "</td>";
       if (c.paper && !c.paper->crank_rad.empty()) {
-        std::string pv;
-        for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
-          if (std::abs(c.paper->crank_rad[i] - a) < 1e-9)
-            pv = Fixed(c.paper->velocity_m_s[i] * 10, 2);
-        }
-        t << "<td>" << pv << "</td>";
+        const auto pv = PaperVelocityAt(c, a);
+        t << "<td>" << (pv ? Fixed(*pv * 10, 2) : std::string()) << "</td>";
       }
       t << "</tr>";
     }

@@ -36,14 +36,6 @@ std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const Case& c
   return rows;
 }
 
-std::optional<double> PaperVelocityAt(const Case& c, double crank_rad) {
-  if (!c.paper) return std::nullopt;
-  for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
-    if (std::abs(c.paper->crank_rad[i] - crank_rad) < 1e-9) return c.paper->velocity_m_s[i];
-  }
-  return std::nullopt;
-}
-
 std::string Pad(const std::string& s, size_t width) {
   return s.size() >= width ? s : std::string(width - s.size(), ' ') + s;
 }

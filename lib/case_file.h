@@ -226,6 +226,9 @@ Case LoadCase(const std::string& path);
 /// As LoadCase, from text already in memory; `path` is used in messages only.
 Case ParseCase(const std::string& text, const std::string& path);
 
+/// The published velocity magnitude at `crank_rad` (m/s), when the case's [paper] gives one there.
+std::optional<double> PaperVelocityAt(const Case& c, double crank_rad);
+
 /// The spline, noise and open-lift rule for the case's lift data (lib/lift_data.h).
 LiftLawChoice CaseLiftChoice(const Case& c);
 

@@ -81,6 +81,48 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
+// The spline of the table and the open lift it detects (file comment of lift_law.h): for
+// measured data the whole table's fit and its crossings of the closed level; for an exact table
+// the fit of its open part, from the last zero before the rise to the first zero after the fall.
+PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& options,
+                                double* open_rad, double* close_rad) {
+  const auto& th = table.crank_rad;
+  const auto& s = table.lift_m;
+  if (th.size() != s.size() || th.empty()) {
+    throw std::invalid_argument("the lift table needs as many lifts as crank angles");
+  }
+  CheckReadings(table, options.negative_allowance_m);
+  if (options.closed_level_m > 0.0) {
+    PiecewisePolynomial full = BuildSpline(th, s, options.spline);
+    const auto open = FirstAbove(full, options.closed_level_m, true);
+    const auto close = FirstAbove(full, options.closed_level_m, false);
+    if (!open || !close || !(*close > *open)) {
+      throw std::invalid_argument("the fitted lift never rises above the closed level (" +
+                                  Mm(options.closed_level_m) +
+                                  " mm, 3 sigma of the noise): no open lift in the table");
+    }
+    *open_rad = *open;
+    *close_rad = *close;
+    return full;
+  }
+  size_t first = 0, last = s.size() - 1;
+  while (first + 1 < s.size() && s[first] <= 0.0 && s[first + 1] <= 0.0) ++first;
+  while (last > first && s[last] <= 0.0 && s[last - 1] <= 0.0) --last;
+  if (last <= first) throw std::invalid_argument("the lift table never opens: every lift is zero");
+  const std::vector<double> x(th.begin() + first, th.begin() + last + 1);
+  const std::vector<double> y(s.begin() + first, s.begin() + last + 1);
+  if ((first > 0 || last + 1 < s.size()) &&
+      static_cast<int>(x.size()) < MinimumPoints(options.spline.kind)) {
+    throw std::invalid_argument("the open lift (" + Deg(x.front()) + "° to " + Deg(x.back()) +
+                                "°) has " + std::to_string(x.size()) + " points; \"" +
+                                SplineKindName(options.spline.kind) + "\" needs at least " +
+                                std::to_string(MinimumPoints(options.spline.kind)));
+  }
+  *open_rad = x.front();
+  *close_rad = x.back();
+  return BuildSpline(x, y, options.spline);
+}
+
 }  // namespace
 
 LiftLaw::LiftLaw(LiftTable table, const SplineOptions& options)
@@ -90,57 +132,16 @@ LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
     : table_(std::move(table)),
       kind_(options.spline.kind),
       closed_level_m_(options.closed_level_m),
-      spline_(std::vector<double>{0.0, 1.0}, Eigen::MatrixXd::Zero(1, 1), 0) {
-  const auto& th = table_.crank_rad;
-  const auto& s = table_.lift_m;
-  if (th.size() != s.size() || th.empty()) {
-    throw std::invalid_argument("the lift table needs as many lifts as crank angles");
-  }
-  CheckReadings(table_, options.negative_allowance_m);
-  PiecewisePolynomial full = spline_;
-  if (options.closed_level_m > 0.0) {
-    // Measured: the whole table shapes the curve; open where it exceeds the closed level.
-    full = BuildSpline(th, s, options.spline);
-    const auto open = FirstAbove(full, options.closed_level_m, true);
-    const auto close = FirstAbove(full, options.closed_level_m, false);
-    if (!open || !close || !(*close > *open)) {
-      throw std::invalid_argument("the fitted lift never rises above the closed level (" +
-                                  Mm(options.closed_level_m) +
-                                  " mm, 3 sigma of the noise): no open lift in the table");
-    }
-    open_rad_ = *open;
-    close_rad_ = *close;
-  } else {
-    // Exact: from the last zero before the rise to the first zero after the fall.
-    size_t first = 0, last = s.size() - 1;
-    while (first + 1 < s.size() && s[first] <= 0.0 && s[first + 1] <= 0.0) ++first;
-    while (last > first && s[last] <= 0.0 && s[last - 1] <= 0.0) --last;
-    if (last <= first || *std::max_element(s.begin(), s.end()) <= 0.0) {
-      throw std::invalid_argument("the lift table never opens: every lift is zero");
-    }
-    const std::vector<double> x(th.begin() + first, th.begin() + last + 1);
-    const std::vector<double> y(s.begin() + first, s.begin() + last + 1);
-    if (first > 0 || last + 1 < s.size()) {
-      if (static_cast<int>(x.size()) < MinimumPoints(options.spline.kind)) {
-        throw std::invalid_argument("the open lift (" + Deg(x.front()) + "° to " + Deg(x.back()) +
-                                    "°) has " + std::to_string(x.size()) + " points; \"" +
-                                    SplineKindName(options.spline.kind) + "\" needs at least " +
-                                    std::to_string(MinimumPoints(options.spline.kind)));
-      }
-    }
-    full = BuildSpline(x, y, options.spline);
-    open_rad_ = x.front();
-    close_rad_ = x.back();
-  }
+      spline_(FitOpenLift(table_, options, &open_rad_, &close_rad_)) {
   if (options.open_rad) open_rad_ = *options.open_rad;
   if (options.close_rad) close_rad_ = *options.close_rad;
-  const double lo = full.breaks().front(), hi = full.breaks().back();
+  const double lo = spline_.breaks().front(), hi = spline_.breaks().back();
   if (!(open_rad_ >= lo && close_rad_ <= hi && open_rad_ < close_rad_)) {
     throw std::invalid_argument("the open lift " + Deg(open_rad_) + "° to " + Deg(close_rad_) +
                                 "° must lie inside the fitted table (" + Deg(lo) + "° to " +
                                 Deg(hi) + "°) and open before it closes");
   }
-  spline_ = full.Restrict(open_rad_, close_rad_);
+  spline_ = spline_.Restrict(open_rad_, close_rad_);
   const Extremum low = Min(0);
   if (low.value < 0.0) {
     undershoot_m_ = -low.value;

@@ -96,8 +96,8 @@ class LiftLaw {
   LiftTable table_;
   SplineKind kind_;
   double closed_level_m_ = 0.0;
-  PiecewisePolynomial spline_;  // restricted to [θ_open, θ_close]
-  double open_rad_ = 0.0, close_rad_ = 0.0;
+  double open_rad_ = 0.0, close_rad_ = 0.0;  // set by spline_'s initialiser: declared before it
+  PiecewisePolynomial spline_;               // restricted to [θ_open, θ_close]
   double undershoot_m_ = 0.0, undershoot_rad_ = 0.0;
 };
 

@@ -1,8 +1,8 @@
 #include "spring/spring_check.h"
 
 #include <cmath>
-#include <cstdio>
 
+#include "lib/output.h"
 #include "lib/units.h"
 #include "spring/basu_formula.h"
 
@@ -71,27 +71,22 @@ SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rp
     r.basu_deviation_percent = 100.0 * (r.train.preload_N - *r.basu_preload_N) / *r.basu_preload_N;
     r.basu_ok = *r.basu_deviation_percent >= -r.basu_tolerance_percent;
   }
-  auto fixed = [](double v, int digits) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-    return std::string(buf);
-  };
   if (!r.combustion_ok) {
-    r.failures.push_back("combustion load: the preload " + fixed(r.train.preload_N / kKgf, 1) +
-                         " kgf does not withstand S x F_g = " + fixed(S, 2) + " x " +
-                         fixed(r.gas_force_N / kKgf, 1) + " kgf (" + r.gas_source + "), margin " +
-                         fixed(r.combustion_margin_percent, 1) + " %");
+    r.failures.push_back("combustion load: the preload " + Fixed(r.train.preload_N / kKgf, 1) +
+                         " kgf does not withstand S x F_g = " + Fixed(S, 2) + " x " +
+                         Fixed(r.gas_force_N / kKgf, 1) + " kgf (" + r.gas_source + "), margin " +
+                         Fixed(r.combustion_margin_percent, 1) + " %");
   }
   if (!r.basu_ok) {
-    r.failures.push_back("Basu's formula: the preload " + fixed(r.train.preload_N / kKgf, 1) +
-                         " kgf is " + fixed(-*r.basu_deviation_percent, 1) + " % below " +
-                         fixed(*r.basu_preload_N / kKgf, 1) + " kgf (tolerance " +
-                         fixed(r.basu_tolerance_percent, 1) + " %)");
+    r.failures.push_back("Basu's formula: the preload " + Fixed(r.train.preload_N / kKgf, 1) +
+                         " kgf is " + Fixed(-*r.basu_deviation_percent, 1) + " % below " +
+                         Fixed(*r.basu_preload_N / kKgf, 1) + " kgf (tolerance " +
+                         Fixed(r.basu_tolerance_percent, 1) + " %)");
   }
   if (!r.preload_ok) {
-    r.failures.push_back("inertia sizing: the preload " + fixed(r.train.preload_N, 1) +
-                         " N is below the required " + fixed(r.required_preload_N, 1) +
-                         " N, margin " + fixed(r.preload_margin_percent, 1) + " %");
+    r.failures.push_back("inertia sizing: the preload " + Fixed(r.train.preload_N, 1) +
+                         " N is below the required " + Fixed(r.required_preload_N, 1) +
+                         " N, margin " + Fixed(r.preload_margin_percent, 1) + " %");
   }
   if (r.helical && !r.helical->pass()) {
     r.failures.push_back(std::string("helical spring: ") +
