@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "apps/progress_bar.h"
@@ -48,14 +49,24 @@ CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
   cmd->add_option("--out", o.out_dir, "folder for the report (default: the current folder)");
   cmd->add_option("--rpm", o.speed_rpm, "rated speed in rpm (default: [engine] speed_rpm)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-3, 1e6));
+  cmd->add_flag("--json", o.json,
+                "print one JSON object (the verdict, every failing item, what was skipped and the "
+                "numbers behind them) instead of the text summary");
   return cmd;
 }
 
 int RunCheckCommand(const CheckCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
-  if (!std::filesystem::is_directory(o.out_dir)) {
-    throw CaseError("--out: " + o.out_dir + " is not a folder");
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(o.out_dir, ec);  // a missing folder is made
+    if (!std::filesystem::is_directory(o.out_dir)) {
+      throw CaseError("--out: " + o.out_dir + " is not a folder and cannot be made one" +
+                      (ec ? " (" + ec.message() + ")" : std::string()));
+    }
+    if (access(o.out_dir.c_str(), W_OK) != 0)
+      throw CaseError("--out: " + o.out_dir + ": the folder is not writable");
   }
   if (!GnuplotAvailable()) {
     throw std::runtime_error(
@@ -169,6 +180,20 @@ int RunCheckCommand(const CheckCommandOptions& o) {
       ok = false;
       failing.push_back("dynamics: the needle lifts off the cam at the rated speed " +
                         Fixed(rpm, 0) + " rpm");
+    }
+    // A run that did not end with the needle at rest is no proof of anything.
+    if (run->status != RunStatus::kComplete) {
+      ok = false;
+      failing.push_back("dynamics: undecided at the rated speed, the run is " +
+                        RunStatusName(run->status) + ": " + run->status_reason);
+    }
+    if (sweep->status == "run-budget" || sweep->status == "budget") {
+      ok = false;
+      failing.push_back("overspeed: undecided above " + Fixed(sweep->scanned_to_rpm, 1) + " rpm (" +
+                        (sweep->status == "budget"
+                             ? std::string("the scan budget ended the search")
+                             : std::string("the run there stopped on its budget")) +
+                        ")");
     }
     if (sweep->n_dyn_rpm && *sweep->n_dyn_rpm <= overspeed_rpm) {
       ok = false;
@@ -311,6 +336,10 @@ int RunCheckCommand(const CheckCommandOptions& o) {
                                                     std::to_string(r.stats.rhs_evaluations) + ", " +
                                                     std::to_string(r.stats.events))
       << Row("energy residual", Sci(r.energy_residual))
+      << Row("run", "to " + Fixed(r.run_end_rad / kDeg, 2) + "° (window end " +
+                        Fixed(r.window_end_rad / kDeg, 2) + "°): " + RunStatusName(r.status) +
+                        (r.status_reason.empty() ? std::string(", the needle at rest")
+                                                 : ", " + Escape(r.status_reason)))
 
       << Row("lift-off at the rated speed", r.liftoff() ? "<span class=\"fail\">yes</span>" : "no")
       << Row("max contact force", Fixed(r.max_contact_force_N, 1) + " N; min during the lift " +
@@ -413,6 +442,56 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   const std::string name = std::filesystem::path(c.path).stem().string() + ".html";
   const std::string path = (std::filesystem::path(o.out_dir) / name).string();
   WriteFileAtomically(path, report.Html());
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["speed_rpm"] = rpm;
+    j["overall"] = ok ? "pass" : "fail";
+    j["failing"] = failing;
+    j["skipped"] = skipped;
+    j["report"] = path;
+    j["kinematics"] = {{"spline", SplineKindName(law.kind())},
+                       {"spline_reason", choice.reason},
+                       {"max_lift_mm", sum.max_lift_m * 1e3},
+                       {"open_deg", sum.open_rad / kDeg},
+                       {"close_deg", sum.close_rad / kDeg}};
+    if (spring) {
+      j["spring"] = {
+          {"pass", spring->pass},
+          {"preload_ok", spring->preload_ok},
+          {"combustion_ok", spring->combustion_ok},
+          {"basu_ok", spring->basu_ok},
+          {"failures", spring->failures},
+          {"preload_N", spring->train.preload_N},
+          {"gas_force_N", spring->gas_force_N},
+          {"basu_preload_N", spring->basu_preload_N ? nlohmann::json(*spring->basu_preload_N)
+                                                    : nlohmann::json(nullptr)}};
+    }
+    if (run) {
+      j["dynamics"] = {
+          {"liftoff", run->liftoff()},           {"status", RunStatusName(run->status)},
+          {"status_reason", run->status_reason}, {"run_end_deg", run->run_end_rad / kDeg},
+          {"episodes", run->episodes.size()},    {"impacts", run->impacts.size()}};
+    }
+    if (sweep) {
+      j["overspeed"] = {{"liftoff_rpm_quasi_static",
+                         std::isfinite(n_qs) ? nlohmann::json(n_qs) : nlohmann::json(nullptr)},
+                        {"liftoff_rpm_dynamic", sweep->n_dyn_rpm ? nlohmann::json(*sweep->n_dyn_rpm)
+                                                                 : nlohmann::json(nullptr)},
+                        {"overspeed_rpm", overspeed_rpm},
+                        {"status", sweep->status},
+                        {"step_rpm", sweep->step_rpm},
+                        {"scanned_to_rpm", sweep->scanned_to_rpm}};
+    }
+    if (profile) {
+      j["profile"] = {
+          {"undercut", profile->undercut},
+          {"min_profile_radius_mm", profile->min_profile_radius_m * 1e3},
+          {"max_abs_pressure_angle_deg", std::abs(profile->max_pressure_angle_rad) / kDeg}};
+    }
+    std::cout << j.dump(2) << '\n';
+    return ok ? 0 : 1;
+  }
   std::cout << (c.title.empty() ? c.path : c.title) << '\n';
   for (const auto& k : skipped) std::cout << "skipped: " << k << '\n';
   if (spring) std::cout << "spring check: " << (spring->pass ? "pass" : "FAIL") << '\n';

@@ -1,10 +1,11 @@
 #pragma once
 /// @file
-/// `needle check CASE [--out DIR] [--rpm N]`: the main job. Runs what the scene needs
+/// `needle check CASE [--out DIR] [--rpm N] [--json]`: the main job. Runs what the scene needs
 /// (kinematics always; the spring check with [needle] and [spring]; the dynamics and the
 /// overspeed sweep with [train]), says what it skipped and why, and writes DIR/<case>.html:
-/// a self-contained report with figures drawn by gnuplot. Exit 1 when a check fails (the
-/// spring, or lift-off at or below the overspeed f·n), 2 on bad input.
+/// a self-contained report with figures drawn by gnuplot (DIR is made when missing). Exit 1
+/// when a check fails (the spring, lift-off at the rated speed or at or below the overspeed
+/// f·n, an undercut profile, a run that ended undecided), 2 on bad input.
 
 #include <CLI/CLI.hpp>
 #include <optional>
@@ -16,6 +17,7 @@ struct CheckCommandOptions {
   std::string case_path;
   std::string out_dir = ".";
   std::optional<double> speed_rpm;
+  bool json = false;  ///< one JSON object on stdout instead of the text summary
 };
 
 CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& options);

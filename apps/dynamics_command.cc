@@ -109,6 +109,9 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
     j["rtol"] = sim.integrator.rtol;
     j["window_start_deg"] = r.window_start_rad / kDeg;
     j["window_end_deg"] = r.window_end_rad / kDeg;
+    j["run_end_deg"] = r.run_end_rad / kDeg;
+    j["status"] = RunStatusName(r.status);
+    j["status_reason"] = r.status_reason;
     j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoff(scene));
     out << j.dump(2) << '\n';
   } else {
@@ -120,6 +123,12 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
           << Fixed(r.window_end_rad / kDeg, 2) << " deg; rtol " << sim.integrator.rtol << "; "
           << r.stats.steps << " steps, " << r.stats.rhs_evaluations << " rhs evaluations, "
           << r.stats.events << " events; energy residual " << r.energy_residual << '\n';
+      if (r.status != RunStatus::kComplete) {
+        out << "run " << RunStatusName(r.status) << ": " << r.status_reason << '\n';
+      } else if (r.run_end_rad > r.window_end_rad) {
+        out << "run went on to " << Fixed(r.run_end_rad / kDeg, 2)
+            << " deg, where the needle came to rest\n";
+      }
     }
     out << "max lift " << Fixed(r.max_lift_m * 1e3, 4) << " mm at "
         << Fixed(r.max_lift_rad / kDeg, 2) << " deg\n"
@@ -222,7 +231,9 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
                       {"jump_deg", row.jump_deg},
                       {"max_gap_mm", row.max_gap_mm},
                       {"max_impact_speed_m_s", row.max_impact_speed_m_s},
-                      {"lifts_off", row.lifts_off}});
+                      {"lifts_off", row.lifts_off},
+                      {"status", RunStatusName(row.status)},
+                      {"status_reason", row.status_reason}});
     }
     j["rows"] = rows;
     out << j.dump(2) << '\n';
@@ -241,6 +252,9 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
     } else if (r.status == "budget") {
       out << "none up to " << Fixed(r.scanned_to_rpm, 1) << " rpm, where the scan budget ("
           << opt.max_speeds << " speeds) ended it; give a larger --step-rpm or a smaller --to\n";
+    } else if (r.status == "run-budget") {
+      out << "undecided: the run at " << Fixed(r.scanned_to_rpm, 1)
+          << " rpm stopped on its budget before showing lift-off (see its row)\n";
     } else {
       out << "none in the range\n";
     }
@@ -251,6 +265,9 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
                     row.min_contact_force_N, row.jump_deg, row.max_gap_mm, row.max_impact_speed_m_s,
                     row.lifts_off ? "  lift-off" : "");
       out << line;
+      if (row.status != RunStatus::kComplete)
+        out << "             run " << RunStatusName(row.status) << ": " << row.status_reason
+            << '\n';
     }
   }
   std::cout << out.str() << std::flush;

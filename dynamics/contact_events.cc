@@ -4,6 +4,12 @@
 #include <cmath>
 
 namespace needle {
+namespace {
+
+// Angles equal to a break up to the roundoff of θ = θ_a + ω t.
+double AngleTolerance(double crank_rad) { return 1e-12 * std::max(1.0, std::abs(crank_rad)); }
+
+}  // namespace
 
 EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState& x, double t) {
   const Contacts c = train.Evaluate(x, t);
@@ -24,7 +30,36 @@ ContactMode ModeFromSigns(const std::array<int, kEventCount>& s) {
 }
 
 Recorder::Recorder(const NeedleTrain& train, bool record_series)
-    : train_(train), record_series_(record_series) {}
+    : train_(train), record_series_(record_series) {
+  // A table that ends while still rising (or falling faster than the ramp after it): the cam
+  // input's slope drops at θ_N, a deceleration concentrated at one angle (u'' has a negative
+  // Dirac there). A separation there is lift-off (model.md §6, docs/model.md).
+  // A drop below 1e-3 of the mean slope of the lift is roundoff of a closed end.
+  const CamInput& cam = train.cam();
+  const LiftLaw& law = cam.law();
+  const double end = law.end_rad();
+  const double mean_slope = law.Max(0).value / (end - law.start_rad());
+  end_slope_drop_ = cam.Slope(end) < law.Derivative(end, 1) - 1e-3 * mean_slope;
+}
+
+bool Recorder::AtRest(double t, const TrainState& x) const {
+  if (separated_) return false;
+  const Contacts c = train_.Evaluate(x, t);
+  if (c.u_slope != 0.0) return false;  // the cam input still moves
+  const double fc = train_.AppliedCamForce(c), fs = train_.AppliedSeatForce(c);
+  if (!(fc > 0.0 || fs > 0.0)) return false;  // in flight
+  const TrainParameters& p = train_.parameters();
+  const double net = fc + fs - (p.preload_N + p.rate_N_m * x[0]) + p.gas_force_N;
+  const double scale = std::max(p.preload_N + std::abs(p.gas_force_N), p.mass_kg * 1.0 /* m/s² */);
+  return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= kRestForceFraction * scale;
+}
+
+bool Recorder::Decelerating(double crank_rad) const {
+  const LiftLaw& law = train_.cam().law();
+  const double end = law.end_rad();
+  if (std::abs(crank_rad - end) <= AngleTolerance(end)) return end_slope_drop_;
+  return crank_rad >= law.start_rad() && crank_rad <= end && law.Derivative(crank_rad, 2) < 0.0;
+}
 
 void Recorder::Update(double t, const TrainState& x) {
   const Contacts c = train_.Evaluate(x, t);
@@ -32,14 +67,18 @@ void Recorder::Update(double t, const TrainState& x) {
 
   const LiftLaw& law = train_.cam().law();
   const double th = c.crank_rad;
-  const bool in_table = th >= law.start_rad() && th <= law.end_rad();
+  // θ_N is a break the integrators step to exactly; θ = θ_a + ω t is that angle up to roundoff.
+  const bool in_table = th >= law.start_rad() - AngleTolerance(law.start_rad()) &&
+                        th <= law.end_rad() + AngleTolerance(law.end_rad());
   if (x[0] > max_lift_) {
     max_lift_ = x[0];
     max_lift_rad_ = th;
   }
   max_fc_ = std::max(max_fc_, fc);
   max_fs_ = std::max(max_fs_, fs);
-  if (in_table) min_fc_lift_ = std::min(min_fc_lift_, fc);
+  // At a break the raw branch may be negative for an instant before its sign flips: a contact
+  // never pulls.
+  if (in_table) min_fc_lift_ = std::min(min_fc_lift_, std::max(0.0, fc));
   // Separation episode: inside [θ0, θN], the cam not pushing and y > 1 µm.
   // An episode begins inside [θ0, θN]; one still open at θN goes on until the needle is back
   // on the cam or on its seat (model.md §6).
@@ -48,7 +87,7 @@ void Recorder::Update(double t, const TrainState& x) {
   if (separated && !separated_) {
     Episode e;
     e.start_rad = th;
-    e.kind = law.Derivative(th, 2) < 0.0 ? "jump" : "bounce";
+    e.kind = Decelerating(th) ? "jump" : "bounce";
     e.max_gap_m = x[0] - c.u;
     episodes_.push_back(e);
   } else if (!separated && separated_) {
@@ -59,7 +98,7 @@ void Recorder::Update(double t, const TrainState& x) {
     e.max_gap_m = std::max(e.max_gap_m, x[0] - c.u);
     // model.md §6: a jump is any separation that reaches the deceleration zone, wherever it
     // began — a rebound in the acceleration zone that carries on over the crest is lift-off.
-    if (law.Derivative(th, 2) < 0.0) e.kind = "jump";
+    if (Decelerating(th)) e.kind = "jump";
   }
   separated_ = separated;
   if (record_series_) {
@@ -99,6 +138,13 @@ void Recorder::Finish(double t, const TrainState& x) {
   if (separated_) {
     episodes_.back().end_rad = train_.Angle(t);
     episodes_.back().open = true;  // still off cam and seat when the run ends: reported
+  }
+}
+
+void Recorder::Stopped(double crank_rad) {
+  if (separated_) {
+    episodes_.back().end_rad = crank_rad;
+    episodes_.back().open = true;
   }
 }
 

@@ -29,6 +29,11 @@ constexpr int kEventCount = 7;
 /// Lift above which a needle off the cam counts as separated, m (model.md §6: 1 µm).
 constexpr double kSeparationLift_m = 1e-6;
 
+/// Rest after the lift (model.md §5): speed below this, m/s …
+constexpr double kRestSpeed_m_s = 1e-4;
+/// … and net force below this fraction of P₀ + |F_g| (or of m·1 m/s² without loads).
+constexpr double kRestForceFraction = 1e-3;
+
 using EventValues = std::array<double, kEventCount>;
 
 /// The event functions at (t, x) in `mode`.
@@ -38,7 +43,8 @@ EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState&
 ContactMode ModeFromSigns(const std::array<int, kEventCount>& signs);
 
 struct Episode {
-  /// "jump" (any part of it where s'' < 0 inside the table: model.md §6) or "bounce"
+  /// "jump" (any part of it where s'' < 0 inside [θ_0, θ_N], model.md §6, or at θ_N when the
+  /// cam input's slope drops there, an impulsive deceleration) or "bounce"
   std::string kind;
   double start_rad = 0.0;
   double end_rad = 0.0;
@@ -76,6 +82,13 @@ class Recorder {
   void Crossing(int index, int direction, double t, const TrainState& x);
   /// Closes an open episode at the end of the run.
   void Finish(double t, const TrainState& x);
+  /// The run stopped on a budget at this angle: an open episode ends there, marked open.
+  void Stopped(double crank_rad);
+  /// The needle has landed and come to rest (model.md §5): not separated, the cam input no
+  /// longer moving, a contact pushing, |ẏ| ≤ kRestSpeed_m_s and the net force on the needle
+  /// below kRestForceFraction of the spring and gas loads (so a contact oscillation caught at
+  /// its turning point is not taken for rest).
+  bool AtRest(double t, const TrainState& x) const;
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
@@ -101,6 +114,8 @@ class Recorder {
 
  private:
   void Update(double t, const TrainState& x);
+  /// Inside the deceleration zone at this angle (model.md §6).
+  bool Decelerating(double crank_rad) const;
 
   const NeedleTrain& train_;
   bool record_series_;
@@ -111,8 +126,9 @@ class Recorder {
   std::vector<GridPoint> grid_;
 
   bool separated_ = false;
-  bool cam_touched_ = false;  // any cam onset yet (lash vs recontact)
-  bool seat_landed_ = false;  // any seat onset yet (seat vs seat-bounce)
+  bool end_slope_drop_ = false;  // the cam input's slope drops at θ_N
+  bool cam_touched_ = false;     // any cam onset yet (lash vs recontact)
+  bool seat_landed_ = false;     // any seat onset yet (seat vs seat-bounce)
   double max_lift_ = -1e300, max_lift_rad_ = 0.0;
   double max_fc_ = 0.0, min_fc_lift_ = 1e300, max_fs_ = 0.0;
 };

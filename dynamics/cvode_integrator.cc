@@ -113,7 +113,9 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   o.Validate();
   IntegrationStats stats;
   const long rhs_before = train.evaluations();
-  const Breaks all_breaks = BreakTimes(train, t_end);
+  const double t_limit = t_end + o.settle_limit_s;
+  double horizon = t_end;  // t_limit once the run goes on to let the needle settle
+  const Breaks all_breaks = BreakTimes(train, t_limit);
   const std::vector<double>& breaks = all_breaks.times;
   const std::vector<double>& grid = recorder.grid_times();
   size_t next_grid = 0, next_break = 0;
@@ -144,7 +146,8 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   double t = 0.0;
   auto set_stop = [&]() {
     while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
-    const double stop = next_break < breaks.size() ? breaks[next_break] : t_end;
+    const double stop =
+        next_break < breaks.size() ? std::min(breaks[next_break], horizon) : horizon;
     train.set_segment_end(next_break < breaks.size() ? all_breaks.angles[next_break]
                                                      : std::numeric_limits<double>::infinity());
     Check(CVodeSetStopTime(cvode.mem, stop), "CVodeSetStopTime");
@@ -168,7 +171,7 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
     recorder.Crossing(i, sign, t, x);
     return switched;
   };
-  while (t < t_end) {
+  while (t < horizon) {
     const int flag = CVode(cvode.mem, stop, y.v, &t, CV_ONE_STEP);
     Check(flag, "CVode");
     if (++stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, t);
@@ -199,7 +202,14 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
       }
     } else {
       recorder.Sample(t, x);
-      if (flag == CV_TSTOP_RETURN && t < t_end) {
+      if (t >= t_end) {  // model.md §5: on until the needle is at rest, within the budget
+        if (recorder.AtRest(t, x)) break;
+        if (horizon < t_limit) {
+          horizon = t_limit;
+          stop = set_stop();
+        }
+      }
+      if (flag == CV_TSTOP_RETURN && t < horizon) {
         // The far side of a break: the cam's slope may jump there, and with it the force
         // branches k g + c ġ. CVODE's rootfinding restarts from the new values after
         // CVodeReInit and would never report a sign that flipped at the break itself, so

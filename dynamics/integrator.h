@@ -11,6 +11,7 @@
 ///   kCvodeAdams  the same with Adams–Moulton (non-stiff)
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "dynamics/contact_events.h"
@@ -31,6 +32,9 @@ struct IntegratorOptions {
   double atol_m = 1e-11;     ///< absolute tolerance on the states (lift scale), > 0
   long max_steps = 2000000;  ///< step budget; exceeding it throws with a message
   long max_events = 100000;  ///< event budget (mode switches); exceeding it throws
+  /// Past t_end the run goes on until the recorder finds the needle at rest
+  /// (Recorder::AtRest), for at most this long, s (model.md §5); 0: stop at t_end. ≥ 0.
+  double settle_limit_s = 0.0;
   void Validate() const;
 };
 
@@ -42,8 +46,16 @@ struct IntegrationStats {
   double final_time = 0.0;
 };
 
-/// Integrates `train` from `x0` over [0, t_end]. Throws std::runtime_error when a budget is
-/// exceeded, naming the angle it stopped at and what to do.
+/// A step or event budget ran out: the run stopped at `crank_rad`. The message names the angle
+/// and what to do; the recorder holds the run up to there.
+struct BudgetExceeded : std::runtime_error {
+  BudgetExceeded(const std::string& message, double crank)
+      : std::runtime_error(message), crank_rad(crank) {}
+  double crank_rad;
+};
+
+/// Integrates `train` from `x0` over [0, t_end], then on while the needle is not at rest, up
+/// to t_end + settle_limit_s. Throws BudgetExceeded when a budget is exceeded.
 IntegrationStats Integrate(Method method, NeedleTrain& train, const TrainState& x0, double t_end,
                            Recorder& recorder, const IntegratorOptions& options);
 

@@ -70,6 +70,8 @@ void IntegratorOptions::Validate() const {
   if (max_steps < 1) throw std::invalid_argument("IntegratorOptions.max_steps must be at least 1");
   if (max_events < 1)
     throw std::invalid_argument("IntegratorOptions.max_events must be at least 1");
+  if (!(settle_limit_s >= 0.0) || !std::isfinite(settle_limit_s))
+    throw std::invalid_argument("IntegratorOptions.settle_limit_s must be finite and ≥ 0");
 }
 
 std::array<int, kEventCount> Signs(const EventValues& v) {
@@ -91,12 +93,13 @@ Breaks BreakTimes(const NeedleTrain& train, double t_end) {
 }
 
 void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train, double t) {
-  throw std::runtime_error("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
+  throw BudgetExceeded("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
                            " deg after " + std::to_string(budget) + " " + what +
                            " (the budget [solver] max_" + what +
                            "): the scene may chatter or be too stiff for this method; try "
                            "method = \"cvode-bdf\", a looser rtol, or raise max_" +
-                           what);
+                           what,
+                       train.Angle(t));
 }
 
 IntegrationStats Integrate(Method method, NeedleTrain& train, const TrainState& x0, double t_end,
@@ -252,10 +255,12 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
                                Recorder& recorder, const IntegratorOptions& o) {
   IntegrationStats stats;
   const long rhs_before = train.evaluations();
-  const Breaks all_breaks = BreakTimes(train, t_end);
+  const double t_limit = t_end + o.settle_limit_s;
+  const Breaks all_breaks = BreakTimes(train, t_limit);
   const std::vector<double>& breaks = all_breaks.times;
   const std::vector<double>& grid = recorder.grid_times();
   size_t next_break = 0, next_grid = 0;
+  double horizon = t_end;  // t_limit once the run goes on to let the needle settle
 
   std::array<int, kEventCount> signs = Signs(Events(train, train.mode(), x0, 0.0));
   ContactMode mode = ModeFromSigns(signs);
@@ -273,9 +278,10 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
   TrainState x = x0, xs;
   dense.Initialize(x, t, std::min(t_end, 0.01 / fastest));
 
-  while (t < t_end) {
+  while (t < horizon) {
     while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
-    const double segment_end = next_break < breaks.size() ? breaks[next_break] : t_end;
+    const double segment_end =
+        next_break < breaks.size() ? std::min(breaks[next_break], horizon) : horizon;
     train.set_segment_end(next_break < breaks.size() ? all_breaks.angles[next_break]
                                                      : std::numeric_limits<double>::infinity());
     if (dense.CurrentTime() + dense.CurrentStep() > segment_end) {
@@ -286,7 +292,7 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
     if (++stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, step.first);
     const double t0 = step.first;
     double t1 = step.second;
-    const bool at_segment_end = t1 >= segment_end - 1e-14 * std::max(1.0, std::abs(segment_end));
+    bool at_segment_end = t1 >= segment_end - 1e-14 * std::max(1.0, std::abs(segment_end));
     if (at_segment_end) t1 = segment_end;
 
     // Events, earliest first. A function has crossed when its sign at the step end differs
@@ -370,7 +376,15 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
     t = t1;
     x = x_end;
     recorder.Sample(t, x);
-    if (at_segment_end && t < t_end) dense.Initialize(x, t, dense.CurrentStep());  // past the break
+    if (t >= t_end) {  // model.md §5: on until the needle is at rest, within the budget
+      if (recorder.AtRest(t, x)) break;
+      if (horizon < t_limit) {
+        horizon = t_limit;
+        at_segment_end = true;
+      }
+    }
+    if (at_segment_end && t < horizon)
+      dense.Initialize(x, t, dense.CurrentStep());  // past the break
   }
   recorder.Finish(t, x);
   train.set_segment_end(std::numeric_limits<double>::infinity());

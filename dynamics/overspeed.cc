@@ -40,6 +40,8 @@ OverspeedRow RowFromResult(const SimulationResult& r) {
   for (const Impact& i : r.impacts)
     row.max_impact_speed_m_s = std::max(row.max_impact_speed_m_s, i.speed_m_s);
   row.lifts_off = r.longest_jump_rad >= kMinJump_rad;
+  row.status = r.status;
+  row.status_reason = r.status_reason;
   return row;
 }
 
@@ -127,8 +129,12 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
         lo = k > 0 ? speeds[k - 1] : speeds[k] - step;
         break;
       }
+      if (rows[k].status == RunStatus::kBudget) {
+        result.status = "run-budget";
+        break;
+      }
     }
-    if (found || speeds.back() >= o.to_rpm) break;
+    if (found || result.status == "run-budget" || speeds.back() >= o.to_rpm) break;
     if (index >= o.max_speeds) {
       result.status = "budget";
       break;
@@ -152,6 +158,12 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
           new_hi = speeds[k];
           break;
         }
+        // A run stopped on its budget shows no lift-off but proves none either: the bracket
+        // keeps it on the high side, so n_dyn is never reported below an undecided speed.
+        if (more[k].status == RunStatus::kBudget) {
+          new_hi = speeds[k];
+          break;
+        }
         new_lo = speeds[k];
       }
       lo = new_lo;
@@ -161,7 +173,7 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
     result.n_dyn_rpm = hi;
     result.bracket_low_rpm = lo;
     result.bracket_high_rpm = hi;
-  } else if (result.status != "budget") {
+  } else if (result.status == "found") {
     result.status = "none";
   }
   std::sort(result.rows.begin(), result.rows.end(),

@@ -7,7 +7,9 @@
 /// k-section (k = the threads) then narrows that bracket. So the answer does not depend on `to`
 /// for any `to` above it; a lift-off window narrower than Δn can be missed, and Δn is reported.
 /// At most `max_speeds` speeds are scanned: past that the search ends with the status
-/// `budget` and the speed it reached.
+/// `budget` and the speed it reached. A run stopped by its step or event budget before it
+/// showed lift-off leaves the speed undecided: the scan ends there with the status
+/// `run-budget` (that row says why), since a lift-off above it could not be claimed the lowest.
 
 #include <functional>
 #include <optional>
@@ -28,7 +30,9 @@ struct OverspeedRow {
   double longest_jump_deg = 0.0;
   double max_gap_mm = 0.0;
   double max_impact_speed_m_s = 0.0;
-  bool lifts_off = false;  ///< a jump of at least 0.1°
+  bool lifts_off = false;                   ///< a jump of at least 0.1°
+  RunStatus status = RunStatus::kComplete;  ///< how the run at this speed ended
+  std::string status_reason;                ///< for unsettled and budget runs
 };
 
 struct OverspeedOptions {
@@ -48,9 +52,11 @@ struct OverspeedResult {
   double bracket_low_rpm = 0.0, bracket_high_rpm = 0.0;
   bool lifts_off_at_start = false;  ///< already lifts off at from_rpm
   int threads = 1;
-  double step_rpm = 0.0;         ///< the scan step Δn used
-  std::string status = "found";  ///< "found", "none" (none up to to_rpm) or "budget"
-  double scanned_to_rpm = 0.0;   ///< highest speed scanned
+  double step_rpm = 0.0;  ///< the scan step Δn used
+  /// "found", "none" (none up to to_rpm), "budget" (scan budget) or "run-budget" (a run at
+  /// scanned_to_rpm stopped on its budget without lift-off)
+  std::string status = "found";
+  double scanned_to_rpm = 0.0;  ///< highest speed scanned
 };
 
 /// `progress(done, total_estimate)` is called after each run (from the calling thread).

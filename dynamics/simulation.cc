@@ -1,6 +1,8 @@
 #include "dynamics/simulation.h"
 
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "lib/units.h"
@@ -17,6 +19,18 @@ constexpr double kRigidOscillations = 500.0;
 constexpr double kRigidMargin = 0.5;
 
 }  // namespace
+
+std::string RunStatusName(RunStatus s) {
+  switch (s) {
+    case RunStatus::kComplete:
+      return "complete";
+    case RunStatus::kUnsettled:
+      return "unsettled";
+    case RunStatus::kBudget:
+      return "budget";
+  }
+  return "?";
+}
 
 bool SimulationResult::liftoff() const {
   for (const Episode& e : episodes) {
@@ -81,6 +95,7 @@ SimulationOptions OptionsFromCase(const Case& c) {
     o.integrator.atol_m = c.solver->atol_m.value_or(c.solver->rtol * 1e-3);
     o.integrator.max_steps = c.solver->max_steps;
     o.integrator.max_events = c.solver->max_events;
+    o.settle_limit_deg = c.solver->settle_limit_deg;
   } else {
     o.integrator.atol_m = o.integrator.rtol * 1e-3;
   }
@@ -106,6 +121,11 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   const double theta_b = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
   r.window_start_rad = theta_a;
   r.window_end_rad = theta_b;
+  r.run_end_rad = theta_b;
+  if (!(o.settle_limit_deg > 0.0 && o.settle_limit_deg <= 36000.0)) {
+    throw std::invalid_argument("SimulationOptions.settle_limit_deg = " +
+                                std::to_string(o.settle_limit_deg) + ": must be in (0, 36000]");
+  }
   const double oscillations = ContactOscillationsPerEvent(scene, speed_rpm);
   const std::string stiffness = "the contact oscillates " +
                                 std::to_string(static_cast<long>(std::lround(oscillations))) +
@@ -159,7 +179,26 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   const TrainState x0 = train.EquilibriumStart();
   Recorder recorder(train, o.record_series);
   const double t_end = (theta_b - theta_a) / omega;
-  r.stats = Integrate(method, train, x0, t_end, recorder, o.integrator);
+  IntegratorOptions io = o.integrator;
+  io.settle_limit_s = o.settle_limit_deg * kDeg / omega;
+  try {
+    r.stats = Integrate(method, train, x0, t_end, recorder, io);
+    r.run_end_rad = train.Angle(r.stats.final_time);
+    r.energy_residual = train.EnergyResidual(x0, r.stats.final_state, r.stats.final_time);
+    if (!recorder.AtRest(r.stats.final_time, r.stats.final_state)) {
+      r.status = RunStatus::kUnsettled;
+      std::ostringstream why;
+      why << "the needle is still moving " << o.settle_limit_deg
+          << " deg past the window's end (the settle budget, [solver] settle_deg)";
+      r.status_reason = why.str();
+    }
+  } catch (const BudgetExceeded& e) {
+    recorder.Stopped(e.crank_rad);
+    r.run_end_rad = e.crank_rad;
+    r.status = RunStatus::kBudget;
+    r.status_reason = e.what();
+    r.energy_residual = std::numeric_limits<double>::quiet_NaN();
+  }
 
   r.episodes = recorder.episodes();
   r.impacts = recorder.impacts();
@@ -171,8 +210,6 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   r.max_seat_force_N = recorder.max_seat_force_N();
   r.jump_rad = recorder.jump_rad();
   r.longest_jump_rad = recorder.longest_jump_rad();
-  r.energy_residual = train.EnergyResidual(x0, r.stats.final_state, r.stats.final_time);
-
   return r;
 }
 

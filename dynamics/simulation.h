@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// One dynamic run of a scene at one speed (model.md §5–6): window [θ_a, θ_b] with
-/// θ_a = rise start − 5°, θ_b = fall end + 20°; static-equilibrium start; the method chosen
+/// θ_a = rise start − 5°, θ_b = fall end + 20°, and past θ_b on until the needle has landed
+/// and come to rest (within settle_limit_deg); static-equilibrium start; the method chosen
 /// by the stiffness of the scene when `auto`; the rigid answer reported instead of a dynamic
 /// run when the scene does not need one, with the reason, unless the dynamics is forced.
 
@@ -36,7 +37,19 @@ struct SimulationOptions {
   IntegratorOptions integrator;  ///< tolerances and budgets
   bool record_series = false;    ///< keep the time series (for --csv)
   bool force_dynamic = false;    ///< never report the rigid answer instead
+  /// Past θ_b the run goes on until the needle has landed and come to rest, for at most this
+  /// much crank angle, deg (model.md §5); > 0 and ≤ 36000.
+  double settle_limit_deg = 3600.0;
 };
+
+/// How a run ended.
+enum class RunStatus {
+  kComplete,   ///< the needle at rest at or after θ_b (or the rigid answer)
+  kUnsettled,  ///< still moving at θ_b + settle_limit_deg: the last episode may be open
+  kBudget,     ///< a step or event budget stopped it: the record runs up to there
+};
+/// "complete", "unsettled", "budget".
+std::string RunStatusName(RunStatus s);
 
 struct SimulationResult {
   double speed_rpm = 0.0;
@@ -44,6 +57,9 @@ struct SimulationResult {
   std::string method_reason;  ///< why that method
   bool skipped = false;       ///< the rigid answer stands in for a dynamic run
   double window_start_rad = 0.0, window_end_rad = 0.0;
+  double run_end_rad = 0.0;  ///< where the run ended: θ_b, later while the needle settled
+  RunStatus status = RunStatus::kComplete;
+  std::string status_reason;  ///< why it ended so, for unsettled and budget runs
   std::vector<Episode> episodes;
   std::vector<Impact> impacts;
   std::vector<SeriesPoint> series;

@@ -369,13 +369,19 @@ SolverSection ReadSolver(SectionReader r) {
     if (!(*atol > 0.0)) r.Fail("atol", "must be positive");
     s.atol_m = *atol;
   }
+  // Budgets: whole numbers in a range a long holds (a cast of 1e308 is undefined).
   for (auto [key, into] :
        {std::pair<const char*, long*>{"max_steps", &s.max_steps}, {"max_events", &s.max_events}}) {
     if (auto v = r.OptionalNumber(key)) {
-      if (!(*v >= 1.0) || *v != std::floor(*v))
-        r.Fail(key, "must be a whole number ≥ 1, got " + Number(*v));
+      if (!(*v >= 1.0 && *v <= 1e12) || *v != std::floor(*v))
+        r.Fail(key, "must be a whole number in [1, 1e12], got " + Number(*v));
       *into = static_cast<long>(*v);
     }
+  }
+  if (auto settle = r.OptionalQuantity("settle", Dimension::kAngle)) {
+    if (!(*settle > 0.0 && *settle <= 36000.0 * kDeg))
+      r.Fail("settle_deg", "must be in (0, 36000] deg, got " + Number(*settle / kDeg));
+    s.settle_limit_deg = *settle / kDeg;
   }
   s.start_rad = r.OptionalQuantity("start", Dimension::kAngle);
   s.end_rad = r.OptionalQuantity("end", Dimension::kAngle);

@@ -25,7 +25,8 @@
 ///     k_c),
 ///               seat_damping_ratio = 0.05, play_mm = 0, ramp = "tangent" | ramp_deg
 ///     [solver]  method = "auto" | "dopri5" | "cvode-bdf" | "cvode-adams", rtol = 1e-8, atol_mm,
-///               max_steps = 2e6, max_events = 1e5, start_deg, end_deg (window)
+///               max_steps = 2e6, max_events = 1e5, start_deg, end_deg (window),
+///               settle_deg = 3600 (past the window, the most run while the needle settles)
 ///     [overspeed] from_rpm, to_rpm
 ///     [paper]   published values to compare with: crank_deg + velocity_dcm_s (magnitudes),
 ///               max_acceleration_m_s2, inertia_force_kgf, mean_lift_mm
@@ -126,6 +127,8 @@ struct SolverSection {
   long max_steps = 2000000;                  ///< step budget
   long max_events = 100000;                  ///< event budget
   std::optional<double> start_rad, end_rad;  ///< window override
+  /// Past the window's end, at most this much more while the needle settles (model.md §5)
+  double settle_limit_deg = 3600.0;
 };
 
 /// [overspeed]: the lift-off sweep.

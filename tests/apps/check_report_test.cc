@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 
@@ -157,9 +158,35 @@ TEST(CheckReportTest, BadInputLeavesNoReport) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "needle: " + bad + ": [lift] lift_mm[1]: is NaN; expected a finite number\n");
   EXPECT_FALSE(std::filesystem::exists(dir + "/broken.html"));
-  const auto nodir = RunNeedle("check " + Case("basu-cam4.toml") + " --out /no/such/folder");
+  // A folder inside a file cannot be made: one line naming the option.
+  const auto nodir = RunNeedle("check " + Case("basu-cam4.toml") + " --out " + bad + "/sub");
   EXPECT_EQ(nodir.status, 2);
-  EXPECT_EQ(nodir.err, "needle: --out: /no/such/folder is not a folder\n");
+  EXPECT_EQ(nodir.err, "needle: --out: " + bad +
+                           "/sub is not a folder and cannot be made one (Not a directory)\n");
+  // A missing folder is made.
+  const auto made = RunNeedle("check " + Case("basu-cam4.toml") + " --out " + dir + "/a/b");
+  EXPECT_EQ(made.status, 0) << made.err;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/a/b/basu-cam4.html"));
+  std::filesystem::remove_all(dir);
+}
+
+// Reproducer 1 of issue 11 through `check --json`: every failing item named, one verdict.
+TEST(CheckReportTest, JsonNamesEveryFailingItem) {
+  const std::string dir = TempDir("json");
+  const auto r =
+      RunNeedle("check " + Case("new-engine-weak-spring.toml") + " --out " + dir + " --json");
+  EXPECT_EQ(r.status, 1) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["overall"], "fail");
+  EXPECT_FALSE(j["spring"]["basu_ok"].get<bool>());
+  EXPECT_FALSE(j["spring"]["combustion_ok"].get<bool>());
+  ASSERT_EQ(j["failing"].size(), 3u) << r.out;
+  EXPECT_EQ(j["failing"][1],
+            "spring check: Basu's formula: the preload 40.0 kgf is 80.6 % below 206.2 kgf "
+            "(tolerance 10.0 %)");
+  EXPECT_EQ(j["skipped"][0],
+            "dynamics and overspeed: the case has no [train] section (contact stiffness, play)");
+  EXPECT_TRUE(std::filesystem::exists(j["report"].get<std::string>()));
   std::filesystem::remove_all(dir);
 }
 

@@ -427,10 +427,50 @@ TEST(LiftOffTest, ReboundOverTheCrestIsAJumpAndAnOpenEpisodeIsReported) {
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("LIFT-OFF: the needle leaves the cam"), std::string::npos) << r.out;
   // Starts at 6.28°, in the acceleration zone (s'' > 0 up to ≈ 12°), and spans the crest.
-  EXPECT_NE(r.out.find("  jump 6.279 .. 60.000 deg, largest gap 7.7000 mm (still open when the "
-                       "run ended)"),
+  // The run goes on past the window (60°) until the needle is back and at rest (model.md §5):
+  // the flight ends on the seat at 342.2°, 13.46 mm up at its top, not cut at 60° and 7.70 mm.
+  EXPECT_NE(r.out.find("  jump 6.279 .. 342.208 deg, largest gap 13.4575 mm\n"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("run went on to 1343.92 deg, where the needle came to rest"),
             std::string::npos)
       << r.out;
+  // With the settle budget cut to 100°, the episode is still reported, as open.
+  const std::string path = testing::TempPath("short-settle.toml");
+  std::ofstream(path) << testing::Slurp(testing::Case("basu-cam4-light-spring.toml"))
+                      << "[solver]\nsettle_deg = 100\n";
+  const auto s = testing::RunNeedle("simulate " + path + " --rpm 4000");
+  EXPECT_EQ(s.status, 1) << s.out << s.err;
+  EXPECT_NE(s.out.find("run unsettled: the needle is still moving 100 deg past the window's end"),
+            std::string::npos)
+      << s.out;
+  EXPECT_NE(s.out.find("  jump 6.279 .. 160.000 deg, largest gap 13.4095 mm (still open when "
+                       "the run ended)"),
+            std::string::npos)
+      << s.out;
+  std::remove(path.c_str());
+}
+
+// Reproducer 3 (issue 11): a table that ends at 2.0 mm while still rising. The cam input
+// stops dead at θ_N = 40° (its slope drops from +0.33 mm/deg to 0, an impulsive deceleration),
+// the needle flies on: lift-off from 40°, not "no lift-off" with the needle airborne at 60°.
+TEST(LiftOffTest, ATableEndingWhileRisingThrowsTheNeedleOffAtItsEnd) {
+  std::string text = testing::Slurp(testing::Case("basu-cam4-light-spring.toml"));
+  const std::string last = "1.45, 0.61, 0.00]";
+  ASSERT_NE(text.find(last), std::string::npos);
+  text.replace(text.find(last), last.size(), "1.45, 0.61, 2.0]");
+  const std::string path = testing::TempPath("ends-rising.toml");
+  std::ofstream(path) << text;
+  const auto r = testing::RunNeedle("simulate " + path + " --rpm 400 --json");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["episodes"].size(), 1u) << r.out;
+  EXPECT_EQ(j["episodes"][0]["kind"], "jump");
+  EXPECT_NEAR(j["episodes"][0]["start_deg"].get<double>(), 40.0, 1e-9);
+  EXPECT_FALSE(j["episodes"][0]["open"].get<bool>());
+  EXPECT_NEAR(j["episodes"][0]["max_gap_mm"].get<double>(), 3.6319, 1e-3);
+  EXPECT_GT(j["run_end_deg"].get<double>(), j["window_end_deg"].get<double>());
+  EXPECT_EQ(j["status"], "complete");
+  std::remove(path.c_str());
 }
 
 }  // namespace

@@ -40,6 +40,11 @@ inline Result RunNeedle(const std::string& args) {
   return r;
 }
 
+// A scratch file of this test process.
+inline std::string TempPath(const std::string& name) {
+  return "/tmp/needle_cli_" + std::to_string(getpid()) + "_" + name;
+}
+
 inline std::string Case(const std::string& name) {
   return std::string(NEEDLE_SOURCE_DIR) + "/cases/" + name;
 }
