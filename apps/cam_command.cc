@@ -100,9 +100,9 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     if (rise.s1[i] > s1.value) s1 = {rise.s1[i], rise.phi[i]};
     if (rise.s2[i] > s2.value) s2 = {rise.s2[i], rise.phi[i]};
     if (-rise.s2[i] > s2n.value) s2n = {-rise.s2[i], rise.phi[i]};
-    const bool junction_jump = i == rise.junction + 1 && !rise.speed_limit_active;
-    if (i > 0 && !junction_jump && std::abs(rise.s3[i]) > s3.value)
-      s3 = {std::abs(rise.s3[i]), rise.phi[i]};
+    // Every step counts, the junction too: with a jerk limit the sides meet with S'' = 0, and
+    // without one a step in S'' there is the law's, reported as it is.
+    if (i > 0 && std::abs(rise.s3[i]) > s3.value) s3 = {std::abs(rise.s3[i]), rise.phi[i]};
   }
   std::optional<CamProfile> profile;
   bool ok = true;
@@ -170,7 +170,11 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     j["max_abs_S3_mm_rad3"] = s3.value * mm;
     j["max_abs_S3_deg"] = s3.at / kDeg;
     j["steps"] = rise.phi.size() - 1;
+    j["meet_speed_mm_rad"] =
+        rise.meet_speed > 0.0 ? nlohmann::json(rise.meet_speed * mm) : nlohmann::json(nullptr);
     if (profile) {
+      // The largest |pressure angle| (its sign says on which flank: + rising, − falling).
+      j["max_abs_pressure_angle_deg"] = std::abs(profile->max_pressure_angle_rad) / kDeg;
       j["max_pressure_angle_deg"] = profile->max_pressure_angle_rad / kDeg;
       j["max_pressure_angle_at_deg"] = profile->max_pressure_angle_at_rad / kDeg;
       j["min_profile_radius_mm"] = profile->min_profile_radius_m * mm;
@@ -199,6 +203,10 @@ int RunSynthCommand(const SynthCommandOptions& o) {
           << Fixed(rise.constant_start_rad / kDeg, 3) << " to "
           << Fixed(rise.constant_end_rad / kDeg, 3) << " deg ("
           << Fixed(rise.constant_length_rad() / kDeg, 3) << " deg)\n";
+    } else if (rise.meet_speed > 0.0) {
+      out << "S' limit not active; the sides meet at S' = " << Fixed(rise.meet_speed * mm, 3)
+          << " mm/rad with S'' = 0 (lowered from where they would meet with a step in S'', "
+             "to keep the jerk limit)\n";
     } else {
       out << "S' limit not active: no constant-speed section\n";
     }
@@ -208,7 +216,8 @@ int RunSynthCommand(const SynthCommandOptions& o) {
         << " deg; max |S'''| " << Fixed(s3.value * mm, 1) << " mm/rad3 at "
         << Fixed(s3.at / kDeg, 2) << " deg\n";
     if (profile) {
-      out << "pressure angle max " << Fixed(profile->max_pressure_angle_rad / kDeg, 2) << " deg at "
+      out << "largest |pressure angle| "
+          << Fixed(std::abs(profile->max_pressure_angle_rad) / kDeg, 2) << " deg at "
           << Fixed(profile->max_pressure_angle_at_rad / kDeg, 2) << " deg"
           << (f.max_pressure_angle_rad
                   ? " (limit " + Fixed(*f.max_pressure_angle_rad / kDeg, 1) + ")"

@@ -82,6 +82,7 @@ struct Formed {
   double constant_rad = 0.0;  // constant-speed length
   double total_rad = 0.0;
   bool speed_active = false;
+  double meet_speed = 0.0;  // > 0: the sides were made to meet at this S' (FormSmooth)
 };
 
 // Forms both sides with the limits scaled by alpha; the rise angle comes out. Gives up with
@@ -130,6 +131,27 @@ Formed Form(const SynthesisSpec& spec, double alpha, double vmax, double h,
   return f;
 }
 
+// Form, with the jerk limit honoured where the two sides meet. Two sides that meet below S'max
+// meet with S'' > 0 on A and S'' < 0 on C: a step in S'' of (a⁺ + a⁻)-size in one step, an
+// unbounded S'''. Then the speed at which they meet is lowered to V*, the largest speed both
+// sides still reach (S'' brought back to 0 under the jerk limit, the S'max rule of Advance)
+// before their displacements add up to H: they join at V* with S'' = 0 on both sides, through
+// a constant-speed stretch shorter than one step.
+Formed FormSmooth(const SynthesisSpec& spec, double alpha, double vmax, double h,
+                  double give_up_rad = INFINITY) {
+  Formed f = Form(spec, alpha, vmax, h, give_up_rad);
+  if (spec.jerk_limit >= 1e299 || f.speed_active || !std::isfinite(f.total_rad)) return f;
+  double lo = 0.0, hi = std::max(f.a.back().s1, f.c.back().s1);
+  for (int k = 0; k < 60 && hi - lo > 1e-14 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (Form(spec, alpha, mid, h, give_up_rad).speed_active ? lo : hi) = mid;
+  }
+  if (!(lo > 0.0)) return f;  // cannot happen for a positive height; keep the plain result
+  Formed g = Form(spec, alpha, lo, h, give_up_rad);
+  g.meet_speed = lo;
+  return g;
+}
+
 }  // namespace
 
 void SynthesisSpec::Validate() const {
@@ -152,13 +174,17 @@ void SynthesisSpec::Validate() const {
 double LeastSpeedLimit(const SynthesisSpec& spec) {
   const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
   double lo = spec.height_m / spec.rise_rad, hi = lo;  // S'max·Φ ≥ H at the very least
-  while (Form(spec, 1.0, hi, h, 2 * spec.rise_rad).total_rad > spec.rise_rad) {
+  if (!std::isfinite(lo) || !(lo > 0.0)) return INFINITY;
+  // Doubling to a millionfold (20 doublings): beyond that the acceleration limits alone are
+  // too tight. Counted, so that no overflow of `hi` can make the loop endless.
+  for (int doublings = 0; FormSmooth(spec, 1.0, hi, h, 2 * spec.rise_rad).total_rad > spec.rise_rad;
+       ++doublings) {
+    if (doublings >= 20) return INFINITY;
     hi *= 2.0;
-    if (hi > 1e6 * lo) return INFINITY;  // the acceleration limits alone are too tight
   }
   for (int k = 0; k < 60; ++k) {
     const double mid = 0.5 * (lo + hi);
-    (Form(spec, 1.0, mid, h, 2 * spec.rise_rad).total_rad > spec.rise_rad ? lo : hi) = mid;
+    (FormSmooth(spec, 1.0, mid, h, 2 * spec.rise_rad).total_rad > spec.rise_rad ? lo : hi) = mid;
   }
   return hi;
 }
@@ -174,7 +200,7 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
         " mm; the least S'max that fits with these acceleration limits is " +
         std::to_string(LeastSpeedLimit(spec) * 1e3) + " mm/rad");
   }
-  const Formed full = Form(spec, 1.0, vmax, h, 2 * spec.rise_rad);
+  const Formed full = FormSmooth(spec, 1.0, vmax, h, 2 * spec.rise_rad);
   if (full.total_rad > spec.rise_rad) {
     const double least = LeastSpeedLimit(spec);
     throw std::invalid_argument(
@@ -193,7 +219,7 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   // quartering, then bisect.
   const double give_up = 2 * spec.rise_rad;
   double lo = 0.25, hi = 1.0;
-  while (Form(spec, lo, vmax, h, give_up).total_rad <= spec.rise_rad) {
+  while (FormSmooth(spec, lo, vmax, h, give_up).total_rad <= spec.rise_rad) {
     hi = lo;
     lo *= 0.25;
     if (lo < 1e-12)
@@ -201,15 +227,18 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   }
   for (int k = 0; k < 100 && hi - lo > 1e-13 * hi; ++k) {
     const double mid = 0.5 * (lo + hi);
-    (Form(spec, mid, vmax, h, give_up).total_rad > spec.rise_rad ? lo : hi) = mid;
+    (FormSmooth(spec, mid, vmax, h, give_up).total_rad > spec.rise_rad ? lo : hi) = mid;
   }
 
-  const Formed f = Form(spec, hi, vmax, h);
+  const Formed f = FormSmooth(spec, hi, vmax, h);
+  // The speed of the constant section: S'max, or the speed the sides were made to meet at.
+  const double v_const = f.meet_speed > 0.0 ? f.meet_speed : vmax;
 
   // Assemble: side A forward, the constant section, side C reversed.
   SynthesizedLaw law;
   law.scale = hi;
-  law.speed_limit_active = f.speed_active;
+  law.speed_limit_active = f.speed_active && f.meet_speed == 0.0;
+  law.meet_speed = f.meet_speed;
   law.pressure_angle_limited = f.v_bound;
   law.curvature_limited = f.a_bound;
   law.spring_reserve_limited = f.reserve_bound;
@@ -229,14 +258,14 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   const int inner = static_cast<int>(std::floor(f.constant_rad / h - 1e-9));
   for (int m = 1; m <= inner; ++m) {
     law.phi.push_back(phi_a + h * m);
-    law.s.push_back(s_a + vmax * h * m);
-    law.s1.push_back(vmax);
+    law.s.push_back(s_a + v_const * h * m);
+    law.s1.push_back(v_const);
     law.s2.push_back(0.0);
   }
 
   const double phi_c0 = phi_a + f.constant_rad;
   const double c_total = f.c.back().s;  // displacement of side C
-  const double s_c0 = s_a + (f.speed_active ? f.constant_rad * vmax : 0.0);
+  const double s_c0 = s_a + (f.speed_active ? f.constant_rad * v_const : 0.0);
   const double end_s = s_c0 + c_total;
   for (size_t k = 0; k < f.c.size(); ++k) {
     const size_t i = f.c.size() - 1 - k;  // from the junction back to the end at rest

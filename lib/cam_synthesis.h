@@ -13,9 +13,12 @@
 /// always advancing the side whose S' is lower, so that the two meet where S' agrees. With a
 /// limit S'max, each side also keeps S'_i + S''_i²/(2j) ≤ S'max (so that S'' can come back to
 /// zero exactly at S'max) and stops there; the displacement left over is covered at constant
-/// speed over φ₀ = ΔS / S'max. All limits are scaled by one factor α ≤ 1 (found by bisection)
-/// so that the rise takes exactly the given angle; the law is then stretched by at most one
-/// step to close the angle exactly, which only lowers every derivative.
+/// speed over φ₀ = ΔS / S'max. With a jerk limit, two sides that would meet below S'max (S''
+/// > 0 on A, < 0 on C: a step in S'') are made to meet at the largest speed V* ≤ S'max both
+/// reach with S'' back at 0, so S''' stays within the limit where they join too. All limits are
+/// scaled by one factor α ≤ 1 (found by bisection) so that the rise takes exactly the given angle;
+/// the law is then stretched by at most one step to close the angle exactly, which only lowers
+/// every derivative.
 
 #include <optional>
 #include <string>
@@ -58,6 +61,10 @@ struct SynthesizedLaw {
   bool curvature_limited = false;       ///< the curvature cap bound S'' somewhere
 
   bool spring_reserve_limited = false;  ///< the spring-reserve cap bound S'' somewhere
+  /// > 0: the sides would have met below S'max with S'' of opposite signs (a jerk step), so
+  /// they were made to meet at this S', m/rad, with S'' = 0 on both (the jerk limit honoured
+  /// everywhere); 0 otherwise.
+  double meet_speed = 0.0;
 
   double constant_start_rad = 0.0, constant_end_rad = 0.0;  ///< the constant-speed section
   double constant_length_rad() const { return constant_end_rad - constant_start_rad; }

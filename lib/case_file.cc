@@ -874,11 +874,20 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
   SectionReader rise(Section(root, path, "rise"), path, "rise");
   if (!rise.present())
     rise.Fail("angle_deg", "section [rise] is missing; it needs angle_deg and lift_mm");
+  // Ranges that keep the synthesis finite and its memory bounded (a lift of 3e305 mm made the
+  // speed search loop forever; a step of 1e-7° asked for 5.7 GB).
   f.rise_rad = Positive(rise, "angle", Dimension::kAngle, 180.0 / kPi, "angle_deg");
+  if (!(f.rise_rad <= 2 * kPi))
+    rise.Fail(rise.last_key(), "must be at most 360 deg of cam, got " + Number(f.rise_rad / kDeg));
   f.height_m = Positive(rise, "lift", Dimension::kLength, 1e3, "lift_mm");
+  if (!(f.height_m <= 1.0))
+    rise.Fail(rise.last_key(), "must be at most 1000 mm, got " + Number(f.height_m * 1e3) + " mm");
   if (auto st = rise.OptionalQuantity("step", Dimension::kAngle)) {
     if (!(*st > 0.0 && *st < f.rise_rad / 10))
       rise.Fail(rise.last_key(), "must be positive and below a tenth of the rise");
+    if (!(*st >= f.rise_rad / 1e6))
+      rise.Fail(rise.last_key(), "must be at least a millionth of the rise (" +
+                                     Number(f.rise_rad / kDeg / 1e6) + " deg): at most 1e6 steps");
     f.step_rad = *st;
   }
   rise.Finish();
@@ -886,41 +895,74 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
   if (!lim.present())
     lim.Fail("acceleration", "section [limits] is missing; it needs acceleration and deceleration");
   if (auto v = lim.OptionalQuantity("speed", Dimension::kSlope)) {
-    if (!(*v > 0.0)) lim.Fail(lim.last_key(), "must be positive");
+    if (!(*v > 0.0 && *v < 1e6)) lim.Fail(lim.last_key(), "must be positive and finite");
     f.speed_limit = *v;
   }
   f.accel_limit = Positive(lim, "acceleration", Dimension::kSlope2, 1e3, "acceleration_mm_rad2");
   f.decel_limit = Positive(lim, "deceleration", Dimension::kSlope2, 1e3, "deceleration_mm_rad2");
+  if (!(f.accel_limit < 1e12)) lim.Fail("acceleration", "must be finite (below 1e15 mm/rad2)");
+  if (!(f.decel_limit < 1e12)) lim.Fail("deceleration", "must be finite (below 1e15 mm/rad2)");
   if (auto v = lim.OptionalQuantity("jerk", Dimension::kSlope3)) {
-    if (!(*v > 0.0)) lim.Fail(lim.last_key(), "must be positive");
+    if (!(*v > 0.0 && *v < 1e15)) lim.Fail(lim.last_key(), "must be positive and finite");
     f.jerk_limit = *v;
   }
   lim.Finish();
   if (const toml::table* t = Section(root, path, "checks")) {
     SectionReader ch(t, path, "checks");
-    f.base_radius_m = ch.OptionalQuantity("base_radius", Dimension::kLength);
-    f.roller_radius_m = ch.OptionalQuantity("roller_radius", Dimension::kLength);
+    // Each value is checked as it is read, so a failure names the key as written.
+    auto length = [&](const std::string& name, bool positive) -> std::optional<double> {
+      auto v = ch.OptionalQuantity(name, Dimension::kLength);
+      if (v && !((positive ? *v > 0.0 : *v >= 0.0) && *v <= 10.0))
+        ch.Fail(ch.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") +
+                                   " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
+      return v;
+    };
+    f.base_radius_m = length("base_radius", true);
+    f.roller_radius_m = length("roller_radius", false);
     f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
+    if (!(std::abs(f.offset_m) <= 10.0))
+      ch.Fail(ch.last_key(), "must be within ±10000 mm, got " + Number(f.offset_m * 1e3) + " mm");
     f.max_pressure_angle_rad = ch.OptionalQuantity("max_pressure_angle", Dimension::kAngle);
-    f.min_profile_radius_m = ch.OptionalQuantity("min_profile_radius", Dimension::kLength);
+    if (f.max_pressure_angle_rad &&
+        !(*f.max_pressure_angle_rad > 0.0 && *f.max_pressure_angle_rad < kPi / 2))
+      ch.Fail(ch.last_key(),
+              "must be in (0, 90) deg, got " + Number(*f.max_pressure_angle_rad / kDeg) + " deg");
+    f.min_profile_radius_m = length("min_profile_radius", false);
     if (f.min_profile_radius_m && !f.base_radius_m) {
       ch.Fail("base_radius", "the curvature limit needs base_radius_mm");
     }
     f.spring_preload_N = ch.OptionalQuantity("spring_preload", Dimension::kForce);
+    if (f.spring_preload_N && !(*f.spring_preload_N >= 0.0 && *f.spring_preload_N <= 1e7))
+      ch.Fail(ch.last_key(), "must be in [0, 1e7] N, got " + Number(*f.spring_preload_N) + " N");
     f.spring_rate_N_m = ch.OptionalQuantity("spring_rate", Dimension::kStiffness);
+    if (f.spring_rate_N_m && !(*f.spring_rate_N_m >= 0.0 && *f.spring_rate_N_m <= 1e12))
+      ch.Fail(ch.last_key(),
+              "must be in [0, 1e9] N/mm, got " + Number(*f.spring_rate_N_m * 1e-3) + " N/mm");
     f.moving_mass_kg = ch.OptionalQuantity("moving_mass", Dimension::kMass);
+    if (f.moving_mass_kg && !(*f.moving_mass_kg > 0.0 && *f.moving_mass_kg <= 1e4))
+      ch.Fail(ch.last_key(), "must be in (0, 1e4] kg, got " + Number(*f.moving_mass_kg) + " kg");
     f.min_spring_reserve = ch.OptionalNumber("min_spring_reserve");
     if (f.min_spring_reserve && !(f.spring_preload_N && f.moving_mass_kg)) {
       ch.Fail("min_spring_reserve",
               "needs spring_preload_N (or _kgf), moving_mass_kg and [output] speed_rpm");
     }
-    if (f.min_spring_reserve && !(*f.min_spring_reserve > 0.0))
-      ch.Fail("min_spring_reserve", "must be positive");
-    f.contact_length_m = ch.OptionalQuantity("contact_length", Dimension::kLength);
-    if (auto e = ch.OptionalQuantity("elastic_modulus", Dimension::kPressure))
+    if (f.min_spring_reserve && !(*f.min_spring_reserve > 0.0 && *f.min_spring_reserve <= 1e6))
+      ch.Fail("min_spring_reserve", "must be in (0, 1e6]");
+    f.contact_length_m = length("contact_length", true);
+    if (auto e = ch.OptionalQuantity("elastic_modulus", Dimension::kPressure)) {
+      if (!(*e > 0.0 && *e <= 1e13))
+        ch.Fail(ch.last_key(), "must be in (0, 1e4] GPa, got " + Number(*e * 1e-9) + " GPa");
       f.elastic_modulus_Pa = *e;
-    if (auto nu = ch.OptionalNumber("poisson")) f.poisson = *nu;
+    }
+    if (auto nu = ch.OptionalNumber("poisson")) {
+      if (!(*nu >= 0.0 && *nu < 0.5)) ch.Fail("poisson", "must be in [0, 0.5), got " + Number(*nu));
+      f.poisson = *nu;
+    }
     f.max_contact_stress_Pa = ch.OptionalQuantity("max_contact_stress", Dimension::kPressure);
+    if (f.max_contact_stress_Pa &&
+        !(*f.max_contact_stress_Pa > 0.0 && *f.max_contact_stress_Pa <= 1e13))
+      ch.Fail(ch.last_key(),
+              "must be in (0, 1e7] MPa, got " + Number(*f.max_contact_stress_Pa * 1e-6) + " MPa");
     if (f.max_contact_stress_Pa &&
         !(f.contact_length_m && f.spring_preload_N && f.moving_mass_kg && f.base_radius_m)) {
       ch.Fail("max_contact_stress",
@@ -939,7 +981,8 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
     }
     f.crank_start_rad = o.OptionalQuantity("crank_start", Dimension::kAngle).value_or(0.0);
     if (auto n = o.OptionalQuantity("speed", Dimension::kRotationSpeed)) {
-      if (!(*n > 0.0)) o.Fail("speed_rpm", "must be positive");
+      if (!(*n > 0.0 && *n <= 1e6))
+        o.Fail("speed_rpm", "must be in (0, 1e6] rpm, got " + Number(*n));
       f.speed_rpm = *n;
     }
     if (auto cyc = o.OptionalString("cycle")) {

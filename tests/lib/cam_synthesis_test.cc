@@ -29,9 +29,8 @@ void ExpectWithinLimits(const SynthesizedLaw& law, const SynthesisSpec& s) {
     EXPECT_GE(law.s1[i], -1e-15) << i;
     EXPECT_LE(law.s2[i], s.accel_limit * (1 + 1e-12)) << i;
     EXPECT_GE(law.s2[i], -s.decel_limit * (1 + 1e-12)) << i;
-    if (i > 0 && !(i == law.junction + 1 && !law.speed_limit_active)) {
-      EXPECT_LE(std::abs(law.s3[i]), s.jerk_limit * (1 + 1e-9)) << i;
-    }
+    // Every step, the junction of the two sides too (issue 11: it used to be let off).
+    if (i > 0) EXPECT_LE(std::abs(law.s3[i]), s.jerk_limit * (1 + 1e-9)) << i;
     if (i > 0) {
       EXPECT_GT(law.phi[i], law.phi[i - 1]);
     }
@@ -68,13 +67,19 @@ TEST(CamSynthesisTest, PaperCaseHasAConstantSpeedSectionAtSmax) {
               law.constant_length_rad() / kDeg, law.scale);
 }
 
-TEST(CamSynthesisTest, WithoutAnActiveSpeedLimitThereIsNoConstantSection) {
+TEST(CamSynthesisTest, WithoutAnActiveSpeedLimitTheSidesMeetWithinTheJerkLimit) {
   SynthesisSpec s = Paper();
   s.speed_limit = 1e300;  // the earlier scheme [3, 4]
   const SynthesizedLaw law = SynthesizeRise(s);
   ExpectWithinLimits(law, s);
   EXPECT_FALSE(law.speed_limit_active);
-  EXPECT_EQ(law.constant_length_rad(), 0.0);
+  // The sides would meet with S'' = ±a (a step of 2a in one step: S''' ≈ 2a/Δφ, far over the
+  // limit). They are made to meet at the speed V* both reach with S'' back at 0: a
+  // constant-speed stretch of at most two steps at V*, S'' = 0 at both its ends.
+  EXPECT_GT(law.meet_speed, 0.0);
+  EXPECT_LE(law.constant_length_rad(), 2.0 * s.rise_rad / 4000.0 * (1 + 1e-9));
+  EXPECT_NEAR(law.s2[law.junction], 0.0, 1e-12);
+  EXPECT_NEAR(law.s1[law.junction], law.s1[law.junction + 1], 1e-12);
   // Equal limits on both sides: the junction (S'' changes sign) at half the rise, and S' peaks
   // there.
   EXPECT_NEAR(law.phi[law.junction], s.rise_rad / 2, 2 * s.rise_rad / 4000);
@@ -204,6 +209,29 @@ TEST(CamSynthesisStepLimitsTest, SpringReserveSteersTheDeceleration) {
   EXPECT_GE(worst, 1.5 * (1 - 1e-9));
   EXPECT_LT(worst, 1.51);  // binding
   ExpectWithinLimits(law, s);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 12: a displacement of 3e305 m made LeastSpeedLimit double its bracket to infinity and
+// loop forever. The library answers (no S'max fits) without the case loader's range check.
+TEST(CamSynthesisTest, AbsurdHeightEndsWithAnInfeasibleAnswer) {
+  SynthesisSpec s = Paper();
+  s.height_m = 3e305;
+  EXPECT_EQ(LeastSpeedLimit(s), INFINITY);
+  try {
+    SynthesizeRise(s);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the least S'max that fits with these acceleration "
+                                         "limits is inf mm/rad"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "lib/units.h"
 
@@ -226,6 +228,53 @@ TEST(CaseFileTest, UnreadableFile) {
   } catch (const CaseError& e) {
     EXPECT_STREQ(e.what(), "/no/such/case.toml: cannot open the case file for reading");
   }
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 12: values that made the synthesis loop forever, exhaust memory or print nonsense are
+// refused with one line naming the key and the range; a budget of 1e308 is not cast (UB).
+TEST(CaseFileTest, SynthesisAndSolverRanges) {
+  const std::string base = std::string(NEEDLE_SOURCE_DIR) + "/cases/matec-2018-synth.toml";
+  std::ifstream in(base);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string path = ::testing::TempDir() + "synth_ranges.toml";
+  auto error = [&](const std::string& from, const std::string& to) {
+    std::ofstream(path) << Replace(text.str(), from, to);
+    try {
+      LoadSynthesisFile(path);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(error("lift_mm = 8", "lift_mm = 3e305"),
+            path + ": [rise] lift_mm: must be at most 1000 mm, got 3e+305 mm");
+  EXPECT_EQ(error("step_deg = 0.01575", "step_deg = 1e-7"),
+            path +
+                ": [rise] step_deg: must be at least a millionth of the rise (6.3e-05 deg): "
+                "at most 1e6 steps");
+  EXPECT_EQ(error("base_radius_mm = 10", "base_radius_mm = -10"),
+            path + ": [checks] base_radius_mm: must be positive and at most 10000 mm, got -10 mm");
+  EXPECT_EQ(error("max_pressure_angle_deg = 45", "max_pressure_angle_deg = 90"),
+            path + ": [checks] max_pressure_angle_deg: must be in (0, 90) deg, got 90 deg");
+  EXPECT_EQ(error("angle_deg = 63", "angle_deg = 400"),
+            path + ": [rise] angle_deg: must be at most 360 deg of cam, got 400");
+  EXPECT_EQ(error("speed_rpm = 1000", "speed_rpm = 1e9"),
+            path + ": [output] speed_rpm: must be in (0, 1e6] rpm, got 1e+09");
+  EXPECT_EQ(error("title", "title"), "(no error)");
+  EXPECT_EQ(Error(kGood + "[solver]\nmax_steps = 1e308\n"),
+            "t.toml: [solver] max_steps: must be a whole number in [1, 1e12], got 1e+308");
+  EXPECT_EQ(Error(kGood + "[solver]\nmax_events = 1e19\n"),
+            "t.toml: [solver] max_events: must be a whole number in [1, 1e12], got 1e+19");
+  EXPECT_EQ(Error(kGood + "[solver]\nsettle_deg = 0\n"),
+            "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 0");
+  std::remove(path.c_str());
 }
 
 }  // namespace
