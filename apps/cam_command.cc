@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/output_paths.h"
 #include "dynamics/cam_input.h"
 #include "dynamics/case_profile.h"
 #include "lib/cam_profile.h"
@@ -64,6 +65,12 @@ CLI::App* AddSynthCommand(CLI::App& app, SynthCommandOptions& o) {
 
 int RunSynthCommand(const SynthCommandOptions& o) {
   const SynthesisFile f = LoadSynthesisFile(o.spec_path);
+  {
+    std::vector<OutputPath> outputs;
+    if (o.csv) outputs.push_back({"--csv", *o.csv});
+    if (o.case_out) outputs.push_back({"--case", *o.case_out});
+    CheckOutputPaths(outputs, {o.spec_path});
+  }
   SynthesisSpec spec;
   spec.rise_rad = f.rise_rad;
   spec.height_m = f.height_m;
@@ -251,7 +258,7 @@ int RunSynthCommand(const SynthCommandOptions& o) {
       csv << law.phi[i] / kDeg << ',' << law.s[i] * mm << ',' << law.s1[i] * mm << ','
           << law.s2[i] * mm << ',' << law.s3[i] * mm << '\n';
     }
-    WriteFileAtomically(*o.csv, csv.str());
+    WriteOutput({"--csv", *o.csv}, csv.str());
   }
   if (o.case_out) {
     // Every 10th step (and the last), as crank angles: ×2 for a four-stroke cam.
@@ -277,7 +284,24 @@ int RunSynthCommand(const SynthCommandOptions& o) {
         << "\nroller_radius_mm = " << f.roller_radius_m.value_or(0.0) * mm
         << "\noffset_mm = " << f.offset_m * mm << "\n";
     }
-    WriteFileAtomically(*o.case_out, c.str());
+    // Every [checks] input the synthesis used goes on into the case, so that `needle check` on
+    // it runs the spring check and the dynamics (issue 11). What the synthesis file does not
+    // say and the dynamics needs is stated as an assumption, marked as such.
+    if (f.moving_mass_kg && f.spring_preload_N) {
+      std::ostringstream v;
+      v.precision(12);
+      v << "\n[needle]\nmass_kg = " << *f.moving_mass_kg
+        << "\ngas_force_N = 0  # ASSUMED: the synthesis file states no gas load\n"
+        << "\n[spring]\npreload_N = " << *f.spring_preload_N
+        << "\nrate_N_mm = " << f.spring_rate_N_m.value_or(0.0) * 1e-3 << "\n"
+        << "\n# ASSUMED (not in the synthesis file): a stiff steel roller-on-cam contact and "
+           "seat,\n"
+           "# no roller play. State your own train before trusting the dynamics.\n"
+        << "[train]\ncontact_stiffness_N_m = 2e8\ncontact_damping_ratio = 0.1\n"
+           "seat_stiffness_N_m = 2e8\nseat_damping_ratio = 0.1\nplay_mm = 0\n";
+      c << v.str();
+    }
+    WriteOutput({"--case", *o.case_out}, c.str());
   }
   std::cout << out.str() << std::flush;
   return ok ? 0 : 1;
@@ -295,6 +319,7 @@ CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
 
 int RunProfileCommand(const ProfileCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
+  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   if (!c.profile)
     throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
   const LiftLaw law = MakeLiftLaw(c);
@@ -337,7 +362,7 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
     csv << "cam_deg,x_mm,y_mm\n";
     for (const ProfilePoint& q : p.points)
       csv << q.cam_rad / kDeg << ',' << q.x_m * 1e3 << ',' << q.y_m * 1e3 << '\n';
-    WriteFileAtomically(*o.csv, csv.str());
+    WriteOutput({"--csv", *o.csv}, csv.str());
   }
   std::cout << out.str() << std::flush;
   return p.undercut ? 1 : 0;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/output_paths.h"
 #include "apps/progress_bar.h"
 #include "apps/report.h"
 #include "dynamics/case_profile.h"
@@ -68,6 +69,9 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     if (access(o.out_dir.c_str(), W_OK) != 0)
       throw CaseError("--out: " + o.out_dir + ": the folder is not writable");
   }
+  const std::string name = std::filesystem::path(c.path).stem().string() + ".html";
+  const std::string path = (std::filesystem::path(o.out_dir) / name).string();
+  CheckOutputPaths({{"--out", path}}, CaseInputs(c));
   if (!GnuplotAvailable()) {
     throw std::runtime_error(
         "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
@@ -439,9 +443,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     report.AddHtml(t.str());
   }
 
-  const std::string name = std::filesystem::path(c.path).stem().string() + ".html";
-  const std::string path = (std::filesystem::path(o.out_dir) / name).string();
-  WriteFileAtomically(path, report.Html());
+  WriteOutput({"--out", path}, report.Html());
   if (o.json) {
     nlohmann::json j;
     j["case"] = c.path;

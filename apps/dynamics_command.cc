@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/output_paths.h"
 #include "apps/progress_bar.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
@@ -65,6 +66,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
 
 int RunSimulateCommand(const SimulateCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
+  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   const Scene scene = MakeScene(c);
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
@@ -155,7 +157,7 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
           << ',' << p.cam_m * 1e3 << ',' << p.contact_force_N << ',' << p.seat_force_N << '\n';
     }
     if (r.skipped) throw CaseError("--csv: the dynamic run was skipped (" + r.method_reason + ")");
-    WriteFileAtomically(*o.csv, csv.str());
+    WriteOutput({"--csv", *o.csv}, csv.str());
   }
   std::cout << out.str() << std::flush;
   return r.liftoff() ? 1 : 0;

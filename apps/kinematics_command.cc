@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/output_paths.h"
 #include "lib/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
@@ -73,6 +74,7 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
                     " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
   }
   Case c = bare_csv ? CaseFromLiftCsv(o.case_path, o.cycle) : LoadCase(o.case_path);
+  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   if (o.noise_mm) {
     if (!bare_csv)
       throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
@@ -237,7 +239,7 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
       out << '\n';
     }
   }
-  if (o.csv) WriteFileAtomically(*o.csv, csv.str());
+  if (o.csv) WriteOutput({"--csv", *o.csv}, csv.str());
   std::cout << out.str() << std::flush;
   return 0;
 }

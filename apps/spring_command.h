@@ -24,6 +24,7 @@ int RunSpringCommand(const SpringCommandOptions& options);
 struct DesignCommandOptions {
   std::string engine_path;
   bool json = false;
+  std::optional<std::string> case_out;  ///< --case: write a complete case for `needle check`
 };
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& options);

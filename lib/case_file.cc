@@ -828,8 +828,9 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
            d.cam_peripheral_velocity_m_s);
   number("disk_to_roller", 1.0, d.disk_to_roller);
   if (auto holes = r.OptionalNumber("nozzle_holes")) {
-    if (!(*holes >= 1.0) || *holes != std::floor(*holes)) {
-      r.Fail("nozzle_holes", "must be a whole number ≥ 1, got " + Number(*holes));
+    // Checked as an integer in range before the cast (3e9 printed "−2147483648 holes").
+    if (!(*holes >= 1.0 && *holes <= 1000.0) || *holes != std::floor(*holes)) {
+      r.Fail("nozzle_holes", "must be a whole number in [1, 1000], got " + Number(*holes));
     }
     d.nozzle_holes = static_cast<int>(*holes);
   }
@@ -852,6 +853,11 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
   if (auto v = r.OptionalQuantity("cam_disk", Dimension::kLength)) {
     if (!(*v > 0.0)) r.Fail("cam_disk_mm", "must be positive, got " + Number(*v * 1e3));
     d.cam_disk_m = *v;
+  }
+  if (auto m = r.OptionalQuantity("moving_mass", Dimension::kMass)) {
+    if (!(*m > 0.0 && *m <= 1e4))
+      r.Fail("moving_mass_kg", "must be in (0, 1e4] kg, got " + Number(*m));
+    d.moving_mass_kg = *m;
   }
   number("rho", 1.0, d.rho);
   number("nozzle_ratio", 0.0, d.nozzle_ratio);

@@ -187,6 +187,9 @@ struct DesignInputs {
   std::optional<double> cam_disk_m;         ///< adopted (built) disk; computed when absent
   double rho = 2.12;                        ///< max/mean lift of the normal curve
   double nozzle_ratio = 0.95;               ///< nozzle / valve cross-section at max lift
+  /// Needle and disks, for `design --case` (the chain does not need it); when absent the case
+  /// gets an assumption, marked as such
+  std::optional<double> moving_mass_kg;
 };
 
 /// A synthesis specification (`needle synth SPEC.toml`): [rise] angle_deg, lift_mm, step_deg;

@@ -509,3 +509,119 @@ TEST(MeasuredCsvCliTest, BadTablesExitTwoWithOneLine) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Reproducer 7 of issue 11: `synth --case` keeps the spring and mass it was given, so `check`
+// on the written case runs the spring check and the dynamics instead of skipping them; what
+// the synthesis file does not state (the contact train) is written as a marked assumption.
+TEST(ChainingTest, SynthCaseCarriesTheChecksIntoTheCase) {
+  std::string spec = testing::Slurp(testing::Case("matec-2018-synth.toml"));
+  const std::string anchor = "max_pressure_angle_deg = 45\n";
+  ASSERT_NE(spec.find(anchor), std::string::npos);
+  spec.insert(spec.find(anchor) + anchor.size(),
+              "spring_preload_N = 2000\nspring_rate_N_mm = 50\nmoving_mass_kg = 0.3\n");
+  const std::string spec_path = testing::TempPath("chain-spec.toml");
+  const std::string case_path = testing::TempPath("chain-case.toml");
+  std::ofstream(spec_path) << spec;
+  const auto s = testing::RunNeedle("synth " + spec_path + " --case " + case_path);
+  EXPECT_EQ(s.status, 1) << s.err;  // the MATEC cam undercuts (profile radius −5.45 mm)
+  const std::string written = testing::Slurp(case_path);
+  EXPECT_NE(written.find("[needle]\nmass_kg = 0.3\n"), std::string::npos) << written;
+  EXPECT_NE(written.find("[spring]\npreload_N = 2000\nrate_N_mm = 50\n"), std::string::npos);
+  EXPECT_NE(written.find("# ASSUMED (not in the synthesis file)"), std::string::npos);
+  const std::string dir = testing::TempPath("chain-out");
+  const auto c = testing::RunNeedle("check " + case_path + " --out " + dir + " --json");
+  EXPECT_EQ(c.status, 1) << c.err;
+  const nlohmann::json j = nlohmann::json::parse(c.out);
+  EXPECT_TRUE(j.contains("spring")) << c.out;
+  EXPECT_TRUE(j.contains("dynamics")) << c.out;
+  EXPECT_TRUE(j.contains("overspeed")) << c.out;
+  for (const auto& k : j["skipped"]) {
+    EXPECT_EQ(k.get<std::string>().find("spring check"), std::string::npos) << k;
+    EXPECT_EQ(k.get<std::string>().find("dynamics"), std::string::npos) << k;
+  }
+  ASSERT_EQ(j["failing"].size(), 1u) << c.out;
+  EXPECT_EQ(j["failing"][0].get<std::string>().rfind("cam profile: the profile undercuts", 0), 0u);
+  std::filesystem::remove_all(dir);
+  std::remove(spec_path.c_str());
+  std::remove(case_path.c_str());
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Reproducer 7 of issue 11: `design --case` writes a complete case that `check` runs end to
+// end, every assumption marked; the designed valve of Basu's Example 1 passes.
+TEST(ChainingTest, DesignWritesACaseThatCheckRuns) {
+  const std::string case_path = testing::TempPath("designed.toml");
+  const auto d = testing::RunNeedle("design " + testing::Case("basu-example1-engine.toml") +
+                                    " --case " + case_path);
+  EXPECT_EQ(d.status, 0) << d.err;
+  const std::string written = testing::Slurp(case_path);
+  EXPECT_NE(written.find("preload_N = 7965.198717  # Basu's formula"), std::string::npos)
+      << written;
+  EXPECT_NE(written.find("diameter_mm = 31"), std::string::npos);
+  EXPECT_NE(written.find("mass_kg = 11.5  # ASSUMED"), std::string::npos);
+  const std::string dir = testing::TempPath("designed-out");
+  const auto c = testing::RunNeedle("check " + case_path + " --out " + dir + " --json");
+  EXPECT_EQ(c.status, 0) << c.out << c.err;
+  const nlohmann::json j = nlohmann::json::parse(c.out);
+  EXPECT_EQ(j["overall"], "pass");
+  EXPECT_TRUE(j["spring"]["basu_ok"].get<bool>());
+  EXPECT_TRUE(j.contains("dynamics") && j.contains("overspeed") && j.contains("profile"));
+  std::filesystem::remove_all(dir);
+  std::remove(case_path.c_str());
+}
+
+// Issue 12: output paths are user input. An output that is an input, a folder, in a missing
+// or unwritable folder, or named twice: exit 2, one line naming the option, nothing written.
+TEST(OutputPathTest, BadOutputsAreRefusedBeforeAnythingIsWritten) {
+  const std::string work = testing::TempPath("outputs");
+  std::filesystem::create_directories(work);
+  const std::string kase = work + "/case.toml";
+  std::filesystem::copy_file(testing::Case("basu-cam4.toml"), kase);
+  const std::string before = testing::Slurp(kase);
+  auto run = [&](const std::string& args) { return testing::RunNeedle(args); };
+
+  auto r = run("kinematics " + kase + " --csv " + kase);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err,
+            "needle: --csv: " + kase + ": is an input of this command; it would be overwritten\n");
+  EXPECT_EQ(testing::Slurp(kase), before);
+
+  r = run("kinematics " + kase + " --csv " + work);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "needle: --csv: " + work + ": is a folder; expected a file name\n");
+
+  r = run("kinematics " + kase + " --csv " + work + "/nodir/x.csv");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "needle: --csv: " + work + "/nodir/x.csv: its folder " + work +
+                       "/nodir does not exist\n");
+
+  // synth: the --case folder is missing, so --csv is not written either.
+  const std::string csv = work + "/out.csv";
+  r = run("synth " + testing::Case("matec-2018-synth.toml") + " --csv " + csv + " --case " + work +
+          "/nodir/x.toml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "needle: --case: " + work + "/nodir/x.toml: its folder " + work +
+                       "/nodir does not exist\n");
+  EXPECT_FALSE(std::filesystem::exists(csv));
+  r = run("synth " + testing::Case("matec-2018-synth.toml") + " --csv " + csv + " --case " + csv);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "needle: --case: " + csv + ": is also the --csv output\n");
+
+  r = run("simulate " + testing::Case("basu-cam4-light-spring.toml") + " --csv /dev/null");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err,
+            "needle: --csv: /dev/null: is not a regular file (a device or a pipe); expected a "
+            "file name\n");
+  std::filesystem::remove_all(work);
+}
+
+}  // namespace
+}  // namespace needle

@@ -1,0 +1,66 @@
+#include "apps/output_paths.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include "lib/case_error.h"
+#include "lib/output.h"
+
+namespace needle {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool SameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  // Not both there yet: compare the normalised absolute paths.
+  return fs::weakly_canonical(fs::absolute(a), ec) == fs::weakly_canonical(fs::absolute(b), ec);
+}
+
+}  // namespace
+
+void CheckOutputPaths(const std::vector<OutputPath>& outputs,
+                      const std::vector<std::string>& inputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const OutputPath& o = outputs[i];
+    auto fail = [&](const std::string& why) {
+      throw CaseError(o.option + ": " + o.path + ": " + why);
+    };
+    if (o.path.empty()) fail("an empty path");
+    std::error_code ec;
+    if (fs::is_directory(o.path, ec)) fail("is a folder; expected a file name");
+    if (fs::exists(o.path, ec) && !fs::is_regular_file(o.path, ec))
+      fail("is not a regular file (a device or a pipe); expected a file name");
+    fs::path folder = fs::path(o.path).parent_path();
+    if (folder.empty()) folder = ".";
+    if (!fs::is_directory(folder, ec)) fail("its folder " + folder.string() + " does not exist");
+    if (access(folder.c_str(), W_OK) != 0)
+      fail("its folder " + folder.string() + " is not writable");
+    for (const std::string& in : inputs) {
+      if (SameFile(o.path, in)) fail("is an input of this command; it would be overwritten");
+    }
+    for (size_t k = 0; k < i; ++k) {
+      if (SameFile(o.path, outputs[k].path)) fail("is also the " + outputs[k].option + " output");
+    }
+  }
+}
+
+std::vector<std::string> CaseInputs(const Case& c) {
+  std::vector<std::string> in{c.path};
+  if (c.lift.source.rfind("csv ", 0) == 0) in.push_back(c.lift.source.substr(4));
+  return in;
+}
+
+void WriteOutput(const OutputPath& output, const std::string& content) {
+  try {
+    WriteFileAtomically(output.path, content);
+  } catch (const std::runtime_error& e) {
+    throw CaseError(output.option + ": " + e.what());
+  }
+}
+
+}  // namespace needle

@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// Output paths are user input (issue 12): every one is checked before anything is computed or
+/// written, and a failure is one CaseError line naming the option (exit 2), never a half set
+/// of outputs or an "internal error".
+///
+///   - the path is not a folder, and its folder exists (or, for a folder option, can be made)
+///     and is writable;
+///   - it is not one of the command's inputs (`--csv case.toml` would overwrite the case);
+///   - no two outputs of one run are the same file.
+
+#include <string>
+#include <vector>
+
+#include "lib/case_file.h"
+
+namespace needle {
+
+/// One output of a command: the option that named it and the path.
+struct OutputPath {
+  std::string option;  ///< "--csv", "--case", …
+  std::string path;
+};
+
+/// Checks every output file before any is written. `inputs` are the files the command reads.
+/// Throws CaseError "OPTION: PATH: what is wrong".
+void CheckOutputPaths(const std::vector<OutputPath>& outputs,
+                      const std::vector<std::string>& inputs);
+
+/// The files a case reads: the case itself and its lift CSV, if any.
+std::vector<std::string> CaseInputs(const Case& c);
+
+/// Writes `content` atomically (lib/output.h); a failure is a CaseError naming the option.
+void WriteOutput(const OutputPath& output, const std::string& content);
+
+}  // namespace needle
