@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "lib/input_file.h"
+#include "lib/toml_text.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -586,91 +587,6 @@ PaperSection ReadPaper(SectionReader r) {
   return p;
 }
 
-// toml++ 3.3.0 (Debian 12) reaches TOML_UNREACHABLE, undefined behaviour, for some non-ASCII
-// characters where it looks for whitespace (marzer/tomlplusplus#295, fixed upstream after
-// 3.3.0; found here by the case-loader fuzzer). TOML allows non-ASCII only inside comments and
-// strings, so any other is refused here, before toml++ sees it. The scan is conservative: a
-// quote opens a string only where TOML lets a string start (line start, or after = [ , { .),
-// and multi-line strings, where toml++ also skips whitespace, take no non-ASCII at all.
-void CheckTomlText(const std::string& text, const std::string& path) {
-  enum class State { kNormal, kComment, kBasic, kLiteral, kMultiBasic, kMultiLiteral };
-  State state = State::kNormal;
-  int line = 1, column = 0;
-  char last = '\n';  // last non-blank character seen in the normal state
-  for (size_t i = 0; i < text.size(); ++i) {
-    const unsigned char ch = static_cast<unsigned char>(text[i]);
-    ++column;
-    auto starts = [&](const char* s) { return text.compare(i, std::strlen(s), s) == 0; };
-    auto fail = [&](const std::string& what) {
-      throw CaseError(path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
-                      what);
-    };
-    if (ch == '\n') {
-      ++line;
-      column = 0;
-      if (state == State::kComment) state = State::kNormal;
-      if (state == State::kNormal) last = '\n';
-      continue;
-    }
-    switch (state) {
-      case State::kNormal: {
-        if (ch >= 0x80)
-          fail("non-ASCII character outside a string or comment (TOML allows it only there)");
-        const bool string_may_start = std::strchr("\n=[,{.", last) != nullptr;
-        if (ch == '#') {
-          state = State::kComment;
-        } else if (string_may_start && (starts("\"\"\"") || starts("'''"))) {
-          state = ch == '"' ? State::kMultiBasic : State::kMultiLiteral;
-          i += 2;
-          column += 2;
-        } else if (string_may_start && ch == '"') {
-          state = State::kBasic;
-        } else if (string_may_start && ch == '\'') {
-          state = State::kLiteral;
-        } else if (ch != ' ' && ch != '\t' && ch != '\r') {
-          last = static_cast<char>(ch);
-        }
-        break;
-      }
-      case State::kComment:
-        break;
-      case State::kBasic:
-        if (ch == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
-          ++i;
-          ++column;
-        } else if (ch == '"') {
-          state = State::kNormal;
-          last = '"';
-        }
-        break;
-      case State::kLiteral:
-        if (ch == '\'') {
-          state = State::kNormal;
-          last = '\'';
-        }
-        break;
-      case State::kMultiBasic:
-      case State::kMultiLiteral:
-        if (ch >= 0x80) {
-          fail(
-              "non-ASCII character in a multi-line string (not accepted: toml++ 3.3.0 mishandles "
-              "it)");
-        }
-        if (state == State::kMultiBasic && ch == '\\' && i + 1 < text.size() &&
-            text[i + 1] != '\n') {
-          ++i;
-          ++column;
-        } else if (starts(state == State::kMultiBasic ? "\"\"\"" : "'''")) {
-          state = State::kNormal;
-          last = '"';
-          i += 2;
-          column += 2;
-        }
-        break;
-    }
-  }
-}
-
 const toml::table* Section(const toml::table& root, const std::string& file, const char* name) {
   const toml::node* node = root.get(name);
   if (!node) return nullptr;
@@ -681,9 +597,10 @@ const toml::table* Section(const toml::table& root, const std::string& file, con
 
 // Parses TOML text; a malformed document is one CaseError line with its position.
 toml::table ParseToml(const std::string& text, const std::string& path) {
-  CheckTomlText(text, path);
+  // toml++ sees ASCII only (lib/toml_text.h: its non-ASCII paths have undefined behaviour).
+  const std::string ascii = AsciiTomlText(text, path);
   try {
-    return toml::parse(text, path);
+    return toml::parse(ascii, path);
   } catch (const toml::parse_error& e) {
     const auto& where = e.source().begin;
     std::string description(e.description());
@@ -866,7 +783,11 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
 }
 
 SynthesisFile LoadSynthesisFile(const std::string& path) {
-  const toml::table root = ParseToml(ReadInputFile(path, "synthesis file"), path);
+  return ParseSynthesisFile(ReadInputFile(path, "synthesis file"), path);
+}
+
+SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& path) {
+  const toml::table root = ParseToml(text, path);
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title" || key == "rise" || key == "limits" || key == "checks" || key == "output")

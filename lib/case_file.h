@@ -218,6 +218,8 @@ struct SynthesisFile {
   std::string cycle = "four-stroke";
 };
 SynthesisFile LoadSynthesisFile(const std::string& path);
+/// The same from text; `path` names it in messages.
+SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& path);
 
 /// Reads an engine file for the design chain; throws CaseError like LoadCase.
 
