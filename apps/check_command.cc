@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/cli_checks.h"
 #include "apps/output_paths.h"
 #include "apps/progress_bar.h"
 #include "apps/report.h"
@@ -50,7 +51,7 @@ CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
   cmd->add_option("--out", o.out_dir, "folder for the report (default: the current folder)");
   cmd->add_option("--rpm", o.speed_rpm, "rated speed in rpm (default: [engine] speed_rpm)")
-      ->check(CLI::Range(1e-3, 1e6));
+      ->check(SpeedRpm());
   cmd->add_flag("--json", o.json,
                 "print one JSON object (the verdict, every failing item, what was skipped and the "
                 "numbers behind them) instead of the text summary");

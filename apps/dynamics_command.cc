@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/cli_checks.h"
 #include "apps/output_paths.h"
 #include "apps/progress_bar.h"
 #include "dynamics/overspeed.h"
@@ -53,7 +54,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
       "simulate", "Dynamic run: lift-off episodes, impacts, forces, energy audit");
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
   cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
-      ->check(CLI::PositiveNumber);
+      ->check(SpeedRpm());
   cmd->add_option("--method", o.method,
                   "auto, dopri5, cvode-bdf or cvode-adams (default: [solver] method or auto)");
   cmd->add_option("--rtol", o.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");

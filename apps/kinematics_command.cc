@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/cli_checks.h"
 #include "apps/output_paths.h"
 #include "lib/case_file.h"
 #include "lib/kinematics.h"
@@ -48,9 +49,10 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
       "kinematics", "Velocity and acceleration table of a lift law (like NACA TM 477's)");
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
   cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--step", o.step_deg, "table spacing in crank degrees (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(SpeedRpm());
+  cmd->add_option("--step", o.step_deg,
+                  "table spacing in crank degrees, 0.001 to 90 (default 5; at most 100000 rows)")
+      ->check(NumberIn(1e-3, 90, "a spacing in crank degrees"));
   cmd->add_option("--spline", o.spline,
                   "spline kind (default: [lift] spline): " + SplineKindList());
   cmd->add_option("--units", o.units,
@@ -63,7 +65,7 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   cmd->add_option("--noise-mm", o.noise_mm,
                   "a bare CSV table: standard deviation of its readings in mm (default: "
                   "estimated)")
-      ->check(CLI::PositiveNumber);
+      ->check(NumberIn(1e-9, 10, "a noise in mm"));
   return cmd;
 }
 
@@ -98,6 +100,15 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
   const LiftLaw law = MakeLiftLaw(c);
   const Kinematics kin(law, speed);
   const KinematicsSummary sum = kin.Summarize();
+  // A row budget: a table wider than 100 000 rows is no table (--step 1e-9 asked for 4 GB).
+  const double span_deg = (law.table_end_rad() - law.table_start_rad()) / kDeg;
+  if (span_deg / o.step_deg > 1e5) {
+    throw CaseError("--step: " + Fixed(o.step_deg, 6) + " deg gives " +
+                    std::to_string(static_cast<long long>(span_deg / o.step_deg)) +
+                    " rows over the table's " + Fixed(span_deg, 1) +
+                    " deg; at most 100000 (a step of at least " + Fixed(span_deg / 1e5, 6) +
+                    " deg)");
+  }
   const std::vector<double> angles = RowAngles(law, o.step_deg * kDeg, c);
   std::vector<KinematicsPoint> rows;
   rows.reserve(angles.size());

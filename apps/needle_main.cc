@@ -5,6 +5,7 @@
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "apps/cam_command.h"
@@ -44,6 +45,21 @@ int main(int argc, char** argv) {
       Register(app, needle::AddSynthCommand, needle::RunSynthCommand),
       Register(app, needle::AddProfileCommand, needle::RunProfileCommand),
   };
+  // An unknown first word is named as such, with the commands there are (CLI11 would say only
+  // "A subcommand is required").
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    std::string names;
+    for (const Command& c : commands) {
+      known = known || c.app->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + c.app->get_name();
+    }
+    if (!known) {
+      std::cerr << "needle: unknown command '" << argv[1] << "'; expected one of " << names
+                << " (see needle --help)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/cli_checks.h"
 #include "apps/output_paths.h"
 #include "lib/case_file.h"
 #include "lib/kinematics.h"
@@ -33,7 +34,7 @@ CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& o) {
       "Spring check: Basu's formula, quasi-static lift-off, preload sizing, helical spring");
   cmd->add_option("CASE", o.case_path, "case file (TOML) with [needle] and [spring]")->required();
   cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
-      ->check(CLI::PositiveNumber);
+      ->check(SpeedRpm());
   cmd->add_flag("--json", o.json, "print one JSON object");
   return cmd;
 }

@@ -10,6 +10,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -20,10 +21,23 @@
 namespace needle {
 namespace {
 
+// CVODE's last error message: its handler keeps it here instead of printing it on stderr, and
+// the exception carries it (one line).
+thread_local std::string cvode_message;
+
+void KeepMessage(int, const char*, const char* function, char* msg, void*) {
+  cvode_message = std::string(function ? function : "") + ": " + (msg ? msg : "");
+}
+
 void Check(int flag, const char* function) {
   if (flag < 0) {
-    throw std::runtime_error(std::string(function) + " failed with flag " + std::to_string(flag) +
-                             " (" + CVodeGetReturnFlagName(flag) + ")");
+    char* name = CVodeGetReturnFlagName(flag);  // malloc'd by SUNDIALS: ours to free
+    std::string text = std::string(function) + " failed with flag " + std::to_string(flag) + " (" +
+                       (name ? name : "?") + ")";
+    std::free(name);
+    if (!cvode_message.empty()) text += ": " + cvode_message;
+    cvode_message.clear();
+    throw std::runtime_error(text);
   }
 }
 
@@ -136,6 +150,8 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
   Matrix a(4, context.ctx);
   LinearSolver ls(y.v, a.m, context.ctx);
   Check(CVodeInit(cvode.mem, Rhs, 0.0, y.v), "CVodeInit");
+  Check(CVodeSetErrHandlerFn(cvode.mem, KeepMessage, nullptr), "CVodeSetErrHandlerFn");
+  cvode_message.clear();
   Check(CVodeSetUserData(cvode.mem, &data), "CVodeSetUserData");
   Check(CVodeSStolerances(cvode.mem, o.rtol, o.atol_m), "CVodeSStolerances");
   Check(CVodeSetLinearSolver(cvode.mem, ls.ls, a.m), "CVodeSetLinearSolver");
@@ -171,9 +187,25 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
     recorder.Crossing(i, sign, t, x);
     return switched;
   };
+  bool restarted = false;  // one restart per stretch after CV_ILL_INPUT at a root
   while (t < horizon) {
+    const double t_before = t;
+    const TrainState x_before = ToState(y.v);
     const int flag = CVode(cvode.mem, stop, y.v, &t, CV_ONE_STEP);
+    if (flag == CV_ILL_INPUT && !restarted) {
+      // cvRcheck2, "Root found at and very near t": after a root that switched no contact, an
+      // event function is still zero a hair past it (a stiff contact holds g at roundoff). A
+      // known CVODE situation: restart there. CVodeReInit's first root check (cvRcheck1) sets
+      // such a function aside until it leaves zero, instead of failing.
+      restarted = true;
+      cvode_message.clear();
+      t = t_before;
+      for (int i = 0; i < 4; ++i) y.data()[i] = x_before[i];
+      Check(CVodeReInit(cvode.mem, t, y.v), "CVodeReInit");
+      continue;
+    }
     Check(flag, "CVode");
+    restarted = false;
     if (++stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, t);
     TrainState x = ToState(y.v);
     // Grid times reached by this step, then dense samples inside it for the extremes

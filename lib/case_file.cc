@@ -17,6 +17,9 @@
 namespace needle {
 namespace {
 
+// The largest magnitude any number in an input file may have.
+constexpr double kLargestInput = 1e15;
+
 std::string Number(double v) {
   std::ostringstream out;
   out << v;
@@ -75,7 +78,9 @@ class SectionReader {
     const auto key = FindQuantity(name, dimension);
     if (!key) return std::nullopt;
     const double raw = ToNumber(key->first, *table_->get(key->first));
-    return ToSi(dimension, key->second, raw);
+    const double si = ToSi(dimension, key->second, raw);
+    if (!std::isfinite(si) || std::abs(si) > 1e18) Fail(key->first, "is out of range in SI units");
+    return si;
   }
 
   double Quantity(const std::string& name, Dimension dimension) {
@@ -163,6 +168,13 @@ class SectionReader {
     }
     if (std::isnan(v)) Fail(key, "is NaN; expected a finite number");
     if (!std::isfinite(v)) Fail(key, "is infinite; expected a finite number");
+    // No input of a needle valve is this large; beyond it unit conversions and products
+    // overflow (rate_N_mm = 1e308 became an "inf N/m" rate).
+    if (std::abs(v) > kLargestInput) {
+      std::ostringstream m;
+      m << "is " << v << "; expected a magnitude of at most 1e15";
+      Fail(key, m.str());
+    }
     return v;
   }
 

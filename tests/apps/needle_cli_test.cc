@@ -109,9 +109,30 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   EXPECT_EQ(spline.err,
             "needle: --spline: unknown kind \"cubic\"; expected one of natural, not-a-knot, "
             "clamped, quintic, pchip, makima, smoothing\n");
-  EXPECT_EQ(RunNeedle("kinematics " + Case("basu-cam4.toml") + " --rpm -3").status, 2);
-  EXPECT_EQ(RunNeedle("kinematics").status, 2);
-  EXPECT_EQ(RunNeedle("frobnicate").status, 2);
+  // Every refusal is checked for its message too, not only its exit status.
+  const auto rpm = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --rpm -3");
+  EXPECT_EQ(rpm.status, 2);
+  EXPECT_EQ(rpm.err,
+            "needle: --rpm: expected a speed in rpm in [0.001, 1e+06], got -3 (see needle "
+            "--help)\n");
+  const auto step = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --step nan");
+  EXPECT_EQ(step.status, 2);
+  EXPECT_EQ(step.err,
+            "needle: --step: expected a spacing in crank degrees in [0.001, 90], got nan (see "
+            "needle --help)\n");
+  const auto huge = RunNeedle("simulate " + Case("basu-cam4-light-spring.toml") + " --rpm 1e9");
+  EXPECT_EQ(huge.status, 2);
+  EXPECT_EQ(huge.err,
+            "needle: --rpm: expected a speed in rpm in [0.001, 1e+06], got 1e9 (see needle "
+            "--help)\n");
+  const auto nocase = RunNeedle("kinematics");
+  EXPECT_EQ(nocase.status, 2);
+  EXPECT_EQ(nocase.err, "needle: CASE is required (see needle --help)\n");
+  const auto unknown = RunNeedle("frobnicate");
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_EQ(unknown.err,
+            "needle: unknown command 'frobnicate'; expected one of check, kinematics, spring, "
+            "design, simulate, overspeed, synth, profile (see needle --help)\n");
   const auto missing = RunNeedle("kinematics /no/such.toml");
   EXPECT_EQ(missing.status, 2);
   EXPECT_EQ(missing.err, "needle: /no/such.toml: cannot open the case file for reading\n");

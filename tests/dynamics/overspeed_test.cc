@@ -146,3 +146,43 @@ TEST(OverspeedScanTest, NdynDoesNotDependOnTheTopOfTheRange) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 12: a speed that fails must reach the caller, from whichever worker thread ran it
+// (RunAll swallowing worker exceptions passed every test before).
+TEST(OverspeedScanTest, AFailingSpeedReachesTheCaller) {
+  const Scene s = MakeScene(LoadCase(kCases + "basu-cam4-light-spring.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 400;
+  o.to_rpm = 500;
+  o.threads = 2;
+  o.simulation.method = "no-such-method";
+  try {
+    OverspeedSearch(s, o);
+    FAIL() << "the failing speeds were swallowed";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("unknown method \"no-such-method\"", 0), 0u) << e.what();
+  }
+}
+
+// A run stopped by its budget is a row with that status, and the scan ends there undecided
+// rather than claiming a lift-off speed above a speed it could not decide.
+TEST(OverspeedScanTest, ABudgetStopIsARowStatusAndTheScanEndsUndecided) {
+  const Scene s = MakeScene(LoadCase(kCases + "basu-cam4-light-spring.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 400;
+  o.to_rpm = 1200;
+  o.threads = 2;
+  o.simulation.integrator.max_steps = 30;
+  const OverspeedResult r = OverspeedSearch(s, o);
+  EXPECT_EQ(r.status, "run-budget");
+  EXPECT_FALSE(r.n_dyn_rpm.has_value());
+  ASSERT_FALSE(r.rows.empty());
+  EXPECT_EQ(RunStatusName(r.rows.front().status), "budget");
+  EXPECT_NE(r.rows.front().status_reason.find("after 30 steps"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace needle

@@ -163,3 +163,26 @@ TEST(SimulationTest, StepBudgetStopsWithAMessage) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 12: CVODE stopped with CV_ILL_INPUT ("Root found at and very near t", cvRcheck2) on
+// the light-spring scene with a 1e12 N/m contact at 660–700 rpm, printing four lines of its
+// own and exiting 3. The integrator restarts at such a root; CVODE's messages never reach
+// stderr (they go into the exception when a call does fail).
+TEST(SimulationTest, CvodeRootAtAndVeryNearTIsRestartedNotAnError) {
+  Case c = LoadCase(kCases + "basu-cam4-light-spring.toml");
+  c.train->contact_stiffness_N_m = 1e12;
+  const Scene s = MakeScene(c);
+  SimulationOptions o = Options("cvode-bdf", 1e-8);
+  o.force_dynamic = true;
+  for (double rpm : {660.0, 680.0}) {
+    const SimulationResult r = Simulate(s, rpm, o);
+    EXPECT_EQ(RunStatusName(r.status), "complete") << rpm << " " << r.status_reason;
+    EXPECT_TRUE(r.liftoff()) << rpm;  // n_qs 639.7 rpm: these speeds lift off
+  }
+}
+
+}  // namespace
+}  // namespace needle

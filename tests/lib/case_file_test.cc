@@ -265,7 +265,9 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
     return std::string("(no error)");
   };
   EXPECT_EQ(error("lift_mm = 8", "lift_mm = 3e305"),
-            path + ": [rise] lift_mm: must be at most 1000 mm, got 3e+305 mm");
+            path + ": [rise] lift_mm: is 3e+305; expected a magnitude of at most 1e15");
+  EXPECT_EQ(error("lift_mm = 8", "lift_mm = 3e6"),
+            path + ": [rise] lift_mm: must be at most 1000 mm, got 3e+06 mm");
   EXPECT_EQ(error("step_deg = 0.01575", "step_deg = 1e-7"),
             path +
                 ": [rise] step_deg: must be at least a millionth of the rise (6.3e-05 deg): "
@@ -280,9 +282,14 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
             path + ": [output] speed_rpm: must be in (0, 1e6] rpm, got 1e+09");
   EXPECT_EQ(error("title", "title"), "(no error)");
   EXPECT_EQ(Error(kGood + "[solver]\nmax_steps = 1e308\n"),
-            "t.toml: [solver] max_steps: must be a whole number in [1, 1e12], got 1e+308");
-  EXPECT_EQ(Error(kGood + "[solver]\nmax_events = 1e19\n"),
-            "t.toml: [solver] max_events: must be a whole number in [1, 1e12], got 1e+19");
+            "t.toml: [solver] max_steps: is 1e+308; expected a magnitude of at most 1e15");
+  EXPECT_EQ(Error(kGood + "[solver]\nmax_steps = 1e13\n"),
+            "t.toml: [solver] max_steps: must be a whole number in [1, 1e12], got 1e+13");
+  EXPECT_EQ(Error(kGood + "[solver]\nmax_events = 2.5\n"),
+            "t.toml: [solver] max_events: must be a whole number in [1, 1e12], got 2.5");
+  // Unit conversions cannot overflow (rate_N_mm = 1e308 became "inf N/m").
+  EXPECT_EQ(Error(kGood + "[spring]\npreload_N = 100\nrate_N_mm = 1e308\n"),
+            "t.toml: [spring] rate_N_mm: is 1e+308; expected a magnitude of at most 1e15");
   EXPECT_EQ(Error(kGood + "[solver]\nsettle_deg = 0\n"),
             "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 0");
   std::remove(path.c_str());

@@ -1,7 +1,11 @@
 #include "lib/output.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,6 +24,45 @@ TEST(OutputTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
   std::stringstream s;
   s << in.rdbuf();
   EXPECT_EQ(s.str(), "a,b\n1,2\n");
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1);
+  std::filesystem::remove_all(dir);
+}
+
+// A write that fails half-way (here: the file-size limit, RLIMIT_FSIZE, in a child process,
+// after 4 KiB of 64 KiB) must leave the old file whole and no temporary behind. A plain
+// fopen/fwrite over the target would leave 4 KiB of the new content: this test tells.
+TEST(OutputTest, AWriteThatFailsHalfWayLeavesTheOldFileWhole) {
+  const auto dir = std::filesystem::temp_directory_path() / "needle_output_half";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "table.csv").string();
+  WriteFileAtomically(path, "old\n");
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    signal(SIGXFSZ, SIG_IGN);  // the write returns EFBIG instead of killing the child
+    struct rlimit limit {
+      4096, 4096
+    };
+    setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      WriteFileAtomically(path, std::string(65536, 'x'));
+    } catch (const std::runtime_error& e) {
+      _exit(std::string(e.what()).find(": write failed: File too large") != std::string::npos ? 7
+                                                                                              : 8);
+    }
+    _exit(9);  // no error: the limit did not bite
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 7);
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  EXPECT_EQ(s.str(), "old\n");
   int files = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
   EXPECT_EQ(files, 1);
