@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "lib/units.h"
 
@@ -36,6 +37,23 @@ CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp
       }
       rise_start_ = th0 - (s0_ + play_m) / slope0_;  // s0 + s0'(θ − θ0) = −δ
       fall_end_ = thn + (sn_ + play_m) / -slopen_;   // sn + sn'(θ − θN) = −δ
+      // A ramp longer than a crank revolution comes from an end slope that is flat up to
+      // noise (a dense measured table gave slopes of 1e-8 and ramps of 42.5 million degrees):
+      // no cam has one. Refused, with the way out. (Basu's Example 1 has a 109° ramp at its
+      // flat start: long, but a cam's.)
+      const double limit = 2 * kPi;
+      for (const auto& [name, length, slope] :
+           {std::tuple<const char*, double, double>{"start", th0 - rise_start_, slope0_},
+            {"end", fall_end_ - thn, slopen_}}) {
+        if (length > limit) {
+          throw std::invalid_argument(
+              std::string("the tangent ramp at the lift's ") + name + " would take " +
+              std::to_string(length / kDeg) + " deg to take up the play (end slope " +
+              std::to_string(slope * 1e3 * kDeg) +
+              " mm/deg), more than a crank revolution: the end slope is flat up to noise; give "
+              "ramp_deg, or a spline whose ends have a definite slope");
+        }
+      }
     } else {
       if (!(ramp_rad > 0.0)) {
         throw std::invalid_argument("ramp_deg must be positive, got " +

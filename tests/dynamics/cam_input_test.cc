@@ -75,3 +75,30 @@ TEST(CamInputTest, ZeroEndSlopeCannotReachTheBaseCircle) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 12: an end slope flat up to noise made the tangent ramp 42.5 million degrees long
+// (and the run window with it). A ramp longer than a crank revolution is refused, with the way
+// out; the play of the law above, 2 mm at slope 5π mm/rad, needs a ramp of 0.127 rad: fine.
+TEST(CamInputTest, ARampLongerThanARevolutionIsRefused) {
+  const LiftLaw law = Law();
+  EXPECT_NO_THROW(CamInput(law, 2e-3, RampKind::kTangent, 0.0));
+  // The end slope is about 2 mm·π/0.4 = 15.7 mm/rad: a play of 0.2 m takes ≈ 12.7 rad > 2π.
+  const double slope = law.spline().Evaluate(0.0, 1);
+  try {
+    CamInput cam(law, 0.2, RampKind::kTangent, 0.0);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("the tangent ramp at the lift's start would take " +
+                                              std::to_string(0.2 / slope / kDeg) + " deg",
+                                          0),
+              0u)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than a crank revolution"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace needle
