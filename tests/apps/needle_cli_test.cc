@@ -646,3 +646,47 @@ TEST(OutputPathTest, BadOutputsAreRefusedBeforeAnythingIsWritten) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Reproducer 6 of issue 11, as a user sees it: with a jerk limit the CSV's S'' never steps
+// more than the limit allows, the printed max |S'''| is the CSV's largest, and the pressure
+// angle is reported as the largest |angle| (before, the falling flank's −11.30° was printed as
+// the "max").
+TEST(SynthCliTest, JerkLimitHoldsInTheCsvAndThePressureAngleIsItsMagnitude) {
+  std::string spec = testing::Slurp(testing::Case("matec-2018-synth.toml"));
+  for (auto [from, to] :
+       {std::pair<std::string, std::string>{"jerk_mm_rad3 = 20000", "jerk_mm_rad3 = 8000"},
+        {"speed_mm_rad = 7.6", "speed_mm_rad = 100"}}) {
+    ASSERT_NE(spec.find(from), std::string::npos);
+    spec.replace(spec.find(from), from.size(), to);
+  }
+  const std::string path = testing::TempPath("jerk.toml"), csv = testing::TempPath("jerk.csv");
+  std::ofstream(path) << spec;
+  const auto r = testing::RunNeedle("synth " + path + " --json --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const double reported = j["max_abs_S3_mm_rad3"].get<double>();
+  EXPECT_LE(reported, 8000.0);
+  EXPECT_GT(j["meet_speed_mm_rad"].get<double>(), 0.0);
+  std::istringstream rows(testing::Slurp(csv));
+  std::string line;
+  std::getline(rows, line);  // header
+  double prev_deg = NAN, prev_s2 = NAN, largest = 0.0;
+  while (std::getline(rows, line)) {
+    double deg, s, s1, s2, s3;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf", &deg, &s, &s1, &s2, &s3), 5);
+    if (!std::isnan(prev_deg))
+      largest = std::max(largest, std::abs(s2 - prev_s2) / ((deg - prev_deg) * M_PI / 180.0));
+    prev_deg = deg;
+    prev_s2 = s2;
+  }
+  EXPECT_NEAR(largest, reported, 1e-6 * reported);  // before: 6464 printed, 2.3e6 in the CSV
+  EXPECT_GT(j["max_abs_pressure_angle_deg"].get<double>(), 0.0);
+  std::remove(path.c_str());
+  std::remove(csv.c_str());
+}
+
+}  // namespace
+}  // namespace needle
