@@ -49,27 +49,32 @@ bool Recorder::AtRest(double t, const TrainState& x) const {
   const double fc = train_.AppliedCamForce(c), fs = train_.AppliedSeatForce(c);
   if (!(fc > 0.0 || fs > 0.0)) return false;  // in flight
   const TrainParameters& p = train_.parameters();
-  const double net = fc + fs - (p.preload_N + p.rate_N_m * x[0]) + p.gas_force_N;
+  const double net = train_.NetForce(c, x);
   const double scale = std::max(p.preload_N + std::abs(p.gas_force_N), p.mass_kg * 1.0 /* m/s² */);
   return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= kRestForceFraction * scale;
+}
+
+bool Recorder::InLift(double crank_rad) const {
+  // θ_0 and θ_N are breaks the integrators step to exactly; θ = θ_a + ω t is that angle up to
+  // roundoff.
+  const LiftLaw& law = train_.cam().law();
+  return crank_rad >= law.start_rad() - AngleTolerance(law.start_rad()) &&
+         crank_rad <= law.end_rad() + AngleTolerance(law.end_rad());
 }
 
 bool Recorder::Decelerating(double crank_rad) const {
   const LiftLaw& law = train_.cam().law();
   const double end = law.end_rad();
   if (std::abs(crank_rad - end) <= AngleTolerance(end)) return end_slope_drop_;
-  return crank_rad >= law.start_rad() && crank_rad <= end && law.Derivative(crank_rad, 2) < 0.0;
+  return InLift(crank_rad) && law.Derivative(crank_rad, 2) < 0.0;
 }
 
 void Recorder::Update(double t, const TrainState& x) {
   const Contacts c = train_.Evaluate(x, t);
   const double fc = train_.AppliedCamForce(c), fs = train_.AppliedSeatForce(c);
 
-  const LiftLaw& law = train_.cam().law();
   const double th = c.crank_rad;
-  // θ_N is a break the integrators step to exactly; θ = θ_a + ω t is that angle up to roundoff.
-  const bool in_table = th >= law.start_rad() - AngleTolerance(law.start_rad()) &&
-                        th <= law.end_rad() + AngleTolerance(law.end_rad());
+  const bool in_table = InLift(th);
   if (x[0] > max_lift_) {
     max_lift_ = x[0];
     max_lift_rad_ = th;

@@ -114,6 +114,8 @@ class Recorder {
 
  private:
   void Update(double t, const TrainState& x);
+  /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
+  bool InLift(double crank_rad) const;
   /// Inside the deceleration zone at this angle (model.md §6).
   bool Decelerating(double crank_rad) const;
 

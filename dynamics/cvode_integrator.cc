@@ -234,13 +234,9 @@ IntegrationStats IntegrateCvode(bool bdf, NeedleTrain& train, const TrainState& 
       }
     } else {
       recorder.Sample(t, x);
-      if (t >= t_end) {  // model.md §5: on until the needle is at rest, within the budget
-        if (recorder.AtRest(t, x)) break;
-        if (horizon < t_limit) {
-          horizon = t_limit;
-          stop = set_stop();
-        }
-      }
+      bool extended;
+      if (RunIsOver(t, x, recorder, t_end, t_limit, horizon, extended)) break;
+      if (extended) stop = set_stop();
       if (flag == CV_TSTOP_RETURN && t < horizon) {
         // The far side of a break: the cam's slope may jump there, and with it the force
         // branches k g + c ġ. CVODE's rootfinding restarts from the new values after

@@ -79,6 +79,12 @@ struct Breaks {
 };
 Breaks BreakTimes(const NeedleTrain& train, double t_end);
 
+/// The end of a run (model.md §5), as both integrators apply it after a step ending at t: true
+/// when the run is over (at or past t_end with the needle at rest). The first time past t_end
+/// with the needle still moving, it moves `horizon` from t_end to `t_limit` and sets `extended`.
+bool RunIsOver(double t, const TrainState& x, const Recorder& recorder, double t_end,
+               double t_limit, double& horizon, bool& extended);
+
 /// Signs of the event functions (v > 0 → +1, else −1).
 std::array<int, kEventCount> Signs(const EventValues& v);
 

@@ -115,14 +115,19 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, std::array<double, 16>
   dfdt[3] = (dfc_dt - kc * pc * w * up) * c.g_c_rate + a_c * w * w * upp;
 }
 
+double NeedleTrain::NetForce(const Contacts& c, const TrainState& x) const {
+  return AppliedCamForce(c) + AppliedSeatForce(c) - (p_.preload_N + p_.rate_N_m * x[0]) +
+         p_.gas_force_N;
+}
+
 void NeedleTrain::operator()(const TrainState& x, TrainState& dxdt, double t) const {
   ++evaluations_;
   const Contacts c = Evaluate(x, t);
   const double fc = AppliedCamForce(c), fs = AppliedSeatForce(c);
 
   dxdt[0] = x[1];
-  dxdt[1] = (fc + fs - (p_.preload_N + p_.rate_N_m * x[0]) + p_.gas_force_N) / p_.mass_kg;  // ÿ
-  dxdt[2] = fc * omega_ * c.u_slope;                                                        // Ẇ
+  dxdt[1] = NetForce(c, x) / p_.mass_kg;  // ÿ
+  dxdt[2] = fc * omega_ * c.u_slope;      // Ẇ
   const double gc_plus = std::max(0.0, c.g_c), gs_plus = std::max(0.0, c.g_s);
   dxdt[3] = (fc - p_.contact_stiffness_N_m * gc_plus) * c.g_c_rate +
             (fs - p_.seat_stiffness_N_m * gs_plus) * c.g_s_rate;  // Ḋ

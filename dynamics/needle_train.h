@@ -95,6 +95,8 @@ class NeedleTrain {
   /// The forces the right-hand side uses at `c` (mode or gate).
   double AppliedCamForce(const Contacts& c) const;
   double AppliedSeatForce(const Contacts& c) const;
+  /// m ÿ = F_c + F_s − (P₀ + k y) + F_g at `c` and state `x`, N (the equation of motion above).
+  double NetForce(const Contacts& c, const TrainState& x) const;
   /// ∂f/∂x (row-major 4×4) and ∂f/∂t of the right-hand side in the current mode.
   void Jacobian(const TrainState& x, double t, std::array<double, 16>& dfdx,
                 TrainState& dfdt) const;

@@ -92,6 +92,18 @@ Breaks BreakTimes(const NeedleTrain& train, double t_end) {
   return out;
 }
 
+bool RunIsOver(double t, const TrainState& x, const Recorder& recorder, double t_end,
+               double t_limit, double& horizon, bool& extended) {
+  extended = false;
+  if (t < t_end) return false;
+  if (recorder.AtRest(t, x)) return true;
+  if (horizon < t_limit) {
+    horizon = t_limit;
+    extended = true;
+  }
+  return false;
+}
+
 void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train, double t) {
   throw BudgetExceeded("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
                            " deg after " + std::to_string(budget) + " " + what +
@@ -292,7 +304,7 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
     if (++stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, step.first);
     const double t0 = step.first;
     double t1 = step.second;
-    bool at_segment_end = t1 >= segment_end - 1e-14 * std::max(1.0, std::abs(segment_end));
+    const bool at_segment_end = t1 >= segment_end - 1e-14 * std::max(1.0, std::abs(segment_end));
     if (at_segment_end) t1 = segment_end;
 
     // Events, earliest first. A function has crossed when its sign at the step end differs
@@ -376,14 +388,9 @@ IntegrationStats RunWithEvents(Dense& dense, NeedleTrain& train, const TrainStat
     t = t1;
     x = x_end;
     recorder.Sample(t, x);
-    if (t >= t_end) {  // model.md §5: on until the needle is at rest, within the budget
-      if (recorder.AtRest(t, x)) break;
-      if (horizon < t_limit) {
-        horizon = t_limit;
-        at_segment_end = true;
-      }
-    }
-    if (at_segment_end && t < horizon)
+    bool extended;  // the horizon moved past t_end: the stepper restarts as past a break
+    if (RunIsOver(t, x, recorder, t_end, t_limit, horizon, extended)) break;
+    if ((at_segment_end || extended) && t < horizon)
       dense.Initialize(x, t, dense.CurrentStep());  // past the break
   }
   recorder.Finish(t, x);
