@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "apps/output_paths.h"
-#include "dynamics/cam_input.h"
+#include "dynamics/model/cam_input.h"
 #include "dynamics/case_profile.h"
 #include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"

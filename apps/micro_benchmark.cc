@@ -42,11 +42,12 @@ void BM_RightHandSide(benchmark::State& state) {
   const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml");
   const Scene s = MakeScene(c);
   NeedleTrain train(*s.cam, s.train, 41.9, -0.5);
-  train.set_mode({true, false});
+  Phase phase;
+  phase.mode = {true, false};
   TrainState x{1e-3, 0.1, 0.0, 0.0}, d;
   double t = 0.01;
   for (auto _ : state) {
-    train(x, d, t);
+    train.Derivative(x, t, phase, d);
     benchmark::DoNotOptimize(d);
     t += 1e-9;
   }

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/integrator.h"
+#include "dynamics/solver/integrator.h"
 #include "dynamics/simulation.h"
 
 namespace needle {

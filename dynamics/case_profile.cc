@@ -3,7 +3,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "dynamics/cam_input.h"
+#include "dynamics/model/cam_input.h"
 
 namespace needle {
 

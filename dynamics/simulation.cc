@@ -185,7 +185,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     r.stats = Integrate(method, train, x0, t_end, recorder, io);
     r.run_end_rad = train.Angle(r.stats.final_time);
     r.energy_residual = train.EnergyResidual(x0, r.stats.final_state, r.stats.final_time);
-    if (!recorder.AtRest(r.stats.final_time, r.stats.final_state)) {
+    if (!recorder.AtRest(r.stats.final_time, r.stats.final_state, r.stats.final_phase)) {
       r.status = RunStatus::kUnsettled;
       std::ostringstream why;
       why << "the needle is still moving " << o.settle_limit_deg

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/cam_input.h"
-#include "dynamics/contact_events.h"
-#include "dynamics/integrator.h"
-#include "dynamics/needle_train.h"
+#include "dynamics/model/cam_input.h"
+#include "dynamics/solver/contact_events.h"
+#include "dynamics/solver/integrator.h"
+#include "dynamics/model/needle_train.h"
 #include "lib/case_file.h"
 
 namespace needle {

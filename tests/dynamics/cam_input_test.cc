@@ -1,5 +1,5 @@
 // The cam as the needle sees it (model.md §3).
-#include "dynamics/cam_input.h"
+#include "dynamics/model/cam_input.h"
 
 #include <gtest/gtest.h>
 

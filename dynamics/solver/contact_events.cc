@@ -1,4 +1,4 @@
-#include "dynamics/contact_events.h"
+#include "dynamics/solver/contact_events.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,22 +11,25 @@ double AngleTolerance(double crank_rad) { return 1e-12 * std::max(1.0, std::abs(
 
 }  // namespace
 
-EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState& x, double t) {
-  const Contacts c = train.Evaluate(x, t);
+EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t) {
+  const Contacts c = train.Evaluate(x, t, phase);
+  const ContactWitnesses cam = train.cam_law().Witnesses(c.g_c, c.g_c_rate);
+  const ContactWitnesses seat = train.seat_law().Witnesses(c.g_s, c.g_s_rate);
   // 5 and 6 only observe a lifted needle: at rest their arguments are zero up to roundoff
   // and would flip sign at every step.
   const bool lifted = x[0] > kSeparationLift_m;
-  return {c.g_c,
-          c.f_c_raw,
-          c.g_s,
-          c.f_s_raw,
+  return {cam[0],
+          cam[1],
+          seat[0],
+          seat[1],
           x[0] - kSeparationLift_m,
-          (mode.cam || !lifted) ? 1.0 : c.g_c_rate,
+          (phase.mode.cam || !lifted) ? 1.0 : c.g_c_rate,
           lifted ? x[1] : 1.0};
 }
 
-ContactMode ModeFromSigns(const std::array<int, kEventCount>& s) {
-  return {s[0] > 0 && s[1] > 0, s[2] > 0 && s[3] > 0};
+ContactMode ModeFromSigns(const NeedleTrain& train, const std::array<int, kEventCount>& s) {
+  return {train.cam_law().Pushes(s[kCamGap], s[kCamBranch]),
+          train.seat_law().Pushes(s[kSeatGap], s[kSeatBranch])};
 }
 
 Recorder::Recorder(const NeedleTrain& train, bool record_series)
@@ -42,14 +45,14 @@ Recorder::Recorder(const NeedleTrain& train, bool record_series)
   end_slope_drop_ = cam.Slope(end) < law.Derivative(end, 1) - 1e-3 * mean_slope;
 }
 
-bool Recorder::AtRest(double t, const TrainState& x) const {
+bool Recorder::AtRest(double t, const TrainState& x, const Phase& phase) const {
   if (separated_) return false;
-  const Contacts c = train_.Evaluate(x, t);
+  const Contacts c = train_.Evaluate(x, t, phase);
   if (c.u_slope != 0.0) return false;  // the cam input still moves
-  const double fc = train_.AppliedCamForce(c), fs = train_.AppliedSeatForce(c);
+  const double fc = train_.AppliedCamForce(c, phase), fs = train_.AppliedSeatForce(c, phase);
   if (!(fc > 0.0 || fs > 0.0)) return false;  // in flight
   const TrainParameters& p = train_.parameters();
-  const double net = train_.NetForce(c, x);
+  const double net = train_.NetForce(c, x, phase);
   const double scale = std::max(p.preload_N + std::abs(p.gas_force_N), p.mass_kg * 1.0 /* m/s² */);
   return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= kRestForceFraction * scale;
 }
@@ -69,9 +72,9 @@ bool Recorder::Decelerating(double crank_rad) const {
   return InLift(crank_rad) && law.Derivative(crank_rad, 2) < 0.0;
 }
 
-void Recorder::Update(double t, const TrainState& x) {
-  const Contacts c = train_.Evaluate(x, t);
-  const double fc = train_.AppliedCamForce(c), fs = train_.AppliedSeatForce(c);
+void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
+  const Contacts c = train_.Evaluate(x, t, phase);
+  const double fc = train_.AppliedCamForce(c, phase), fs = train_.AppliedSeatForce(c, phase);
 
   const double th = c.crank_rad;
   const bool in_table = InLift(th);
@@ -111,35 +114,36 @@ void Recorder::Update(double t, const TrainState& x) {
   }
 }
 
-void Recorder::Start(double t, const TrainState& x) {
-  cam_touched_ = train_.Evaluate(x, t).g_c > 0.0;
-  Update(t, x);
+void Recorder::Start(double t, const TrainState& x, const Phase& phase) {
+  cam_touched_ = train_.Evaluate(x, t, phase).g_c > 0.0;
+  Update(t, x, phase);
 }
 
-void Recorder::GridSample(double t, const TrainState& x) {
-  const Contacts c = train_.Evaluate(x, t);
-  grid_.push_back({t, x[0], train_.AppliedCamForce(c)});
+void Recorder::GridSample(double t, const TrainState& x, const Phase& phase) {
+  const Contacts c = train_.Evaluate(x, t, phase);
+  grid_.push_back({t, x[0], train_.AppliedCamForce(c, phase)});
 }
 
-void Recorder::Sample(double t, const TrainState& x) { Update(t, x); }
+void Recorder::Sample(double t, const TrainState& x, const Phase& phase) { Update(t, x, phase); }
 
-void Recorder::Crossing(int index, int direction, double t, const TrainState& x) {
-  const Contacts c = train_.Evaluate(x, t);
-  if (index == 0 && direction > 0) {  // cam onset
+void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
+                        const Phase& phase) {
+  const Contacts c = train_.Evaluate(x, t, phase);
+  if (index == kCamGap && direction > 0) {  // cam onset
     impacts_.push_back(
         {cam_touched_ ? "recontact" : "lash", c.crank_rad, std::max(0.0, c.g_c_rate)});
     cam_touched_ = true;
     if (separated_) episodes_.back().impact = static_cast<int>(impacts_.size()) - 1;
-  } else if (index == 2 && direction > 0) {  // seat onset
+  } else if (index == kSeatGap && direction > 0) {  // seat onset
     impacts_.push_back(
         {seat_landed_ ? "seat-bounce" : "seat", c.crank_rad, std::max(0.0, c.g_s_rate)});
     seat_landed_ = true;
   }
-  Update(t, x);
+  Update(t, x, phase);
 }
 
-void Recorder::Finish(double t, const TrainState& x) {
-  Update(t, x);
+void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
+  Update(t, x, phase);
   if (separated_) {
     episodes_.back().end_rad = train_.Angle(t);
     episodes_.back().open = true;  // still off cam and seat when the run ends: reported

@@ -1,12 +1,13 @@
 #pragma once
 /// @file
-/// Events of the needle train, written as signed functions of the state (SUNDIALS style),
-/// and the record they feed (model.md §6):
+/// Events of the needle train, written as signed witness functions of the state (SUNDIALS
+/// style), and the record they feed (model.md §6):
 ///
 ///   0  g_c            cam penetration          (upward crossing: an impact on the cam)
-///   1  k_c g_c + c_c ġ_c   cam force branch     (with 0: the cam pushes iff both > 0)
+///   1  the cam law's force branch (compliant: k_c g_c + c_c ġ_c; the cam pushes iff the law
+///                     says so from the signs of 0 and 1: compliant, both > 0)
 ///   2  g_s            seat penetration         (upward crossing: an impact on the seat)
-///   3  k_s g_s + c_s ġ_s   seat force branch
+///   3  the seat law's force branch
 ///   4  y − 1 µm       the separation threshold of an episode
 ///   5  ġ_c            while the cam does not push and y > 1 µm: its upward crossing is the
 ///                     largest gap (+1 otherwise)
@@ -21,11 +22,13 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/needle_train.h"
+#include "dynamics/model/needle_train.h"
 
 namespace needle {
 
 constexpr int kEventCount = 7;
+/// The witnesses of the two contacts: gap and force branch of the cam (0, 1) and the seat (2, 3).
+constexpr int kCamGap = 0, kCamBranch = 1, kSeatGap = 2, kSeatBranch = 3;
 /// Lift above which a needle off the cam counts as separated, m (model.md §6: 1 µm).
 constexpr double kSeparationLift_m = 1e-6;
 
@@ -36,11 +39,11 @@ constexpr double kRestForceFraction = 1e-3;
 
 using EventValues = std::array<double, kEventCount>;
 
-/// The event functions at (t, x) in `mode`.
-EventValues Events(const NeedleTrain& train, ContactMode mode, const TrainState& x, double t);
+/// The event functions at (t, x) in `phase` (its mode and its segment of the cam input).
+EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t);
 
-/// The mode implied by the signs of events 0–3.
-ContactMode ModeFromSigns(const std::array<int, kEventCount>& signs);
+/// The mode implied by the signs of witnesses 0–3, by the train's contact laws.
+ContactMode ModeFromSigns(const NeedleTrain& train, const std::array<int, kEventCount>& signs);
 
 struct Episode {
   /// "jump" (any part of it where s'' < 0 inside [θ_0, θ_N], model.md §6, or at θ_N when the
@@ -68,27 +71,28 @@ struct GridPoint {
   double time_s = 0.0, lift_m = 0.0, contact_force_N = 0.0;
 };
 
-/// What a run records. Observers keep output apart from integration: integrators call
-/// Sample() at step ends (and a few dense points) and Crossing() at located events.
+/// What a run records. Observers keep output apart from integration: the event driver calls
+/// Sample() at step ends (and a few dense points) and Crossing() at located events, each with
+/// the phase the train is in there (the record takes the forces of its mode).
 class Recorder {
  public:
   Recorder(const NeedleTrain& train, bool record_series);
 
   /// The initial state: a needle already on the cam has no lash to take up.
-  void Start(double t, const TrainState& x);
-  void Sample(double t, const TrainState& x);
-  /// An event function `index` crossed zero at t in direction ±1. The train must already be in
-  /// the mode after the crossing: the record takes its forces from the train.
-  void Crossing(int index, int direction, double t, const TrainState& x);
+  void Start(double t, const TrainState& x, const Phase& phase);
+  void Sample(double t, const TrainState& x, const Phase& phase);
+  /// An event function `index` crossed zero at t in direction ±1; `phase` is the one after
+  /// the crossing.
+  void Crossing(int index, int direction, double t, const TrainState& x, const Phase& phase);
   /// Closes an open episode at the end of the run.
-  void Finish(double t, const TrainState& x);
+  void Finish(double t, const TrainState& x, const Phase& phase);
   /// The run stopped on a budget at this angle: an open episode ends there, marked open.
   void Stopped(double crank_rad);
   /// The needle has landed and come to rest (model.md §5): not separated, the cam input no
   /// longer moving, a contact pushing, |ẏ| ≤ kRestSpeed_m_s and the net force on the needle
   /// below kRestForceFraction of the spring and gas loads (so a contact oscillation caught at
   /// its turning point is not taken for rest).
-  bool AtRest(double t, const TrainState& x) const;
+  bool AtRest(double t, const TrainState& x, const Phase& phase) const;
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
@@ -97,8 +101,8 @@ class Recorder {
   /// Asks integrators to report the state at these times (sorted); empty: none.
   void set_grid(std::vector<double> times) { grid_times_ = std::move(times); }
   const std::vector<double>& grid_times() const { return grid_times_; }
-  /// Integrators call this for every grid time, in order, with the dense state there.
-  void GridSample(double t, const TrainState& x);
+  /// The driver calls this for every grid time, in order, with the dense state there.
+  void GridSample(double t, const TrainState& x, const Phase& phase);
   /// Index of the next grid time not yet reported.
   size_t next_grid() const { return grid_.size(); }
   const std::vector<GridPoint>& grid() const { return grid_; }
@@ -113,7 +117,7 @@ class Recorder {
   double longest_jump_rad() const;
 
  private:
-  void Update(double t, const TrainState& x);
+  void Update(double t, const TrainState& x, const Phase& phase);
   /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
   bool InLift(double crank_rad) const;
   /// Inside the deceleration zone at this angle (model.md §6).

@@ -1,4 +1,4 @@
-#include "dynamics/cam_input.h"
+#include "dynamics/model/cam_input.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,197 @@
+#include "dynamics/model/needle_train.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace needle {
+namespace {
+
+void Require(bool ok, const std::string& field, double value, const std::string& rule) {
+  if (!ok) {
+    throw std::invalid_argument("TrainParameters." + field + " = " + std::to_string(value) + ": " +
+                                rule);
+  }
+}
+
+}  // namespace
+
+void TrainParameters::Validate() const {
+  Require(mass_kg > 0.0 && std::isfinite(mass_kg), "mass_kg", mass_kg, "must be positive");
+  Require(preload_N >= 0.0 && std::isfinite(preload_N), "preload_N", preload_N,
+          "must not be negative");
+  Require(rate_N_m >= 0.0 && std::isfinite(rate_N_m), "rate_N_m", rate_N_m, "must not be negative");
+  Require(std::isfinite(gas_force_N), "gas_force_N", gas_force_N, "must be finite");
+  Require(contact_stiffness_N_m > 0.0 && std::isfinite(contact_stiffness_N_m),
+          "contact_stiffness_N_m", contact_stiffness_N_m, "must be positive");
+  Require(contact_damping_ratio >= 0.0 && std::isfinite(contact_damping_ratio),
+          "contact_damping_ratio", contact_damping_ratio, "must not be negative");
+  Require(seat_stiffness_N_m > 0.0 && std::isfinite(seat_stiffness_N_m), "seat_stiffness_N_m",
+          seat_stiffness_N_m, "must be positive");
+  Require(seat_damping_ratio >= 0.0 && std::isfinite(seat_damping_ratio), "seat_damping_ratio",
+          seat_damping_ratio, "must not be negative");
+}
+
+double TrainParameters::contact_damping() const {
+  return 2.0 * contact_damping_ratio * std::sqrt(contact_stiffness_N_m * mass_kg);  // 2ζ√(km)
+}
+
+double TrainParameters::seat_damping() const {
+  return 2.0 * seat_damping_ratio * std::sqrt(seat_stiffness_N_m * mass_kg);
+}
+
+NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double omega,
+                         double theta_a_rad, std::shared_ptr<const ContactLaw> cam_law,
+                         std::shared_ptr<const ContactLaw> seat_law)
+    : cam_(cam), p_(p), omega_(omega), theta_a_(theta_a_rad) {
+  p_.Validate();
+  if (!(omega > 0.0) || !std::isfinite(omega)) {
+    throw std::invalid_argument("NeedleTrain: ω must be positive, got " + std::to_string(omega));
+  }
+  cam_law_ = cam_law ? std::move(cam_law)
+                     : std::make_shared<CompliantContact>(p_.contact_stiffness_N_m,
+                                                          p_.contact_damping_ratio, p_.mass_kg);
+  seat_law_ = seat_law ? std::move(seat_law)
+                       : std::make_shared<CompliantContact>(p_.seat_stiffness_N_m,
+                                                            p_.seat_damping_ratio, p_.mass_kg);
+}
+
+Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase) const {
+  Contacts c;
+  c.crank_rad = Angle(t);
+  const double th = CamAngle(c.crank_rad, phase);
+  c.u = cam_.U(th);
+  c.u_slope = cam_.Slope(th);
+
+  c.g_c = c.u - x[0];                      // g_c = u − y
+  c.g_c_rate = omega_ * c.u_slope - x[1];  // ġ_c = ω u' − ẏ
+  c.f_c_raw = cam_law_->Force(c.g_c, c.g_c_rate);
+  c.g_s = -x[0];  // g_s = −y
+  c.g_s_rate = -x[1];
+  c.f_s_raw = seat_law_->Force(c.g_s, c.g_s_rate);
+  return c;
+}
+
+double NeedleTrain::CamAngle(double crank_rad, const Phase& phase) const {
+  // At the end of a segment, the cam's value from the left (its pieces are [a, b)).
+  if (crank_rad >= phase.segment_end_rad) {
+    return std::nextafter(phase.segment_end_rad, -std::numeric_limits<double>::infinity());
+  }
+  return crank_rad;
+}
+
+double NeedleTrain::AppliedCamForce(const Contacts& c, const Phase& phase) const {
+  if (phase.gated) return cam_law_->GatedForce(c.g_c, c.g_c_rate);
+  return phase.mode.cam ? c.f_c_raw : 0.0;
+}
+
+double NeedleTrain::AppliedSeatForce(const Contacts& c, const Phase& phase) const {
+  if (phase.gated) return seat_law_->GatedForce(c.g_s, c.g_s_rate);
+  return phase.mode.seat ? c.f_s_raw : 0.0;
+}
+
+void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, TrainJacobian& J,
+                           TrainState& dfdt) const {
+  const Contacts c = Evaluate(x, t, phase);
+  const double m = p_.mass_kg, w = omega_;
+  const double up = c.u_slope, upp = cam_.Curvature(CamAngle(c.crank_rad, phase));
+  const double ac = phase.mode.cam ? 1.0 : 0.0, as = phase.mode.seat ? 1.0 : 0.0;
+  const double kc = cam_law_->ForceStiffness(), ks = seat_law_->ForceStiffness();
+  const double cc = cam_law_->ForceDamping(), cs = seat_law_->ForceDamping();
+  J.fill(0.0);
+  dfdt.fill(0.0);
+  J[0 * 4 + 1] = 1.0;                                     // ∂ẏ/∂ẏ
+  J[1 * 4 + 0] = (-kc * ac - ks * as - p_.rate_N_m) / m;  // ∂ÿ/∂y
+  J[1 * 4 + 1] = (-cc * ac - cs * as) / m;                // ∂ÿ/∂ẏ
+  const double fc = ac * c.f_c_raw;
+  const double dfc_dt = ac * (kc * w * up + cc * w * w * upp);  // ∂F_c/∂t
+  dfdt[1] = dfc_dt / m;
+  J[2 * 4 + 0] = -kc * ac * w * up;  // Ẇ = F_c ω u'
+  J[2 * 4 + 1] = -cc * ac * w * up;
+  dfdt[2] = dfc_dt * w * up + fc * w * w * upp;
+  // Ḋ = A_c ġ_c + A_s ġ_s with A = F − V'(g) (F from the mode). With ∂g_c/∂y = −1,
+  // ∂ġ_c/∂ẏ = −1, ∂g_c/∂t = ω u', ∂ġ_c/∂t = ω² u'' (and g_s = −y, ġ_s = −ẏ):
+  //   ∂A_c/∂y = −k_c a_c + V_c'',   ∂A_c/∂ẏ = −c_c a_c,
+  //   ∂A_c/∂t = a_c (k_c ω u' + c_c ω² u'') − V_c'' ω u'.
+  const double vc = cam_law_->ConservativeStiffness(c.g_c);
+  const double vs = seat_law_->ConservativeStiffness(c.g_s);
+  const double a_c = fc - cam_law_->ConservativeForce(c.g_c);
+  const double a_s = as * c.f_s_raw - seat_law_->ConservativeForce(c.g_s);
+  J[3 * 4 + 0] = c.g_c_rate * (-kc * ac + vc) + c.g_s_rate * (-ks * as + vs);
+  J[3 * 4 + 1] = c.g_c_rate * (-cc * ac) - a_c + c.g_s_rate * (-cs * as) - a_s;
+  dfdt[3] = (dfc_dt - vc * w * up) * c.g_c_rate + a_c * w * w * upp;
+}
+
+double NeedleTrain::NetForce(const Contacts& c, const TrainState& x, const Phase& phase) const {
+  return AppliedCamForce(c, phase) + AppliedSeatForce(c, phase) -
+         (p_.preload_N + p_.rate_N_m * x[0]) + p_.gas_force_N;
+}
+
+void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase,
+                             TrainState& dxdt) const {
+  const Contacts c = Evaluate(x, t, phase);
+  const double fc = AppliedCamForce(c, phase), fs = AppliedSeatForce(c, phase);
+
+  dxdt[0] = x[1];
+  dxdt[1] = NetForce(c, x, phase) / p_.mass_kg;  // ÿ
+  dxdt[2] = fc * omega_ * c.u_slope;             // Ẇ
+  dxdt[3] = (fc - cam_law_->ConservativeForce(c.g_c)) * c.g_c_rate +
+            (fs - seat_law_->ConservativeForce(c.g_s)) * c.g_s_rate;  // Ḋ
+}
+
+double NeedleTrain::Energy(const TrainState& x, double t) const {
+  const Contacts c = Evaluate(x, t);
+  const double y = x[0];
+  return 0.5 * p_.mass_kg * x[1] * x[1] + p_.preload_N * y + 0.5 * p_.rate_N_m * y * y -
+         p_.gas_force_N * y + cam_law_->Potential(c.g_c) + seat_law_->Potential(c.g_s);
+}
+
+double NeedleTrain::EnergyResidual(const TrainState& x0, const TrainState& xt, double t) const {
+  const double e0 = Energy(x0, 0.0), e1 = Energy(xt, t);
+  const double scale = std::max(std::abs(xt[2]), std::abs(e0));  // max(|W|, |E(0)|)
+  return scale > 0.0 ? std::abs(e1 - e0 - xt[2] + xt[3]) / scale : 0.0;
+}
+
+std::optional<TrainState> NeedleTrain::Reset(bool cam, const TrainState& x, double t,
+                                             const Phase& phase) const {
+  const Contacts c = Evaluate(x, t, phase);
+  const double before = cam ? c.g_c_rate : c.g_s_rate;
+  const std::optional<double> after = (cam ? cam_law_ : seat_law_)->ImpactRate(before);
+  if (!after) return std::nullopt;
+  // ġ_c = ω u' − ẏ and ġ_s = −ẏ: the needle's velocity after, from the gap rate after.
+  const double surface = cam ? omega_ * c.u_slope : 0.0;  // the contact surface's velocity
+  TrainState out = x;
+  out[1] = surface - *after;
+  const double impulse = p_.mass_kg * (out[1] - x[1]);                        // N·s on the needle
+  const double work = impulse * surface;                                      // ΔW
+  const double kinetic = 0.5 * p_.mass_kg * (out[1] * out[1] - x[1] * x[1]);  // ΔE
+  out[2] += work;
+  out[3] += work - kinetic;  // ΔD = ΔW − ΔE: the audit closes across the impact
+  return out;
+}
+
+double NeedleTrain::FastestAngularFrequency() const {
+  return std::sqrt((cam_law_->ForceStiffness() + seat_law_->ForceStiffness() + p_.rate_N_m) /
+                   p_.mass_kg);
+}
+
+TrainState NeedleTrain::EquilibriumStart() const {
+  const double net = p_.preload_N - p_.gas_force_N;  // P₀ − F_g
+  const double u_a = cam_.U(theta_a_);
+  double y0;
+  if (cam_.play_m() > 0.0) {
+    y0 = -net / (p_.seat_stiffness_N_m + p_.rate_N_m);  // seat only
+    if (u_a - y0 > 0.0) {  // the seat sinks below the base circle: cam and seat share the load
+      y0 = (p_.contact_stiffness_N_m * u_a - net) /
+           (p_.contact_stiffness_N_m + p_.seat_stiffness_N_m + p_.rate_N_m);
+    }
+  } else {
+    y0 = (p_.contact_stiffness_N_m * u_a - net) /
+         (p_.contact_stiffness_N_m + p_.seat_stiffness_N_m + p_.rate_N_m);
+  }
+  return {y0, 0.0, 0.0, 0.0};
+}
+
+}  // namespace needle

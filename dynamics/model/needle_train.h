@@ -1,0 +1,129 @@
+#pragma once
+/// @file
+/// The one-mass needle train (model.md §4), as an Odeint-style system holding its
+/// parameters. State x = [y, ẏ, W, D]: lift (m, 0 = seated), velocity, and the two energy-audit
+/// integrals (§6) carried as extra states so the residual is a by-product:
+///
+///     m ÿ = F_c + F_s − (P₀ + k y) + F_g
+///     g_c = u(θ) − y,   ġ_c = ω u'(θ) − ẏ,   F_c = k_c g_c + c_c ġ_c  while the cam pushes
+///     g_s = −y,         ġ_s = −ẏ,            F_s = k_s g_s + c_s ġ_s  while the seat pushes
+///     Ẇ = F_c ω u'(θ),  Ḋ = (F_c − k_c g_c⁺) ġ_c + (F_s − k_s g_s⁺) ġ_s
+///     E = ½mẏ² + P₀y + ½ky² − F_g y + ½k_c(g_c⁺)² + ½k_s(g_s⁺)²,   E − E₀ − W + D = 0
+///
+/// with θ = θ_a + ω t. F_c and F_s come from the two contact laws (dynamics/model/contact_law.h;
+/// the compliant law by default: k g + c ġ with c = 2ζ√(k m)). Which contacts push is the
+/// contact mode, switched by the event driver (dynamics/solver/event_driver.h) where a law's
+/// witness changes sign, so that the right-hand side is smooth inside every step. The train
+/// holds no integration state: the mode and the segment being integrated come in a Phase.
+
+#include <array>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "dynamics/model/cam_input.h"
+#include "dynamics/model/contact_law.h"
+
+namespace needle {
+
+/// Parameters of the train, SI. Every field has a default; Validate() checks them.
+struct TrainParameters {
+  double mass_kg = 1.0;                 ///< m, > 0
+  double preload_N = 0.0;               ///< P₀, ≥ 0
+  double rate_N_m = 0.0;                ///< k, ≥ 0
+  double gas_force_N = 0.0;             ///< F_g, opening positive
+  double contact_stiffness_N_m = 1e8;   ///< k_c of the compliant cam contact, > 0
+  double contact_damping_ratio = 0.05;  ///< ζ_c, ≥ 0
+  double seat_stiffness_N_m = 1e8;      ///< k_s of the compliant seat contact, > 0
+  double seat_damping_ratio = 0.05;     ///< ζ_s, ≥ 0
+
+  /// Throws std::invalid_argument naming the field, its value and the rule it broke.
+  void Validate() const;
+  double contact_damping() const;  ///< c_c = 2ζ_c√(k_c m), N·s/m
+  double seat_damping() const;     ///< c_s = 2ζ_s√(k_s m), N·s/m
+};
+
+/// Which contacts push (their force is the law's pushing branch, else 0).
+struct ContactMode {
+  bool cam = false;
+  bool seat = false;
+};
+
+/// What the event driver integrates in: the contact mode, and the end of the cam input's
+/// segment (inside [a, b) the cam is evaluated on its own side of b: a stage that lands
+/// exactly on b sees the limit from the left; +∞: no clamp). `gated` replaces the mode by
+/// F = max(0, F) for g > 0 inside the right-hand side (the no-event baseline of the benchmarks).
+struct Phase {
+  ContactMode mode;
+  double segment_end_rad = std::numeric_limits<double>::infinity();
+  bool gated = false;
+};
+
+using TrainState = std::array<double, 4>;  ///< y, ẏ, W, D
+/// ∂f/∂x of the right-hand side, row-major 4×4.
+using TrainJacobian = std::array<double, 16>;
+
+/// Gaps, rates and raw contact forces at one instant.
+struct Contacts {
+  double crank_rad = 0.0;
+  double u = 0.0, u_slope = 0.0;                    ///< u(θ) m, du/dθ m/rad
+  double g_c = 0.0, g_c_rate = 0.0, f_c_raw = 0.0;  ///< penetration, rate, pushing-branch force
+  double g_s = 0.0, g_s_rate = 0.0, f_s_raw = 0.0;
+};
+
+class NeedleTrain {
+ public:
+  /// `cam` must outlive this object; ω > 0 rad/s; θ_a the angle at t = 0. The contact laws
+  /// default to the compliant law of `p` (k_c, ζ_c and k_s, ζ_s).
+  NeedleTrain(const CamInput& cam, const TrainParameters& p, double omega, double theta_a_rad,
+              std::shared_ptr<const ContactLaw> cam_law = nullptr,
+              std::shared_ptr<const ContactLaw> seat_law = nullptr);
+
+  /// dx/dt in `phase` (the equation of motion and the audit integrals above).
+  void Derivative(const TrainState& x, double t, const Phase& phase, TrainState& dxdt) const;
+  /// ∂f/∂x and ∂f/∂t of the right-hand side in `phase` (not gated).
+  void Jacobian(const TrainState& x, double t, const Phase& phase, TrainJacobian& dfdx,
+                TrainState& dfdt) const;
+
+  /// Gaps and pushing-branch forces at (x, t), the cam evaluated inside `phase`'s segment.
+  Contacts Evaluate(const TrainState& x, double t, const Phase& phase = Phase{}) const;
+  /// The forces the right-hand side uses at `c` in `phase` (mode or gate), N.
+  double AppliedCamForce(const Contacts& c, const Phase& phase) const;
+  double AppliedSeatForce(const Contacts& c, const Phase& phase) const;
+  /// m ÿ = F_c + F_s − (P₀ + k y) + F_g at `c` and state `x` in `phase`, N.
+  double NetForce(const Contacts& c, const TrainState& x, const Phase& phase) const;
+  /// E of the audit (J).
+  double Energy(const TrainState& x, double t) const;
+  /// The audit's residual |E(t) − E(0) − W + D| / max(|W|, |E(0)|) between the start x0 (t = 0)
+  /// and the state xt at time t, whose W and D are the integrated work and dissipation.
+  double EnergyResidual(const TrainState& x0, const TrainState& xt, double t) const;
+  /// The reset map of an impact: after the gap witness of the cam (`cam` true) or the seat
+  /// crossed upward at (x, t), the state with the law's gap rate after the impact, the
+  /// impulse's work on W and the kinetic energy lost on D (so the audit still closes);
+  /// nullopt when the law has no reset.
+  std::optional<TrainState> Reset(bool cam, const TrainState& x, double t,
+                                  const Phase& phase) const;
+
+  /// The static-equilibrium start (model.md §5): y₀ and the mode it rests in.
+  TrainState EquilibriumStart() const;
+  /// √((k_c + k_s + k)/m), rad/s: the fastest oscillation, for a first step.
+  double FastestAngularFrequency() const;
+
+  double Angle(double t) const { return theta_a_ + omega_ * t; }
+  double Time(double crank_rad) const { return (crank_rad - theta_a_) / omega_; }
+  double omega() const { return omega_; }
+  const TrainParameters& parameters() const { return p_; }
+  const CamInput& cam() const { return cam_; }
+  const ContactLaw& cam_law() const { return *cam_law_; }
+  const ContactLaw& seat_law() const { return *seat_law_; }
+
+ private:
+  double CamAngle(double crank_rad, const Phase& phase) const;
+
+  const CamInput& cam_;
+  TrainParameters p_;
+  double omega_, theta_a_;
+  std::shared_ptr<const ContactLaw> cam_law_, seat_law_;
+};
+
+}  // namespace needle

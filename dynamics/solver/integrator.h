@@ -1,0 +1,101 @@
+#pragma once
+/// @file
+/// The integration of a NeedleTrain with events: one event driver (dynamics/solver/
+/// event_driver.cc, after Drake's Simulator) owns the contact mode, the witness functions and
+/// their location, reset maps, the cam input's breaks, the budgets, the recording and the end
+/// of the run; the integrator backends only step, evaluate their dense output and restart
+/// (dynamics/solver/stepper.h). Backends, one row each in the method table (methods.cc):
+///
+///   dopri5       Boost.Odeint Dormand–Prince 5(4), dense output (4th-order extension)
+///   rkf78        Boost.Odeint Fehlberg 7(8); states inside a step recomputed by one 7(8) step
+///   rosenbrock4  Boost.Odeint Rosenbrock 4 (stiff), analytic Jacobian, dense output
+///   cvode-bdf    SUNDIALS CVODE, BDF, dense linear solver with the analytic Jacobian; its
+///                Hermite interpolant (CVodeGetDky) is the dense output
+///   cvode-adams  the same with Adams–Moulton (non-stiff)
+///   baseline-dopri5  Dormand–Prince with F = max(0, F) inside the right-hand side, no events,
+///                no breaks: the baseline event location is measured against (benchmarks)
+///
+/// Events are located by the driver on every backend alike: a witness whose sign at a step's
+/// end differs from its stored sign is bracketed by 16 samples of the dense output and refined
+/// by TOMS 748 to machine precision; at a mode switch (or a reset) the backend restarts there.
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dynamics/model/needle_train.h"
+#include "dynamics/solver/contact_events.h"
+
+namespace needle {
+
+enum class Method { kDopri5, kRkf78, kRosenbrock4, kCvodeBdf, kCvodeAdams, kBaselineDopri5 };
+
+/// Every method, in the method table's order.
+const std::vector<Method>& AllMethods();
+/// "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams", "baseline-dopri5".
+std::string MethodName(Method m);
+std::optional<Method> ParseMethod(const std::string& name);
+/// "auto, dopri5, rkf78, …" for messages.
+std::string MethodList();
+
+/// The relative tolerance's range, [kMinRtol, kMaxRtol].
+constexpr double kMinRtol = 1e-14;
+constexpr double kMaxRtol = 1e-2;
+/// The default absolute tolerance on the lift is this fraction of rtol, m.
+constexpr double kAtolPerRtol_m = 1e-3;
+
+/// Options of one integration. Every field has a default; Validate() checks them.
+struct IntegratorOptions {
+  double rtol = 1e-8;     ///< relative tolerance, [kMinRtol, kMaxRtol]
+  double atol_m = 1e-11;  ///< absolute tolerance on the lift y, m, > 0
+  /// Absolute tolerance on the velocity ẏ, m/s, > 0; 0: the number atol_m (the default).
+  double atol_m_s = 0.0;
+  /// Absolute tolerance on the audit integrals W and D, J, > 0; 0: the number atol_m.
+  double atol_J = 0.0;
+  long max_steps = 2000000;  ///< step budget; exceeding it stops the run (BudgetExceeded)
+  long max_events = 100000;  ///< event budget (located witness crossings)
+  /// Past t_end the run goes on until the recorder finds the needle at rest
+  /// (Recorder::AtRest), for at most this long, s (model.md §5); 0: stop at t_end. ≥ 0.
+  double settle_limit_s = 0.0;
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void Validate() const;
+  /// Per-state absolute tolerances (y, ẏ, W, D) with the defaults filled in.
+  std::array<double, 4> AbsoluteTolerances() const;
+};
+
+/// The default absolute tolerance on the lift for a relative tolerance, m.
+inline double DefaultAtol(double rtol) { return rtol * kAtolPerRtol_m; }
+
+struct IntegrationStats {
+  long steps = 0;            ///< accepted steps
+  long rhs_evaluations = 0;  ///< right-hand-side evaluations
+  long events = 0;           ///< located events (mode switches and observations)
+  long resets = 0;           ///< reset maps applied (impacts of a restitution law)
+  TrainState final_state{};
+  double final_time = 0.0;
+  Phase final_phase{};  ///< the contact mode at the end
+};
+
+/// A step or event budget ran out: the run stopped at `crank_rad`. The message names the angle
+/// and what to do; the recorder holds the run up to there.
+struct BudgetExceeded : std::runtime_error {
+  BudgetExceeded(const std::string& message, double crank)
+      : std::runtime_error(message), crank_rad(crank) {}
+  double crank_rad;
+};
+
+/// Integrates `train` from `x0` over [0, t_end], then on while the needle is not at rest, up
+/// to t_end + settle_limit_s. Throws BudgetExceeded when a budget is exceeded.
+IntegrationStats Integrate(Method method, const NeedleTrain& train, const TrainState& x0,
+                           double t_end, Recorder& recorder, const IntegratorOptions& options);
+
+/// The cam input's breaks strictly inside (0, t_end), sorted: times (s from θ_a) and the
+/// exact break angles (rad) they stand for.
+struct Breaks {
+  std::vector<double> times, angles;
+};
+Breaks BreakTimes(const NeedleTrain& train, double t_end);
+
+}  // namespace needle

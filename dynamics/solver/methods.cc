@@ -1,0 +1,156 @@
+// The method table (one row per integrator backend), the integrator's options, and the
+// scaled right-hand side the backends integrate.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "dynamics/solver/stepper.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+using StepperFactory = std::unique_ptr<Stepper> (*)(TrainSystem&, const IntegratorOptions&);
+
+struct MethodRow {
+  Method method;
+  const char* name;
+  StepperFactory make;  ///< nullptr: not a backend of the event driver (the baseline)
+};
+
+// A new integrator: its backend file, an enumerator and one row here.
+const MethodRow kMethodTable[] = {
+    {Method::kDopri5, "dopri5", MakeDopri5},
+    {Method::kRkf78, "rkf78", MakeRkf78},
+    {Method::kRosenbrock4, "rosenbrock4", MakeRosenbrock4},
+    {Method::kCvodeBdf, "cvode-bdf", MakeCvodeBdf},
+    {Method::kCvodeAdams, "cvode-adams", MakeCvodeAdams},
+    {Method::kBaselineDopri5, "baseline-dopri5", nullptr},
+};
+
+const MethodRow& Row(Method m) {
+  for (const MethodRow& r : kMethodTable) {
+    if (r.method == m) return r;
+  }
+  throw std::logic_error("method missing from the method table");
+}
+
+}  // namespace
+
+const std::vector<Method>& AllMethods() {
+  static const std::vector<Method> all = [] {
+    std::vector<Method> v;
+    for (const MethodRow& r : kMethodTable) v.push_back(r.method);
+    return v;
+  }();
+  return all;
+}
+
+std::string MethodName(Method m) { return Row(m).name; }
+
+std::optional<Method> ParseMethod(const std::string& name) {
+  for (const MethodRow& r : kMethodTable) {
+    if (name == r.name) return r.method;
+  }
+  return std::nullopt;
+}
+
+std::string MethodList() {
+  std::string out = "auto";
+  const size_t n = sizeof(kMethodTable) / sizeof(kMethodTable[0]);
+  for (size_t i = 0; i < n; ++i)
+    out += (i + 1 == n ? " or " : ", ") + std::string(kMethodTable[i].name);
+  return out;
+}
+
+std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o) {
+  const StepperFactory make = Row(m).make;
+  return make ? make(system, o) : nullptr;
+}
+
+void IntegratorOptions::Validate() const {
+  if (!(rtol >= kMinRtol && rtol <= kMaxRtol)) {
+    throw std::invalid_argument("IntegratorOptions.rtol = " + std::to_string(rtol) +
+                                ": must be in [1e-14, 1e-2]");
+  }
+  if (!(atol_m > 0.0)) throw std::invalid_argument("IntegratorOptions.atol_m must be positive");
+  if (!(atol_m_s >= 0.0) || !std::isfinite(atol_m_s))
+    throw std::invalid_argument("IntegratorOptions.atol_m_s must be positive (or 0: atol_m)");
+  if (!(atol_J >= 0.0) || !std::isfinite(atol_J))
+    throw std::invalid_argument("IntegratorOptions.atol_J must be positive (or 0: atol_m)");
+  if (max_steps < 1) throw std::invalid_argument("IntegratorOptions.max_steps must be at least 1");
+  if (max_events < 1)
+    throw std::invalid_argument("IntegratorOptions.max_events must be at least 1");
+  if (!(settle_limit_s >= 0.0) || !std::isfinite(settle_limit_s))
+    throw std::invalid_argument("IntegratorOptions.settle_limit_s must be finite and ≥ 0");
+}
+
+std::array<double, 4> IntegratorOptions::AbsoluteTolerances() const {
+  const double v = atol_m_s > 0.0 ? atol_m_s : atol_m;
+  const double e = atol_J > 0.0 ? atol_J : atol_m;
+  return {atol_m, v, e, e};
+}
+
+TrainSystem::TrainSystem(const NeedleTrain& train, const IntegratorOptions& o) : train_(train) {
+  const std::array<double, 4> atol = o.AbsoluteTolerances();
+  scaled_ = false;
+  for (int i = 0; i < 4; ++i) {
+    scale_[i] = atol[i] / atol[0];
+    scaled_ = scaled_ || scale_[i] != 1.0;
+  }
+}
+
+TrainState TrainSystem::ToScaled(const TrainState& x) const {
+  if (!scaled_) return x;
+  return {x[0] / scale_[0], x[1] / scale_[1], x[2] / scale_[2], x[3] / scale_[3]};
+}
+
+TrainState TrainSystem::FromScaled(const TrainState& z) const {
+  if (!scaled_) return z;
+  return {z[0] * scale_[0], z[1] * scale_[1], z[2] * scale_[2], z[3] * scale_[3]};
+}
+
+void TrainSystem::operator()(const TrainState& z, TrainState& dzdt, double t) const {
+  ++evaluations_;
+  if (!scaled_) {
+    train_.Derivative(z, t, phase, dzdt);
+    return;
+  }
+  TrainState dxdt;
+  train_.Derivative(FromScaled(z), t, phase, dxdt);
+  for (int i = 0; i < 4; ++i) dzdt[i] = dxdt[i] / scale_[i];
+}
+
+void TrainSystem::Jacobian(const TrainState& z, double t, TrainJacobian& J,
+                           TrainState& dfdt) const {
+  train_.Jacobian(FromScaled(z), t, phase, J, dfdt);
+  if (!scaled_) return;
+  for (int r = 0; r < 4; ++r) {  // ∂(f_r/s_r)/∂z_c = J_rc s_c / s_r
+    for (int c = 0; c < 4; ++c) J[r * 4 + c] *= scale_[c] / scale_[r];
+    dfdt[r] /= scale_[r];
+  }
+}
+
+Breaks BreakTimes(const NeedleTrain& train, double t_end) {
+  Breaks out;
+  for (double th : train.cam().Breaks()) {  // sorted
+    const double t = train.Time(th);
+    if (t > 0.0 && t < t_end) {
+      out.times.push_back(t);
+      out.angles.push_back(th);
+    }
+  }
+  return out;
+}
+
+void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train, double t) {
+  throw BudgetExceeded("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
+                           " deg after " + std::to_string(budget) + " " + what +
+                           " (the budget [solver] max_" + what +
+                           "): the scene may chatter or be too stiff for this method; try "
+                           "method = \"cvode-bdf\", a looser rtol, or raise max_" +
+                           what,
+                       train.Angle(t));
+}
+
+}  // namespace needle

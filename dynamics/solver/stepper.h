@@ -1,0 +1,77 @@
+#pragma once
+/// @file
+/// Internal to the solver: what the event driver asks of an integrator backend, and the
+/// right-hand side it hands them. A backend steps, evaluates its dense output inside the last
+/// step and restarts; it knows nothing of events, modes, breaks or budgets.
+///
+/// Per-state absolute tolerances: backends integrate scaled states z_i = x_i / s_i with
+/// s_i = atol_i / atol_m, so one scalar absolute tolerance atol_m on z is atol_i on x_i
+/// (s = 1 for every state by default, and then z = x exactly).
+
+#include <array>
+#include <memory>
+#include <utility>
+
+#include "dynamics/model/needle_train.h"
+#include "dynamics/solver/integrator.h"
+
+namespace needle {
+
+/// The train's right-hand side in the driver's current phase, on scaled states. The driver
+/// changes `phase` at mode switches and breaks; backends call it.
+class TrainSystem {
+ public:
+  TrainSystem(const NeedleTrain& train, const IntegratorOptions& options);
+  void operator()(const TrainState& z, TrainState& dzdt, double t) const;
+  /// ∂f/∂z and ∂f/∂t on scaled states (not gated).
+  void Jacobian(const TrainState& z, double t, TrainJacobian& dfdz, TrainState& dfdt) const;
+  TrainState ToScaled(const TrainState& x) const;
+  TrainState FromScaled(const TrainState& z) const;
+  const NeedleTrain& train() const { return train_; }
+  long evaluations() const { return evaluations_; }
+
+  Phase phase;
+
+ private:
+  const NeedleTrain& train_;
+  std::array<double, 4> scale_;
+  bool scaled_;
+  mutable long evaluations_ = 0;
+};
+
+/// One integrator backend.
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  /// (Re)starts at (t, z) with a first step of about dt (a backend may choose its own).
+  virtual void Initialize(const TrainState& z, double t, double dt) = 0;
+  /// The next step ends at or before t_stop.
+  virtual void LimitTo(double t_stop) = 0;
+  /// One accepted step: its start and end times.
+  virtual std::pair<double, double> DoStep() = 0;
+  /// The dense output at t inside the last step.
+  virtual void CalcState(double t, TrainState& z) = 0;
+  virtual TrainState CurrentState() const = 0;
+  virtual double CurrentTime() const = 0;
+  virtual double CurrentStep() const = 0;
+};
+
+/// The backends (odeint_steppers.cc, cvode_stepper.cc). `system` outlives the stepper.
+std::unique_ptr<Stepper> MakeDopri5(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeRkf78(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeRosenbrock4(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeCvodeBdf(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeCvodeAdams(TrainSystem& system, const IntegratorOptions& o);
+
+/// The backend of a method from the method table (methods.cc); nullptr for the baseline.
+std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o);
+
+/// The no-event baseline (baseline_integrator.cc): not a backend of the driver.
+IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x0, double t_end,
+                                   Recorder& recorder, const IntegratorOptions& options);
+
+/// Throws the budget message.
+[[noreturn]] void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train,
+                                  double t);
+
+}  // namespace needle
