@@ -12,10 +12,9 @@
 #include <vector>
 
 #include "dynamics/model/cam_input.h"
+#include "dynamics/model/needle_train.h"
 #include "dynamics/solver/contact_events.h"
 #include "dynamics/solver/integrator.h"
-#include "dynamics/model/needle_train.h"
-#include "lib/case_file.h"
 
 namespace needle {
 
@@ -26,10 +25,6 @@ struct Scene {
   TrainParameters train;
   std::optional<double> start_rad, end_rad;  ///< window override
 };
-
-/// Builds the scene of a case with [needle], [spring] and [train]; throws CaseError naming
-/// the missing section or the invalid value.
-Scene MakeScene(const Case& c);
 
 /// Options of a run. Every field has a default.
 struct SimulationOptions {
@@ -79,8 +74,5 @@ struct SimulationResult {
 double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm);
 
 SimulationResult Simulate(const Scene& scene, double speed_rpm, const SimulationOptions& options);
-
-/// The options a case's [solver] section asks for.
-SimulationOptions OptionsFromCase(const Case& c);
 
 }  // namespace needle

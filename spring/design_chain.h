@@ -20,13 +20,47 @@
 /// maximum lift stays within the limit (Basu: the lift "should not exceed" 4 mm; he rejects
 /// d = 10 mm for Example 1 because it needs 6.34 mm).
 
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "lib/case_file.h"
 #include "lib/lift_law.h"
+#include "lib/units.h"
 
 namespace needle {
+
+/// The engine data of Basu's design chain (`needle design ENGINE.toml`), SI except where a
+/// unit is named. Defaults are Basu's.
+struct DesignInputs {
+  std::string path;
+  std::string title;
+  double power_W = 0.0;  ///< indicated power per cylinder (case: power_hp)
+  double speed_rpm = 0.0;
+  std::string cycle = "four-stroke";
+  double fuel_g_hp_h = 145.0;  ///< specific fuel consumption, g per metric hp·h
+  double fuel_density_kg_m3 = 860.0;
+  double injection_crank_rad = 55.0 * kPi / 180.0;
+  double injection_air_pressure_Pa = 61.0 * 101325.0;  ///< p1, absolute (Basu: 60 atg)
+  double cylinder_pressure_Pa = 36.0 * 101325.0;       ///< p0, absolute (Basu: 35 atg)
+  bool gauge_ratio = false;  ///< use (p0 − 1 atm)/(p1 − 1 atm) in w0, as Basu's arithmetic did
+  double air_temperature_K = 293.15;
+  double velocity_coefficient = 0.8;   ///< φ
+  std::string atomizer = "disk";       ///< "disk" or "sleeve"
+  std::optional<double> mixing_ratio;  ///< ν; from Basu's line through his three points if absent
+  double cam_peripheral_velocity_m_s = 1.5;
+  double disk_to_roller = 5.0;
+  int nozzle_holes = 1;
+  std::optional<double> discharge_passage_m;  ///< chosen d; by the rule when absent
+  double max_lift_limit_m = 4e-3;             ///< the rule rejects passages needing more lift
+  std::vector<double> passage_candidates_m = {6e-3, 10e-3, 16e-3, 20e-3, 25e-3, 30e-3};
+  std::optional<double> needle_diameter_m;  ///< adopted; 2·d when absent
+  std::optional<double> cam_disk_m;         ///< adopted (built) disk; computed when absent
+  double rho = 2.12;                        ///< max/mean lift of the normal curve
+  double nozzle_ratio = 0.95;               ///< nozzle / valve cross-section at max lift
+  /// Needle and disks, for `design --case` (the chain does not need it); when absent the case
+  /// gets an assumption, marked as such
+  std::optional<double> moving_mass_kg;
+};
 
 /// q(h, d) = (d − 0.354 h)·π·0.3827 h, SI (m, m²). Throws std::invalid_argument for h < 0,
 /// d ≤ 0, or h beyond the curve's crest h = d/0.708 where q stops growing.

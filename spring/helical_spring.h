@@ -16,7 +16,7 @@
 /// Passes when τ at full lift ≤ allowable fraction · R_m, the gaps at full lift ≥ S_a, and
 /// f_e/f_cam ≥ 13.
 
-#include "lib/case_file.h"
+#include "spring/spring_parameters.h"
 
 namespace needle {
 

@@ -8,20 +8,12 @@
 
 namespace needle {
 
-SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rpm) {
-  if (!c.needle) {
-    throw CaseError(
-        c.path +
-        ": [needle] mass_kg: section [needle] is missing; the spring check needs the moving mass");
-  }
-  if (!c.spring) {
-    throw CaseError(
-        c.path +
-        ": [spring] preload: section [spring] is missing; the spring check needs preload and rate");
-  }
+SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParameters& spring,
+                              const LiftLaw& law, double speed_rpm, bool four_stroke,
+                              const std::string& where) {
   if (!law.HasAcceleration()) {
     throw CaseError(
-        c.path + ": [lift] spline: \"" + SplineKindName(law.kind()) +
+        where + ": [lift] spline: \"" + SplineKindName(law.kind()) +
         "\" has no acceleration; the spring check needs a C2 spline (not-a-knot, natural, "
         "clamped, quintic or smoothing)");
   }
@@ -31,42 +23,42 @@ SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rp
   r.kinematics = kin.Summarize();
   const KinematicsSummary& sum = r.kinematics;
   const double omega = kin.omega();
-  r.train.mass_kg = c.needle->mass_kg;
-  r.train.preload_N = c.spring->preload_N;
-  r.train.gas_force_N = c.needle->gas_force_N;
-  if (c.spring->helical) {
+  r.train.mass_kg = needle.mass_kg;
+  r.train.preload_N = spring.preload_N;
+  r.train.gas_force_N = needle.gas_force_N;
+  if (spring.helical) {
     try {
-      r.helical = CheckHelicalSpring(*c.spring->helical, c.spring->preload_N, sum.max_lift_m,
-                                     speed_rpm, c.engine.cycle == "four-stroke");
+      r.helical = CheckHelicalSpring(*spring.helical, spring.preload_N, sum.max_lift_m, speed_rpm,
+                                     four_stroke);
     } catch (const std::invalid_argument& e) {
-      throw CaseError(c.path + ": [spring]: " + e.what());
+      throw CaseError(where + ": [spring]: " + e.what());
     }
   }
-  r.train.rate_N_m = c.spring->rate_N_m ? *c.spring->rate_N_m : r.helical->rate_N_m;
+  r.train.rate_N_m = spring.rate_N_m ? *spring.rate_N_m : r.helical->rate_N_m;
   const bool max_wins =
       std::abs(*sum.max_acceleration_m_s2) >= std::abs(*sum.min_acceleration_m_s2);
   r.max_abs_acceleration_m_s2 = max_wins ? *sum.max_acceleration_m_s2 : -*sum.min_acceleration_m_s2;
   r.max_abs_acceleration_rad = max_wins ? *sum.max_acceleration_rad : *sum.min_acceleration_rad;
   r.inertia_force_N = r.train.mass_kg * r.max_abs_acceleration_m_s2;  // m·max|a|
-  if (c.needle->diameter_m)
-    r.basu_preload_N = BasuPreloadN(*c.needle->diameter_m, sum.injection_period_s);
+  if (needle.diameter_m)
+    r.basu_preload_N = BasuPreloadN(*needle.diameter_m, sum.injection_period_s);
   r.min_quasi_static = MinQuasiStaticForce(law, r.train, omega);
   r.liftoff_rpm_quasi_static = QuasiStaticLiftoffRpm(law, r.train);
   r.required_preload_N =
-      RequiredPreloadN(law, r.train, omega, c.spring->safety_factor, c.spring->overspeed_factor);
+      RequiredPreloadN(law, r.train, omega, spring.safety_factor, spring.overspeed_factor);
   r.preload_margin_percent =
       r.required_preload_N > 0
           ? 100.0 * (r.train.preload_N - r.required_preload_N) / r.required_preload_N
           : INFINITY;
   r.preload_ok = r.train.preload_N >= r.required_preload_N;
-  const double S = c.spring->safety_factor;
+  const double S = spring.safety_factor;
   r.gas_force_N = r.train.gas_force_N;
-  r.gas_source = c.needle->gas_source;
+  r.gas_source = needle.gas_source;
   r.combustion_ok = r.train.preload_N >= S * r.gas_force_N;
   r.combustion_margin_percent =
       r.gas_force_N > 0 ? 100.0 * (r.train.preload_N - S * r.gas_force_N) / (S * r.gas_force_N)
                         : INFINITY;
-  r.basu_tolerance_percent = c.spring->basu_tolerance_percent;
+  r.basu_tolerance_percent = spring.basu_tolerance_percent;
   if (r.basu_preload_N) {
     r.basu_deviation_percent = 100.0 * (r.train.preload_N - *r.basu_preload_N) / *r.basu_preload_N;
     r.basu_ok = *r.basu_deviation_percent >= -r.basu_tolerance_percent;
@@ -97,7 +89,7 @@ SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rp
   for (double v : {r.inertia_force_N, r.min_quasi_static.force_N, r.required_preload_N,
                    r.gas_force_N, r.train.preload_N}) {
     if (!std::isfinite(v)) {
-      throw CaseError(c.path +
+      throw CaseError(where +
                       ": [needle]/[spring]: a spring-check quantity is not finite (inertia force "
                       "m·max|a|, contact force or required preload overflows); check mass_kg, "
                       "preload and rate for absurd values");

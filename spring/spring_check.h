@@ -15,10 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "lib/case_file.h"
+#include "lib/case_error.h"
 #include "lib/kinematics.h"
 #include "spring/helical_spring.h"
 #include "spring/quasi_static.h"
+#include "spring/spring_parameters.h"
 
 namespace needle {
 
@@ -46,7 +47,11 @@ struct SpringCheckResult {
   bool pass = false;
 };
 
-/// Needs [needle] and [spring] and a C² lift law; throws CaseError naming what is missing.
-SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rpm);
+/// The check at `speed_rpm` of `spring` on `needle` driven by `law` (C²), the cam at half
+/// crank speed when `four_stroke`. Throws CaseError prefixed with `where` (the case file) when
+/// the law has no acceleration, the helical geometry is impossible or a quantity overflows.
+SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParameters& spring,
+                              const LiftLaw& law, double speed_rpm, bool four_stroke,
+                              const std::string& where);
 
 }  // namespace needle

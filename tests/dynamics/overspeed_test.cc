@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "apps/scene/case_scene.h"
 #include "spring/quasi_static.h"
 
 namespace needle {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "apps/scene/case_scene.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"
 

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "lib/case_file.h"
+#include "apps/scene/case_file.h"
 
 namespace {
 

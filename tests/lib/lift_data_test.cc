@@ -16,7 +16,7 @@
 #include <random>
 #include <sstream>
 
-#include "lib/case_file.h"
+#include "apps/scene/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"

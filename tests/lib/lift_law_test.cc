@@ -8,8 +8,8 @@
 #include <cmath>
 #include <random>
 
+#include "apps/scene/case_file.h"
 #include "lib/cam_laws.h"
-#include "lib/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/units.h"
 

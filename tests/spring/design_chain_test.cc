@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "apps/scene/case_file.h"
 #include "lib/units.h"
 
 namespace needle {

@@ -42,6 +42,8 @@
 #include "lib/lift_data.h"
 #include "lib/lift_law.h"
 #include "lib/spline.h"
+#include "spring/design_chain.h"
+#include "spring/spring_parameters.h"
 
 namespace needle {
 
@@ -68,44 +70,6 @@ struct PaperSection {
   std::optional<double> inertia_force_N;
   std::optional<double> mean_lift_m;
   std::optional<double> spring_preload_N;  ///< the preload Basu's formula gave
-};
-
-/// [needle]: the moving parts reduced to the needle.
-struct NeedleSection {
-  double mass_kg = 0.0;  ///< moving mass m (needle, disks, lever, a third of the spring), > 0
-  std::optional<double> diameter_m;  ///< needle diameter d (Basu's formula), > 0
-  double gas_force_N = 0.0;          ///< constant gas force F_g, opening positive
-  /// Where F_g comes from: "stated", "combustion pressure … on d", "Basu's 35 kg/cm² on d",
-  /// or "none (no needle diameter)".
-  std::string gas_source;
-};
-
-/// End type of a helical compression spring (EN 13906-1).
-enum class SpringEnds { kClosedGround, kClosed, kOpenGround, kOpen };
-
-/// Helical compression spring geometry and material, all SI.
-struct HelicalGeometry {
-  double wire_m = 0.0;            ///< wire diameter d
-  double coil_m = 0.0;            ///< mean coil diameter D
-  double active_coils = 0.0;      ///< n
-  double free_length_m = 0.0;     ///< L0
-  double shear_modulus_Pa = 0.0;  ///< G
-  double density_kg_m3 = 7850.0;  ///< ρ
-  double tensile_Pa = 0.0;        ///< tensile strength R_m
-  SpringEnds ends = SpringEnds::kClosedGround;
-  bool wahl = false;                ///< stress correction: Wahl instead of Bergsträsser
-  double allowable_fraction = 0.5;  ///< allowable shear stress as a fraction of R_m
-};
-
-/// [spring]: the valve spring and the sizing rule.
-struct SpringSection {
-  double preload_N = 0.0;          ///< P0 at the seated position, ≥ 0
-  std::optional<double> rate_N_m;  ///< k; from the geometry when absent
-  double safety_factor = 1.5;      ///< S of the preload sizing, ≥ 1
-  double overspeed_factor = 1.2;   ///< f: sizing speed f·n, ≥ 1
-  /// How far the preload may fall below Basu's formula and pass, percent (spring_check.h).
-  double basu_tolerance_percent = 10.0;
-  std::optional<HelicalGeometry> helical;  ///< present when wire_mm etc. are given
 };
 
 /// [train]: contacts and roller play of the dynamic model (model.md §3–4).
@@ -145,6 +109,10 @@ struct ProfileSection {
   int points = 720;              ///< points over one cam revolution
 };
 
+/// The case's [needle] and [spring] are the spring module's parameters.
+using NeedleSection = NeedleParameters;
+using SpringSection = SpringParameters;
+
 struct Case {
   std::string path;   ///< the file it came from, for messages
   std::string title;  ///< optional one-line description
@@ -157,39 +125,6 @@ struct Case {
   std::optional<OverspeedSection> overspeed;
   std::optional<ProfileSection> profile;
   std::optional<PaperSection> paper;
-};
-
-/// The engine data of Basu's design chain (`needle design ENGINE.toml`), SI except where a
-/// unit is named. Defaults are Basu's.
-struct DesignInputs {
-  std::string path;
-  std::string title;
-  double power_W = 0.0;  ///< indicated power per cylinder (case: power_hp)
-  double speed_rpm = 0.0;
-  std::string cycle = "four-stroke";
-  double fuel_g_hp_h = 145.0;  ///< specific fuel consumption, g per metric hp·h
-  double fuel_density_kg_m3 = 860.0;
-  double injection_crank_rad = 55.0 * 3.14159265358979323846 / 180.0;
-  double injection_air_pressure_Pa = 61.0 * 101325.0;  ///< p1, absolute (Basu: 60 atg)
-  double cylinder_pressure_Pa = 36.0 * 101325.0;       ///< p0, absolute (Basu: 35 atg)
-  bool gauge_ratio = false;  ///< use (p0 − 1 atm)/(p1 − 1 atm) in w0, as Basu's arithmetic did
-  double air_temperature_K = 293.15;
-  double velocity_coefficient = 0.8;   ///< φ
-  std::string atomizer = "disk";       ///< "disk" or "sleeve"
-  std::optional<double> mixing_ratio;  ///< ν; from Basu's line through his three points if absent
-  double cam_peripheral_velocity_m_s = 1.5;
-  double disk_to_roller = 5.0;
-  int nozzle_holes = 1;
-  std::optional<double> discharge_passage_m;  ///< chosen d; by the rule when absent
-  double max_lift_limit_m = 4e-3;             ///< the rule rejects passages needing more lift
-  std::vector<double> passage_candidates_m = {6e-3, 10e-3, 16e-3, 20e-3, 25e-3, 30e-3};
-  std::optional<double> needle_diameter_m;  ///< adopted; 2·d when absent
-  std::optional<double> cam_disk_m;         ///< adopted (built) disk; computed when absent
-  double rho = 2.12;                        ///< max/mean lift of the normal curve
-  double nozzle_ratio = 0.95;               ///< nozzle / valve cross-section at max lift
-  /// Needle and disks, for `design --case` (the chain does not need it); when absent the case
-  /// gets an assumption, marked as such
-  std::optional<double> moving_mass_kg;
 };
 
 /// A synthesis specification (`needle synth SPEC.toml`): [rise] angle_deg, lift_mm, step_deg;

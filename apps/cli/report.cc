@@ -1,4 +1,4 @@
-#include "apps/report.h"
+#include "apps/cli/report.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "apps/kinematics_command.h"
+#include "apps/cli/kinematics_command.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/cli_checks.h"
-#include "apps/output_paths.h"
-#include "lib/case_file.h"
+#include "apps/cli/cli_checks.h"
+#include "apps/cli/output_paths.h"
+#include "apps/scene/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -1,4 +1,4 @@
-#include "apps/dynamics_command.h"
+#include "apps/cli/dynamics_command.h"
 
 #include <unistd.h>
 
@@ -7,9 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/cli_checks.h"
-#include "apps/output_paths.h"
-#include "apps/progress_bar.h"
+#include "apps/cli/cli_checks.h"
+#include "apps/cli/output_paths.h"
+#include "apps/cli/progress_bar.h"
+#include "apps/scene/case_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/output.h"

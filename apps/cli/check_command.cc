@@ -1,4 +1,4 @@
-#include "apps/check_command.h"
+#include "apps/cli/check_command.h"
 
 #include <cmath>
 #include <filesystem>
@@ -6,14 +6,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/cli_checks.h"
-#include "apps/output_paths.h"
-#include "apps/progress_bar.h"
-#include "apps/report.h"
-#include "dynamics/case_profile.h"
+#include "apps/cli/cli_checks.h"
+#include "apps/cli/output_paths.h"
+#include "apps/cli/progress_bar.h"
+#include "apps/cli/report.h"
+#include "apps/scene/case_file.h"
+#include "apps/scene/case_profile.h"
+#include "apps/scene/case_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
-#include "lib/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -1,13 +1,14 @@
-#include "apps/spring_command.h"
+#include "apps/cli/spring_command.h"
 
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/cli_checks.h"
-#include "apps/output_paths.h"
-#include "lib/case_file.h"
+#include "apps/cli/cli_checks.h"
+#include "apps/cli/output_paths.h"
+#include "apps/scene/case_file.h"
+#include "apps/scene/case_scene.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

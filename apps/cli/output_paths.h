@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "lib/case_file.h"
+#include "apps/scene/case_file.h"
 
 namespace needle {
 

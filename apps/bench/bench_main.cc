@@ -16,10 +16,11 @@
 #include <map>
 #include <sstream>
 
-#include "apps/work_precision.h"
+#include "apps/bench/work_precision.h"
+#include "apps/scene/case_file.h"
+#include "apps/scene/case_scene.h"
 #include "dynamics/overspeed.h"
 #include "lib/cam_laws.h"
-#include "lib/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

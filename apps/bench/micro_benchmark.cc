@@ -3,8 +3,9 @@
 //   ./build/needle-micro-bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
+#include "apps/scene/case_file.h"
+#include "apps/scene/case_scene.h"
 #include "dynamics/simulation.h"
-#include "lib/case_file.h"
 #include "lib/kinematics.h"
 
 namespace needle {

@@ -1,4 +1,4 @@
-#include "lib/case_file.h"
+#include "apps/scene/case_file.h"
 
 #include <toml++/toml.h>
 
@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "dynamics/solver/integrator.h"
 #include "lib/input_file.h"
 #include "lib/toml_text.h"
 #include "lib/units.h"
@@ -362,19 +363,15 @@ TrainSection ReadTrain(SectionReader r) {
 SolverSection ReadSolver(SectionReader r) {
   SolverSection s;
   if (auto m = r.OptionalString("method")) {
-    static const std::set<std::string> kMethods = {
-        "auto", "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams", "baseline-dopri5"};
-    if (!kMethods.count(*m)) {
-      r.Fail("method",
-             "expected one of auto, dopri5, rkf78, rosenbrock4, cvode-bdf, cvode-adams, "
-             "baseline-dopri5; got \"" +
-                 *m + "\"");
+    if (*m != "auto" && !ParseMethod(*m)) {  // the names from the method table
+      std::string list = "auto";
+      for (Method known : AllMethods()) list += ", " + MethodName(known);
+      r.Fail("method", "expected one of " + list + "; got \"" + *m + "\"");
     }
-
     s.method = *m;
   }
   if (auto rtol = r.OptionalNumber("rtol")) {
-    if (!(*rtol >= 1e-14 && *rtol <= 1e-2))
+    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
       r.Fail("rtol", "must be in [1e-14, 1e-2], got " + Number(*rtol));
     s.rtol = *rtol;
   }

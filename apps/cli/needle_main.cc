@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "apps/cam_command.h"
-#include "apps/check_command.h"
-#include "apps/dynamics_command.h"
-#include "apps/kinematics_command.h"
-#include "apps/spring_command.h"
-#include "lib/case_file.h"
+#include "apps/cli/cam_command.h"
+#include "apps/cli/check_command.h"
+#include "apps/cli/dynamics_command.h"
+#include "apps/cli/kinematics_command.h"
+#include "apps/cli/spring_command.h"
+#include "apps/scene/case_file.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Case files: every bundled case loads; every kind of bad input gives its exact one-line
 // message naming the file, the key and what was expected.
-#include "lib/case_file.h"
+#include "apps/scene/case_file.h"
 
 #include <gtest/gtest.h>
 

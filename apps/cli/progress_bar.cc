@@ -1,4 +1,4 @@
-#include "apps/progress_bar.h"
+#include "apps/cli/progress_bar.h"
 
 #include <unistd.h>
 

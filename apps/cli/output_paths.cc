@@ -1,4 +1,4 @@
-#include "apps/output_paths.h"
+#include "apps/cli/output_paths.h"
 
 #include <unistd.h>
 

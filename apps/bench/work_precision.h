@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/solver/integrator.h"
 #include "dynamics/simulation.h"
+#include "dynamics/solver/integrator.h"
 
 namespace needle {
 

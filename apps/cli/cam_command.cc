@@ -1,4 +1,4 @@
-#include "apps/cam_command.h"
+#include "apps/cli/cam_command.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,12 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/output_paths.h"
+#include "apps/cli/output_paths.h"
+#include "apps/scene/case_file.h"
+#include "apps/scene/case_profile.h"
 #include "dynamics/model/cam_input.h"
-#include "dynamics/case_profile.h"
 #include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"
-#include "lib/case_file.h"
 #include "lib/output.h"
 #include "lib/units.h"
 

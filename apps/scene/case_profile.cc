@@ -1,4 +1,4 @@
-#include "dynamics/case_profile.h"
+#include "apps/scene/case_profile.h"
 
 #include <memory>
 #include <stdexcept>

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// `needle kinematics CASE [--rpm N] [--step DEG] [--spline KIND] [--units paper|si]
-/// [--json] [--csv FILE] [--cycle C] [--noise-mm X]`: the velocity and acceleration table of a lift law, like
-/// NACA TM 477's, with the paper's published values beside it where the case has them.
+/// [--json] [--csv FILE] [--cycle C] [--noise-mm X]`: the velocity and acceleration table of a lift
+/// law, like NACA TM 477's, with the paper's published values beside it where the case has them.
 
 #include <CLI/CLI.hpp>
 #include <optional>

@@ -1,4 +1,4 @@
-#include "apps/work_precision.h"
+#include "apps/bench/work_precision.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,0 +1,87 @@
+#include "apps/scene/case_scene.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "lib/units.h"
+
+namespace needle {
+
+Scene MakeScene(const Case& c) {
+  if (!c.needle)
+    throw CaseError(
+        c.path +
+        ": [needle] mass_kg: section [needle] is missing; the dynamics needs the moving mass");
+  if (!c.spring)
+    throw CaseError(
+        c.path +
+        ": [spring] preload: section [spring] is missing; the dynamics needs preload and rate");
+  if (!c.train)
+    throw CaseError(c.path +
+                    ": [train] contact_stiffness: section [train] is missing; the dynamics needs "
+                    "the contact stiffness");
+  Scene s;
+  s.law = std::make_unique<LiftLaw>(MakeLiftLaw(c));
+  if (!s.law->HasAcceleration()) {
+    throw CaseError(c.path + ": [lift] spline: \"" + SplineKindName(s.law->kind()) +
+                    "\" is C1 only; the dynamics needs a C2 spline (not-a-knot, natural, clamped, "
+                    "quintic, smoothing)");
+  }
+  try {
+    s.cam = std::make_unique<CamInput>(
+        *s.law, c.train->play_m, c.train->linear_ramp ? RampKind::kLinear : RampKind::kTangent,
+        c.train->ramp_rad);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(c.path + ": [train] ramp: " + e.what());
+  }
+  s.train.mass_kg = c.needle->mass_kg;
+  s.train.gas_force_N = c.needle->gas_force_N;
+  s.train.preload_N = c.spring->preload_N;
+  if (c.spring->rate_N_m) {
+    s.train.rate_N_m = *c.spring->rate_N_m;
+  } else {
+    const HelicalGeometry& g = *c.spring->helical;
+    s.train.rate_N_m =
+        g.shear_modulus_Pa * std::pow(g.wire_m, 4) / (8.0 * std::pow(g.coil_m, 3) * g.active_coils);
+  }
+  s.train.contact_stiffness_N_m = c.train->contact_stiffness_N_m;
+  s.train.contact_damping_ratio = c.train->contact_damping_ratio;
+  s.train.seat_stiffness_N_m = c.train->seat_stiffness_N_m;
+  s.train.seat_damping_ratio = c.train->seat_damping_ratio;
+  if (c.solver) {
+    s.start_rad = c.solver->start_rad;
+    s.end_rad = c.solver->end_rad;
+  }
+  return s;
+}
+
+SimulationOptions OptionsFromCase(const Case& c) {
+  SimulationOptions o;
+  if (c.solver) {
+    o.method = c.solver->method;
+    o.integrator.rtol = c.solver->rtol;
+    o.integrator.atol_m = c.solver->atol_m.value_or(c.solver->rtol * 1e-3);
+    o.integrator.max_steps = c.solver->max_steps;
+    o.integrator.max_events = c.solver->max_events;
+    o.settle_limit_deg = c.solver->settle_limit_deg;
+  } else {
+    o.integrator.atol_m = o.integrator.rtol * 1e-3;
+  }
+  return o;
+}
+
+SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rpm) {
+  if (!c.needle) {
+    throw CaseError(
+        c.path +
+        ": [needle] mass_kg: section [needle] is missing; the spring check needs the moving mass");
+  }
+  if (!c.spring) {
+    throw CaseError(
+        c.path +
+        ": [spring] preload: section [spring] is missing; the spring check needs preload and rate");
+  }
+  return CheckSpring(*c.needle, *c.spring, law, speed_rpm, c.engine.cycle == "four-stroke", c.path);
+}
+
+}  // namespace needle

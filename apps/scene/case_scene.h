@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// The case-file layer's mapping of a case onto the modules' own parameters: the dynamic scene
+/// and its solver options (dynamics/simulation.h), the spring check's inputs
+/// (spring/spring_check.h). Each throws CaseError naming the file, the section and what is
+/// missing or invalid.
+
+#include "apps/scene/case_file.h"
+#include "dynamics/simulation.h"
+#include "spring/spring_check.h"
+
+namespace needle {
+
+/// Builds the scene of a case with [needle], [spring] and [train]; throws CaseError naming
+/// the missing section or the invalid value.
+Scene MakeScene(const Case& c);
+
+/// The options a case's [solver] section asks for.
+SimulationOptions OptionsFromCase(const Case& c);
+
+/// The spring check of a case with [needle] and [spring] at `speed_rpm`; throws CaseError
+/// naming a missing section.
+SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rpm);
+
+}  // namespace needle

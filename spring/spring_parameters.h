@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// The spring module's own parameters: the moving parts reduced to the needle, the valve
+/// spring with its sizing rule, and a helical spring's geometry and material. Every field has
+/// a default; SI throughout. The case-file layer (apps/scene/case_file.h) fills them from a
+/// case's [needle] and [spring].
+
+#include <optional>
+#include <string>
+
+namespace needle {
+
+/// The moving parts reduced to the needle (a case's [needle]), SI.
+struct NeedleParameters {
+  double mass_kg = 0.0;  ///< moving mass m (needle, disks, lever, a third of the spring), > 0
+  std::optional<double> diameter_m;  ///< needle diameter d (Basu's formula), > 0
+  double gas_force_N = 0.0;          ///< constant gas force F_g, opening positive
+  /// Where F_g comes from: "stated", "combustion pressure … on d", "Basu's 35 kg/cm² on d",
+  /// or "none (no needle diameter)".
+  std::string gas_source;
+};
+
+/// End type of a helical compression spring (EN 13906-1).
+enum class SpringEnds { kClosedGround, kClosed, kOpenGround, kOpen };
+
+/// Helical compression spring geometry and material, all SI.
+struct HelicalGeometry {
+  double wire_m = 0.0;            ///< wire diameter d
+  double coil_m = 0.0;            ///< mean coil diameter D
+  double active_coils = 0.0;      ///< n
+  double free_length_m = 0.0;     ///< L0
+  double shear_modulus_Pa = 0.0;  ///< G
+  double density_kg_m3 = 7850.0;  ///< ρ
+  double tensile_Pa = 0.0;        ///< tensile strength R_m
+  SpringEnds ends = SpringEnds::kClosedGround;
+  bool wahl = false;                ///< stress correction: Wahl instead of Bergsträsser
+  double allowable_fraction = 0.5;  ///< allowable shear stress as a fraction of R_m
+};
+
+/// The valve spring and the sizing rule (a case's [spring]), SI.
+struct SpringParameters {
+  double preload_N = 0.0;          ///< P0 at the seated position, ≥ 0
+  std::optional<double> rate_N_m;  ///< k; from the geometry when absent
+  double safety_factor = 1.5;      ///< S of the preload sizing, ≥ 1
+  double overspeed_factor = 1.2;   ///< f: sizing speed f·n, ≥ 1
+  /// How far the preload may fall below Basu's formula and pass, percent (spring_check.h).
+  double basu_tolerance_percent = 10.0;
+  std::optional<HelicalGeometry> helical;  ///< present when wire_mm etc. are given
+};
+
+}  // namespace needle
