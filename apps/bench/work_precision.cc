@@ -31,7 +31,7 @@ MeasuredRun MeasureRun(const Scene& scene, double speed_rpm, Method method, doub
   const double t_end = (theta_b - theta_a) / omega;
   IntegratorOptions o;
   o.rtol = rtol;
-  o.atol_m = rtol * 1e-3;
+  o.atol_m = DefaultAtol(rtol);
   o.max_steps = 3000000;
   std::vector<double> seconds;
   for (int r = 0; r < std::max(1, repeats); ++r) {

@@ -38,7 +38,7 @@ SimulationOptions Options(const Case& c, const std::optional<std::string>& metho
     if (!(*rtol >= 1e-14 && *rtol <= 1e-2))
       throw CaseError("--rtol: must be in [1e-14, 1e-2], got " + std::to_string(*rtol));
     o.integrator.rtol = *rtol;
-    if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = *rtol * 1e-3;
+    if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = DefaultAtol(*rtol);
   }
   return o;
 }

@@ -60,12 +60,12 @@ SimulationOptions OptionsFromCase(const Case& c) {
   if (c.solver) {
     o.method = c.solver->method;
     o.integrator.rtol = c.solver->rtol;
-    o.integrator.atol_m = c.solver->atol_m.value_or(c.solver->rtol * 1e-3);
+    o.integrator.atol_m = c.solver->atol_m.value_or(DefaultAtol(c.solver->rtol));
     o.integrator.max_steps = c.solver->max_steps;
     o.integrator.max_events = c.solver->max_events;
     o.settle_limit_deg = c.solver->settle_limit_deg;
   } else {
-    o.integrator.atol_m = o.integrator.rtol * 1e-3;
+    o.integrator.atol_m = DefaultAtol(o.integrator.rtol);
   }
   return o;
 }

@@ -20,7 +20,7 @@ SimulationOptions Options(const std::string& method, double rtol, bool series = 
   SimulationOptions o;
   o.method = method;
   o.integrator.rtol = rtol;
-  o.integrator.atol_m = rtol * 1e-3;
+  o.integrator.atol_m = DefaultAtol(rtol);
   o.force_dynamic = true;
   o.record_series = series;
   return o;

@@ -64,7 +64,7 @@ TEST(StressTest, GridOfScenesIsFiniteConservesEnergyAndStaysInBudget) {
     o.method = "dopri5";
     o.force_dynamic = true;
     o.integrator.rtol = p.rtol;
-    o.integrator.atol_m = p.rtol * 1e-3;
+    o.integrator.atol_m = DefaultAtol(p.rtol);
     o.integrator.max_steps = 300000;
     const std::string where = "k_c " + std::to_string(p.k_c) + " m " + std::to_string(p.mass) +
                               " n " + std::to_string(rpm) + " play " + std::to_string(p.play_mm) +

@@ -8,20 +8,13 @@
 #include <cmath>
 
 #include "dynamics/solver/integrator.h"
+#include "tests/dynamics/test_laws.h"
 
 namespace needle {
 namespace {
 
-// A lift law far from the window: the cam input is constant over [0, 0.8] rad.
-LiftLaw Law(double base_m) {
-  LiftTable t;
-  t.crank_rad = {1.0, 1.1, 1.2, 1.3, 1.4};
-  t.lift_m = {base_m, base_m + 0.5e-3, base_m + 1e-3, base_m + 0.5e-3, base_m};
-  return LiftLaw(t, SplineOptions{});
-}
-
 TEST(NeedleTrainTest, EnergyAuditIsExactForAConservativeOscillation) {
-  const LiftLaw law = Law(0.0);
+  const LiftLaw law = FarLaw(0.0);
   const CamInput cam(law, 0.5e-3, RampKind::kLinear, 0.1);
   TrainParameters p;
   p.preload_N = 100;

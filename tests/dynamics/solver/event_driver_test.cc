@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "dynamics/solver/integrator.h"
+#include "tests/dynamics/test_laws.h"
 
 namespace needle {
 namespace {
@@ -34,13 +35,6 @@ class Restituting : public ContactLaw {
   double e_;
   CompliantContact compliant_;
 };
-
-LiftLaw FarLaw() {
-  LiftTable t;
-  t.crank_rad = {1.0, 1.1, 1.2, 1.3, 1.4};
-  t.lift_m = {0.0, 0.5e-3, 1e-3, 0.5e-3, 0.0};
-  return LiftLaw(t, SplineOptions{});
-}
 
 TEST(EventDriverTest, ARestitutionLawsResetMapIsAppliedAtEveryImpact) {
   const LiftLaw law = FarLaw();

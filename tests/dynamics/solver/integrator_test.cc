@@ -8,16 +8,10 @@
 
 #include <cmath>
 
+#include "tests/dynamics/test_laws.h"
+
 namespace needle {
 namespace {
-
-// A lift law far from the window: the cam input is constant over [0, 0.8] rad.
-LiftLaw Law(double base_m) {
-  LiftTable t;
-  t.crank_rad = {1.0, 1.1, 1.2, 1.3, 1.4};
-  t.lift_m = {base_m, base_m + 0.5e-3, base_m + 1e-3, base_m + 0.5e-3, base_m};
-  return LiftLaw(t, SplineOptions{});
-}
 
 struct Outcome {
   double error = 0.0;  // |y(t_end) − closed form| / amplitude
@@ -28,7 +22,7 @@ struct Outcome {
 //   seat: m ÿ = −k_s y − P₀ − k y;   cam: m ÿ = k_c (u − y) − P₀ − k y.
 Outcome Oscillate(Method method, double rtol, bool seat_mode, IntegratorOptions o = {}) {
   const double m = 1.0, k = 1e4, preload = 100.0, stiffness = 1e6;
-  const LiftLaw law = Law(seat_mode ? 0.0 : 1e-3);
+  const LiftLaw law = FarLaw(seat_mode ? 0.0 : 1e-3);
   const CamInput cam(law, seat_mode ? 0.5e-3 : 0.0, RampKind::kLinear, 0.1);
   TrainParameters p;
   p.mass_kg = m;
