@@ -8,6 +8,11 @@
 
 namespace needle {
 
+double HelicalRate(const HelicalGeometry& g) {
+  return g.shear_modulus_Pa * std::pow(g.wire_m, 4) /
+         (8.0 * std::pow(g.coil_m, 3) * g.active_coils);  // G d⁴/(8D³n)
+}
+
 double StressCorrection(double w, bool wahl) {
   if (wahl) return (4.0 * w - 1.0) / (4.0 * w - 4.0) + 0.615 / w;  // Wahl
   return (w + 0.5) / (w - 0.75);                                   // Bergsträsser
@@ -17,7 +22,7 @@ HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N
                                       double speed_rpm, bool four_stroke) {
   HelicalSpringCheck c;
   const double d = g.wire_m, D = g.coil_m, n = g.active_coils;
-  c.rate_N_m = g.shear_modulus_Pa * std::pow(d, 4) / (8.0 * std::pow(D, 3) * n);  // G d⁴/(8D³n)
+  c.rate_N_m = HelicalRate(g);
   c.index = D / d;
   c.wahl = g.wahl;
   c.correction_factor = StressCorrection(c.index, g.wahl);

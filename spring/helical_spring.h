@@ -44,6 +44,9 @@ struct HelicalSpringCheck {
   bool pass() const { return stress_ok && clearance_ok && surge_ok; }
 };
 
+/// The rate R = G d⁴ / (8 D³ n) of `g`, N/m.
+double HelicalRate(const HelicalGeometry& g);
+
 /// Stress-correction factor k for index w (> 0.75): Bergsträsser, or Wahl when `wahl`.
 double StressCorrection(double index, bool wahl);
 

@@ -40,9 +40,7 @@ Scene MakeScene(const Case& c) {
   if (c.spring->rate_N_m) {
     s.train.rate_N_m = *c.spring->rate_N_m;
   } else {
-    const HelicalGeometry& g = *c.spring->helical;
-    s.train.rate_N_m =
-        g.shear_modulus_Pa * std::pow(g.wire_m, 4) / (8.0 * std::pow(g.coil_m, 3) * g.active_coils);
+    s.train.rate_N_m = HelicalRate(*c.spring->helical);
   }
   s.train.contact_stiffness_N_m = c.train->contact_stiffness_N_m;
   s.train.contact_damping_ratio = c.train->contact_damping_ratio;

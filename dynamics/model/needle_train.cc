@@ -34,14 +34,6 @@ void TrainParameters::Validate() const {
           seat_damping_ratio, "must not be negative");
 }
 
-double TrainParameters::contact_damping() const {
-  return 2.0 * contact_damping_ratio * std::sqrt(contact_stiffness_N_m * mass_kg);  // 2ζ√(km)
-}
-
-double TrainParameters::seat_damping() const {
-  return 2.0 * seat_damping_ratio * std::sqrt(seat_stiffness_N_m * mass_kg);
-}
-
 NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double omega,
                          double theta_a_rad, std::shared_ptr<const ContactLaw> cam_law,
                          std::shared_ptr<const ContactLaw> seat_law)

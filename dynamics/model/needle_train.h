@@ -39,8 +39,6 @@ struct TrainParameters {
 
   /// Throws std::invalid_argument naming the field, its value and the rule it broke.
   void Validate() const;
-  double contact_damping() const;  ///< c_c = 2ζ_c√(k_c m), N·s/m
-  double seat_damping() const;     ///< c_s = 2ζ_s√(k_s m), N·s/m
 };
 
 /// Which contacts push (their force is the law's pushing branch, else 0).

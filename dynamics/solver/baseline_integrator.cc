@@ -13,7 +13,6 @@ namespace odeint = boost::numeric::odeint;
 
 IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x0, double t_end,
                                    Recorder& recorder, const IntegratorOptions& o) {
-  o.Validate();
   IntegrationStats stats;
   TrainSystem system(train, o);
   system.phase.gated = true;

@@ -21,6 +21,24 @@
 namespace needle {
 namespace {
 
+// The cam input's breaks strictly inside (0, t_end), sorted: times (s from θ_a) and the exact
+// break angles (rad) they stand for.
+struct Breaks {
+  std::vector<double> times, angles;
+};
+
+Breaks BreakTimes(const NeedleTrain& train, double t_end) {
+  Breaks out;
+  for (double th : train.cam().Breaks()) {  // sorted
+    const double t = train.Time(th);
+    if (t > 0.0 && t < t_end) {
+      out.times.push_back(t);
+      out.angles.push_back(th);
+    }
+  }
+  return out;
+}
+
 std::array<int, kEventCount> Signs(const EventValues& v) {
   std::array<int, kEventCount> s{};
   for (int i = 0; i < kEventCount; ++i) s[i] = v[i] > 0.0 ? 1 : -1;
@@ -61,6 +79,12 @@ class EventDriver {
   void Restart(const TrainState& x, double t, double dt) {
     stepper_->Initialize(system_.ToScaled(x), t, dt);
   }
+  // At a state reached without integration (the start, a reset): the mode its witnesses
+  // imply, and their signs in that mode (witness 5 depends on the mode).
+  std::array<int, kEventCount> SettleMode(const TrainState& x, double t) {
+    system_.phase.mode = ModeFromSigns(train_, Signs(Events(train_, system_.phase, x, t)));
+    return Signs(Events(train_, system_.phase, x, t));
+  }
   void GridUpTo(double t) {
     const std::vector<double>& grid = recorder_.grid_times();
     while (next_grid_ < grid.size() && grid[next_grid_] <= t) {
@@ -88,9 +112,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   size_t next_break = 0;
   double horizon = t_end;  // t_limit once the run goes on to let the needle settle
 
-  std::array<int, kEventCount> signs = Signs(Events(train_, phase, x0, 0.0));
-  phase.mode = ModeFromSigns(train_, signs);
-  signs = Signs(Events(train_, phase, x0, 0.0));  // witness 5 depends on the mode
+  std::array<int, kEventCount> signs = SettleMode(x0, 0.0);
   recorder_.Start(0.0, x0, phase);
   while (next_grid_ < grid.size() && grid[next_grid_] <= 0.0)
     recorder_.GridSample(grid[next_grid_++], x0, phase);
@@ -169,9 +191,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
         if (auto after = train_.Reset(first == kCamGap, xs, first_t, phase)) {
           ++stats.resets;
           xs = *after;
-          signs = Signs(Events(train_, phase, xs, first_t));
-          phase.mode = ModeFromSigns(train_, signs);
-          signs = Signs(Events(train_, phase, xs, first_t));
+          signs = SettleMode(xs, first_t);
           switched = true;
         }
       }

@@ -91,11 +91,4 @@ struct BudgetExceeded : std::runtime_error {
 IntegrationStats Integrate(Method method, const NeedleTrain& train, const TrainState& x0,
                            double t_end, Recorder& recorder, const IntegratorOptions& options);
 
-/// The cam input's breaks strictly inside (0, t_end), sorted: times (s from θ_a) and the
-/// exact break angles (rad) they stand for.
-struct Breaks {
-  std::vector<double> times, angles;
-};
-Breaks BreakTimes(const NeedleTrain& train, double t_end);
-
 }  // namespace needle

@@ -131,18 +131,6 @@ void TrainSystem::Jacobian(const TrainState& z, double t, TrainJacobian& J,
   }
 }
 
-Breaks BreakTimes(const NeedleTrain& train, double t_end) {
-  Breaks out;
-  for (double th : train.cam().Breaks()) {  // sorted
-    const double t = train.Time(th);
-    if (t > 0.0 && t < t_end) {
-      out.times.push_back(t);
-      out.angles.push_back(th);
-    }
-  }
-  return out;
-}
-
 void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train, double t) {
   throw BudgetExceeded("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
                            " deg after " + std::to_string(budget) + " " + what +

@@ -66,7 +66,8 @@ std::unique_ptr<Stepper> MakeCvodeAdams(TrainSystem& system, const IntegratorOpt
 /// The backend of a method from the method table (methods.cc); nullptr for the baseline.
 std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o);
 
-/// The no-event baseline (baseline_integrator.cc): not a backend of the driver.
+/// The no-event baseline (baseline_integrator.cc): not a backend of the driver. Integrate()
+/// validates the options before calling it.
 IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x0, double t_end,
                                    Recorder& recorder, const IntegratorOptions& options);
 
