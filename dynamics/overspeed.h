@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The overspeed search (model.md §6): the dynamic lift-off speed n_dyn is the lowest speed
+/// The overspeed search (docs/model.md §6): the dynamic lift-off speed n_dyn is the lowest speed
 /// in [from, to] at which a `jump` episode at least 0.1° long appears, found to 0.5 rpm. The
 /// speeds are scanned upward from `from` in steps of Δn (`step_rpm`; default 2.5 % of `from`,
 /// at least 1 rpm), as many at once as there are threads, until the first lift-off; a
@@ -17,11 +17,12 @@
 #include <vector>
 
 #include "dynamics/simulation.h"
+#include "lib/units.h"
 
 namespace needle {
 
 /// Shortest jump that counts as lift-off, rad (0.1°).
-constexpr double kMinJump_rad = 0.1 * 3.14159265358979323846 / 180.0;
+constexpr double kMinJump_rad = 0.1 * kPi / 180.0;
 
 struct OverspeedRow {
   double speed_rpm = 0.0;

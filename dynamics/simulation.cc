@@ -39,6 +39,13 @@ bool SimulationResult::liftoff() const {
   return false;
 }
 
+RunWindow DefaultRunWindow(const Scene& scene) {
+  RunWindow w;
+  w.start_rad = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
+  w.end_rad = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
+  return w;
+}
+
 double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm) {
   const double omega_c =
       std::sqrt((scene.train.contact_stiffness_N_m + scene.train.rate_N_m) / scene.train.mass_kg);
@@ -54,8 +61,8 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   SimulationResult r;
   r.speed_rpm = speed_rpm;
   const double omega = OmegaFromRpm(speed_rpm);
-  const double theta_a = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
-  const double theta_b = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
+  const RunWindow window = DefaultRunWindow(scene);
+  const double theta_a = window.start_rad, theta_b = window.end_rad;
   r.window_start_rad = theta_a;
   r.window_end_rad = theta_b;
   r.run_end_rad = theta_b;

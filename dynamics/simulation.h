@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// One dynamic run of a scene at one speed (model.md §5–6): window [θ_a, θ_b] with
+/// One dynamic run of a scene at one speed (docs/model.md §5–6): window [θ_a, θ_b] with
 /// θ_a = rise start − 5°, θ_b = fall end + 20°, and past θ_b on until the needle has landed
 /// and come to rest (within settle_limit_deg); static-equilibrium start; the method chosen
 /// by the stiffness of the scene when `auto`; the rigid answer reported instead of a dynamic
@@ -33,7 +33,7 @@ struct SimulationOptions {
   bool record_series = false;    ///< keep the time series (for --csv)
   bool force_dynamic = false;    ///< never report the rigid answer instead
   /// Past θ_b the run goes on until the needle has landed and come to rest, for at most this
-  /// much crank angle, deg (model.md §5); > 0 and ≤ 36000.
+  /// much crank angle, deg (docs/model.md §5); > 0 and ≤ 36000.
   double settle_limit_deg = 3600.0;
 };
 
@@ -68,6 +68,14 @@ struct SimulationResult {
   IntegrationStats stats;
   bool liftoff() const;  ///< any jump episode
 };
+
+/// The run window [θ_a, θ_b] in crank rad (docs/model.md §5): from 5° before the cam input's
+/// rise to 20° after its fall, unless the scene gives its own start or end.
+struct RunWindow {
+  double start_rad = 0.0;  ///< θ_a
+  double end_rad = 0.0;    ///< θ_b
+};
+RunWindow DefaultRunWindow(const Scene& scene);
 
 /// Contact oscillations per cam event, √((k_c + k)/m)·(θ_N − θ_0)/(2π ω): the stiffness measure
 /// `auto` decides by.

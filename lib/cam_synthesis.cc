@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/units.h"
+
 namespace needle {
 namespace {
 
@@ -23,8 +25,8 @@ Caps GeometryCaps(const SynthesisSpec& spec, double s_abs, double s1, bool conve
   Caps c;
   if (convex && spec.min_spring_reserve > 0.0) {
     // (P₀ + k S) ≥ K m ω² |S''|  ⇔  |S''| ≤ (P₀ + k S)/(K m ω²)
-    c.amax = (spec.spring_preload_N + spec.spring_rate_N_m * s_abs) /
-             (spec.min_spring_reserve * spec.moving_mass_kg * spec.cam_omega * spec.cam_omega);
+    c.amax = spec.train.SpringForceN(s_abs) /
+             (spec.min_spring_reserve * spec.train.mass_kg * spec.cam_omega * spec.cam_omega);
     c.reserve_bound = true;
   }
   if (!(spec.base_radius_m > 0.0)) return c;
@@ -169,6 +171,17 @@ void SynthesisSpec::Validate() const {
   req(decel_limit > 0.0 && std::isfinite(decel_limit), "decel_limit", decel_limit,
       "must be positive");
   req(jerk_limit > 0.0, "jerk_limit", jerk_limit, "must be positive");
+  req(min_spring_reserve >= 0.0 && std::isfinite(min_spring_reserve), "min_spring_reserve",
+      min_spring_reserve, "must not be negative");
+  if (min_spring_reserve > 0.0) {
+    try {
+      train.Validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("SynthesisSpec.train: ") + e.what());
+    }
+    req(cam_omega > 0.0 && std::isfinite(cam_omega), "cam_omega", cam_omega,
+        "must be positive with a spring reserve");
+  }
 }
 
 double LeastSpeedLimit(const SynthesisSpec& spec) {
@@ -206,8 +219,8 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
     throw std::invalid_argument(
         "infeasible: with the full limits the shortest rise of " +
         std::to_string(spec.height_m * 1e3) + " mm takes " +
-        std::to_string(full.total_rad * 180.0 / 3.14159265358979323846) + " deg, more than " +
-        std::to_string(spec.rise_rad * 180.0 / 3.14159265358979323846) + " deg" +
+        std::to_string(full.total_rad * 180.0 / kPi) + " deg, more than " +
+        std::to_string(spec.rise_rad * 180.0 / kPi) + " deg" +
         (std::isfinite(least) && vmax < 1e299
              ? "; the least S'max that fits is " + std::to_string(least * 1e3) + " mm/rad"
              : "; raise the acceleration or jerk limits") +

@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "lib/rigid_train.h"
+
 namespace needle {
 
 /// The specification of a rise. Every field has a default where one makes sense.
@@ -45,10 +47,12 @@ struct SynthesisSpec {
   /// (no undercut). Negative: no curvature limit.
   double min_profile_radius_m = -1.0;
   /// Spring reserve K > 0: on the decelerating side the spring force must stay K times the
-  /// inertia force, (P₀ + k·S) ≥ K·m·ω²·|S''|, a cap |S''| ≤ (P₀ + k·S)/(K·m·ω²). Needs the
-  /// spring, the moving mass and the cam speed ω (rad/s). 0: no such limit.
+  /// inertia force, F_spring(S) ≥ K·m·ω²·|S''| (lib/rigid_train.h), a cap
+  /// |S''| ≤ F_spring(S)/(K·m·ω²). Needs the train (mass, preload, rate; its gas load is
+  /// counted too) and the cam speed ω. 0: no such limit.
   double min_spring_reserve = 0.0;
-  double spring_preload_N = 0.0, spring_rate_N_m = 0.0, moving_mass_kg = 0.0, cam_omega = 0.0;
+  RigidTrain train;        ///< the moving mass and the spring, used with min_spring_reserve
+  double cam_omega = 0.0;  ///< cam angular speed ω, rad/s, > 0 with min_spring_reserve
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
 };

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Needle kinematics at a crank speed n (model.md §1–2), with ω = 2πn/60 rad/s:
+/// Needle kinematics at a crank speed n (docs/model.md §1–2), with ω = 2πn/60 rad/s:
 ///
 ///     t = (θ − θ_open)/ω,   v = ω·ds/dθ,   a = ω²·d²s/dθ²,   j = ω³·d³s/dθ³,
 ///     injection period T = (θ_close − θ_open)/ω  (= open lift in degrees / (6n)),

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The lift law s(θ) of the needle (model.md §2, docs/model.md): a spline through a table of
+/// The lift law s(θ) of the needle (docs/model.md §2, docs/model.md): a spline through a table of
 /// crank angle θ_i (rad, strictly increasing) and lift s_i (m), closed (s = 0) outside the open
 /// lift [θ_open, θ_close] ⊆ [θ_0, θ_N]:
 ///

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Splines through (or, for `smoothing`, near) a table (x_i, y_i), i = 0..N, on
-/// non-uniform, strictly increasing knots (model.md §2):
+/// non-uniform, strictly increasing knots (docs/model.md §2):
 ///
 ///   natural      cubic, C², s''(x_0) = s''(x_N) = 0
 ///   not-a-knot   cubic, C², s''' continuous at x_1 and x_{N−1}
@@ -29,7 +29,7 @@ enum class SplineKind { kNatural, kNotAKnot, kClamped, kQuintic, kPchip, kMakima
 
 /// How the smoothing spline picks λ.
 enum class SmoothingRule {
-  kDiscrepancy,  ///< weighted residual Σ((y_i − f_i)/σ)² = N+1 (model.md default)
+  kDiscrepancy,  ///< weighted residual Σ((y_i − f_i)/σ)² = N+1 (docs/model.md default)
   kGcv,          ///< minimise generalised cross-validation
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Basu's empirical valve-spring preload (NACA TM 477; model.md §7):
+/// Basu's empirical valve-spring preload (NACA TM 477; docs/model.md §7):
 ///
 ///     P = (π d²/4) · p_c · 1.6 · (1/t)^(1/4)   [kgf],
 ///

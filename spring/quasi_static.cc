@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lib/spline.h"
+#include "lib/units.h"
 
 namespace needle {
 namespace {
@@ -45,21 +46,6 @@ ForceMinimum Minimize(const LiftLaw& law, const std::function<double(double)>& f
 
 }  // namespace
 
-void RigidTrain::Validate() const {
-  if (!(mass_kg > 0.0) || !std::isfinite(mass_kg)) {
-    throw std::invalid_argument("mass must be positive, got " + std::to_string(mass_kg) + " kg");
-  }
-  if (!(preload_N >= 0.0) || !std::isfinite(preload_N)) {
-    throw std::invalid_argument("preload must not be negative, got " + std::to_string(preload_N) +
-                                " N");
-  }
-  if (!(rate_N_m >= 0.0) || !std::isfinite(rate_N_m)) {
-    throw std::invalid_argument("spring rate must not be negative, got " +
-                                std::to_string(rate_N_m) + " N/m");
-  }
-  if (!std::isfinite(gas_force_N)) throw std::invalid_argument("gas force must be finite");
-}
-
 void RequireAcceleration(const LiftLaw& law) {
   if (!law.HasAcceleration()) {
     throw std::invalid_argument(
@@ -72,8 +58,7 @@ void RequireAcceleration(const LiftLaw& law) {
 double QuasiStaticForce(const LiftLaw& law, const RigidTrain& train, double omega,
                         double crank_rad) {
   const double a = omega * omega * law.Derivative(crank_rad, 2);  // a = ω² s''
-  return train.mass_kg * a + train.preload_N + train.rate_N_m * law.Lift(crank_rad) -
-         train.gas_force_N;  // m a + P₀ + k s − F_g
+  return train.ContactForceN(law.Lift(crank_rad), a);
 }
 
 ForceMinimum MinQuasiStaticForce(const LiftLaw& law, const RigidTrain& train, double omega) {
@@ -85,17 +70,15 @@ ForceMinimum MinQuasiStaticForce(const LiftLaw& law, const RigidTrain& train, do
 double QuasiStaticLiftoffRpm(const LiftLaw& law, const RigidTrain& train) {
   RequireAcceleration(law);
   train.Validate();
-  // g(θ) = (P₀ + k s − F_g)/(m |s''|) where s'' < 0; n_qs = (60/2π)·√(min g).
+  // g(θ) = (P₀ + k s − F_g)/(m |s''|) where s'' < 0 (the spring reserve at ω = 1 rad/s);
+  // n_qs = (60/2π)·√(min g).
   const auto g = [&](double th) {
-    const double s2 = law.Derivative(th, 2);
-    if (!(s2 < 0.0)) return kInf;
-    const double net = train.preload_N + train.rate_N_m * law.Lift(th) - train.gas_force_N;
-    return net / (train.mass_kg * -s2);
+    return train.SpringReserve(law.Lift(th), law.Derivative(th, 2));
   };
   const ForceMinimum m = Minimize(law, g);
   if (!std::isfinite(m.force_N)) return kInf;
   if (m.force_N <= 0.0) return 0.0;
-  return 60.0 / (2.0 * 3.14159265358979323846) * std::sqrt(m.force_N);  // ω → rpm
+  return 60.0 / (2.0 * kPi) * std::sqrt(m.force_N);  // ω → rpm
 }
 
 double RequiredPreloadN(const LiftLaw& law, const RigidTrain& train, double omega,

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The rigid-train (quasi-static) contact force and what follows from it (model.md §6):
+/// The rigid-train (quasi-static) contact force and what follows from it (docs/model.md §6):
 ///
 ///     F_qs(θ) = m·a(θ) + P₀ + k·s(θ) − F_g,      a = ω² d²s/dθ²,
 ///     n_qs = (60/2π) · √( min_{s''<0} (P₀ + k·s − F_g) / (m·|d²s/dθ²|) ),
@@ -11,19 +11,9 @@
 ///     P₀,req = max_{s''<0} ( S·m·(fω)²·|d²s/dθ²| − k·s + F_g ).
 
 #include "lib/lift_law.h"
+#include "lib/rigid_train.h"
 
 namespace needle {
-
-/// The train as the quasi-static check sees it. All SI.
-struct RigidTrain {
-  double mass_kg = 0.0;      ///< moving mass m, > 0
-  double preload_N = 0.0;    ///< spring preload P₀ at the seat, ≥ 0
-  double rate_N_m = 0.0;     ///< spring rate k, ≥ 0
-  double gas_force_N = 0.0;  ///< F_g, opening positive
-
-  /// Throws std::invalid_argument naming the field, its value and the rule.
-  void Validate() const;
-};
 
 /// F_qs(θ) at crank speed ω (rad/s), N. Needs a C² lift law.
 double QuasiStaticForce(const LiftLaw& law, const RigidTrain& train, double omega,

@@ -4,7 +4,7 @@
 /// reports): Basu's formula beside the case's spring, the inertia force m·max|a|, the
 /// quasi-static contact force and lift-off speed, the preload sizing, the helical check.
 ///
-/// A passing check means all of (model.md §7): the preload withstands the combustion load
+/// A passing check means all of (docs/model.md §7): the preload withstands the combustion load
 /// with the safety factor, P₀ ≥ S·F_g; the preload is not below Basu's formula by more than
 /// `basu_tolerance_percent` (10 % by default: Basu found built springs within 3 % of it, and his
 /// own Example 2 adopts 176 kgf against the formula's 185 kgf, −5 %, so a tolerance must allow

@@ -10,8 +10,8 @@ namespace needle {
 
 std::vector<double> WindowGrid(const Scene& scene, double speed_rpm, int n) {
   const double omega = OmegaFromRpm(speed_rpm);
-  const double theta_a = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
-  const double theta_b = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
+  const RunWindow window = DefaultRunWindow(scene);
+  const double theta_a = window.start_rad, theta_b = window.end_rad;
   const double t_end = (theta_b - theta_a) / omega;
   // Cell midpoints: the forces jump at the breaks of the cam input (round angles), where a
   // one-sided value from either side would be right; midpoints keep the grid off them.
@@ -26,8 +26,8 @@ MeasuredRun MeasureRun(const Scene& scene, double speed_rpm, Method method, doub
   m.method = MethodName(method);
   m.rtol = rtol;
   const double omega = OmegaFromRpm(speed_rpm);
-  const double theta_a = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
-  const double theta_b = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
+  const RunWindow window = DefaultRunWindow(scene);
+  const double theta_a = window.start_rad, theta_b = window.end_rad;
   const double t_end = (theta_b - theta_a) / omega;
   IntegratorOptions o;
   o.rtol = rtol;

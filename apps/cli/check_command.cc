@@ -13,6 +13,7 @@
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_profile.h"
 #include "apps/scene/case_scene.h"
+#include "apps/scene/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/kinematics.h"
@@ -75,13 +76,27 @@ int RunCheckCommand(const CheckCommandOptions& o) {
         "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
         "or bash scripts/install-deps.sh)");
   }
-  const double rpm = o.speed_rpm.value_or(c.engine.speed_rpm);
-  const LiftLawChoice choice = CaseLiftChoice(c);
+  CheckOptions options;
+  options.speed_rpm = o.speed_rpm;
   const LiftLaw law = MakeLiftLaw(c);
+  CheckResult result;
+  {
+    ProgressBar bar("overspeed");
+    options.progress = [&](int done, int total) { bar.Update(done, total); };
+    result = CheckScene(c, law, options);
+  }
+  const double rpm = result.speed_rpm;
+  const LiftLawChoice& choice = result.choice;
   const Kinematics kin(law, rpm);
-  const KinematicsSummary sum = kin.Summarize();
-  std::vector<std::string> skipped, log, failing;
-  bool ok = true;
+  const KinematicsSummary& sum = result.kinematics;
+  const std::vector<std::string>& skipped = result.skipped;
+  const std::vector<std::string>& failing = result.failing;
+  const bool ok = result.pass;
+  const std::optional<SpringCheckResult>& spring = result.spring;
+  const std::optional<SimulationResult>& run = result.run;
+  const std::optional<OverspeedResult>& sweep = result.sweep;
+  const std::optional<CamProfile>& profile = result.profile;
+  const double n_qs = result.n_qs_rpm, overspeed_rpm = result.overspeed_rpm;
 
   Report report("needle check: " + (c.title.empty() ? c.path : c.title));
   std::ostringstream summary;
@@ -136,92 +151,6 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     }
   }
   if (paper.rows.empty()) paper.rows.push_back({NAN, NAN});
-  if (!law.HasAcceleration()) {
-    skipped.push_back("acceleration panel and table column: the " + SplineKindName(law.kind()) +
-                      " spline is C¹ only (its second derivative jumps at the knots)");
-  }
-
-  // The spring check.
-  std::optional<SpringCheckResult> spring;
-  if (c.needle && c.spring && law.HasAcceleration()) {
-    spring = CheckSpring(c, law, rpm);
-    ok = ok && spring->pass;
-    for (const std::string& f : spring->failures) failing.push_back("spring check: " + f);
-  } else {
-    skipped.push_back(!law.HasAcceleration()
-                          ? "spring check: the spline is C¹ only (no acceleration)"
-                          : "spring check: the case has no [needle] and [spring] sections");
-  }
-
-  // The dynamics: one run at the rated speed, and the overspeed sweep.
-  std::optional<SimulationResult> run;
-  std::optional<OverspeedResult> sweep;
-  std::optional<Scene> scene;
-  double n_qs = NAN, overspeed_rpm = rpm * (c.spring ? c.spring->overspeed_factor : 1.2);
-  if (c.train && c.needle && c.spring && law.HasAcceleration()) {
-    scene = MakeScene(c);
-    SimulationOptions sim = OptionsFromCase(c);
-    sim.force_dynamic = true;  // the report shows the dynamic force
-    sim.record_series = true;
-    run = Simulate(*scene, rpm, sim);
-    if (scene->cam->play_m() == 0.0)
-      skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
-    n_qs = spring->liftoff_rpm_quasi_static;
-    OverspeedOptions os;
-    os.simulation = OptionsFromCase(c);
-    os.from_rpm = c.overspeed && c.overspeed->from_rpm ? *c.overspeed->from_rpm : rpm;
-    os.to_rpm = c.overspeed && c.overspeed->to_rpm
-                    ? *c.overspeed->to_rpm
-                    : (std::isfinite(n_qs) ? std::max(2.0 * n_qs, 2.0 * rpm) : 4.0 * rpm);
-    {
-      ProgressBar bar("overspeed");
-      sweep = OverspeedSearch(*scene, os, [&](int done, int total) { bar.Update(done, total); });
-    }
-
-    if (run->liftoff()) {
-      ok = false;
-      failing.push_back("dynamics: the needle lifts off the cam at the rated speed " +
-                        Fixed(rpm, 0) + " rpm");
-    }
-    // A run that did not end with the needle at rest is no proof of anything.
-    if (run->status != RunStatus::kComplete) {
-      ok = false;
-      failing.push_back("dynamics: undecided at the rated speed, the run is " +
-                        RunStatusName(run->status) + ": " + run->status_reason);
-    }
-    if (sweep->status == "run-budget" || sweep->status == "budget") {
-      ok = false;
-      failing.push_back("overspeed: undecided above " + Fixed(sweep->scanned_to_rpm, 1) + " rpm (" +
-                        (sweep->status == "budget"
-                             ? std::string("the scan budget ended the search")
-                             : std::string("the run there stopped on its budget")) +
-                        ")");
-    }
-    if (sweep->n_dyn_rpm && *sweep->n_dyn_rpm <= overspeed_rpm) {
-      ok = false;
-      failing.push_back("overspeed: n_dyn " + Fixed(*sweep->n_dyn_rpm, 1) + " rpm is at or below " +
-                        Fixed(overspeed_rpm, 1) +
-                        " rpm (the overspeed factor times the rated speed)");
-    }
-  } else {
-    skipped.push_back(
-        "dynamics and overspeed: the case has no [train] section (contact stiffness, play)");
-  }
-
-  // The cam profile, when the case has [profile].
-  std::optional<CamProfile> profile;
-  if (c.profile) {
-    profile = MakeCaseProfile(c, law);
-    if (profile->undercut) {
-      ok = false;
-      failing.push_back("cam profile: the profile undercuts (least radius " +
-                        Fixed(profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
-                        Fixed(profile->min_profile_radius_at_rad / kDeg, 1) + "°)");
-    }
-  } else {
-    skipped.push_back("cam profile: the case has no [profile] section");
-  }
-
   // ---- the report ----
   report.AddHtml(std::string("<p>Overall: ") + Verdict(ok) + "</p>");
   if (!failing.empty()) {
@@ -333,7 +262,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     std::ostringstream d;
     d << "<h2>Dynamics at " << Fixed(rpm, 0) << " rpm</h2><table>"
       << Row("solver", Escape(r.method) + " (" + Escape(r.method_reason) + "), rtol " +
-                           Sci(OptionsFromCase(c).integrator.rtol))
+                           Sci(result.run_options.integrator.rtol))
       << Row("steps, right-hand sides, events", std::to_string(r.stats.steps) + ", " +
                                                     std::to_string(r.stats.rhs_evaluations) + ", " +
                                                     std::to_string(r.stats.events))

@@ -11,6 +11,7 @@
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/scene/case_scene.h"
+#include "apps/scene/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/output.h"
@@ -35,8 +36,8 @@ SimulationOptions Options(const Case& c, const std::optional<std::string>& metho
     o.method = *method;
   }
   if (rtol) {
-    if (!(*rtol >= 1e-14 && *rtol <= 1e-2))
-      throw CaseError("--rtol: must be in [1e-14, 1e-2], got " + std::to_string(*rtol));
+    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
+      throw CaseError("--rtol: must be in " + RtolRangeText() + ", got " + std::to_string(*rtol));
     o.integrator.rtol = *rtol;
     if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = DefaultAtol(*rtol);
   }
@@ -171,8 +172,10 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
   cmd->add_option("--from", o.from_rpm,
                   "start of the sweep, rpm (default: [overspeed] from_rpm or the rated speed)");
-  cmd->add_option("--to", o.to_rpm,
-                  "end of the sweep, rpm (default: [overspeed] to_rpm or 2 x n_qs)");
+  cmd->add_option(
+      "--to", o.to_rpm,
+      "end of the sweep, rpm (default: [overspeed] to_rpm, else the larger of 2 x n_qs and 2 x the "
+      "rated speed)");
   cmd->add_option("--method", o.method, "auto, dopri5, cvode-bdf or cvode-adams");
   cmd->add_option("--rtol", o.rtol, "relative tolerance");
   cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
@@ -193,11 +196,9 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   opt.simulation = Options(c, o.method, o.rtol);
   opt.threads = o.threads;
   opt.step_rpm = o.step_rpm.value_or(0.0);
-  opt.from_rpm = o.from_rpm.value_or(c.overspeed && c.overspeed->from_rpm ? *c.overspeed->from_rpm
-                                                                          : c.engine.speed_rpm);
-  const double default_to = std::isfinite(n_qs) ? 2.0 * n_qs : 4.0 * c.engine.speed_rpm;
-  opt.to_rpm =
-      o.to_rpm.value_or(c.overspeed && c.overspeed->to_rpm ? *c.overspeed->to_rpm : default_to);
+  const SweepRange range = DefaultSweepRange(c, c.engine.speed_rpm, n_qs);
+  opt.from_rpm = o.from_rpm.value_or(range.from_rpm);
+  opt.to_rpm = o.to_rpm.value_or(range.to_rpm);
   if (!(opt.from_rpm > 0.0) || !std::isfinite(opt.from_rpm) || opt.from_rpm > 1e7)
     throw CaseError("--from: expected a speed in (0, 1e7] rpm, got " +
                     std::to_string(opt.from_rpm));

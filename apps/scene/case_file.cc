@@ -204,7 +204,7 @@ NeedleSection ReadNeedle(SectionReader r) {
   if (n.diameter_m && !(*n.diameter_m > 0.0)) {
     r.Fail("diameter_mm", "must be positive, got " + Number(*n.diameter_m * 1e3));
   }
-  // The gas load (model.md §4): stated, or a combustion pressure on the needle's area, by
+  // The gas load (docs/model.md §4): stated, or a combustion pressure on the needle's area, by
   // default Basu's 35 kg/cm² ("the spring must be strong enough to withstand the combustion
   // pressure"); 0 without a diameter.
   const auto gas = r.OptionalQuantity("gas_force", Dimension::kForce);
@@ -372,7 +372,7 @@ SolverSection ReadSolver(SectionReader r) {
   }
   if (auto rtol = r.OptionalNumber("rtol")) {
     if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
-      r.Fail("rtol", "must be in [1e-14, 1e-2], got " + Number(*rtol));
+      r.Fail("rtol", "must be in " + RtolRangeText() + ", got " + Number(*rtol));
     s.rtol = *rtol;
   }
   if (auto atol = r.OptionalQuantity("atol", Dimension::kLength)) {

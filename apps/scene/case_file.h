@@ -72,7 +72,7 @@ struct PaperSection {
   std::optional<double> spring_preload_N;  ///< the preload Basu's formula gave
 };
 
-/// [train]: contacts and roller play of the dynamic model (model.md §3–4).
+/// [train]: contacts and roller play of the dynamic model (docs/model.md §3–4).
 struct TrainSection {
   double contact_stiffness_N_m = 0.0;   ///< k_c, > 0 (required)
   double contact_damping_ratio = 0.05;  ///< ζ_c, ≥ 0
@@ -91,7 +91,7 @@ struct SolverSection {
   long max_steps = 2000000;                  ///< step budget
   long max_events = 100000;                  ///< event budget
   std::optional<double> start_rad, end_rad;  ///< window override
-  /// Past the window's end, at most this much more while the needle settles (model.md §5)
+  /// Past the window's end, at most this much more while the needle settles (docs/model.md §5)
   double settle_limit_deg = 3600.0;
 };
 

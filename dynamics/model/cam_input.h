@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The cam as the needle sees it, u(θ), with roller play δ ≥ 0 (model.md §3):
+/// The cam as the needle sees it, u(θ), with roller play δ ≥ 0 (docs/model.md §3):
 ///
 ///   inside [θ_0, θ_N]:  u = s(θ)
 ///   δ = 0:              u = s(θ_0) before, s(θ_N) after

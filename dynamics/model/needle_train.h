@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The one-mass needle train (model.md §4), as an Odeint-style system holding its
+/// The one-mass needle train (docs/model.md §4), as an Odeint-style system holding its
 /// parameters. State x = [y, ẏ, W, D]: lift (m, 0 = seated), velocity, and the two energy-audit
 /// integrals (§6) carried as extra states so the residual is a by-product:
 ///
@@ -102,7 +102,7 @@ class NeedleTrain {
   std::optional<TrainState> Reset(bool cam, const TrainState& x, double t,
                                   const Phase& phase) const;
 
-  /// The static-equilibrium start (model.md §5): y₀ and the mode it rests in.
+  /// The static-equilibrium start (docs/model.md §5): y₀ and the mode it rests in.
   TrainState EquilibriumStart() const;
   /// √((k_c + k_s + k)/m), rad/s: the fastest oscillation, for a first step.
   double FastestAngularFrequency() const;

@@ -36,7 +36,7 @@ Recorder::Recorder(const NeedleTrain& train, bool record_series)
     : train_(train), record_series_(record_series) {
   // A table that ends while still rising (or falling faster than the ramp after it): the cam
   // input's slope drops at θ_N, a deceleration concentrated at one angle (u'' has a negative
-  // Dirac there). A separation there is lift-off (model.md §6, docs/model.md).
+  // Dirac there). A separation there is lift-off (docs/model.md §6, docs/model.md).
   // A drop below 1e-3 of the mean slope of the lift is roundoff of a closed end.
   const CamInput& cam = train.cam();
   const LiftLaw& law = cam.law();
@@ -89,7 +89,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
   if (in_table) min_fc_lift_ = std::min(min_fc_lift_, std::max(0.0, fc));
   // Separation episode: inside [θ0, θN], the cam not pushing and y > 1 µm.
   // An episode begins inside [θ0, θN]; one still open at θN goes on until the needle is back
-  // on the cam or on its seat (model.md §6).
+  // on the cam or on its seat (docs/model.md §6).
   const bool separated = (in_table || separated_) && !(fc > 0.0) && x[0] > kSeparationLift_m;
 
   if (separated && !separated_) {
@@ -104,7 +104,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
   if (separated) {
     Episode& e = episodes_.back();
     e.max_gap_m = std::max(e.max_gap_m, x[0] - c.u);
-    // model.md §6: a jump is any separation that reaches the deceleration zone, wherever it
+    // docs/model.md §6: a jump is any separation that reaches the deceleration zone, wherever it
     // began — a rebound in the acceleration zone that carries on over the crest is lift-off.
     if (Decelerating(th)) e.kind = "jump";
   }

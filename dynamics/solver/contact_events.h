@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Events of the needle train, written as signed witness functions of the state (SUNDIALS
-/// style), and the record they feed (model.md §6):
+/// style), and the record they feed (docs/model.md §6):
 ///
 ///   0  g_c            cam penetration          (upward crossing: an impact on the cam)
 ///   1  the cam law's force branch (compliant: k_c g_c + c_c ġ_c; the cam pushes iff the law
@@ -29,10 +29,10 @@ namespace needle {
 constexpr int kEventCount = 7;
 /// The witnesses of the two contacts: gap and force branch of the cam (0, 1) and the seat (2, 3).
 constexpr int kCamGap = 0, kCamBranch = 1, kSeatGap = 2, kSeatBranch = 3;
-/// Lift above which a needle off the cam counts as separated, m (model.md §6: 1 µm).
+/// Lift above which a needle off the cam counts as separated, m (docs/model.md §6: 1 µm).
 constexpr double kSeparationLift_m = 1e-6;
 
-/// Rest after the lift (model.md §5): speed below this, m/s …
+/// Rest after the lift (docs/model.md §5): speed below this, m/s …
 constexpr double kRestSpeed_m_s = 1e-4;
 /// … and net force below this fraction of P₀ + |F_g| (or of m·1 m/s² without loads).
 constexpr double kRestForceFraction = 1e-3;
@@ -46,7 +46,7 @@ EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainStat
 ContactMode ModeFromSigns(const NeedleTrain& train, const std::array<int, kEventCount>& signs);
 
 struct Episode {
-  /// "jump" (any part of it where s'' < 0 inside [θ_0, θ_N], model.md §6, or at θ_N when the
+  /// "jump" (any part of it where s'' < 0 inside [θ_0, θ_N], docs/model.md §6, or at θ_N when the
   /// cam input's slope drops there, an impulsive deceleration) or "bounce"
   std::string kind;
   double start_rad = 0.0;
@@ -88,7 +88,7 @@ class Recorder {
   void Finish(double t, const TrainState& x, const Phase& phase);
   /// The run stopped on a budget at this angle: an open episode ends there, marked open.
   void Stopped(double crank_rad);
-  /// The needle has landed and come to rest (model.md §5): not separated, the cam input no
+  /// The needle has landed and come to rest (docs/model.md §5): not separated, the cam input no
   /// longer moving, a contact pushing, |ẏ| ≤ kRestSpeed_m_s and the net force on the needle
   /// below kRestForceFraction of the spring and gas loads (so a contact oscillation caught at
   /// its turning point is not taken for rest).
@@ -120,7 +120,7 @@ class Recorder {
   void Update(double t, const TrainState& x, const Phase& phase);
   /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
   bool InLift(double crank_rad) const;
-  /// Inside the deceleration zone at this angle (model.md §6).
+  /// Inside the deceleration zone at this angle (docs/model.md §6).
   bool Decelerating(double crank_rad) const;
 
   const NeedleTrain& train_;

@@ -9,7 +9,7 @@
 //   - restarts: after a mode switch or a reset the backend restarts at the event;
 //   - the cam input's breaks: steps end exactly on every break, the cam is evaluated on the
 //     segment's own side of it, and the backend restarts past it;
-//   - budgets (steps, events), recording (Recorder) and the end of the run (model.md §5).
+//   - budgets (steps, events), recording (Recorder) and the end of the run (docs/model.md §5).
 #include <algorithm>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
@@ -45,7 +45,7 @@ std::array<int, kEventCount> Signs(const EventValues& v) {
   return s;
 }
 
-// The end of a run (model.md §5), after a step ending at t: true when the run is over (at or
+// The end of a run (docs/model.md §5), after a step ending at t: true when the run is over (at or
 // past t_end with the needle at rest). The first time past t_end with the needle still moving,
 // `horizon` moves from t_end to `t_limit` and `extended` is set.
 bool RunIsOver(double t, const TrainState& x, const Phase& phase, const Recorder& recorder,

@@ -43,6 +43,8 @@ std::string MethodList();
 /// The relative tolerance's range, [kMinRtol, kMaxRtol].
 constexpr double kMinRtol = 1e-14;
 constexpr double kMaxRtol = 1e-2;
+/// "[1e-14, 1e-2]": the range as messages print it (both ends are powers of ten).
+std::string RtolRangeText();
 /// The default absolute tolerance on the lift is this fraction of rtol, m.
 constexpr double kAtolPerRtol_m = 1e-3;
 
@@ -57,7 +59,7 @@ struct IntegratorOptions {
   long max_steps = 2000000;  ///< step budget; exceeding it stops the run (BudgetExceeded)
   long max_events = 100000;  ///< event budget (located witness crossings)
   /// Past t_end the run goes on until the recorder finds the needle at rest
-  /// (Recorder::AtRest), for at most this long, s (model.md §5); 0: stop at t_end. ≥ 0.
+  /// (Recorder::AtRest), for at most this long, s (docs/model.md §5); 0: stop at t_end. ≥ 0.
   double settle_limit_s = 0.0;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;

@@ -68,10 +68,15 @@ std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const Integr
   return make ? make(system, o) : nullptr;
 }
 
+std::string RtolRangeText() {
+  const auto power = [](double v) { return "1e" + std::to_string(std::lround(std::log10(v))); };
+  return "[" + power(kMinRtol) + ", " + power(kMaxRtol) + "]";
+}
+
 void IntegratorOptions::Validate() const {
   if (!(rtol >= kMinRtol && rtol <= kMaxRtol)) {
     throw std::invalid_argument("IntegratorOptions.rtol = " + std::to_string(rtol) +
-                                ": must be in [1e-14, 1e-2]");
+                                ": must be in " + RtolRangeText());
   }
   if (!(atol_m > 0.0)) throw std::invalid_argument("IntegratorOptions.atol_m must be positive");
   if (!(atol_m_s >= 0.0) || !std::isfinite(atol_m_s))

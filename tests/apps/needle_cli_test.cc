@@ -414,7 +414,7 @@ TEST(NeedleCliCamTest, ProfileOfBasusExample1Cam) {
 namespace needle {
 namespace {
 
-// The spring verdict (model.md §7): a spring 80 % below Basu's formula, too weak for the
+// The spring verdict (docs/model.md §7): a spring 80 % below Basu's formula, too weak for the
 // combustion load, fails, naming both.
 TEST(SpringVerdictTest, WeakSpringOfANewEngineFails) {
   const auto r = testing::RunNeedle("spring " + testing::Case("new-engine-weak-spring.toml"));
@@ -441,14 +441,14 @@ TEST(SpringVerdictTest, WeakSpringOfANewEngineFails) {
 }
 
 // A separation that begins as a rebound where s'' ≥ 0 and carries on over the crest is
-// lift-off (model.md §6), and one still open when the run ends is reported as such.
+// lift-off (docs/model.md §6), and one still open when the run ends is reported as such.
 TEST(LiftOffTest, ReboundOverTheCrestIsAJumpAndAnOpenEpisodeIsReported) {
   const auto r = testing::RunNeedle("simulate " + testing::Case("basu-cam4-light-spring.toml") +
                                     " --rpm 4000");
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("LIFT-OFF: the needle leaves the cam"), std::string::npos) << r.out;
   // Starts at 6.28°, in the acceleration zone (s'' > 0 up to ≈ 12°), and spans the crest.
-  // The run goes on past the window (60°) until the needle is back and at rest (model.md §5):
+  // The run goes on past the window (60°) until the needle is back and at rest (docs/model.md §5):
   // the flight ends on the seat at 342.2°, 13.46 mm up at its top, not cut at 60° and 7.70 mm.
   EXPECT_NE(r.out.find("  jump 6.279 .. 342.208 deg, largest gap 13.4575 mm\n"), std::string::npos)
       << r.out;

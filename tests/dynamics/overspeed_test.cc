@@ -112,7 +112,7 @@ TEST(OverspeedTest, EveryBundledSceneLiftsOffAtOrBelowItsQuasiStaticSpeed) {
 namespace needle {
 namespace {
 
-// model.md §6: n_dyn does not depend on the top of the searched range — speeds are scanned
+// docs/model.md §6: n_dyn does not depend on the top of the searched range — speeds are scanned
 // upward in steps of Δn from the start, whatever the end.
 TEST(OverspeedScanTest, NdynDoesNotDependOnTheTopOfTheRange) {
   const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-cam4-light-spring.toml");

@@ -62,7 +62,7 @@ Scene LashScene(double play_m, double ramp_deg) {
 TEST(SimulationTest, LashTakeUpStrikesAtOmegaTimesTheRampSlope) {
   const Scene s = LashScene(0.5e-3, 10.0);
   const double rpm = 400, omega = OmegaFromRpm(rpm);
-  // Resting on the seat: y₀ = −(P₀ − F_g)/(k_s + k) (model.md §5; F_g is Basu's gas load on
+  // Resting on the seat: y₀ = −(P₀ − F_g)/(k_s + k) (docs/model.md §5; F_g is Basu's gas load on
   // Example 2's needle). The ramp rises from −δ at θ₀ − X with slope (s(θ₀) + δ)/X; it meets
   // the needle where u = y₀.
   const double y0 =

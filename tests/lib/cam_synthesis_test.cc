@@ -193,9 +193,9 @@ TEST(CamSynthesisStepLimitsTest, SpringReserveSteersTheDeceleration) {
   // K = 1.5 the decelerating side keeps (P₀ + kS) ≥ 1.5·m·ω²·|S''| at every step.
   SynthesisSpec s = Paper();
   s.min_spring_reserve = 1.5;
-  s.spring_preload_N = 500;
-  s.spring_rate_N_m = 20e3;
-  s.moving_mass_kg = 0.2;
+  s.train.preload_N = 500;
+  s.train.rate_N_m = 20e3;
+  s.train.mass_kg = 0.2;
   s.cam_omega = OmegaFromRpm(1000);
   const SynthesizedLaw law = SynthesizeRise(s);
   EXPECT_TRUE(law.spring_reserve_limited);

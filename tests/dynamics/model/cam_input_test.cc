@@ -1,4 +1,4 @@
-// The cam as the needle sees it (model.md §3).
+// The cam as the needle sees it (docs/model.md §3).
 #include "dynamics/model/cam_input.h"
 
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@ LiftLaw Law(SplineKind kind = SplineKind::kNotAKnot) {
   LiftTable t;
   for (int i = 0; i <= 4; ++i) {  // s = 2 mm · sin(πθ/0.4): end slopes ±π/0.4 · 2 mm
     t.crank_rad.push_back(0.1 * i);
-    t.lift_m.push_back(2e-3 * std::sin(3.14159265358979323846 * 0.1 * i / 0.4));
+    t.lift_m.push_back(2e-3 * std::sin(kPi * 0.1 * i / 0.4));
   }
   SplineOptions o;
   o.kind = kind;

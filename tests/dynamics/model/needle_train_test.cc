@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dynamics/solver/integrator.h"
+#include "lib/units.h"
 #include "tests/dynamics/test_laws.h"
 
 namespace needle {
@@ -39,7 +40,7 @@ LiftLaw Bump() {
   LiftTable t;
   for (int i = 0; i <= 20; ++i) {
     t.crank_rad.push_back(0.2 + i * 0.05);
-    t.lift_m.push_back(1e-3 * (1.0 - std::cos(2.0 * 3.141592653589793 * i / 20.0)));
+    t.lift_m.push_back(1e-3 * (1.0 - std::cos(2.0 * kPi * i / 20.0)));
   }
   return LiftLaw(t, SplineOptions{});
 }

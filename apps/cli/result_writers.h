@@ -1,0 +1,43 @@
+#pragma once
+/// @file
+/// The writers that consume a result's field table (lib/result_fields.h): JSON members and
+/// text values. A command formats; it does not convert units itself.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lib/output.h"
+#include "lib/result_fields.h"
+
+namespace needle {
+
+/// Sets j[field.Key()] to each field's shown value, or null when it has none.
+inline void PutFields(nlohmann::json& j, const std::vector<Field>& fields) {
+  for (const Field& f : fields) {
+    const auto v = f.Shown();
+    j[f.Key()] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  }
+}
+
+/// The field named `key` (its Key()) from a table; throws std::logic_error when absent.
+inline const Field& FieldAt(const std::vector<Field>& fields, const std::string& key) {
+  for (const Field& f : fields)
+    if (f.Key() == key) return f;
+  throw std::logic_error("no result field " + key);
+}
+
+/// "value" with the field's decimals (no unit), or "none".
+inline std::string ValueText(const Field& f) {
+  const auto v = f.Shown();
+  return v ? Fixed(*v, f.decimals) : std::string("none");
+}
+
+/// "value unit", or "none".
+inline std::string FieldText(const Field& f) {
+  const auto v = f.Shown();
+  if (!v) return "none";
+  return f.unit.text[0] == '\0' ? Fixed(*v, f.decimals) : Fixed(*v, f.decimals) + " " + f.unit.text;
+}
+
+}  // namespace needle

@@ -1,0 +1,104 @@
+#include "apps/scene/check_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "apps/scene/case_profile.h"
+#include "apps/scene/case_scene.h"
+#include "lib/output.h"
+#include "lib/units.h"
+
+namespace needle {
+
+SweepRange DefaultSweepRange(const Case& c, double rated_rpm, double n_qs_rpm) {
+  SweepRange r;
+  r.from_rpm = c.overspeed && c.overspeed->from_rpm ? *c.overspeed->from_rpm : rated_rpm;
+  r.to_rpm =
+      c.overspeed && c.overspeed->to_rpm
+          ? *c.overspeed->to_rpm
+          : (std::isfinite(n_qs_rpm) ? std::max(2.0 * n_qs_rpm, 2.0 * rated_rpm) : 4.0 * rated_rpm);
+  return r;
+}
+
+CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options) {
+  CheckResult r;
+  r.speed_rpm = options.speed_rpm.value_or(c.engine.speed_rpm);
+  const double rpm = r.speed_rpm;
+  r.choice = CaseLiftChoice(c);
+  r.kinematics = Kinematics(law, rpm).Summarize();
+  r.overspeed_rpm = rpm * (c.spring ? c.spring->overspeed_factor : 1.2);
+  const auto fail = [&r](const std::string& what) { r.failing.push_back(what); };
+  if (!law.HasAcceleration()) {
+    r.skipped.push_back("acceleration panel and table column: the " + SplineKindName(law.kind()) +
+                        " spline is C¹ only (its second derivative jumps at the knots)");
+  }
+
+  // The spring check.
+  if (c.needle && c.spring && law.HasAcceleration()) {
+    r.spring = CheckSpring(c, law, rpm);
+    r.n_qs_rpm = r.spring->liftoff_rpm_quasi_static;
+    for (const std::string& f : r.spring->failures) fail("spring check: " + f);
+    if (!r.spring->pass && r.spring->failures.empty()) fail("spring check: fails");
+  } else {
+    r.skipped.push_back(!law.HasAcceleration()
+                            ? "spring check: the spline is C¹ only (no acceleration)"
+                            : "spring check: the case has no [needle] and [spring] sections");
+  }
+
+  // The dynamics: one run at the rated speed, and the overspeed sweep.
+  if (c.train && c.needle && c.spring && law.HasAcceleration()) {
+    const Scene scene = MakeScene(c);
+    r.run_options = OptionsFromCase(c);
+    SimulationOptions sim = r.run_options;
+    sim.force_dynamic = true;  // the report shows the dynamic force
+    sim.record_series = true;
+    r.run = Simulate(scene, rpm, sim);
+    if (scene.cam->play_m() == 0.0)
+      r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
+    r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);
+    OverspeedOptions os;
+    os.simulation = r.run_options;
+    os.from_rpm = r.sweep_range.from_rpm;
+    os.to_rpm = r.sweep_range.to_rpm;
+    r.sweep = OverspeedSearch(scene, os, options.progress);
+
+    if (r.run->liftoff()) {
+      fail("dynamics: the needle lifts off the cam at the rated speed " + Fixed(rpm, 0) + " rpm");
+    }
+    // A run that did not end with the needle at rest is no proof of anything.
+    if (r.run->status != RunStatus::kComplete) {
+      fail("dynamics: undecided at the rated speed, the run is " + RunStatusName(r.run->status) +
+           ": " + r.run->status_reason);
+    }
+    const OverspeedResult& s = *r.sweep;
+    if (s.status == "run-budget" || s.status == "budget") {
+      fail("overspeed: undecided above " + Fixed(s.scanned_to_rpm, 1) + " rpm (" +
+           (s.status == "budget" ? std::string("the scan budget ended the search")
+                                 : std::string("the run there stopped on its budget")) +
+           ")");
+    }
+    if (s.n_dyn_rpm && *s.n_dyn_rpm <= r.overspeed_rpm) {
+      fail("overspeed: n_dyn " + Fixed(*s.n_dyn_rpm, 1) + " rpm is at or below " +
+           Fixed(r.overspeed_rpm, 1) + " rpm (the overspeed factor times the rated speed)");
+    }
+  } else {
+    r.skipped.push_back(
+        "dynamics and overspeed: the case has no [train] section (contact stiffness, play)");
+  }
+
+  // The cam profile, when the case has [profile].
+  if (c.profile) {
+    r.profile = MakeCaseProfile(c, law);
+    if (r.profile->undercut) {
+      fail("cam profile: the profile undercuts (least radius " +
+           Fixed(r.profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
+           Fixed(r.profile->min_profile_radius_at_rad / kDeg, 1) + "°)");
+    }
+  } else {
+    r.skipped.push_back("cam profile: the case has no [profile] section");
+  }
+  r.pass = r.failing.empty();  // one rule: a scene passes when nothing fails
+  return r;
+}
+
+}  // namespace needle

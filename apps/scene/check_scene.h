@@ -1,0 +1,70 @@
+#pragma once
+/// @file
+/// "Check a scene" as a library function: what `needle check` decides, with the pass/fail
+/// policy in one place (docs/model.md §8). A scene passes when every part it has passes:
+///
+///   - the spring check ([needle] and [spring], a C² lift law): spring/spring_check.h;
+///   - the dynamics at the rated speed n ([train]): no lift-off, and the run complete (the
+///     needle at rest before the run window's end);
+///   - the overspeed sweep: n_dyn above f·n (f = [spring] overspeed_factor, 1.2), and the
+///     sweep decided (neither budget ended it);
+///   - the cam profile ([profile]): no undercut.
+///
+/// A part the scene does not have is skipped and named, never passed silently. The command
+/// only formats the result (text, JSON, the HTML report).
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/scene/case_file.h"
+#include "dynamics/overspeed.h"
+#include "dynamics/simulation.h"
+#include "lib/cam_profile.h"
+#include "lib/kinematics.h"
+#include "spring/spring_check.h"
+
+namespace needle {
+
+/// The overspeed sweep's range, rpm.
+struct SweepRange {
+  double from_rpm = 0.0;  ///< > 0
+  double to_rpm = 0.0;    ///< > from_rpm for a non-empty sweep
+};
+
+/// The default sweep of a case, used by `check` and `overspeed` alike: from [overspeed]
+/// from_rpm, else the rated speed; to [overspeed] to_rpm, else max(2·n_qs, 2·rated) when n_qs
+/// is finite and 4·rated when it is not (a lift law that never decelerates).
+SweepRange DefaultSweepRange(const Case& c, double rated_rpm, double n_qs_rpm);
+
+/// Options of CheckScene; every field has a default.
+struct CheckOptions {
+  std::optional<double> speed_rpm;  ///< rated speed, rpm; default [engine] speed_rpm
+  /// Called after each overspeed run with (done, total estimate); may be empty.
+  std::function<void(int, int)> progress;
+};
+
+/// What `needle check` found. All SI except speeds (rpm).
+struct CheckResult {
+  double speed_rpm = 0.0;                   ///< the rated speed checked
+  LiftLawChoice choice;                     ///< the spline and why
+  KinematicsSummary kinematics;             ///< open lift, extremes at the rated speed
+  std::optional<SpringCheckResult> spring;  ///< with [needle], [spring] and a C² law
+  std::optional<SimulationResult> run;      ///< the dynamic run at the rated speed
+  SimulationOptions run_options;            ///< the options it ran with
+  std::optional<OverspeedResult> sweep;     ///< the overspeed sweep
+  SweepRange sweep_range;                   ///< its range
+  std::optional<CamProfile> profile;        ///< with [profile]
+  double n_qs_rpm = NAN;                    ///< quasi-static lift-off; NaN without a spring
+  double overspeed_rpm = 0.0;               ///< f·n, the speed n_dyn must exceed
+  bool pass = true;                         ///< no part failed
+  std::vector<std::string> failing;         ///< one line per failing item, named
+  std::vector<std::string> skipped;         ///< one line per part not run, and why
+};
+
+/// Checks case `c` with lift law `law` (MakeLiftLaw(c)). Throws CaseError on a case that
+/// cannot be checked (a section that is present but invalid).
+CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options = {});
+
+}  // namespace needle

@@ -1,0 +1,68 @@
+#pragma once
+/// @file
+/// How a result describes its fields once, for every writer: a name, the SI value and the
+/// unit it is shown in. The JSON key and the CSV header are `name_unit` (`max_lift_mm`,
+/// `jump_deg`), the text shows `value unit`; the conversion from SI happens here and nowhere
+/// else:
+///
+///     shown = SI · factor   (mm, MPa, …)   or   SI / factor   (deg: rad / (π/180)).
+///
+/// Writers that consume these tables: apps/cli/result_writers.h (JSON, CSV, text).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace needle {
+
+/// A display unit: its key suffix (`mm_rad`), its text (`mm/rad`) and its factor from SI.
+struct DisplayUnit {
+  const char* key;      ///< suffix of JSON keys and CSV headers; "" for plain numbers
+  const char* text;     ///< as printed after a value; "" for plain numbers
+  double factor;        ///< > 0
+  bool divide = false;  ///< shown = SI / factor (angles); otherwise SI · factor
+
+  /// The SI value in this unit.
+  double FromSi(double si) const { return divide ? si / factor : si * factor; }
+};
+
+/// The display units results use (one table).
+namespace display {
+extern const DisplayUnit kNone;       ///< a plain number (a ratio, a count)
+extern const DisplayUnit kMm;         ///< m → mm
+extern const DisplayUnit kDegree;     ///< rad → deg
+extern const DisplayUnit kN;          ///< N
+extern const DisplayUnit kRpm;        ///< rpm (speeds are kept in rpm at the edges)
+extern const DisplayUnit kMPerS;      ///< m/s
+extern const DisplayUnit kMPa;        ///< Pa → MPa
+extern const DisplayUnit kMmPerRad;   ///< m/rad → mm/rad (a cam law's S')
+extern const DisplayUnit kMmPerRad2;  ///< m/rad² → mm/rad² (S'')
+extern const DisplayUnit kMmPerRad3;  ///< m/rad³ → mm/rad³ (S''')
+}  // namespace display
+
+/// One scalar of a result. An empty `si` is shown as null (JSON) or "none" (text).
+struct Field {
+  std::string name;          ///< key stem, e.g. "max_lift"; the key is name_unit
+  DisplayUnit unit;          ///< how it is shown
+  std::optional<double> si;  ///< the value in SI (or rpm for speeds)
+  int decimals = 3;          ///< digits after the point in text
+
+  /// name + "_" + unit key (or the name alone for plain numbers).
+  std::string Key() const;
+  /// The value in its display unit; empty when `si` is.
+  std::optional<double> Shown() const;
+};
+
+/// One column of a table (a CSV file, a JSON array of rows).
+struct Column {
+  std::string name;  ///< header stem; the header is name_unit
+  DisplayUnit unit;
+  std::string Key() const;
+};
+
+/// A CSV table: header from `columns`, each row's SI values converted by its column's unit,
+/// printed with `precision` significant digits. Every row has columns.size() values.
+std::string CsvTable(const std::vector<Column>& columns,
+                     const std::vector<std::vector<double>>& rows_si, int precision);
+
+}  // namespace needle
