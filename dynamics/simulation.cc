@@ -39,6 +39,22 @@ bool SimulationResult::liftoff() const {
   return false;
 }
 
+std::vector<Column> SeriesColumns() {
+  using namespace display;
+  return {{"crank", kDegree}, {"time", kS},          {"lift", kMm},     {"velocity", kMPerS},
+          {"cam", kMm},       {"contact_force", kN}, {"seat_force", kN}};
+}
+
+std::vector<std::vector<double>> SeriesRows(const SimulationResult& r) {
+  std::vector<std::vector<double>> rows;
+  rows.reserve(r.series.size());
+  for (const SeriesPoint& p : r.series) {
+    rows.push_back({p.crank_rad, p.time_s, p.lift_m, p.velocity_m_s, p.cam_m, p.contact_force_N,
+                    p.seat_force_N});
+  }
+  return rows;
+}
+
 RunWindow DefaultRunWindow(const Scene& scene) {
   RunWindow w;
   w.start_rad = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);

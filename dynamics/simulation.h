@@ -15,6 +15,7 @@
 #include "dynamics/model/needle_train.h"
 #include "dynamics/solver/contact_events.h"
 #include "dynamics/solver/integrator.h"
+#include "lib/result_fields.h"
 
 namespace needle {
 
@@ -68,6 +69,11 @@ struct SimulationResult {
   IntegrationStats stats;
   bool liftoff() const;  ///< any jump episode
 };
+
+/// The recorded series as a table, described once for its writers: crank_deg, time_s, lift_mm,
+/// velocity_m_s, cam_mm, contact_force_N, seat_force_N (columns, and one SI row per point).
+std::vector<Column> SeriesColumns();
+std::vector<std::vector<double>> SeriesRows(const SimulationResult& r);
 
 /// The run window [θ_a, θ_b] in crank rad (docs/model.md §5): from 5° before the cam input's
 /// rise to 20° after its fall, unless the scene gives its own start or end.

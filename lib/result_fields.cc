@@ -13,6 +13,7 @@ const DisplayUnit kDegree{"deg", "deg", ::needle::kDeg, true};
 const DisplayUnit kN{"N", "N", 1.0};
 const DisplayUnit kRpm{"rpm", "rpm", 1.0};
 const DisplayUnit kMPerS{"m_s", "m/s", 1.0};
+const DisplayUnit kS{"s", "s", 1.0};
 const DisplayUnit kMPa{"MPa", "MPa", 1e-6};
 const DisplayUnit kMmPerRad{"mm_rad", "mm/rad", 1e3};
 const DisplayUnit kMmPerRad2{"mm_rad2", "mm/rad2", 1e3};
@@ -25,7 +26,7 @@ std::string KeyOf(const std::string& name, const DisplayUnit& unit) {
 }
 }  // namespace
 
-std::string Field::Key() const { return KeyOf(name, unit); }
+std::string Field::Key() const { return key.empty() ? KeyOf(name, unit) : key; }
 
 std::optional<double> Field::Shown() const {
   if (!si) return std::nullopt;

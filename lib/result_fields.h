@@ -34,6 +34,7 @@ extern const DisplayUnit kDegree;     ///< rad → deg
 extern const DisplayUnit kN;          ///< N
 extern const DisplayUnit kRpm;        ///< rpm (speeds are kept in rpm at the edges)
 extern const DisplayUnit kMPerS;      ///< m/s
+extern const DisplayUnit kS;          ///< s
 extern const DisplayUnit kMPa;        ///< Pa → MPa
 extern const DisplayUnit kMmPerRad;   ///< m/rad → mm/rad (a cam law's S')
 extern const DisplayUnit kMmPerRad2;  ///< m/rad² → mm/rad² (S'')
@@ -46,11 +47,20 @@ struct Field {
   DisplayUnit unit;          ///< how it is shown
   std::optional<double> si;  ///< the value in SI (or rpm for speeds)
   int decimals = 3;          ///< digits after the point in text
+  /// The JSON key when it is not name_unit (a published key kept as it was, e.g.
+  /// `liftoff_rpm_quasi_static`); empty: name_unit.
+  std::string key = {};
 
-  /// name + "_" + unit key (or the name alone for plain numbers).
+  /// `key` if set, else name + "_" + unit key (or the name alone for plain numbers).
   std::string Key() const;
   /// The value in its display unit; empty when `si` is.
   std::optional<double> Shown() const;
+};
+
+/// A named group of fields (a JSON object inside the result's).
+struct FieldGroup {
+  std::string name;  ///< the member's key
+  std::vector<Field> fields;
 };
 
 /// One column of a table (a CSV file, a JSON array of rows).

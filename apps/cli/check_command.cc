@@ -10,6 +10,7 @@
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
+#include "apps/cli/result_writers.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_profile.h"
 #include "apps/scene/case_scene.h"
@@ -379,45 +380,27 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     j["failing"] = failing;
     j["skipped"] = skipped;
     j["report"] = path;
-    j["kinematics"] = {{"spline", SplineKindName(law.kind())},
-                       {"spline_reason", choice.reason},
-                       {"max_lift_mm", sum.max_lift_m * 1e3},
-                       {"open_deg", sum.open_rad / kDeg},
-                       {"close_deg", sum.close_rad / kDeg}};
+    for (const FieldGroup& group : CheckFields(result)) PutFields(j[group.name], group.fields);
+    j["kinematics"]["spline"] = SplineKindName(law.kind());
+    j["kinematics"]["spline_reason"] = choice.reason;
     if (spring) {
-      j["spring"] = {
-          {"pass", spring->pass},
-          {"preload_ok", spring->preload_ok},
-          {"combustion_ok", spring->combustion_ok},
-          {"basu_ok", spring->basu_ok},
-          {"failures", spring->failures},
-          {"preload_N", spring->train.preload_N},
-          {"gas_force_N", spring->gas_force_N},
-          {"basu_preload_N", spring->basu_preload_N ? nlohmann::json(*spring->basu_preload_N)
-                                                    : nlohmann::json(nullptr)}};
+      nlohmann::json& s = j["spring"];
+      s["pass"] = spring->pass;
+      s["preload_ok"] = spring->preload_ok;
+      s["combustion_ok"] = spring->combustion_ok;
+      s["basu_ok"] = spring->basu_ok;
+      s["failures"] = spring->failures;
     }
     if (run) {
-      j["dynamics"] = {
-          {"liftoff", run->liftoff()},           {"status", RunStatusName(run->status)},
-          {"status_reason", run->status_reason}, {"run_end_deg", run->run_end_rad / kDeg},
-          {"episodes", run->episodes.size()},    {"impacts", run->impacts.size()}};
+      nlohmann::json& d = j["dynamics"];
+      d["liftoff"] = run->liftoff();
+      d["status"] = RunStatusName(run->status);
+      d["status_reason"] = run->status_reason;
+      d["episodes"] = run->episodes.size();
+      d["impacts"] = run->impacts.size();
     }
-    if (sweep) {
-      j["overspeed"] = {{"liftoff_rpm_quasi_static",
-                         std::isfinite(n_qs) ? nlohmann::json(n_qs) : nlohmann::json(nullptr)},
-                        {"liftoff_rpm_dynamic", sweep->n_dyn_rpm ? nlohmann::json(*sweep->n_dyn_rpm)
-                                                                 : nlohmann::json(nullptr)},
-                        {"overspeed_rpm", overspeed_rpm},
-                        {"status", sweep->status},
-                        {"step_rpm", sweep->step_rpm},
-                        {"scanned_to_rpm", sweep->scanned_to_rpm}};
-    }
-    if (profile) {
-      j["profile"] = {
-          {"undercut", profile->undercut},
-          {"min_profile_radius_mm", profile->min_profile_radius_m * 1e3},
-          {"max_abs_pressure_angle_deg", std::abs(profile->max_pressure_angle_rad) / kDeg}};
-    }
+    if (sweep) j["overspeed"]["status"] = sweep->status;
+    if (profile) j["profile"]["undercut"] = profile->undercut;
     std::cout << j.dump(2) << '\n';
     return ok ? 0 : 1;
   }

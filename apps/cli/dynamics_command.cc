@@ -152,15 +152,8 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
     }
   }
   if (o.csv) {
-    std::ostringstream csv;
-    csv.precision(10);
-    csv << "crank_deg,time_s,lift_mm,velocity_m_s,cam_mm,contact_force_N,seat_force_N\n";
-    for (const SeriesPoint& p : r.series) {
-      csv << p.crank_rad / kDeg << ',' << p.time_s << ',' << p.lift_m * 1e3 << ',' << p.velocity_m_s
-          << ',' << p.cam_m * 1e3 << ',' << p.contact_force_N << ',' << p.seat_force_N << '\n';
-    }
     if (r.skipped) throw CaseError("--csv: the dynamic run was skipped (" + r.method_reason + ")");
-    WriteOutput({"--csv", *o.csv}, csv.str());
+    WriteOutput({"--csv", *o.csv}, CsvTable(SeriesColumns(), SeriesRows(r), 10));
   }
   std::cout << out.str() << std::flush;
   return r.liftoff() ? 1 : 0;

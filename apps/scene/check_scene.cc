@@ -101,4 +101,39 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
   return r;
 }
 
+std::vector<FieldGroup> CheckFields(const CheckResult& r) {
+  using namespace display;
+  const auto finite = [](double v) {
+    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+  };
+  std::vector<FieldGroup> g;
+  g.push_back({"kinematics",
+               {{"max_lift", kMm, r.kinematics.max_lift_m, 3},
+                {"open", kDegree, r.kinematics.open_rad, 2},
+                {"close", kDegree, r.kinematics.close_rad, 2}}});
+  if (r.spring) {
+    g.push_back({"spring",
+                 {{"preload", kN, r.spring->train.preload_N, 1},
+                  {"gas_force", kN, r.spring->gas_force_N, 1},
+                  {"basu_preload", kN, r.spring->basu_preload_N, 1}}});
+  }
+  if (r.run) g.push_back({"dynamics", {{"run_end", kDegree, r.run->run_end_rad, 2}}});
+  if (r.sweep) {
+    const OverspeedResult& s = *r.sweep;
+    g.push_back({"overspeed",
+                 {{"n_qs", kRpm, finite(r.n_qs_rpm), 1, "liftoff_rpm_quasi_static"},
+                  {"n_dyn", kRpm, s.n_dyn_rpm, 1, "liftoff_rpm_dynamic"},
+                  {"overspeed", kRpm, r.overspeed_rpm, 1},
+                  {"step", kRpm, s.step_rpm, 2},
+                  {"scanned_to", kRpm, s.scanned_to_rpm, 1}}});
+  }
+  if (r.profile) {
+    g.push_back(
+        {"profile",
+         {{"min_profile_radius", kMm, r.profile->min_profile_radius_m, 2},
+          {"max_abs_pressure_angle", kDegree, std::abs(r.profile->max_pressure_angle_rad), 2}}});
+  }
+  return g;
+}
+
 }  // namespace needle

@@ -23,6 +23,7 @@
 #include "dynamics/simulation.h"
 #include "lib/cam_profile.h"
 #include "lib/kinematics.h"
+#include "lib/result_fields.h"
 #include "spring/spring_check.h"
 
 namespace needle {
@@ -62,6 +63,10 @@ struct CheckResult {
   std::vector<std::string> failing;         ///< one line per failing item, named
   std::vector<std::string> skipped;         ///< one line per part not run, and why
 };
+
+/// The result's numbers, described once, by part (kinematics, spring, dynamics, overspeed,
+/// profile; a part the scene lacks is absent). Verdicts and names stay in the struct.
+std::vector<FieldGroup> CheckFields(const CheckResult& r);
 
 /// Checks case `c` with lift law `law` (MakeLiftLaw(c)). Throws CaseError on a case that
 /// cannot be checked (a section that is present but invalid).

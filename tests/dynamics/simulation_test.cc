@@ -26,6 +26,23 @@ SimulationOptions Options(const std::string& method, double rtol, bool series = 
   return o;
 }
 
+// The series' CSV: its header and its units follow from one column table.
+TEST(SimulationTest, TheSeriesTableConvertsEachColumnFromSi) {
+  SimulationResult r;
+  SeriesPoint p;
+  p.crank_rad = kPi;
+  p.time_s = 0.5;
+  p.lift_m = 2e-3;
+  p.velocity_m_s = 0.25;
+  p.cam_m = 1e-3;
+  p.contact_force_N = 10;
+  p.seat_force_N = 0;
+  r.series = {p};
+  EXPECT_EQ(CsvTable(SeriesColumns(), SeriesRows(r), 10),
+            "crank_deg,time_s,lift_mm,velocity_m_s,cam_mm,contact_force_N,seat_force_N\n"
+            "180,0.5,2,0.25,1,10,0\n");
+}
+
 TEST(SimulationTest, StiffTrainAtLowSpeedFollowsTheQuasiStaticForce) {
   // Contact frequency ≫ cam frequency and no play: F_c(θ) = F_qs(θ) − m g̈ − k g with
   // g ≈ F/k_c, so |F_c − F_qs| ≲ (k/k_c)|F| + transients. Stated bound: 0.1 % of max F_qs

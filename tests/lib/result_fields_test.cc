@@ -16,6 +16,9 @@ TEST(ResultFieldsTest, KeysAreTheNameAndTheUnit) {
   EXPECT_EQ((Field{"max_S1", display::kMmPerRad, 1.0}.Key()), "max_S1_mm_rad");
   EXPECT_EQ((Field{"limits_used_fraction", display::kNone, 0.5}.Key()), "limits_used_fraction");
   EXPECT_EQ((Column{"S2", display::kMmPerRad2}.Key()), "S2_mm_rad2");
+  // A published key kept as it was.
+  EXPECT_EQ((Field{"n_qs", display::kRpm, 1.0, 1, "liftoff_rpm_quasi_static"}.Key()),
+            "liftoff_rpm_quasi_static");
 }
 
 // Shown values are the SI values converted the one way each unit says: angles divided by

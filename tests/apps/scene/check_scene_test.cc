@@ -58,6 +58,23 @@ TEST(CheckSceneTest, BasuExampleOnePasses) {
   EXPECT_EQ(r.overspeed_rpm, 1.2 * r.speed_rpm);
 }
 
+// The JSON's numbers come from one field table per part, in display units, under the keys
+// the JSON has always had.
+TEST(CheckSceneTest, FieldsDescribeTheNumbersOnce) {
+  const Case c = LoadCase(kCases + "basu-example1.toml");
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const std::vector<FieldGroup> g = CheckFields(r);
+  ASSERT_EQ(g.size(), 5u);  // kinematics, spring, dynamics, overspeed, profile
+  EXPECT_EQ(g[0].name, "kinematics");
+  EXPECT_EQ(g[0].fields[0].Key(), "max_lift_mm");
+  EXPECT_EQ(*g[0].fields[0].Shown(), r.kinematics.max_lift_m * 1e3);
+  EXPECT_EQ(g[3].name, "overspeed");
+  EXPECT_EQ(g[3].fields[0].Key(), "liftoff_rpm_quasi_static");
+  EXPECT_EQ(*g[3].fields[0].Shown(), r.n_qs_rpm);
+  EXPECT_EQ(g[3].fields[1].Key(), "liftoff_rpm_dynamic");
+  EXPECT_EQ(*g[3].fields[1].Shown(), *r.sweep->n_dyn_rpm);
+}
+
 // The spring 80 % below Basu's formula fails, named as the spring check's.
 TEST(CheckSceneTest, AWeakSpringFailsAndIsNamed) {
   const Case c = LoadCase(kCases + "new-engine-weak-spring.toml");
