@@ -43,7 +43,9 @@ int RunSynthCommand(const SynthCommandOptions& o) {
   const SynthesisResult r = SynthesizeCam(f);
   const SynthesizedLaw& rise = r.rise;
   const std::vector<Field> fields = SynthesisFields(r);
+  // v: the value alone; t: the value and its unit, both from the field table.
   const auto v = [&](const std::string& key) { return ValueText(FieldAt(fields, key)); };
+  const auto t = [&](const std::string& key) { return FieldText(FieldAt(fields, key)); };
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -60,43 +62,43 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     out << j.dump(2) << '\n';
   } else {
     out << (f.title.empty() ? f.path : f.title) << '\n'
-        << "rise " << v("lift_mm") << " mm in " << v("rise_deg") << " deg of cam, "
-        << rise.phi.size() - 1 << " steps; limits used at " << Fixed(100 * rise.scale, 2) << " %\n";
+        << "rise " << t("lift_mm") << " in " << t("rise_deg") << " of cam, " << rise.phi.size() - 1
+        << " steps; limits used at " << Fixed(100 * rise.scale, 2) << " %\n";
     if (rise.speed_limit_active) {
       out << "constant-speed section at S'max = " << Fixed(f.speed_limit * 1e3, 3)
           << " mm/rad from " << v("constant_speed_start_deg") << " to "
-          << v("constant_speed_end_deg") << " deg (" << v("constant_speed_length_deg") << " deg)\n";
+          << t("constant_speed_end_deg") << " (" << t("constant_speed_length_deg") << ")\n";
     } else if (rise.meet_speed > 0.0) {
-      out << "S' limit not active; the sides meet at S' = " << v("meet_speed_mm_rad")
-          << " mm/rad with S'' = 0 (lowered from where they would meet with a step in S'', "
+      out << "S' limit not active; the sides meet at S' = " << t("meet_speed_mm_rad")
+          << " with S'' = 0 (lowered from where they would meet with a step in S'', "
              "to keep the jerk limit)\n";
     } else {
       out << "S' limit not active: no constant-speed section\n";
     }
-    out << "max S' " << v("max_S1_mm_rad") << " mm/rad at " << v("max_S1_deg") << " deg; S'' "
-        << v("max_S2_mm_rad2") << " at " << v("max_S2_deg") << " deg and " << v("min_S2_mm_rad2")
-        << " mm/rad2 at " << v("min_S2_deg") << " deg; max |S'''| " << v("max_abs_S3_mm_rad3")
-        << " mm/rad3 at " << v("max_abs_S3_deg") << " deg\n";
+    out << "max S' " << t("max_S1_mm_rad") << " at " << t("max_S1_deg") << "; S'' "
+        << v("max_S2_mm_rad2") << " at " << t("max_S2_deg") << " and " << t("min_S2_mm_rad2")
+        << " at " << t("min_S2_deg") << "; max |S'''| " << t("max_abs_S3_mm_rad3") << " at "
+        << t("max_abs_S3_deg") << "\n";
     if (r.profile) {
-      out << "largest |pressure angle| " << v("max_abs_pressure_angle_deg") << " deg at "
-          << v("max_pressure_angle_at_deg") << " deg"
+      out << "largest |pressure angle| " << t("max_abs_pressure_angle_deg") << " at "
+          << t("max_pressure_angle_at_deg")
           << (f.max_pressure_angle_rad
                   ? " (limit " + Fixed(*f.max_pressure_angle_rad / kDeg, 1) + ")"
                   : "")
-          << "; profile radius min " << v("min_profile_radius_mm") << " mm; "
+          << "; profile radius min " << t("min_profile_radius_mm") << "; "
           << (r.profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
     }
     if (r.min_spring_reserve) {
       out << "spring reserve min " << Fixed(r.min_spring_reserve->value, 3) << " at "
-          << v("min_spring_reserve_deg") << " deg"
+          << t("min_spring_reserve_deg")
           << (f.min_spring_reserve
                   ? " (limit " + Fixed(*f.min_spring_reserve, 2) + ", steering every step)"
                   : "")
           << '\n';
     }
     if (r.max_contact_stress_Pa) {
-      out << "contact (Hertz) stress max " << v("max_contact_stress_MPa") << " MPa at cam "
-          << v("max_contact_stress_deg") << " deg"
+      out << "contact (Hertz) stress max " << t("max_contact_stress_MPa") << " at cam "
+          << t("max_contact_stress_deg")
           << (f.max_contact_stress_Pa ? " (limit " + Fixed(*f.max_contact_stress_Pa * 1e-6, 0) + ")"
                                       : "")
           << '\n';

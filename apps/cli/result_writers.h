@@ -33,7 +33,7 @@ inline std::string ValueText(const Field& f) {
   return v ? Fixed(*v, f.decimals) : std::string("none");
 }
 
-/// "value unit", or "none".
+/// "value unit" in the field's display unit, or "none".
 inline std::string FieldText(const Field& f) {
   const auto v = f.Shown();
   if (!v) return "none";

@@ -40,6 +40,16 @@ Displacement TableDisplacement(const SynthesizedLaw& law) {
   };
 }
 
+// The moving mass and the spring of [checks] (no gas load: the synthesis file states none).
+// Call only when the file gives a preload and a mass.
+RigidTrain TrainOf(const SynthesisFile& f) {
+  RigidTrain train;
+  train.mass_kg = *f.moving_mass_kg;
+  train.preload_N = *f.spring_preload_N;
+  train.rate_N_m = f.spring_rate_N_m.value_or(0.0);
+  return train;
+}
+
 SynthesisSpec SpecOf(const SynthesisFile& f, double cam_omega) {
   SynthesisSpec spec;
   spec.rise_rad = f.rise_rad;
@@ -57,9 +67,7 @@ SynthesisSpec SpecOf(const SynthesisFile& f, double cam_omega) {
   }
   if (f.min_spring_reserve) {
     spec.min_spring_reserve = *f.min_spring_reserve;
-    spec.train.preload_N = *f.spring_preload_N;
-    spec.train.rate_N_m = f.spring_rate_N_m.value_or(0.0);
-    spec.train.mass_kg = *f.moving_mass_kg;
+    spec.train = TrainOf(f);
     spec.cam_omega = cam_omega;
   }
   return spec;
@@ -79,22 +87,17 @@ SynthesisResult SynthesizeCam(const SynthesisFile& f) {
   }
   r.law = f.mirror_fall ? WithFall(r.rise) : r.rise;
   const SynthesizedLaw& rise = r.rise;
-  r.max_s1.value = r.max_s2.value = r.min_s2.value = -INFINITY;
-  r.max_abs_s3.value = -INFINITY;
-  double least_s2 = -INFINITY;  // the largest −S''
+  r.max_s1.value = r.max_s2.value = r.max_abs_s3.value = -INFINITY;
+  r.min_s2.value = INFINITY;
   for (size_t i = 0; i < rise.phi.size(); ++i) {
     if (rise.s1[i] > r.max_s1.value) r.max_s1 = {rise.s1[i], rise.phi[i]};
     if (rise.s2[i] > r.max_s2.value) r.max_s2 = {rise.s2[i], rise.phi[i]};
-    if (-rise.s2[i] > least_s2) {
-      least_s2 = -rise.s2[i];
-      r.min_s2.at_rad = rise.phi[i];
-    }
+    if (rise.s2[i] < r.min_s2.value) r.min_s2 = {rise.s2[i], rise.phi[i]};
     // Every step counts, the junction too: with a jerk limit the sides meet with S'' = 0, and
     // without one a step in S'' there is the law's, reported as it is.
     if (i > 0 && std::abs(rise.s3[i]) > r.max_abs_s3.value)
       r.max_abs_s3 = {std::abs(rise.s3[i]), rise.phi[i]};
   }
-  r.min_s2.value = -least_s2;
 
   if (f.base_radius_m) {
     FollowerGeometry g;
@@ -118,10 +121,7 @@ SynthesisResult SynthesizeCam(const SynthesisFile& f) {
   // The spring reserve where S'' < 0, and the Hertz line-contact stress with
   // F = m ω² S'' + P₀ + k S, 1/R* = 1/ρ + 1/r_r (ρ signed, + convex), E* = E/(2(1 − ν²)).
   if (f.spring_preload_N && f.moving_mass_kg) {
-    RigidTrain train;
-    train.mass_kg = *f.moving_mass_kg;
-    train.preload_N = *f.spring_preload_N;
-    train.rate_N_m = f.spring_rate_N_m.value_or(0.0);
+    const RigidTrain train = TrainOf(f);
     const double w2 = r.cam_omega * r.cam_omega;
     LawExtreme reserve{INFINITY, 0.0};
     for (size_t i = 0; i < rise.phi.size(); ++i) {
