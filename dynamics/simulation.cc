@@ -39,6 +39,15 @@ bool SimulationResult::liftoff() const {
   return false;
 }
 
+RigidTrain RigidTrainOf(const Scene& scene) {
+  return RigidTrain{scene.train.mass_kg, scene.train.preload_N, scene.train.rate_N_m,
+                    scene.train.gas_force_N};
+}
+
+double QuasiStaticLiftoffRpm(const Scene& scene) {
+  return QuasiStaticLiftoffRpm(*scene.law, RigidTrainOf(scene));
+}
+
 std::vector<Column> SeriesColumns() {
   using namespace display;
   return {{"crank", kDegree}, {"time", kS},          {"lift", kMm},     {"velocity", kMPerS},
@@ -92,8 +101,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
                                 " times per cam event";
 
   // Skip the dynamics where the rigid answer is the answer.
-  RigidTrain rigid{scene.train.mass_kg, scene.train.preload_N, scene.train.rate_N_m,
-                   scene.train.gas_force_N};
+  const RigidTrain rigid = RigidTrainOf(scene);
   const ForceMinimum fmin = MinQuasiStaticForce(*scene.law, rigid, omega);
   if (!o.force_dynamic && scene.cam->play_m() == 0.0 && oscillations >= kRigidOscillations &&
       fmin.force_N >= kRigidMargin * scene.train.preload_N && scene.train.preload_N > 0.0) {

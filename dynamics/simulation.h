@@ -16,6 +16,7 @@
 #include "dynamics/solver/contact_events.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/result_fields.h"
+#include "lib/rigid_train.h"
 
 namespace needle {
 
@@ -69,6 +70,12 @@ struct SimulationResult {
   IntegrationStats stats;
   bool liftoff() const;  ///< any jump episode
 };
+
+/// The scene's train as the quasi-static check sees it: its mass, preload, rate and gas load.
+RigidTrain RigidTrainOf(const Scene& scene);
+
+/// The scene's quasi-static lift-off speed n_qs, rpm (spring/quasi_static.h on RigidTrainOf).
+double QuasiStaticLiftoffRpm(const Scene& scene);
 
 /// The recorded series as a table, described once for its writers: crank_deg, time_s, lift_mm,
 /// velocity_m_s, cam_mm, contact_force_N, seat_force_N (columns, and one SI row per point).

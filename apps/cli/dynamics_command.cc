@@ -44,11 +44,6 @@ SimulationOptions Options(const Case& c, const std::optional<std::string>& metho
   return o;
 }
 
-double QuasiStaticLiftoff(const Scene& s) {
-  return QuasiStaticLiftoffRpm(*s.law, RigidTrain{s.train.mass_kg, s.train.preload_N,
-                                                  s.train.rate_N_m, s.train.gas_force_N});
-}
-
 }  // namespace
 
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
@@ -117,7 +112,7 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
     j["run_end_deg"] = r.run_end_rad / kDeg;
     j["status"] = RunStatusName(r.status);
     j["status_reason"] = r.status_reason;
-    j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoff(scene));
+    j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoffRpm(scene));
     out << j.dump(2) << '\n';
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
@@ -184,7 +179,7 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
 int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
   const Scene scene = MakeScene(c);
-  const double n_qs = QuasiStaticLiftoff(scene);
+  const double n_qs = QuasiStaticLiftoffRpm(scene);
   OverspeedOptions opt;
   opt.simulation = Options(c, o.method, o.rtol);
   opt.threads = o.threads;

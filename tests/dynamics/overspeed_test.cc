@@ -11,10 +11,7 @@ namespace {
 
 const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
 
-double Nqs(const Scene& s) {
-  return QuasiStaticLiftoffRpm(*s.law, RigidTrain{s.train.mass_kg, s.train.preload_N,
-                                                  s.train.rate_N_m, s.train.gas_force_N});
-}
+double Nqs(const Scene& s) { return QuasiStaticLiftoffRpm(s); }
 
 OverspeedResult Search(const Scene& s, double from, double to, int threads) {
   OverspeedOptions o;
@@ -92,9 +89,7 @@ TEST(OverspeedTest, EveryBundledSceneLiftsOffAtOrBelowItsQuasiStaticSpeed) {
        {"basu-example1.toml", "basu-example2.toml", "basu-cam4-light-spring.toml"}) {
     const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + name);
     const Scene s = MakeScene(c);
-    const double n_qs = QuasiStaticLiftoffRpm(
-        *s.law,
-        RigidTrain{s.train.mass_kg, s.train.preload_N, s.train.rate_N_m, s.train.gas_force_N});
+    const double n_qs = QuasiStaticLiftoffRpm(s);
     OverspeedOptions o;
     o.from_rpm = c.overspeed->from_rpm.value();
     o.to_rpm = c.overspeed->to_rpm.value();

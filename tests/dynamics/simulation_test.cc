@@ -51,7 +51,7 @@ TEST(SimulationTest, StiffTrainAtLowSpeedFollowsTheQuasiStaticForce) {
   const Scene s = MakeScene(c);
   const double rpm = 100;
   const SimulationResult r = Simulate(*&s, rpm, Options("dopri5", 1e-9, true));
-  const RigidTrain rigid{s.train.mass_kg, s.train.preload_N, s.train.rate_N_m, s.train.gas_force_N};
+  const RigidTrain rigid = RigidTrainOf(s);
   const double omega = OmegaFromRpm(rpm);
   double fmax = 0, worst = 0;
   int compared = 0;

@@ -48,9 +48,7 @@ Scene StressScene(const Point& p, double* speed_rpm) {
   c.train->contact_damping_ratio = c.train->seat_damping_ratio = p.zeta;
   c.train->play_m = p.play_mm * 1e-3;
   Scene s = MakeScene(c);
-  const double n_qs = QuasiStaticLiftoffRpm(
-      *s.law,
-      RigidTrain{s.train.mass_kg, s.train.preload_N, s.train.rate_N_m, s.train.gas_force_N});
+  const double n_qs = QuasiStaticLiftoffRpm(s);
   *speed_rpm = std::min(20000.0, p.speed_factor * n_qs);
   return s;
 }
@@ -150,9 +148,7 @@ TEST(StressTest, ChatteringIsBoundedAndReported) {
   c.train->seat_damping_ratio = 1.0;
   c.train->contact_damping_ratio = 0.0;
   const Scene s = MakeScene(c);
-  const double n_qs = QuasiStaticLiftoffRpm(
-      *s.law,
-      RigidTrain{s.train.mass_kg, s.train.preload_N, s.train.rate_N_m, s.train.gas_force_N});
+  const double n_qs = QuasiStaticLiftoffRpm(s);
   SimulationOptions o;
   o.method = "dopri5";
   o.force_dynamic = true;
