@@ -128,12 +128,18 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     return r;
   }
 
+  NeedleTrain train(*scene.cam, scene.train, omega, theta_a);
   Method method;
   if (o.method == "auto") {
-    method = oscillations > kStiffOscillations ? Method::kCvodeBdf : Method::kDopri5;
-    r.method_reason = "auto: " + stiffness +
-                      (method == Method::kCvodeBdf ? " (> 2000: stiff, BDF)"
-                                                   : " (≤ 2000: explicit Dormand–Prince)");
+    if (const std::optional<std::string> refusal = ExactRefusal(train)) {
+      method = oscillations > kStiffOscillations ? Method::kCvodeBdf : Method::kDopri5;
+      r.method_reason = "auto: " + *refusal + "; " + stiffness +
+                        (method == Method::kCvodeBdf ? " (> 2000: stiff, BDF)"
+                                                     : " (≤ 2000: explicit Dormand–Prince)");
+    } else {
+      method = Method::kExact;
+      r.method_reason = "auto: the train is linear in every contact mode, solved in closed form";
+    }
   } else if (auto m = ParseMethod(o.method)) {
     method = *m;
     r.method_reason = "asked for";
@@ -143,7 +149,6 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
 
   r.method = MethodName(method);
 
-  NeedleTrain train(*scene.cam, scene.train, omega, theta_a);
   const TrainState x0 = train.EquilibriumStart();
   Recorder recorder(train, o.record_series);
   const double t_end = (theta_b - theta_a) / omega;

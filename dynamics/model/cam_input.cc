@@ -91,6 +91,22 @@ double CamInput::Slope(double th) const {
   return th < fall_end_ ? slopen_ : 0.0;
 }
 
+CamPiece CamInput::Piece(double th) const {
+  const double th0 = law_.start_rad(), thn = law_.end_rad();
+  if (th >= th0 && th < thn) {
+    const PiecewisePolynomial& spline = law_.spline();
+    const int i = spline.Piece(th);
+    const Eigen::MatrixXd& c = spline.coefficients();
+    CamPiece piece{spline.breaks()[i], std::vector<double>(c.cols())};
+    for (int k = 0; k < c.cols(); ++k) piece.coefficients[k] = c(i, k);
+    return piece;
+  }
+  // The same branches as U().
+  if (play_ == 0.0) return {th < th0 ? th0 : thn, {th < th0 ? s0_ : sn_}};
+  if (th < th0) return th >= rise_start_ ? CamPiece{th0, {s0_, slope0_}} : CamPiece{th0, {-play_}};
+  return th < fall_end_ ? CamPiece{thn, {sn_, slopen_}} : CamPiece{thn, {-play_}};
+}
+
 double CamInput::Curvature(double th) const {
   if (th >= law_.start_rad() && th < law_.end_rad()) return law_.spline().Evaluate(th, 2);
   return 0.0;

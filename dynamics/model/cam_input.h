@@ -17,6 +17,12 @@
 
 namespace needle {
 
+/// One segment of u between two breaks as a polynomial: u(θ) = Σ_k coefficients[k]·(θ − origin)^k.
+struct CamPiece {
+  double origin_rad = 0.0;
+  std::vector<double> coefficients;  ///< m/radᵏ, at least one
+};
+
 enum class RampKind {
   kTangent,  ///< Basu: the curve prolonged by its end tangents down to the base circle
   kLinear,   ///< ramps of a given angular length (`ramp_deg`)
@@ -35,6 +41,9 @@ class CamInput {
   double Slope(double crank_rad) const;
   /// d²u/dθ², m/rad² (0 on ramps and the base circle).
   double Curvature(double crank_rad) const;
+
+  /// The polynomial u is on the segment that holds θ (segments are [a, b) between breaks).
+  CamPiece Piece(double crank_rad) const;
 
   /// Start of u's rise (ramp foot, or θ_0 without play) and end of its fall, rad.
   double rise_start_rad() const { return rise_start_; }

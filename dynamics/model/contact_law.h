@@ -27,6 +27,14 @@ namespace needle {
 /// The two witness functions of one contact at (g, ġ): [0] the gap, [1] the force branch.
 using ContactWitnesses = std::array<double, 2>;
 
+/// A law linear in (g, ġ): its pushing force is F = ForceStiffness()·g + ForceDamping()·ġ and
+/// its witnesses are w₀ = gap_g·g + gap_rate·ġ and w₁ = branch_g·g + branch_rate·ġ. Method
+/// "exact" (docs/model.md §9) solves the train in closed form only under such laws.
+struct LinearWitnesses {
+  double gap_g = 1.0, gap_rate = 0.0;        ///< w₀'s coefficients (1, 0: the gap itself)
+  double branch_g = 0.0, branch_rate = 0.0;  ///< w₁'s coefficients (compliant: k, c)
+};
+
 class ContactLaw {
  public:
   virtual ~ContactLaw() = default;
@@ -53,6 +61,9 @@ class ContactLaw {
   /// The reset map at an impact (an upward crossing of the gap witness): the gap rate after
   /// the impact from the approach rate ġ⁻ > 0; nullopt: no reset, velocities continuous.
   virtual std::optional<double> ImpactRate(double /*g_rate_before*/) const { return std::nullopt; }
+  /// The law's linear form when it is linear in (g, ġ) (see LinearWitnesses); nullopt: not
+  /// linear, and method "exact" refuses the train.
+  virtual std::optional<LinearWitnesses> Linear() const { return std::nullopt; }
 };
 
 /// The compliant law: a spring k and a dashpot c = 2ζ√(k m) that push and never pull.
@@ -73,6 +84,9 @@ class CompliantContact final : public ContactLaw {
   double Potential(double g) const override;
   double ConservativeForce(double g) const override { return g > 0.0 ? k_ * g : 0.0; }
   double ConservativeStiffness(double g) const override { return g > 0.0 ? k_ : 0.0; }
+  std::optional<LinearWitnesses> Linear() const override {
+    return LinearWitnesses{1.0, 0.0, k_, c_};
+  }
 
  private:
   double k_, c_;

@@ -27,6 +27,34 @@ EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainStat
           lifted ? x[1] : 1.0};
 }
 
+std::optional<LinearForm> WitnessForm(const NeedleTrain& train, const Phase& phase, int index,
+                                      bool lifted) {
+  const std::optional<LinearWitnesses> cam = train.cam_law().Linear();
+  const std::optional<LinearWitnesses> seat = train.seat_law().Linear();
+  if (!cam || !seat) return std::nullopt;
+  // w = a g + b ġ with g_c = u − y, ġ_c = u̇ − ẏ (the cam) and g_s = −y, ġ_s = −ẏ (the seat).
+  const auto on_cam = [](double a, double b) { return LinearForm{-a, -b, a, b, 0.0}; };
+  const auto on_seat = [](double a, double b) { return LinearForm{-a, -b, 0.0, 0.0, 0.0}; };
+  const LinearForm one{0.0, 0.0, 0.0, 0.0, 1.0};
+  switch (index) {
+    case kCamGap:
+      return on_cam(cam->gap_g, cam->gap_rate);
+    case kCamBranch:
+      return on_cam(cam->branch_g, cam->branch_rate);
+    case kSeatGap:
+      return on_seat(seat->gap_g, seat->gap_rate);
+    case kSeatBranch:
+      return on_seat(seat->branch_g, seat->branch_rate);
+    case 4:
+      return LinearForm{1.0, 0.0, 0.0, 0.0, -kSeparationLift_m};
+    case 5:
+      return (phase.mode.cam || !lifted) ? one : LinearForm{0.0, -1.0, 0.0, 1.0, 0.0};
+    case 6:
+      return lifted ? LinearForm{0.0, 1.0, 0.0, 0.0, 0.0} : one;
+  }
+  return std::nullopt;
+}
+
 ContactMode ModeFromSigns(const NeedleTrain& train, const std::array<int, kEventCount>& s) {
   return {train.cam_law().Pushes(s[kCamGap], s[kCamBranch]),
           train.seat_law().Pushes(s[kSeatGap], s[kSeatBranch])};

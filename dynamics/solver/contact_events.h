@@ -19,6 +19,7 @@
 /// time series only when asked.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,18 @@ using EventValues = std::array<double, kEventCount>;
 
 /// The event functions at (t, x) in `phase` (its mode and its segment of the cam input).
 EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t);
+
+/// A linear form of the state and the cam input, w = y·y + v·ẏ + u·u + u_rate·u̇ + constant
+/// (u̇ = du/dt = ω u'), SI: how method "exact" sees a witness to bound it.
+struct LinearForm {
+  double y = 0.0, v = 0.0, u = 0.0, u_rate = 0.0, constant = 0.0;
+};
+
+/// Witness `index` of Events() as a linear form in `phase`, with the gate of witnesses 5 and 6
+/// taken as `lifted` (y > kSeparationLift_m); nullopt when a contact law is not linear
+/// (ContactLaw::Linear). Equal to Events() wherever the gate holds.
+std::optional<LinearForm> WitnessForm(const NeedleTrain& train, const Phase& phase, int index,
+                                      bool lifted);
 
 /// The mode implied by the signs of witnesses 0–3, by the train's contact laws.
 ContactMode ModeFromSigns(const NeedleTrain& train, const std::array<int, kEventCount>& signs);

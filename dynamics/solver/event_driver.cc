@@ -11,10 +11,14 @@
 //     segment's own side of it, and the backend restarts past it;
 //   - budgets (steps, events), recording (Recorder) and the end of the run (docs/model.md §5).
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <stdexcept>
+#include <utility>
 
 #include "dynamics/solver/stepper.h"
 
@@ -26,6 +30,10 @@ namespace {
 struct Breaks {
   std::vector<double> times, angles;
 };
+
+// Halvings one certified search may spend (ClosedFormPiece bounds are tight enough that a
+// simple crossing takes a few dozen; only a witness pinned at zero by round-off runs out).
+constexpr int kIsolationBudget = 256;
 
 Breaks BreakTimes(const NeedleTrain& train, double t_end) {
   Breaks out;
@@ -93,6 +101,60 @@ class EventDriver {
     }
   }
 
+  double Value(int i, double t) { return Events(train_, system_.phase, At(t), t)[i]; }
+  // The root of witness i inside a bracket [a, b] where it leaves sign s, by TOMS 748 to
+  // machine precision: the side past the crossing.
+  double Refine(int i, double a, double fa, double b, double fb) {
+    std::uintmax_t iterations = 100;
+    const auto r = boost::math::tools::toms748_solve(
+        [&](double at) { return Value(i, at); }, a, b, fa, fb,
+        boost::math::tools::eps_tolerance<double>(52), iterations);
+    // TOMS 748 may end on an exact zero, which counts as the negative side, or inside the
+    // round-off band of the function: then the earliest time found past the crossing, by
+    // bisection between its answer and b (which is past).
+    const int s = fa > 0.0 ? 1 : -1;
+    const auto past = [&](double at) { return (Value(i, at) > 0.0 ? 1 : -1) != s; };
+    if (past(r.second)) return r.second;
+    double lo = std::max(a, r.second), hi = b;
+    while (true) {
+      const double mid = lo + 0.5 * (hi - lo);
+      if (!(mid > lo && mid < hi)) break;
+      (past(mid) ? hi : lo) = mid;
+    }
+    return hi;
+  }
+  // The time steppers: witness i keeps sign s at `from` (value wa) and not at the step end
+  // (t_end, the dense output's end t_dense): the first of 16 samples without sign s brackets
+  // the crossing.
+  std::optional<double> Sampled(int i, int s, double from, double wa, double t_end,
+                                double t_dense) {
+    const int n = 16;
+    double a = from, fa = wa;
+    for (int k = 1; k <= n; ++k) {
+      const double b = k == n ? t_dense : from + (t_end - from) * k / n;
+      const double fb = Value(i, b);
+      if ((fb > 0.0 ? 1 : -1) == s) {
+        a = b;
+        fa = fb;
+        continue;
+      }
+      return Refine(i, a, fa, b, fb);
+    }
+    return std::nullopt;
+  }
+  // The closed form: the earliest time in [a, b] where witness i (value wa at a, sign s) leaves
+  // sign s, or nullopt, certified by the bounds of its linear form on the piece.
+  std::optional<double> Certified(const ClosedFormPiece& piece, int i, int s, double a, double wa,
+                                  double b);
+  std::optional<std::pair<double, double>> Isolate(const ClosedFormPiece& piece,
+                                                   const LinearForm& form, int i, int s, double a,
+                                                   double wa, double b, double wb, int& budget);
+
+  // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
+  // sample sets a new largest contact or seat force, or a new least contact force, locates that
+  // extreme by Brent's method between the samples around it and records it there.
+  void RecordExtremes(double t0, double t1);
+
   const NeedleTrain& train_;
   Recorder& recorder_;
   const IntegratorOptions& o_;
@@ -101,6 +163,89 @@ class EventDriver {
   TrainState z_{};
   size_t next_grid_ = 0;
 };
+
+std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i, int s, double a,
+                                             double wa, double b) {
+  if (!(b > a)) return std::nullopt;
+  // Witnesses 5 and 6 are gated by y > 1 µm; on [a, b] (up to witness 4's crossing) the gate
+  // is the one in the middle.
+  const bool lifted = piece.Motion(0.5 * (a + b))[0] > kSeparationLift_m;
+  const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
+  if (!form) throw std::logic_error("exact: a witness without a linear form");
+  int budget = kIsolationBudget;
+  const auto bracket = Isolate(piece, *form, i, s, a, wa, b, Value(i, b), budget);
+  if (!bracket) return std::nullopt;
+  return Refine(i, bracket->first, Value(i, bracket->first), bracket->second,
+                Value(i, bracket->second));
+}
+
+// On [a, b], w(a) = wa of sign s and w(b) = wb: the earliest sub-interval [lo, hi] where w
+// leaves sign s, holding exactly one crossing, or nullopt when w keeps sign s on [a, b]. With
+// |w'| ≤ L₁ and |w''| ≤ L₂ on [a, b] (ClosedFormPiece::Bounds):
+//   no crossing   when |w(a)| + |w(b)| > L₁ (b − a) (a root would need more slope), or when w is
+//                 monotone (|w'(a)| > L₂ (b − a)) and keeps its sign at both ends;
+//   one crossing  when w is monotone and changes sign;
+//   otherwise the interval is halved, the left half first. Below the time's round-off, or past
+//   kIsolationBudget halvings, an interval without a sign change at its ends counts as none (a
+//   tangency, or a witness pinned at zero by round-off).
+std::optional<std::pair<double, double>> EventDriver::Isolate(const ClosedFormPiece& piece,
+                                                              const LinearForm& form, int i, int s,
+                                                              double a, double wa, double b,
+                                                              double wb, int& budget) {
+  const bool change = (wb > 0.0 ? 1 : -1) != s;
+  const FormBounds bounds = piece.Bounds(form, a, b);
+  const double h = b - a;
+  const bool monotone = std::abs(bounds.slope_at_start) > bounds.curvature_bound * h;
+  if (!change && (monotone || std::abs(wa) + std::abs(wb) > bounds.slope_bound * h))
+    return std::nullopt;
+  if (change && monotone) return std::make_pair(a, b);
+  const double mid = a + 0.5 * h;
+  // The time's round-off, or a witness that stays within its own round-off of zero (a needle
+  // resting on its seat without load): the ends decide, as on the time steppers.
+  if (--budget < 0 || !(mid > a && mid < b)) {
+    return change ? std::optional<std::pair<double, double>>(std::make_pair(a, b)) : std::nullopt;
+  }
+  const double wm = Value(i, mid);
+  if (auto left = Isolate(piece, form, i, s, a, wa, mid, wm, budget)) return left;
+  return Isolate(piece, form, i, s, mid, wm, b, wb, budget);
+}
+
+void EventDriver::RecordExtremes(double t0, double t1) {
+  constexpr int n = 16;
+  const Phase& phase = system_.phase;
+  const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
+  const double min_fc = recorder_.min_contact_force_during_lift_N();
+  // The three forces, each signed so that its extreme is a minimum.
+  const auto force = [&](int which, double t) {
+    const TrainState x = At(t);
+    const Contacts c = train_.Evaluate(x, t, phase);
+    if (which == 0) return -train_.AppliedCamForce(c, phase);
+    if (which == 1) return -train_.AppliedSeatForce(c, phase);
+    return train_.AppliedCamForce(c, phase);
+  };
+  std::array<double, n + 1> ts;
+  std::array<std::array<double, n + 1>, 3> f;
+  for (int k = 0; k <= n; ++k) {
+    ts[k] = t0 + (t1 - t0) * k / n;
+    for (int which = 0; which < 3; ++which) f[which][k] = force(which, ts[k]);
+    if (k > 0 && k < n) recorder_.Sample(ts[k], At(ts[k]), phase);
+  }
+  const std::array<double, 3> record = {-max_fc, -max_fs, min_fc};
+  for (int which = 0; which < 3; ++which) {
+    const auto& v = f[which];
+    const int k = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
+    // Only a new record inside the step, and for the least contact force one while pushing.
+    if (k == 0 || k == n || !(v[k] < record[which])) continue;
+    if (which == 2 && !(v[k] > 0.0)) continue;
+    std::uintmax_t iterations = 60;
+    // In the fraction of the bracket: Brent's tolerance has an absolute part.
+    const double base = ts[k - 1], width = ts[k + 1] - ts[k - 1];
+    const auto best = boost::math::tools::brent_find_minima(
+        [&](double d) { return force(which, base + d * width); }, 0.0, 1.0,
+        std::numeric_limits<double>::digits / 2, iterations);
+    recorder_.Sample(base + best.first * width, At(base + best.first * width), phase);
+  }
+}
 
 IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   IntegrationStats stats;
@@ -136,46 +281,38 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     const bool at_segment_end = t1 >= segment_end - 1e-14 * std::max(1.0, std::abs(segment_end));
     if (at_segment_end) t1 = segment_end;
 
-    // Witness crossings, earliest first. A function has crossed when its sign at the step end
-    // differs from its stored sign; the bracket is the last of 16 samples that keeps the
-    // stored sign.
-    auto value = [&](int i, double at) { return Events(train_, phase, At(at), at)[i]; };
+    // Witness crossings, earliest first. A function has crossed when it leaves its stored sign
+    // inside the step: on the time steppers, seen at the step's end and bracketed by the last
+    // of 16 samples that keeps the stored sign; on the closed form, certified (Certified).
     double restart = -1.0;
     double from = t0;
     const TrainState x_end = system_.FromScaled(stepper_->CurrentState());
+    const ClosedFormPiece* piece = stepper_->ClosedForm();
     while (true) {
-      const EventValues end_values = Events(train_, phase, x_end, step.second);
       int first = -1;
       double first_t = t1;
+      const EventValues end_values = Events(train_, phase, x_end, step.second);
+      const EventValues from_values = Events(train_, phase, At(from), from);
+      double gate_end = t1;  // 5 and 6 are gated by witness 4: searched up to its crossing
       for (int i = 0; i < kEventCount; ++i) {
-        if ((end_values[i] > 0.0 ? 1 : -1) == signs[i]) continue;
-        const int n = 16;
-        double a = from, fa = value(i, from);
-        double root = from;  // roundoff at a restart: the function is already past zero
-        if ((fa > 0.0 ? 1 : -1) == signs[i]) {
-          for (int k = 1; k <= n; ++k) {
-            const double b = k == n ? step.second : from + (t1 - from) * k / n;
-            const double fb = value(i, b);
-            if ((fb > 0.0 ? 1 : -1) == signs[i]) {
-              a = b;
-              fa = fb;
-              continue;
-            }
-            std::uintmax_t iterations = 100;
-            const auto r = boost::math::tools::toms748_solve(
-                [&](double at) { return value(i, at); }, a, b, fa, fb,
-                boost::math::tools::eps_tolerance<double>(52), iterations);
-            root = r.second;  // the side past the crossing
-            break;
-          }
+        if (!piece && (end_values[i] > 0.0 ? 1 : -1) == signs[i]) continue;
+        std::optional<double> root;
+        if ((from_values[i] > 0.0 ? 1 : -1) != signs[i]) {
+          root = from;  // roundoff at a restart: the function is already past zero
+        } else if (piece) {
+          root = Certified(*piece, i, signs[i], from, from_values[i], i >= 5 ? gate_end : t1);
+        } else {
+          root = Sampled(i, signs[i], from, from_values[i], t1, step.second);
         }
-        if (first < 0 || root < first_t) {
+        if (i == 4 && root) gate_end = *root;
+        if (root && (first < 0 || *root < first_t)) {
           first = i;
-          first_t = root;
+          first_t = *root;
         }
       }
       if (first < 0) break;
       if (++stats.events > o_.max_events) ThrowOverBudget("events", o_.max_events, train_, first_t);
+      if (piece) RecordExtremes(from, first_t);  // the closed form: the stretch before it
       GridUpTo(first_t);
       signs[first] = -signs[first];
       xs = At(first_t);
@@ -195,7 +332,9 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
           switched = true;
         }
       }
-      if (switched) {
+      // The closed form restarts at every event: its audit quadrature then never spans the kink
+      // of a contact's potential ½k(g⁺)² where a gap crosses zero without a mode switch.
+      if (switched || piece) {
         restart = first_t;
         break;
       }
@@ -208,10 +347,15 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       continue;
     }
     GridUpTo(t1);
-    // A few dense samples for the extremes, then the step end.
-    for (int k = 1; k <= 3; ++k) {
-      const double tk = t0 + (t1 - t0) * k / 4.0;
-      recorder_.Sample(tk, At(tk), phase);
+    // A few dense samples for the extremes, then the step end; the closed form's steps are
+    // long, and the largest forces inside them are located instead.
+    if (piece) {
+      RecordExtremes(from, t1);
+    } else {
+      for (int k = 1; k <= 3; ++k) {
+        const double tk = t0 + (t1 - t0) * k / 4.0;
+        recorder_.Sample(tk, At(tk), phase);
+      }
     }
     t = t1;
     x = x_end;

@@ -12,12 +12,18 @@
 ///   cvode-bdf    SUNDIALS CVODE, BDF, dense linear solver with the analytic Jacobian; its
 ///                Hermite interpolant (CVodeGetDky) is the dense output
 ///   cvode-adams  the same with Adams–Moulton (non-stiff)
+///   exact        the motion in closed form on every piece between breaks and events
+///                (dynamics/solver/closed_form.h): exact to round-off, for linear contact laws
 ///   baseline-dopri5  Dormand–Prince with F = max(0, F) inside the right-hand side, no events,
 ///                no breaks: the baseline event location is measured against (benchmarks)
 ///
 /// Events are located by the driver on every backend alike: a witness whose sign at a step's
 /// end differs from its stored sign is bracketed by 16 samples of the dense output and refined
 /// by TOMS 748 to machine precision; at a mode switch (or a reset) the backend restarts there.
+/// On the closed form of "exact" the driver also certifies the rest: every witness is bounded
+/// on the step (|w'|, |w''|) and the step is split until each part is proved free of crossings
+/// or holds exactly one, so a pair of crossings inside one step is found too; only a tangency
+/// (a root of even multiplicity, or two roots closer than the time's round-off) is passed.
 
 #include <array>
 #include <optional>
@@ -30,15 +36,27 @@
 
 namespace needle {
 
-enum class Method { kDopri5, kRkf78, kRosenbrock4, kCvodeBdf, kCvodeAdams, kBaselineDopri5 };
+enum class Method {
+  kDopri5,
+  kRkf78,
+  kRosenbrock4,
+  kCvodeBdf,
+  kCvodeAdams,
+  kExact,
+  kBaselineDopri5
+};
 
 /// Every method, in the method table's order.
 const std::vector<Method>& AllMethods();
-/// "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams", "baseline-dopri5".
+/// "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams", "exact", "baseline-dopri5".
 std::string MethodName(Method m);
 std::optional<Method> ParseMethod(const std::string& name);
 /// "auto, dopri5, rkf78, …" for messages.
 std::string MethodList();
+
+/// Why method "exact" cannot solve `train` (a contact law not linear in the gap and its rate),
+/// or nullopt when it can. `auto` falls back to a time stepper then.
+std::optional<std::string> ExactRefusal(const NeedleTrain& train);
 
 /// The relative tolerance's range, [kMinRtol, kMaxRtol].
 constexpr double kMinRtol = 1e-14;

@@ -25,6 +25,7 @@ const MethodRow kMethodTable[] = {
     {Method::kRosenbrock4, "rosenbrock4", MakeRosenbrock4},
     {Method::kCvodeBdf, "cvode-bdf", MakeCvodeBdf},
     {Method::kCvodeAdams, "cvode-adams", MakeCvodeAdams},
+    {Method::kExact, "exact", MakeExact},
     {Method::kBaselineDopri5, "baseline-dopri5", nullptr},
 };
 

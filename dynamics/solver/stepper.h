@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "dynamics/model/needle_train.h"
+#include "dynamics/solver/closed_form.h"
 #include "dynamics/solver/integrator.h"
 
 namespace needle {
@@ -54,6 +55,9 @@ class Stepper {
   virtual TrainState CurrentState() const = 0;
   virtual double CurrentTime() const = 0;
   virtual double CurrentStep() const = 0;
+  /// The last step's motion in closed form (method "exact"), whose bounds let the driver
+  /// certify that no witness crossing is missed; nullptr for the time steppers.
+  virtual const ClosedFormPiece* ClosedForm() const { return nullptr; }
 };
 
 /// The backends (odeint_steppers.cc, cvode_stepper.cc). `system` outlives the stepper.
@@ -62,6 +66,9 @@ std::unique_ptr<Stepper> MakeRkf78(TrainSystem& system, const IntegratorOptions&
 std::unique_ptr<Stepper> MakeRosenbrock4(TrainSystem& system, const IntegratorOptions& o);
 std::unique_ptr<Stepper> MakeCvodeBdf(TrainSystem& system, const IntegratorOptions& o);
 std::unique_ptr<Stepper> MakeCvodeAdams(TrainSystem& system, const IntegratorOptions& o);
+/// The closed-form propagator (exact_stepper.cc); throws std::invalid_argument with the reason
+/// when the train is outside the linear class (ExactRefusal).
+std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& o);
 
 /// The backend of a method from the method table (methods.cc); nullptr for the baseline.
 std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o);

@@ -30,6 +30,7 @@ class Restituting : public ContactLaw {
     return compliant_.ConservativeStiffness(g);
   }
   std::optional<double> ImpactRate(double before) const override { return -e_ * before; }
+  std::optional<LinearWitnesses> Linear() const override { return compliant_.Linear(); }
 
  private:
   double e_;

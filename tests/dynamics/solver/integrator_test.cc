@@ -53,10 +53,11 @@ Outcome Oscillate(Method method, double rtol, bool seat_mode, IntegratorOptions 
 }
 
 TEST(IntegratorTest, EveryMethodIsInTheTableAndNamedOnce) {
-  EXPECT_EQ(AllMethods().size(), 6u);
+  EXPECT_EQ(AllMethods().size(), 7u);
   for (Method m : AllMethods()) EXPECT_EQ(ParseMethod(MethodName(m)), m);
   EXPECT_EQ(MethodList(),
-            "auto, dopri5, rkf78, rosenbrock4, cvode-bdf, cvode-adams or baseline-dopri5");
+            "auto, dopri5, rkf78, rosenbrock4, cvode-bdf, cvode-adams, exact or "
+            "baseline-dopri5");
   EXPECT_FALSE(ParseMethod("euler").has_value());
 }
 
@@ -77,6 +78,7 @@ TEST(IntegratorTest, EveryMethodsErrorShrinksWithTheTolerance) {
   // hundredfold tighter rtol, for every method, from 1e-6 to 1e-10 (the measured slopes of
   // log error against log rtol are printed).
   for (Method m : AllMethods()) {
+    if (m == Method::kExact) continue;  // no tolerance: its error is round-off (next test)
     const double e6 = Oscillate(m, 1e-6, true).error;
     const double e8 = Oscillate(m, 1e-8, true).error;
     const double e10 = Oscillate(m, 1e-10, true).error;
@@ -87,10 +89,19 @@ TEST(IntegratorTest, EveryMethodsErrorShrinksWithTheTolerance) {
   }
 }
 
+TEST(IntegratorTest, TheClosedFormIsExactToRoundOffWhateverTheTolerance) {
+  // The same 11 periods by method "exact": the error is round-off, not a tolerance's.
+  for (double rtol : {1e-4, 1e-8, 1e-12}) {
+    EXPECT_LT(Oscillate(Method::kExact, rtol, true).error, 1e-13) << rtol;
+    EXPECT_LT(Oscillate(Method::kExact, rtol, false).error, 1e-13) << rtol;
+  }
+}
+
 TEST(IntegratorTest, PerStateToleranceEqualToTheLiftsIsTheDefaultBitForBit) {
   // atol_m_s and atol_J default to the number atol_m: setting them to it changes nothing; a
   // different one scales the states the backends see and still meets the closed form.
   for (Method m : AllMethods()) {
+    if (m == Method::kExact) continue;  // takes no tolerances
     IntegratorOptions same;
     same.atol_m_s = same.atol_J = DefaultAtol(1e-9);
     const Outcome a = Oscillate(m, 1e-9, true), b = Oscillate(m, 1e-9, true, same);

@@ -1,0 +1,192 @@
+#include "dynamics/solver/closed_form.h"
+
+#include <algorithm>
+#include <boost/math/quadrature/gauss.hpp>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+using Poly = ClosedFormPiece::Poly;
+
+double Eval(const Poly& p, double x) {
+  double v = 0.0;
+  for (int k = ClosedFormPiece::kMaxDegree; k >= 0; --k) v = v * x + p[k];
+  return v;
+}
+
+Poly Derivative(const Poly& p) {
+  Poly d{};
+  for (int k = 1; k <= ClosedFormPiece::kMaxDegree; ++k) d[k - 1] = k * p[k];
+  return d;
+}
+
+// The coefficients of q(s) = p(a + s) (Taylor shift, by repeated synthetic division).
+Poly Shift(Poly p, double a) {
+  const int n = ClosedFormPiece::kMaxDegree;
+  for (int i = 0; i < n; ++i) {
+    for (int k = n - 1; k >= i; --k) p[k] += a * p[k + 1];
+  }
+  return p;
+}
+
+// max |p(s)| over s ∈ [0, h] is at most Σ |p_k| h^k.
+double BoundOn(const Poly& p, double h) {
+  double b = 0.0;
+  for (int k = ClosedFormPiece::kMaxDegree; k >= 0; --k) b = b * h + std::abs(p[k]);
+  return b;
+}
+
+}  // namespace
+
+ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode,
+                                 double segment_angle_rad, double t0, const TrainState& x0)
+    : train_(train), mode_(mode), t0_(t0), x0_(x0) {
+  const TrainParameters& p = train.parameters();
+  m_ = p.mass_kg;
+  c_ = 0.0;
+  K_ = p.rate_N_m;
+  // The cam input in τ: its segment's polynomial about the origin, shifted to θ(t₀), scaled by ω.
+  const CamPiece piece = train.cam().Piece(segment_angle_rad);
+  if (piece.coefficients.size() > 7) {
+    throw std::invalid_argument("method \"exact\": a cam piece of degree " +
+                                std::to_string(piece.coefficients.size() - 1) +
+                                " is above the closed form's 6");
+  }
+  for (size_t k = 0; k < piece.coefficients.size(); ++k) u_[k] = piece.coefficients[k];
+  u_ = Shift(u_, train.Angle(t0) - piece.origin_rad);
+  double wk = 1.0;
+  for (int k = 0; k <= kMaxDegree; ++k, wk *= train.omega()) u_[k] *= wk;
+
+  Poly f{};
+  f[0] = -p.preload_N + p.gas_force_N;
+  if (mode.cam) {
+    const double kc = train.cam_law().ForceStiffness(), cc = train.cam_law().ForceDamping();
+    const Poly du = needle::Derivative(u_);
+    for (int k = 0; k <= kMaxDegree; ++k) f[k] += kc * u_[k] + cc * du[k];
+    K_ += kc;
+    c_ += cc;
+  }
+  if (mode.seat) {
+    K_ += train.seat_law().ForceStiffness();
+    c_ += train.seat_law().ForceDamping();
+  }
+
+  f_ = f;
+  // The particular solution.
+  if (K_ > 0.0) {
+    for (int j = kMaxDegree; j >= 0; --j) {
+      const double a1 = j + 1 <= kMaxDegree ? p_[j + 1] : 0.0;
+      const double a2 = j + 2 <= kMaxDegree ? p_[j + 2] : 0.0;
+      p_[j] = (f[j] - c_ * (j + 1) * a1 - m_ * (j + 2) * (j + 1) * a2) / K_;
+    }
+  } else if (c_ == 0.0) {
+    for (int j = 0; j + 2 <= kMaxDegree; ++j) p_[j + 2] = f[j] / (m_ * (j + 2) * (j + 1));
+  } else {
+    throw std::logic_error("closed form: damping without stiffness");
+  }
+
+  sigma_ = c_ / (2.0 * m_);
+  beta_ = K_ / m_ - sigma_ * sigma_;
+  root_ = std::sqrt(std::abs(beta_));
+  double fastest = std::sqrt(K_ / m_);
+  if (beta_ < 0.0) {
+    r1_ = -(K_ / m_) / (sigma_ + root_);
+    r2_ = -sigma_ - root_;
+    fastest = std::max(fastest, -r2_);
+  }
+  longest_step_ = fastest > 0.0 ? kPi / fastest : std::numeric_limits<double>::infinity();
+  dp_ = needle::Derivative(p_);
+  Y0_ = x0[0] - p_[0];
+  V0_ = x0[1] - p_[1];
+}
+
+void ClosedFormPiece::Basis(double tau, double& ecm1, double& es) const {
+  // e^{−στ}C − 1 as (e^{−στ} − 1) + e^{−στ}(C − 1), with C − 1 = −2 sin²(√β τ/2) or
+  // 2 sinh²(μτ/2): no cancellation where the motion is slow against the piece.
+  const double e = std::exp(-sigma_ * tau), em1 = std::expm1(-sigma_ * tau);
+  if (beta_ > 0.0) {
+    const double half = std::sin(0.5 * root_ * tau);
+    ecm1 = em1 - 2.0 * e * half * half;
+    es = e * std::sin(root_ * tau) / root_;
+  } else if (beta_ == 0.0) {
+    ecm1 = em1;
+    es = e * tau;
+  } else if (root_ * tau < 0.5) {
+    const double half = std::sinh(0.5 * root_ * tau);
+    ecm1 = em1 + 2.0 * e * half * half;
+    es = e * std::sinh(root_ * tau) / root_;
+  } else {
+    const double e1 = std::exp(r1_ * tau), e2 = std::exp(r2_ * tau);
+    ecm1 = 0.5 * (e1 + e2) - 1.0;
+    es = (e1 - e2) / (2.0 * root_);
+  }
+}
+
+std::array<double, 3> ClosedFormPiece::Motion(double t) const {
+  const double tau = t - t0_;
+  double ecm1, es;
+  Basis(tau, ecm1, es);
+  // Written as the change from (y₀, ẏ₀), with φ₀ − 1 = (e^{−στ}C − 1) + σ e^{−στ}S and
+  // φ₁' − 1 = (e^{−στ}C − 1) − σ e^{−στ}S: a large particular part (a soft spring against a
+  // large load) does not cancel against a large homogeneous one.
+  const double y = x0_[0] + (Eval(p_, tau) - p_[0]) + Y0_ * (ecm1 + sigma_ * es) + V0_ * es;
+  const double v =
+      x0_[1] + (Eval(dp_, tau) - dp_[0]) - Y0_ * (K_ / m_) * es + V0_ * (ecm1 - sigma_ * es);
+  return {y, v, (Eval(f_, tau) - c_ * v - K_ * y) / m_};
+}
+
+TrainState ClosedFormPiece::State(double t) const {
+  const std::array<double, 3> now = Motion(t);
+  TrainState x = {now[0], now[1], x0_[2], x0_[3]};
+  if (t <= t0_) return x;
+  // W and D: the train's own Ẇ and Ḋ along the closed form, 10-point Gauss–Legendre.
+  using Rule = boost::math::quadrature::gauss<double, 10>;
+  const Phase phase{mode_};
+  const double half = 0.5 * (t - t0_), mid = t0_ + half;
+  TrainState dxdt;
+  for (size_t i = 0; i < Rule::abscissa().size(); ++i) {
+    for (const double sign : {-1.0, 1.0}) {
+      const double s = mid + sign * half * Rule::abscissa()[i];
+      const std::array<double, 3> at = Motion(s);
+      train_.Derivative({at[0], at[1], 0.0, 0.0}, s, phase, dxdt);
+      x[2] += half * Rule::weights()[i] * dxdt[2];
+      x[3] += half * Rule::weights()[i] * dxdt[3];
+    }
+  }
+  return x;
+}
+
+FormBounds ClosedFormPiece::Bounds(const LinearForm& form, double t_a, double t_b) const {
+  const double tau = t_a - t0_, len = t_b - t_a;
+  const Poly dp = needle::Derivative(p_), du = needle::Derivative(u_);
+  Poly q{};
+  for (int k = 0; k <= kMaxDegree; ++k)
+    q[k] = form.y * p_[k] + form.v * dp[k] + form.u * u_[k] + form.u_rate * du[k];
+  const Poly q1 = needle::Derivative(Shift(q, tau));
+  const Poly q2 = needle::Derivative(q1);
+  // The homogeneous part h = y − P: its energy H = ½mh'² + ½Kh² at t_a bounds it from there on;
+  // over a short interval a Taylor bound from h' and h'' at t_a is tighter.
+  const std::array<double, 3> at = Motion(t_a);
+  const double h = at[0] - Eval(p_, tau), hv = at[1] - Eval(dp_, tau);
+  const double ha = (-c_ * hv - K_ * h) / m_;  // h''
+  const double energy = 0.5 * m_ * hv * hv + 0.5 * K_ * h * h;
+  const double e1 = std::sqrt(2.0 * energy / m_);                   // |h'|
+  const double e2 = (c_ * e1 + std::sqrt(2.0 * energy * K_)) / m_;  // |h''| = |c h' + K h| / m
+  const double b3 = (c_ * e2 + K_ * e1) / m_;                       // |h'''| = |c h'' + K h'| / m
+  const double b2 = std::min(e2, std::abs(ha) + b3 * len);
+  const double b1 = std::min(e1, std::abs(hv) + b2 * len);
+  const double safety = 1.0 + 1e-9;  // round-off of the bounds themselves
+  FormBounds out;
+  out.slope_bound = safety * (BoundOn(q1, len) + std::abs(form.y) * b1 + std::abs(form.v) * b2);
+  out.curvature_bound = safety * (BoundOn(q2, len) + std::abs(form.y) * b2 + std::abs(form.v) * b3);
+  out.slope_at_start = q1[0] + form.y * hv + form.v * ha;
+  return out;
+}
+
+}  // namespace needle

@@ -1,0 +1,87 @@
+#pragma once
+/// @file
+/// Internal to the solver: the train's motion in closed form on one piece, one contact mode and
+/// one segment of the cam input (method "exact", docs/model.md §9). There the equation of
+/// motion of docs/model.md §4 is linear with constant coefficients and a polynomial forcing:
+///
+///     m ÿ + c ẏ + K y = f(τ),   τ = t − t₀,
+///     c = c_c [cam pushes] + c_s [seat pushes],   K = k + k_c [cam] + k_s [seat],
+///     f(τ) = k_c u(τ) + c_c u̇(τ) [cam] − P₀ + F_g,   u(τ) the cam segment's polynomial in time.
+///
+/// From (y₀, ẏ₀) the solution is y = P(τ) + Y₀ φ₀(τ) + V₀ φ₁(τ) with
+///   P   the polynomial particular solution, P = Σ a_j τ^j by the recurrence
+///       K a_j + c (j+1) a_{j+1} + m (j+2)(j+1) a_{j+2} = f_j from the top degree down
+///       (K = c = 0: m ÿ = f, integrated twice);
+///   Y₀ = y₀ − P(0), V₀ = ẏ₀ − P'(0);
+///   φ₀, φ₁ the homogeneous solutions with φ₀(0) = 1, φ₀'(0) = 0, φ₁(0) = 0, φ₁'(0) = 1:
+///       σ = c/(2m),  β = K/m − σ²,   φ₁ = e^{−στ} S,   φ₀ = e^{−στ} (C + σ S),
+///       β > 0: C = cos(√β τ),  S = sin(√β τ)/√β        (under-damped; undamped when σ = 0)
+///       β = 0: C = 1,          S = τ                    (critically damped; K = c = 0)
+///       β < 0: C = cosh(μ τ),  S = sinh(μ τ)/μ, μ = √−β (over-damped)
+///   one formula, continuous across β = 0. Where μτ ≥ ½ the over-damped pair is taken as
+///   e^{−στ}C = (e^{r₁τ} + e^{r₂τ})/2, e^{−στ}S = (e^{r₁τ} − e^{r₂τ})/(2μ) with
+///   r₁ = −(K/m)/(σ + μ), r₂ = −σ − μ: no overflow of cosh against e^{−στ}, no cancellation in r₁.
+///
+/// The audit integrals W and D (docs/model.md §6) are integrals of the train's own Ẇ and Ḋ along
+/// this solution, by 10-point Gauss–Legendre; the exact stepper keeps pieces within half an
+/// oscillation, where that rule is exact to round-off.
+///
+/// Root isolation needs bounds: for a witness that is a linear form of (y, ẏ, u, u̇) (see
+/// LinearForm), Bounds() gives |w'| and |w''| over an interval, from the polynomial part's
+/// coefficients and the homogeneous part's energy ½mh'² + ½Kh², which never grows (c ≥ 0).
+
+#include <array>
+
+#include "dynamics/model/needle_train.h"
+#include "dynamics/solver/contact_events.h"
+
+namespace needle {
+
+/// Over [t_a, t_b]: bounds on |w'| and |w''|, and w'(t_a) exact.
+struct FormBounds {
+  double slope_bound = 0.0;      ///< ≥ max |w'|
+  double curvature_bound = 0.0;  ///< ≥ max |w''|
+  double slope_at_start = 0.0;   ///< w'(t_a)
+};
+
+class ClosedFormPiece {
+ public:
+  static constexpr int kMaxDegree = 8;  ///< of P (cam pieces up to quintic, integrated twice)
+  using Poly = std::array<double, kMaxDegree + 1>;
+
+  /// The piece of `train` in `mode` from (t₀, x₀) on the cam's segment holding angle
+  /// `segment_angle_rad`, under linear contact laws (ExactRefusal is nullopt). Throws
+  /// std::invalid_argument when the cam piece's degree is above 6.
+  ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode, double segment_angle_rad,
+                  double t0, const TrainState& x0);
+
+  /// The state [y, ẏ, W, D] at t (any t ≥ t₀; exact for y, ẏ).
+  TrainState State(double t) const;
+  /// y, ẏ, ÿ at t.
+  std::array<double, 3> Motion(double t) const;
+  /// Bounds of the form over [t_a, t_b], t₀ ≤ t_a < t_b.
+  FormBounds Bounds(const LinearForm& form, double t_a, double t_b) const;
+  /// The longest step in which the 10-point rule is exact to round-off: half an oscillation
+  /// (π over the largest of √(K/m) and the decay rates), s; +∞ for K = c = 0.
+  double LongestStep() const { return longest_step_; }
+  double start_time() const { return t0_; }
+
+ private:
+  // e^{−στ}C − 1 and e^{−στ}S at τ ≥ 0.
+  void Basis(double tau, double& ecm1, double& es) const;
+
+  const NeedleTrain& train_;
+  ContactMode mode_;
+  double t0_;
+  TrainState x0_;
+  double m_, c_, K_;
+  double sigma_, beta_, root_;  // root_ = √|β|
+  double r1_ = 0.0, r2_ = 0.0;  // over-damped exponents
+  Poly f_{};                    // the forcing in τ
+  Poly p_{}, dp_{};             // particular solution in τ, and its derivative
+  Poly u_{};                    // the cam input in τ (cam mode or not)
+  double Y0_, V0_;
+  double longest_step_;
+};
+
+}  // namespace needle

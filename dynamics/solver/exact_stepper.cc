@@ -1,0 +1,72 @@
+// The closed-form backend of the event driver (method "exact", docs/model.md §9): each step is
+// one ClosedFormPiece, from the step's start in the driver's contact mode on the cam segment the
+// step lies in, and ends at the driver's limit (a break, the horizon) or after half an
+// oscillation, whichever comes first; its dense output is the closed form itself. The driver
+// bounds the witnesses on it (ClosedFormPiece::Bounds) so no crossing is missed.
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "dynamics/solver/stepper.h"
+
+namespace needle {
+namespace {
+
+class ExactStepper final : public Stepper {
+ public:
+  explicit ExactStepper(TrainSystem& system) : system_(system) {}
+  void Initialize(const TrainState& z, double t, double /*dt*/) override {
+    x_ = system_.FromScaled(z);
+    t_ = t;
+    step_ = 0.0;
+    stop_ = std::numeric_limits<double>::infinity();
+  }
+  void LimitTo(double t_stop) override { stop_ = t_stop; }
+  std::pair<double, double> DoStep() override {
+    const NeedleTrain& train = system_.train();
+    // The segment the step lies in: the one holding the middle of [t, limit] (the limit is the
+    // next break, so both ends belong to one segment even where t sits on a break up to
+    // round-off).
+    const double limit = std::isfinite(stop_) ? stop_ : t_ + 1.0;
+    piece_.emplace(train, system_.phase.mode, train.Angle(0.5 * (t_ + limit)), t_, x_);
+    const double start = t_;
+    t_ = std::min(stop_, t_ + piece_->LongestStep());
+    step_ = t_ - start;
+    x_ = piece_->State(t_);
+    return {start, t_};
+  }
+  void CalcState(double t, TrainState& z) override { z = system_.ToScaled(piece_->State(t)); }
+  TrainState CurrentState() const override { return system_.ToScaled(x_); }
+  double CurrentTime() const override { return t_; }
+  double CurrentStep() const override { return step_; }
+  const ClosedFormPiece* ClosedForm() const override { return piece_ ? &*piece_ : nullptr; }
+
+ private:
+  TrainSystem& system_;
+  TrainState x_{};
+  double t_ = 0.0, step_ = 0.0, stop_ = 0.0;
+  std::optional<ClosedFormPiece> piece_;
+};
+
+}  // namespace
+
+std::optional<std::string> ExactRefusal(const NeedleTrain& train) {
+  for (const ContactLaw* law : {&train.cam_law(), &train.seat_law()}) {
+    if (!law->Linear()) {
+      return std::string(
+                 "method \"exact\" needs contact laws linear in the gap and its rate; "
+                 "the ") +
+             (law == &train.cam_law() ? "cam" : "seat") + " law \"" + law->name() + "\" is not";
+    }
+  }
+  return std::nullopt;
+}
+
+std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& /*o*/) {
+  if (const std::optional<std::string> why = ExactRefusal(system.train()))
+    throw std::invalid_argument(*why);
+  return std::make_unique<ExactStepper>(system);
+}
+
+}  // namespace needle
