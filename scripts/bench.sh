@@ -22,7 +22,7 @@ set xlabel "median run time (ms), one core"
 set ylabel "${label}"
 set key outside right
 set grid
-methods = "dopri5 rkf78 rosenbrock4 cvode-bdf cvode-adams baseline-dopri5"
+methods = "dopri5 rkf78 rosenbrock4 cvode-bdf cvode-adams exact baseline-dopri5"
 plot for [m in methods] "bench/work-precision-${scene}.csv" \
   using (strcol(2) eq m && strcol(14) eq "" ? \$4 : NaN):(\$${col} > 0 ? \$${col} : NaN) \
   with linespoints title m

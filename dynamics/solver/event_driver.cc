@@ -84,6 +84,11 @@ class EventDriver {
     stepper_->CalcState(t, z_);
     return system_.FromScaled(z_);
   }
+  // y and ẏ at t (W and D may be left out): for witnesses and samples.
+  TrainState Motion(double t) {
+    stepper_->CalcMotion(t, z_);
+    return system_.FromScaled(z_);
+  }
   void Restart(const TrainState& x, double t, double dt) {
     stepper_->Initialize(system_.ToScaled(x), t, dt);
   }
@@ -96,12 +101,12 @@ class EventDriver {
   void GridUpTo(double t) {
     const std::vector<double>& grid = recorder_.grid_times();
     while (next_grid_ < grid.size() && grid[next_grid_] <= t) {
-      recorder_.GridSample(grid[next_grid_], At(grid[next_grid_]), system_.phase);
+      recorder_.GridSample(grid[next_grid_], Motion(grid[next_grid_]), system_.phase);
       ++next_grid_;
     }
   }
 
-  double Value(int i, double t) { return Events(train_, system_.phase, At(t), t)[i]; }
+  double Value(int i, double t) { return Events(train_, system_.phase, Motion(t), t)[i]; }
   // The root of witness i inside a bracket [a, b] where it leaves sign s, by TOMS 748 to
   // machine precision: the side past the crossing.
   double Refine(int i, double a, double fa, double b, double fb) {
@@ -215,20 +220,20 @@ void EventDriver::RecordExtremes(double t0, double t1) {
   const Phase& phase = system_.phase;
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
   const double min_fc = recorder_.min_contact_force_during_lift_N();
-  // The three forces, each signed so that its extreme is a minimum.
-  const auto force = [&](int which, double t) {
-    const TrainState x = At(t);
+  // The three forces at x, each signed so that its extreme is a minimum.
+  const auto forces = [&](double t, const TrainState& x) {
     const Contacts c = train_.Evaluate(x, t, phase);
-    if (which == 0) return -train_.AppliedCamForce(c, phase);
-    if (which == 1) return -train_.AppliedSeatForce(c, phase);
-    return train_.AppliedCamForce(c, phase);
+    const double fc = train_.AppliedCamForce(c, phase);
+    return std::array<double, 3>{-fc, -train_.AppliedSeatForce(c, phase), fc};
   };
   std::array<double, n + 1> ts;
   std::array<std::array<double, n + 1>, 3> f;
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
-    for (int which = 0; which < 3; ++which) f[which][k] = force(which, ts[k]);
-    if (k > 0 && k < n) recorder_.Sample(ts[k], At(ts[k]), phase);
+    const TrainState x = Motion(ts[k]);
+    const std::array<double, 3> fk = forces(ts[k], x);
+    for (int which = 0; which < 3; ++which) f[which][k] = fk[which];
+    if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase);
   }
   const std::array<double, 3> record = {-max_fc, -max_fs, min_fc};
   for (int which = 0; which < 3; ++which) {
@@ -240,10 +245,11 @@ void EventDriver::RecordExtremes(double t0, double t1) {
     std::uintmax_t iterations = 60;
     // In the fraction of the bracket: Brent's tolerance has an absolute part.
     const double base = ts[k - 1], width = ts[k + 1] - ts[k - 1];
+    const auto at = [&](double d) { return base + d * width; };
     const auto best = boost::math::tools::brent_find_minima(
-        [&](double d) { return force(which, base + d * width); }, 0.0, 1.0,
+        [&](double d) { return forces(at(d), Motion(at(d)))[which]; }, 0.0, 1.0,
         std::numeric_limits<double>::digits / 2, iterations);
-    recorder_.Sample(base + best.first * width, At(base + best.first * width), phase);
+    recorder_.Sample(at(best.first), Motion(at(best.first)), phase);
   }
 }
 
@@ -292,7 +298,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       int first = -1;
       double first_t = t1;
       const EventValues end_values = Events(train_, phase, x_end, step.second);
-      const EventValues from_values = Events(train_, phase, At(from), from);
+      const EventValues from_values = Events(train_, phase, Motion(from), from);
       double gate_end = t1;  // 5 and 6 are gated by witness 4: searched up to its crossing
       for (int i = 0; i < kEventCount; ++i) {
         if (!piece && (end_values[i] > 0.0 ? 1 : -1) == signs[i]) continue;

@@ -37,6 +37,10 @@ class ExactStepper final : public Stepper {
     return {start, t_};
   }
   void CalcState(double t, TrainState& z) override { z = system_.ToScaled(piece_->State(t)); }
+  void CalcMotion(double t, TrainState& z) override {
+    const std::array<double, 3> m = piece_->Motion(t);
+    z = system_.ToScaled({m[0], m[1], 0.0, 0.0});
+  }
   TrainState CurrentState() const override { return system_.ToScaled(x_); }
   double CurrentTime() const override { return t_; }
   double CurrentStep() const override { return step_; }

@@ -52,6 +52,9 @@ class Stepper {
   virtual std::pair<double, double> DoStep() = 0;
   /// The dense output at t inside the last step.
   virtual void CalcState(double t, TrainState& z) = 0;
+  /// The same for y and ẏ only, where W and D are not needed (witnesses, samples); a backend
+  /// whose audit integrals cost extra leaves them at any value.
+  virtual void CalcMotion(double t, TrainState& z) { CalcState(t, z); }
   virtual TrainState CurrentState() const = 0;
   virtual double CurrentTime() const = 0;
   virtual double CurrentStep() const = 0;
