@@ -2,8 +2,9 @@
 /// @file
 /// One dynamic run of a scene at one speed (docs/model.md §5–6): window [θ_a, θ_b] with
 /// θ_a = rise start − 5°, θ_b = fall end + 20°, and past θ_b on until the needle has landed
-/// and come to rest (within settle_limit_deg); static-equilibrium start; the method chosen
-/// by the stiffness of the scene when `auto`; the rigid answer reported instead of a dynamic
+/// and come to rest (within settle_limit_deg); static-equilibrium start; `auto` takes the
+/// closed form ("exact") when the contact laws are linear, else a method by the scene's
+/// stiffness; the rigid answer reported instead of a dynamic
 /// run when the scene does not need one, with the reason, unless the dynamics is forced.
 
 #include <memory>
@@ -30,7 +31,7 @@ struct Scene {
 
 /// Options of a run. Every field has a default.
 struct SimulationOptions {
-  std::string method = "auto";   ///< "auto", "dopri5", "cvode-bdf", "cvode-adams"
+  std::string method = "auto";   ///< "auto" or a method name (dynamics/solver/integrator.h)
   IntegratorOptions integrator;  ///< tolerances and budgets
   bool record_series = false;    ///< keep the time series (for --csv)
   bool force_dynamic = false;    ///< never report the rigid answer instead
