@@ -63,12 +63,11 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
   double wk = 1.0;
   for (int k = 0; k <= kMaxDegree; ++k, wk *= train.omega()) u_[k] *= wk;
 
-  Poly f{};
-  f[0] = -p.preload_N + p.gas_force_N;
+  du_ = needle::Derivative(u_);
+  f_[0] = -p.preload_N + p.gas_force_N;
   if (mode.cam) {
     const double kc = train.cam_law().ForceStiffness(), cc = train.cam_law().ForceDamping();
-    const Poly du = needle::Derivative(u_);
-    for (int k = 0; k <= kMaxDegree; ++k) f[k] += kc * u_[k] + cc * du[k];
+    for (int k = 0; k <= kMaxDegree; ++k) f_[k] += kc * u_[k] + cc * du_[k];
     K_ += kc;
     c_ += cc;
   }
@@ -77,16 +76,15 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
     c_ += train.seat_law().ForceDamping();
   }
 
-  f_ = f;
   // The particular solution.
   if (K_ > 0.0) {
     for (int j = kMaxDegree; j >= 0; --j) {
       const double a1 = j + 1 <= kMaxDegree ? p_[j + 1] : 0.0;
       const double a2 = j + 2 <= kMaxDegree ? p_[j + 2] : 0.0;
-      p_[j] = (f[j] - c_ * (j + 1) * a1 - m_ * (j + 2) * (j + 1) * a2) / K_;
+      p_[j] = (f_[j] - c_ * (j + 1) * a1 - m_ * (j + 2) * (j + 1) * a2) / K_;
     }
   } else if (c_ == 0.0) {
-    for (int j = 0; j + 2 <= kMaxDegree; ++j) p_[j + 2] = f[j] / (m_ * (j + 2) * (j + 1));
+    for (int j = 0; j + 2 <= kMaxDegree; ++j) p_[j + 2] = f_[j] / (m_ * (j + 2) * (j + 1));
   } else {
     throw std::logic_error("closed form: damping without stiffness");
   }
@@ -164,10 +162,9 @@ TrainState ClosedFormPiece::State(double t) const {
 
 FormBounds ClosedFormPiece::Bounds(const LinearForm& form, double t_a, double t_b) const {
   const double tau = t_a - t0_, len = t_b - t_a;
-  const Poly dp = needle::Derivative(p_), du = needle::Derivative(u_);
   Poly q{};
   for (int k = 0; k <= kMaxDegree; ++k)
-    q[k] = form.y * p_[k] + form.v * dp[k] + form.u * u_[k] + form.u_rate * du[k];
+    q[k] = form.y * p_[k] + form.v * dp_[k] + form.u * u_[k] + form.u_rate * du_[k];
   const Poly q1 = needle::Derivative(Shift(q, tau));
   const Poly q2 = needle::Derivative(q1);
   // The homogeneous part h = y − P: its energy H = ½mh'² + ½Kh² at t_a bounds it from there on;

@@ -79,7 +79,7 @@ class ClosedFormPiece {
   double r1_ = 0.0, r2_ = 0.0;  // over-damped exponents
   Poly f_{};                    // the forcing in τ
   Poly p_{}, dp_{};             // particular solution in τ, and its derivative
-  Poly u_{};                    // the cam input in τ (cam mode or not)
+  Poly u_{}, du_{};             // the cam input in τ (cam mode or not), and its derivative
   double Y0_, V0_;
   double longest_step_;
 };

@@ -47,9 +47,12 @@ Breaks BreakTimes(const NeedleTrain& train, double t_end) {
   return out;
 }
 
+// The sign a witness value counts as: +1 above zero, −1 at or below it.
+int SignOf(double v) { return v > 0.0 ? 1 : -1; }
+
 std::array<int, kEventCount> Signs(const EventValues& v) {
   std::array<int, kEventCount> s{};
-  for (int i = 0; i < kEventCount; ++i) s[i] = v[i] > 0.0 ? 1 : -1;
+  for (int i = 0; i < kEventCount; ++i) s[i] = SignOf(v[i]);
   return s;
 }
 
@@ -117,8 +120,8 @@ class EventDriver {
     // TOMS 748 may end on an exact zero, which counts as the negative side, or inside the
     // round-off band of the function: then the earliest time found past the crossing, by
     // bisection between its answer and b (which is past).
-    const int s = fa > 0.0 ? 1 : -1;
-    const auto past = [&](double at) { return (Value(i, at) > 0.0 ? 1 : -1) != s; };
+    const int s = SignOf(fa);
+    const auto past = [&](double at) { return SignOf(Value(i, at)) != s; };
     if (past(r.second)) return r.second;
     double lo = std::max(a, r.second), hi = b;
     while (true) {
@@ -138,7 +141,7 @@ class EventDriver {
     for (int k = 1; k <= n; ++k) {
       const double b = k == n ? t_dense : from + (t_end - from) * k / n;
       const double fb = Value(i, b);
-      if ((fb > 0.0 ? 1 : -1) == s) {
+      if (SignOf(fb) == s) {
         a = b;
         fa = fb;
         continue;
@@ -147,13 +150,17 @@ class EventDriver {
     }
     return std::nullopt;
   }
-  // The closed form: the earliest time in [a, b] where witness i (value wa at a, sign s) leaves
-  // sign s, or nullopt, certified by the bounds of its linear form on the piece.
+  // The closed form: the earliest time in [a, b] where witness i (values wa at a, of sign s,
+  // and wb at b) leaves sign s, or nullopt, certified by the bounds of its linear form on the
+  // piece.
   std::optional<double> Certified(const ClosedFormPiece& piece, int i, int s, double a, double wa,
-                                  double b);
-  std::optional<std::pair<double, double>> Isolate(const ClosedFormPiece& piece,
-                                                   const LinearForm& form, int i, int s, double a,
-                                                   double wa, double b, double wb, int& budget);
+                                  double b, double wb);
+  // A bracket [a, b] of one crossing with the witness's values at its ends.
+  struct Bracket {
+    double a, wa, b, wb;
+  };
+  std::optional<Bracket> Isolate(const ClosedFormPiece& piece, const LinearForm& form, int i, int s,
+                                 const Bracket& in, int& budget);
 
   // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
   // sample sets a new largest contact or seat force, or a new least contact force, locates that
@@ -170,7 +177,7 @@ class EventDriver {
 };
 
 std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i, int s, double a,
-                                             double wa, double b) {
+                                             double wa, double b, double wb) {
   if (!(b > a)) return std::nullopt;
   // Witnesses 5 and 6 are gated by y > 1 µm; on [a, b] (up to witness 4's crossing) the gate
   // is the one in the middle.
@@ -178,10 +185,9 @@ std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i
   const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
   if (!form) throw std::logic_error("exact: a witness without a linear form");
   int budget = kIsolationBudget;
-  const auto bracket = Isolate(piece, *form, i, s, a, wa, b, Value(i, b), budget);
+  const std::optional<Bracket> bracket = Isolate(piece, *form, i, s, {a, wa, b, wb}, budget);
   if (!bracket) return std::nullopt;
-  return Refine(i, bracket->first, Value(i, bracket->first), bracket->second,
-                Value(i, bracket->second));
+  return Refine(i, bracket->a, bracket->wa, bracket->b, bracket->wb);
 }
 
 // On [a, b], w(a) = wa of sign s and w(b) = wb: the earliest sub-interval [lo, hi] where w
@@ -193,26 +199,25 @@ std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i
 //   otherwise the interval is halved, the left half first. Below the time's round-off, or past
 //   kIsolationBudget halvings, an interval without a sign change at its ends counts as none (a
 //   tangency, or a witness pinned at zero by round-off).
-std::optional<std::pair<double, double>> EventDriver::Isolate(const ClosedFormPiece& piece,
-                                                              const LinearForm& form, int i, int s,
-                                                              double a, double wa, double b,
-                                                              double wb, int& budget) {
-  const bool change = (wb > 0.0 ? 1 : -1) != s;
-  const FormBounds bounds = piece.Bounds(form, a, b);
-  const double h = b - a;
+std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& piece,
+                                                         const LinearForm& form, int i, int s,
+                                                         const Bracket& in, int& budget) {
+  const bool change = SignOf(in.wb) != s;
+  const FormBounds bounds = piece.Bounds(form, in.a, in.b);
+  const double h = in.b - in.a;
   const bool monotone = std::abs(bounds.slope_at_start) > bounds.curvature_bound * h;
-  if (!change && (monotone || std::abs(wa) + std::abs(wb) > bounds.slope_bound * h))
+  if (!change && (monotone || std::abs(in.wa) + std::abs(in.wb) > bounds.slope_bound * h))
     return std::nullopt;
-  if (change && monotone) return std::make_pair(a, b);
-  const double mid = a + 0.5 * h;
+  if (change && monotone) return in;
+  const double mid = in.a + 0.5 * h;
   // The time's round-off, or a witness that stays within its own round-off of zero (a needle
   // resting on its seat without load): the ends decide, as on the time steppers.
-  if (--budget < 0 || !(mid > a && mid < b)) {
-    return change ? std::optional<std::pair<double, double>>(std::make_pair(a, b)) : std::nullopt;
+  if (--budget < 0 || !(mid > in.a && mid < in.b)) {
+    return change ? std::optional<Bracket>(in) : std::nullopt;
   }
   const double wm = Value(i, mid);
-  if (auto left = Isolate(piece, form, i, s, a, wa, mid, wm, budget)) return left;
-  return Isolate(piece, form, i, s, mid, wm, b, wb, budget);
+  if (auto left = Isolate(piece, form, i, s, {in.a, in.wa, mid, wm}, budget)) return left;
+  return Isolate(piece, form, i, s, {mid, wm, in.b, in.wb}, budget);
 }
 
 void EventDriver::RecordExtremes(double t0, double t1) {
@@ -298,17 +303,22 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       int first = -1;
       double first_t = t1;
       const EventValues end_values = Events(train_, phase, x_end, step.second);
-      const EventValues from_values = Events(train_, phase, Motion(from), from);
+      // The values at `from`, taken once, and only when a witness is searched.
+      std::optional<EventValues> from_values;
       double gate_end = t1;  // 5 and 6 are gated by witness 4: searched up to its crossing
       for (int i = 0; i < kEventCount; ++i) {
-        if (!piece && (end_values[i] > 0.0 ? 1 : -1) == signs[i]) continue;
+        if (!piece && SignOf(end_values[i]) == signs[i]) continue;
+        if (!from_values) from_values = Events(train_, phase, Motion(from), from);
         std::optional<double> root;
-        if ((from_values[i] > 0.0 ? 1 : -1) != signs[i]) {
+        if (SignOf((*from_values)[i]) != signs[i]) {
           root = from;  // roundoff at a restart: the function is already past zero
         } else if (piece) {
-          root = Certified(*piece, i, signs[i], from, from_values[i], i >= 5 ? gate_end : t1);
+          // The closed form's step ends at t1 itself (no snapping): its end values serve.
+          const double b = i >= 5 ? gate_end : t1;
+          root = Certified(*piece, i, signs[i], from, (*from_values)[i], b,
+                           b == step.second ? end_values[i] : Value(i, b));
         } else {
-          root = Sampled(i, signs[i], from, from_values[i], t1, step.second);
+          root = Sampled(i, signs[i], from, (*from_values)[i], t1, step.second);
         }
         if (i == 4 && root) gate_end = *root;
         if (root && (first < 0 || *root < first_t)) {
@@ -326,7 +336,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       bool switched = next.cam != phase.mode.cam || next.seat != phase.mode.seat;
       if (switched) {
         phase.mode = next;
-        signs[5] = Events(train_, phase, xs, first_t)[5] > 0.0 ? 1 : -1;  // depends on the mode
+        signs[5] = SignOf(Events(train_, phase, xs, first_t)[5]);  // depends on the mode
       }
       recorder_.Crossing(first, signs[first], first_t, xs, phase);
       // An impact (the gap witness of a contact crossing upward) under a law with a reset map.

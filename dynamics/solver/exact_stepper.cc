@@ -3,6 +3,8 @@
 // step lies in, and ends at the driver's limit (a break, the horizon) or after half an
 // oscillation, whichever comes first; its dense output is the closed form itself. The driver
 // bounds the witnesses on it (ClosedFormPiece::Bounds) so no crossing is missed.
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
