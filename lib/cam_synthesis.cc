@@ -14,59 +14,77 @@ struct Point {
   double s = 0.0, s1 = 0.0, s2 = 0.0;
 };
 
-// Caps on S' and |S''| from the cam geometry at a point of a side (s_abs: the displacement
-// from the base circle; convex: the side where S'' < 0).
+// Caps on S' and |S''| at a point of a side (s_abs: the displacement from the base circle;
+// convex: the side where S'' < 0), and which limit set the |S''| cap.
 struct Caps {
   double vmax = 1e300, amax = 1e300;
-  bool reserve_bound = false;  // the spring reserve set amax
+  enum Source { kNone, kReserve, kCurvature, kLubrication, kStress } source = kNone;
+  void Lower(double v, Source why) {
+    if (v < amax) {
+      amax = v;
+      source = why;
+    }
+  }
 };
 
-Caps GeometryCaps(const SynthesisSpec& spec, double s_abs, double s1, bool convex) {
+// The largest |S''| ≤ a_user at which the Hertz stress stays within its limit, by bisection on
+// |S''| (the stress is not affine in S''; it is taken to cross its limit once, from below).
+double StressCap(const SynthesisSpec& spec, double s_abs, double s1, bool convex, double a_user) {
+  const double w2 = spec.cam_omega * spec.cam_omega;
+  const double partner = spec.follower.ContactRadius();
+  auto over = [&](double a) {
+    const double s2 = convex ? -a : a;
+    const ProfilePoint q = FollowerContact(spec.follower, 0.0, {s_abs, s1, s2});
+    return HertzLineStress(spec.train.ContactForceN(s_abs, w2 * s2), q.profile_radius_m, partner,
+                           spec.elastic_modulus_Pa, spec.poisson,
+                           spec.contact_length_m) > spec.max_contact_stress_Pa;
+  };
+  if (!over(a_user)) return 1e300;
+  if (over(0.0)) return 0.0;
+  double lo = 0.0, hi = a_user;
+  for (int k = 0; k < 60 && hi - lo > 1e-12 * hi; ++k)
+    (over(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  return lo;
+}
+
+Caps GeometryCaps(const SynthesisSpec& spec, double s_abs, double s1, bool convex, double a_user) {
   Caps c;
   if (convex && spec.min_spring_reserve > 0.0) {
     // (P₀ + k S) ≥ K m ω² |S''|  ⇔  |S''| ≤ (P₀ + k S)/(K m ω²)
-    c.amax = spec.train.SpringForceN(s_abs) /
-             (spec.min_spring_reserve * spec.train.mass_kg * spec.cam_omega * spec.cam_omega);
-    c.reserve_bound = true;
+    c.Lower(spec.train.SpringForceN(s_abs) /
+                (spec.min_spring_reserve * spec.train.mass_kg * spec.cam_omega * spec.cam_omega),
+            Caps::kReserve);
   }
-  if (!(spec.base_radius_m > 0.0)) return c;
-  const double r = spec.base_radius_m + spec.roller_radius_m + s_abs;  // R = r_b + r_r + S
-  if (spec.max_pressure_angle_rad > 0.0) {
-    c.vmax = r * std::tan(spec.max_pressure_angle_rad);  // tan φ = S'/R
-  }
-  if (convex && spec.min_profile_radius_m >= 0.0) {
-    // (R² + S'²)^{3/2} / (R² + 2S'² − R S'') ≥ ρ  ⇔  −S'' ≤ ((R² + S'²)^{3/2}/ρ − R² − 2S'²)/R
-    const double rho = spec.roller_radius_m + spec.min_profile_radius_m;
-    if (rho > 0.0) {
-      const double cap =
-          std::max(0.0, (std::pow(r * r + s1 * s1, 1.5) / rho - r * r - 2 * s1 * s1) / r);
-      if (cap < c.amax) {
-        c.amax = cap;
-        c.reserve_bound = false;
-      }
-    }
-  }
+  if (!(spec.follower.base_radius_m > 0.0)) return c;
+  c.vmax = SpeedCap(spec.follower, spec.follower_limits, s_abs);
+  const AccelerationCap a =
+      AccelerationCapAt(spec.follower, spec.follower_limits, s_abs, s1, convex);
+  c.Lower(a.value, a.source == CapSource::kLubrication ? Caps::kLubrication : Caps::kCurvature);
+  if (spec.max_contact_stress_Pa > 0.0)
+    c.Lower(StressCap(spec, s_abs, s1, convex, std::min(a_user, c.amax)), Caps::kStress);
   return c;
+}
+
+// The largest S''_i that keeps S'_i + S''_i²/(2j) ≤ vmax (so that S'' can come back to zero
+// exactly at vmax), with S'_i = S'_{i−1} + h(S''_{i−1} + S''_i)/2:
+// S''²/(2j) + (h/2) S'' + (S'_{i−1} + h S''_{i−1}/2 − vmax) ≤ 0. +∞ without vmax.
+double SpeedRoot(const Point& p, double j, double vmax, double h) {
+  if (!(vmax < 1e299)) return 1e300;
+  const double qa = (j < 1e299) ? 1.0 / (2.0 * j) : 0.0;
+  const double qb = 0.5 * h;
+  const double qc = p.s1 + 0.5 * h * p.s2 - vmax;
+  if (qa > 0.0) {
+    const double disc = qb * qb - 4.0 * qa * qc;
+    return disc >= 0.0 ? (-qb + std::sqrt(disc)) / (2.0 * qa) : -1e300;
+  }
+  return -qc / qb;
 }
 
 // One side formed from rest with limits (a, j, vmax): the next point.
 Point Advance(const Point& p, double a, double j, double vmax, double h) {
   double s2 = std::min(a, p.s2 + j * h);  // largest S'' allowed by |S''| ≤ a and the jerk
-
   if (vmax < 1e299) {
-    // Keep S'_i + S''_i²/(2j) ≤ vmax, with S'_i = S'_{i−1} + h(S''_{i−1} + S''_i)/2:
-    // S''²/(2j) + (h/2) S'' + (S'_{i−1} + h S''_{i−1}/2 − vmax) ≤ 0.
-    const double qa = (j < 1e299) ? 1.0 / (2.0 * j) : 0.0;
-    const double qb = 0.5 * h;
-    const double qc = p.s1 + 0.5 * h * p.s2 - vmax;
-    double root;
-    if (qa > 0.0) {
-      const double disc = qb * qb - 4.0 * qa * qc;
-      root = disc >= 0.0 ? (-qb + std::sqrt(disc)) / (2.0 * qa) : -1e300;
-    } else {
-      root = -qc / qb;
-    }
-    s2 = std::min(s2, root);
+    s2 = std::min(s2, SpeedRoot(p, j, vmax, h));
     s2 = std::max({s2, p.s2 - j * h, 0.0});  // cannot come down faster than the jerk allows
   }
   Point n;
@@ -78,7 +96,10 @@ Point Advance(const Point& p, double a, double j, double vmax, double h) {
 }
 
 struct Formed {
-  bool v_bound = false, a_bound = false, reserve_bound = false;  // a cap was the tighter limit
+  // Which caps were the tighter limit somewhere.
+  bool v_bound = false, a_bound = false, reserve_bound = false, lube_bound = false,
+       stress_bound = false;
+  size_t backed_off = 0;    // steps formed again (back-off)
   std::vector<Point> a, c;  // side A forward, side C backward (from the end of the rise)
 
   double constant_rad = 0.0;  // constant-speed length
@@ -101,6 +122,12 @@ Formed Form(const SynthesisSpec& spec, double alpha, double vmax, double h,
   auto at_speed = [&](const Point& p) {
     return vmax < 1e299 && p.s1 >= vmax * (1 - 1e-12) && p.s2 <= 0.0;
   };
+  // Ceilings on |S''| per step index, set by back-off: a step whose cap lies more than j·h
+  // below the step before makes that step be formed again with S'' ≤ cap + j·h.
+  std::vector<double> ceil_a, ceil_c;
+  // A safeguard on back-off (steps formed again): 64 per step of the rise, whatever the give-up
+  // angle; beyond it a cap that still cannot be met within the jerk limit is let off.
+  const size_t backoff_budget = 64 * (static_cast<size_t>(spec.rise_rad / h) + 3);
   while (f.a.size() + f.c.size() < budget) {
     const Point& pa = f.a.back();
     const Point& pc = f.c.back();
@@ -111,19 +138,46 @@ Formed Form(const SynthesisSpec& spec, double alpha, double vmax, double h,
       f.constant_rad = (spec.height_m - pa.s - pc.s) / vmax;  // φ₀ = ΔS / S'max (5)
       break;
     }
-    // The side with the lower S' advances, under the user limits and the geometry caps.
+    // The side with the lower S' advances, under the user limits and the caps.
     const bool advance_a = !a_done && (c_done || pa.s1 <= pc.s1);
-    const Point p = advance_a ? pa : pc;
+    std::vector<Point>& side = advance_a ? f.a : f.c;
+    std::vector<double>& ceil = advance_a ? ceil_a : ceil_c;
+    const Point p = side.back();
+    const size_t index = side.size();  // of the point being formed
     // The caps grow with the displacement from the base circle. Side C is formed backwards, so
     // its next point lies lower than the current one: evaluate there, bounded conservatively.
     const double a_user = advance_a ? aa : ac;
     const double s_abs = advance_a ? p.s : spec.height_m - (p.s + h * p.s1 + h * h * a_user);
-    const Caps caps = GeometryCaps(spec, s_abs, p.s1, !advance_a);
+    const Caps caps = GeometryCaps(spec, s_abs, p.s1, !advance_a, a_user);
+    double a_cap = std::min(a_user, caps.amax);
+    if (index < ceil.size()) a_cap = std::min(a_cap, ceil[index]);
+    // The S'' this step may have: the caps, and the S' rule of Advance for a cap on S' that
+    // fell since the step before (a pressure angle or face on side C).
+    const double need = std::min(a_cap, caps.vmax < vmax ? SpeedRoot(p, j, caps.vmax, h) : 1e300);
+    const double floor_s2 = std::max(need, 0.0);  // S'' does not change sign on a side
+    if (j < 1e299 && floor_s2 < p.s2 - j * h * (1 + 1e-12) && index >= 2 &&
+        f.backed_off < backoff_budget) {
+      // Back off: the step m before this one must end within m·j·h of what this step may
+      // have. Set those ceilings as far back as they bind, drop those steps and form them again.
+      if (ceil.size() < index) ceil.resize(index, 1e300);
+      size_t m = 1;
+      for (; m < index; ++m) {
+        const double reach = floor_s2 + static_cast<double>(m) * j * h;
+        if (side[index - m].s2 <= reach) break;
+        ceil[index - m] = std::min(ceil[index - m], reach);
+      }
+      side.resize(index - m + 1);  // keep the steps up to the first that needs no change
+      f.backed_off += m - 1;
+      continue;
+    }
     f.v_bound = f.v_bound || caps.vmax < vmax;
-    f.a_bound = f.a_bound || (caps.amax < a_user && !caps.reserve_bound);
-    f.reserve_bound = f.reserve_bound || (caps.amax < a_user && caps.reserve_bound);
-    (advance_a ? f.a : f.c)
-        .push_back(Advance(p, std::min(a_user, caps.amax), j, std::min(vmax, caps.vmax), h));
+    if (caps.amax < a_user) {
+      f.a_bound = f.a_bound || caps.source == Caps::kCurvature;
+      f.reserve_bound = f.reserve_bound || caps.source == Caps::kReserve;
+      f.lube_bound = f.lube_bound || caps.source == Caps::kLubrication;
+      f.stress_bound = f.stress_bound || caps.source == Caps::kStress;
+    }
+    side.push_back(Advance(p, a_cap, j, std::min(vmax, caps.vmax), h));
   }
   if (f.a.size() + f.c.size() >= budget) {
     f.total_rad = INFINITY;
@@ -154,6 +208,20 @@ Formed FormSmooth(const SynthesisSpec& spec, double alpha, double vmax, double h
   return g;
 }
 
+// "; the caps that bound S' or S'': …" for a message, or "".
+std::string BindingCaps(const Formed& f) {
+  std::string names;
+  auto add = [&](bool on, const char* name) {
+    if (on) names += (names.empty() ? "" : ", ") + std::string(name);
+  };
+  add(f.v_bound, "pressure angle or face width");
+  add(f.a_bound, "profile radius");
+  add(f.reserve_bound, "spring reserve");
+  add(f.lube_bound, "lubrication (entrainment)");
+  add(f.stress_bound, "contact stress");
+  return names.empty() ? "" : "; the caps that bound S' or S'': " + names;
+}
+
 }  // namespace
 
 void SynthesisSpec::Validate() const {
@@ -173,14 +241,33 @@ void SynthesisSpec::Validate() const {
   req(jerk_limit > 0.0, "jerk_limit", jerk_limit, "must be positive");
   req(min_spring_reserve >= 0.0 && std::isfinite(min_spring_reserve), "min_spring_reserve",
       min_spring_reserve, "must not be negative");
-  if (min_spring_reserve > 0.0) {
+  if (follower.base_radius_m > 0.0) {
+    try {
+      follower.Validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("SynthesisSpec.follower: ") + e.what());
+    }
+    req(follower.offset_m == 0.0, "follower.offset_m", follower.offset_m,
+        "must be 0: the steering caps assume a radial follower");
+  }
+  req(max_contact_stress_Pa >= 0.0 && std::isfinite(max_contact_stress_Pa), "max_contact_stress_Pa",
+      max_contact_stress_Pa, "must not be negative");
+  if (max_contact_stress_Pa > 0.0) {
+    req(follower.base_radius_m > 0.0, "follower.base_radius_m", follower.base_radius_m,
+        "must be positive with a contact-stress limit");
+    req(contact_length_m > 0.0 && std::isfinite(contact_length_m), "contact_length_m",
+        contact_length_m, "must be positive with a contact-stress limit");
+    req(elastic_modulus_Pa > 0.0, "elastic_modulus_Pa", elastic_modulus_Pa, "must be positive");
+    req(poisson >= 0.0 && poisson < 0.5, "poisson", poisson, "must be in [0, 0.5)");
+  }
+  if (min_spring_reserve > 0.0 || max_contact_stress_Pa > 0.0) {
     try {
       train.Validate();
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("SynthesisSpec.train: ") + e.what());
     }
     req(cam_omega > 0.0 && std::isfinite(cam_omega), "cam_omega", cam_omega,
-        "must be positive with a spring reserve");
+        "must be positive with a spring reserve or a contact-stress limit");
   }
 }
 
@@ -202,10 +289,49 @@ double LeastSpeedLimit(const SynthesisSpec& spec) {
   return hi;
 }
 
+double LeastBaseRadius(const SynthesisSpec& spec) {
+  if (!(spec.follower.base_radius_m > 0.0)) return INFINITY;
+  const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
+  const double vmax = spec.speed_limit;
+  auto fits = [&](double rb) {
+    SynthesisSpec t = spec;
+    t.follower.base_radius_m = rb;
+    return FormSmooth(t, 1.0, vmax, h, 2 * spec.rise_rad).total_rad <= spec.rise_rad;
+  };
+  double lo = spec.follower.base_radius_m, hi = lo;
+  for (int doublings = 0; !fits(hi); ++doublings) {
+    if (doublings >= 20) return INFINITY;  // a millionfold: the other limits are too tight
+    lo = hi;
+    hi *= 2.0;
+  }
+  if (hi == spec.follower.base_radius_m) return hi;  // fits as it is
+  for (int k = 0; k < 50 && hi - lo > 1e-9 * hi; ++k)
+    (fits(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  return hi;
+}
+
+namespace {
+// " (with the limits of the cam and its flat follower; the least base radius that fits is …)".
+std::string FollowerNote(const SynthesisSpec& spec) {
+  const double least = LeastBaseRadius(spec);
+  return std::string(" (with the limits of the cam and its ") +
+         FollowerKindName(spec.follower.kind) + " follower" +
+         (std::isfinite(least)
+              ? "; the least base radius that fits is " + std::to_string(least * 1e3) + " mm"
+              : "; no base radius up to a millionfold fits") +
+         ")";
+}
+}  // namespace
+
 SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   spec.Validate();
   const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
-  const double vmax = spec.speed_limit;
+  // A flat face's half-width caps S' everywhere: it acts as S'max (a radial face).
+  const bool flat_face = spec.follower.base_radius_m > 0.0 &&
+                         spec.follower.kind == FollowerKind::kFlat &&
+                         spec.follower.face_half_width_m > 0.0;
+  const double vmax =
+      flat_face ? std::min(spec.speed_limit, spec.follower.face_half_width_m) : spec.speed_limit;
   if (vmax < 1e299 && vmax * spec.rise_rad <= spec.height_m) {
     throw std::invalid_argument(
         "infeasible: S'max × rise angle = " + std::to_string(vmax * spec.rise_rad * 1e3) +
@@ -224,8 +350,7 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
         (std::isfinite(least) && vmax < 1e299
              ? "; the least S'max that fits is " + std::to_string(least * 1e3) + " mm/rad"
              : "; raise the acceleration or jerk limits") +
-        (spec.base_radius_m > 0.0 ? " (with the pressure-angle and curvature limits of the cam)"
-                                  : ""));
+        BindingCaps(full) + (spec.follower.base_radius_m > 0.0 ? FollowerNote(spec) : ""));
   }
 
   // Smallest α ≤ 1 whose rise still fits in Φ (the rise angle falls as α grows): bracket by
@@ -255,6 +380,10 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   law.pressure_angle_limited = f.v_bound;
   law.curvature_limited = f.a_bound;
   law.spring_reserve_limited = f.reserve_bound;
+  law.lubrication_limited = f.lube_bound;
+  law.stress_limited = f.stress_bound;
+  law.face_width_limited = flat_face && vmax < spec.speed_limit && law.speed_limit_active;
+  law.backed_off_steps = f.backed_off;
 
   for (size_t i = 0; i < f.a.size(); ++i) {
     law.phi.push_back(h * i);

@@ -19,11 +19,17 @@
 /// scaled by one factor α ≤ 1 (found by bisection) so that the rise takes exactly the given angle;
 /// the law is then stretched by at most one step to close the angle exactly, which only lowers
 /// every derivative.
+///
+/// The follower's limits (lib/follower.h) and the spring's act as caps on S' and |S''| at each
+/// step. When a cap falls faster than the jerk limit lets S'' follow (S''_i − cap > j·Δφ), the
+/// step before is formed again with S'' ≤ cap + j·Δφ, and so on back as far as needed — the
+/// paper's "back-off" — so that both the cap and the jerk limit hold.
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "lib/follower.h"
 #include "lib/rigid_train.h"
 
 namespace needle {
@@ -37,22 +43,27 @@ struct SynthesisSpec {
   double accel_limit = 0.0;    ///< a⁺, largest positive S'', m/rad², > 0
   double decel_limit = 0.0;    ///< a⁻, largest |S''| where negative, m/rad², > 0
   double jerk_limit = 1e300;   ///< j, largest |S'''|, m/rad³ (default: none)
-  /// Limits that depend on the cam and follower, applied at every step as caps on S' and
-  /// S'' (radial roller follower: offset 0). Active when base_radius_m > 0.
-  double base_radius_m = 0.0;           ///< r_b
-  double roller_radius_m = 0.0;         ///< r_r
-  double max_pressure_angle_rad = 0.0;  ///< φmax > 0: S' ≤ (r_b + r_r + S)·tan φmax
-  /// ρmin ≥ 0: on convex stretches (S'' < 0) the pitch radius (R² + S'²)^{3/2}/(R² + 2S'² − R S'')
-  /// with R = r_b + r_r + S stays ≥ r_r + ρmin, so the profile keeps a radius of at least ρmin
-  /// (no undercut). Negative: no curvature limit.
-  double min_profile_radius_m = -1.0;
+  /// The follower and the limits it steers by, applied at every step as caps on S' and S''
+  /// (lib/follower.h, radial: offset 0). Active when follower.base_radius_m > 0. The face
+  /// half-width of a flat face caps S' everywhere (the contact lies S' off the axis), so it
+  /// acts as S'max and can make the constant-speed section.
+  FollowerGeometry follower;
+  FollowerLimits follower_limits;  ///< pressure angle, least profile radius, entrainment
   /// Spring reserve K > 0: on the decelerating side the spring force must stay K times the
   /// inertia force, F_spring(S) ≥ K·m·ω²·|S''| (lib/rigid_train.h), a cap
   /// |S''| ≤ F_spring(S)/(K·m·ω²). Needs the train (mass, preload, rate; its gas load is
   /// counted too) and the cam speed ω. 0: no such limit.
   double min_spring_reserve = 0.0;
-  RigidTrain train;        ///< the moving mass and the spring, used with min_spring_reserve
-  double cam_omega = 0.0;  ///< cam angular speed ω, rad/s, > 0 with min_spring_reserve
+  /// Contact stress σ_H ≤ this as a cap on |S''| (Hertz line contact of the cam's radius
+  /// against the follower's, F = m·ω²·S'' + P₀ + k·S), Pa; 0: no such limit. Needs the
+  /// follower, the train and ω.
+  double max_contact_stress_Pa = 0.0;
+  double contact_length_m = 0.0;      ///< L of the line contact, m, > 0 with the stress limit
+  double elastic_modulus_Pa = 210e9;  ///< E of cam and follower (the same material)
+  double poisson = 0.3;               ///< ν
+  /// The moving mass and the spring, used with min_spring_reserve and max_contact_stress_Pa.
+  RigidTrain train;
+  double cam_omega = 0.0;  ///< cam angular speed ω, rad/s, > 0 with either
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
 };
@@ -65,6 +76,12 @@ struct SynthesizedLaw {
   bool curvature_limited = false;       ///< the curvature cap bound S'' somewhere
 
   bool spring_reserve_limited = false;  ///< the spring-reserve cap bound S'' somewhere
+  bool lubrication_limited = false;     ///< the entrainment cap bound S'' somewhere
+  bool stress_limited = false;          ///< the contact-stress cap bound S'' somewhere
+  bool face_width_limited = false;      ///< a flat face's half-width, not S'max, set S'
+  /// Steps formed again with a lower S'' because a later step could not meet a cap within the
+  /// jerk limit (MATEC 2018: "decreases the value of S'' at one of the previous steps").
+  size_t backed_off_steps = 0;
   /// > 0: the sides would have met below S'max with S'' of opposite signs (a jerk step), so
   /// they were made to meet at this S', m/rad, with S'' = 0 on both (the jerk limit honoured
   /// everywhere); 0 otherwise.
@@ -82,5 +99,9 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec);
 
 /// The smallest S'max with which the rise fits (the other limits as given), m/rad.
 double LeastSpeedLimit(const SynthesisSpec& spec);
+
+/// The smallest base-circle radius with which the rise fits under the follower's limits (the
+/// other limits as given), m; +∞ without a follower or beyond a millionfold of the given one.
+double LeastBaseRadius(const SynthesisSpec& spec);
 
 }  // namespace needle

@@ -54,6 +54,11 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     j["speed_limit_active"] = rise.speed_limit_active;
     j["pressure_angle_cap_tighter"] = rise.pressure_angle_limited;
     j["curvature_cap_tighter"] = rise.curvature_limited;
+    j["lubrication_cap_tighter"] = rise.lubrication_limited;
+    j["contact_stress_cap_tighter"] = rise.stress_limited;
+    j["face_width_limits_speed"] = rise.face_width_limited;
+    j["backed_off_steps"] = rise.backed_off_steps;
+    if (f.base_radius_m) j["follower"] = FollowerKindName(f.follower);
     j["steps"] = rise.phi.size() - 1;
     if (r.profile) j["undercut"] = r.profile->undercut;
     if (r.min_spring_reserve) j["spring_reserve_cap_tighter"] = rise.spring_reserve_limited;
@@ -64,7 +69,13 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     out << (f.title.empty() ? f.path : f.title) << '\n'
         << "rise " << t("lift_mm") << " in " << t("rise_deg") << " of cam, " << rise.phi.size() - 1
         << " steps; limits used at " << Fixed(100 * rise.scale, 2) << " %\n";
-    if (rise.speed_limit_active) {
+    if (rise.face_width_limited) {
+      out << "constant-speed section at S' = the flat face's half-width "
+          << Fixed(*f.face_half_width_m * 1e3, 3) << " mm/rad (S'max "
+          << (f.speed_limit < 1e299 ? Fixed(f.speed_limit * 1e3, 3) + " mm/rad" : "not given")
+          << ") from " << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg")
+          << " (" << t("constant_speed_length_deg") << ")\n";
+    } else if (rise.speed_limit_active) {
       out << "constant-speed section at S'max = " << Fixed(f.speed_limit * 1e3, 3)
           << " mm/rad from " << v("constant_speed_start_deg") << " to "
           << t("constant_speed_end_deg") << " (" << t("constant_speed_length_deg") << ")\n";
@@ -79,14 +90,33 @@ int RunSynthCommand(const SynthCommandOptions& o) {
         << v("max_S2_mm_rad2") << " at " << t("max_S2_deg") << " and " << t("min_S2_mm_rad2")
         << " at " << t("min_S2_deg") << "; max |S'''| " << t("max_abs_S3_mm_rad3") << " at "
         << t("max_abs_S3_deg") << "\n";
+    if (rise.backed_off_steps > 0)
+      out << rise.backed_off_steps
+          << " steps formed again with a lower S'' so that a later cap and the jerk limit both "
+             "hold (back-off)\n";
     if (r.profile) {
+      out << FollowerKindName(f.follower) << " follower: ";
+      if (f.follower != FollowerKind::kRoller)
+        out << "contact up to " << t("max_contact_offset_mm") << " off the axis at "
+            << t("max_contact_offset_at_deg")
+            << (f.face_half_width_m
+                    ? " (face half-width " + Fixed(*f.face_half_width_m * 1e3, 3) + " mm)"
+                    : "")
+            << "; ";
+      out << "entrainment speed min " << t("min_entrainment_speed_m_s") << " at "
+          << t("min_entrainment_speed_at_deg")
+          << (f.min_entrainment_m_s ? " (limit " + Fixed(*f.min_entrainment_m_s, 3) + ")" : "")
+          << ", sliding max " << t("max_sliding_speed_m_s") << " at " << Fixed(f.speed_rpm, 0)
+          << " rpm\n";
       out << "largest |pressure angle| " << t("max_abs_pressure_angle_deg") << " at "
           << t("max_pressure_angle_at_deg")
           << (f.max_pressure_angle_rad
                   ? " (limit " + Fixed(*f.max_pressure_angle_rad / kDeg, 1) + ")"
                   : "")
           << "; profile radius min " << t("min_profile_radius_mm") << "; "
-          << (r.profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
+          << (r.profile->undercut ? (f.follower == FollowerKind::kFlat ? "CUSP" : "UNDERCUT")
+                                  : "no undercut")
+          << '\n';
     }
     if (r.min_spring_reserve) {
       out << "spring reserve min " << Fixed(r.min_spring_reserve->value, 3) << " at "
@@ -114,7 +144,9 @@ int RunSynthCommand(const SynthCommandOptions& o) {
 
 CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
-      "profile", "Cam profile for a roller follower: coordinates, pressure angle, undercut");
+      "profile",
+      "Cam profile for a roller, flat-face or curved-face follower: coordinates, pressure angle, "
+      "undercut, contact on the face, entrainment and sliding");
   cmd->add_option("CASE", o.case_path, "case file with [lift] and [profile] (and [train] play)")
       ->required();
   cmd->add_flag("--json", o.json, "print one JSON object");
@@ -132,12 +164,24 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
   const double play = c.train ? c.train->play_m : 0.0;
   double theta0 = 0.0;
   const CamProfile p = MakeCaseProfile(c, law, &theta0);
+  // The cam's speed at the rated engine speed (four-stroke: half the crank's).
+  const double cam_omega =
+      OmegaFromRpm(c.engine.speed_rpm) / (c.engine.cycle == "four-stroke" ? 2.0 : 1.0);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
     j["case"] = c.path;
+    j["follower"] = FollowerKindName(g.kind);
     j["base_radius_mm"] = g.base_radius_m * 1e3;
-    j["roller_radius_mm"] = g.roller_radius_m * 1e3;
+    if (g.kind == FollowerKind::kRoller) j["roller_radius_mm"] = g.roller_radius_m * 1e3;
+    if (g.kind == FollowerKind::kCurved) j["face_radius_mm"] = g.face_radius_m * 1e3;
+    if (g.face_half_width_m > 0.0) j["face_half_width_mm"] = g.face_half_width_m * 1e3;
+    j["max_contact_offset_mm"] = p.max_contact_offset_m * 1e3;
+    j["max_contact_offset_at_cam_deg"] = p.max_contact_offset_at_rad / kDeg;
+    j["off_face"] = p.off_face;
+    j["min_entrainment_speed_m_s"] = p.min_entrainment_m_rad * cam_omega;
+    j["min_entrainment_speed_at_cam_deg"] = p.min_entrainment_at_rad / kDeg;
+    j["max_sliding_speed_m_s"] = p.max_sliding_m_rad * cam_omega;
     j["offset_mm"] = g.offset_m * 1e3;
     j["lever_ratio"] = g.lever_ratio;
     j["roller_play_mm"] = play * 1e3;
@@ -151,15 +195,35 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
     out << j.dump(2) << '\n';
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
-        << "base circle radius " << Fixed(g.base_radius_m * 1e3, 2) << " mm, roller radius "
-        << Fixed(g.roller_radius_m * 1e3, 2) << " mm, offset " << Fixed(g.offset_m * 1e3, 2)
-        << " mm, lever " << Fixed(g.lever_ratio, 3) << ", play " << Fixed(play * 1e3, 3)
-        << " mm; cam 0 deg at crank " << Fixed(theta0 / kDeg, 2) << " deg\n"
+        << FollowerKindName(g.kind) << " follower: base circle radius "
+        << Fixed(g.base_radius_m * 1e3, 2) << " mm, "
+        << (g.kind == FollowerKind::kRoller
+                ? "roller radius " + Fixed(g.roller_radius_m * 1e3, 2) + " mm, "
+            : g.kind == FollowerKind::kCurved
+                ? "face radius " + Fixed(g.face_radius_m * 1e3, 2) + " mm, "
+                : std::string())
+        << (g.face_half_width_m > 0.0
+                ? "face half-width " + Fixed(g.face_half_width_m * 1e3, 2) + " mm, "
+                : std::string())
+        << "offset " << Fixed(g.offset_m * 1e3, 2) << " mm, lever " << Fixed(g.lever_ratio, 3)
+        << ", play " << Fixed(play * 1e3, 3) << " mm; cam 0 deg at crank "
+        << Fixed(theta0 / kDeg, 2) << " deg\n"
         << "pressure angle largest |phi| " << Fixed(std::abs(p.max_pressure_angle_rad) / kDeg, 3)
         << " deg at cam " << Fixed(p.max_pressure_angle_at_rad / kDeg, 2) << " deg\n"
         << "profile radius of curvature min " << Fixed(p.min_profile_radius_m * 1e3, 3)
         << " mm at cam " << Fixed(p.min_profile_radius_at_rad / kDeg, 2) << " deg; "
-        << (p.undercut ? "UNDERCUT" : "no undercut") << '\n';
+        << (p.undercut ? (g.kind == FollowerKind::kFlat ? "CUSP" : "UNDERCUT") : "no undercut")
+        << '\n';
+    if (g.kind != FollowerKind::kRoller)
+      out << "contact up to " << Fixed(p.max_contact_offset_m * 1e3, 3)
+          << " mm off the axis at cam " << Fixed(p.max_contact_offset_at_rad / kDeg, 2) << " deg"
+          << (g.face_half_width_m > 0.0 ? (p.off_face ? ": OFF THE FACE" : ": on the face")
+                                        : std::string())
+          << '\n';
+    out << "at " << Fixed(c.engine.speed_rpm, 0) << " rpm: entrainment speed min "
+        << Fixed(p.min_entrainment_m_rad * cam_omega, 3) << " m/s at cam "
+        << Fixed(p.min_entrainment_at_rad / kDeg, 2) << " deg, sliding speed max "
+        << Fixed(p.max_sliding_m_rad * cam_omega, 3) << " m/s\n";
   }
   if (o.csv) {
     std::ostringstream csv;
@@ -170,7 +234,7 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
     WriteOutput({"--csv", *o.csv}, csv.str());
   }
   std::cout << out.str() << std::flush;
-  return p.undercut ? 1 : 0;
+  return p.undercut || p.off_face ? 1 : 0;
 }
 
 }  // namespace needle

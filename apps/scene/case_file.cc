@@ -416,16 +416,62 @@ OverspeedSection ReadOverspeed(SectionReader r) {
   return o;
 }
 
+// The follower's kind and its radius and face keys, the same in [profile] and [checks]: each
+// key belongs to the kinds that have it. `length(name, positive)` reads and checks one length.
+struct FollowerKeys {
+  FollowerKind kind = FollowerKind::kRoller;
+  std::optional<double> roller_radius_m, face_radius_m, face_half_width_m;
+};
+
+template <class Length>
+FollowerKeys ReadFollowerKeys(SectionReader& r, const Length& length) {
+  FollowerKeys k;
+  if (auto name = r.OptionalString("follower")) {
+    const std::optional<FollowerKind> kind = ParseFollowerKind(*name);
+    if (!kind)
+      r.Fail("follower", "expected \"roller\", \"flat\" or \"curved\", got \"" + *name + "\"");
+    k.kind = *kind;
+  }
+  const std::string kind = FollowerKindName(k.kind);
+  k.roller_radius_m = length("roller_radius", false);
+  if (k.roller_radius_m && k.kind != FollowerKind::kRoller)
+    r.Fail(r.last_key(), "a " + kind + " follower has no roller" +
+                             (k.kind == FollowerKind::kCurved ? "; give face_radius_mm" : ""));
+  k.face_radius_m = length("face_radius", true);
+  if (k.face_radius_m && k.kind != FollowerKind::kCurved)
+    r.Fail(r.last_key(), "only a curved follower has a face radius (follower = \"curved\")");
+  if (k.kind == FollowerKind::kCurved && !k.face_radius_m)
+    r.Fail("face_radius_mm", "a curved follower needs the radius of its face");
+  k.face_half_width_m = length("face_half_width", true);
+  if (k.face_half_width_m && k.kind == FollowerKind::kRoller)
+    r.Fail(r.last_key(), "a roller has no face; set follower = \"flat\" or \"curved\"");
+  return k;
+}
+
 ProfileSection ReadProfile(SectionReader r) {
   ProfileSection p;
+  auto length = [&](const std::string& name, bool positive) -> std::optional<double> {
+    auto v = r.OptionalQuantity(name, Dimension::kLength);
+    if (v && !((positive ? *v > 0.0 : *v >= 0.0) && *v <= 10.0))
+      r.Fail(r.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") +
+                               " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
+    return v;
+  };
+  const FollowerKeys k = ReadFollowerKeys(r, length);
+  p.follower = k.kind;
   p.base_radius_m = Positive(r, "base_radius", Dimension::kLength, 1e3, "base_radius_mm");
-  if (auto v = r.OptionalQuantity("roller_radius", Dimension::kLength)) {
-    if (!(*v >= 0.0)) r.Fail(r.last_key(), "must not be negative");
-    p.roller_radius_m = *v;
-  }
+  p.roller_radius_m = k.roller_radius_m.value_or(0.0);
+  p.face_radius_m = k.face_radius_m.value_or(0.0);
+  p.face_half_width_m = k.face_half_width_m.value_or(0.0);
   p.offset_m = r.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
-  if (!(std::abs(p.offset_m) < p.base_radius_m + p.roller_radius_m)) {
-    r.Fail("offset", "must be smaller than base radius plus roller radius");
+  if (!(std::abs(p.offset_m) <= 10.0))
+    r.Fail("offset", "must be within ±10000 mm, got " + Number(p.offset_m * 1e3) + " mm");
+  const double contact_r =
+      p.follower == FollowerKind::kCurved ? p.face_radius_m : p.roller_radius_m;
+  if (p.follower != FollowerKind::kFlat && !(std::abs(p.offset_m) < p.base_radius_m + contact_r)) {
+    r.Fail("offset", "must be smaller than base radius plus " +
+                         std::string(p.follower == FollowerKind::kCurved ? "face" : "roller") +
+                         " radius");
   }
   if (auto l = r.OptionalNumber("lever_ratio")) {
     if (!(*l > 0.0)) r.Fail("lever_ratio", "must be positive, got " + Number(*l));
@@ -853,8 +899,21 @@ SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& pat
                                    " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
       return v;
     };
+    const FollowerKeys k = ReadFollowerKeys(ch, length);
+    f.follower = k.kind;
     f.base_radius_m = length("base_radius", true);
-    f.roller_radius_m = length("roller_radius", false);
+    f.roller_radius_m = k.roller_radius_m;
+    f.face_radius_m = k.face_radius_m;
+    f.face_half_width_m = k.face_half_width_m;
+    if ((k.kind != FollowerKind::kRoller || f.face_half_width_m) && !f.base_radius_m)
+      ch.Fail("base_radius",
+              "a " + std::string(FollowerKindName(k.kind)) + " follower needs base_radius_mm");
+    if (auto u = ch.OptionalQuantity("min_entrainment_speed", Dimension::kVelocity)) {
+      if (!(*u > 0.0 && *u <= 1e3))
+        ch.Fail(ch.last_key(), "must be in (0, 1000] m/s, got " + Number(*u) + " m/s");
+      if (!f.base_radius_m) ch.Fail("base_radius", "the lubrication limit needs base_radius_mm");
+      f.min_entrainment_m_s = *u;
+    }
     f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
     if (!(std::abs(f.offset_m) <= 10.0))
       ch.Fail(ch.last_key(), "must be within ±10000 mm, got " + Number(f.offset_m * 1e3) + " mm");

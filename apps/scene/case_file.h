@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "lib/case_error.h"
+#include "lib/follower.h"
 #include "lib/lift_data.h"
 #include "lib/lift_law.h"
 #include "lib/spline.h"
@@ -102,11 +103,14 @@ struct OverspeedSection {
 
 /// [profile]: the cam that drives the needle, for `needle profile`.
 struct ProfileSection {
-  double base_radius_m = 0.0;    ///< base-circle radius, > 0
-  double roller_radius_m = 0.0;  ///< roller radius, ≥ 0
-  double offset_m = 0.0;         ///< follower offset
-  double lever_ratio = 1.0;      ///< roller travel per needle travel (rocker), > 0
-  int points = 720;              ///< points over one cam revolution
+  FollowerKind follower = FollowerKind::kRoller;  ///< `follower`: roller, flat or curved
+  double base_radius_m = 0.0;                     ///< base-circle radius, > 0
+  double roller_radius_m = 0.0;                   ///< roller radius, ≥ 0 (roller only)
+  double face_radius_m = 0.0;                     ///< curved face's radius, > 0 (curved only)
+  double face_half_width_m = 0.0;  ///< flat, curved: the face's half-width; 0: not given
+  double offset_m = 0.0;           ///< follower offset
+  double lever_ratio = 1.0;        ///< roller travel per needle travel (rocker), > 0
+  int points = 720;                ///< points over one cam revolution
 };
 
 /// The case's [needle] and [spring] are the spring module's parameters.
@@ -137,7 +141,12 @@ struct SynthesisFile {
   std::string path, title;
   double rise_rad = 0.0, height_m = 0.0, step_rad = 0.0;
   double speed_limit = 1e300, accel_limit = 0.0, decel_limit = 0.0, jerk_limit = 1e300;
+  FollowerKind follower = FollowerKind::kRoller;  ///< [checks] follower
   std::optional<double> base_radius_m, roller_radius_m;
+  std::optional<double> face_radius_m;      ///< curved face
+  std::optional<double> face_half_width_m;  ///< flat or curved face: caps S' (flat) or φ (curved)
+  /// Lubrication: the least entrainment velocity at [output] speed_rpm, m/s (steers S'').
+  std::optional<double> min_entrainment_m_s;
   double offset_m = 0.0;
   std::optional<double> max_pressure_angle_rad;
   std::optional<double> min_profile_radius_m;  ///< steer S'' so the profile keeps this radius

@@ -8,7 +8,7 @@
 ///     needle at rest before the run window's end);
 ///   - the overspeed sweep: n_dyn above f·n (f = [spring] overspeed_factor, 1.2), and the
 ///     sweep decided (neither budget ended it);
-///   - the cam profile ([profile]): no undercut.
+///   - the cam profile ([profile]): no undercut (a flat face: no cusp), the contact on the face.
 ///
 /// A part the scene does not have is skipped and named, never passed silently. The command
 /// only formats the result (text, JSON, the HTML report).

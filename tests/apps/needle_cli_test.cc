@@ -408,6 +408,29 @@ TEST(NeedleCliCamTest, ProfileOfBasusExample1Cam) {
                           ": [profile] base_radius_mm: section [profile] is missing\n");
 }
 
+// Issue 15: Basu's cam under a flat face. His flanks are concave (tangent cam), which a flat
+// face cannot follow: the profile cusps, the command says so and exits 1; the radii are
+// printed as radii, and the contact runs S'max off the axis.
+TEST(NeedleCliCamTest, BasusCamUnderAFlatFaceCusps) {
+  const std::string path = "/tmp/needle_cli_flat_" + std::to_string(getpid()) + ".toml";
+  std::string text = testing::Slurp(Case("basu-example1.toml"));
+  text.replace(text.find("roller_radius_mm = 45"), 21, "follower = \"flat\"");
+  std::ofstream(path) << text;
+  const auto r = RunNeedle("profile " + path);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.out.find("flat follower: base circle radius 230.00 mm, offset 0.00 mm"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("; CUSP\n"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(RunNeedle("profile " + path + " --json").out);
+  EXPECT_TRUE(j["undercut"].get<bool>());
+  EXPECT_EQ(j["follower"], "flat");
+  EXPECT_LT(j["min_profile_radius_mm"].get<double>(), 0.0);
+  EXPECT_EQ(j["max_pressure_angle_deg"].get<double>(), 0.0);
+  EXPECT_GT(j["max_contact_offset_mm"].get<double>(), 10.0);
+  std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace needle
 

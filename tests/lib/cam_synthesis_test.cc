@@ -135,31 +135,33 @@ TEST(CamSynthesisStepLimitsTest, CurvatureLimitSteersEveryStepAndAvoidsTheUnderc
   // with the curvature limit steering each step (profile radius ≥ 0) the paper's 63° become
   // infeasible, and the message names the least S'max that would fit.
   SynthesisSpec s = Paper();
-  s.base_radius_m = 0.010;
-  s.roller_radius_m = 0.00825;
-  s.min_profile_radius_m = 0.0;
+  s.follower.base_radius_m = 0.010;
+  s.follower.roller_radius_m = 0.00825;
+  s.follower_limits.min_profile_radius_m = 0.0;
   try {
     SynthesizeRise(s);
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("the least S'max that fits is 7.94"), std::string::npos)
         << e.what();
-    EXPECT_NE(std::string(e.what()).find("with the pressure-angle and curvature limits of the cam"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "with the limits of the cam and its roller follower; the least base radius"),
               std::string::npos);
   }
   // On a 30 mm base circle it fits; the cap binds near the crest, and every convex step keeps
   // a profile radius ≥ 0 while the derivative limits still hold.
-  s.base_radius_m = 0.030;
+  s.follower.base_radius_m = 0.030;
   const SynthesizedLaw law = SynthesizeRise(s);
   EXPECT_TRUE(law.curvature_limited);
   ExpectWithinLimits(law, s);
   double min_radius = 1e9;
   for (size_t i = 0; i < law.phi.size(); ++i) {
     if (law.s2[i] >= 0.0) continue;
-    const double r = s.base_radius_m + s.roller_radius_m + law.s[i], v = law.s1[i];
+    const double r = s.follower.base_radius_m + s.follower.roller_radius_m + law.s[i],
+                 v = law.s1[i];
     min_radius =
         std::min(min_radius, std::pow(r * r + v * v, 1.5) / (r * r + 2 * v * v - r * law.s2[i]) -
-                                 s.roller_radius_m);
+                                 s.follower.roller_radius_m);
   }
   EXPECT_GE(min_radius, -1e-9);
   EXPECT_LT(min_radius, 1e-5);  // and it is the binding limit: the radius comes down to it
@@ -167,15 +169,15 @@ TEST(CamSynthesisStepLimitsTest, CurvatureLimitSteersEveryStepAndAvoidsTheUnderc
 
 TEST(CamSynthesisStepLimitsTest, PressureAngleLimitSteersEveryStep) {
   SynthesisSpec s = Paper();
-  s.base_radius_m = 0.030;
-  s.roller_radius_m = 0.00825;
-  s.max_pressure_angle_rad = 11.0 * kDeg;  // the unsteered law reaches 11.19°
+  s.follower.base_radius_m = 0.030;
+  s.follower.roller_radius_m = 0.00825;
+  s.follower_limits.max_pressure_angle_rad = 11.0 * kDeg;  // the unsteered law reaches 11.19°
   const SynthesizedLaw law = SynthesizeRise(s);
   EXPECT_TRUE(law.pressure_angle_limited);
   double worst = 0;
   for (size_t i = 0; i < law.phi.size(); ++i) {
-    worst =
-        std::max(worst, std::atan(law.s1[i] / (s.base_radius_m + s.roller_radius_m + law.s[i])));
+    worst = std::max(worst, std::atan(law.s1[i] / (s.follower.base_radius_m +
+                                                   s.follower.roller_radius_m + law.s[i])));
   }
   EXPECT_LE(worst, 11.0 * kDeg + 1e-12);
   EXPECT_GT(worst, 10.99 * kDeg);
@@ -232,6 +234,44 @@ TEST(CamSynthesisTest, AbsurdHeightEndsWithAnInfeasibleAnswer) {
               std::string::npos)
         << e.what();
   }
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A rise whose decelerating side is capped by a spring reserve that falls with the lift faster
+// than the jerk limit lets S'' follow: a gas load of 6 N against a 1000 N/m spring leaves
+// k·(S − 6 mm) of spring force, so the cap (K m ω² = 1) drops from 2 m/rad² at the crest to 0
+// at 6 mm, at k·S' ≈ 10 m/rad³ where S' ≈ 10 mm/rad, above the jerk limit of 8 m/rad³.
+SynthesisSpec FallingCap() {
+  SynthesisSpec s;
+  s.rise_rad = 63.0 * kDeg;
+  s.height_m = 8e-3;
+  s.accel_limit = 0.25;
+  s.decel_limit = 0.25;
+  s.jerk_limit = 8.0;
+  s.min_spring_reserve = 1.0;
+  s.train.mass_kg = 1.0;
+  s.train.preload_N = 0.0;
+  s.train.rate_N_m = 1000.0;
+  s.train.gas_force_N = 6.0;
+  s.cam_omega = 1.0;
+  return s;
+}
+
+TEST(CamSynthesisBackOffTest, EarlierStepsAreLoweredSoThatTheCapAndTheJerkBothHold) {
+  const SynthesisSpec s = FallingCap();
+  const SynthesizedLaw law = SynthesizeRise(s);
+  EXPECT_GT(law.backed_off_steps, 0u);
+  EXPECT_TRUE(law.spring_reserve_limited);
+  ExpectWithinLimits(law, s);  // the jerk limit at every step
+  double worst = INFINITY;     // the least reserve where S'' < 0 (beyond round-off)
+  for (size_t i = 0; i < law.phi.size(); ++i)
+    if (law.s2[i] < -1e-12) worst = std::min(worst, s.train.SpringForceN(law.s[i]) / -law.s2[i]);
+  EXPECT_GE(worst, 1.0 - 1e-9);  // (K m ω² = 1)
 }
 
 }  // namespace

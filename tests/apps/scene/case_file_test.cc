@@ -281,6 +281,41 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
   EXPECT_EQ(error("speed_rpm = 1000", "speed_rpm = 1e9"),
             path + ": [output] speed_rpm: must be in (0, 1e6] rpm, got 1e+09");
   EXPECT_EQ(error("title", "title"), "(no error)");
+  // Issue 15: the follower's keys belong to the kinds that have them.
+  EXPECT_EQ(
+      error("follower = \"curved\"", "follower = \"knife\""),
+      path + ": [checks] follower: expected \"roller\", \"flat\" or \"curved\", got \"knife\"");
+  EXPECT_EQ(
+      error("face_radius_mm = 8.25", "roller_radius_mm = 8.25"),
+      path + ": [checks] roller_radius_mm: a curved follower has no roller; give face_radius_mm");
+  EXPECT_EQ(error("follower = \"curved\"", "follower = \"flat\""),
+            path +
+                ": [checks] face_radius_mm: only a curved follower has a face radius "
+                "(follower = \"curved\")");
+  EXPECT_EQ(error("face_radius_mm = 8.25", "face_half_width_mm = 4"),
+            path + ": [checks] face_radius_mm: a curved follower needs the radius of its face");
+  EXPECT_EQ(error("follower = \"curved\"\nbase_radius_mm = 10\nface_radius_mm = 8.25",
+                  "base_radius_mm = 10\nface_half_width_mm = 4"),
+            path +
+                ": [checks] face_half_width_mm: a roller has no face; set follower = \"flat\" or "
+                "\"curved\"");
+  EXPECT_EQ(error("follower = \"curved\"", "follower = \"flat\"\nmin_entrainment_speed_m_s = -1"),
+            path +
+                ": [checks] face_radius_mm: only a curved follower has a face radius "
+                "(follower = \"curved\")");
+  EXPECT_EQ(error("face_radius_mm = 8.25", "face_radius_mm = 8.25\nmin_entrainment_speed_m_s = 0"),
+            path + ": [checks] min_entrainment_speed_m_s: must be in (0, 1000] m/s, got 0 m/s");
+  EXPECT_EQ(
+      error("face_radius_mm = 8.25", "face_radius_mm = 8.25\nface_half_width_mm = 0"),
+      path + ": [checks] face_half_width_mm: must be positive and at most 10000 mm, got 0 mm");
+  EXPECT_EQ(
+      Error(kGood + "[profile]\nfollower = \"flat\"\nbase_radius_mm = 10\nroller_radius_mm = 5\n"),
+      "t.toml: [profile] roller_radius_mm: a flat follower has no roller");
+  EXPECT_EQ(Error(kGood + "[profile]\nfollower = \"curved\"\nbase_radius_mm = 10\n"),
+            "t.toml: [profile] face_radius_mm: a curved follower needs the radius of its face");
+  EXPECT_EQ(Error(kGood + "[profile]\nfollower = \"curved\"\nbase_radius_mm = 10\n"
+                          "face_radius_mm = 5\noffset_mm = 15\n"),
+            "t.toml: [profile] offset: must be smaller than base radius plus face radius");
   EXPECT_EQ(Error(kGood + "[solver]\nmax_steps = 1e308\n"),
             "t.toml: [solver] max_steps: is 1e+308; expected a magnitude of at most 1e15");
   EXPECT_EQ(Error(kGood + "[solver]\nmax_steps = 1e13\n"),
