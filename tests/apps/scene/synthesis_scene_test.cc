@@ -178,5 +178,44 @@ TEST(SynthesisSceneTest, TheContactStressSteersTheSteps) {
   EXPECT_TRUE(r.pass) << (r.failing.empty() ? "" : r.failing[0]);
 }
 
+
+// The README's table of the paper's case, one row per follower kind: what the law as formed
+// does to each, and, steered to a profile radius ≥ 0, what would have to change.
+TEST(SynthesisSceneTest, ThePapersCaseForEachFollowerKind) {
+  struct Row {
+    std::string kind, radius_key;
+    double least_radius_mm, contact_offset_mm;
+    std::string shortest, least_smax, least_base;
+  };
+  const Row rows[] = {
+      {"roller", "roller_radius_mm = 8.25", -5.450, 0.0, "takes 65.38", "is 7.94", "is 26.66"},
+      {"curved", "face_radius_mm = 8.25", -5.450, 3.145, "takes 65.38", "is 7.94", "is 26.66"},
+      {"flat", "", -202.86, 7.6, "takes 73.85", "is 10.28", "is 173.5"},
+  };
+  for (const Row& row : rows) {
+    std::string spec = MatecSpec();
+    auto swap = [&](const std::string& from, const std::string& to) {
+      spec.replace(spec.find(from), from.size(), to);
+    };
+    swap("follower = \"curved\"", "follower = \"" + row.kind + "\"");
+    swap("face_radius_mm = 8.25", row.radius_key);
+    const SynthesisResult r = SynthesizeCam(ParseSynthesisFile(spec, "k.toml"));
+    ASSERT_TRUE(r.profile);
+    EXPECT_TRUE(r.profile->undercut) << row.kind;
+    EXPECT_NEAR(r.profile->min_profile_radius_m * 1e3, row.least_radius_mm, 0.01) << row.kind;
+    EXPECT_NEAR(r.profile->max_contact_offset_m * 1e3, row.contact_offset_mm, 0.001) << row.kind;
+    EXPECT_FALSE(r.pass);
+    swap("max_pressure_angle_deg = 45", "min_profile_radius_mm = 0");
+    try {
+      SynthesizeCam(ParseSynthesisFile(spec, "k.toml"));
+      ADD_FAILURE() << row.kind << ": the paper's numbers fit";
+    } catch (const CaseError& e) {
+      const std::string m = e.what();
+      for (const std::string& part : {row.shortest, row.least_smax, row.least_base})
+        EXPECT_NE(m.find(part), std::string::npos) << row.kind << ": " << part << " in " << m;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace needle
