@@ -416,16 +416,28 @@ OverspeedSection ReadOverspeed(SectionReader r) {
   return o;
 }
 
+// An optional length key, positive (or ≥ 0) and at most 10 m, checked as it is read so that a
+// failure names the key as written.
+std::optional<double> BoundedLength(SectionReader& r, const std::string& name, bool positive) {
+  auto v = r.OptionalQuantity(name, Dimension::kLength);
+  if (v && !((positive ? *v > 0.0 : *v >= 0.0) && *v <= 10.0))
+    r.Fail(r.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") +
+                             " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
+  return v;
+}
+
 // The follower's kind and its radius and face keys, the same in [profile] and [checks]: each
-// key belongs to the kinds that have it. `length(name, positive)` reads and checks one length.
+// key belongs to the kinds that have it.
 struct FollowerKeys {
   FollowerKind kind = FollowerKind::kRoller;
   std::optional<double> roller_radius_m, face_radius_m, face_half_width_m;
 };
 
-template <class Length>
-FollowerKeys ReadFollowerKeys(SectionReader& r, const Length& length) {
+FollowerKeys ReadFollowerKeys(SectionReader& r) {
   FollowerKeys k;
+  auto length = [&](const std::string& name, bool positive) {
+    return BoundedLength(r, name, positive);
+  };
   if (auto name = r.OptionalString("follower")) {
     const std::optional<FollowerKind> kind = ParseFollowerKind(*name);
     if (!kind)
@@ -450,14 +462,7 @@ FollowerKeys ReadFollowerKeys(SectionReader& r, const Length& length) {
 
 ProfileSection ReadProfile(SectionReader r) {
   ProfileSection p;
-  auto length = [&](const std::string& name, bool positive) -> std::optional<double> {
-    auto v = r.OptionalQuantity(name, Dimension::kLength);
-    if (v && !((positive ? *v > 0.0 : *v >= 0.0) && *v <= 10.0))
-      r.Fail(r.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") +
-                               " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
-    return v;
-  };
-  const FollowerKeys k = ReadFollowerKeys(r, length);
+  const FollowerKeys k = ReadFollowerKeys(r);
   p.follower = k.kind;
   p.base_radius_m = Positive(r, "base_radius", Dimension::kLength, 1e3, "base_radius_mm");
   p.roller_radius_m = k.roller_radius_m.value_or(0.0);
@@ -892,14 +897,10 @@ SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& pat
   if (const toml::table* t = Section(root, path, "checks")) {
     SectionReader ch(t, path, "checks");
     // Each value is checked as it is read, so a failure names the key as written.
-    auto length = [&](const std::string& name, bool positive) -> std::optional<double> {
-      auto v = ch.OptionalQuantity(name, Dimension::kLength);
-      if (v && !((positive ? *v > 0.0 : *v >= 0.0) && *v <= 10.0))
-        ch.Fail(ch.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") +
-                                   " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
-      return v;
+    auto length = [&](const std::string& name, bool positive) {
+      return BoundedLength(ch, name, positive);
     };
-    const FollowerKeys k = ReadFollowerKeys(ch, length);
+    const FollowerKeys k = ReadFollowerKeys(ch);
     f.follower = k.kind;
     f.base_radius_m = length("base_radius", true);
     f.roller_radius_m = k.roller_radius_m;
