@@ -31,13 +31,12 @@ struct Caps {
 // |S''| (the stress is not affine in S''; it is taken to cross its limit once, from below).
 double StressCap(const SynthesisSpec& spec, double s_abs, double s1, bool convex, double a_user) {
   const double w2 = spec.cam_omega * spec.cam_omega;
-  const double partner = spec.follower.ContactRadius();
   auto over = [&](double a) {
     const double s2 = convex ? -a : a;
     const ProfilePoint q = FollowerContact(spec.follower, 0.0, {s_abs, s1, s2});
-    return HertzLineStress(spec.train.ContactForceN(s_abs, w2 * s2), q.profile_radius_m, partner,
-                           spec.elastic_modulus_Pa, spec.poisson,
-                           spec.contact_length_m) > spec.max_contact_stress_Pa;
+    return ContactStress(spec.follower, q, spec.train.ContactForceN(s_abs, w2 * s2),
+                         spec.elastic_modulus_Pa, spec.poisson,
+                         spec.contact_length_m) > spec.max_contact_stress_Pa;
   };
   if (!over(a_user)) return 1e300;
   if (over(0.0)) return 0.0;
@@ -271,43 +270,48 @@ void SynthesisSpec::Validate() const {
   }
 }
 
-double LeastSpeedLimit(const SynthesisSpec& spec) {
-  const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
-  double lo = spec.height_m / spec.rise_rad, hi = lo;  // S'max·Φ ≥ H at the very least
-  if (!std::isfinite(lo) || !(lo > 0.0)) return INFINITY;
-  // Doubling to a millionfold (20 doublings): beyond that the acceleration limits alone are
-  // too tight. Counted, so that no overflow of `hi` can make the loop endless.
-  for (int doublings = 0; FormSmooth(spec, 1.0, hi, h, 2 * spec.rise_rad).total_rad > spec.rise_rad;
-       ++doublings) {
+namespace {
+
+// The step Δφ: as given, or Φ/4000.
+double StepOf(const SynthesisSpec& spec) {
+  return spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
+}
+
+// The least x ≥ start for which fits(x) holds, fits being false below some x and true above:
+// doubling from start up to a millionfold (20 doublings, counted so that no overflow can make
+// the loop endless; beyond: +∞), then bisection between the last two tries.
+template <class Fits>
+double LeastThatFits(double start, const Fits& fits) {
+  double lo = start, hi = start;
+  for (int doublings = 0; !fits(hi); ++doublings) {
     if (doublings >= 20) return INFINITY;
+    lo = hi;
     hi *= 2.0;
   }
-  for (int k = 0; k < 60; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (FormSmooth(spec, 1.0, mid, h, 2 * spec.rise_rad).total_rad > spec.rise_rad ? lo : hi) = mid;
-  }
+  for (int k = 0; k < 60 && hi - lo > 1e-12 * hi; ++k)
+    (fits(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
   return hi;
+}
+
+}  // namespace
+
+double LeastSpeedLimit(const SynthesisSpec& spec) {
+  const double h = StepOf(spec);
+  const double least = spec.height_m / spec.rise_rad;  // S'max·Φ ≥ H at the very least
+  if (!std::isfinite(least) || !(least > 0.0)) return INFINITY;
+  return LeastThatFits(least, [&](double vmax) {
+    return FormSmooth(spec, 1.0, vmax, h, 2 * spec.rise_rad).total_rad <= spec.rise_rad;
+  });
 }
 
 double LeastBaseRadius(const SynthesisSpec& spec) {
   if (!(spec.follower.base_radius_m > 0.0)) return INFINITY;
-  const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
-  const double vmax = spec.speed_limit;
-  auto fits = [&](double rb) {
+  const double h = StepOf(spec);
+  return LeastThatFits(spec.follower.base_radius_m, [&](double rb) {
     SynthesisSpec t = spec;
     t.follower.base_radius_m = rb;
-    return FormSmooth(t, 1.0, vmax, h, 2 * spec.rise_rad).total_rad <= spec.rise_rad;
-  };
-  double lo = spec.follower.base_radius_m, hi = lo;
-  for (int doublings = 0; !fits(hi); ++doublings) {
-    if (doublings >= 20) return INFINITY;  // a millionfold: the other limits are too tight
-    lo = hi;
-    hi *= 2.0;
-  }
-  if (hi == spec.follower.base_radius_m) return hi;  // fits as it is
-  for (int k = 0; k < 50 && hi - lo > 1e-9 * hi; ++k)
-    (fits(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
-  return hi;
+    return FormSmooth(t, 1.0, spec.speed_limit, h, 2 * spec.rise_rad).total_rad <= spec.rise_rad;
+  });
 }
 
 namespace {
@@ -325,13 +329,13 @@ std::string FollowerNote(const SynthesisSpec& spec) {
 
 SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   spec.Validate();
-  const double h = spec.step_rad > 0.0 ? spec.step_rad : spec.rise_rad / 4000.0;
-  // A flat face's half-width caps S' everywhere: it acts as S'max (a radial face).
-  const bool flat_face = spec.follower.base_radius_m > 0.0 &&
-                         spec.follower.kind == FollowerKind::kFlat &&
-                         spec.follower.face_half_width_m > 0.0;
+  const double h = StepOf(spec);
+  // A flat face's cap on S' (its half-width) does not depend on S: it acts as S'max.
+  const bool flat_face =
+      spec.follower.base_radius_m > 0.0 && spec.follower.kind == FollowerKind::kFlat;
   const double vmax =
-      flat_face ? std::min(spec.speed_limit, spec.follower.face_half_width_m) : spec.speed_limit;
+      flat_face ? std::min(spec.speed_limit, SpeedCap(spec.follower, spec.follower_limits, 0.0))
+                : spec.speed_limit;
   if (vmax < 1e299 && vmax * spec.rise_rad <= spec.height_m) {
     throw std::invalid_argument(
         "infeasible: S'max × rise angle = " + std::to_string(vmax * spec.rise_rad * 1e3) +

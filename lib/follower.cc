@@ -1,6 +1,7 @@
 #include "lib/follower.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -202,6 +203,13 @@ double HertzLineStress(double force_N, double radius1_m, double radius2_m, doubl
   if (!(force_N > 0.0) || !(inv_r > 0.0)) return 0.0;
   const double e_star = modulus_Pa / (2.0 * (1.0 - poisson * poisson));  // E*
   return std::sqrt(force_N * e_star * inv_r / (kPi * length_m));
+}
+
+double ContactStress(const FollowerGeometry& g, const ProfilePoint& q, double force_N,
+                     double modulus_Pa, double poisson, double length_m) {
+  const double partner = g.ContactRadius();
+  return HertzLineStress(force_N, q.profile_radius_m, partner > 0.0 ? partner : INFINITY,
+                         modulus_Pa, poisson, length_m);
 }
 
 }  // namespace needle

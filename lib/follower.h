@@ -114,4 +114,10 @@ AccelerationCap AccelerationCapAt(const FollowerGeometry& g, const FollowerLimit
 double HertzLineStress(double force_N, double radius1_m, double radius2_m, double modulus_Pa,
                        double poisson, double length_m);
 
+/// The Hertz line stress at contact `q` of follower `g` under `force_N` (HertzLineStress): the
+/// cam's radius ρ against the follower's, a flat face's (or a roller of radius 0, none given)
+/// counted as ∞.
+double ContactStress(const FollowerGeometry& g, const ProfilePoint& q, double force_N,
+                     double modulus_Pa, double poisson, double length_m);
+
 }  // namespace needle

@@ -462,25 +462,25 @@ FollowerKeys ReadFollowerKeys(SectionReader& r) {
 
 ProfileSection ReadProfile(SectionReader r) {
   ProfileSection p;
+  FollowerGeometry& g = p.follower;
   const FollowerKeys k = ReadFollowerKeys(r);
-  p.follower = k.kind;
-  p.base_radius_m = Positive(r, "base_radius", Dimension::kLength, 1e3, "base_radius_mm");
-  p.roller_radius_m = k.roller_radius_m.value_or(0.0);
-  p.face_radius_m = k.face_radius_m.value_or(0.0);
-  p.face_half_width_m = k.face_half_width_m.value_or(0.0);
-  p.offset_m = r.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
-  if (!(std::abs(p.offset_m) <= 10.0))
-    r.Fail("offset", "must be within ±10000 mm, got " + Number(p.offset_m * 1e3) + " mm");
-  const double contact_r =
-      p.follower == FollowerKind::kCurved ? p.face_radius_m : p.roller_radius_m;
-  if (p.follower != FollowerKind::kFlat && !(std::abs(p.offset_m) < p.base_radius_m + contact_r)) {
+  g.kind = k.kind;
+  g.base_radius_m = Positive(r, "base_radius", Dimension::kLength, 1e3, "base_radius_mm");
+  g.roller_radius_m = k.roller_radius_m.value_or(0.0);
+  g.face_radius_m = k.face_radius_m.value_or(0.0);
+  g.face_half_width_m = k.face_half_width_m.value_or(0.0);
+  g.offset_m = r.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
+  if (!(std::abs(g.offset_m) <= 10.0))
+    r.Fail("offset", "must be within ±10000 mm, got " + Number(g.offset_m * 1e3) + " mm");
+  if (g.kind != FollowerKind::kFlat &&
+      !(std::abs(g.offset_m) < g.base_radius_m + g.ContactRadius())) {
     r.Fail("offset", "must be smaller than base radius plus " +
-                         std::string(p.follower == FollowerKind::kCurved ? "face" : "roller") +
+                         std::string(g.kind == FollowerKind::kCurved ? "face" : "roller") +
                          " radius");
   }
   if (auto l = r.OptionalNumber("lever_ratio")) {
     if (!(*l > 0.0)) r.Fail("lever_ratio", "must be positive, got " + Number(*l));
-    p.lever_ratio = *l;
+    g.lever_ratio = *l;
   }
   if (auto n = r.OptionalNumber("points")) {
     if (!(*n >= 8 && *n <= 1e6) || *n != std::floor(*n))

@@ -103,14 +103,10 @@ struct OverspeedSection {
 
 /// [profile]: the cam that drives the needle, for `needle profile`.
 struct ProfileSection {
-  FollowerKind follower = FollowerKind::kRoller;  ///< `follower`: roller, flat or curved
-  double base_radius_m = 0.0;                     ///< base-circle radius, > 0
-  double roller_radius_m = 0.0;                   ///< roller radius, ≥ 0 (roller only)
-  double face_radius_m = 0.0;                     ///< curved face's radius, > 0 (curved only)
-  double face_half_width_m = 0.0;  ///< flat, curved: the face's half-width; 0: not given
-  double offset_m = 0.0;           ///< follower offset
-  double lever_ratio = 1.0;        ///< roller travel per needle travel (rocker), > 0
-  int points = 720;                ///< points over one cam revolution
+  /// `follower` (roller, flat or curved), base_radius, roller_radius or face_radius,
+  /// face_half_width, offset, lever_ratio: the library's geometry, validated as read.
+  FollowerGeometry follower;
+  int points = 720;  ///< points over one cam revolution
 };
 
 /// The case's [needle] and [spring] are the spring module's parameters.

@@ -10,15 +10,7 @@ namespace needle {
 FollowerGeometry CaseFollower(const Case& c) {
   if (!c.profile)
     throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
-  FollowerGeometry g;
-  g.kind = c.profile->follower;
-  g.base_radius_m = c.profile->base_radius_m;
-  g.roller_radius_m = c.profile->roller_radius_m;
-  g.face_radius_m = c.profile->face_radius_m;
-  g.face_half_width_m = c.profile->face_half_width_m;
-  g.offset_m = c.profile->offset_m;
-  g.lever_ratio = c.profile->lever_ratio;
-  return g;
+  return c.profile->follower;
 }
 
 CamProfile MakeCaseProfile(const Case& c, const LiftLaw& law, double* cam_zero_crank_rad) {

@@ -89,7 +89,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
   // The cam profile, when the case has [profile].
   if (c.profile) {
     r.profile = MakeCaseProfile(c, law);
-    const bool flat = c.profile->follower == FollowerKind::kFlat;
+    const bool flat = c.profile->follower.kind == FollowerKind::kFlat;
     if (r.profile->undercut) {
       fail(std::string("cam profile: the profile ") + (flat ? "has a cusp" : "undercuts") +
            " (least radius " + Fixed(r.profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
@@ -98,7 +98,8 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     if (r.profile->off_face) {
       fail("follower face: the contact runs " + Fixed(r.profile->max_contact_offset_m * 1e3, 2) +
            " mm off the axis at cam " + Fixed(r.profile->max_contact_offset_at_rad / kDeg, 1) +
-           "°, beyond the face half-width " + Fixed(c.profile->face_half_width_m * 1e3, 2) + " mm");
+           "°, beyond the face half-width " +
+           Fixed(c.profile->follower.face_half_width_m * 1e3, 2) + " mm");
     }
   } else {
     r.skipped.push_back("cam profile: the case has no [profile] section");

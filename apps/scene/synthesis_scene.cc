@@ -167,14 +167,13 @@ SynthesisResult SynthesizeCam(const SynthesisFile& f) {
     }
     if (r.profile && f.contact_length_m) {
       const Displacement d = TableDisplacement(r.law);
-      const double partner = FollowerOf(f).ContactRadius();  // flat: ∞
+      const FollowerGeometry follower = FollowerOf(f);
       LawExtreme hertz{-INFINITY, 0.0};
       for (const ProfilePoint& q : r.profile->points) {
         const auto sv = d(q.cam_rad);
         const double force = train.ContactForceN(sv[0], w2 * sv[2]);
         const double sigma =
-            HertzLineStress(force, q.profile_radius_m, partner > 0.0 ? partner : INFINITY,
-                            f.elastic_modulus_Pa, f.poisson, *f.contact_length_m);
+            ContactStress(follower, q, force, f.elastic_modulus_Pa, f.poisson, *f.contact_length_m);
         if (sigma > hertz.value) hertz = {sigma, q.cam_rad};
       }
       if (std::isfinite(hertz.value) && hertz.value > 0) r.max_contact_stress_Pa = hertz;
