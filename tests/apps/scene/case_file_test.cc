@@ -332,3 +332,21 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A value echoed back keeps the message one line. The fuzzer's find: a spline name holding a
+// TOML "\n" was printed as a line break. Control characters are shown escaped, wherever a
+// string is echoed (the follower's kind here, the spline's there).
+TEST(CaseFileTest, EchoedValuesStayOnOneLine) {
+  EXPECT_EQ(Error(kGood + "[profile]\nfollower = \"fl\\nat\\t\\u0001\"\nbase_radius_mm = 10\n"),
+            "t.toml: [profile] follower: expected \"roller\", \"flat\" or \"curved\", got "
+            "\"fl\\nat\\t\\x01\"");
+  const std::string text = Replace(kGood, "[lift]\n", "[lift]\nspline = \"not-\\na-knot\"\n");
+  EXPECT_EQ(Error(text).find('\n'), std::string::npos) << Error(text);
+  EXPECT_NE(Error(text).find("unknown kind \"not-\\na-knot\""), std::string::npos) << Error(text);
+}
+
+}  // namespace
+}  // namespace needle
