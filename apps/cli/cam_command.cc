@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/cli/command_output.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/result_writers.h"
 #include "apps/scene/case_file.h"
@@ -32,20 +33,22 @@ CLI::App* AddSynthCommand(CLI::App& app, SynthCommandOptions& o) {
   return cmd;
 }
 
-int RunSynthCommand(const SynthCommandOptions& o) {
-  const SynthesisFile f = LoadSynthesisFile(o.spec_path);
-  {
-    std::vector<OutputPath> outputs;
-    if (o.csv) outputs.push_back({"--csv", *o.csv});
-    if (o.case_out) outputs.push_back({"--case", *o.case_out});
-    CheckOutputPaths(outputs, {o.spec_path});
-  }
+CommandOutput ComputeSynth(const SynthesisFile& f, const SynthCommandOptions& o) {
   const SynthesisResult r = SynthesizeCam(f);
   const SynthesizedLaw& rise = r.rise;
   const std::vector<Field> fields = SynthesisFields(r);
   // v: the value alone; t: the value and its unit, both from the field table.
   const auto v = [&](const std::string& key) { return ValueText(FieldAt(fields, key)); };
   const auto t = [&](const std::string& key) { return FieldText(FieldAt(fields, key)); };
+  CommandOutput result;
+  result.status = r.pass ? 0 : 1;
+  for (const std::vector<double>& row : SynthesisRows(r.law)) {
+    int k = 0;
+    for (const char* key : {"cam_rad", "S_m", "S1_m_rad", "S2_m_rad2", "S3_m_rad3"})
+      result.columns[key].push_back(row[k++]);
+  }
+  if (o.csv) result.csv = CsvTable(SynthesisColumns(), SynthesisRows(r.law), 12);
+  if (o.case_out) result.case_file = SynthesizedCaseText(f, r.law);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -64,7 +67,7 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     if (r.min_spring_reserve) j["spring_reserve_cap_tighter"] = rise.spring_reserve_limited;
     j["pass"] = r.pass;
     j["failing"] = r.failing;
-    out << j.dump(2) << '\n';
+    result.json = std::move(j);
   } else {
     out << (f.title.empty() ? f.path : f.title) << '\n'
         << "rise " << t("lift_mm") << " in " << t("rise_deg") << " of cam, " << rise.phi.size() - 1
@@ -136,10 +139,21 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     for (const std::string& failing : r.failing) out << "fails: " << failing << '\n';
     out << (r.pass ? "checks pass\n" : "a check FAILS\n");
   }
-  if (o.csv) WriteOutput({"--csv", *o.csv}, CsvTable(SynthesisColumns(), SynthesisRows(r.law), 12));
-  if (o.case_out) WriteOutput({"--case", *o.case_out}, SynthesizedCaseText(f, r.law));
-  std::cout << out.str() << std::flush;
-  return r.pass ? 0 : 1;
+  result.text = out.str();
+  return result;
+}
+
+int RunSynthCommand(const SynthCommandOptions& o) {
+  const SynthesisFile f = LoadSynthesisFile(o.spec_path);
+  {
+    std::vector<OutputPath> outputs;
+    if (o.csv) outputs.push_back({"--csv", *o.csv});
+    if (o.case_out) outputs.push_back({"--case", *o.case_out});
+    CheckOutputPaths(outputs, {o.spec_path});
+  }
+  const CommandOutput r = ComputeSynth(f, o);
+  if (o.case_out) WriteOutput({"--case", *o.case_out}, r.case_file);
+  return Emit(r, o.json, o.csv);
 }
 
 CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
@@ -154,9 +168,7 @@ CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
   return cmd;
 }
 
-int RunProfileCommand(const ProfileCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
-  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& o) {
   if (!c.profile)
     throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
   const LiftLaw law = MakeLiftLaw(c);
@@ -167,6 +179,16 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
   // The cam's speed at the rated engine speed (four-stroke: half the crank's).
   const double cam_omega =
       OmegaFromRpm(c.engine.speed_rpm) / (c.engine.cycle == "four-stroke" ? 2.0 : 1.0);
+  CommandOutput result;
+  result.status = p.undercut || p.off_face ? 1 : 0;
+  for (const ProfilePoint& q : p.points) {
+    result.columns["cam_rad"].push_back(q.cam_rad);
+    result.columns["x_m"].push_back(q.x_m);
+    result.columns["y_m"].push_back(q.y_m);
+    result.columns["pressure_angle_rad"].push_back(q.pressure_angle_rad);
+    result.columns["profile_radius_m"].push_back(q.profile_radius_m);
+    result.columns["contact_offset_m"].push_back(q.contact_offset_m);
+  }
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -192,7 +214,7 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
     j["min_profile_radius_at_cam_deg"] = p.min_profile_radius_at_rad / kDeg;
     j["undercut"] = p.undercut;
     j["points"] = p.points.size();
-    out << j.dump(2) << '\n';
+    result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << FollowerKindName(g.kind) << " follower: base circle radius "
@@ -231,10 +253,16 @@ int RunProfileCommand(const ProfileCommandOptions& o) {
     csv << "cam_deg,x_mm,y_mm\n";
     for (const ProfilePoint& q : p.points)
       csv << q.cam_rad / kDeg << ',' << q.x_m * 1e3 << ',' << q.y_m * 1e3 << '\n';
-    WriteOutput({"--csv", *o.csv}, csv.str());
+    result.csv = csv.str();
   }
-  std::cout << out.str() << std::flush;
-  return p.undercut || p.off_face ? 1 : 0;
+  result.text = out.str();
+  return result;
+}
+
+int RunProfileCommand(const ProfileCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+  return Emit(ComputeProfile(c, o), o.json, o.csv);
 }
 
 }  // namespace needle

@@ -8,6 +8,9 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/command_output.h"
+#include "apps/scene/case_file.h"
+
 namespace needle {
 
 struct SynthCommandOptions {
@@ -16,6 +19,9 @@ struct SynthCommandOptions {
   std::optional<std::string> csv, case_out;
 };
 CLI::App* AddSynthCommand(CLI::App& app, SynthCommandOptions& options);
+/// The law of a loaded spec (the --case file's text in `case_file` when asked). Throws
+/// CaseError on bad input.
+CommandOutput ComputeSynth(const SynthesisFile& spec, const SynthCommandOptions& options);
 /// Exit 1 when a check of [checks] fails.
 int RunSynthCommand(const SynthCommandOptions& options);
 
@@ -25,6 +31,8 @@ struct ProfileCommandOptions {
   std::optional<std::string> csv;
 };
 CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& options);
+/// The profile of a loaded case. Throws CaseError on bad input.
+CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& options);
 /// Exit 1 when the profile undercuts.
 int RunProfileCommand(const ProfileCommandOptions& options);
 

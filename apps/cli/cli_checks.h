@@ -5,9 +5,20 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <optional>
+#include <sstream>
 #include <string>
 
+#include "apps/scene/case_file.h"
+
 namespace needle {
+
+/// "expected WHAT in [lo, hi], got V": the rule both checks below state.
+inline std::string RangeRule(double lo, double hi, const std::string& what, const std::string& v) {
+  std::ostringstream m;
+  m << "expected " << what << " in [" << lo << ", " << hi << "], got " << v;
+  return m.str();
+}
 
 /// A number in [lo, hi] (`what` names the quantity and unit, e.g. "a speed in rpm").
 inline CLI::Validator NumberIn(double lo, double hi, const std::string& what) {
@@ -21,14 +32,25 @@ inline CLI::Validator NumberIn(double lo, double hi, const std::string& what) {
         } catch (const std::exception&) {
         }
         if (std::isfinite(v) && v >= lo && v <= hi) return {};
-        std::ostringstream m;
-        m << "expected " << what << " in [" << lo << ", " << hi << "], got " << s;
-        return m.str();
+        return RangeRule(lo, hi, what, s);
       },
       what, "");
 }
 
 /// Crank speeds: (0, 1e6] rpm (the lower end 1e-3).
 inline CLI::Validator SpeedRpm() { return NumberIn(1e-3, 1e6, "a speed in rpm"); }
+
+/// The same rule where no parser stood in front (the Compute functions, called from Python):
+/// throws CaseError "OPTION: expected WHAT in [lo, hi], got V".
+inline void RequireIn(const std::string& option, const std::optional<double>& v, double lo,
+                      double hi, const std::string& what) {
+  if (!v || (std::isfinite(*v) && *v >= lo && *v <= hi)) return;
+  std::ostringstream text;
+  text << *v;
+  throw CaseError(option + ": " + RangeRule(lo, hi, what, text.str()));
+}
+inline void RequireSpeed(const std::optional<double>& rpm) {
+  RequireIn("--rpm", rpm, 1e-3, 1e6, "a speed in rpm");
+}
 
 }  // namespace needle

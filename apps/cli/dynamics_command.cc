@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "apps/cli/cli_checks.h"
+#include "apps/cli/command_output.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/scene/case_scene.h"
@@ -63,16 +64,29 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
   return cmd;
 }
 
-int RunSimulateCommand(const SimulateCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
-  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
+  RequireSpeed(o.speed_rpm);
   const Scene scene = MakeScene(c);
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
-  sim.record_series = o.csv.has_value();
+  sim.record_series = o.csv.has_value() || o.series;
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   const SimulationResult r = Simulate(scene, speed, sim);
+  if (o.csv && r.skipped)
+    throw CaseError("--csv: the dynamic run was skipped (" + r.method_reason + ")");
 
+  CommandOutput result;
+  result.status = r.liftoff() ? 1 : 0;
+  for (const SeriesPoint& p : r.series) {
+    result.columns["time_s"].push_back(p.time_s);
+    result.columns["crank_rad"].push_back(p.crank_rad);
+    result.columns["lift_m"].push_back(p.lift_m);
+    result.columns["velocity_m_s"].push_back(p.velocity_m_s);
+    result.columns["cam_m"].push_back(p.cam_m);
+    result.columns["contact_force_N"].push_back(p.contact_force_N);
+    result.columns["seat_force_N"].push_back(p.seat_force_N);
+  }
+  if (o.csv) result.csv = CsvTable(SeriesColumns(), SeriesRows(r), 10);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -114,7 +128,7 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
     j["status"] = RunStatusName(r.status);
     j["status_reason"] = r.status_reason;
     j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoffRpm(scene));
-    out << j.dump(2) << '\n';
+    result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
@@ -147,12 +161,14 @@ int RunSimulateCommand(const SimulateCommandOptions& o) {
           << Fixed(i.speed_m_s, 4) << " m/s\n";
     }
   }
-  if (o.csv) {
-    if (r.skipped) throw CaseError("--csv: the dynamic run was skipped (" + r.method_reason + ")");
-    WriteOutput({"--csv", *o.csv}, CsvTable(SeriesColumns(), SeriesRows(r), 10));
-  }
-  std::cout << out.str() << std::flush;
-  return r.liftoff() ? 1 : 0;
+  result.text = out.str();
+  return result;
+}
+
+int RunSimulateCommand(const SimulateCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+  return Emit(ComputeSimulate(c, o), o.json, o.csv);
 }
 
 CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
@@ -177,8 +193,10 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
   return cmd;
 }
 
-int RunOverspeedCommand(const OverspeedCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
+                               const std::function<void(int, int)>& progress) {
+  RequireIn("--threads", o.threads, 0, 4096, "a number of threads");
+  RequireIn("--step-rpm", o.step_rpm, 1e-3, 1e6, "a speed step in rpm");
   const Scene scene = MakeScene(c);
   const double n_qs = QuasiStaticLiftoffRpm(scene);
   OverspeedOptions opt;
@@ -198,12 +216,17 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
     throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
                     " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
   }
-  OverspeedResult r;
-  {
-    ProgressBar bar("overspeed");
-    r = OverspeedSearch(scene, opt, [&](int done, int total) { bar.Update(done, total); });
+  const OverspeedResult r = OverspeedSearch(scene, opt, progress);
+  CommandOutput result;
+  result.status = r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
+  for (const OverspeedRow& row : r.rows) {
+    result.columns["speed_rpm"].push_back(row.speed_rpm);
+    result.columns["min_contact_force_N"].push_back(row.min_contact_force_N);
+    result.columns["jump_rad"].push_back(row.jump_deg * kDeg);
+    result.columns["max_gap_m"].push_back(row.max_gap_mm * 1e-3);
+    result.columns["max_impact_speed_m_s"].push_back(row.max_impact_speed_m_s);
+    result.columns["lifts_off"].push_back(row.lifts_off ? 1.0 : 0.0);
   }
-
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -230,7 +253,7 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
                       {"status_reason", row.status_reason}});
     }
     j["rows"] = rows;
-    out << j.dump(2) << '\n';
+    result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "sweep " << Fixed(opt.from_rpm, 1) << " .. " << Fixed(opt.to_rpm, 1) << " rpm on "
@@ -264,8 +287,18 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
             << '\n';
     }
   }
-  std::cout << out.str() << std::flush;
-  return r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
+  result.text = out.str();
+  return result;
+}
+
+int RunOverspeedCommand(const OverspeedCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  CommandOutput r;
+  {
+    ProgressBar bar("overspeed");
+    r = ComputeOverspeed(c, o, [&](int done, int total) { bar.Update(done, total); });
+  }
+  return Emit(r, o.json, std::nullopt);
 }
 
 }  // namespace needle

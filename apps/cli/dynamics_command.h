@@ -4,8 +4,12 @@
 /// and `needle overspeed CASE [--from RPM] [--to RPM] [--threads N] [--json]`.
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <optional>
 #include <string>
+
+#include "apps/cli/command_output.h"
+#include "apps/scene/case_file.h"
 
 namespace needle {
 
@@ -17,9 +21,13 @@ struct SimulateCommandOptions {
   bool dynamic = false;  ///< run the dynamics even where the rigid answer would stand
   bool json = false;
   std::optional<std::string> csv;
+  bool series = false;  ///< record the time series as columns without a CSV (Python)
 };
 
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& options);
+/// The run of a loaded case (its time series as columns when `series` or `csv`). Throws
+/// CaseError on bad input.
+CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& options);
 /// Exit 1 when the needle lifts off (a jump episode) at the speed simulated.
 int RunSimulateCommand(const SimulateCommandOptions& options);
 
@@ -34,6 +42,9 @@ struct OverspeedCommandOptions {
 };
 
 CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& options);
+/// The sweep of a loaded case; `progress` (may be empty) hears of every run done.
+CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& options,
+                               const std::function<void(int, int)>& progress = {});
 /// Exit 1 when the needle lifts off at or below the case's rated speed.
 int RunOverspeedCommand(const OverspeedCommandOptions& options);
 

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "apps/cli/cli_checks.h"
+#include "apps/cli/command_output.h"
 #include "apps/cli/output_paths.h"
 #include "apps/scene/case_file.h"
 #include "lib/kinematics.h"
@@ -69,19 +69,9 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   return cmd;
 }
 
-int RunKinematicsCommand(const KinematicsCommandOptions& o) {
-  const bool bare_csv = IsCsvPath(o.case_path);
-  if (bare_csv && !o.speed_rpm) {
-    throw CaseError("--rpm: " + o.case_path +
-                    " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
-  }
-  Case c = bare_csv ? CaseFromLiftCsv(o.case_path, o.cycle) : LoadCase(o.case_path);
-  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
-  if (o.noise_mm) {
-    if (!bare_csv)
-      throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
-    c.lift.noise_m = *o.noise_mm * 1e-3;
-  }
+CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
+  RequireSpeed(o.speed_rpm);
+  RequireIn("--step", o.step_deg, 1e-3, 90, "a spacing in crank degrees");
   if (o.spline) {
     const auto kind = ParseSplineKind(*o.spline);
     if (!kind) {
@@ -127,6 +117,16 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
     csv << '\n';
   }
 
+  CommandOutput result;
+  for (const auto& r : rows) {
+    result.columns["crank_rad"].push_back(r.crank_rad);
+    result.columns["time_s"].push_back(r.time_s);
+    result.columns["lift_m"].push_back(r.lift_m);
+    result.columns["velocity_m_s"].push_back(r.velocity_m_s);
+    result.columns["acceleration_m_s2"].push_back(r.acceleration_m_s2.value_or(NAN));
+    result.columns["jerk_m_s3"].push_back(r.jerk_m_s3.value_or(NAN));
+  }
+  if (o.csv) result.csv = csv.str();
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -170,7 +170,7 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
       table.push_back(row);
     }
     j["table"] = table;
-    out << j.dump(2) << '\n';
+    result.json = std::move(j);
   } else {
     const bool paper = o.units == "paper";
     out << (c.title.empty() ? c.path : c.title) << '\n';
@@ -250,9 +250,24 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
       out << '\n';
     }
   }
-  if (o.csv) WriteOutput({"--csv", *o.csv}, csv.str());
-  std::cout << out.str() << std::flush;
-  return 0;
+  result.text = out.str();
+  return result;
+}
+
+int RunKinematicsCommand(const KinematicsCommandOptions& o) {
+  const bool bare_csv = IsCsvPath(o.case_path);
+  if (bare_csv && !o.speed_rpm) {
+    throw CaseError("--rpm: " + o.case_path +
+                    " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
+  }
+  Case c = bare_csv ? CaseFromLiftCsv(o.case_path, o.cycle) : LoadCase(o.case_path);
+  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+  if (o.noise_mm) {
+    if (!bare_csv)
+      throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
+    c.lift.noise_m = *o.noise_mm * 1e-3;
+  }
+  return Emit(ComputeKinematics(std::move(c), o), o.json, o.csv);
 }
 
 }  // namespace needle

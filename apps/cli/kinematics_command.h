@@ -8,6 +8,9 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/command_output.h"
+#include "apps/scene/case_file.h"
+
 namespace needle {
 
 struct KinematicsCommandOptions {
@@ -25,6 +28,10 @@ struct KinematicsCommandOptions {
 
 /// Registers the subcommand on `app`; `options` must outlive the parse.
 CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& options);
+
+/// The table of a loaded case (its path, --csv and --noise-mm are the caller's; a bare CSV table
+/// comes through CaseFromLiftCsv). Throws CaseError on bad input.
+CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& options);
 
 /// Runs it, printing to stdout. Returns the exit status; throws CaseError on bad input.
 int RunKinematicsCommand(const KinematicsCommandOptions& options);

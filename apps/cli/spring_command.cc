@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "apps/cli/cli_checks.h"
+#include "apps/cli/command_output.h"
 #include "apps/cli/output_paths.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_scene.h"
@@ -40,8 +41,8 @@ CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& o) {
   return cmd;
 }
 
-int RunSpringCommand(const SpringCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
+  RequireSpeed(o.speed_rpm);
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   const LiftLaw law = MakeLiftLaw(c);
   const SpringCheckResult check = CheckSpring(c, law, speed);
@@ -59,6 +60,8 @@ int RunSpringCommand(const SpringCommandOptions& o) {
   const bool preload_ok = check.preload_ok;
   const bool ok = check.pass;
 
+  CommandOutput result;
+  result.status = ok ? 0 : 1;
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -114,7 +117,7 @@ int RunSpringCommand(const SpringCommandOptions& o) {
                       {"surge_ok", h.surge_ok},
                       {"pass", h.pass()}};
     }
-    out << j.dump(2) << '\n';
+    result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n';
     out << "speed " << Fixed(speed, 1) << " rpm, spline " << SplineKindName(law.kind())
@@ -168,8 +171,12 @@ int RunSpringCommand(const SpringCommandOptions& o) {
     out << "\nspring check: " << (ok ? "pass" : "FAIL") << '\n';
     for (const std::string& f : check.failures) out << "  fails: " << f << '\n';
   }
-  std::cout << out.str() << std::flush;
-  return ok ? 0 : 1;
+  result.text = out.str();
+  return result;
+}
+
+int RunSpringCommand(const SpringCommandOptions& o) {
+  return Emit(ComputeSpring(LoadCase(o.case_path), o), o.json, std::nullopt);
 }
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& o) {

@@ -10,6 +10,9 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/command_output.h"
+#include "apps/scene/case_file.h"
+
 namespace needle {
 
 struct SpringCommandOptions {
@@ -19,6 +22,8 @@ struct SpringCommandOptions {
 };
 
 CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& options);
+/// The spring check of a loaded case. Throws CaseError on bad input.
+CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& options);
 int RunSpringCommand(const SpringCommandOptions& options);
 
 struct DesignCommandOptions {

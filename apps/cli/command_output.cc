@@ -1,0 +1,19 @@
+#include "apps/cli/command_output.h"
+
+#include <iostream>
+
+#include "apps/cli/output_paths.h"
+
+namespace needle {
+
+int Emit(const CommandOutput& r, bool json, const std::optional<std::string>& csv_path) {
+  if (csv_path) WriteOutput({"--csv", *csv_path}, r.csv);
+  if (json) {
+    std::cout << r.json.dump(2) << '\n' << std::flush;
+  } else {
+    std::cout << r.text << std::flush;
+  }
+  return r.status;
+}
+
+}  // namespace needle
