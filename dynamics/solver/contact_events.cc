@@ -6,6 +6,12 @@
 namespace needle {
 namespace {
 
+// An extreme located inside a step is recorded after the step's samples: the series in time.
+void SortSeries(std::vector<SeriesPoint>& series) {
+  std::stable_sort(series.begin(), series.end(),
+                   [](const SeriesPoint& a, const SeriesPoint& b) { return a.time_s < b.time_s; });
+}
+
 // Angles equal to a break up to the roundoff of θ = θ_a + ω t.
 double AngleTolerance(double crank_rad) { return 1e-12 * std::max(1.0, std::abs(crank_rad)); }
 
@@ -172,6 +178,7 @@ void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
 
 void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
   Update(t, x, phase);
+  SortSeries(series_);
   if (separated_) {
     episodes_.back().end_rad = train_.Angle(t);
     episodes_.back().open = true;  // still off cam and seat when the run ends: reported
@@ -179,6 +186,7 @@ void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
 }
 
 void Recorder::Stopped(double crank_rad) {
+  SortSeries(series_);
   if (separated_) {
     episodes_.back().end_rad = crank_rad;
     episodes_.back().open = true;
