@@ -1,7 +1,15 @@
 #!/usr/bin/env bash
-# Installs the Debian packages needle builds and tests with. Safe to run twice:
+# Installs the Debian packages needle builds with; with --tests, also those only the tests use
+# (Chromium for the report's browser test, pytest for the Python module's). Safe to run twice:
 # only packages that are missing are installed; nothing is downloaded otherwise.
 set -euo pipefail
+tests=0
+for arg in "$@"; do
+  case "$arg" in
+    --tests) tests=1 ;;
+    *) echo "install-deps: unknown option $arg (expected --tests)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   build-essential cmake pkg-config
@@ -15,7 +23,14 @@ packages=(
   libbenchmark-dev       # micro-benchmarks
   gnuplot-nox            # figures: needle check reports, scripts/bench.sh
   clang libclang-rt-14-dev  # libFuzzer target for the case loader
+  pybind11-dev python3-dev python3-numpy  # the Python module (apps/python)
 )
+if ((tests)); then
+  packages+=(
+    chromium        # the report rendered in a real browser (check_report_test)
+    python3-pytest  # the Python module's tests (tests/apps/python)
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

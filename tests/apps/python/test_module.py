@@ -1,0 +1,149 @@
+"""The Python module against the command line: on every bundled case and every command that
+applies, the module's dict is the CLI's --json object (plus 'columns' and 'exit_status'), and a
+case the CLI refuses raises needle.CaseError with the CLI's one line. Run by ctest with
+PYTHONPATH=build/python and NEEDLE_BINARY=build/needle."""
+import glob
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+import tomllib
+
+import numpy as np
+import pytest
+
+import needle
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+BINARY = os.environ.get("NEEDLE_BINARY", os.path.join(ROOT, "build", "needle"))
+CASES = sorted(glob.glob(os.path.join(ROOT, "cases", "*.toml")))
+SPECS = [c for c in CASES if "[rise]" in open(c).read()]
+SCENES = [c for c in CASES if c not in SPECS]
+COMMANDS = ["kinematics", "spring", "simulate", "overspeed", "profile"]
+
+
+def cli(*args):
+    """The CLI's exit status, its JSON (or None) and its stderr line."""
+    p = subprocess.run([BINARY, *args, "--json"], capture_output=True, text=True)
+    out = json.loads(p.stdout) if p.returncode in (0, 1) else None
+    return p.returncode, out, p.stderr.strip()
+
+
+def module(command, source):
+    if command == "synth":
+        return needle.synth(source)
+    return getattr(needle, command)(needle.load_case(source))
+
+
+def strip(result):
+    result = dict(result)
+    result.pop("columns")
+    status = result.pop("exit_status")
+    return status, result
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+@pytest.mark.parametrize("path", SCENES, ids=os.path.basename)
+def test_module_equals_cli_json(command, path):
+    status, expected, err = cli(command, path)
+    if status == 2:
+        # Refused by the CLI: the module raises with the same line ("needle: " is the CLI's).
+        with pytest.raises(needle.CaseError) as e:
+            module(command, path)
+        assert "needle: " + str(e.value) == err
+        return
+    assert status in (0, 1), err
+    got_status, got = strip(module(command, path))
+    assert got == expected
+    assert got_status == status
+
+
+@pytest.mark.parametrize("path", SPECS, ids=os.path.basename)
+def test_synth_equals_cli_json(path):
+    status, expected, err = cli("synth", path)
+    got_status, got = strip(needle.synth(path))
+    assert got == expected and got_status == status, err
+
+
+def test_a_case_from_a_dict_is_the_file():
+    path = os.path.join(ROOT, "cases", "basu-example1.toml")
+    with open(path, "rb") as f:
+        data = tomllib.load(f)
+    from_dict = needle.load_case(data, name=path)
+    for command in ("kinematics", "spring", "simulate"):
+        assert strip(getattr(needle, command)(from_dict)) == strip(
+            getattr(needle, command)(needle.load_case(path))), command
+
+
+def test_a_bad_dict_raises_the_files_message(tmp_path):
+    path = os.path.join(ROOT, "cases", "basu-example1.toml")
+    with open(path, "rb") as f:
+        data = tomllib.load(f)
+    data["spring"]["preload_kgf"] = -3.0
+    bad = tmp_path / "bad.toml"
+    text = open(path).read().replace("preload_kgf = ", "preload_kgf = -3.0 #", 1)
+    bad.write_text(text)
+    status, _, err = cli("spring", str(bad))
+    assert status == 2
+    with pytest.raises(needle.CaseError) as e:
+        needle.load_case(data, name=str(bad))
+    assert "needle: " + str(e.value) == err
+    assert "\n" not in str(e.value)
+    with pytest.raises(needle.CaseError, match="<dict>: engine.speed_rpm: expected a number"):
+        needle.load_case({"engine": {"speed_rpm": object()}})
+
+
+def test_bad_options_raise_the_cli_messages():
+    case = needle.load_case(os.path.join(ROOT, "cases", "basu-example1.toml"))
+    with pytest.raises(needle.CaseError) as e:
+        needle.simulate(case, method="euler")
+    assert str(e.value).startswith('--method: unknown method "euler"')
+    with pytest.raises(needle.CaseError) as e:
+        needle.kinematics(case, rpm=float("nan"))
+    assert str(e.value) == "--rpm: expected a speed in rpm in [0.001, 1e+06], got nan"
+    with pytest.raises(needle.CaseError, match=r"^--rtol: must be in \[1e-14, 1e-2\]"):
+        needle.simulate(case, rtol=1.0)
+
+
+def test_columns_are_the_table_in_si():
+    case = needle.load_case(os.path.join(ROOT, "cases", "basu-example1.toml"))
+    k = needle.kinematics(case, step_deg=1.0)
+    cols = k["columns"]
+    assert isinstance(cols["lift_m"], np.ndarray)
+    assert len(cols["lift_m"]) == len(k["table"])
+    np.testing.assert_allclose(cols["lift_m"] * 1e3, [r["lift_mm"] for r in k["table"]], rtol=1e-15)
+    np.testing.assert_allclose(np.degrees(cols["crank_rad"]), [r["crank_deg"] for r in k["table"]],
+                               rtol=1e-14)
+    s = needle.simulate(case, series=True)
+    t, y = s["columns"]["time_s"], s["columns"]["lift_m"]
+    assert len(t) > 1000 and np.all(np.diff(t) >= 0)
+    assert math.isclose(y.max() * 1e3, s["max_lift_mm"], rel_tol=1e-12)
+
+
+def test_computations_release_the_gil():
+    # While one thread sweeps in C++, the interpreter keeps running Python in another.
+    case = needle.load_case(os.path.join(ROOT, "cases", "basu-example1.toml"))
+    done = threading.Event()
+    worker = threading.Thread(target=lambda: (needle.overspeed(case, threads=1), done.set()))
+    ticks = 0
+    start = time.perf_counter()
+    worker.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    elapsed = time.perf_counter() - start
+    assert elapsed > 0.05, "the sweep was too quick to tell"
+    assert ticks >= 0.25 * elapsed / 0.001, (ticks, elapsed)
+
+
+def test_the_example_script_runs(tmp_path):
+    script = os.path.join(ROOT, "docs", "python_example.py")
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(needle.__file__))
+    p = subprocess.run([sys.executable, script, str(tmp_path / "svaj.png")], capture_output=True,
+                       text=True, env=env)
+    assert p.returncode == 0, p.stderr
+    assert "n_qs 649.5 rpm, n_dyn 650.7 rpm" in p.stdout
