@@ -46,6 +46,44 @@ std::string Sci(double v) {
 
 }  // namespace
 
+nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
+                         const std::string& report_path) {
+  const std::optional<SpringCheckResult>& spring = result.spring;
+  const std::optional<SimulationResult>& run = result.run;
+  const std::optional<OverspeedResult>& sweep = result.sweep;
+  const std::optional<CamProfile>& profile = result.profile;
+  const LiftLawChoice& choice = result.choice;
+  nlohmann::json j;
+  j["case"] = c.path;
+  j["speed_rpm"] = result.speed_rpm;
+  j["overall"] = result.pass ? "pass" : "fail";
+  j["failing"] = result.failing;
+  j["skipped"] = result.skipped;
+  j["report"] = report_path;
+  for (const FieldGroup& group : CheckFields(result)) PutFields(j[group.name], group.fields);
+  j["kinematics"]["spline"] = SplineKindName(law.kind());
+  j["kinematics"]["spline_reason"] = choice.reason;
+  if (spring) {
+    nlohmann::json& s = j["spring"];
+    s["pass"] = spring->pass;
+    s["preload_ok"] = spring->preload_ok;
+    s["combustion_ok"] = spring->combustion_ok;
+    s["basu_ok"] = spring->basu_ok;
+    s["failures"] = spring->failures;
+  }
+  if (run) {
+    nlohmann::json& d = j["dynamics"];
+    d["liftoff"] = run->liftoff();
+    d["status"] = RunStatusName(run->status);
+    d["status_reason"] = run->status_reason;
+    d["episodes"] = run->episodes.size();
+    d["impacts"] = run->impacts.size();
+  }
+  if (sweep) j["overspeed"]["status"] = sweep->status;
+  if (profile) j["profile"]["undercut"] = profile->undercut;
+  return j;
+}
+
 CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "check", "The main job: check a scene end to end and write an HTML report");
@@ -61,16 +99,8 @@ CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
 
 int RunCheckCommand(const CheckCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
-  {
-    std::error_code ec;
-    std::filesystem::create_directories(o.out_dir, ec);  // a missing folder is made
-    if (!std::filesystem::is_directory(o.out_dir)) {
-      throw CaseError("--out: " + o.out_dir + " is not a folder and cannot be made one" +
-                      (ec ? " (" + ec.message() + ")" : std::string()));
-    }
-  }
-  const std::string name = std::filesystem::path(c.path).stem().string() + ".html";
-  const std::string path = (std::filesystem::path(o.out_dir) / name).string();
+  const std::string path =
+      ReportPath(o.out_dir, std::filesystem::path(c.path).stem().string() + ".html");
   CheckOutputPaths({{"--out", path}}, CaseInputs(c));
   if (!GnuplotAvailable()) {
     throw std::runtime_error(
@@ -373,35 +403,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
 
   WriteOutput({"--out", path}, report.Html());
   if (o.json) {
-    nlohmann::json j;
-    j["case"] = c.path;
-    j["speed_rpm"] = rpm;
-    j["overall"] = ok ? "pass" : "fail";
-    j["failing"] = failing;
-    j["skipped"] = skipped;
-    j["report"] = path;
-    for (const FieldGroup& group : CheckFields(result)) PutFields(j[group.name], group.fields);
-    j["kinematics"]["spline"] = SplineKindName(law.kind());
-    j["kinematics"]["spline_reason"] = choice.reason;
-    if (spring) {
-      nlohmann::json& s = j["spring"];
-      s["pass"] = spring->pass;
-      s["preload_ok"] = spring->preload_ok;
-      s["combustion_ok"] = spring->combustion_ok;
-      s["basu_ok"] = spring->basu_ok;
-      s["failures"] = spring->failures;
-    }
-    if (run) {
-      nlohmann::json& d = j["dynamics"];
-      d["liftoff"] = run->liftoff();
-      d["status"] = RunStatusName(run->status);
-      d["status_reason"] = run->status_reason;
-      d["episodes"] = run->episodes.size();
-      d["impacts"] = run->impacts.size();
-    }
-    if (sweep) j["overspeed"]["status"] = sweep->status;
-    if (profile) j["profile"]["undercut"] = profile->undercut;
-    std::cout << j.dump(2) << '\n';
+    std::cout << CheckJson(c, law, result, path).dump(2) << '\n';
     return ok ? 0 : 1;
   }
   std::cout << (c.title.empty() ? c.path : c.title) << '\n';

@@ -8,8 +8,11 @@
 /// f·n, an undercut profile, a run that ended undecided), 2 on bad input.
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+
+#include "apps/scene/check_scene.h"
 
 namespace needle {
 
@@ -21,6 +24,10 @@ struct CheckCommandOptions {
 };
 
 CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& options);
+/// What `check --json` prints for case `c` (lift law `law`) and its result; `report_path` is the
+/// report the run wrote.
+nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
+                         const std::string& report_path);
 int RunCheckCommand(const CheckCommandOptions& options);
 
 }  // namespace needle

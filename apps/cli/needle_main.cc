@@ -10,6 +10,7 @@
 
 #include "apps/cli/cam_command.h"
 #include "apps/cli/check_command.h"
+#include "apps/cli/compare_command.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/spring_command.h"
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<Command> commands = {
       Register(app, needle::AddCheckCommand, needle::RunCheckCommand),
+      Register(app, needle::AddCompareCommand, needle::RunCompareCommand),
       Register(app, needle::AddKinematicsCommand, needle::RunKinematicsCommand),
       Register(app, needle::AddSpringCommand, needle::RunSpringCommand),
       Register(app, needle::AddDesignCommand, needle::RunDesignCommand),

@@ -55,6 +55,16 @@ std::vector<std::string> CaseInputs(const Case& c) {
   return in;
 }
 
+std::string ReportPath(const std::string& out_dir, const std::string& name) {
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);  // a missing folder is made
+  if (!std::filesystem::is_directory(out_dir)) {
+    throw CaseError("--out: " + out_dir + " is not a folder and cannot be made one" +
+                    (ec ? " (" + ec.message() + ")" : std::string()));
+  }
+  return (std::filesystem::path(out_dir) / name).string();
+}
+
 void WriteOutput(const OutputPath& output, const std::string& content) {
   try {
     WriteFileAtomically(output.path, content);

@@ -30,6 +30,10 @@ void CheckOutputPaths(const std::vector<OutputPath>& outputs,
 /// The files a case reads: the case itself and its lift CSV, if any.
 std::vector<std::string> CaseInputs(const Case& c);
 
+/// DIR/NAME, a report's path under the --out folder DIR, which is made when missing; throws
+/// CaseError "--out: DIR is not a folder and cannot be made one" when it cannot be.
+std::string ReportPath(const std::string& out_dir, const std::string& name);
+
 /// Writes `content` atomically (lib/output.h); a failure is a CaseError naming the option.
 void WriteOutput(const OutputPath& output, const std::string& content);
 
