@@ -416,6 +416,32 @@ OverspeedSection ReadOverspeed(SectionReader r) {
   return o;
 }
 
+ToleranceSection ReadTolerance(SectionReader r) {
+  ToleranceSection t;
+  // A σ ≥ 0 and at most `most` (SI), named as written.
+  const auto sigma = [&r](const std::string& name, Dimension d, double most, double shown,
+                          const std::string& unit, double& into) {
+    if (auto v = r.OptionalQuantity(name, d)) {
+      if (!(*v >= 0.0 && *v <= most))
+        r.Fail(r.last_key(), "must be ≥ 0 and at most " + Number(most * shown) + " " + unit +
+                                 ", got " + Number(*v * shown) + " " + unit);
+      into = *v;
+    }
+  };
+  r.Declare("lift_correlation");  // not a unit of `lift`
+  sigma("lift", Dimension::kLength, 1e-3, 1e3, "mm", t.lift_sigma_m);
+  sigma("lift_correlation", Dimension::kAngle, 2.0 * kPi, 1.0 / kDeg, "deg",
+        t.lift_correlation_rad);
+  sigma("mass", Dimension::kPercent, 0.5, 100.0, "%", t.mass_fraction);
+  sigma("preload", Dimension::kPercent, 0.5, 100.0, "%", t.preload_fraction);
+  sigma("rate", Dimension::kPercent, 0.5, 100.0, "%", t.rate_fraction);
+  sigma("stiffness", Dimension::kPercent, 0.5, 100.0, "%", t.stiffness_fraction);
+  sigma("play", Dimension::kLength, 1e-2, 1e3, "mm", t.play_sigma_m);
+  sigma("speed", Dimension::kPercent, 0.5, 100.0, "%", t.speed_fraction);
+  r.Finish();
+  return t;
+}
+
 // An optional length key, positive (or ≥ 0) and at most 10 m, checked as it is read so that a
 // failure names the key as written.
 std::optional<double> BoundedLength(SectionReader& r, const std::string& name, bool positive) {
@@ -676,8 +702,9 @@ toml::table ParseToml(const std::string& text, const std::string& path) {
 
 Case ParseCase(const std::string& text, const std::string& path) {
   const toml::table root = ParseToml(text, path);
-  static const std::set<std::string> kSections = {
-      "engine", "lift", "needle", "spring", "train", "solver", "overspeed", "profile", "paper"};
+  static const std::set<std::string> kSections = {"engine",    "lift",   "needle",    "spring",
+                                                  "train",     "solver", "overspeed", "profile",
+                                                  "tolerance", "paper"};
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title") {
@@ -687,7 +714,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
     if (!kSections.count(key)) {
       throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
                       " (known: title, [engine], [lift], [needle], [spring], [train], [solver], "
-                      "[overspeed], [profile], [paper])");
+                      "[overspeed], [profile], [tolerance], [paper])");
     }
   }
   Case c;
@@ -711,6 +738,8 @@ Case ParseCase(const std::string& text, const std::string& path) {
   }
   if (const toml::table* t = Section(root, path, "profile"))
     c.profile = ReadProfile(SectionReader(t, path, "profile"));
+  if (const toml::table* t = Section(root, path, "tolerance"))
+    c.tolerance = ReadTolerance(SectionReader(t, path, "tolerance"));
   if (const toml::table* paper = Section(root, path, "paper")) {
     c.paper = ReadPaper(SectionReader(paper, path, "paper"));
   }

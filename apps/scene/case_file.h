@@ -28,6 +28,9 @@
 ///               max_steps = 2e6, max_events = 1e5, start_deg, end_deg (window),
 ///               settle_deg = 3600 (past the window, the most run while the needle settles)
 ///     [overspeed] from_rpm, to_rpm
+///     [tolerance] lift_mm = 0.01, lift_correlation_deg = 0, mass_percent, preload_percent,
+///               rate_percent, stiffness_percent, play_mm, speed_percent (all 0 but the lift):
+///               one standard deviation of each input's scatter (`needle tolerance`)
 ///     [paper]   published values to compare with: crank_deg + velocity_dcm_s (magnitudes),
 ///               max_acceleration_m_s2, inertia_force_kgf, mean_lift_mm
 ///
@@ -101,6 +104,23 @@ struct OverspeedSection {
   std::optional<double> from_rpm, to_rpm;
 };
 
+/// [tolerance]: how the inputs scatter in a tolerance study (`needle tolerance`): each is one
+/// standard deviation of a normal scatter about the nominal value; 0 leaves the input alone.
+struct ToleranceSection {
+  /// lift_mm: the error of each lift-table point inside the open lift, m (default 0.01 mm:
+  /// Basu, NACA TM 477, "the cam is made to 0.01 mm"); [0, 1 mm].
+  double lift_sigma_m = 1e-5;
+  /// lift_correlation_deg: correlation length of that error along the crank angle, rad (a
+  /// Gaussian kernel exp(−Δθ²/2ℓ²)); 0: independent points; [0, 360°].
+  double lift_correlation_rad = 0.0;
+  double mass_fraction = 0.0;       ///< mass_percent: the moving mass, [0, 50 %]
+  double preload_fraction = 0.0;    ///< preload_percent: P₀, [0, 50 %]
+  double rate_fraction = 0.0;       ///< rate_percent: k (G, when k comes from the geometry)
+  double stiffness_fraction = 0.0;  ///< stiffness_percent: k_c and k_s, [0, 50 %]
+  double play_sigma_m = 0.0;        ///< play_mm: the roller play, m (a play below 0 is 0)
+  double speed_fraction = 0.0;      ///< speed_percent: the rated speed, [0, 50 %]
+};
+
 /// [profile]: the cam that drives the needle, for `needle profile`.
 struct ProfileSection {
   /// `follower` (roller, flat or curved), base_radius, roller_radius or face_radius,
@@ -124,6 +144,7 @@ struct Case {
   std::optional<SolverSection> solver;
   std::optional<OverspeedSection> overspeed;
   std::optional<ProfileSection> profile;
+  std::optional<ToleranceSection> tolerance;
   std::optional<PaperSection> paper;
 };
 

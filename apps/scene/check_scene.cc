@@ -51,7 +51,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     r.run_options = OptionsFromCase(c);
     SimulationOptions sim = r.run_options;
     sim.force_dynamic = true;  // the report shows the dynamic force
-    sim.record_series = true;
+    sim.record_series = options.record_series;
     r.run = Simulate(scene, rpm, sim);
     if (scene.cam->play_m() == 0.0)
       r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
@@ -60,6 +60,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     os.simulation = r.run_options;
     os.from_rpm = r.sweep_range.from_rpm;
     os.to_rpm = r.sweep_range.to_rpm;
+    os.threads = options.threads;
     r.sweep = OverspeedSearch(scene, os, options.progress);
 
     if (r.run->liftoff()) {

@@ -44,6 +44,8 @@ struct CheckOptions {
   std::optional<double> speed_rpm;  ///< rated speed, rpm; default [engine] speed_rpm
   /// Called after each overspeed run with (done, total estimate); may be empty.
   std::function<void(int, int)> progress;
+  int threads = 0;            ///< the overspeed sweep's threads (0: all cores)
+  bool record_series = true;  ///< keep the rated-speed run's time series (the report's figures)
 };
 
 /// What `needle check` found. All SI except speeds (rpm).

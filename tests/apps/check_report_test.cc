@@ -195,8 +195,8 @@ TEST(CheckReportTest, JsonNamesEveryFailingItem) {
 TEST(CheckReportTest, HelpDocumentsEveryCommandAndOption) {
   const auto top = RunNeedle("--help");
   EXPECT_EQ(top.status, 0);
-  for (const char* cmd :
-       {"check", "kinematics", "spring", "design", "simulate", "overspeed", "synth", "profile"}) {
+  for (const char* cmd : {"check", "compare", "kinematics", "spring", "design", "simulate",
+                          "overspeed", "synth", "profile", "tolerance"}) {
     EXPECT_NE(top.out.find(cmd), std::string::npos) << cmd;
     EXPECT_EQ(RunNeedle(std::string(cmd) + " --help").status, 0) << cmd;
   }

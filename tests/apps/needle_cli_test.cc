@@ -24,6 +24,39 @@ TEST(NeedleCliTest, HelpDocumentsEveryOption) {
   }
 }
 
+TEST(NeedleCliTest, ToleranceStudyEndToEnd) {
+  const std::string dir = testing::TempPath("tolerance-out");
+  const auto r = RunNeedle("tolerance " + Case("basu-example2.toml") +
+                           " --samples 3 --seed 5 --threads 2 --json --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["samples"], 3);
+  EXPECT_EQ(j["seed"], 5);
+  EXPECT_EQ(j["sample_results"].size(), 3u);
+  EXPECT_EQ(j["tolerance"]["preload_percent"], 5.0);
+  EXPECT_EQ(j["distributions"]["overspeed.liftoff_rpm_dynamic"]["count"], 3);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/tolerance-basu-example2.html"));
+  // The text and the JSON of the same seed are the same study.
+  const auto text = RunNeedle("tolerance " + Case("basu-example2.toml") + " --samples 3 --seed 5");
+  ASSERT_EQ(text.status, 0) << text.err;
+  char mean[64];
+  std::snprintf(mean, sizeof mean, "%11.4g",
+                j["distributions"]["spring.liftoff_rpm_quasi_static"]["mean"].get<double>());
+  EXPECT_NE(text.out.find(std::string("n_qs (rpm)") + std::string(31, ' ') + mean),
+            std::string::npos)
+      << text.out;
+  // A [tolerance] key out of range, and an unknown one: one line, exit 2.
+  const std::string path = testing::TempPath("tolerance-bad.toml");
+  std::string base = testing::Slurp(Case("basu-example2.toml"));
+  std::ofstream(path) << base.replace(base.find("preload_percent = 5"), 19, "preload_percent = 80");
+  const auto bad = RunNeedle("tolerance " + path + " --samples 2");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err, "needle: " + path +
+                         ": [tolerance] preload_percent: must be ≥ 0 and at most 50 %, got 80 %\n");
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove(path);
+}
+
 TEST(NeedleCliTest, KinematicsJsonHasTheDocumentedKeys) {
   const auto r = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;

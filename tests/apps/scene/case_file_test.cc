@@ -129,7 +129,7 @@ TEST(CaseFileTest, UnknownKeysSectionsAndUnits) {
             "t.toml: [engine] bore_mm: unknown key in this section");
   EXPECT_EQ(Error(kGood + "[valve]\nx = 1\n"),
             "t.toml: valve: unknown section (known: title, [engine], [lift], [needle], [spring], "
-            "[train], [solver], [overspeed], [profile], [paper])");
+            "[train], [solver], [overspeed], [profile], [tolerance], [paper])");
   EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rps = 400")),
             "t.toml: [engine] speed_rps: unit suffix 'rps' is not a unit of rotation speed "
             "(expected speed_rpm)");

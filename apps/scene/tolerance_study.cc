@@ -1,0 +1,305 @@
+#include "apps/scene/tolerance_study.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <numeric>
+#include <thread>
+
+#include "apps/scene/check_scene.h"
+#include "lib/units.h"
+
+namespace needle {
+
+LiftErrorModel::LiftErrorModel(const std::vector<double>& crank_rad,
+                               const std::vector<bool>& varied, double sigma_m,
+                               double correlation_rad)
+    : size_(crank_rad.size()) {
+  for (size_t i = 0; i < crank_rad.size(); ++i)
+    if (varied[i]) index_.push_back(static_cast<int>(i));
+  const int n = static_cast<int>(index_.size());
+  root_.assign(n, std::vector<double>(n, 0.0));
+  if (n == 0 || sigma_m == 0.0) return;
+  if (correlation_rad == 0.0) {
+    for (int i = 0; i < n; ++i) root_[i][i] = sigma_m;
+    return;
+  }
+  Eigen::MatrixXd cov(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double d = (crank_rad[index_[i]] - crank_rad[index_[j]]) / correlation_rad;
+      cov(i, j) = sigma_m * sigma_m * std::exp(-0.5 * d * d);
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+  const Eigen::VectorXd roots = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::MatrixXd a = eig.eigenvectors() * roots.asDiagonal();
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) root_[i][j] = a(i, j);
+}
+
+std::vector<double> LiftErrorModel::Draw(std::mt19937_64& gen) const {
+  std::normal_distribution<double> normal;
+  std::vector<double> z(index_.size());
+  for (double& v : z) v = normal(gen);
+  std::vector<double> e(size_, 0.0);
+  for (size_t i = 0; i < index_.size(); ++i)
+    e[index_[i]] = std::inner_product(root_[i].begin(), root_[i].end(), z.begin(), 0.0);
+  return e;
+}
+
+namespace {
+
+// The part a failing line names: up to its first colon, or its second for the spring check's
+// own items ("spring check: Basu's formula").
+std::string FailingItem(const std::string& line) {
+  size_t colon = line.find(':');
+  if (colon == std::string::npos) return line;
+  if (line.compare(0, colon, "spring check") == 0) {
+    const size_t second = line.find(':', colon + 1);
+    if (second != std::string::npos) colon = second;
+  }
+  return line.substr(0, colon);
+}
+
+// One sample of the case: its inputs drawn, its case changed, its check run.
+ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
+                          const LiftErrorModel& lift_error, uint64_t seed, int index) {
+  std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32),
+                    static_cast<uint32_t>(index)};
+  std::mt19937_64 gen(seq);
+  std::normal_distribution<double> normal;
+  ToleranceSample s;
+  Case c = nominal;
+  // The inputs, each drawn whether or not it is varied, so that a sample's draws do not shift
+  // when another input's σ changes from 0.
+  const std::vector<double> e = lift_error.Draw(gen);
+  const double z_mass = normal(gen), z_preload = normal(gen), z_rate = normal(gen),
+               z_stiffness = normal(gen), z_play = normal(gen), z_speed = normal(gen);
+  std::vector<double>& lift = c.lift.table.lift_m;
+  for (size_t i = 0; i < lift.size(); ++i) lift[i] = std::max(0.0, lift[i] + e[i]);
+  double mean = 0.0, rough = 0.0;
+  int varied = 0, inner = 0;
+  for (size_t i = 0; i < e.size(); ++i) {
+    if (e[i] != 0.0) {
+      mean += e[i];
+      ++varied;
+    }
+    if (i > 0 && i + 1 < e.size()) {
+      const double d2 = e[i - 1] - 2.0 * e[i] + e[i + 1];
+      rough += d2 * d2;
+      ++inner;
+    }
+  }
+  s.inputs["lift_error_mean_m"] = varied ? mean / varied : 0.0;
+  s.inputs["lift_error_roughness_m"] = inner ? std::sqrt(rough / inner) : 0.0;
+  const auto scale = [](double fraction, double z) { return std::max(0.0, 1.0 + fraction * z); };
+  if (c.needle) {
+    c.needle->mass_kg *= scale(t.mass_fraction, z_mass);
+    s.inputs["mass_deviation"] = t.mass_fraction * z_mass;
+  }
+  if (c.spring) {
+    c.spring->preload_N *= scale(t.preload_fraction, z_preload);
+    s.inputs["preload_deviation"] = t.preload_fraction * z_preload;
+    if (c.spring->rate_N_m) {
+      *c.spring->rate_N_m *= scale(t.rate_fraction, z_rate);
+    } else if (c.spring->helical) {
+      c.spring->helical->shear_modulus_Pa *= scale(t.rate_fraction, z_rate);  // k ∝ G
+    }
+    s.inputs["rate_deviation"] = t.rate_fraction * z_rate;
+  }
+  if (c.train) {
+    c.train->contact_stiffness_N_m *= scale(t.stiffness_fraction, z_stiffness);
+    c.train->seat_stiffness_N_m *= scale(t.stiffness_fraction, z_stiffness);
+    s.inputs["stiffness_deviation"] = t.stiffness_fraction * z_stiffness;
+    const double play = std::max(0.0, c.train->play_m + t.play_sigma_m * z_play);
+    s.inputs["play_deviation_m"] = play - c.train->play_m;
+    c.train->play_m = play;
+  }
+  CheckOptions options;
+  options.speed_rpm = c.engine.speed_rpm * scale(t.speed_fraction, z_speed);
+  s.inputs["speed_deviation"] = t.speed_fraction * z_speed;
+  options.threads = 1;
+  options.record_series = false;
+  const LiftLaw law = MakeLiftLaw(c);
+  const CheckResult r = CheckScene(c, law, options);
+  for (const FieldGroup& group : CheckFields(r)) {
+    for (const Field& f : group.fields) {
+      const auto v = f.Shown();
+      s.outputs[group.name + "." + f.Key()] = v ? *v : NAN;
+    }
+  }
+  if (r.spring) {
+    s.outputs["spring.preload_margin_percent"] = r.spring->preload_margin_percent;
+    if (r.spring->basu_preload_N) {
+      s.outputs["spring.basu_deviation_percent"] =
+          100.0 * (r.spring->train.preload_N - *r.spring->basu_preload_N) /
+          *r.spring->basu_preload_N;
+    }
+    s.outputs["spring.min_quasi_static_force_N"] = r.spring->min_quasi_static.force_N;
+    s.outputs["spring.liftoff_rpm_quasi_static"] = r.spring->liftoff_rpm_quasi_static;
+  }
+  if (r.run) {
+    s.outputs["dynamics.min_contact_force_during_lift_N"] = r.run->min_contact_force_during_lift_N;
+    s.outputs["dynamics.max_contact_force_N"] = r.run->max_contact_force_N;
+    double impact = 0.0;
+    for (const Impact& i : r.run->impacts) impact = std::max(impact, i.speed_m_s);
+    s.outputs["dynamics.max_impact_speed_m_s"] = impact;
+  }
+  s.pass = r.pass;
+  for (const std::string& line : r.failing) {
+    const std::string item = FailingItem(line);
+    if (std::find(s.failing.begin(), s.failing.end(), item) == s.failing.end())
+      s.failing.push_back(item);
+  }
+  return s;
+}
+
+std::vector<double> Ranks(const std::vector<double>& v) {
+  std::vector<size_t> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return v[a] < v[b]; });
+  std::vector<double> rank(v.size());
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i;
+    while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+    const double mid = 0.5 * (static_cast<double>(i) + static_cast<double>(j)) + 1.0;
+    for (size_t k = i; k <= j; ++k) rank[order[k]] = mid;
+    i = j + 1;
+  }
+  return rank;
+}
+
+}  // namespace
+
+double SpearmanRho(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<double> fx, fy;
+  for (size_t i = 0; i < x.size() && i < y.size(); ++i) {
+    if (std::isfinite(x[i]) && std::isfinite(y[i])) {
+      fx.push_back(x[i]);
+      fy.push_back(y[i]);
+    }
+  }
+  if (fx.size() < 3) return NAN;
+  const std::vector<double> rx = Ranks(fx), ry = Ranks(fy);
+  const double n = static_cast<double>(rx.size()), mean = (n + 1.0) / 2.0;
+  double sxy = 0.0, sxx = 0.0, syy = 0.0;
+  for (size_t i = 0; i < rx.size(); ++i) {
+    sxy += (rx[i] - mean) * (ry[i] - mean);
+    sxx += (rx[i] - mean) * (rx[i] - mean);
+    syy += (ry[i] - mean) * (ry[i] - mean);
+  }
+  if (sxx == 0.0 || syy == 0.0) return NAN;
+  return sxy / std::sqrt(sxx * syy);
+}
+
+Distribution Describe(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  Distribution d;
+  d.count = static_cast<int>(v.size());
+  if (v.empty()) return d;
+  std::sort(v.begin(), v.end());
+  const double n = static_cast<double>(v.size());
+  d.mean = std::accumulate(v.begin(), v.end(), 0.0) / n;
+  double ss = 0.0;
+  for (double x : v) ss += (x - d.mean) * (x - d.mean);
+  d.std_dev = v.size() > 1 ? std::sqrt(ss / (n - 1.0)) : 0.0;
+  const auto q = [&](double p) {
+    const double at = p * (n - 1.0);
+    const size_t lo = static_cast<size_t>(std::floor(at));
+    const size_t hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
+  };
+  d.min = v.front();
+  d.max = v.back();
+  d.p05 = q(0.05);
+  d.p50 = q(0.5);
+  d.p95 = q(0.95);
+  return d;
+}
+
+ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options) {
+  if (!(options.samples >= 1 && options.samples <= 1000000))
+    throw CaseError("--samples: expected a number of samples in [1, 1000000], got " +
+                    std::to_string(options.samples));
+  const auto start = std::chrono::steady_clock::now();
+  ToleranceResult result;
+  result.tolerance = c.tolerance.value_or(ToleranceSection{});
+  result.options = options;
+  const ToleranceSection& t = result.tolerance;
+  // The lift error moves the points inside the open lift: those above zero.
+  std::vector<bool> varied;
+  for (double y : c.lift.table.lift_m) varied.push_back(y > 0.0);
+  const LiftErrorModel lift_error(c.lift.table.crank_rad, varied, t.lift_sigma_m,
+                                  t.lift_correlation_rad);
+  MakeLiftLaw(c);  // a case that cannot be checked fails here, before any thread starts
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const int threads = std::max(
+      1, std::min(options.samples, options.threads > 0 ? std::min<int>(options.threads, cores)
+                                                       : static_cast<int>(cores)));
+  result.options.threads = threads;
+  result.samples.resize(options.samples);
+  std::atomic<int> next{0}, done{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const auto work = [&] {
+    while (true) {
+      const int i = next++;
+      if (i >= options.samples) return;
+      try {
+        result.samples[i] = RunSample(c, t, lift_error, options.seed, i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next = options.samples;  // stop the others
+      }
+      ++done;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads; ++k) pool.emplace_back(work);
+  if (options.progress) {
+    // The calling thread reports progress and takes samples between reports.
+    std::thread last(work);
+    int reported = -1;
+    while (done < options.samples && !error) {
+      if (done != reported) options.progress(reported = done, options.samples);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    last.join();
+  } else {
+    work();
+  }
+  for (std::thread& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
+  if (options.progress) options.progress(options.samples, options.samples);
+
+  // Distributions, failure, drivers.
+  std::map<std::string, std::vector<double>> outputs, inputs;
+  std::vector<double> fails;
+  for (const ToleranceSample& s : result.samples) {
+    for (const auto& [k, v] : s.outputs) outputs[k].push_back(v);
+    for (const auto& [k, v] : s.inputs) inputs[k].push_back(v);
+    fails.push_back(s.pass ? 0.0 : 1.0);
+    for (const std::string& item : s.failing) result.failure_by_item[item] += 1.0;
+  }
+  const double n = static_cast<double>(result.samples.size());
+  result.failure_probability = std::accumulate(fails.begin(), fails.end(), 0.0) / n;
+  for (auto& [item, count] : result.failure_by_item) count /= n;
+  for (const auto& [key, values] : outputs) {
+    if (values.size() != result.samples.size()) continue;  // not in every sample
+    result.distributions[key] = Describe(values);
+    for (const auto& [input, x] : inputs) {
+      if (x.size() == values.size()) result.output_drivers[key][input] = SpearmanRho(x, values);
+    }
+  }
+  for (const auto& [input, x] : inputs)
+    if (x.size() == fails.size()) result.fail_drivers[input] = SpearmanRho(x, fails);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace needle

@@ -1,0 +1,173 @@
+// The tolerance study: its statistics on known data, the lift error's covariance, the failure
+// probability against the normal law's closed form, and the same study for a seed whatever
+// the thread count.
+#include "apps/scene/tolerance_study.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "apps/scene/check_scene.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
+
+TEST(ToleranceStudyTest, SpearmanOnKnownData) {
+  EXPECT_DOUBLE_EQ(SpearmanRho({1, 2, 3, 4, 5}, {1, 8, 27, 64, 125}), 1.0);  // monotone
+  EXPECT_DOUBLE_EQ(SpearmanRho({1, 2, 3, 4, 5}, {5, 4, 3, 2, 1}), -1.0);
+  // Ties take mid-ranks: x ranks 1, 2.5, 2.5, 4 against 1, 2, 3, 4: ρ = 4.5/√(4.5·5).
+  EXPECT_NEAR(SpearmanRho({1, 2, 2, 3}, {1, 2, 3, 4}), 4.5 / std::sqrt(22.5), 1e-15);
+  EXPECT_TRUE(std::isnan(SpearmanRho({1, 1, 1}, {1, 2, 3})));  // a constant input
+  EXPECT_TRUE(std::isnan(SpearmanRho({1, 2}, {1, 2})));
+  // Non-finite pairs are left out.
+  EXPECT_DOUBLE_EQ(SpearmanRho({1, 2, NAN, 3}, {2, 4, 5, 6}), 1.0);
+}
+
+TEST(ToleranceStudyTest, DescribeOnKnownData) {
+  std::vector<double> v;
+  for (int i = 101; i >= 1; --i) v.push_back(i);
+  v.push_back(NAN);
+  const Distribution d = Describe(v);
+  EXPECT_EQ(d.count, 101);
+  EXPECT_DOUBLE_EQ(d.mean, 51.0);
+  EXPECT_NEAR(d.std_dev, std::sqrt(101.0 * 102.0 / 12.0), 1e-12);  // 1..n: n(n+1)/12
+  EXPECT_DOUBLE_EQ(d.p05, 6.0);
+  EXPECT_DOUBLE_EQ(d.p50, 51.0);
+  EXPECT_DOUBLE_EQ(d.p95, 96.0);
+  EXPECT_EQ(d.min, 1.0);
+  EXPECT_EQ(d.max, 101.0);
+}
+
+TEST(ToleranceStudyTest, TheLiftErrorHasItsCovariance) {
+  const std::vector<double> crank = {0.0, 0.01, 0.02, 0.03, 0.04};
+  const std::vector<bool> varied = {false, true, true, true, false};
+  const double sigma = 1e-5, ell = 0.02;
+  for (double length : {0.0, ell}) {
+    const LiftErrorModel model(crank, varied, sigma, length);
+    std::mt19937_64 gen(7);
+    const int n = 20000;
+    double s11 = 0, s12 = 0, s13 = 0;
+    for (int k = 0; k < n; ++k) {
+      const std::vector<double> e = model.Draw(gen);
+      ASSERT_EQ(e[0], 0.0);  // the seated points stay
+      ASSERT_EQ(e[4], 0.0);
+      s11 += e[1] * e[1];
+      s12 += e[1] * e[2];
+      s13 += e[1] * e[3];
+    }
+    // Variance σ² within 4 standard errors (σ²·√(2/n) = 1 %); correlations
+    // exp(−h²/2ℓ²) = e^(−1/8) and e^(−1/2) at h = ℓ/2 and ℓ, or 0, within 4/√n.
+    EXPECT_NEAR(s11 / n / (sigma * sigma), 1.0, 0.04) << length;
+    const double r12 = s12 / s11, r13 = s13 / s11;
+    EXPECT_NEAR(r12, length > 0 ? std::exp(-0.125) : 0.0, 0.03) << length;
+    EXPECT_NEAR(r13, length > 0 ? std::exp(-0.5) : 0.0, 0.03) << length;
+  }
+}
+
+// Example 1's spring check alone (no [train]: a sample takes a millisecond) with the preload
+// scattered by 5 %: Basu's formula fails where P₀ < 0.9·812.2 kgf, that is z below
+// (0.9·812.2/790 − 1)/0.05 = −1.494: Φ(−1.494) = 6.76 % of the samples.
+TEST(ToleranceStudyTest, TheFailureProbabilityIsTheNormalLaws) {
+  Case c = LoadCase(kCases + "basu-example1.toml");
+  c.train.reset();
+  c.profile.reset();
+  ToleranceSection t;
+  t.lift_sigma_m = 0.0;
+  t.preload_fraction = 0.05;
+  c.tolerance = t;
+  ToleranceOptions o;
+  o.samples = 2000;
+  o.seed = 42;
+  const ToleranceResult r = RunToleranceStudy(c, o);
+  const CheckResult nominal = CheckScene(c, MakeLiftLaw(c));
+  const double basu_N = *nominal.spring->basu_preload_N;
+  const double z = (0.9 * basu_N / c.spring->preload_N - 1.0) / 0.05;
+  const double p = 0.5 * std::erfc(-z / std::sqrt(2.0));
+  EXPECT_NEAR(p, 0.0676, 5e-4);
+  const double se = std::sqrt(p * (1 - p) / o.samples);
+  EXPECT_NEAR(r.failure_by_item.at("spring check: Basu's formula"), p, 4 * se);
+  EXPECT_GE(r.failure_probability, r.failure_by_item.at("spring check: Basu's formula"));
+  // The preload drives the failing, against it; nothing else moves.
+  EXPECT_LT(r.fail_drivers.at("preload_deviation"), -0.3);
+  EXPECT_TRUE(std::isnan(r.fail_drivers.at("mass_deviation")));
+  // n_qs² ∝ P₀ + k s − F_g at the critical angle: its spread is the preload's times
+  // d ln n_qs / d ln P₀ = ½ P₀ / (P₀ + k s − F_g) (0.70 here: F_g = 2590 N of 7747), taken by a
+  // central difference on the nominal case, to first order in σ.
+  const auto nqs_at = [&](double factor) {
+    Case v = c;
+    v.spring->preload_N *= factor;
+    return CheckScene(v, MakeLiftLaw(v)).n_qs_rpm;
+  };
+  const double slope = std::log(nqs_at(1.001) / nqs_at(0.999)) / std::log(1.001 / 0.999);
+  EXPECT_NEAR(slope, 0.70, 0.02);
+  const Distribution& nqs = r.distributions.at("spring.liftoff_rpm_quasi_static");
+  EXPECT_NEAR(nqs.std_dev / nqs.mean / (slope * 0.05), 1.0, 0.05);
+  EXPECT_GT(r.output_drivers.at("spring.liftoff_rpm_quasi_static").at("preload_deviation"), 0.99);
+}
+
+TEST(ToleranceStudyTest, WithoutScatterEverySampleIsTheNominalCase) {
+  Case c = LoadCase(kCases + "basu-example1.toml");
+  c.train.reset();
+  c.tolerance = ToleranceSection{};
+  c.tolerance->lift_sigma_m = 0.0;
+  ToleranceOptions o;
+  o.samples = 5;
+  const ToleranceResult r = RunToleranceStudy(c, o);
+  const CheckResult nominal = CheckScene(c, MakeLiftLaw(c));
+  for (const ToleranceSample& s : r.samples) {
+    EXPECT_EQ(s.outputs.at("spring.liftoff_rpm_quasi_static"), nominal.n_qs_rpm);
+    EXPECT_EQ(s.pass, nominal.pass);
+  }
+  EXPECT_EQ(r.distributions.at("spring.liftoff_rpm_quasi_static").std_dev, 0.0);
+}
+
+// The whole check on every sample (Example 2 with its [tolerance]: the dynamics and the sweep),
+// on one thread and on two: the same samples, bit for bit; another seed, other samples.
+TEST(ToleranceStudyTest, ASeedGivesTheSameStudyWhateverTheThreads) {
+  const Case c = LoadCase(kCases + "basu-example2.toml");
+  ASSERT_TRUE(c.tolerance.has_value());
+  ToleranceOptions o;
+  o.samples = 4;
+  o.seed = 2026;
+  o.threads = 1;
+  const ToleranceResult one = RunToleranceStudy(c, o);
+  o.threads = 2;
+  const ToleranceResult two = RunToleranceStudy(c, o);
+  ASSERT_EQ(one.samples.size(), 4u);
+  for (size_t i = 0; i < one.samples.size(); ++i) {
+    EXPECT_EQ(one.samples[i].inputs, two.samples[i].inputs) << i;
+    const auto& a = one.samples[i].outputs;
+    const auto& b = two.samples[i].outputs;
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [key, v] : a) {
+      if (std::isnan(v)) {
+        EXPECT_TRUE(std::isnan(b.at(key))) << key;
+      } else {
+        EXPECT_EQ(v, b.at(key)) << key;
+      }
+    }
+    EXPECT_EQ(one.samples[i].failing, two.samples[i].failing);
+  }
+  o.seed = 2027;
+  o.samples = 1;
+  const ToleranceResult other = RunToleranceStudy(c, o);
+  EXPECT_NE(other.samples[0].inputs, one.samples[0].inputs);
+}
+
+TEST(ToleranceStudyTest, BadSampleCountsAreRefused) {
+  const Case c = LoadCase(kCases + "basu-example2.toml");
+  ToleranceOptions o;
+  o.samples = 0;
+  try {
+    RunToleranceStudy(c, o);
+    FAIL() << "no error";
+  } catch (const CaseError& e) {
+    EXPECT_STREQ(e.what(), "--samples: expected a number of samples in [1, 1000000], got 0");
+  }
+}
+
+}  // namespace
+}  // namespace needle
