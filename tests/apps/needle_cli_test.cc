@@ -164,8 +164,8 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   const auto unknown = RunNeedle("frobnicate");
   EXPECT_EQ(unknown.status, 2);
   EXPECT_EQ(unknown.err,
-            "needle: unknown command 'frobnicate'; expected one of check, kinematics, spring, "
-            "design, simulate, overspeed, synth, profile (see needle --help)\n");
+            "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
+            "spring, design, simulate, overspeed, synth, profile, tolerance (see needle --help)\n");
   const auto missing = RunNeedle("kinematics /no/such.toml");
   EXPECT_EQ(missing.status, 2);
   EXPECT_EQ(missing.err, "needle: /no/such.toml: cannot open the case file for reading\n");
