@@ -51,6 +51,53 @@ std::vector<std::pair<std::string, double>> Ranked(const Drivers& d) {
 
 }  // namespace
 
+nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
+  const ToleranceSection& t = r.tolerance;
+  const double n = static_cast<double>(r.samples.size());
+  const auto [p_low, p_high] = Wilson(r.failure_probability, n);
+  nlohmann::json j;
+  j["case"] = c.path;
+  j["samples"] = r.samples.size();
+  j["seed"] = r.options.seed;
+  j["first_sample"] = r.options.first_sample;
+  j["threads"] = r.options.threads;
+  j["seconds"] = r.seconds;
+  j["seconds_per_sample"] = r.seconds * r.options.threads / n;
+  j["tolerance"] = {{"lift_mm", t.lift_sigma_m * 1e3},
+                    {"lift_correlation_deg", t.lift_correlation_rad / kDeg},
+                    {"mass_percent", 100 * t.mass_fraction},
+                    {"preload_percent", 100 * t.preload_fraction},
+                    {"rate_percent", 100 * t.rate_fraction},
+                    {"stiffness_percent", 100 * t.stiffness_fraction},
+                    {"play_mm", t.play_sigma_m * 1e3},
+                    {"speed_percent", 100 * t.speed_fraction}};
+  j["failure_probability"] = r.failure_probability;
+  j["failure_probability_95"] = {p_low, p_high};
+  j["failure_by_item"] = r.failure_by_item;
+  nlohmann::json drivers;
+  for (const auto& [k, v] : r.fail_drivers) drivers[k] = Finite(v);
+  j["fail_drivers"] = drivers;
+  nlohmann::json dist;
+  for (const auto& [key, d] : r.distributions) {
+    nlohmann::json od;
+    if (const auto it = r.output_drivers.find(key); it != r.output_drivers.end())
+      for (const auto& [k, v] : it->second) od[k] = Finite(v);
+    dist[key] = {{"count", d.count},     {"mean", Finite(d.mean)}, {"std", Finite(d.std_dev)},
+                 {"min", Finite(d.min)}, {"p05", Finite(d.p05)},   {"p50", Finite(d.p50)},
+                 {"p95", Finite(d.p95)}, {"max", Finite(d.max)},   {"drivers", od}};
+  }
+  j["distributions"] = dist;
+  nlohmann::json samples = nlohmann::json::array();
+  for (const ToleranceSample& s : r.samples) {
+    nlohmann::json in, out;
+    for (const auto& [k, v] : s.inputs) in[k] = Finite(v);
+    for (const auto& [k, v] : s.outputs) out[k] = Finite(v);
+    samples.push_back({{"inputs", in}, {"outputs", out}, {"pass", s.pass}, {"failing", s.failing}});
+  }
+  j["sample_results"] = samples;
+  return j;
+}
+
 CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "tolerance", "Monte-Carlo tolerance study: distributions, failure probability, drivers");
@@ -59,6 +106,9 @@ CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& o) {
   cmd->add_option("--samples", o.samples, "number of samples (default 1000)")
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--seed", o.seed, "the study's seed (default 1): the same seed, the same study");
+  cmd->add_option("--first-sample", o.first_sample,
+                  "index of the first sample (default 0): a shard of a larger study")
+      ->check(CLI::Range(0, 1000000000));
   cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
       ->check(CLI::Range(0, 4096));
   cmd->add_option("--out", o.out_dir, "write the report with the histograms to this folder");
@@ -79,6 +129,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
   ToleranceOptions options;
   options.samples = o.samples;
   options.seed = o.seed;
+  options.first_sample = o.first_sample;
   options.threads = o.threads;
   ToleranceResult r;
   {
@@ -144,45 +195,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
   }
 
   if (o.json) {
-    nlohmann::json j;
-    j["case"] = c.path;
-    j["samples"] = r.samples.size();
-    j["seed"] = o.seed;
-    j["threads"] = r.options.threads;
-    j["seconds"] = r.seconds;
-    j["seconds_per_sample"] = r.seconds * r.options.threads / n;
-    j["tolerance"] = {{"lift_mm", t.lift_sigma_m * 1e3},
-                      {"lift_correlation_deg", t.lift_correlation_rad / kDeg},
-                      {"mass_percent", 100 * t.mass_fraction},
-                      {"preload_percent", 100 * t.preload_fraction},
-                      {"rate_percent", 100 * t.rate_fraction},
-                      {"stiffness_percent", 100 * t.stiffness_fraction},
-                      {"play_mm", t.play_sigma_m * 1e3},
-                      {"speed_percent", 100 * t.speed_fraction}};
-    j["failure_probability"] = r.failure_probability;
-    j["failure_probability_95"] = {p_low, p_high};
-    j["failure_by_item"] = r.failure_by_item;
-    nlohmann::json drivers;
-    for (const auto& [k, v] : r.fail_drivers) drivers[k] = Finite(v);
-    j["fail_drivers"] = drivers;
-    nlohmann::json dist;
-    for (const auto& [key, d] : r.distributions) {
-      nlohmann::json od;
-      for (const auto& [k, v] : r.output_drivers[key]) od[k] = Finite(v);
-      dist[key] = {{"count", d.count},     {"mean", Finite(d.mean)}, {"std", Finite(d.std_dev)},
-                   {"min", Finite(d.min)}, {"p05", Finite(d.p05)},   {"p50", Finite(d.p50)},
-                   {"p95", Finite(d.p95)}, {"max", Finite(d.max)},   {"drivers", od}};
-    }
-    j["distributions"] = dist;
-    nlohmann::json samples = nlohmann::json::array();
-    for (const ToleranceSample& s : r.samples) {
-      nlohmann::json in, out;
-      for (const auto& [k, v] : s.inputs) in[k] = Finite(v);
-      for (const auto& [k, v] : s.outputs) out[k] = Finite(v);
-      samples.push_back(
-          {{"inputs", in}, {"outputs", out}, {"pass", s.pass}, {"failing", s.failing}});
-    }
-    j["sample_results"] = samples;
+    nlohmann::json j = ToleranceJson(c, r);
     if (report_path) j["report"] = *report_path;
     std::cout << j.dump(2) << '\n';
     return 0;

@@ -19,6 +19,7 @@
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/spring_command.h"
+#include "apps/cli/tolerance_command.h"
 #include "apps/scene/case_file.h"
 
 namespace py = pybind11;
@@ -257,6 +258,25 @@ PYBIND11_MODULE(needle, m) {
       },
       arg("spec"), py::kw_only(), arg("name") = py::none(),
       "needle synth: a rise law under derivative limits, from a spec file or dict");
+
+  m.def(
+      "tolerance",
+      [](const Case& c, int samples, uint64_t seed, int first_sample, int threads) {
+        ToleranceOptions o;
+        o.samples = samples;
+        o.seed = seed;
+        o.first_sample = first_sample;
+        o.threads = threads;
+        return Run([&] {
+          CommandOutput out;
+          out.json = ToleranceJson(c, RunToleranceStudy(c, o));
+          return out;
+        });
+      },
+      py::arg("case"), py::kw_only(), py::arg("samples") = 1000, py::arg("seed") = 1,
+      py::arg("first_sample") = 0, py::arg("threads") = 0,
+      "needle tolerance: a Monte-Carlo study (samples [first_sample, first_sample + samples) of "
+      "the seed's study: shards of one study on several machines are its parts)");
 
   m.def(
       "profile",

@@ -225,6 +225,9 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
   if (!(options.samples >= 1 && options.samples <= 1000000))
     throw CaseError("--samples: expected a number of samples in [1, 1000000], got " +
                     std::to_string(options.samples));
+  if (!(options.first_sample >= 0 && options.first_sample <= 1000000000))
+    throw CaseError("--first-sample: expected an index in [0, 1000000000], got " +
+                    std::to_string(options.first_sample));
   const auto start = std::chrono::steady_clock::now();
   ToleranceResult result;
   result.tolerance = c.tolerance.value_or(ToleranceSection{});
@@ -250,7 +253,7 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
       const int i = next++;
       if (i >= options.samples) return;
       try {
-        result.samples[i] = RunSample(c, t, lift_error, options.seed, i);
+        result.samples[i] = RunSample(c, t, lift_error, options.seed, options.first_sample + i);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();

@@ -7,9 +7,9 @@
 /// and the inputs that drive each (Spearman rank correlation).
 ///
 /// Sample i draws its inputs from its own generator, seeded by (seed, i): a study is the same
-/// for a seed whatever the number of threads. The lift-table error is drawn on the points inside
-/// the open lift (the seated points are the base circle), with covariance
-/// σ² exp(−(θ_i − θ_j)²/2ℓ²) (Cholesky), independent when ℓ = 0.
+/// for a seed whatever the number of threads, and shards of it (first_sample) are its parts. The
+/// lift-table error is drawn on the points inside the open lift (the seated points are the base
+/// circle), with covariance σ² exp(−(θ_i − θ_j)²/2ℓ²) (Cholesky), independent when ℓ = 0.
 
 #include <cstdint>
 #include <functional>
@@ -26,7 +26,10 @@ namespace needle {
 struct ToleranceOptions {
   int samples = 1000;  ///< N, [1, 1e6]
   uint64_t seed = 1;   ///< the study's seed: the same seed, the same samples
-  int threads = 0;     ///< 0: all cores; each sample is checked on one thread
+  /// The index of the first sample: a study of samples [first, first + N) of a larger one
+  /// (a shard on another machine), [0, 1e9].
+  int first_sample = 0;
+  int threads = 0;  ///< 0: all cores; each sample is checked on one thread
   /// Called after each sample (done, N), from the calling thread; may be empty.
   std::function<void(int, int)> progress;
 };

@@ -147,3 +147,18 @@ def test_the_example_script_runs(tmp_path):
                        text=True, env=env)
     assert p.returncode == 0, p.stderr
     assert "n_qs 649.5 rpm, n_dyn 650.7 rpm" in p.stdout
+
+
+def test_tolerance_shards_are_the_study():
+    # What a worker elsewhere computes: samples [first, first + n) of the seed's study.
+    path = os.path.join(ROOT, "cases", "basu-example1.toml")
+    with open(path, "rb") as f:
+        data = tomllib.load(f)
+    del data["train"]  # the spring check alone: fast samples
+    data["tolerance"] = {"lift_mm": 0.0, "preload_percent": 5}
+    case = needle.load_case(data, name=path)
+    whole = needle.tolerance(case, samples=4, seed=11)
+    shard = needle.tolerance(case, samples=2, seed=11, first_sample=2)
+    assert shard["sample_results"] == whole["sample_results"][2:]
+    status, _, err = cli("tolerance", path, "--samples", "2", "--seed", "11")
+    assert status == 0, err

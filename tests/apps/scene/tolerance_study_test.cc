@@ -157,6 +157,28 @@ TEST(ToleranceStudyTest, ASeedGivesTheSameStudyWhateverTheThreads) {
   EXPECT_NE(other.samples[0].inputs, one.samples[0].inputs);
 }
 
+// A shard [first, first + N) of a study is that part of the whole: what a worker on another
+// machine computes.
+TEST(ToleranceStudyTest, ShardsAreThePartsOfTheStudy) {
+  Case c = LoadCase(kCases + "basu-example1.toml");
+  c.train.reset();
+  c.tolerance = ToleranceSection{};
+  c.tolerance->preload_fraction = 0.05;
+  ToleranceOptions o;
+  o.samples = 5;
+  o.seed = 9;
+  const ToleranceResult whole = RunToleranceStudy(c, o);
+  o.first_sample = 3;
+  o.samples = 2;
+  const ToleranceResult shard = RunToleranceStudy(c, o);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(shard.samples[i].inputs, whole.samples[3 + i].inputs) << i;
+    EXPECT_EQ(shard.samples[i].outputs.at("spring.liftoff_rpm_quasi_static"),
+              whole.samples[3 + i].outputs.at("spring.liftoff_rpm_quasi_static"));
+  }
+  EXPECT_NE(shard.samples[0].inputs, whole.samples[0].inputs);
+}
+
 TEST(ToleranceStudyTest, BadSampleCountsAreRefused) {
   const Case c = LoadCase(kCases + "basu-example2.toml");
   ToleranceOptions o;
