@@ -92,7 +92,10 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
     nlohmann::json in, out;
     for (const auto& [k, v] : s.inputs) in[k] = Finite(v);
     for (const auto& [k, v] : s.outputs) out[k] = Finite(v);
-    samples.push_back({{"inputs", in}, {"outputs", out}, {"pass", s.pass}, {"failing", s.failing}});
+    nlohmann::json one = {
+        {"inputs", in}, {"outputs", out}, {"pass", s.pass}, {"failing", s.failing}};
+    if (!s.refused.empty()) one["refused"] = s.refused;
+    samples.push_back(one);
   }
   j["sample_results"] = samples;
   return j;
@@ -229,8 +232,17 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
   out << "\nthe check fails in " << Fixed(100 * r.failure_probability, 2)
       << " % of the samples (95 % " << Fixed(100 * p_low, 2) << " .. " << Fixed(100 * p_high, 2)
       << " %)\n";
-  for (const auto& [item, p] : r.failure_by_item)
-    out << "  " << item << ": " << Fixed(100 * p, 2) << " %\n";
+  for (const auto& [item, p] : r.failure_by_item) {
+    out << "  " << item << ": " << Fixed(100 * p, 2) << " %";
+    if (item == "case refused") {
+      for (const ToleranceSample& s : r.samples) {
+        if (s.refused.empty()) continue;
+        out << " (the first: " << s.refused << ")";
+        break;
+      }
+    }
+    out << '\n';
+  }
   if (r.failure_probability > 0.0 && r.failure_probability < 1.0) {
     out << "what drives failing (Spearman rho):";
     for (const auto& [input, rho] : Ranked(r.fail_drivers)) out << ' ' << input << ' ' << Rho(rho);

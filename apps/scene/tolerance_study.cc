@@ -7,6 +7,7 @@
 #include <cmath>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <thread>
 
 #include "apps/scene/check_scene.h"
@@ -124,8 +125,19 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   s.inputs["speed_deviation"] = t.speed_fraction * z_speed;
   options.threads = 1;
   options.record_series = false;
-  const LiftLaw law = MakeLiftLaw(c);
-  const CheckResult r = CheckScene(c, law, options);
+  // A sample the model refuses (a lift table the spline or the ramps cannot take) is a
+  // result, not the end of the study: it fails as "case refused", with the reason.
+  std::optional<LiftLaw> law;
+  CheckResult r;
+  try {
+    law.emplace(MakeLiftLaw(c));
+    r = CheckScene(c, *law, options);
+  } catch (const CaseError& e) {
+    s.pass = false;
+    s.failing = {"case refused"};
+    s.refused = e.what();
+    return s;
+  }
   for (const FieldGroup& group : CheckFields(r)) {
     for (const Field& f : group.fields) {
       const auto v = f.Shown();
@@ -280,12 +292,16 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
   if (error) std::rethrow_exception(error);
   if (options.progress) options.progress(options.samples, options.samples);
 
-  // Distributions, failure, drivers.
+  // Distributions, failure, drivers; a quantity a sample lacks (a refused sample) is NaN there.
   std::map<std::string, std::vector<double>> outputs, inputs;
+  for (const ToleranceSample& s : result.samples) {
+    for (const auto& [k, v] : s.outputs) outputs[k];
+    for (const auto& [k, v] : s.inputs) inputs[k];
+  }
   std::vector<double> fails;
   for (const ToleranceSample& s : result.samples) {
-    for (const auto& [k, v] : s.outputs) outputs[k].push_back(v);
-    for (const auto& [k, v] : s.inputs) inputs[k].push_back(v);
+    for (auto& [k, v] : outputs) v.push_back(s.outputs.count(k) ? s.outputs.at(k) : NAN);
+    for (auto& [k, v] : inputs) v.push_back(s.inputs.count(k) ? s.inputs.at(k) : NAN);
     fails.push_back(s.pass ? 0.0 : 1.0);
     for (const std::string& item : s.failing) result.failure_by_item[item] += 1.0;
   }
@@ -293,14 +309,11 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
   result.failure_probability = std::accumulate(fails.begin(), fails.end(), 0.0) / n;
   for (auto& [item, count] : result.failure_by_item) count /= n;
   for (const auto& [key, values] : outputs) {
-    if (values.size() != result.samples.size()) continue;  // not in every sample
     result.distributions[key] = Describe(values);
-    for (const auto& [input, x] : inputs) {
-      if (x.size() == values.size()) result.output_drivers[key][input] = SpearmanRho(x, values);
-    }
+    for (const auto& [input, x] : inputs)
+      result.output_drivers[key][input] = SpearmanRho(x, values);
   }
-  for (const auto& [input, x] : inputs)
-    if (x.size() == fails.size()) result.fail_drivers[input] = SpearmanRho(x, fails);
+  for (const auto& [input, x] : inputs) result.fail_drivers[input] = SpearmanRho(x, fails);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

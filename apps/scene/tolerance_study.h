@@ -44,8 +44,10 @@ struct ToleranceSample {
   /// and the spring's margins; NaN where the sample has none (no lift-off in the range).
   std::map<std::string, double> outputs;
   bool pass = true;
-  /// The failing items, each named by its part ("spring check: Basu's formula", "overspeed").
+  /// The failing items, each named by its part ("spring check: Basu's formula", "overspeed");
+  /// "case refused" when the sample's case could not be checked (then `refused` says why).
   std::vector<std::string> failing;
+  std::string refused;
 };
 
 /// The spread of one quantity over the samples where it is finite.

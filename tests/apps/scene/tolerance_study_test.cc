@@ -179,6 +179,27 @@ TEST(ToleranceStudyTest, ShardsAreThePartsOfTheStudy) {
   EXPECT_NE(shard.samples[0].inputs, whole.samples[0].inputs);
 }
 
+// A sample whose case the model refuses (here a lift table scattered by 0.5 mm, whose tangent
+// ramps cannot take up the play) is a failing sample with its reason, not the study's end.
+TEST(ToleranceStudyTest, ARefusedSampleIsAResult) {
+  Case c = LoadCase(kCases + "basu-example1.toml");
+  c.tolerance = ToleranceSection{};
+  c.tolerance->lift_sigma_m = 5e-4;
+  ToleranceOptions o;
+  o.samples = 3;
+  const ToleranceResult r = RunToleranceStudy(c, o);
+  ASSERT_GT(r.failure_by_item.count("case refused"), 0u);
+  int refused = 0;
+  for (const ToleranceSample& s : r.samples) {
+    if (s.refused.empty()) continue;
+    ++refused;
+    EXPECT_FALSE(s.pass);
+    EXPECT_EQ(s.refused.rfind(kCases + "basu-example1.toml: ", 0), 0u) << s.refused;
+  }
+  EXPECT_DOUBLE_EQ(r.failure_by_item.at("case refused"), refused / 3.0);
+  EXPECT_EQ(r.distributions.at("kinematics.max_lift_mm").count, 3 - refused);
+}
+
 TEST(ToleranceStudyTest, BadSampleCountsAreRefused) {
   const Case c = LoadCase(kCases + "basu-example2.toml");
   ToleranceOptions o;
