@@ -8,32 +8,33 @@
 namespace needle {
 namespace display {
 const DisplayUnit kNone{"", "", 1.0};
-const DisplayUnit kMm{"mm", "mm", 1e3};
-const DisplayUnit kDegree{"deg", "deg", ::needle::kDeg, true};
-const DisplayUnit kN{"N", "N", 1.0};
-const DisplayUnit kRpm{"rpm", "rpm", 1.0};
-const DisplayUnit kMPerS{"m_s", "m/s", 1.0};
-const DisplayUnit kS{"s", "s", 1.0};
-const DisplayUnit kMPa{"MPa", "MPa", 1e-6};
-const DisplayUnit kMmPerRad{"mm_rad", "mm/rad", 1e3};
-const DisplayUnit kMmPerRad2{"mm_rad2", "mm/rad2", 1e3};
-const DisplayUnit kMmPerRad3{"mm_rad3", "mm/rad3", 1e3};
+const DisplayUnit kMm{"mm", "mm", 1e3, false, "m"};
+const DisplayUnit kDegree{"deg", "deg", ::needle::kDeg, true, "rad"};
+const DisplayUnit kN{"N", "N", 1.0, false, "N"};
+const DisplayUnit kRpm{"rpm", "rpm", 1.0, false, "rpm"};
+const DisplayUnit kMPerS{"m_s", "m/s", 1.0, false, "m_s"};
+const DisplayUnit kS{"s", "s", 1.0, false, "s"};
+const DisplayUnit kMPa{"MPa", "MPa", 1e-6, false, "Pa"};
+const DisplayUnit kMmPerRad{"mm_rad", "mm/rad", 1e3, false, "m_rad"};
+const DisplayUnit kMmPerRad2{"mm_rad2", "mm/rad2", 1e3, false, "m_rad2"};
+const DisplayUnit kMmPerRad3{"mm_rad3", "mm/rad3", 1e3, false, "m_rad3"};
 }  // namespace display
 
 namespace {
-std::string KeyOf(const std::string& name, const DisplayUnit& unit) {
-  return unit.key[0] == '\0' ? name : name + "_" + unit.key;
+std::string KeyOf(const std::string& name, const char* suffix) {
+  return suffix[0] == '\0' ? name : name + "_" + suffix;
 }
 }  // namespace
 
-std::string Field::Key() const { return key.empty() ? KeyOf(name, unit) : key; }
+std::string Field::Key() const { return key.empty() ? KeyOf(name, unit.key) : key; }
 
 std::optional<double> Field::Shown() const {
   if (!si) return std::nullopt;
   return unit.FromSi(*si);
 }
 
-std::string Column::Key() const { return KeyOf(name, unit); }
+std::string Column::Key() const { return KeyOf(name, unit.key); }
+std::string Column::SiKey() const { return KeyOf(name, unit.si_key); }
 
 std::string CsvTable(const std::vector<Column>& columns,
                      const std::vector<std::vector<double>>& rows_si, int precision) {
@@ -49,6 +50,16 @@ std::string CsvTable(const std::vector<Column>& columns,
     csv << '\n';
   }
   return csv.str();
+}
+
+std::map<std::string, std::vector<double>> SiColumns(
+    const std::vector<Column>& columns, const std::vector<std::vector<double>>& rows_si) {
+  std::map<std::string, std::vector<double>> out;
+  for (size_t i = 0; i < columns.size(); ++i) {
+    std::vector<double>& column = out[columns[i].SiKey()];
+    for (const auto& row : rows_si) column.push_back(row.at(i));
+  }
+  return out;
 }
 
 }  // namespace needle

@@ -9,18 +9,21 @@
 ///
 /// Writers that consume these tables: apps/cli/result_writers.h (JSON, CSV, text).
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace needle {
 
-/// A display unit: its key suffix (`mm_rad`), its text (`mm/rad`) and its factor from SI.
+/// A display unit: its key suffix (`mm_rad`), its text (`mm/rad`), its factor from SI and the
+/// key suffix of the SI unit it converts from (`m_rad`).
 struct DisplayUnit {
-  const char* key;      ///< suffix of JSON keys and CSV headers; "" for plain numbers
-  const char* text;     ///< as printed after a value; "" for plain numbers
-  double factor;        ///< > 0
-  bool divide = false;  ///< shown = SI / factor (angles); otherwise SI · factor
+  const char* key;          ///< suffix of JSON keys and CSV headers; "" for plain numbers
+  const char* text;         ///< as printed after a value; "" for plain numbers
+  double factor;            ///< > 0
+  bool divide = false;      ///< shown = SI / factor (angles); otherwise SI · factor
+  const char* si_key = "";  ///< suffix of the SI value's key (`rad`, `m`); "" for plain numbers
 
   /// The SI value in this unit.
   double FromSi(double si) const { return divide ? si / factor : si * factor; }
@@ -68,11 +71,17 @@ struct Column {
   std::string name;  ///< header stem; the header is name_unit
   DisplayUnit unit;
   std::string Key() const;
+  /// name_siunit (`crank_rad`, `S1_m_rad`): the key of the column's SI values.
+  std::string SiKey() const;
 };
 
 /// A CSV table: header from `columns`, each row's SI values converted by its column's unit,
 /// printed with `precision` significant digits. Every row has columns.size() values.
 std::string CsvTable(const std::vector<Column>& columns,
                      const std::vector<std::vector<double>>& rows_si, int precision);
+
+/// The same table as SI columns, each under its SiKey() (the Python module's arrays).
+std::map<std::string, std::vector<double>> SiColumns(
+    const std::vector<Column>& columns, const std::vector<std::vector<double>>& rows_si);
 
 }  // namespace needle

@@ -42,12 +42,9 @@ CommandOutput ComputeSynth(const SynthesisFile& f, const SynthCommandOptions& o)
   const auto t = [&](const std::string& key) { return FieldText(FieldAt(fields, key)); };
   CommandOutput result;
   result.status = r.pass ? 0 : 1;
-  for (const std::vector<double>& row : SynthesisRows(r.law)) {
-    int k = 0;
-    for (const char* key : {"cam_rad", "S_m", "S1_m_rad", "S2_m_rad2", "S3_m_rad3"})
-      result.columns[key].push_back(row[k++]);
-  }
-  if (o.csv) result.csv = CsvTable(SynthesisColumns(), SynthesisRows(r.law), 12);
+  const std::vector<std::vector<double>> rows = SynthesisRows(r.law);
+  result.columns = SiColumns(SynthesisColumns(), rows);
+  if (o.csv) result.csv = CsvTable(SynthesisColumns(), rows, 12);
   if (o.case_out) result.case_file = SynthesizedCaseText(f, r.law);
   std::ostringstream out;
   if (o.json) {

@@ -77,16 +77,9 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
 
   CommandOutput result;
   result.status = r.liftoff() ? 1 : 0;
-  for (const SeriesPoint& p : r.series) {
-    result.columns["time_s"].push_back(p.time_s);
-    result.columns["crank_rad"].push_back(p.crank_rad);
-    result.columns["lift_m"].push_back(p.lift_m);
-    result.columns["velocity_m_s"].push_back(p.velocity_m_s);
-    result.columns["cam_m"].push_back(p.cam_m);
-    result.columns["contact_force_N"].push_back(p.contact_force_N);
-    result.columns["seat_force_N"].push_back(p.seat_force_N);
-  }
-  if (o.csv) result.csv = CsvTable(SeriesColumns(), SeriesRows(r), 10);
+  const std::vector<std::vector<double>> rows = SeriesRows(r);
+  if (!rows.empty()) result.columns = SiColumns(SeriesColumns(), rows);
+  if (o.csv) result.csv = CsvTable(SeriesColumns(), rows, 10);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;

@@ -38,6 +38,17 @@ TEST(ResultFieldsTest, CsvTableConvertsEachColumn) {
   EXPECT_EQ(csv, "cam_deg,S_mm\n180,1\n0,2\n");
 }
 
+// The same table as SI columns: the values as they are, each under name_siunit.
+TEST(ResultFieldsTest, SiColumnsKeepTheSiValues) {
+  const auto columns =
+      SiColumns({{"cam", display::kDegree}, {"S1", display::kMmPerRad}, {"n", display::kNone}},
+                {{kPi, 1e-3, 2.0}, {0.0, 2e-3, 3.0}});
+  ASSERT_EQ(columns.size(), 3u);
+  EXPECT_EQ(columns.at("cam_rad"), (std::vector<double>{kPi, 0.0}));
+  EXPECT_EQ(columns.at("S1_m_rad"), (std::vector<double>{1e-3, 2e-3}));
+  EXPECT_EQ(columns.at("n"), (std::vector<double>{2.0, 3.0}));
+}
+
 TEST(ResultFieldsTest, CsvTableRefusesARaggedRow) {
   try {
     CsvTable({{"cam", display::kDegree}, {"S", display::kMm}}, {{1.0}}, 6);
