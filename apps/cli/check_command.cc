@@ -102,11 +102,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   const std::string path =
       ReportPath(o.out_dir, std::filesystem::path(c.path).stem().string() + ".html");
   CheckOutputPaths({{"--out", path}}, CaseInputs(c));
-  if (!GnuplotAvailable()) {
-    throw std::runtime_error(
-        "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
-        "or bash scripts/install-deps.sh)");
-  }
+  RequireGnuplot();
   CheckOptions options;
   options.speed_rpm = o.speed_rpm;
   const LiftLaw law = MakeLiftLaw(c);

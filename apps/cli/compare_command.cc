@@ -37,9 +37,10 @@ void Leaves(const nlohmann::json& j, const std::string& prefix,
   }
 }
 
-bool IsVerdict(const std::string& key, const nlohmann::json& a, const nlohmann::json& b) {
+// A bool or one of the strings Leaves keeps (overall, status, spline), on either side.
+bool IsVerdict(const nlohmann::json& a, const nlohmann::json& b) {
   const auto kind = [](const nlohmann::json& v) { return v.is_boolean() || v.is_string(); };
-  return kind(a) || kind(b) || (key.size() >= 6 && key.substr(key.size() - 6) == "status");
+  return kind(a) || kind(b);
 }
 
 std::string Shown(const nlohmann::json& v) {
@@ -87,12 +88,11 @@ std::vector<ComparedItem> CompareChecks(const nlohmann::json& a, const nlohmann:
   };
   for (const auto& [key, va] : la) items.push_back({key, va, find(lb, key)});
   for (const auto& [key, vb] : lb) {
-    if (find(la, key).is_null() &&
-        std::none_of(items.begin(), items.end(), [&](const auto& i) { return i.key == key; }))
+    if (std::none_of(la.begin(), la.end(), [&](const auto& leaf) { return leaf.first == key; }))
       items.push_back({key, nullptr, vb});
   }
   for (ComparedItem& i : items) {
-    i.verdict = IsVerdict(i.key, i.a, i.b);
+    i.verdict = IsVerdict(i.a, i.b);
     i.flips = i.verdict && i.a != i.b;
   }
   return items;
@@ -120,11 +120,7 @@ int RunCompareCommand(const CompareCommandOptions& o) {
     for (const std::string& in : CaseInputs(b.c)) inputs.push_back(in);
     CheckOutputPaths({{"--out", path}}, inputs);
   }
-  if (!GnuplotAvailable()) {
-    throw std::runtime_error(
-        "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
-        "or bash scripts/install-deps.sh)");
-  }
+  RequireGnuplot();
   {
     ProgressBar bar("compare");
     int done_before = 0;  // the runs of A, when B is checked
@@ -195,13 +191,10 @@ int RunCompareCommand(const CompareCommandOptions& o) {
     }
     svaj.push_back(s);
   }
-  const std::string lines =
-      "with lines lw 2 title 'A', $b using 1:%d with lines lw 2 dt 2 title 'B'";
-  const auto plot = [&](int column) {
-    char buffer[200];
-    std::snprintf(buffer, sizeof buffer, ("plot $a using 1:%d " + lines + "\n").c_str(), column,
-                  column);
-    return std::string(buffer);
+  const auto plot = [](int column) {
+    const std::string c = std::to_string(column);
+    return "plot $a using 1:" + c + " with lines lw 2 title 'A', $b using 1:" + c +
+           " with lines lw 2 dt 2 title 'B'\n";
   };
   report.AddFigure(
       "Lift, velocity and acceleration of A (solid) and B (dashed) against crank angle", svaj,

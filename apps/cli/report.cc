@@ -13,6 +13,14 @@ namespace needle {
 
 bool GnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
+void RequireGnuplot() {
+  if (!GnuplotAvailable()) {
+    throw std::runtime_error(
+        "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
+        "or bash scripts/install-deps.sh)");
+  }
+}
+
 std::string Escape(const std::string& text) {
   std::string out;
   for (char ch : text) {

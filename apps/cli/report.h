@@ -37,6 +37,9 @@ class Report {
 
 /// True when gnuplot can be run.
 bool GnuplotAvailable();
+/// Throws std::runtime_error saying how to install gnuplot when it cannot be run (before a
+/// command that draws a report computes anything).
+void RequireGnuplot();
 
 /// HTML-escapes text.
 std::string Escape(const std::string& text);

@@ -126,8 +126,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
     report_path = ReportPath(
         *o.out_dir, "tolerance-" + std::filesystem::path(c.path).stem().string() + ".html");
     CheckOutputPaths({{"--out", *report_path}}, CaseInputs(c));
-    if (!GnuplotAvailable())
-      throw std::runtime_error("gnuplot is not installed; the report's histograms need it");
+    RequireGnuplot();
   }
   ToleranceOptions options;
   options.samples = o.samples;
