@@ -7,7 +7,6 @@
 #include <cmath>
 #include <mutex>
 #include <numeric>
-#include <optional>
 #include <thread>
 
 #include "apps/scene/check_scene.h"
@@ -127,15 +126,13 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   options.record_series = false;
   // A sample the model refuses (a lift table the spline or the ramps cannot take) is a
   // result, not the end of the study: it fails as "case refused", with the reason.
-  std::optional<LiftLaw> law;
   CheckResult r;
   try {
-    law.emplace(MakeLiftLaw(c));
-    r = CheckScene(c, *law, options);
-  } catch (const CaseError& e) {
+    r = CheckScene(c, MakeLiftLaw(c), options);
+  } catch (const CaseError& refusal) {
     s.pass = false;
     s.failing = {"case refused"};
-    s.refused = e.what();
+    s.refused = refusal.what();
     return s;
   }
   for (const FieldGroup& group : CheckFields(r)) {

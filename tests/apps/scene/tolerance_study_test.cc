@@ -15,6 +15,18 @@ namespace {
 
 const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
 
+// Example 1's spring check alone (no [train], no [profile]: a sample takes a millisecond), its
+// lift and preload scattered by these σ.
+Case SpringCheckOnly(double lift_sigma_m, double preload_fraction) {
+  Case c = LoadCase(kCases + "basu-example1.toml");
+  c.train.reset();
+  c.profile.reset();
+  c.tolerance = ToleranceSection{};
+  c.tolerance->lift_sigma_m = lift_sigma_m;
+  c.tolerance->preload_fraction = preload_fraction;
+  return c;
+}
+
 TEST(ToleranceStudyTest, SpearmanOnKnownData) {
   EXPECT_DOUBLE_EQ(SpearmanRho({1, 2, 3, 4, 5}, {1, 8, 27, 64, 125}), 1.0);  // monotone
   EXPECT_DOUBLE_EQ(SpearmanRho({1, 2, 3, 4, 5}, {5, 4, 3, 2, 1}), -1.0);
@@ -67,17 +79,11 @@ TEST(ToleranceStudyTest, TheLiftErrorHasItsCovariance) {
   }
 }
 
-// Example 1's spring check alone (no [train]: a sample takes a millisecond) with the preload
-// scattered by 5 %: Basu's formula fails where P₀ < 0.9·812.2 kgf, that is z below
-// (0.9·812.2/790 − 1)/0.05 = −1.494: Φ(−1.494) = 6.76 % of the samples.
+// Example 1's spring check alone with the preload scattered by 5 %: Basu's formula fails where P₀ <
+// 0.9·812.2 kgf, that is z below (0.9·812.2/790 − 1)/0.05 = −1.494: Φ(−1.494) = 6.76 % of the
+// samples.
 TEST(ToleranceStudyTest, TheFailureProbabilityIsTheNormalLaws) {
-  Case c = LoadCase(kCases + "basu-example1.toml");
-  c.train.reset();
-  c.profile.reset();
-  ToleranceSection t;
-  t.lift_sigma_m = 0.0;
-  t.preload_fraction = 0.05;
-  c.tolerance = t;
+  const Case c = SpringCheckOnly(0.0, 0.05);
   ToleranceOptions o;
   o.samples = 2000;
   o.seed = 42;
@@ -109,10 +115,7 @@ TEST(ToleranceStudyTest, TheFailureProbabilityIsTheNormalLaws) {
 }
 
 TEST(ToleranceStudyTest, WithoutScatterEverySampleIsTheNominalCase) {
-  Case c = LoadCase(kCases + "basu-example1.toml");
-  c.train.reset();
-  c.tolerance = ToleranceSection{};
-  c.tolerance->lift_sigma_m = 0.0;
+  const Case c = SpringCheckOnly(0.0, 0.0);
   ToleranceOptions o;
   o.samples = 5;
   const ToleranceResult r = RunToleranceStudy(c, o);
@@ -160,10 +163,7 @@ TEST(ToleranceStudyTest, ASeedGivesTheSameStudyWhateverTheThreads) {
 // A shard [first, first + N) of a study is that part of the whole: what a worker on another
 // machine computes.
 TEST(ToleranceStudyTest, ShardsAreThePartsOfTheStudy) {
-  Case c = LoadCase(kCases + "basu-example1.toml");
-  c.train.reset();
-  c.tolerance = ToleranceSection{};
-  c.tolerance->preload_fraction = 0.05;
+  const Case c = SpringCheckOnly(ToleranceSection{}.lift_sigma_m, 0.05);
   ToleranceOptions o;
   o.samples = 5;
   o.seed = 9;
