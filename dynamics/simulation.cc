@@ -131,7 +131,12 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   NeedleTrain train(*scene.cam, scene.train, omega, theta_a);
   Method method;
   if (o.method == "auto") {
-    if (const std::optional<std::string> refusal = ExactRefusal(train)) {
+    if (train.HasConstraint()) {
+      method = Method::kDopri5;
+      r.method_reason =
+          "auto: rigid contacts (restitution and sticking): explicit Dormand–Prince, a one-step "
+          "method that restarts at full order after every impact";
+    } else if (const std::optional<std::string> refusal = ExactRefusal(train)) {
       method = oscillations > kStiffOscillations ? Method::kCvodeBdf : Method::kDopri5;
       r.method_reason = "auto: " + *refusal + "; " + stiffness +
                         (method == Method::kCvodeBdf ? " (> 2000: stiff, BDF)"

@@ -101,8 +101,10 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
     j["episodes"] = episodes;
     nlohmann::json impacts = nlohmann::json::array();
     for (const Impact& i : r.impacts) {
-      impacts.push_back(
-          {{"kind", i.kind}, {"crank_deg", i.crank_rad / kDeg}, {"speed_m_s", i.speed_m_s}});
+      impacts.push_back({{"kind", i.kind},
+                         {"crank_deg", i.crank_rad / kDeg},
+                         {"speed_m_s", i.speed_m_s},
+                         {"energy_lost_J", i.energy_lost_J}});
     }
     j["impacts"] = impacts;
     j["max_lift_mm"] = r.max_lift_m * 1e3;
@@ -113,6 +115,7 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
     j["energy_residual"] = r.skipped ? nlohmann::json(nullptr) : nlohmann::json(r.energy_residual);
     j["steps"] = r.stats.steps;
     j["rhs_evaluations"] = r.stats.rhs_evaluations;
+    j["accumulations"] = r.stats.accumulations;
     j["events"] = r.stats.events;
     j["rtol"] = sim.integrator.rtol;
     j["window_start_deg"] = r.window_start_rad / kDeg;

@@ -322,22 +322,50 @@ SpringSection ReadSpring(SectionReader r) {
 
 TrainSection ReadTrain(SectionReader r) {
   TrainSection t;
-  t.contact_stiffness_N_m = r.Quantity("contact_stiffness", Dimension::kStiffness);
-  if (!(t.contact_stiffness_N_m > 0.0)) {
-    r.Fail(r.last_key(), "must be positive, got " + Number(t.contact_stiffness_N_m) + " N/m");
+  if (auto contact = r.OptionalString("contact")) {
+    if (*contact != "compliant" && *contact != "rigid")
+      r.Fail("contact", "expected \"compliant\" or \"rigid\", got \"" + *contact + "\"");
+    t.rigid = *contact == "rigid";
   }
-  if (auto ks = r.OptionalQuantity("seat_stiffness", Dimension::kStiffness)) {
-    if (!(*ks > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*ks) + " N/m");
-    t.seat_stiffness_N_m = *ks;
+  if (t.rigid) {
+    // Newton's restitution; the compliant law's keys do not apply.
+    for (auto [key, into] : {std::pair<const char*, double*>{"restitution", &t.restitution},
+                             {"seat_restitution", &t.seat_restitution}}) {
+      if (auto e = r.OptionalNumber(key)) {
+        if (!(*e >= 0.0 && *e <= 1.0)) r.Fail(key, "must be in [0, 1], got " + Number(*e));
+        *into = *e;
+      }
+    }
+    for (const char* key : {"contact_stiffness", "seat_stiffness"}) {
+      if (r.OptionalQuantity(key, Dimension::kStiffness))
+        r.Fail(r.last_key(), "applies to contact = \"compliant\"; a rigid contact has none");
+    }
+    for (const char* key : {"contact_damping_ratio", "seat_damping_ratio"}) {
+      if (r.OptionalNumber(key))
+        r.Fail(key, "applies to contact = \"compliant\"; a rigid contact has restitution");
+    }
   } else {
-    t.seat_stiffness_N_m = t.contact_stiffness_N_m;
-  }
-  for (auto [key, into] :
-       {std::pair<const char*, double*>{"contact_damping_ratio", &t.contact_damping_ratio},
-        {"seat_damping_ratio", &t.seat_damping_ratio}}) {
-    if (auto z = r.OptionalNumber(key)) {
-      if (!(*z >= 0.0)) r.Fail(key, "must not be negative, got " + Number(*z));
-      *into = *z;
+    for (const char* key : {"restitution", "seat_restitution"}) {
+      if (r.OptionalNumber(key))
+        r.Fail(key, "applies to contact = \"rigid\"; a compliant contact has a damping ratio");
+    }
+    t.contact_stiffness_N_m = r.Quantity("contact_stiffness", Dimension::kStiffness);
+    if (!(t.contact_stiffness_N_m > 0.0)) {
+      r.Fail(r.last_key(), "must be positive, got " + Number(t.contact_stiffness_N_m) + " N/m");
+    }
+    if (auto ks = r.OptionalQuantity("seat_stiffness", Dimension::kStiffness)) {
+      if (!(*ks > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*ks) + " N/m");
+      t.seat_stiffness_N_m = *ks;
+    } else {
+      t.seat_stiffness_N_m = t.contact_stiffness_N_m;
+    }
+    for (auto [key, into] :
+         {std::pair<const char*, double*>{"contact_damping_ratio", &t.contact_damping_ratio},
+          {"seat_damping_ratio", &t.seat_damping_ratio}}) {
+      if (auto z = r.OptionalNumber(key)) {
+        if (!(*z >= 0.0)) r.Fail(key, "must not be negative, got " + Number(*z));
+        *into = *z;
+      }
     }
   }
   if (auto play = r.OptionalQuantity("play", Dimension::kLength)) {

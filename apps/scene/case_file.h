@@ -21,9 +21,10 @@
 ///               active_coils, free_length_mm, shear_modulus_GPa, density_kg_m3 = 7850,
 ///               tensile_MPa, ends = "closed-ground" | "closed" | "open-ground" | "open",
 ///               stress_correction = "bergstrasser" | "wahl", allowable_stress_fraction = 0.5
-///     [train]   contact_stiffness_N_m (k_c), contact_damping_ratio = 0.05, seat_stiffness_N_m (=
-///     k_c),
-///               seat_damping_ratio = 0.05, play_mm = 0, ramp = "tangent" | ramp_deg
+///     [train]   contact = "compliant" | "rigid"; compliant: contact_stiffness_N_m (k_c),
+///               contact_damping_ratio = 0.05, seat_stiffness_N_m (= k_c), seat_damping_ratio =
+///               0.05; rigid: restitution = 0, seat_restitution = 0; play_mm = 0,
+///               ramp = "tangent" | ramp_deg
 ///     [solver]  method = "auto" | "dopri5" | "cvode-bdf" | "cvode-adams", rtol = 1e-8, atol_mm,
 ///               max_steps = 2e6, max_events = 1e5, start_deg, end_deg (window),
 ///               settle_deg = 3600 (past the window, the most run while the needle settles)
@@ -78,10 +79,13 @@ struct PaperSection {
 
 /// [train]: contacts and roller play of the dynamic model (docs/model.md §3–4).
 struct TrainSection {
-  double contact_stiffness_N_m = 0.0;   ///< k_c, > 0 (required)
+  double contact_stiffness_N_m = 0.0;   ///< k_c, > 0 (required when compliant)
   double contact_damping_ratio = 0.05;  ///< ζ_c, ≥ 0
   double seat_stiffness_N_m = 0.0;      ///< k_s, > 0 (default: k_c)
   double seat_damping_ratio = 0.05;     ///< ζ_s, ≥ 0
+  bool rigid = false;                   ///< contact = "rigid" (else "compliant")
+  double restitution = 0.0;             ///< e of the rigid cam contact, [0, 1]
+  double seat_restitution = 0.0;        ///< e_s of the rigid seat, [0, 1]
   double play_m = 0.0;                  ///< roller play δ, ≥ 0
   bool linear_ramp = false;             ///< `ramp_deg` given (else tangent ramps)
   double ramp_rad = 0.0;                ///< ramp length when linear

@@ -26,4 +26,11 @@ double CompliantContact::Potential(double g) const {
   return 0.5 * k_ * gp * gp;
 }
 
+RigidContact::RigidContact(double restitution) : e_(restitution) {
+  if (!(restitution >= 0.0 && restitution <= 1.0)) {
+    throw std::invalid_argument("RigidContact: restitution " + std::to_string(restitution) +
+                                ": must be in [0, 1]");
+  }
+}
+
 }  // namespace needle

@@ -16,6 +16,13 @@
 ///     F = k g + c ġ while g > 0 and k g + c ġ > 0, else 0;   c = 2ζ√(k m)
 ///     witnesses: g and k g + c ġ;   V = ½ k (g⁺)²;   no reset
 ///
+/// The rigid law (Newton's restitution, docs/model.md §4):
+///
+///     g ≤ 0 always; at an impact ġ⁺ = −e ġ⁻ (0 ≤ e ≤ 1); while stuck (g = 0, ġ = 0) the contact
+///     force is the constraint force λ the needle's motion on the surface needs, and the
+///     contact lets go where λ reaches 0
+///     witnesses: g (free; +1 while stuck) and λ (the train computes it);   V = 0
+///
 /// A new law is one class deriving from ContactLaw (see README, "How to add").
 
 #include <array>
@@ -64,6 +71,9 @@ class ContactLaw {
   /// The law's linear form when it is linear in (g, ġ) (see LinearWitnesses); nullopt: not
   /// linear, and method "exact" refuses the train.
   virtual std::optional<LinearWitnesses> Linear() const { return std::nullopt; }
+  /// True for a rigid law: the contact is a constraint while it pushes, its force the
+  /// constraint force the train computes (NeedleTrain::Evaluate), not Force().
+  virtual bool Constraint() const { return false; }
 };
 
 /// The compliant law: a spring k and a dashpot c = 2ζ√(k m) that push and never pull.
@@ -90,6 +100,34 @@ class CompliantContact final : public ContactLaw {
 
  private:
   double k_, c_;
+};
+
+/// The rigid law: an impenetrable surface with Newton's restitution coefficient e.
+class RigidContact final : public ContactLaw {
+ public:
+  /// restitution e in [0, 1].
+  explicit RigidContact(double restitution);
+  std::string name() const override { return "rigid"; }
+  /// The gap alone; the train replaces the branch witness by the constraint force.
+  ContactWitnesses Witnesses(double g, double /*g_rate*/) const override { return {g, 0.0}; }
+  bool Pushes(int gap_sign, int branch_sign) const override {
+    return gap_sign > 0 && branch_sign > 0;
+  }
+  double Force(double /*g*/, double /*g_rate*/) const override { return 0.0; }
+  double ForceStiffness() const override { return 0.0; }
+  double ForceDamping() const override { return 0.0; }
+  double Potential(double /*g*/) const override { return 0.0; }
+  double ConservativeForce(double /*g*/) const override { return 0.0; }
+  double ConservativeStiffness(double /*g*/) const override { return 0.0; }
+  /// ġ⁺ = −e ġ⁻.
+  std::optional<double> ImpactRate(double g_rate_before) const override {
+    return -e_ * g_rate_before;
+  }
+  bool Constraint() const override { return true; }
+  double restitution() const { return e_; }
+
+ private:
+  double e_;
 };
 
 }  // namespace needle

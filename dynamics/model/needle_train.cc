@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace needle {
 namespace {
@@ -32,6 +33,10 @@ void TrainParameters::Validate() const {
           seat_stiffness_N_m, "must be positive");
   Require(seat_damping_ratio >= 0.0 && std::isfinite(seat_damping_ratio), "seat_damping_ratio",
           seat_damping_ratio, "must not be negative");
+  Require(restitution >= 0.0 && restitution <= 1.0, "restitution", restitution,
+          "must be in [0, 1]");
+  Require(seat_restitution >= 0.0 && seat_restitution <= 1.0, "seat_restitution", seat_restitution,
+          "must be in [0, 1]");
 }
 
 NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double omega,
@@ -42,12 +47,26 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
   if (!(omega > 0.0) || !std::isfinite(omega)) {
     throw std::invalid_argument("NeedleTrain: ω must be positive, got " + std::to_string(omega));
   }
-  cam_law_ = cam_law ? std::move(cam_law)
-                     : std::make_shared<CompliantContact>(p_.contact_stiffness_N_m,
-                                                          p_.contact_damping_ratio, p_.mass_kg);
-  seat_law_ = seat_law ? std::move(seat_law)
-                       : std::make_shared<CompliantContact>(p_.seat_stiffness_N_m,
-                                                            p_.seat_damping_ratio, p_.mass_kg);
+  const bool rigid = p_.contact == ContactKind::kRigid;
+  if (cam_law) {
+    cam_law_ = std::move(cam_law);
+  } else if (rigid) {
+    cam_law_ = std::make_shared<RigidContact>(p_.restitution);
+  } else {
+    cam_law_ = std::make_shared<CompliantContact>(p_.contact_stiffness_N_m,
+                                                  p_.contact_damping_ratio, p_.mass_kg);
+  }
+  if (seat_law) {
+    seat_law_ = std::move(seat_law);
+  } else if (rigid) {
+    seat_law_ = std::make_shared<RigidContact>(p_.seat_restitution);
+  } else {
+    seat_law_ = std::make_shared<CompliantContact>(p_.seat_stiffness_N_m, p_.seat_damping_ratio,
+                                                   p_.mass_kg);
+  }
+  const std::vector<double>& lift = cam_.law().table().lift_m;
+  const double top = lift.empty() ? 0.0 : *std::max_element(lift.begin(), lift.end());
+  gap_tolerance_ = 1e-14 * std::max(top + cam_.play_m(), 1e-6);
 }
 
 Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase) const {
@@ -57,12 +76,34 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   c.u = cam_.U(th);
   c.u_slope = cam_.Slope(th);
 
-  c.g_c = c.u - x[0];                      // g_c = u − y
-  c.g_c_rate = omega_ * c.u_slope - x[1];  // ġ_c = ω u' − ẏ
+  c.y = x[0];
+  c.v = x[1];
+  if (cam_law_->Constraint() && phase.mode.cam) {
+    c.y = c.u;
+    c.v = omega_ * c.u_slope;
+  } else if (seat_law_->Constraint() && phase.mode.seat) {
+    c.y = c.v = 0.0;
+  }
+  c.g_c = c.u - c.y;                      // g_c = u − y
+  c.g_c_rate = omega_ * c.u_slope - c.v;  // ġ_c = ω u' − ẏ
   c.f_c_raw = cam_law_->Force(c.g_c, c.g_c_rate);
-  c.g_s = -x[0];  // g_s = −y
-  c.g_s_rate = -x[1];
+  c.g_s = -c.y;  // g_s = −y
+  c.g_s_rate = -c.v;
   c.f_s_raw = seat_law_->Force(c.g_s, c.g_s_rate);
+  if (cam_law_->Constraint() || seat_law_->Constraint()) {
+    // Constraint forces: what keeps the needle on a surface it sticks to, from
+    // m ÿ = F_c + F_s − (P₀ + k y) + F_g with ÿ = ω² u'' on the cam and 0 on the seat.
+    const double load = p_.preload_N + p_.rate_N_m * c.y - p_.gas_force_N;
+    if (cam_law_->Constraint()) {
+      const double seat_push = !seat_law_->Constraint() && phase.mode.seat ? c.f_s_raw : 0.0;
+      c.f_c_raw = p_.mass_kg * omega_ * omega_ * cam_.Curvature(th) + load - seat_push;
+    }
+    if (seat_law_->Constraint()) {
+      // A cam that sticks carries the whole load (its λ includes it): the seat lets go.
+      const double cam_push = phase.mode.cam ? c.f_c_raw : 0.0;
+      c.f_s_raw = load - cam_push;
+    }
+  }
   return c;
 }
 
@@ -114,11 +155,21 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   J[3 * 4 + 0] = c.g_c_rate * (-kc * ac + vc) + c.g_s_rate * (-ks * as + vs);
   J[3 * 4 + 1] = c.g_c_rate * (-cc * ac) - a_c + c.g_s_rate * (-cs * as) - a_s;
   dfdt[3] = (dfc_dt - vc * w * up) * c.g_c_rate + a_c * w * w * upp;
+  // A sticking rigid contact: ÿ is the surface's (ω² u'' or 0), F = λ with ∂λ/∂y = k.
+  const bool cam_stuck = cam_law_->Constraint() && phase.mode.cam;
+  if (cam_stuck || (seat_law_->Constraint() && phase.mode.seat)) {
+    J[0 * 4 + 1] = J[1 * 4 + 0] = J[1 * 4 + 1] = 0.0;  // ẏ, ÿ: the surface's, not the state's
+    dfdt[0] = cam_stuck ? w * w * upp : 0.0;
+    dfdt[1] = 0.0;
+    J[2 * 4 + 0] = cam_stuck ? p_.rate_N_m * w * up : J[2 * 4 + 0];
+    J[2 * 4 + 1] = cam_stuck ? 0.0 : J[2 * 4 + 1];
+  }
 }
 
 double NeedleTrain::NetForce(const Contacts& c, const TrainState& x, const Phase& phase) const {
+  static_cast<void>(x);  // c carries the lift (the surface's while a rigid contact sticks)
   return AppliedCamForce(c, phase) + AppliedSeatForce(c, phase) -
-         (p_.preload_N + p_.rate_N_m * x[0]) + p_.gas_force_N;
+         (p_.preload_N + p_.rate_N_m * c.y) + p_.gas_force_N;
 }
 
 void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase,
@@ -126,7 +177,7 @@ void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase,
   const Contacts c = Evaluate(x, t, phase);
   const double fc = AppliedCamForce(c, phase), fs = AppliedSeatForce(c, phase);
 
-  dxdt[0] = x[1];
+  dxdt[0] = c.v;                                 // ẏ (the surface's while stuck to it)
   dxdt[1] = NetForce(c, x, phase) / p_.mass_kg;  // ÿ
   dxdt[2] = fc * omega_ * c.u_slope;             // Ẇ
   dxdt[3] = (fc - cam_law_->ConservativeForce(c.g_c)) * c.g_c_rate +
@@ -149,12 +200,17 @@ double NeedleTrain::EnergyResidual(const TrainState& x0, const TrainState& xt, d
 std::optional<TrainState> NeedleTrain::Reset(bool cam, const TrainState& x, double t,
                                              const Phase& phase) const {
   const Contacts c = Evaluate(x, t, phase);
+  const ContactLaw& law = cam ? *cam_law_ : *seat_law_;
   const double before = cam ? c.g_c_rate : c.g_s_rate;
-  const std::optional<double> after = (cam ? cam_law_ : seat_law_)->ImpactRate(before);
+  std::optional<double> after = law.ImpactRate(before);
   if (!after) return std::nullopt;
+  TrainState out = x;
+  if (law.Constraint()) {
+    out[0] = cam ? c.u : 0.0;             // on the surface: g = 0
+    if (!(before > 0.0)) after = before;  // a touch without approach: no impulse
+  }
   // ġ_c = ω u' − ẏ and ġ_s = −ẏ: the needle's velocity after, from the gap rate after.
   const double surface = cam ? omega_ * c.u_slope : 0.0;  // the contact surface's velocity
-  TrainState out = x;
   out[1] = surface - *after;
   const double impulse = p_.mass_kg * (out[1] - x[1]);                        // N·s on the needle
   const double work = impulse * surface;                                      // ΔW
@@ -164,16 +220,58 @@ std::optional<TrainState> NeedleTrain::Reset(bool cam, const TrainState& x, doub
   return out;
 }
 
+ContactMode NeedleTrain::StickingMode(const TrainState& x, double t, const Phase& phase) const {
+  ContactMode mode = phase.mode;
+  const auto sticks = [&](double g, double g_rate) {
+    return std::abs(g) <= gap_tolerance_ && std::abs(g_rate) <= RateTolerance();
+  };
+  // The cam first: a cam that sticks carries the load, and the seat's λ depends on it.
+  if (cam_law_->Constraint()) {
+    Phase free = phase;  // the needle's own motion: no rigid contact holding it
+    free.mode.cam = false;
+    free.mode.seat = phase.mode.seat && !seat_law_->Constraint();
+    const Contacts c = Evaluate(x, t, free);
+    mode.cam = sticks(c.g_c, c.g_c_rate) && c.f_c_raw > 0.0;
+  }
+  if (seat_law_->Constraint()) {
+    Phase with_cam = phase;
+    with_cam.mode = {mode.cam, false};
+    const Contacts c = Evaluate(x, t, with_cam);
+    mode.seat = sticks(c.g_s, c.g_s_rate) && c.f_s_raw > 0.0;
+  }
+  return mode;
+}
+
+TrainState NeedleTrain::Project(const TrainState& x, double t, const Phase& phase) const {
+  TrainState out = x;
+  if (cam_law_->Constraint() && phase.mode.cam) {
+    const Contacts c = Evaluate(x, t, phase);
+    out[0] = c.u;
+    out[1] = omega_ * c.u_slope;
+  } else if (seat_law_->Constraint() && phase.mode.seat) {
+    out[0] = 0.0;
+    out[1] = 0.0;
+  } else {
+    return out;
+  }
+  out[3] -= Energy(out, t) - Energy(x, t);  // what the projection takes is dissipated
+  return out;
+}
+
 double NeedleTrain::FastestAngularFrequency() const {
-  return std::sqrt((cam_law_->ForceStiffness() + seat_law_->ForceStiffness() + p_.rate_N_m) /
-                   p_.mass_kg);
+  // Rigid contacts add no stiffness; the cam's own speed bounds it from below.
+  return std::max(
+      omega_, std::sqrt((cam_law_->ForceStiffness() + seat_law_->ForceStiffness() + p_.rate_N_m) /
+                        p_.mass_kg));
 }
 
 TrainState NeedleTrain::EquilibriumStart() const {
   const double net = p_.preload_N - p_.gas_force_N;  // P₀ − F_g
   const double u_a = cam_.U(theta_a_);
   double y0;
-  if (cam_.play_m() > 0.0) {
+  if (HasConstraint()) {
+    y0 = std::max(0.0, u_a);  // on the seat, or on the cam where it stands above the seat
+  } else if (cam_.play_m() > 0.0) {
     y0 = -net / (p_.seat_stiffness_N_m + p_.rate_N_m);  // seat only
     if (u_a - y0 > 0.0) {  // the seat sinks below the base circle: cam and seat share the load
       y0 = (p_.contact_stiffness_N_m * u_a - net) /

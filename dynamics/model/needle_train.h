@@ -11,7 +11,10 @@
 ///     E = ½mẏ² + P₀y + ½ky² − F_g y + ½k_c(g_c⁺)² + ½k_s(g_s⁺)²,   E − E₀ − W + D = 0
 ///
 /// with θ = θ_a + ω t. F_c and F_s come from the two contact laws (dynamics/model/contact_law.h;
-/// the compliant law by default: k g + c ġ with c = 2ζ√(k m)). Which contacts push is the
+/// the compliant law by default: k g + c ġ with c = 2ζ√(k m)). A rigid contact that sticks is a
+/// constraint: the needle moves with its surface (ÿ = ω² u'' on the cam, 0 on the seat) and
+/// F_c (F_s) is the constraint force λ = m ÿ + P₀ + k y − F_g − (the other contact's force).
+/// Which contacts push is the
 /// contact mode, switched by the event driver (dynamics/solver/event_driver.h) where a law's
 /// witness changes sign, so that the right-hand side is smooth inside every step. The train
 /// holds no integration state: the mode and the segment being integrated come in a Phase.
@@ -26,16 +29,25 @@
 
 namespace needle {
 
+/// Which law both contacts follow (docs/model.md §4).
+enum class ContactKind {
+  kCompliant,  ///< spring and dashpot (k_c, ζ_c; k_s, ζ_s)
+  kRigid,      ///< impenetrable, Newton's restitution (e, e_s), sticking while pushed
+};
+
 /// Parameters of the train, SI. Every field has a default; Validate() checks them.
 struct TrainParameters {
-  double mass_kg = 1.0;                 ///< m, > 0
-  double preload_N = 0.0;               ///< P₀, ≥ 0
-  double rate_N_m = 0.0;                ///< k, ≥ 0
-  double gas_force_N = 0.0;             ///< F_g, opening positive
-  double contact_stiffness_N_m = 1e8;   ///< k_c of the compliant cam contact, > 0
-  double contact_damping_ratio = 0.05;  ///< ζ_c, ≥ 0
-  double seat_stiffness_N_m = 1e8;      ///< k_s of the compliant seat contact, > 0
-  double seat_damping_ratio = 0.05;     ///< ζ_s, ≥ 0
+  double mass_kg = 1.0;                           ///< m, > 0
+  double preload_N = 0.0;                         ///< P₀, ≥ 0
+  double rate_N_m = 0.0;                          ///< k, ≥ 0
+  double gas_force_N = 0.0;                       ///< F_g, opening positive
+  double contact_stiffness_N_m = 1e8;             ///< k_c of the compliant cam contact, > 0
+  double contact_damping_ratio = 0.05;            ///< ζ_c, ≥ 0
+  double seat_stiffness_N_m = 1e8;                ///< k_s of the compliant seat contact, > 0
+  double seat_damping_ratio = 0.05;               ///< ζ_s, ≥ 0
+  ContactKind contact = ContactKind::kCompliant;  ///< the law of both contacts
+  double restitution = 0.0;                       ///< e of the rigid cam contact, in [0, 1]
+  double seat_restitution = 0.0;                  ///< e_s of the rigid seat, in [0, 1]
 
   /// Throws std::invalid_argument naming the field, its value and the rule it broke.
   void Validate() const;
@@ -64,6 +76,9 @@ using TrainJacobian = std::array<double, 16>;
 /// Gaps, rates and raw contact forces at one instant.
 struct Contacts {
   double crank_rad = 0.0;
+  /// The needle's lift and velocity as the contacts see them: the state's, or the surface's
+  /// while a rigid contact sticks (so integration drift never reads as a gap).
+  double y = 0.0, v = 0.0;
   double u = 0.0, u_slope = 0.0;                    ///< u(θ) m, du/dθ m/rad
   double g_c = 0.0, g_c_rate = 0.0, f_c_raw = 0.0;  ///< penetration, rate, pushing-branch force
   double g_s = 0.0, g_s_rate = 0.0, f_s_raw = 0.0;
@@ -102,6 +117,22 @@ class NeedleTrain {
   std::optional<TrainState> Reset(bool cam, const TrainState& x, double t,
                                   const Phase& phase) const;
 
+  /// Rigid contacts (ContactLaw::Constraint) at a state reached without integration (the
+  /// start, an impact, a contact letting go): `phase`'s mode with each rigid contact sticking
+  /// where the needle is on its surface (|g| ≤ GapTolerance()), moves with it (|ġ| ≤
+  /// RateTolerance()) and the constraint force would push (λ > 0); compliant contacts as given.
+  ContactMode StickingMode(const TrainState& x, double t, const Phase& phase) const;
+  /// x with the needle put on the surface of every sticking rigid contact of `phase` (y = u,
+  /// ẏ = ω u' on the cam; y = 0, ẏ = 0 on the seat); the kinetic energy this changes is booked
+  /// on D (dissipated), so the audit closes.
+  TrainState Project(const TrainState& x, double t, const Phase& phase) const;
+  /// A rigid contact touches within this gap, m: 1e-14 of the cam input's largest lift and play.
+  double GapTolerance() const { return gap_tolerance_; }
+  /// … and moves with its surface within this rate, m/s (1e-10 of ω times that lift).
+  double RateTolerance() const { return 1e4 * omega_ * gap_tolerance_; }
+  /// Any contact rigid (ContactLaw::Constraint).
+  bool HasConstraint() const { return cam_law_->Constraint() || seat_law_->Constraint(); }
+
   /// The static-equilibrium start (docs/model.md §5): y₀ and the mode it rests in.
   TrainState EquilibriumStart() const;
   /// √((k_c + k_s + k)/m), rad/s: the fastest oscillation, for a first step.
@@ -122,6 +153,7 @@ class NeedleTrain {
   TrainParameters p_;
   double omega_, theta_a_;
   std::shared_ptr<const ContactLaw> cam_law_, seat_law_;
+  double gap_tolerance_ = 0.0;
 };
 
 }  // namespace needle

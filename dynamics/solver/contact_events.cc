@@ -19,8 +19,16 @@ double AngleTolerance(double crank_rad) { return 1e-12 * std::max(1.0, std::abs(
 
 EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t) {
   const Contacts c = train.Evaluate(x, t, phase);
-  const ContactWitnesses cam = train.cam_law().Witnesses(c.g_c, c.g_c_rate);
-  const ContactWitnesses seat = train.seat_law().Witnesses(c.g_s, c.g_s_rate);
+  ContactWitnesses cam = train.cam_law().Witnesses(c.g_c, c.g_c_rate);
+  ContactWitnesses seat = train.seat_law().Witnesses(c.g_s, c.g_s_rate);
+  // A rigid contact: its gap counts past the touch tolerance, and is pinned while it sticks
+  // (the needle is on the surface; integration drift must not read as an impact); its branch is
+  // the constraint force λ.
+  const auto rigid = [&](ContactWitnesses& w, bool stuck, double g, double lambda) {
+    w = {stuck ? 1.0 : g - train.GapTolerance(), lambda};
+  };
+  if (train.cam_law().Constraint()) rigid(cam, phase.mode.cam, c.g_c, c.f_c_raw);
+  if (train.seat_law().Constraint()) rigid(seat, phase.mode.seat, c.g_s, c.f_s_raw);
   // 5 and 6 only observe a lifted needle: at rest their arguments are zero up to roundoff
   // and would flip sign at every step.
   const bool lifted = x[0] > kSeparationLift_m;
@@ -160,8 +168,8 @@ void Recorder::GridSample(double t, const TrainState& x, const Phase& phase) {
 
 void Recorder::Sample(double t, const TrainState& x, const Phase& phase) { Update(t, x, phase); }
 
-void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
-                        const Phase& phase) {
+void Recorder::Crossing(int index, int direction, double t, const TrainState& x, const Phase& phase,
+                        bool sample) {
   const Contacts c = train_.Evaluate(x, t, phase);
   if (index == kCamGap && direction > 0) {  // cam onset
     impacts_.push_back(
@@ -173,6 +181,18 @@ void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
         {seat_landed_ ? "seat-bounce" : "seat", c.crank_rad, std::max(0.0, c.g_s_rate)});
     seat_landed_ = true;
   }
+  if (sample) Update(t, x, phase);
+}
+
+void Recorder::ImpactLoss(double energy_J) {
+  if (!impacts_.empty()) impacts_.back().energy_lost_J = energy_J;
+}
+
+void Recorder::Accumulation(bool cam, double t, const TrainState& x, const Phase& phase,
+                            double speed_m_s, double energy_J) {
+  impacts_.push_back(
+      {cam ? "cam-sticking" : "seat-sticking", train_.Angle(t), speed_m_s, energy_J});
+  if (separated_ && cam) episodes_.back().impact = static_cast<int>(impacts_.size()) - 1;
   Update(t, x, phase);
 }
 

@@ -70,9 +70,13 @@ struct Episode {
 };
 
 struct Impact {
-  std::string kind;  ///< "lash", "recontact", "seat", "seat-bounce"
+  /// "lash", "recontact", "seat", "seat-bounce"; "cam-sticking" and "seat-sticking" for the
+  /// accumulation point of a chattering sequence (speed: the departure speed of its last
+  /// impact; energy: what the rest of the geometric series dissipates)
+  std::string kind;
   double crank_rad = 0.0;
-  double speed_m_s = 0.0;  ///< approach speed ġ at onset, ≥ 0
+  double speed_m_s = 0.0;      ///< approach speed ġ at onset, ≥ 0
+  double energy_lost_J = 0.0;  ///< kinetic energy the reset map took, J (0: no reset)
 };
 
 struct SeriesPoint {
@@ -95,8 +99,17 @@ class Recorder {
   void Start(double t, const TrainState& x, const Phase& phase);
   void Sample(double t, const TrainState& x, const Phase& phase);
   /// An event function `index` crossed zero at t in direction ±1; `phase` is the one after
-  /// the crossing.
-  void Crossing(int index, int direction, double t, const TrainState& x, const Phase& phase);
+  /// the crossing. `sample` false: an impact whose reset map follows (a rigid contact; its
+  /// impulsive force is not a sample of the contact force), recorded without a sample.
+  void Crossing(int index, int direction, double t, const TrainState& x, const Phase& phase,
+                bool sample = true);
+  /// The last impact's reset map took this much kinetic energy, J.
+  void ImpactLoss(double energy_J);
+  /// A chattering sequence on the cam (`cam`) or the seat ended in sticking at t: the
+  /// accumulation point, with the departure speed of the last impact resolved and the energy
+  /// the rest of the series dissipates.
+  void Accumulation(bool cam, double t, const TrainState& x, const Phase& phase, double speed_m_s,
+                    double energy_J);
   /// Closes an open episode at the end of the run.
   void Finish(double t, const TrainState& x, const Phase& phase);
   /// The run stopped on a budget at this angle: an open episode ends there, marked open.

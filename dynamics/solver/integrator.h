@@ -93,6 +93,9 @@ struct IntegrationStats {
   long rhs_evaluations = 0;  ///< right-hand-side evaluations
   long events = 0;           ///< located events (mode switches and observations)
   long resets = 0;           ///< reset maps applied (impacts of a restitution law)
+  /// Chattering resolved (docs/model.md §4): accumulation points of rigid impacts the driver
+  /// stepped to, the needle sticking there.
+  long accumulations = 0;
   TrainState final_state{};
   double final_time = 0.0;
   Phase final_phase{};  ///< the contact mode at the end
@@ -105,6 +108,10 @@ struct BudgetExceeded : std::runtime_error {
       : std::runtime_error(message), crank_rad(crank) {}
   double crank_rad;
 };
+
+/// Why `method` cannot integrate `train` with a rigid contact (docs/model.md §4), or nullopt:
+/// the closed form (ExactRefusal), the no-event baseline and the CVODE methods refuse it.
+std::optional<std::string> RigidRefusal(Method method, const NeedleTrain& train);
 
 /// Integrates `train` from `x0` over [0, t_end], then on while the needle is not at rest, up
 /// to t_end + settle_limit_s. Throws BudgetExceeded when a budget is exceeded.

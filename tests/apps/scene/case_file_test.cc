@@ -348,5 +348,24 @@ TEST(CaseFileTest, EchoedValuesStayOnOneLine) {
   EXPECT_NE(Error(text).find("unknown kind \"not-\\na-knot\""), std::string::npos) << Error(text);
 }
 
+// [train] contact = "rigid": restitution keys, and the other law's keys refused by name.
+TEST(CaseFileTest, ARigidTrainTakesRestitutionAndRefusesTheCompliantKeys) {
+  const Case c = ParseCase(kGood + "[train]\ncontact = \"rigid\"\nrestitution = 0.8\n", "t.toml");
+  ASSERT_TRUE(c.train);
+  EXPECT_TRUE(c.train->rigid);
+  EXPECT_EQ(c.train->restitution, 0.8);
+  EXPECT_EQ(c.train->seat_restitution, 0.0);
+  EXPECT_EQ(Error(kGood + "[train]\ncontact = \"soft\"\n"),
+            "t.toml: [train] contact: expected \"compliant\" or \"rigid\", got \"soft\"");
+  EXPECT_EQ(Error(kGood + "[train]\ncontact = \"rigid\"\nseat_restitution = 1.2\n"),
+            "t.toml: [train] seat_restitution: must be in [0, 1], got 1.2");
+  EXPECT_EQ(Error(kGood + "[train]\ncontact = \"rigid\"\ncontact_stiffness_N_m = 1e9\n"),
+            "t.toml: [train] contact_stiffness_N_m: applies to contact = \"compliant\"; a rigid "
+            "contact has none");
+  EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_m = 1e9\nrestitution = 0.5\n"),
+            "t.toml: [train] restitution: applies to contact = \"rigid\"; a compliant contact "
+            "has a damping ratio");
+}
+
 }  // namespace
 }  // namespace needle
