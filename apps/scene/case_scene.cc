@@ -50,8 +50,6 @@ Scene MakeScene(const Case& c) {
     s.train.contact = ContactKind::kRigid;
     s.train.restitution = c.train->restitution;
     s.train.seat_restitution = c.train->seat_restitution;
-    // Unused by a rigid law; kept valid for TrainParameters::Validate.
-    s.train.contact_stiffness_N_m = s.train.seat_stiffness_N_m = 1.0;
   }
   if (c.solver) {
     s.start_rad = c.solver->start_rad;

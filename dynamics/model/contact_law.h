@@ -124,7 +124,6 @@ class RigidContact final : public ContactLaw {
     return -e_ * g_rate_before;
   }
   bool Constraint() const override { return true; }
-  double restitution() const { return e_; }
 
  private:
   double e_;

@@ -25,14 +25,16 @@ void TrainParameters::Validate() const {
           "must not be negative");
   Require(rate_N_m >= 0.0 && std::isfinite(rate_N_m), "rate_N_m", rate_N_m, "must not be negative");
   Require(std::isfinite(gas_force_N), "gas_force_N", gas_force_N, "must be finite");
-  Require(contact_stiffness_N_m > 0.0 && std::isfinite(contact_stiffness_N_m),
-          "contact_stiffness_N_m", contact_stiffness_N_m, "must be positive");
-  Require(contact_damping_ratio >= 0.0 && std::isfinite(contact_damping_ratio),
-          "contact_damping_ratio", contact_damping_ratio, "must not be negative");
-  Require(seat_stiffness_N_m > 0.0 && std::isfinite(seat_stiffness_N_m), "seat_stiffness_N_m",
-          seat_stiffness_N_m, "must be positive");
-  Require(seat_damping_ratio >= 0.0 && std::isfinite(seat_damping_ratio), "seat_damping_ratio",
-          seat_damping_ratio, "must not be negative");
+  if (contact == ContactKind::kCompliant) {  // the compliant law's own parameters
+    Require(contact_stiffness_N_m > 0.0 && std::isfinite(contact_stiffness_N_m),
+            "contact_stiffness_N_m", contact_stiffness_N_m, "must be positive");
+    Require(contact_damping_ratio >= 0.0 && std::isfinite(contact_damping_ratio),
+            "contact_damping_ratio", contact_damping_ratio, "must not be negative");
+    Require(seat_stiffness_N_m > 0.0 && std::isfinite(seat_stiffness_N_m), "seat_stiffness_N_m",
+            seat_stiffness_N_m, "must be positive");
+    Require(seat_damping_ratio >= 0.0 && std::isfinite(seat_damping_ratio), "seat_damping_ratio",
+            seat_damping_ratio, "must not be negative");
+  }
   Require(restitution >= 0.0 && restitution <= 1.0, "restitution", restitution,
           "must be in [0, 1]");
   Require(seat_restitution >= 0.0 && seat_restitution <= 1.0, "seat_restitution", seat_restitution,
@@ -161,13 +163,14 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
     J[0 * 4 + 1] = J[1 * 4 + 0] = J[1 * 4 + 1] = 0.0;  // ẏ, ÿ: the surface's, not the state's
     dfdt[0] = cam_stuck ? w * w * upp : 0.0;
     dfdt[1] = 0.0;
-    J[2 * 4 + 0] = cam_stuck ? p_.rate_N_m * w * up : J[2 * 4 + 0];
-    J[2 * 4 + 1] = cam_stuck ? 0.0 : J[2 * 4 + 1];
+    if (cam_stuck) {  // Ẇ = λ ω u'
+      J[2 * 4 + 0] = p_.rate_N_m * w * up;
+      J[2 * 4 + 1] = 0.0;
+    }
   }
 }
 
-double NeedleTrain::NetForce(const Contacts& c, const TrainState& x, const Phase& phase) const {
-  static_cast<void>(x);  // c carries the lift (the surface's while a rigid contact sticks)
+double NeedleTrain::NetForce(const Contacts& c, const Phase& phase) const {
   return AppliedCamForce(c, phase) + AppliedSeatForce(c, phase) -
          (p_.preload_N + p_.rate_N_m * c.y) + p_.gas_force_N;
 }
@@ -177,9 +180,9 @@ void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase,
   const Contacts c = Evaluate(x, t, phase);
   const double fc = AppliedCamForce(c, phase), fs = AppliedSeatForce(c, phase);
 
-  dxdt[0] = c.v;                                 // ẏ (the surface's while stuck to it)
-  dxdt[1] = NetForce(c, x, phase) / p_.mass_kg;  // ÿ
-  dxdt[2] = fc * omega_ * c.u_slope;             // Ẇ
+  dxdt[0] = c.v;                              // ẏ (the surface's while stuck to it)
+  dxdt[1] = NetForce(c, phase) / p_.mass_kg;  // ÿ
+  dxdt[2] = fc * omega_ * c.u_slope;          // Ẇ
   dxdt[3] = (fc - cam_law_->ConservativeForce(c.g_c)) * c.g_c_rate +
             (fs - seat_law_->ConservativeForce(c.g_s)) * c.g_s_rate;  // Ḋ
 }
@@ -243,17 +246,11 @@ ContactMode NeedleTrain::StickingMode(const TrainState& x, double t, const Phase
 }
 
 TrainState NeedleTrain::Project(const TrainState& x, double t, const Phase& phase) const {
+  // Evaluate puts the needle on the surface of a sticking rigid contact (Contacts::y, v).
+  const Contacts c = Evaluate(x, t, phase);
   TrainState out = x;
-  if (cam_law_->Constraint() && phase.mode.cam) {
-    const Contacts c = Evaluate(x, t, phase);
-    out[0] = c.u;
-    out[1] = omega_ * c.u_slope;
-  } else if (seat_law_->Constraint() && phase.mode.seat) {
-    out[0] = 0.0;
-    out[1] = 0.0;
-  } else {
-    return out;
-  }
+  out[0] = c.y;
+  out[1] = c.v;
   out[3] -= Energy(out, t) - Energy(x, t);  // what the projection takes is dissipated
   return out;
 }

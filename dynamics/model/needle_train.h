@@ -49,7 +49,8 @@ struct TrainParameters {
   double restitution = 0.0;                       ///< e of the rigid cam contact, in [0, 1]
   double seat_restitution = 0.0;                  ///< e_s of the rigid seat, in [0, 1]
 
-  /// Throws std::invalid_argument naming the field, its value and the rule it broke.
+  /// Throws std::invalid_argument naming the field, its value and the rule it broke; k_c, ζ_c,
+  /// k_s and ζ_s only when `contact` is compliant (a rigid law has none).
   void Validate() const;
 };
 
@@ -103,8 +104,9 @@ class NeedleTrain {
   /// The forces the right-hand side uses at `c` in `phase` (mode or gate), N.
   double AppliedCamForce(const Contacts& c, const Phase& phase) const;
   double AppliedSeatForce(const Contacts& c, const Phase& phase) const;
-  /// m ÿ = F_c + F_s − (P₀ + k y) + F_g at `c` and state `x` in `phase`, N.
-  double NetForce(const Contacts& c, const TrainState& x, const Phase& phase) const;
+  /// m ÿ = F_c + F_s − (P₀ + k y) + F_g at `c` (its y: the state's, or the surface's while a
+  /// rigid contact sticks) in `phase`, N.
+  double NetForce(const Contacts& c, const Phase& phase) const;
   /// E of the audit (J).
   double Energy(const TrainState& x, double t) const;
   /// The audit's residual |E(t) − E(0) − W + D| / max(|W|, |E(0)|) between the start x0 (t = 0)

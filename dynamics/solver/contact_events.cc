@@ -94,7 +94,7 @@ bool Recorder::AtRest(double t, const TrainState& x, const Phase& phase) const {
   const double fc = train_.AppliedCamForce(c, phase), fs = train_.AppliedSeatForce(c, phase);
   if (!(fc > 0.0 || fs > 0.0)) return false;  // in flight
   const TrainParameters& p = train_.parameters();
-  const double net = train_.NetForce(c, x, phase);
+  const double net = train_.NetForce(c, phase);
   const double scale = std::max(p.preload_N + std::abs(p.gas_force_N), p.mass_kg * 1.0 /* m/s² */);
   return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= kRestForceFraction * scale;
 }

@@ -412,7 +412,12 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       restart = first_t;
       // An impact under a law with a reset map.
       if (impact) {
-        const Contacts before = train_.Evaluate(xs, first_t, phase);
+        // A rigid impact's approach speed, for the chattering test after the reset.
+        double approach = 0.0;
+        if (rigid_impact) {
+          const Contacts before = train_.Evaluate(xs, first_t, phase);
+          approach = cam ? before.g_c_rate : before.g_s_rate;
+        }
         if (auto after = train_.Reset(cam, xs, first_t, phase)) {
           ++stats.resets;
           recorder_.ImpactLoss((*after)[3] - xs[3]);
@@ -420,7 +425,6 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
           signs = SettleMode(xs, first_t);
           switched = true;
           if (rigid_impact) {
-            const double approach = cam ? before.g_c_rate : before.g_s_rate;
             if (auto t_inf = Accumulate(cam, first_t, approach, segment_end, xs, signs)) {
               ++stats.accumulations;
               restart = *t_inf;

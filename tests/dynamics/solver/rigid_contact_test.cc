@@ -126,6 +126,12 @@ TEST(RigidContactTest, RestitutionOutsideTheUnitIntervalIsRefusedByName) {
     EXPECT_STREQ(e.what(), "TrainParameters.seat_restitution = 1.500000: must be in [0, 1]");
   }
   EXPECT_THROW(RigidContact(-0.1), std::invalid_argument);
+  // The compliant law's stiffnesses do not apply to a rigid train (a case gives none).
+  TrainParameters rigid = RigidParameters(0.5);
+  rigid.contact_stiffness_N_m = rigid.seat_stiffness_N_m = 0.0;
+  EXPECT_NO_THROW(rigid.Validate());
+  rigid.contact = ContactKind::kCompliant;
+  EXPECT_THROW(rigid.Validate(), std::invalid_argument);
 }
 
 // Example 1's needle on a rigid cam (e = 0, no play) above its quasi-static lift-off speed:
