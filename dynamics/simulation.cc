@@ -18,6 +18,165 @@ constexpr double kStiffOscillations = 2000.0;
 constexpr double kRigidOscillations = 500.0;
 constexpr double kRigidMargin = 0.5;
 
+// One integration from x0 over [0, t_end] (then on while the needle settles, for at most
+// settle_deg past it; 0: stop at t_end) appended to r as cam revolution `cycle`: its episodes,
+// impacts and series shifted by that many revolutions, its extremes and statistics merged.
+// Returns the state at its end (NaN after a budget stop) and sets r's status.
+TrainState RunPass(const NeedleTrain& train, Method method, const TrainState& x0, double t_end,
+                   double settle_deg, const SimulationOptions& o, int cycle, SimulationResult& r,
+                   const Scene* scene = nullptr) {
+  const double shift_rad = scene ? cycle * scene->revolution_rad : 0.0;
+  const double shift_s = shift_rad / train.omega();
+  Recorder recorder(train, o.record_series);
+  IntegratorOptions io = o.integrator;
+  io.settle_limit_s = settle_deg * kDeg / train.omega();
+  IntegrationStats stats;
+  TrainState end{};
+  end.fill(std::numeric_limits<double>::quiet_NaN());
+  double residual = std::numeric_limits<double>::quiet_NaN();
+  try {
+    stats = Integrate(method, train, x0, t_end, recorder, io);
+    r.run_end_rad = train.Angle(stats.final_time) + shift_rad;
+    residual = train.EnergyResidual(x0, stats.final_state, stats.final_time);
+    // What goes on: the needle on the surface it sticks to (a sticking rigid contact's state
+    // is the surface's; the integrated one may trail it by a slope jump of the table's end).
+    end = train.Project(stats.final_state, stats.final_time, stats.final_phase);
+    if (settle_deg > 0.0 &&
+        !recorder.AtRest(stats.final_time, stats.final_state, stats.final_phase)) {
+      r.status = RunStatus::kUnsettled;
+      std::ostringstream why;
+      why << "the needle is still moving " << settle_deg
+          << " deg past the window's end (the settle budget, [solver] settle_deg)";
+      r.status_reason = why.str();
+    }
+  } catch (const BudgetExceeded& e) {
+    recorder.Stopped(e.crank_rad);
+    r.run_end_rad = e.crank_rad + shift_rad;
+    r.status = RunStatus::kBudget;
+    r.status_reason = e.what();
+  }
+  r.energy_residual = cycle == 0 ? residual : std::max(r.energy_residual, residual);
+  if (std::isnan(residual)) r.energy_residual = residual;
+
+  const int first_impact = static_cast<int>(r.impacts.size());
+  for (Impact i : recorder.impacts()) {
+    i.crank_rad += shift_rad;
+    i.cycle = cycle;
+    r.impacts.push_back(i);
+  }
+  for (Episode e : recorder.episodes()) {
+    e.start_rad += shift_rad;
+    e.end_rad += shift_rad;
+    if (e.impact >= 0) e.impact += first_impact;
+    e.cycle = cycle;
+    r.episodes.push_back(e);
+  }
+  for (SeriesPoint p : recorder.series()) {
+    p.crank_rad += shift_rad;
+    p.time_s += shift_s;
+    r.series.push_back(p);
+  }
+  if (cycle == 0 || recorder.max_lift_m() > r.max_lift_m) {
+    r.max_lift_m = recorder.max_lift_m();
+    r.max_lift_rad = recorder.max_lift_rad() + shift_rad;
+  }
+  r.max_contact_force_N = std::max(r.max_contact_force_N, recorder.max_contact_force_N());
+  r.min_contact_force_during_lift_N =
+      cycle == 0
+          ? recorder.min_contact_force_during_lift_N()
+          : std::min(r.min_contact_force_during_lift_N, recorder.min_contact_force_during_lift_N());
+  r.max_seat_force_N = std::max(r.max_seat_force_N, recorder.max_seat_force_N());
+  r.jump_rad += recorder.jump_rad();
+  r.longest_jump_rad = std::max(r.longest_jump_rad, recorder.longest_jump_rad());
+  r.stats.steps += stats.steps;
+  r.stats.rhs_evaluations += stats.rhs_evaluations;
+  r.stats.events += stats.events;
+  r.stats.resets += stats.resets;
+  r.stats.accumulations += stats.accumulations;
+  r.stats.final_state = stats.final_state;
+  r.stats.final_time = stats.final_time + shift_s;
+  r.stats.final_phase = stats.final_phase;
+
+  if (scene) {
+    CycleSummary c;
+    c.index = cycle;
+    c.start_rad = train.Angle(0.0) + shift_rad;
+    c.impacts = static_cast<int>(recorder.impacts().size());
+    for (const Episode& e : recorder.episodes()) {
+      if (e.kind == "jump") ++c.jumps;
+      c.max_gap_m = std::max(c.max_gap_m, e.max_gap_m);
+    }
+    c.jump_rad = recorder.jump_rad();
+    c.longest_jump_rad = recorder.longest_jump_rad();
+    c.end_lift_m = end[0];
+    c.end_velocity_m_s = end[1];
+    c.energy_residual = residual;
+    r.cycles.push_back(c);
+  }
+  return end;
+}
+
+// Whether cycle-end state b repeats a: lift within tol·L, velocity within tol·ω·L (L the
+// largest lift), and the same number of impacts in the revolutions they end.
+bool Repeats(const TrainState& a, const TrainState& b, double tol, double lift_m, double omega) {
+  return std::abs(a[0] - b[0]) <= tol * lift_m && std::abs(a[1] - b[1]) <= tol * omega * lift_m;
+}
+
+// [solver] cycles = N (docs/model.md §5): revolutions from θ_a to θ_a + one revolution, each
+// from the state the last one ended in (the audit integrals W, D started afresh), until N have
+// run or the cycle-end state repeats one k ≤ kMaxPeriod revolutions before (the start counts
+// as the end of revolution −1). Lift-off is judged on the repeating period, or every cycle
+// after the first, when steady_state asks.
+void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
+               const SimulationOptions& o, SimulationResult& r) {
+  const double theta_a = r.window_start_rad;
+  const double revolution = scene.revolution_rad;
+  if (!(r.window_end_rad <= theta_a + revolution)) {
+    throw std::invalid_argument(
+        "[solver] cycles: the run window (" + std::to_string(theta_a / kDeg) + " to " +
+        std::to_string(r.window_end_rad / kDeg) + " deg) is longer than one cam revolution (" +
+        std::to_string(revolution / kDeg) + " deg)");
+  }
+  r.window_end_rad = theta_a + revolution;
+  r.cycles_asked = o.cycles;
+  const double lift_scale = std::max(scene.cam->law().Max(0).value + scene.cam->play_m(), 1e-6);
+  std::vector<TrainState> ends{train.EquilibriumStart()};  // ends[j + 1]: the end of cycle j
+  std::vector<int> impacts{0};
+  for (int cycle = 0; cycle < o.cycles; ++cycle) {
+    TrainState x0 = ends.back();
+    x0[2] = x0[3] = 0.0;  // the audit of each revolution on its own
+    const TrainState end =
+        RunPass(train, method, x0, revolution / train.omega(), 0.0, o, cycle, r, &scene);
+    if (r.status == RunStatus::kBudget) break;
+    ends.push_back(end);
+    impacts.push_back(r.cycles.back().impacts);
+    const int j = cycle + 1;
+    for (int k = 1; k <= kMaxPeriod && k <= j; ++k) {
+      bool repeats = Repeats(ends[j - k], ends[j], o.period_tolerance, lift_scale, train.omega());
+      // Impacts must repeat too (the start has none before it).
+      for (int m = 0; m < k && repeats && j - k - m > 0; ++m)
+        repeats = impacts[j - m] == impacts[j - k - m];
+      if (repeats) {
+        r.period_cycles = k;
+        r.periodic_from = j - k;
+        break;
+      }
+    }
+    if (r.period_cycles > 0) break;
+  }
+  if (o.steady_state) {
+    r.judged_from =
+        r.period_cycles > 0 ? r.periodic_from : std::min(1, static_cast<int>(r.cycles.size()) - 1);
+    r.jump_rad = 0.0;
+    r.longest_jump_rad = 0.0;
+    for (const CycleSummary& c : r.cycles) {
+      if (c.index < r.judged_from) continue;
+      r.jump_rad += c.jump_rad;
+      r.longest_jump_rad = std::max(r.longest_jump_rad, c.longest_jump_rad);
+    }
+  }
+}
+
 }  // namespace
 
 std::string RunStatusName(RunStatus s) {
@@ -34,7 +193,7 @@ std::string RunStatusName(RunStatus s) {
 
 bool SimulationResult::liftoff() const {
   for (const Episode& e : episodes) {
-    if (e.kind == "jump") return true;
+    if (e.kind == "jump" && e.cycle >= judged_from) return true;
   }
   return false;
 }
@@ -95,6 +254,18 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     throw std::invalid_argument("SimulationOptions.settle_limit_deg = " +
                                 std::to_string(o.settle_limit_deg) + ": must be in (0, 36000]");
   }
+  if (!(o.cycles >= 1 && o.cycles <= kMaxCycles)) {
+    throw std::invalid_argument("SimulationOptions.cycles = " + std::to_string(o.cycles) +
+                                ": must be in [1, " + std::to_string(kMaxCycles) + "]");
+  }
+  if (!(o.period_tolerance > 0.0 && o.period_tolerance <= 1e-2)) {
+    throw std::invalid_argument("SimulationOptions.period_tolerance = " +
+                                std::to_string(o.period_tolerance) + ": must be in (0, 1e-2]");
+  }
+  if (o.steady_state && o.cycles < 2) {
+    throw std::invalid_argument("SimulationOptions.steady_state needs cycles >= 2, got " +
+                                std::to_string(o.cycles));
+  }
   const double oscillations = ContactOscillationsPerEvent(scene, speed_rpm);
   const std::string stiffness = "the contact oscillates " +
                                 std::to_string(static_cast<long>(std::lround(oscillations))) +
@@ -154,40 +325,12 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
 
   r.method = MethodName(method);
 
-  const TrainState x0 = train.EquilibriumStart();
-  Recorder recorder(train, o.record_series);
-  const double t_end = (theta_b - theta_a) / omega;
-  IntegratorOptions io = o.integrator;
-  io.settle_limit_s = o.settle_limit_deg * kDeg / omega;
-  try {
-    r.stats = Integrate(method, train, x0, t_end, recorder, io);
-    r.run_end_rad = train.Angle(r.stats.final_time);
-    r.energy_residual = train.EnergyResidual(x0, r.stats.final_state, r.stats.final_time);
-    if (!recorder.AtRest(r.stats.final_time, r.stats.final_state, r.stats.final_phase)) {
-      r.status = RunStatus::kUnsettled;
-      std::ostringstream why;
-      why << "the needle is still moving " << o.settle_limit_deg
-          << " deg past the window's end (the settle budget, [solver] settle_deg)";
-      r.status_reason = why.str();
-    }
-  } catch (const BudgetExceeded& e) {
-    recorder.Stopped(e.crank_rad);
-    r.run_end_rad = e.crank_rad;
-    r.status = RunStatus::kBudget;
-    r.status_reason = e.what();
-    r.energy_residual = std::numeric_limits<double>::quiet_NaN();
+  if (o.cycles == 1) {
+    RunPass(train, method, train.EquilibriumStart(), (theta_b - theta_a) / omega,
+            o.settle_limit_deg, o, 0, r);
+    return r;
   }
-
-  r.episodes = recorder.episodes();
-  r.impacts = recorder.impacts();
-  r.series = recorder.series();
-  r.max_lift_m = recorder.max_lift_m();
-  r.max_lift_rad = recorder.max_lift_rad();
-  r.max_contact_force_N = recorder.max_contact_force_N();
-  r.min_contact_force_during_lift_N = recorder.min_contact_force_during_lift_N();
-  r.max_seat_force_N = recorder.max_seat_force_N();
-  r.jump_rad = recorder.jump_rad();
-  r.longest_jump_rad = recorder.longest_jump_rad();
+  RunCycles(scene, train, method, o, r);
   return r;
 }
 

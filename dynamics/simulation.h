@@ -18,6 +18,7 @@
 #include "dynamics/solver/integrator.h"
 #include "lib/result_fields.h"
 #include "lib/rigid_train.h"
+#include "lib/units.h"
 
 namespace needle {
 
@@ -27,6 +28,8 @@ struct Scene {
   std::unique_ptr<CamInput> cam;
   TrainParameters train;
   std::optional<double> start_rad, end_rad;  ///< window override
+  /// Crank angle of one cam revolution, rad: 4π four-stroke, 2π two-stroke ([solver] cycles).
+  double revolution_rad = 4.0 * kPi;
 };
 
 /// Options of a run. Every field has a default.
@@ -38,6 +41,32 @@ struct SimulationOptions {
   /// Past θ_b the run goes on until the needle has landed and come to rest, for at most this
   /// much crank angle, deg (docs/model.md §5); > 0 and ≤ 36000.
   double settle_limit_deg = 3600.0;
+  /// Cam revolutions run back to back, each from θ_a to θ_a + one revolution, the state carried
+  /// over (docs/model.md §5); 1: the single window above. [1, kMaxCycles].
+  int cycles = 1;
+  /// A cycle-end state repeats when its lift and velocity are within this fraction of the
+  /// largest lift (and of ω times it) of one k revolutions before, k ≤ kMaxPeriod; (0, 1e-2].
+  double period_tolerance = 1e-6;
+  /// With cycles > 1, lift-off (jump_rad, longest_jump_rad, liftoff()) is judged on the steady
+  /// cycles only: the repeating period once found, else every cycle after the first.
+  bool steady_state = false;
+};
+
+/// Most cam revolutions one run may ask for, and the longest period looked for.
+constexpr int kMaxCycles = 1000;
+constexpr int kMaxPeriod = 8;
+
+/// One cam revolution of a run of several (SimulationOptions::cycles).
+struct CycleSummary {
+  int index = 0;                  ///< 0-based
+  double start_rad = 0.0;         ///< θ_a + index × revolution
+  int impacts = 0;                ///< impacts in it (rigid accumulation points included)
+  int jumps = 0;                  ///< jump episodes that began in it
+  double jump_rad = 0.0;          ///< their total length
+  double longest_jump_rad = 0.0;  ///< the longest
+  double max_gap_m = 0.0;         ///< largest separation from the cam
+  double end_lift_m = 0.0, end_velocity_m_s = 0.0;  ///< the state carried to the next one
+  double energy_residual = 0.0;                     ///< the audit over this revolution
 };
 
 /// How a run ended.
@@ -66,10 +95,18 @@ struct SimulationResult {
   double min_contact_force_during_lift_N = 0.0;
   double max_seat_force_N = 0.0;
   double energy_residual = 0.0;
-  double jump_rad = 0.0;  ///< total length of jump episodes
+  double jump_rad = 0.0;  ///< total length of jump episodes (in the judged cycles)
   double longest_jump_rad = 0.0;
   IntegrationStats stats;
-  bool liftoff() const;  ///< any jump episode
+  /// Runs of several revolutions (SimulationOptions::cycles > 1): one summary each, in order;
+  /// the run stops early once the state repeats (the rest would repeat it too).
+  std::vector<CycleSummary> cycles;
+  int cycles_asked = 1;
+  int period_cycles = 0;  ///< k when cycle-end states repeat every k revolutions; 0: not found
+  int periodic_from = 0;  ///< the first cycle of the repeating period
+  /// The first cycle the lift-off measures count (steady_state), else 0.
+  int judged_from = 0;
+  bool liftoff() const;  ///< any jump episode (in the judged cycles)
 };
 
 /// The scene's train as the quasi-static check sees it: its mass, preload, rate and gas load.

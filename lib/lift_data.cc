@@ -44,9 +44,10 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& o) {
   c.law.spline = o.spline;
   c.law.open_rad = o.open_rad;
   c.law.close_rad = o.close_rad;
+  c.law.breaks_rad = o.breaks_rad;
   const int n = static_cast<int>(table.crank_rad.size());
   const bool dense = n >= kDenseTablePoints;
-  c.measured = dense || o.noise_m.has_value();
+  c.measured = (dense || o.noise_m.has_value()) && o.breaks_rad.empty();
   const std::string points = std::to_string(n) + " points";
   if (o.noise_m) {
     c.noise_m = *o.noise_m;
@@ -81,6 +82,12 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& o) {
     c.law.spline.kind = SplineKind::kSmoothing;
     c.reason = (o.noise_m ? "noise stated" : "dense table (" + points + ")") +
                std::string(": measured data, ") + noise + "; smoothing spline";
+    return c;
+  }
+  if (!o.breaks_rad.empty()) {
+    c.law.spline.kind = SplineKind::kNotAKnot;
+    c.reason = "exact table with " + std::to_string(o.breaks_rad.size()) + " breaks (" + points +
+               "): not-a-knot cubic on each piece between them";
     return c;
   }
   const bool at_rest =

@@ -47,6 +47,9 @@ struct LiftDataOptions {
   std::optional<double> noise_m;              ///< stated σ of the readings, m, > 0
   std::optional<double> resolution_m;         ///< stated rounding of the readings, m, > 0
   std::optional<double> open_rad, close_rad;  ///< stated θ_open, θ_close
+  /// Stated angles where s'' jumps, rad (LiftLawOptions::breaks_rad): the table is then a
+  /// designed cam's exact lift however dense, with a not-a-knot cubic on each piece by default.
+  std::vector<double> breaks_rad;
 };
 
 /// The law chosen for a table, and why.

@@ -81,6 +81,57 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
+// The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
+// strictly inside) and joined: C⁰ at the breaks, where s'' (and s' by the pieces' error) jump.
+PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
+                                const LiftLawOptions& options) {
+  if (options.breaks_rad.empty()) return BuildSpline(x, y, options.spline);
+  std::vector<size_t> cuts{0};
+  for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
+    const double at = options.breaks_rad[b];
+    const auto it = std::find_if(x.begin(), x.end(), [&](double xi) {
+      return std::abs(xi - at) <= 1e-9 * std::max(1.0, std::abs(at));
+    });
+    if (it == x.end() || it == x.begin() || it == x.end() - 1) {
+      throw std::invalid_argument(
+          "break " + std::to_string(b) + " (" + Deg(at) +
+          "°) must be an angle of the table strictly inside the open lift (" + Deg(x.front()) +
+          "° to " + Deg(x.back()) + "°)");
+    }
+    const size_t i = static_cast<size_t>(it - x.begin());
+    if (i <= cuts.back()) {
+      throw std::invalid_argument("break " + std::to_string(b) + " (" + Deg(at) +
+                                  "°) must come after the one before it");
+    }
+    cuts.push_back(i);
+  }
+  cuts.push_back(x.size() - 1);
+  std::vector<double> breaks{x.front()};
+  std::vector<Eigen::MatrixXd> parts;
+  Eigen::Index rows = 0;
+  for (size_t p = 0; p + 1 < cuts.size(); ++p) {
+    const std::vector<double> px(x.begin() + cuts[p], x.begin() + cuts[p + 1] + 1);
+    const std::vector<double> py(y.begin() + cuts[p], y.begin() + cuts[p + 1] + 1);
+    if (static_cast<int>(px.size()) < MinimumPoints(options.spline.kind)) {
+      throw std::invalid_argument(
+          "the piece " + Deg(px.front()) + "° to " + Deg(px.back()) + "° between breaks has " +
+          std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
+          "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
+    }
+    PiecewisePolynomial part = BuildSpline(px, py, options.spline);
+    breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
+    rows += part.coefficients().rows();
+    parts.push_back(part.coefficients());
+  }
+  Eigen::MatrixXd c(rows, parts.front().cols());
+  Eigen::Index row = 0;
+  for (const Eigen::MatrixXd& part : parts) {
+    c.block(row, 0, part.rows(), part.cols()) = part;
+    row += part.rows();
+  }
+  return PiecewisePolynomial(std::move(breaks), std::move(c), 0);
+}
+
 // The spline of the table and the open lift it detects (file comment of lift_law.h): for
 // measured data the whole table's fit and its crossings of the closed level; for an exact table
 // the fit of its open part, from the last zero before the rise to the first zero after the fall.
@@ -93,6 +144,8 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
   }
   CheckReadings(table, options.negative_allowance_m);
   if (options.closed_level_m > 0.0) {
+    if (!options.breaks_rad.empty())
+      throw std::invalid_argument("breaks apply to an exact table only, not to measured data");
     PiecewisePolynomial full = BuildSpline(th, s, options.spline);
     const auto open = FirstAbove(full, options.closed_level_m, true);
     const auto close = FirstAbove(full, options.closed_level_m, false);
@@ -120,7 +173,7 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
   }
   *open_rad = x.front();
   *close_rad = x.back();
-  return BuildSpline(x, y, options.spline);
+  return BuildPieces(x, y, options);
 }
 
 }  // namespace

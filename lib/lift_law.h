@@ -48,6 +48,10 @@ struct LiftLawOptions {
   double negative_allowance_m = 0.0;
   /// θ_open and θ_close stated by the case, rad, inside [θ_0, θ_N]; detected when absent.
   std::optional<double> open_rad, close_rad;
+  /// Angles where s'' may jump (a cam of circular arcs), rad, increasing: the spline is built
+  /// apart on each piece of the open lift between them, so the jumps are kept, not smeared.
+  /// Each must be an angle of the table strictly inside the open lift; exact tables only.
+  std::vector<double> breaks_rad;
 };
 
 /// A lift law: table plus spline. Immutable after construction.
@@ -66,8 +70,8 @@ class LiftLaw {
   /// dᵏs/dθᵏ in m/radᵏ, k = 0..3; 0 outside [θ_0, θ_N]. For k = 2, 3 only meaningful when
   /// HasAcceleration() (C¹ kinds have a second derivative that jumps at the knots).
   double Derivative(double crank_rad, int order) const;
-  /// True when s'' is continuous (all kinds but pchip and makima).
-  bool HasAcceleration() const { return spline_.continuity() >= 2; }
+  /// True when s'' is continuous (all kinds but pchip and makima), between the breaks if any.
+  bool HasAcceleration() const { return needle::HasAcceleration(kind_); }
 
   /// θ_open and θ_close, rad: where the needle leaves and reaches its seat.
   double start_rad() const { return open_rad_; }

@@ -44,5 +44,7 @@ two independent processes of the same simulations slow each other down by 1.3–
 
 HEAD
   cat bench/summary.md
+  # The peer comparison (scripts/siconos_cam_follower.py compare; needs python3-siconos).
+  if [[ -f bench/siconos-cam-follower.md ]]; then echo; cat bench/siconos-cam-follower.md; fi
 } > BENCHMARKS.md.tmp && mv BENCHMARKS.md.tmp BENCHMARKS.md
 echo "wrote bench/ and BENCHMARKS.md"

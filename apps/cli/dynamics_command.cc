@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -45,6 +46,28 @@ SimulationOptions Options(const Case& c, const std::optional<std::string>& metho
   return o;
 }
 
+// The revolutions of a run of several: one row each, then whether the state repeated.
+std::string CyclesText(const SimulationResult& r) {
+  std::ostringstream out;
+  out << "cycle  start_deg  impacts  jumps  jump_deg  max_gap_mm  end_lift_mm  end_velocity_m_s\n";
+  for (const CycleSummary& c : r.cycles) {
+    out << std::setw(5) << c.index << std::setw(11) << Fixed(c.start_rad / kDeg, 1) << std::setw(9)
+        << c.impacts << std::setw(7) << c.jumps << std::setw(10) << Fixed(c.jump_rad / kDeg, 3)
+        << std::setw(12) << Fixed(c.max_gap_m * 1e3, 4) << std::setw(13)
+        << Fixed(c.end_lift_m * 1e3, 6) << std::setw(18) << Fixed(c.end_velocity_m_s, 6) << '\n';
+  }
+  if (r.period_cycles > 0) {
+    out << "periodic: the state repeats every " << r.period_cycles << " revolution"
+        << (r.period_cycles > 1 ? "s" : "") << " from cycle " << r.periodic_from << " on ("
+        << r.cycles.size() << " of " << r.cycles_asked << " run)\n";
+  } else {
+    out << "not periodic within " << r.cycles.size() << " revolutions (period up to " << kMaxPeriod
+        << " looked for)\n";
+  }
+  if (r.judged_from > 0) out << "lift-off judged from cycle " << r.judged_from << " on\n";
+  return out.str();
+}
+
 }  // namespace
 
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
@@ -57,6 +80,10 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
       "--method", o.method,
       "auto, exact, dopri5, cvode-bdf or cvode-adams (default: [solver] method or auto)");
   cmd->add_option("--rtol", o.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");
+  cmd->add_option("--cycles", o.cycles,
+                  "cam revolutions run back to back, the state carried over, until the state "
+                  "repeats (default: [solver] cycles or 1)")
+      ->check(CLI::Range(1, kMaxCycles));
   cmd->add_flag("--dynamic", o.dynamic,
                 "run the dynamics even where the rigid answer would be reported");
   cmd->add_flag("--json", o.json, "print one JSON object");
@@ -70,6 +97,7 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
   sim.record_series = o.csv.has_value() || o.series;
+  if (o.cycles) sim.cycles = *o.cycles;
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   const SimulationResult r = Simulate(scene, speed, sim);
   if (o.csv && r.skipped)
@@ -98,6 +126,9 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
                           {"impact", e.impact},
                           {"open", e.open}});
     }
+    if (r.cycles_asked > 1) {
+      for (size_t k = 0; k < r.episodes.size(); ++k) episodes[k]["cycle"] = r.episodes[k].cycle;
+    }
     j["episodes"] = episodes;
     nlohmann::json impacts = nlohmann::json::array();
     for (const Impact& i : r.impacts) {
@@ -105,6 +136,28 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
                          {"crank_deg", i.crank_rad / kDeg},
                          {"speed_m_s", i.speed_m_s},
                          {"energy_lost_J", i.energy_lost_J}});
+    }
+    if (r.cycles_asked > 1) {
+      for (size_t k = 0; k < r.impacts.size(); ++k) impacts[k]["cycle"] = r.impacts[k].cycle;
+      nlohmann::json cycles = nlohmann::json::array();
+      for (const CycleSummary& cy : r.cycles) {
+        cycles.push_back({{"index", cy.index},
+                          {"start_deg", cy.start_rad / kDeg},
+                          {"impacts", cy.impacts},
+                          {"jumps", cy.jumps},
+                          {"jump_deg", cy.jump_rad / kDeg},
+                          {"max_gap_mm", cy.max_gap_m * 1e3},
+                          {"end_lift_mm", Finite(cy.end_lift_m * 1e3)},
+                          {"end_velocity_m_s", Finite(cy.end_velocity_m_s)},
+                          {"energy_residual", Finite(cy.energy_residual)}});
+      }
+      j["cycles"] = cycles;
+      j["cycles_asked"] = r.cycles_asked;
+      j["period_cycles"] =
+          r.period_cycles > 0 ? nlohmann::json(r.period_cycles) : nlohmann::json(nullptr);
+      j["periodic_from"] =
+          r.period_cycles > 0 ? nlohmann::json(r.periodic_from) : nlohmann::json(nullptr);
+      j["judged_from"] = r.judged_from;
     }
     j["impacts"] = impacts;
     j["max_lift_mm"] = r.max_lift_m * 1e3;
@@ -146,6 +199,9 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
         << "contact force: max " << Fixed(r.max_contact_force_N, 1) << " N, min during the lift "
         << Fixed(r.min_contact_force_during_lift_N, 1) << " N; max seat force "
         << Fixed(r.max_seat_force_N, 1) << " N\n";
+    if (r.cycles_asked > 1 && !r.skipped) {
+      out << CyclesText(r);
+    }
     out << (r.liftoff() ? "LIFT-OFF: the needle leaves the cam\n" : "no lift-off\n");
     for (const Episode& e : r.episodes) {
       out << "  " << e.kind << " " << Fixed(e.start_rad / kDeg, 3) << " .. "
@@ -197,6 +253,7 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
   const double n_qs = QuasiStaticLiftoffRpm(scene);
   OverspeedOptions opt;
   opt.simulation = Options(c, o.method, o.rtol);
+  opt.simulation.steady_state = c.overspeed && c.overspeed->steady_state;  // [overspeed]
   opt.threads = o.threads;
   opt.step_rpm = o.step_rpm.value_or(0.0);
   const SweepRange range = DefaultSweepRange(c, c.engine.speed_rpm, n_qs);
@@ -237,6 +294,8 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
     j["step_rpm"] = r.step_rpm;
     j["status"] = r.status;
     j["scanned_to_rpm"] = r.scanned_to_rpm;
+    j["cycles"] = opt.simulation.cycles;
+    j["steady_state"] = opt.simulation.steady_state;
     nlohmann::json rows = nlohmann::json::array();
     for (const OverspeedRow& row : r.rows) {
       rows.push_back({{"speed_rpm", row.speed_rpm},
@@ -254,8 +313,15 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "sweep " << Fixed(opt.from_rpm, 1) << " .. " << Fixed(opt.to_rpm, 1) << " rpm on "
         << r.threads << " threads, scanned upward in steps of " << Fixed(r.step_rpm, 2)
-        << " rpm (a lift-off window narrower than that can be missed)\n"
-        << "quasi-static lift-off n_qs = "
+        << " rpm (a lift-off window narrower than that can be missed)\n";
+    if (opt.simulation.cycles > 1) {
+      out << opt.simulation.cycles << " cam revolutions per speed (until the state repeats); "
+          << (opt.simulation.steady_state
+                  ? "lift-off judged on the steady state (the repeating period, else the "
+                    "revolutions after the first)\n"
+                  : "lift-off in any of them counts\n");
+    }
+    out << "quasi-static lift-off n_qs = "
         << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
         << "dynamic lift-off n_dyn = ";
     if (r.n_dyn_rpm) {

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// `needle simulate CASE [--rpm N] [--method KIND] [--rtol X] [--dynamic] [--json] [--csv FILE]`
+/// `needle simulate CASE [--rpm N] [--method KIND] [--rtol X] [--cycles N] [--dynamic] [--json]
+/// [--csv FILE]`
 /// and `needle overspeed CASE [--from RPM] [--to RPM] [--threads N] [--json]`.
 
 #include <CLI/CLI.hpp>
@@ -21,7 +22,8 @@ struct SimulateCommandOptions {
   bool dynamic = false;  ///< run the dynamics even where the rigid answer would stand
   bool json = false;
   std::optional<std::string> csv;
-  bool series = false;  ///< record the time series as columns without a CSV (Python)
+  bool series = false;        ///< record the time series as columns without a CSV (Python)
+  std::optional<int> cycles;  ///< cam revolutions back to back (default: [solver] cycles)
 };
 
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& options);

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/input_file.h"
 #include "lib/toml_text.h"
@@ -117,6 +118,14 @@ class SectionReader {
     const auto* s = table_->get(name)->as_string();
     if (!s) Fail(name, "expected a string");
     return s->get();
+  }
+
+  std::optional<bool> OptionalBool(const std::string& name) {
+    if (!table_ || !table_->contains(name)) return std::nullopt;
+    used_.insert(name);
+    const auto* b = table_->get(name)->as_boolean();
+    if (!b) Fail(name, "expected true or false");
+    return b->get();
   }
 
   // Declares a plain key (no unit) the section knows, so FindQuantity does not mistake it.
@@ -421,6 +430,17 @@ SolverSection ReadSolver(SectionReader r) {
       r.Fail("settle_deg", "must be in (0, 36000] deg, got " + Number(*settle / kDeg));
     s.settle_limit_deg = *settle / kDeg;
   }
+  if (auto v = r.OptionalNumber("cycles")) {
+    if (!(*v >= 1.0 && *v <= kMaxCycles) || *v != std::floor(*v))
+      r.Fail("cycles", "must be a whole number in [1, " + std::to_string(kMaxCycles) + "], got " +
+                           Number(*v));
+    s.cycles = static_cast<int>(*v);
+  }
+  if (auto v = r.OptionalNumber("period_tolerance")) {
+    if (!(*v > 0.0 && *v <= 1e-2))
+      r.Fail("period_tolerance", "must be in (0, 1e-2], got " + Number(*v));
+    s.period_tolerance = *v;
+  }
   s.start_rad = r.OptionalQuantity("start", Dimension::kAngle);
   s.end_rad = r.OptionalQuantity("end", Dimension::kAngle);
   if (s.start_rad && s.end_rad && !(*s.end_rad > *s.start_rad)) {
@@ -440,6 +460,7 @@ OverspeedSection ReadOverspeed(SectionReader r) {
     r.Fail("to_rpm", "the sweep range is empty: to_rpm (" + Number(*o.to_rpm) +
                          ") must exceed from_rpm (" + Number(*o.from_rpm) + ")");
   }
+  o.steady_state = r.OptionalBool("steady_state").value_or(false);
   r.Finish();
   return o;
 }
@@ -644,6 +665,23 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
   if (lift.open_rad && lift.close_rad && !(*lift.close_rad > *lift.open_rad)) {
     r.Fail("close_deg", "must be after open_deg");
   }
+  if (auto breaks = r.OptionalQuantityArray("breaks", Dimension::kAngle)) {
+    if (normal) r.Fail(r.last_key(), "applies to a table (crank_deg + lift_mm, or csv)");
+    if (lift.noise_m) r.Fail(r.last_key(), "marks an exact table; it cannot go with noise_mm");
+    if (breaks->empty()) r.Fail(r.last_key(), "expected at least one angle");
+    for (size_t i = 1; i < breaks->size(); ++i) {
+      if (!((*breaks)[i] > (*breaks)[i - 1]))
+        r.Fail(r.last_key(), "angles must increase strictly (entry " + std::to_string(i) + ")");
+    }
+    if (lift.spline_given && lift.spline.kind != SplineKind::kNotAKnot &&
+        lift.spline.kind != SplineKind::kNatural && lift.spline.kind != SplineKind::kQuintic) {
+      r.Fail(r.last_key(),
+             "needs spline = \"not-a-knot\", \"natural\" or \"quintic\" (a "
+             "spline built apart on each piece), got \"" +
+                 SplineKindName(lift.spline.kind) + "\"");
+    }
+    lift.breaks_rad = *breaks;
+  }
   lift.spline.sigma = lift.resolution_m / std::sqrt(12.0);  // σ of a uniform rounding error
   const auto end_slope_name = r.OptionalString("end_slope");
   const auto end_slopes = r.OptionalQuantityArray("end_slope", Dimension::kSlope);
@@ -772,6 +810,11 @@ Case ParseCase(const std::string& text, const std::string& path) {
     c.paper = ReadPaper(SectionReader(paper, path, "paper"));
   }
   if (c.lift.spline_given) CheckSplineFits(c, c.lift.spline.kind, "[lift] spline");
+  if (c.overspeed && c.overspeed->steady_state && !(c.solver && c.solver->cycles >= 2)) {
+    throw CaseError(path +
+                    ": [overspeed] steady_state: needs [solver] cycles of at least 2 (the steady "
+                    "state is judged on the revolutions after the first)");
+  }
   return c;
 }
 
@@ -1084,6 +1127,7 @@ LiftLawChoice CaseLiftChoice(const Case& c) {
   if (c.lift.resolution_given) o.resolution_m = c.lift.resolution_m;
   o.open_rad = c.lift.open_rad;
   o.close_rad = c.lift.close_rad;
+  o.breaks_rad = c.lift.breaks_rad;
   return ChooseLiftLaw(c.lift.table, o);
 }
 

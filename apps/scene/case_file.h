@@ -27,8 +27,10 @@
 ///               ramp = "tangent" | ramp_deg
 ///     [solver]  method = "auto" | "dopri5" | "cvode-bdf" | "cvode-adams", rtol = 1e-8, atol_mm,
 ///               max_steps = 2e6, max_events = 1e5, start_deg, end_deg (window),
-///               settle_deg = 3600 (past the window, the most run while the needle settles)
-///     [overspeed] from_rpm, to_rpm
+///               settle_deg = 3600 (past the window, the most run while the needle settles),
+///               cycles = 1 (cam revolutions back to back), period_tolerance = 1e-6
+///     [overspeed] from_rpm, to_rpm, steady_state = false (judge the revolutions after the
+///               first: needs cycles ≥ 2)
 ///     [tolerance] lift_mm = 0.01, lift_correlation_deg = 0, mass_percent, preload_percent,
 ///               rate_percent, stiffness_percent, play_mm, speed_percent (all 0 but the lift):
 ///               one standard deviation of each input's scatter (`needle tolerance`)
@@ -65,7 +67,8 @@ struct LiftSection {
   bool resolution_given = false;  ///< `resolution_mm` stated
   std::optional<double> noise_m;  ///< `noise_mm`: σ of the readings, m
   std::optional<double> open_rad, close_rad;  ///< `open_deg`, `close_deg`: the open lift
-  std::string source;                         ///< "table", "csv FILE" or "basu normal curve"
+  std::vector<double> breaks_rad;  ///< `breaks_deg`: where s'' jumps (a cam of arcs), rad
+  std::string source;              ///< "table", "csv FILE" or "basu normal curve"
 };
 
 struct PaperSection {
@@ -101,11 +104,14 @@ struct SolverSection {
   std::optional<double> start_rad, end_rad;  ///< window override
   /// Past the window's end, at most this much more while the needle settles (docs/model.md §5)
   double settle_limit_deg = 3600.0;
+  int cycles = 1;                  ///< cam revolutions run back to back, [1, 1000]
+  double period_tolerance = 1e-6;  ///< a cycle-end state repeats within this fraction, (0, 1e-2]
 };
 
 /// [overspeed]: the lift-off sweep.
 struct OverspeedSection {
   std::optional<double> from_rpm, to_rpm;
+  bool steady_state = false;  ///< judge lift-off on the steady revolutions (needs cycles ≥ 2)
 };
 
 /// [tolerance]: how the inputs scatter in a tolerance study (`needle tolerance`): each is one

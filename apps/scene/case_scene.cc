@@ -51,6 +51,7 @@ Scene MakeScene(const Case& c) {
     s.train.restitution = c.train->restitution;
     s.train.seat_restitution = c.train->seat_restitution;
   }
+  s.revolution_rad = (c.engine.cycle == "four-stroke" ? 4.0 : 2.0) * kPi;
   if (c.solver) {
     s.start_rad = c.solver->start_rad;
     s.end_rad = c.solver->end_rad;
@@ -67,6 +68,8 @@ SimulationOptions OptionsFromCase(const Case& c) {
     o.integrator.max_steps = c.solver->max_steps;
     o.integrator.max_events = c.solver->max_events;
     o.settle_limit_deg = c.solver->settle_limit_deg;
+    o.cycles = c.solver->cycles;
+    o.period_tolerance = c.solver->period_tolerance;
   } else {
     o.integrator.atol_m = DefaultAtol(o.integrator.rtol);
   }

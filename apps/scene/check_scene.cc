@@ -58,6 +58,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);
     OverspeedOptions os;
     os.simulation = r.run_options;
+    os.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
     os.from_rpm = r.sweep_range.from_rpm;
     os.to_rpm = r.sweep_range.to_rpm;
     os.threads = options.threads;

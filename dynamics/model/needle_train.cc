@@ -69,6 +69,7 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
   const std::vector<double>& lift = cam_.law().table().lift_m;
   const double top = lift.empty() ? 0.0 : *std::max_element(lift.begin(), lift.end());
   gap_tolerance_ = 1e-14 * std::max(top + cam_.play_m(), 1e-6);
+  lift_energy_J_ = std::abs(p_.preload_N * top + 0.5 * p_.rate_N_m * top * top);
 }
 
 Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase) const {
@@ -196,7 +197,8 @@ double NeedleTrain::Energy(const TrainState& x, double t) const {
 
 double NeedleTrain::EnergyResidual(const TrainState& x0, const TrainState& xt, double t) const {
   const double e0 = Energy(x0, 0.0), e1 = Energy(xt, t);
-  const double scale = std::max(std::abs(xt[2]), std::abs(e0));  // max(|W|, |E(0)|)
+  // max(|W|, |E(0)|, P₀L + ½kL²): W of a needle that follows its cam all the way is ~0.
+  const double scale = std::max({std::abs(xt[2]), std::abs(e0), lift_energy_J_});
   return scale > 0.0 ? std::abs(e1 - e0 - xt[2] + xt[3]) / scale : 0.0;
 }
 

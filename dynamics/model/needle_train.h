@@ -109,8 +109,9 @@ class NeedleTrain {
   double NetForce(const Contacts& c, const Phase& phase) const;
   /// E of the audit (J).
   double Energy(const TrainState& x, double t) const;
-  /// The audit's residual |E(t) − E(0) − W + D| / max(|W|, |E(0)|) between the start x0 (t = 0)
-  /// and the state xt at time t, whose W and D are the integrated work and dissipation.
+  /// The audit's residual |E(t) − E(0) − W + D| / max(|W|, |E(0)|, P₀L + ½kL²) (L: the
+  /// table's largest lift) between the start x0 (t = 0) and the state xt at time t, whose W and
+  /// D are the integrated work and dissipation.
   double EnergyResidual(const TrainState& x0, const TrainState& xt, double t) const;
   /// The reset map of an impact: after the gap witness of the cam (`cam` true) or the seat
   /// crossed upward at (x, t), the state with the law's gap rate after the impact, the
@@ -156,6 +157,7 @@ class NeedleTrain {
   double omega_, theta_a_;
   std::shared_ptr<const ContactLaw> cam_law_, seat_law_;
   double gap_tolerance_ = 0.0;
+  double lift_energy_J_ = 0.0;  // P₀L + ½kL²: the residual's least scale
 };
 
 }  // namespace needle

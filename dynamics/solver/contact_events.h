@@ -67,6 +67,7 @@ struct Episode {
   double max_gap_m = 0.0;  ///< largest y − u
   int impact = -1;         ///< index of the impact that ends it, −1 if none
   bool open = false;       ///< still separated when the run ended (end_rad = the run's end)
+  int cycle = 0;           ///< the cam revolution it began in, 0-based ([solver] cycles)
 };
 
 struct Impact {
@@ -77,6 +78,7 @@ struct Impact {
   double crank_rad = 0.0;
   double speed_m_s = 0.0;      ///< approach speed ġ at onset, ≥ 0
   double energy_lost_J = 0.0;  ///< kinetic energy the reset map took, J (0: no reset)
+  int cycle = 0;               ///< the cam revolution it happened in, 0-based ([solver] cycles)
 };
 
 struct SeriesPoint {

@@ -220,5 +220,130 @@ TEST(SimulationTest, CvodeRootAtAndVeryNearTIsRestartedNotAnError) {
   }
 }
 
+// [solver] cycles (docs/model.md §5): cam revolutions back to back, the state carried over.
+
+// A needle that comes to rest within the revolution ends it where it began: the end state
+// repeats the start after one revolution, the run stops there, and that revolution is the
+// single window's run (the closed form: the same pieces, so the same impacts to round-off).
+TEST(SimulationCyclesTest, ANeedleAtRestAgainRepeatsAfterOneRevolution) {
+  const Scene s = MakeScene(LoadCase(kCases + "basu-example1.toml"));
+  SimulationOptions o = Options("exact", 1e-10);
+  const SimulationResult one = Simulate(s, 800, o);
+  o.cycles = 5;
+  const SimulationResult r = Simulate(s, 800, o);
+  ASSERT_EQ(r.cycles.size(), 1u);
+  EXPECT_EQ(r.period_cycles, 1);
+  EXPECT_EQ(r.periodic_from, 0);
+  EXPECT_DOUBLE_EQ(r.window_end_rad - r.window_start_rad, 4.0 * kPi);  // four-stroke
+  ASSERT_EQ(r.impacts.size(), one.impacts.size());
+  for (size_t i = 0; i < r.impacts.size(); ++i) {
+    EXPECT_EQ(r.impacts[i].kind, one.impacts[i].kind) << i;
+    EXPECT_NEAR(r.impacts[i].crank_rad, one.impacts[i].crank_rad, 1e-9) << i;
+  }
+  EXPECT_TRUE(r.liftoff());
+  EXPECT_LT(r.energy_residual, 1e-10);
+}
+
+// The Siconos cam follower at 220 rpm: the follower is still in flight when the first revolution
+// ends, lands in the second, chatters, sticks and is at rest when the second ends: a period-2
+// orbit. Started afresh each revolution (the state not carried) it would repeat after one.
+TEST(SimulationCyclesTest, TheCamFollowerBenchmarkRepeatsEveryTwoRevolutionsAt220Rpm) {
+  const Scene s = MakeScene(LoadCase(kCases + "siconos-cam-follower.toml"));
+  SimulationOptions o = Options("auto", 1e-10);
+  o.cycles = 20;
+  const SimulationResult r = Simulate(s, 220, o);
+  EXPECT_EQ(r.status, RunStatus::kComplete);
+  EXPECT_EQ(r.period_cycles, 2);
+  EXPECT_EQ(r.periodic_from, 0);
+  ASSERT_EQ(r.cycles.size(), 2u);
+  EXPECT_GT(r.cycles[0].end_lift_m, 1e-3);          // in flight at the revolution's end
+  EXPECT_NEAR(r.cycles[1].end_lift_m, 0.0, 1e-15);  // on the base circle, at rest
+  EXPECT_NEAR(r.cycles[1].end_velocity_m_s, 0.0, 1e-15);
+  EXPECT_DOUBLE_EQ(r.cycles[1].start_rad - r.cycles[0].start_rad, 2.0 * kPi);  // two-stroke
+  // The second revolution opens with the landing of the first one's flight.
+  int landings = 0;
+  for (const Impact& i : r.impacts) {
+    if (i.cycle == 1 && i.crank_rad < r.cycles[1].start_rad + 90.0 * kDeg) ++landings;
+  }
+  EXPECT_GT(landings, 0);
+  for (const CycleSummary& c : r.cycles) EXPECT_LT(c.energy_residual, 1e-8) << c.index;
+  // Once per period the chattering after the landing ends at its accumulation point.
+  EXPECT_EQ(r.stats.accumulations, 1);
+}
+
+// Without a repeat within the cycles asked for, every cycle runs; the steady state then counts
+// the revolutions after the first (the first starts from rest, as no running engine does).
+TEST(SimulationCyclesTest, WithoutARepeatEveryCycleRunsAndTheSteadyStateSkipsTheFirst) {
+  const Scene s = MakeScene(LoadCase(kCases + "siconos-cam-follower.toml"));
+  SimulationOptions o = Options("auto", 1e-10);
+  o.cycles = 12;
+  o.steady_state = true;
+  const SimulationResult r = Simulate(s, 358, o);
+  EXPECT_EQ(r.period_cycles, 0);
+  ASSERT_EQ(r.cycles.size(), 12u);
+  EXPECT_EQ(r.judged_from, 1);
+  double jump = 0.0;
+  for (const CycleSummary& c : r.cycles) {
+    if (c.index >= 1) jump += c.jump_rad;
+  }
+  EXPECT_DOUBLE_EQ(r.jump_rad, jump);
+  EXPECT_GT(r.cycles[0].jump_rad, 0.0);
+  EXPECT_TRUE(r.liftoff());
+}
+
+TEST(SimulationCyclesTest, RefusesCyclesOutOfRangeAndAWindowLongerThanARevolution) {
+  Scene s = MakeScene(LoadCase(kCases + "siconos-cam-follower.toml"));
+  SimulationOptions o = Options("auto", 1e-8);
+  const auto message = [&](const Scene& scene) {
+    try {
+      Simulate(scene, 120, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  o.cycles = 0;
+  EXPECT_EQ(message(s), "SimulationOptions.cycles = 0: must be in [1, 1000]");
+  o.cycles = 1001;
+  EXPECT_EQ(message(s), "SimulationOptions.cycles = 1001: must be in [1, 1000]");
+  o.cycles = 1;
+  o.steady_state = true;
+  EXPECT_EQ(message(s), "SimulationOptions.steady_state needs cycles >= 2, got 1");
+  o.steady_state = false;
+  o.cycles = 2;
+  s.end_rad = 300.0 * kDeg;  // from −95°: 395° of a 360° revolution
+  EXPECT_EQ(message(s),
+            "[solver] cycles: the run window (-95.000000 to 300.000000 deg) is longer than one "
+            "cam revolution (360.000000 deg)");
+}
+
+// The Siconos cam follower's cam (cases/siconos-cam-follower.toml: circular arcs, tabulated on
+// a 0.1° grid with the junctions as breaks) against its closed form: the contact force
+// m·ω²·h″ + k·(h − 0.3) first reaches zero just past the junction of the first two arcs, where
+// h″ jumps from +0.34 to −1.87 m/rad² (FollowerPlugin.cpp's arc 2 at β = π/2 + β2). The
+// tabulated cam (quintic pieces) gives n_qs within 1e-6 of it, and the rigid follower leaves at
+// that junction.
+TEST(SimulationCyclesTest, TheCamFollowerLeavesItsArcsWhereTheirContactForceFirstVanishes) {
+  const double k2 = 0.40393320723821, rho3 = 0.15, beta = kPi / 2 + 1.050328174371336;
+  const double b = beta + kPi / 9;
+  const double h = -k2 * std::cos(b) + rho3 * std::sqrt(1 - std::pow(std::sin(b) * k2 / rho3, 2));
+  const double c3 = std::cos(beta - 1.22173047639603), s3 = std::sin(beta - 1.22173047639603);
+  const double r3 = std::sqrt(1 - std::pow(c3 * k2 / rho3, 2));
+  const double hpp =
+      -k2 * s3 + k2 * k2 / (rho3 * r3) *
+                     (c3 * c3 - s3 * s3 - std::pow(k2 * s3 * c3, 2) / (rho3 * rho3 * r3 * r3));
+  EXPECT_NEAR(hpp, -1.8692125828, 1e-9);
+  const double n_exact = 60.0 / (2 * kPi) * std::sqrt(1430.8 * (h - 0.3) / (1.221 * -hpp));
+  EXPECT_NEAR(n_exact, 114.97933, 1e-5);
+
+  const Scene s = MakeScene(LoadCase(kCases + "siconos-cam-follower.toml"));
+  EXPECT_NEAR(QuasiStaticLiftoffRpm(s) / n_exact, 1.0, 1e-6);
+  SimulationOptions o = Options("auto", 1e-10);
+  EXPECT_FALSE(Simulate(s, 0.99 * n_exact, o).liftoff());
+  const SimulationResult r = Simulate(s, 1.01 * n_exact, o);
+  ASSERT_TRUE(r.liftoff());
+  EXPECT_NEAR(r.episodes.front().start_rad / kDeg, (beta / kDeg) - 180.0, 1e-3);
+}
+
 }  // namespace
 }  // namespace needle

@@ -121,5 +121,56 @@ TEST(LiftLawTest, SmoothingSplineNarrowsTheAccelerationSpreadUnderRounding) {
   }
 }
 
+// A cam of two parabolas joined with equal slope (s'' = 2 then −2 at θ = 1): built apart on each
+// piece (breaks), the not-a-knot cubic reproduces each parabola, so s'' keeps its jump to
+// round-off; one spline across the join smears it.
+TEST(LiftLawTest, BreaksKeepAJumpInTheAccelerationThatOneSplineSmears) {
+  LiftTable t;
+  for (int i = 0; i <= 20; ++i) {
+    const double x = 0.1 * i;
+    t.crank_rad.push_back(x);
+    t.lift_m.push_back(x <= 1.0 ? x * x : 1.0 + 2.0 * (x - 1.0) - (x - 1.0) * (x - 1.0));
+  }
+  LiftLawOptions o;
+  o.breaks_rad = {1.0};
+  const LiftLaw broken(t, o);
+  EXPECT_TRUE(broken.HasAcceleration());
+  for (double x : {0.05, 0.55, 0.95, 0.999999})
+    EXPECT_NEAR(broken.Derivative(x, 2), 2.0, 1e-9) << x;
+  for (double x : {1.0, 1.05, 1.55, 1.95}) EXPECT_NEAR(broken.Derivative(x, 2), -2.0, 1e-9) << x;
+  EXPECT_NEAR(broken.Derivative(1.0 - 1e-12, 1), 2.0, 1e-9);  // slopes still meet
+  EXPECT_NEAR(broken.Derivative(1.0, 1), 2.0, 1e-9);
+  const LiftLaw smeared(t, LiftLawOptions{});
+  EXPECT_GT(std::abs(smeared.Derivative(0.95, 2) - 2.0), 0.1);
+}
+
+TEST(LiftLawTest, BreaksMustBeTableAnglesInsideTheOpenLiftOfAnExactTable) {
+  LiftTable t{{0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8}, {0, 1, 2, 3, 4, 5, 6, 7, 8}};
+  const auto message = [&](std::vector<double> breaks, double closed_level = 0.0) {
+    LiftLawOptions o;
+    o.breaks_rad = std::move(breaks);
+    o.closed_level_m = closed_level;
+    try {
+      LiftLaw law(t, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  for (double& y : t.lift_m) y *= 1e-3;
+  EXPECT_EQ(message({0.25}),
+            "break 0 (14.3239°) must be an angle of the table strictly inside the open lift (0° "
+            "to 45.8366°)");
+  EXPECT_EQ(message({0.8}),
+            "break 0 (45.8366°) must be an angle of the table strictly inside the open lift (0° "
+            "to 45.8366°)");
+  EXPECT_EQ(message({0.5, 0.4}), "break 1 (22.9183°) must come after the one before it");
+  EXPECT_EQ(message({0.1}),
+            "the piece 0° to 5.72958° between breaks has 2 points; \"not-a-knot\" needs at "
+            "least 4");
+  EXPECT_EQ(message({0.4}, 1e-5), "breaks apply to an exact table only, not to measured data");
+  EXPECT_EQ(message({0.4}), "no error");
+}
+
 }  // namespace
 }  // namespace needle

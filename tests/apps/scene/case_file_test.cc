@@ -367,5 +367,43 @@ TEST(CaseFileTest, ARigidTrainTakesRestitutionAndRefusesTheCompliantKeys) {
             "has a damping ratio");
 }
 
+TEST(CaseFileTest, CyclesAndTheSteadyStateAreReadAndCheckedByName) {
+  const Case c = ParseCase(kGood +
+                               "[solver]\ncycles = 12\nperiod_tolerance = 1e-8\n"
+                               "[overspeed]\nsteady_state = true\n",
+                           "t.toml");
+  ASSERT_TRUE(c.solver && c.overspeed);
+  EXPECT_EQ(c.solver->cycles, 12);
+  EXPECT_EQ(c.solver->period_tolerance, 1e-8);
+  EXPECT_TRUE(c.overspeed->steady_state);
+  EXPECT_EQ(Error(kGood + "[solver]\ncycles = 2.5\n"),
+            "t.toml: [solver] cycles: must be a whole number in [1, 1000], got 2.5");
+  EXPECT_EQ(Error(kGood + "[solver]\ncycles = 0\n"),
+            "t.toml: [solver] cycles: must be a whole number in [1, 1000], got 0");
+  EXPECT_EQ(Error(kGood + "[solver]\nperiod_tolerance = 0.1\n"),
+            "t.toml: [solver] period_tolerance: must be in (0, 1e-2], got 0.1");
+  EXPECT_EQ(Error(kGood + "[overspeed]\nsteady_state = \"yes\"\n"),
+            "t.toml: [overspeed] steady_state: expected true or false");
+  EXPECT_EQ(Error(kGood + "[overspeed]\nsteady_state = true\n"),
+            "t.toml: [overspeed] steady_state: needs [solver] cycles of at least 2 (the steady "
+            "state is judged on the revolutions after the first)");
+}
+
+TEST(CaseFileTest, BreaksMarkAnExactTableAndRefuseWhatCannotGoWithThem) {
+  const Case c = ParseCase(kGood + "breaks_deg = [10]\n", "t.toml");
+  ASSERT_EQ(c.lift.breaks_rad.size(), 1u);
+  EXPECT_NEAR(c.lift.breaks_rad[0], 10.0 * kDeg, 1e-15);
+  EXPECT_EQ(Error(kGood + "breaks_deg = [10]\nnoise_mm = 0.01\n"),
+            "t.toml: [lift] breaks_deg: marks an exact table; it cannot go with noise_mm");
+  EXPECT_EQ(Error(kGood + "breaks_deg = [10, 0]\n"),
+            "t.toml: [lift] breaks_deg: angles must increase strictly (entry 1)");
+  EXPECT_EQ(Error(kGood + "breaks_deg = [10]\nspline = \"pchip\"\n"),
+            "t.toml: [lift] breaks_deg: needs spline = \"not-a-knot\", \"natural\" or "
+            "\"quintic\" (a spline built apart on each piece), got \"pchip\"");
+  EXPECT_EQ(Error("title = \"t\"\n[engine]\nspeed_rpm = 400\n[lift]\nnormal_curve = \"basu\"\n"
+                  "max_lift_mm = 3\nbreaks_deg = [10]\n"),
+            "t.toml: [lift] breaks_deg: applies to a table (crank_deg + lift_mm, or csv)");
+}
+
 }  // namespace
 }  // namespace needle
