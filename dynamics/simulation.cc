@@ -131,12 +131,9 @@ void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
                const SimulationOptions& o, SimulationResult& r) {
   const double theta_a = r.window_start_rad;
   const double revolution = scene.revolution_rad;
-  if (!(r.window_end_rad <= theta_a + revolution)) {
-    throw std::invalid_argument(
-        "[solver] cycles: the run window (" + std::to_string(theta_a / kDeg) + " to " +
-        std::to_string(r.window_end_rad / kDeg) + " deg) is longer than one cam revolution (" +
-        std::to_string(revolution / kDeg) + " deg)");
-  }
+  if (const auto refusal = CyclesRefusal(scene))
+    throw std::invalid_argument("[solver] cycles: " + *refusal);
+
   r.window_end_rad = theta_a + revolution;
   r.cycles_asked = o.cycles;
   const double lift_scale = std::max(scene.cam->law().Max(0).value + scene.cam->play_m(), 1e-6);
@@ -228,6 +225,15 @@ RunWindow DefaultRunWindow(const Scene& scene) {
   w.start_rad = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
   w.end_rad = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
   return w;
+}
+
+std::optional<std::string> CyclesRefusal(const Scene& scene) {
+  const RunWindow w = DefaultRunWindow(scene);
+  if (w.end_rad <= w.start_rad + scene.revolution_rad) return std::nullopt;
+  std::ostringstream out;
+  out << "the run window (" << w.start_rad / kDeg << " to " << w.end_rad / kDeg
+      << " deg) is longer than one cam revolution (" << scene.revolution_rad / kDeg << " deg)";
+  return out.str();
 }
 
 double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm) {

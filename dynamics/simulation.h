@@ -128,6 +128,10 @@ struct RunWindow {
 };
 RunWindow DefaultRunWindow(const Scene& scene);
 
+/// Why `scene` cannot be run revolution after revolution (its run window is longer than one
+/// cam revolution), or nullopt: "the run window (… to … deg) is longer than …".
+std::optional<std::string> CyclesRefusal(const Scene& scene);
+
 /// Contact oscillations per cam event, √((k_c + k)/m)·(θ_N − θ_0)/(2π ω): the stiffness measure
 /// `auto` decides by.
 double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm);

@@ -97,7 +97,11 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
   sim.record_series = o.csv.has_value() || o.series;
-  if (o.cycles) sim.cycles = *o.cycles;
+  if (o.cycles) {
+    sim.cycles = *o.cycles;
+    const auto refusal = sim.cycles > 1 ? CyclesRefusal(scene) : std::nullopt;
+    if (refusal) throw CaseError("--cycles: " + *refusal);
+  }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   const SimulationResult r = Simulate(scene, speed, sim);
   if (o.csv && r.skipped)

@@ -56,6 +56,10 @@ Scene MakeScene(const Case& c) {
     s.start_rad = c.solver->start_rad;
     s.end_rad = c.solver->end_rad;
   }
+  if (c.solver && c.solver->cycles > 1) {
+    if (const auto refusal = CyclesRefusal(s))
+      throw CaseError(c.path + ": [solver] cycles: " + *refusal);
+  }
   return s;
 }
 

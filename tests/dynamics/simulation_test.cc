@@ -313,8 +313,8 @@ TEST(SimulationCyclesTest, RefusesCyclesOutOfRangeAndAWindowLongerThanARevolutio
   o.cycles = 2;
   s.end_rad = 300.0 * kDeg;  // from −95°: 395° of a 360° revolution
   EXPECT_EQ(message(s),
-            "[solver] cycles: the run window (-95.000000 to 300.000000 deg) is longer than one "
-            "cam revolution (360.000000 deg)");
+            "[solver] cycles: the run window (-95 to 300 deg) is longer than one cam revolution "
+            "(360 deg)");
 }
 
 // The Siconos cam follower's cam (cases/siconos-cam-follower.toml: circular arcs, tabulated on
