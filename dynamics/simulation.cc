@@ -19,13 +19,13 @@ constexpr double kRigidOscillations = 500.0;
 constexpr double kRigidMargin = 0.5;
 
 // One integration from x0 over [0, t_end] (then on while the needle settles, for at most
-// settle_deg past it; 0: stop at t_end) appended to r as cam revolution `cycle`: its episodes,
-// impacts and series shifted by that many revolutions, its extremes and statistics merged.
-// Returns the state at its end (NaN after a budget stop) and sets r's status.
-TrainState RunPass(const NeedleTrain& train, Method method, const TrainState& x0, double t_end,
-                   double settle_deg, const SimulationOptions& o, int cycle, SimulationResult& r,
-                   const Scene* scene = nullptr) {
-  const double shift_rad = scene ? cycle * scene->revolution_rad : 0.0;
+// settle_deg past it; 0: stop at t_end) appended to r as cam revolution `cycle`, which begins
+// shift_rad after θ_a: its episodes, impacts and series shifted so, its extremes and statistics
+// merged, r's status set. Returns the revolution's summary, with the state at its end (NaN
+// after a budget stop).
+CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& x0, double t_end,
+                     double settle_deg, const SimulationOptions& o, int cycle, double shift_rad,
+                     SimulationResult& r) {
   const double shift_s = shift_rad / train.omega();
   Recorder recorder(train, o.record_series);
   IntegratorOptions io = o.integrator;
@@ -97,27 +97,24 @@ TrainState RunPass(const NeedleTrain& train, Method method, const TrainState& x0
   r.stats.final_time = stats.final_time + shift_s;
   r.stats.final_phase = stats.final_phase;
 
-  if (scene) {
-    CycleSummary c;
-    c.index = cycle;
-    c.start_rad = train.Angle(0.0) + shift_rad;
-    c.impacts = static_cast<int>(recorder.impacts().size());
-    for (const Episode& e : recorder.episodes()) {
-      if (e.kind == "jump") ++c.jumps;
-      c.max_gap_m = std::max(c.max_gap_m, e.max_gap_m);
-    }
-    c.jump_rad = recorder.jump_rad();
-    c.longest_jump_rad = recorder.longest_jump_rad();
-    c.end_lift_m = end[0];
-    c.end_velocity_m_s = end[1];
-    c.energy_residual = residual;
-    r.cycles.push_back(c);
+  CycleSummary c;
+  c.index = cycle;
+  c.start_rad = train.Angle(0.0) + shift_rad;
+  c.impacts = static_cast<int>(recorder.impacts().size());
+  for (const Episode& e : recorder.episodes()) {
+    if (e.kind == "jump") ++c.jumps;
+    c.max_gap_m = std::max(c.max_gap_m, e.max_gap_m);
   }
-  return end;
+  c.jump_rad = recorder.jump_rad();
+  c.longest_jump_rad = recorder.longest_jump_rad();
+  c.end_lift_m = end[0];
+  c.end_velocity_m_s = end[1];
+  c.energy_residual = residual;
+  return c;
 }
 
 // Whether cycle-end state b repeats a: lift within tol·L, velocity within tol·ω·L (L the
-// largest lift), and the same number of impacts in the revolutions they end.
+// largest lift). RunCycles asks for the same impacts per revolution besides.
 bool Repeats(const TrainState& a, const TrainState& b, double tol, double lift_m, double omega) {
   return std::abs(a[0] - b[0]) <= tol * lift_m && std::abs(a[1] - b[1]) <= tol * omega * lift_m;
 }
@@ -142,11 +139,12 @@ void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
   for (int cycle = 0; cycle < o.cycles; ++cycle) {
     TrainState x0 = ends.back();
     x0[2] = x0[3] = 0.0;  // the audit of each revolution on its own
-    const TrainState end =
-        RunPass(train, method, x0, revolution / train.omega(), 0.0, o, cycle, r, &scene);
+    const CycleSummary c = RunPass(train, method, x0, revolution / train.omega(), 0.0, o, cycle,
+                                   cycle * revolution, r);
+    r.cycles.push_back(c);
     if (r.status == RunStatus::kBudget) break;
-    ends.push_back(end);
-    impacts.push_back(r.cycles.back().impacts);
+    ends.push_back({c.end_lift_m, c.end_velocity_m_s, 0.0, 0.0});
+    impacts.push_back(c.impacts);
     const int j = cycle + 1;
     for (int k = 1; k <= kMaxPeriod && k <= j; ++k) {
       bool repeats = Repeats(ends[j - k], ends[j], o.period_tolerance, lift_scale, train.omega());
@@ -333,7 +331,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
 
   if (o.cycles == 1) {
     RunPass(train, method, train.EquilibriumStart(), (theta_b - theta_a) / omega,
-            o.settle_limit_deg, o, 0, r);
+            o.settle_limit_deg, o, 0, 0.0, r);
     return r;
   }
   RunCycles(scene, train, method, o, r);

@@ -129,9 +129,7 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
                           {"max_gap_mm", e.max_gap_m * 1e3},
                           {"impact", e.impact},
                           {"open", e.open}});
-    }
-    if (r.cycles_asked > 1) {
-      for (size_t k = 0; k < r.episodes.size(); ++k) episodes[k]["cycle"] = r.episodes[k].cycle;
+      if (r.cycles_asked > 1) episodes.back()["cycle"] = e.cycle;
     }
     j["episodes"] = episodes;
     nlohmann::json impacts = nlohmann::json::array();
@@ -140,9 +138,9 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
                          {"crank_deg", i.crank_rad / kDeg},
                          {"speed_m_s", i.speed_m_s},
                          {"energy_lost_J", i.energy_lost_J}});
+      if (r.cycles_asked > 1) impacts.back()["cycle"] = i.cycle;
     }
     if (r.cycles_asked > 1) {
-      for (size_t k = 0; k < r.impacts.size(); ++k) impacts[k]["cycle"] = r.impacts[k].cycle;
       nlohmann::json cycles = nlohmann::json::array();
       for (const CycleSummary& cy : r.cycles) {
         cycles.push_back({{"index", cy.index},

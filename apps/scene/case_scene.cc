@@ -55,10 +55,8 @@ Scene MakeScene(const Case& c) {
   if (c.solver) {
     s.start_rad = c.solver->start_rad;
     s.end_rad = c.solver->end_rad;
-  }
-  if (c.solver && c.solver->cycles > 1) {
-    if (const auto refusal = CyclesRefusal(s))
-      throw CaseError(c.path + ": [solver] cycles: " + *refusal);
+    const auto refusal = c.solver->cycles > 1 ? CyclesRefusal(s) : std::nullopt;
+    if (refusal) throw CaseError(c.path + ": [solver] cycles: " + *refusal);
   }
   return s;
 }
