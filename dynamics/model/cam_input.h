@@ -50,6 +50,13 @@ class CamInput {
   double fall_end_rad() const { return fall_end_; }
   /// Every angle where a derivative of u jumps (ramp feet, θ_0, θ_N, spline knots), sorted.
   const std::vector<double>& Breaks() const { return breaks_; }
+  /// Whether u's slope may jump at the break `crank_rad` (one of Breaks()): at θ_0, θ_N and the
+  /// ramp feet. Elsewhere (spline knots, a table's breaks) u is C¹ by the model, and a slope
+  /// difference between pieces is only the spline's error.
+  bool SlopeMayJump(double crank_rad) const {
+    return crank_rad == rise_start_ || crank_rad == fall_end_ || crank_rad == law_.start_rad() ||
+           crank_rad == law_.end_rad();
+  }
   double play_m() const { return play_; }
   const LiftLaw& law() const { return law_; }
 

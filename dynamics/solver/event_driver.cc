@@ -460,6 +460,18 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     recorder_.Sample(t, x, phase);
     bool extended;  // the horizon moved past t_end: the backend restarts as past a break
     if (RunIsOver(t, x, phase, recorder_, t_end, t_limit, horizon, extended)) break;
+    if (at_segment_end && t < horizon && train_.HasConstraint() &&
+        train_.cam().SlopeMayJump(phase.segment_end_rad)) {
+      // A rigid contact sticking across a break where the cam's slope may jump: the needle on
+      // the surface as it arrives (from the left), the mode settled against the surface beyond,
+      // so that the jump is an impact (the surface turns into the needle) or a release (it
+      // drops away).
+      x = train_.Project(x, t, phase);
+      while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
+      phase.segment_end_rad = next_break < breaks.size() ? all_breaks.angles[next_break]
+                                                         : std::numeric_limits<double>::infinity();
+      signs = SettleMode(x, t);
+    }
     if ((at_segment_end || extended) && t < horizon)
       Restart(x, t, stepper_->CurrentStep());  // past the break
   }
