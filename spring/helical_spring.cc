@@ -67,6 +67,9 @@ HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N
   c.stress_ok = c.stress_full_lift_Pa <= c.allowable_stress_Pa;
   c.clearance_ok = c.clearance_full_lift_m >= c.min_clearance_m;
   c.surge_ok = c.surge_ratio >= kMinSurgeRatio;
+  c.fatigue = CheckFatigue(c.stress_preload_Pa, c.stress_full_lift_Pa, g.tensile_Pa, g.shot_peened);
+  c.fatigue_judged = d < kZimmerliMaxWire_m;
+  c.fatigue_ok = !c.fatigue_judged || c.fatigue.goodman_safety_factor >= 1.0;
   return c;
 }
 

@@ -13,10 +13,15 @@
 ///     surge           f_e = d/(2π n D²) · √(G/(2ρ))   (fixed at both ends, first mode)
 ///     cam frequency   f_cam = n_rpm/120 (four-stroke), n_rpm/60 (two-stroke)
 ///
-/// Passes when τ at full lift ≤ allowable fraction · R_m, the gaps at full lift ≥ S_a, and
-/// f_e/f_cam ≥ 13.
+///     fatigue         τ_min = τ(P₀), τ_max = τ(P₀ + R h_max): Goodman with Zimmerli's
+///                     strengths (spring/wire_material.h), n_f = S_a/τ_a
+///
+/// Passes when τ at full lift ≤ allowable fraction · R_m, the gaps at full lift ≥ S_a,
+/// f_e/f_cam ≥ 13, and n_f ≥ 1 (the working stroke inside the Goodman line) where Zimmerli's
+/// data apply (wire below 10 mm; beyond, fatigue is not judged and says so).
 
 #include "spring/spring_parameters.h"
+#include "spring/wire_material.h"
 
 namespace needle {
 
@@ -40,8 +45,12 @@ struct HelicalSpringCheck {
   double surge_hz = 0.0;
   double cam_hz = 0.0;
   double surge_ratio = 0.0;
+  /// The working stroke's fatigue check; judged only when Zimmerli's data cover the wire.
+  FatigueCheck fatigue;
+  bool fatigue_judged = false;  ///< wire below kZimmerliMaxWire_m
   bool stress_ok = false, clearance_ok = false, surge_ok = false;
-  bool pass() const { return stress_ok && clearance_ok && surge_ok; }
+  bool fatigue_ok = true;  ///< n_f ≥ 1 (true when not judged)
+  bool pass() const { return stress_ok && clearance_ok && surge_ok && fatigue_ok; }
 };
 
 /// The rate R = G d⁴ / (8 D³ n) of `g`, N/m.

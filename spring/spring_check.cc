@@ -84,7 +84,11 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
     r.failures.push_back(std::string("helical spring: ") +
                          (!r.helical->stress_ok ? "shear stress above the allowable; " : "") +
                          (!r.helical->clearance_ok ? "coil gaps below S_a; " : "") +
-                         (!r.helical->surge_ok ? "surge ratio below 13" : ""));
+                         (!r.helical->surge_ok ? "surge ratio below 13; " : "") +
+                         (!r.helical->fatigue_ok
+                              ? "fatigue: the working stroke is outside the Goodman line (n_f " +
+                                    Fixed(r.helical->fatigue.goodman_safety_factor, 2) + " < 1)"
+                              : ""));
   }
   for (double v : {r.inertia_force_N, r.min_quasi_static.force_N, r.required_preload_N,
                    r.gas_force_N, r.train.preload_N}) {

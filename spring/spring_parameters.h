@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include "spring/wire_material.h"
+
 namespace needle {
 
 /// The moving parts reduced to the needle (a case's [needle]), SI.
@@ -25,13 +27,15 @@ enum class SpringEnds { kClosedGround, kClosed, kOpenGround, kOpen };
 
 /// Helical compression spring geometry and material, all SI.
 struct HelicalGeometry {
-  double wire_m = 0.0;            ///< wire diameter d
-  double coil_m = 0.0;            ///< mean coil diameter D
-  double active_coils = 0.0;      ///< n
-  double free_length_m = 0.0;     ///< L0
-  double shear_modulus_Pa = 0.0;  ///< G
-  double density_kg_m3 = 7850.0;  ///< ρ
-  double tensile_Pa = 0.0;        ///< tensile strength R_m
+  double wire_m = 0.0;             ///< wire diameter d
+  double coil_m = 0.0;             ///< mean coil diameter D
+  double active_coils = 0.0;       ///< n
+  double free_length_m = 0.0;      ///< L0
+  double shear_modulus_Pa = 0.0;   ///< G
+  double density_kg_m3 = 7850.0;   ///< ρ
+  double tensile_Pa = 0.0;         ///< tensile strength R_m (from `grade` when not stated)
+  std::optional<WireGrade> grade;  ///< the wire's EN grade, when named
+  bool shot_peened = false;        ///< Zimmerli's peened strengths instead of unpeened
   SpringEnds ends = SpringEnds::kClosedGround;
   bool wahl = false;                ///< stress correction: Wahl instead of Bergsträsser
   double allowable_fraction = 0.5;  ///< allowable shear stress as a fraction of R_m

@@ -80,6 +80,22 @@ nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& r
     d["impacts"] = run->impacts.size();
   }
   if (sweep) j["overspeed"]["status"] = sweep->status;
+  j["limits"] = nlohmann::json::array();
+  for (const LimitRow& x : result.limits) {
+    nlohmann::json row = {{"name", x.key},        {"unit", x.unit}, {"at_most", x.at_most},
+                          {"verdict", x.verdict}, {"note", x.note}, {"source", x.source}};
+    // NaN (not judged) is null in JSON.
+    for (auto [k, v] : {std::pair<const char*, double>{"value", x.value},
+                        {"limit", x.limit},
+                        {"margin", x.margin}}) {
+      row[k] = std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    }
+    j["limits"].push_back(row);
+  }
+  if (result.harmonics) {
+    j["resonance"]["surge_modes_Hz"] = result.surge_modes_hz;
+    j["resonance"]["highest_significant_order"] = result.harmonics->highest_significant_order;
+  }
   if (profile) j["profile"]["undercut"] = profile->undercut;
   return j;
 }
@@ -397,6 +413,82 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     report.AddHtml(t.str());
   }
 
+  if (!result.limits.empty()) {
+    std::ostringstream t;
+    t << "<h2>Limits</h2><table class=\"grid\"><tr><th>limit</th><th>value</th><th>limit</th>"
+         "<th>margin</th><th>verdict</th><th>where / why</th><th>source of the limit</th></tr>";
+    for (const LimitRow& x : result.limits) {
+      const std::string u = x.unit.empty() ? "" : " " + Escape(x.unit);
+      const bool judged = x.verdict != "not judged";
+      t << "<tr><td>" << Escape(x.name) << "</td><td>"
+        << (judged ? Num(x.value, 2) + u : std::string("—")) << "</td><td>"
+        << (x.at_most ? "≤ " : "≥ ") << (std::isfinite(x.limit) ? Num(x.limit, 2) + u : "—")
+        << "</td><td>" << (judged ? Num(x.margin, 2) + u : std::string("—")) << "</td><td>"
+        << (judged ? Verdict(x.verdict == "pass") : std::string("not judged")) << "</td><td>"
+        << Escape(x.note) << "</td><td>" << Escape(x.source) << "</td></tr>";
+    }
+    report.AddHtml(t.str() + "</table>");
+  }
+  if (result.harmonics && !result.surge_modes_hz.empty()) {
+    // The resonance map (a Campbell diagram): each significant cam harmonic's frequency
+    // i·f_cam(n) against speed, the spring's modes as horizontal lines.
+    const CamHarmonics& h = *result.harmonics;
+    const bool four = c.engine.cycle == "four-stroke";
+    const double n_max =
+        std::max(2.0 * rpm, sweep ? result.sweep_range.to_rpm : 0.0);  // the speeds shown
+    Series lines{"orders", {}}, modes{"modes", {}}, hits{"hits", {}};
+    std::ostringstream t;
+    t << "<h2>Resonance map</h2><p>The cam's harmonics (orders whose acceleration reaches "
+      << Fixed(100 * h.threshold, 1) << " % of the largest: 1 to " << h.highest_significant_order
+      << ") against the spring's modes f_j = j·½√(k/m_s) = ";
+    for (size_t j = 0; j < result.surge_modes_hz.size(); ++j)
+      t << (j ? ", " : "") << Fixed(result.surge_modes_hz[j], 1) << " Hz";
+    t << ". Order i meets mode j at n = " << (four ? "120" : "60")
+      << "·f_j/i rpm.</p><table class=\"grid\"><tr><th>order i</th><th>acceleration harmonic "
+         "(% of largest)</th>";
+    for (size_t j = 0; j < result.surge_modes_hz.size(); ++j)
+      t << "<th>meets mode " << j + 1 << " at (rpm)</th>";
+    t << "</tr>";
+    double largest = 0.0;
+    for (int i = 1; i < int(h.acceleration_m_rad2.size()); ++i)
+      largest = std::max(largest, h.acceleration_m_rad2[i]);
+    const double per_rpm = four ? 1.0 / 120.0 : 1.0 / 60.0;  // f_cam per rpm
+    for (int i = 1; i <= h.highest_significant_order; ++i) {
+      t << "<tr><td>" << i << "</td><td>" << Fixed(100 * h.acceleration_m_rad2[i] / largest, 1)
+        << "</td>";
+      for (double f : result.surge_modes_hz) {
+        const double n = f / (i * per_rpm);
+        t << "<td>" << Fixed(n, 0) << "</td>";
+        if (n <= n_max) hits.rows.push_back({n, f});
+      }
+      t << "</tr>";
+      lines.rows.push_back({0.0, 0.0, double(i)});
+      lines.rows.push_back({n_max, i * per_rpm * n_max, double(i)});
+      lines.rows.push_back({NAN, NAN, NAN});
+    }
+    for (double f : result.surge_modes_hz) {
+      modes.rows.push_back({0.0, f});
+      modes.rows.push_back({n_max, f});
+      modes.rows.push_back({NAN, NAN});
+    }
+    if (hits.rows.empty()) hits.rows.push_back({NAN, NAN});
+    report.AddHtml(t.str() + "</table>");
+    report.AddFigure(
+        "Resonance map: cam harmonic frequencies i·f_cam against speed (lines, orders 1 to " +
+            std::to_string(h.highest_significant_order) +
+            "), the spring's first three modes (dashed) and where they meet (circles); the "
+            "vertical line is the rated speed",
+        {lines, modes, hits},
+        "set xlabel 'speed (rpm)'\nset ylabel 'frequency (Hz)'\nunset key\nset xrange [0:" +
+            Fixed(n_max, 1) + "]\nset yrange [0:" + Fixed(1.2 * result.surge_modes_hz.back(), 1) +
+            "]\nset arrow from " + Fixed(rpm, 1) + ", graph 0 to " + Fixed(rpm, 1) +
+            ", graph 1 nohead dt 2 lc rgb '#888888'\n"
+            "plot $orders using 1:2 with lines lw 1 lc rgb '#4477aa', "
+            "$modes using 1:2 with lines dt 2 lw 2 lc rgb '#cc3311', "
+            "$hits using 1:2 with points pt 6 ps 1.2 lc rgb '#000000'",
+        520);
+  }
+
   WriteOutput({"--out", path}, report.Html());
   if (o.json) {
     std::cout << CheckJson(c, law, result, path).dump(2) << '\n';
@@ -415,6 +507,18 @@ int RunCheckCommand(const CheckCommandOptions& o) {
               << (sweep->n_dyn_rpm ? Fixed(*sweep->n_dyn_rpm, 1) + " rpm"
                                    : std::string("none in the range"))
               << '\n';
+  }
+  if (!result.limits.empty()) {
+    std::cout << "limits (value, limit, margin, verdict):\n";
+    for (const LimitRow& x : result.limits) {
+      const std::string u = x.unit.empty() ? "" : " " + x.unit;
+      std::cout << "  " << x.name << ": "
+                << (x.verdict == "not judged"
+                        ? "not judged (" + x.note + ")"
+                        : Num(x.value, 2) + u + (x.at_most ? " <= " : " >= ") + Num(x.limit, 2) +
+                              u + ", margin " + Num(x.margin, 2) + u + ", " + x.verdict)
+                << '\n';
+    }
   }
   for (const auto& f : failing) std::cout << "fails: " << f << '\n';
   std::cout << "report: " << path << " (" << report.figures() << " figures)\n"

@@ -256,13 +256,31 @@ HelicalGeometry ReadHelical(SectionReader& r) {
     r.Fail("active_coils", "must be at least 2 (EN 13906-1), got " + Number(*coils));
   g.active_coils = *coils;
   g.free_length_m = Positive(r, "free_length", Dimension::kLength, 1e3, "free_length_mm");
-  g.shear_modulus_Pa =
-      Positive(r, "shear_modulus", Dimension::kPressure, 1e-9, "shear_modulus_GPa");
+  if (auto grade = r.OptionalString("grade")) {
+    g.grade = ParseWireGrade(*grade);
+    if (!g.grade)
+      r.Fail("grade", "expected one of " + WireGradeList() + ", got \"" + *grade + "\"");
+  }
+  if (auto peened = r.OptionalBool("shot_peened")) g.shot_peened = *peened;
+  if (g.grade && !r.FindQuantity("shear_modulus", Dimension::kPressure)) {
+    g.shear_modulus_Pa = GradeData(*g.grade).shear_modulus_Pa;  // EN 13906-1's G of the grade
+  } else {
+    g.shear_modulus_Pa =
+        Positive(r, "shear_modulus", Dimension::kPressure, 1e-9, "shear_modulus_GPa");
+  }
   if (auto rho = r.OptionalQuantity("density", Dimension::kDensity)) {
     if (!(*rho > 0.0)) r.Fail("density_kg_m3", "must be positive, got " + Number(*rho));
     g.density_kg_m3 = *rho;
   }
-  g.tensile_Pa = Positive(r, "tensile", Dimension::kPressure, 1e-6, "tensile_MPa");
+  if (g.grade && !r.FindQuantity("tensile", Dimension::kPressure)) {
+    try {
+      g.tensile_Pa = TensileStrengthPa(*g.grade, g.wire_m);  // R_m(d) of the grade
+    } catch (const std::invalid_argument& e) {
+      r.Fail("grade", e.what());
+    }
+  } else {
+    g.tensile_Pa = Positive(r, "tensile", Dimension::kPressure, 1e-6, "tensile_MPa");
+  }
   const double index = g.coil_m / g.wire_m;
   if (index < 4.0 || index > 20.0) {
     r.Fail("coil_mm", "spring index D/d = " + Number(index) +
@@ -535,6 +553,50 @@ FollowerKeys ReadFollowerKeys(SectionReader& r) {
   return k;
 }
 
+LimitsSection ReadLimits(SectionReader r) {
+  LimitsSection l;
+  const auto positive = [&r](const std::string& name, Dimension dim, double shown,
+                             const std::string& unit, double& into) {
+    if (auto v = r.OptionalQuantity(name, dim)) {
+      if (!(*v > 0.0 && std::isfinite(*v)))
+        r.Fail(r.last_key(), "must be positive, got " + Number(*v * shown) + " " + unit);
+      into = *v;
+    }
+  };
+  const auto fraction = [&r](const std::string& name, double low, double& into) {
+    if (auto v = r.OptionalQuantity(name, Dimension::kPercent)) {
+      if (!(*v >= low && *v <= 1.0))
+        r.Fail(r.last_key(), "must be in " + Number(low * 100) + "…100 %, got " + Number(*v * 100));
+      into = *v;
+    }
+  };
+  positive("seating_velocity", Dimension::kVelocity, 1.0, "m/s", l.seating_velocity_m_s);
+  fraction("min_contact_force", 0.0, l.min_contact_force_fraction);
+  fraction("separation_margin", -1.0, l.separation_margin_fraction);
+  positive("hertz_stress", Dimension::kPressure, 1e-6, "MPa", l.hertz_stress_Pa);
+  double length = 0.0;
+  positive("contact_length", Dimension::kLength, 1e3, "mm", length);
+  if (length > 0.0) l.contact_length_m = length;
+  positive("elastic_modulus", Dimension::kPressure, 1e-9, "GPa", l.elastic_modulus_Pa);
+  if (auto nu = r.OptionalNumber("poisson")) {
+    if (!(*nu >= 0.0 && *nu < 0.5)) r.Fail("poisson", "must be in [0, 0.5), got " + Number(*nu));
+    l.poisson = *nu;
+  }
+  if (auto f = r.OptionalNumber("fatigue_safety_factor")) {
+    if (!(*f >= 1.0 && *f <= 10.0))
+      r.Fail("fatigue_safety_factor", "must be in 1…10, got " + Number(*f));
+    l.fatigue_safety_factor = *f;
+  }
+  double gap = 0.0;
+  positive("coil_gap", Dimension::kLength, 1e3, "mm", gap);
+  if (gap > 0.0) l.coil_gap_m = gap;
+  fraction("resonance_margin", 0.0, l.resonance_margin_fraction);
+  fraction("harmonic_threshold", 0.001, l.harmonic_threshold);
+  if (!(l.harmonic_threshold < 1.0)) r.Fail("harmonic_threshold_percent", "must be below 100 %");
+  r.Finish();
+  return l;
+}
+
 ProfileSection ReadProfile(SectionReader r) {
   ProfileSection p;
   FollowerGeometry& g = p.follower;
@@ -770,7 +832,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
   const toml::table root = ParseToml(text, path);
   static const std::set<std::string> kSections = {"engine",    "lift",   "needle",    "spring",
                                                   "train",     "solver", "overspeed", "profile",
-                                                  "tolerance", "paper"};
+                                                  "tolerance", "paper",  "limits"};
   for (const auto& [k, node] : root) {
     const std::string key(k.str());
     if (key == "title") {
@@ -780,7 +842,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
     if (!kSections.count(key)) {
       throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
                       " (known: title, [engine], [lift], [needle], [spring], [train], [solver], "
-                      "[overspeed], [profile], [tolerance], [paper])");
+                      "[overspeed], [profile], [tolerance], [paper], [limits])");
     }
   }
   Case c;
@@ -809,6 +871,8 @@ Case ParseCase(const std::string& text, const std::string& path) {
   if (const toml::table* paper = Section(root, path, "paper")) {
     c.paper = ReadPaper(SectionReader(paper, path, "paper"));
   }
+  if (const toml::table* t = Section(root, path, "limits"))
+    c.limits = ReadLimits(SectionReader(t, path, "limits"));
   if (c.lift.spline_given) CheckSplineFits(c, c.lift.spline.kind, "[lift] spline");
   if (c.overspeed && c.overspeed->steady_state && !(c.solver && c.solver->cycles >= 2)) {
     throw CaseError(path +

@@ -139,6 +139,34 @@ struct ProfileSection {
   int points = 720;  ///< points over one cam revolution
 };
 
+/// [limits]: the design limits `needle check` judges, one row each (README "The limits table"
+/// gives the source of every default).
+struct LimitsSection {
+  /// Largest landing speed of the needle on its seat, m/s: the top of Blair's optimum ramp
+  /// velocity range, 1.0–1.5 m/s at the highest operating speed.
+  double seating_velocity_m_s = 1.5;
+  /// Least cam contact force during the lift as a fraction of the preload (0: the force stays
+  /// positive, docs/model.md §6's lift-off criterion).
+  double min_contact_force_fraction = 0.0;
+  /// n_dyn at least (1 + this)·f·n (0: the model contract's passing check, n_dyn > f·n).
+  double separation_margin_fraction = 0.0;
+  /// Largest Hertz stress cam–roller, Pa: ISO 6336-5's σ_Hlim of case-hardened steel, MQ.
+  double hertz_stress_Pa = 1500e6;
+  std::optional<double> contact_length_m;  ///< the roller's width in contact (needs [profile])
+  double elastic_modulus_Pa = 210e9;       ///< E of cam and roller (steel)
+  double poisson = 0.3;                    ///< ν (steel)
+  /// Least Goodman–Zimmerli fatigue safety factor of the spring: the design factor of
+  /// Shigley's fatigue-design example (§10-12), 1.5.
+  double fatigue_safety_factor = 1.5;
+  /// Least coil gap at full lift, m; absent: EN 13906-1's S_a of the spring.
+  std::optional<double> coil_gap_m;
+  /// Least distance of the first surge mode above the highest significant cam harmonic at the
+  /// rated speed, as a fraction of that harmonic's frequency (0: above it).
+  double resonance_margin_fraction = 0.0;
+  /// A cam harmonic is significant when its acceleration reaches this fraction of the largest.
+  double harmonic_threshold = 0.05;
+};
+
 /// The case's [needle] and [spring] are the spring module's parameters.
 using NeedleSection = NeedleParameters;
 using SpringSection = SpringParameters;
@@ -156,6 +184,7 @@ struct Case {
   std::optional<ProfileSection> profile;
   std::optional<ToleranceSection> tolerance;
   std::optional<PaperSection> paper;
+  LimitsSection limits;  ///< [limits], defaults when absent
 };
 
 /// A synthesis specification (`needle synth SPEC.toml`): [rise] angle_deg, lift_mm, step_deg;

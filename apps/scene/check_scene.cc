@@ -7,6 +7,7 @@
 #include "apps/scene/case_scene.h"
 #include "lib/output.h"
 #include "lib/units.h"
+#include "spring/quasi_static.h"
 
 namespace needle {
 
@@ -19,6 +20,178 @@ SweepRange DefaultSweepRange(const Case& c, double rated_rpm, double n_qs_rpm) {
           : (std::isfinite(n_qs_rpm) ? std::max(2.0 * n_qs_rpm, 2.0 * rated_rpm) : 4.0 * rated_rpm);
   return r;
 }
+
+namespace {
+
+// The limits table (README "The limits table"): one row per limit, judged where the scene has
+// what it needs, else "not judged" with the reason.
+void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r) {
+  const LimitsSection& l = c.limits;
+  const bool four = c.engine.cycle == "four-stroke";
+  const auto row = [&](std::string key, std::string name, std::string unit, bool at_most,
+                       double limit, std::string source) {
+    LimitRow x;
+    x.key = std::move(key);
+    x.name = std::move(name);
+    x.unit = std::move(unit);
+    x.at_most = at_most;
+    x.limit = limit;
+    x.source = std::move(source);
+    x.verdict = "not judged";
+    return x;
+  };
+  const auto judge = [](LimitRow& x, double value, std::string note) {
+    x.value = value;
+    x.margin = x.at_most ? x.limit - value : value - x.limit;
+    x.verdict = x.margin >= 0.0 ? "pass" : "fail";
+    x.note = std::move(note);
+  };
+  const LimitsSection d;  // the defaults, to name where a limit came from
+  const auto from = [](bool set, const std::string& key, const std::string& cited) {
+    return set ? "[limits] " + key : cited;
+  };
+
+  LimitRow seat = row("seating_velocity", "seating velocity", "m/s", true, l.seating_velocity_m_s,
+                      from(l.seating_velocity_m_s != d.seating_velocity_m_s, "seating_velocity",
+                           "Blair: optimum ramp velocity 1.0-1.5 m/s"));
+  LimitRow force = row("min_contact_force", "least contact force in the lift", "% of P0", false,
+                       100 * l.min_contact_force_fraction,
+                       from(l.min_contact_force_fraction != d.min_contact_force_fraction,
+                            "min_contact_force_percent", "model: F_c > 0 (no lift-off)"));
+  if (r.run && c.spring) {
+    double landing = 0.0;
+    std::string where = "no landing on the seat in the run";
+    for (const Impact& i : r.run->impacts) {
+      if (i.kind.rfind("seat", 0) == 0 && i.kind != "seat-sticking" && i.speed_m_s >= landing) {
+        landing = i.speed_m_s;
+        where = i.kind + " at " + Fixed(i.crank_rad / kDeg, 2) + " deg";
+      }
+    }
+    judge(seat, landing, where);
+    judge(force, 100 * r.run->min_contact_force_during_lift_N / c.spring->preload_N,
+          Fixed(r.run->min_contact_force_during_lift_N, 1) + " N of P0 " +
+              Fixed(c.spring->preload_N, 1) + " N");
+  } else {
+    seat.note = force.note = "no dynamics ([train] missing)";
+  }
+
+  LimitRow sep = row("separation_margin", "separation margin n_dyn/(f n) - 1", "%", false,
+                     100 * l.separation_margin_fraction,
+                     from(l.separation_margin_fraction != d.separation_margin_fraction,
+                          "separation_margin_percent", "model: n_dyn > f n"));
+  if (r.sweep && r.sweep->status != "run-budget" && r.sweep->status != "budget") {
+    if (r.sweep->n_dyn_rpm) {
+      judge(sep, 100 * (*r.sweep->n_dyn_rpm / r.overspeed_rpm - 1),
+            "n_dyn " + Fixed(*r.sweep->n_dyn_rpm, 1) + " rpm, f n " + Fixed(r.overspeed_rpm, 1) +
+                " rpm");
+    } else {
+      judge(sep, 100 * (r.sweep->scanned_to_rpm / r.overspeed_rpm - 1),
+            "no lift-off up to " + Fixed(r.sweep->scanned_to_rpm, 1) + " rpm (a lower bound)");
+    }
+  } else {
+    sep.note = r.sweep ? "the sweep is undecided (" + r.sweep->status + ")"
+                       : "no overspeed sweep ([train] missing)";
+  }
+
+  LimitRow hertz =
+      row("hertz_stress", "Hertz stress cam-roller", "MPa", true, l.hertz_stress_Pa * 1e-6,
+          from(l.hertz_stress_Pa != d.hertz_stress_Pa, "hertz_stress_MPa",
+               "ISO 6336-5 case-hardened MQ, 1500 MPa"));
+  if (r.profile && r.spring && l.contact_length_m) {
+    const FollowerGeometry& g = c.profile->follower;
+    const RigidTrain& t = r.spring->train;
+    const double omega = OmegaFromRpm(r.speed_rpm), k = four ? 2.0 : 1.0;
+    const double play = c.train ? c.train->play_m : 0.0;
+    double worst = 0.0, at = 0.0;
+    for (const ProfilePoint& q : r.profile->points) {
+      const double th = cam_zero_crank_rad + k * q.cam_rad;
+      const bool open = th >= law.start_rad() && th <= law.end_rad();
+      const double f_needle = open ? QuasiStaticForce(law, t, omega, th)
+                                   : (play > 0 ? 0.0 : t.preload_N - t.gas_force_N);  // base circle
+      const double stress = ContactStress(g, q, std::max(0.0, f_needle) / g.lever_ratio,
+                                          l.elastic_modulus_Pa, l.poisson, *l.contact_length_m);
+      if (stress > worst) {
+        worst = stress;
+        at = q.cam_rad;
+      }
+    }
+    judge(hertz, worst * 1e-6,
+          "quasi-static force at " + Fixed(r.speed_rpm, 0) + " rpm, worst at cam " +
+              Fixed(at / kDeg, 1) + " deg");
+  } else {
+    hertz.note = !r.profile  ? "no [profile] (the cam's radius)"
+                 : !r.spring ? "no spring check (the contact force)"
+                             : "no [limits] contact_length_mm (the roller's width)";
+  }
+
+  const std::optional<HelicalSpringCheck> helical =
+      r.spring ? r.spring->helical : std::optional<HelicalSpringCheck>();
+  LimitRow fatigue = row("fatigue_safety_factor", "spring fatigue safety factor (Goodman)", "",
+                         false, l.fatigue_safety_factor,
+                         from(l.fatigue_safety_factor != d.fatigue_safety_factor,
+                              "fatigue_safety_factor", "Shigley 10-12: design factor 1.5"));
+  LimitRow gap = row("coil_gap", "coil gap at full lift", "mm", false, NAN,
+                     l.coil_gap_m ? "[limits] coil_gap_mm" : "EN 13906-1: S_a");
+  LimitRow res = row("resonance_margin", "first surge mode above the cam's harmonics", "%", false,
+                     100 * l.resonance_margin_fraction,
+                     from(l.resonance_margin_fraction != d.resonance_margin_fraction,
+                          "resonance_margin_percent", "no significant harmonic at the mode"));
+  if (helical) {
+    const HelicalSpringCheck& h = *helical;
+    if (h.fatigue_judged) {
+      judge(fatigue, h.fatigue.goodman_safety_factor,
+            "tau " + Fixed(h.stress_preload_Pa * 1e-6, 0) + "-" +
+                Fixed(h.stress_full_lift_Pa * 1e-6, 0) + " MPa, " +
+                (c.spring->helical->shot_peened ? "shot-peened" : "unpeened") + " (Zimmerli)");
+    } else {
+      fatigue.note = "wire " + Fixed(c.spring->helical->wire_m * 1e3, 1) +
+                     " mm: Zimmerli's data cover wire below 10 mm";
+    }
+    gap.limit = (l.coil_gap_m ? *l.coil_gap_m : h.min_clearance_m) * 1e3;
+    judge(gap, h.clearance_full_lift_m * 1e3, "");
+    const HelicalGeometry& geo = *c.spring->helical;
+    const double ms = ActiveSpringMassKg(geo);
+    for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(SurgeFrequencyHz(h.rate_N_m, ms, j));
+    r.harmonics = LiftHarmonics(law, four ? 4 * kPi : 2 * kPi, 1000, l.harmonic_threshold);
+    const int top = r.harmonics->highest_significant_order;
+    const double f_top = top * h.cam_hz;
+    judge(res, 100 * (r.surge_modes_hz[0] / f_top - 1),
+          "f_1 " + Fixed(r.surge_modes_hz[0], 1) + " Hz, order " + std::to_string(top) + " at " +
+              Fixed(f_top, 1) + " Hz");
+  } else {
+    fatigue.note = gap.note = res.note = "no helical spring geometry ([spring] wire_mm …)";
+  }
+  r.limits = {seat, force, sep, hertz, fatigue, gap, res};
+  for (const LimitRow& x : r.limits) {
+    if (x.verdict == "fail") {
+      r.failing.push_back("limits: " + x.name + " " + Fixed(x.value, 2) +
+                          (x.unit.empty() ? "" : " ") + x.unit +
+                          (x.at_most ? " above " : " below ") + Fixed(x.limit, 2) +
+                          (x.unit.empty() ? "" : " ") + x.unit + " (" + x.source + ")");
+    }
+  }
+  // The rows not judged, in one line grouped by reason.
+  std::vector<std::pair<std::string, std::string>> by_reason;  // reason, names
+  for (const LimitRow& x : r.limits) {
+    if (x.verdict != "not judged") continue;
+    auto it = std::find_if(by_reason.begin(), by_reason.end(),
+                           [&](const auto& p) { return p.first == x.note; });
+    if (it == by_reason.end()) {
+      by_reason.push_back({x.note, x.name});
+    } else {
+      it->second += ", " + x.name;
+    }
+  }
+  if (!by_reason.empty()) {
+    std::string line = "limits not judged: ";
+    for (size_t i = 0; i < by_reason.size(); ++i) {
+      line += (i ? "; " : "") + by_reason[i].second + " (" + by_reason[i].first + ")";
+    }
+    r.skipped.push_back(line);
+  }
+}
+
+}  // namespace
 
 CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options) {
   CheckResult r;
@@ -89,8 +262,9 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
   }
 
   // The cam profile, when the case has [profile].
+  double cam_zero_crank_rad = 0.0;
   if (c.profile) {
-    r.profile = MakeCaseProfile(c, law);
+    r.profile = MakeCaseProfile(c, law, &cam_zero_crank_rad);
     const bool flat = c.profile->follower.kind == FollowerKind::kFlat;
     if (r.profile->undercut) {
       fail(std::string("cam profile: the profile ") + (flat ? "has a cusp" : "undercuts") +
@@ -106,6 +280,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
   } else {
     r.skipped.push_back("cam profile: the case has no [profile] section");
   }
+  if (law.HasAcceleration()) JudgeLimits(c, law, cam_zero_crank_rad, r);
   r.pass = r.failing.empty();  // one rule: a scene passes when nothing fails
   return r;
 }

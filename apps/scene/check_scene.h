@@ -8,7 +8,9 @@
 ///     needle at rest before the run window's end);
 ///   - the overspeed sweep: n_dyn above f·n (f = [spring] overspeed_factor, 1.2), and the
 ///     sweep decided (neither budget ended it);
-///   - the cam profile ([profile]): no undercut (a flat face: no cusp), the contact on the face.
+///   - the cam profile ([profile]): no undercut (a flat face: no cusp), the contact on the face;
+///   - the limits table ([limits], cited defaults): every row that can be judged within its
+///     limit; a row the scene cannot judge says why and is named among the skipped.
 ///
 /// A part the scene does not have is skipped and named, never passed silently. The command
 /// only formats the result (text, JSON, the HTML report).
@@ -24,6 +26,7 @@
 #include "lib/cam_profile.h"
 #include "lib/kinematics.h"
 #include "lib/result_fields.h"
+#include "spring/resonance.h"
 #include "spring/spring_check.h"
 
 namespace needle {
@@ -38,6 +41,20 @@ struct SweepRange {
 /// from_rpm, else the rated speed; to [overspeed] to_rpm, else max(2·n_qs, 2·rated) when n_qs
 /// is finite and 4·rated when it is not (a lift law that never decelerates).
 SweepRange DefaultSweepRange(const Case& c, double rated_rpm, double n_qs_rpm);
+
+/// One row of the limits table (case [limits]): value against limit, in display units.
+struct LimitRow {
+  std::string key;     ///< JSON name, e.g. "seating_velocity"
+  std::string name;    ///< "seating velocity"
+  std::string unit;    ///< display unit, e.g. "m/s"
+  double value = NAN;  ///< NaN when not judged
+  double limit = NAN;
+  bool at_most = true;  ///< passes when value ≤ limit (else value ≥ limit)
+  double margin = NAN;  ///< limit − value (at most) or value − limit (at least), same unit
+  std::string verdict;  ///< "pass", "fail" or "not judged"
+  std::string note;     ///< where or why (not judged: what is missing)
+  std::string source;   ///< the default's source, or "[limits] KEY" when the case sets it
+};
 
 /// Options of CheckScene; every field has a default.
 struct CheckOptions {
@@ -61,6 +78,9 @@ struct CheckResult {
   std::optional<CamProfile> profile;        ///< with [profile]
   double n_qs_rpm = NAN;                    ///< quasi-static lift-off; NaN without a spring
   double overspeed_rpm = 0.0;               ///< f·n, the speed n_dyn must exceed
+  std::vector<LimitRow> limits;             ///< the limits table, every row (judged or not)
+  std::optional<CamHarmonics> harmonics;    ///< the lift's harmonics (with a helical spring)
+  std::vector<double> surge_modes_hz;       ///< the spring's first three modes (helical)
   bool pass = true;                         ///< no part failed
   std::vector<std::string> failing;         ///< one line per failing item, named
   std::vector<std::string> skipped;         ///< one line per part not run, and why

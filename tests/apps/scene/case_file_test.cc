@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "lib/units.h"
+#include "spring/wire_material.h"
 
 namespace needle {
 namespace {
@@ -129,7 +130,7 @@ TEST(CaseFileTest, UnknownKeysSectionsAndUnits) {
             "t.toml: [engine] bore_mm: unknown key in this section");
   EXPECT_EQ(Error(kGood + "[valve]\nx = 1\n"),
             "t.toml: valve: unknown section (known: title, [engine], [lift], [needle], [spring], "
-            "[train], [solver], [overspeed], [profile], [tolerance], [paper])");
+            "[train], [solver], [overspeed], [profile], [tolerance], [paper], [limits])");
   EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rps = 400")),
             "t.toml: [engine] speed_rps: unit suffix 'rps' is not a unit of rotation speed "
             "(expected speed_rpm)");
@@ -403,6 +404,66 @@ TEST(CaseFileTest, BreaksMarkAnExactTableAndRefuseWhatCannotGoWithThem) {
   EXPECT_EQ(Error("title = \"t\"\n[engine]\nspeed_rpm = 400\n[lift]\nnormal_curve = \"basu\"\n"
                   "max_lift_mm = 3\nbreaks_deg = [10]\n"),
             "t.toml: [lift] breaks_deg: applies to a table (crank_deg + lift_mm, or csv)");
+}
+
+TEST(CaseFileTest, WireGradeAndTheLimitsSection) {
+  const std::string spring = kGood + R"(
+[needle]
+mass_kg = 2.0
+[spring]
+preload_N = 500
+wire_mm = 4
+coil_mm = 30
+active_coils = 6
+free_length_mm = 80
+grade = "VDSiCr"
+)";
+  const Case c = ParseCase(spring, "t.toml");
+  EXPECT_DOUBLE_EQ(c.spring->helical->tensile_Pa, TensileStrengthPa(WireGrade::kVDSiCr, 4e-3));
+  EXPECT_DOUBLE_EQ(c.spring->helical->shear_modulus_Pa, 79.5e9);
+  EXPECT_FALSE(c.spring->helical->shot_peened);
+  // A certificate's value wins over the grade's.
+  EXPECT_DOUBLE_EQ(
+      ParseCase(Replace(spring, "grade", "tensile_MPa = 1900\nshot_peened = true\ngrade"), "t.toml")
+          .spring->helical->tensile_Pa,
+      1900e6);
+  EXPECT_EQ(Error(Replace(spring, "\"VDSiCr\"", "\"55SiCr6\"")),
+            "t.toml: [spring] grade: expected one of SH, DH, VDC, VDCrV, VDSiCr, got \"55SiCr6\"");
+  EXPECT_EQ(
+      Error(Replace(spring, "wire_mm = 4", "wire_mm = 1.2")),
+      "t.toml: [spring] grade: grade VDSiCr (R_m of A401 chrome-silicon) is tabulated for "
+      "wire 1.60…9.50 mm, got 1.200 mm; give tensile_MPa from the wire's certificate instead");
+
+  // [limits]: defaults when absent, each key read in its unit, bad values named.
+  EXPECT_DOUBLE_EQ(c.limits.seating_velocity_m_s, 1.5);
+  EXPECT_DOUBLE_EQ(c.limits.fatigue_safety_factor, 1.5);
+  EXPECT_FALSE(c.limits.contact_length_m);
+  const Case l = ParseCase(spring + R"(
+[limits]
+seating_velocity_mm_s = 800
+min_contact_force_percent = 10
+hertz_stress_MPa = 1300
+contact_length_mm = 12
+fatigue_safety_factor = 1.2
+coil_gap_mm = 0.5
+resonance_margin_percent = 20
+)",
+                           "t.toml");
+  EXPECT_DOUBLE_EQ(l.limits.seating_velocity_m_s, 0.8);
+  EXPECT_DOUBLE_EQ(l.limits.min_contact_force_fraction, 0.1);
+  EXPECT_DOUBLE_EQ(l.limits.hertz_stress_Pa, 1300e6);
+  EXPECT_DOUBLE_EQ(*l.limits.contact_length_m, 12e-3);
+  EXPECT_DOUBLE_EQ(l.limits.fatigue_safety_factor, 1.2);
+  EXPECT_DOUBLE_EQ(*l.limits.coil_gap_m, 0.5e-3);
+  EXPECT_DOUBLE_EQ(l.limits.resonance_margin_fraction, 0.2);
+  EXPECT_EQ(Error(spring + "[limits]\nseating_velocity_m_s = -1\n"),
+            "t.toml: [limits] seating_velocity_m_s: must be positive, got -1 m/s");
+  EXPECT_EQ(Error(spring + "[limits]\nfatigue_safety_factor = 0.5\n"),
+            "t.toml: [limits] fatigue_safety_factor: must be in 1…10, got 0.5");
+  EXPECT_EQ(Error(spring + "[limits]\nmin_contact_force_percent = 150\n"),
+            "t.toml: [limits] min_contact_force_percent: must be in 0…100 %, got 150");
+  EXPECT_EQ(Error(spring + "[limits]\nseat_speed = 1\n").rfind("t.toml: [limits] seat_speed: ", 0),
+            0u);
 }
 
 }  // namespace

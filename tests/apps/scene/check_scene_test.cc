@@ -106,9 +106,48 @@ TEST(CheckSceneTest, AKinematicsOnlySceneSaysWhatItSkipped) {
   const Case c = ParseCase(kSmall, "t.toml");
   const CheckResult r = CheckScene(c, MakeLiftLaw(c));
   EXPECT_TRUE(r.pass);
-  EXPECT_EQ(r.skipped.size(), 3u);
+  EXPECT_EQ(r.skipped.size(), 4u);
+  // The limits table names what it could not judge, in one line grouped by what is missing.
+  EXPECT_TRUE(Contains(r.skipped,
+                       "limits not judged: seating velocity, least contact force in "
+                       "the lift (no dynamics ([train] missing)); separation margin"));
+  EXPECT_EQ(r.limits.size(), 7u);
+  for (const LimitRow& x : r.limits) EXPECT_EQ(x.verdict, "not judged") << x.key;
   EXPECT_TRUE(std::isnan(r.n_qs_rpm));
   EXPECT_FALSE(r.spring || r.run || r.sweep || r.profile);
+}
+
+// Basu's Example 2 with its stated helical spring: the limits table judges six rows and fails
+// two, each named with its value, limit and source.
+TEST(CheckSceneTest, TheLimitsTableOfExample2) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml");
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_EQ(r.limits.size(), 7u);
+  const auto row = [&](const std::string& key) {
+    for (const LimitRow& x : r.limits)
+      if (x.key == key) return x;
+    return LimitRow{};
+  };
+  EXPECT_EQ(row("hertz_stress").verdict, "not judged");
+  EXPECT_EQ(row("hertz_stress").note, "no [profile] (the cam's radius)");
+  const LimitRow f = row("fatigue_safety_factor");
+  EXPECT_EQ(f.verdict, "fail");
+  EXPECT_NEAR(f.value, 1.462, 1e-3);  // τ 642 → 689 MPa, R_m 1600 MPa, unpeened
+  EXPECT_DOUBLE_EQ(f.limit, 1.5);
+  EXPECT_NEAR(f.margin, f.value - 1.5, 1e-12);
+  EXPECT_EQ(row("resonance_margin").verdict, "fail");  // 194.6 Hz under order 90 (300 Hz)
+  EXPECT_EQ(row("coil_gap").verdict, "pass");
+  EXPECT_EQ(row("seating_velocity").verdict, "pass");
+  EXPECT_EQ(row("separation_margin").verdict, "pass");
+  EXPECT_NEAR(row("separation_margin").value, 100 * (r.sweep->n_dyn_rpm.value() / 480 - 1), 1e-9);
+  EXPECT_TRUE(Contains(r.failing,
+                       "limits: spring fatigue safety factor (Goodman) 1.46 below "
+                       "1.50 (Shigley 10-12: design factor 1.5)"));
+  EXPECT_FALSE(r.pass);
+  ASSERT_EQ(r.surge_modes_hz.size(), 3u);
+  EXPECT_NEAR(r.surge_modes_hz[1], 2 * r.surge_modes_hz[0], 1e-9);
 }
 
 }  // namespace
