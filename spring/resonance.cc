@@ -76,7 +76,7 @@ CamHarmonics LiftHarmonics(const LiftLaw& law, double revolution_crank_rad, int 
   fft.fwd(accel_spectrum, a);
   CamHarmonics h;
   h.threshold = threshold;
-  double largest = 0.0;
+  double& largest = h.largest_acceleration_m_rad2;
   for (int i = 0; i <= orders; ++i) {
     const double scale = (i == 0 ? 1.0 : 2.0) / kSamples;
     h.lift_m.push_back(scale * std::abs(lift_spectrum[i]));

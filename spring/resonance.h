@@ -45,6 +45,7 @@ struct CamHarmonics {
   std::vector<double> lift_m;
   /// a_i, the acceleration's harmonic per (cam rad/s)², m/rad² (multiply by Ω²); a₀ = 0.
   std::vector<double> acceleration_m_rad2;
+  double largest_acceleration_m_rad2 = 0.0;  ///< the largest a_i (i ≥ 1)
   /// The highest order whose acceleration harmonic reaches `threshold` of the largest.
   int highest_significant_order = 0;
   double threshold = 0.05;

@@ -418,7 +418,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     t << "<h2>Limits</h2><table class=\"grid\"><tr><th>limit</th><th>value</th><th>limit</th>"
          "<th>margin</th><th>verdict</th><th>where / why</th><th>source of the limit</th></tr>";
     for (const LimitRow& x : result.limits) {
-      const std::string u = x.unit.empty() ? "" : " " + Escape(x.unit);
+      const std::string u = Escape(x.UnitSuffix());
       const bool judged = x.verdict != "not judged";
       t << "<tr><td>" << Escape(x.name) << "</td><td>"
         << (judged ? Num(x.value, 2) + u : std::string("—")) << "</td><td>"
@@ -449,10 +449,8 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     for (size_t j = 0; j < result.surge_modes_hz.size(); ++j)
       t << "<th>meets mode " << j + 1 << " at (rpm)</th>";
     t << "</tr>";
-    double largest = 0.0;
-    for (int i = 1; i < int(h.acceleration_m_rad2.size()); ++i)
-      largest = std::max(largest, h.acceleration_m_rad2[i]);
-    const double per_rpm = four ? 1.0 / 120.0 : 1.0 / 60.0;  // f_cam per rpm
+    const double largest = h.largest_acceleration_m_rad2;
+    const double per_rpm = spring->helical->cam_hz / rpm;  // f_cam per rpm
     for (int i = 1; i <= h.highest_significant_order; ++i) {
       t << "<tr><td>" << i << "</td><td>" << Fixed(100 * h.acceleration_m_rad2[i] / largest, 1)
         << "</td>";
@@ -511,7 +509,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   if (!result.limits.empty()) {
     std::cout << "limits (value, limit, margin, verdict):\n";
     for (const LimitRow& x : result.limits) {
-      const std::string u = x.unit.empty() ? "" : " " + x.unit;
+      const std::string u = x.UnitSuffix();
       std::cout << "  " << x.name << ": "
                 << (x.verdict == "not judged"
                         ? "not judged (" + x.note + ")"

@@ -205,6 +205,19 @@ double Positive(SectionReader& r, const std::string& name, Dimension dimension, 
   return v;
 }
 
+// An optional quantity that must be positive when given; the message names `shown_key` and,
+// when `unit` is not empty, the unit of the value shown.
+std::optional<double> OptionalPositive(SectionReader& r, const std::string& name,
+                                       Dimension dimension, double si_to_shown,
+                                       const std::string& shown_key, const std::string& unit = "") {
+  const auto v = r.OptionalQuantity(name, dimension);
+  if (v && !(*v > 0.0)) {
+    r.Fail(shown_key,
+           "must be positive, got " + Number(*v * si_to_shown) + (unit.empty() ? "" : " " + unit));
+  }
+  return v;
+}
+
 NeedleSection ReadNeedle(SectionReader r) {
   NeedleSection n;
   n.mass_kg = r.Quantity("mass", Dimension::kMass);
@@ -555,14 +568,6 @@ FollowerKeys ReadFollowerKeys(SectionReader& r) {
 
 LimitsSection ReadLimits(SectionReader r) {
   LimitsSection l;
-  const auto positive = [&r](const std::string& name, Dimension dim, double shown,
-                             const std::string& unit, double& into) {
-    if (auto v = r.OptionalQuantity(name, dim)) {
-      if (!(*v > 0.0 && std::isfinite(*v)))
-        r.Fail(r.last_key(), "must be positive, got " + Number(*v * shown) + " " + unit);
-      into = *v;
-    }
-  };
   const auto fraction = [&r](const std::string& name, double low, double& into) {
     if (auto v = r.OptionalQuantity(name, Dimension::kPercent)) {
       if (!(*v >= low && *v <= 1.0))
@@ -570,14 +575,19 @@ LimitsSection ReadLimits(SectionReader r) {
       into = *v;
     }
   };
-  positive("seating_velocity", Dimension::kVelocity, 1.0, "m/s", l.seating_velocity_m_s);
+  if (auto v = OptionalPositive(r, "seating_velocity", Dimension::kVelocity, 1.0,
+                                "seating_velocity_m_s", "m/s"))
+    l.seating_velocity_m_s = *v;
   fraction("min_contact_force", 0.0, l.min_contact_force_fraction);
   fraction("separation_margin", -1.0, l.separation_margin_fraction);
-  positive("hertz_stress", Dimension::kPressure, 1e-6, "MPa", l.hertz_stress_Pa);
-  double length = 0.0;
-  positive("contact_length", Dimension::kLength, 1e3, "mm", length);
-  if (length > 0.0) l.contact_length_m = length;
-  positive("elastic_modulus", Dimension::kPressure, 1e-9, "GPa", l.elastic_modulus_Pa);
+  if (auto v = OptionalPositive(r, "hertz_stress", Dimension::kPressure, 1e-6, "hertz_stress_MPa",
+                                "MPa"))
+    l.hertz_stress_Pa = *v;
+  l.contact_length_m =
+      OptionalPositive(r, "contact_length", Dimension::kLength, 1e3, "contact_length_mm", "mm");
+  if (auto v = OptionalPositive(r, "elastic_modulus", Dimension::kPressure, 1e-9,
+                                "elastic_modulus_GPa", "GPa"))
+    l.elastic_modulus_Pa = *v;
   if (auto nu = r.OptionalNumber("poisson")) {
     if (!(*nu >= 0.0 && *nu < 0.5)) r.Fail("poisson", "must be in [0, 0.5), got " + Number(*nu));
     l.poisson = *nu;
@@ -587,9 +597,7 @@ LimitsSection ReadLimits(SectionReader r) {
       r.Fail("fatigue_safety_factor", "must be in 1…10, got " + Number(*f));
     l.fatigue_safety_factor = *f;
   }
-  double gap = 0.0;
-  positive("coil_gap", Dimension::kLength, 1e3, "mm", gap);
-  if (gap > 0.0) l.coil_gap_m = gap;
+  l.coil_gap_m = OptionalPositive(r, "coil_gap", Dimension::kLength, 1e3, "coil_gap_mm", "mm");
   fraction("resonance_margin", 0.0, l.resonance_margin_fraction);
   fraction("harmonic_threshold", 0.001, l.harmonic_threshold);
   if (!(l.harmonic_threshold < 1.0)) r.Fail("harmonic_threshold_percent", "must be below 100 %");
@@ -920,10 +928,7 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
   r.Declare("fuel_density");
   auto positive = [&](const std::string& name, Dimension dim, double shown, const std::string& key,
                       double& into) {
-    if (auto v = r.OptionalQuantity(name, dim)) {
-      if (!(*v > 0.0)) r.Fail(key, "must be positive, got " + Number(*v * shown));
-      into = *v;
-    }
+    if (auto v = OptionalPositive(r, name, dim, shown, key)) into = *v;
   };
   auto number = [&](const std::string& key, double lo, double& into) {
     if (auto v = r.OptionalNumber(key)) {

@@ -124,8 +124,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                              : "no [limits] contact_length_mm (the roller's width)";
   }
 
-  const std::optional<HelicalSpringCheck> helical =
-      r.spring ? r.spring->helical : std::optional<HelicalSpringCheck>();
+  const HelicalSpringCheck* helical = r.spring && r.spring->helical ? &*r.spring->helical : nullptr;
   LimitRow fatigue = row("fatigue_safety_factor", "spring fatigue safety factor (Goodman)", "",
                          false, l.fatigue_safety_factor,
                          from(l.fatigue_safety_factor != d.fatigue_safety_factor,
@@ -149,9 +148,8 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     }
     gap.limit = (l.coil_gap_m ? *l.coil_gap_m : h.min_clearance_m) * 1e3;
     judge(gap, h.clearance_full_lift_m * 1e3, "");
-    const HelicalGeometry& geo = *c.spring->helical;
-    const double ms = ActiveSpringMassKg(geo);
-    for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(SurgeFrequencyHz(h.rate_N_m, ms, j));
+    // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's.
+    for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
     r.harmonics = LiftHarmonics(law, four ? 4 * kPi : 2 * kPi, 1000, l.harmonic_threshold);
     const int top = r.harmonics->highest_significant_order;
     const double f_top = top * h.cam_hz;
@@ -164,10 +162,9 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
   r.limits = {seat, force, sep, hertz, fatigue, gap, res};
   for (const LimitRow& x : r.limits) {
     if (x.verdict == "fail") {
-      r.failing.push_back("limits: " + x.name + " " + Fixed(x.value, 2) +
-                          (x.unit.empty() ? "" : " ") + x.unit +
-                          (x.at_most ? " above " : " below ") + Fixed(x.limit, 2) +
-                          (x.unit.empty() ? "" : " ") + x.unit + " (" + x.source + ")");
+      r.failing.push_back("limits: " + x.name + " " + Fixed(x.value, 2) + x.UnitSuffix() +
+                          (x.at_most ? " above " : " below ") + Fixed(x.limit, 2) + x.UnitSuffix() +
+                          " (" + x.source + ")");
     }
   }
   // The rows not judged, in one line grouped by reason.

@@ -54,6 +54,8 @@ struct LimitRow {
   std::string verdict;  ///< "pass", "fail" or "not judged"
   std::string note;     ///< where or why (not judged: what is missing)
   std::string source;   ///< the default's source, or "[limits] KEY" when the case sets it
+  /// " unit" after a number, or nothing for a pure number.
+  std::string UnitSuffix() const { return unit.empty() ? "" : " " + unit; }
 };
 
 /// Options of CheckScene; every field has a default.

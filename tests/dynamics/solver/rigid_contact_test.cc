@@ -17,6 +17,17 @@
 namespace needle {
 namespace {
 
+// Dormand–Prince at rtol 1e-10 and 1 fm on the lift, the dynamic run forced: the reference
+// the rigid law's detachment and impact angles are read from.
+SimulationOptions TightDopri5() {
+  SimulationOptions o;
+  o.method = "dopri5";
+  o.integrator.rtol = 1e-10;
+  o.integrator.atol_m = 1e-14;
+  o.force_dynamic = true;
+  return o;
+}
+
 const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
 
 // The methods that take a rigid contact: the one-step time steppers (RigidRefusal).
@@ -160,11 +171,7 @@ TEST(RigidContactTest, TheNeedleLetsGoOfTheCamWhereTheQuasiStaticForceReachesZer
     const double mid = 0.5 * (lo + hi);
     (QuasiStaticForce(*scene.law, rigid, omega, mid) > 0.0 ? lo : hi) = mid;
   }
-  SimulationOptions o;
-  o.method = "dopri5";
-  o.integrator.rtol = 1e-10;
-  o.integrator.atol_m = 1e-14;
-  o.force_dynamic = true;
+  const SimulationOptions o = TightDopri5();
   const SimulationResult r = Simulate(scene, rpm, o);
   ASSERT_FALSE(r.episodes.empty());
   EXPECT_EQ(r.episodes[0].kind, "jump");
@@ -257,11 +264,7 @@ TEST(RigidContactTest, TheCamStrikesTheStickingNeedleWhereItsSlopeJumps) {
   scene.train = RigidParameters(0.0);  // plastic: each impact sticks at once
   scene.train.rate_N_m = 1e4;
   const double rpm = 100.0, omega = OmegaFromRpm(rpm);
-  SimulationOptions o;
-  o.method = "dopri5";
-  o.integrator.rtol = 1e-10;
-  o.integrator.atol_m = 1e-14;
-  o.force_dynamic = true;
+  const SimulationOptions o = TightDopri5();
   const SimulationResult r = Simulate(scene, rpm, o);
   EXPECT_EQ(r.status, RunStatus::kComplete);
   EXPECT_LT(r.energy_residual, 1e-9);
