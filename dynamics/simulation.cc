@@ -31,8 +31,7 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
   IntegratorOptions io = o.integrator;
   io.settle_limit_s = settle_deg * kDeg / train.omega();
   IntegrationStats stats;
-  TrainState end{};
-  end.fill(std::numeric_limits<double>::quiet_NaN());
+  TrainState end(train.StateSize(), std::numeric_limits<double>::quiet_NaN());
   double residual = std::numeric_limits<double>::quiet_NaN();
   try {
     stats = Integrate(method, train, x0, t_end, recorder, io);
@@ -109,14 +108,24 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
   c.longest_jump_rad = recorder.longest_jump_rad();
   c.end_lift_m = end[0];
   c.end_velocity_m_s = end[1];
+  c.end_coils.assign(end.begin() + 4, end.end());
   c.energy_residual = residual;
   return c;
 }
 
-// Whether cycle-end state b repeats a: lift within tol·L, velocity within tol·ω·L (L the
-// largest lift). RunCycles asks for the same impacts per revolution besides.
-bool Repeats(const TrainState& a, const TrainState& b, double tol, double lift_m, double omega) {
-  return std::abs(a[0] - b[0]) <= tol * lift_m && std::abs(a[1] - b[1]) <= tol * omega * lift_m;
+// Whether cycle-end state b repeats a: lifts (the needle's and the coils') within tol·L,
+// velocities within tol·ω·L (L the largest lift). RunCycles asks for the same impacts per
+// revolution besides.
+bool Repeats(const NeedleTrain& train, const TrainState& a, const TrainState& b, double tol,
+             double lift_m) {
+  const int coils = train.Coils();
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (i == 2 || i == 3) continue;  // W, D
+    const bool velocity = i == 1 || static_cast<int>(i) >= 4 + coils;
+    const double scale = velocity ? train.omega() * lift_m : lift_m;
+    if (!(std::abs(a[i] - b[i]) <= tol * scale)) return false;
+  }
+  return true;
 }
 
 // [solver] cycles = N (docs/model.md §5): revolutions from θ_a to θ_a + one revolution, each
@@ -143,11 +152,13 @@ void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
                                    cycle * revolution, r);
     r.cycles.push_back(c);
     if (r.status == RunStatus::kBudget) break;
-    ends.push_back({c.end_lift_m, c.end_velocity_m_s, 0.0, 0.0});
+    TrainState end = {c.end_lift_m, c.end_velocity_m_s, 0.0, 0.0};
+    end.insert(end.end(), c.end_coils.begin(), c.end_coils.end());
+    ends.push_back(end);
     impacts.push_back(c.impacts);
     const int j = cycle + 1;
     for (int k = 1; k <= kMaxPeriod && k <= j; ++k) {
-      bool repeats = Repeats(ends[j - k], ends[j], o.period_tolerance, lift_scale, train.omega());
+      bool repeats = Repeats(train, ends[j - k], ends[j], o.period_tolerance, lift_scale);
       // Impacts must repeat too (the start has none before it).
       for (int m = 0; m < k && repeats && j - k - m > 0; ++m)
         repeats = impacts[j - m] == impacts[j - k - m];
@@ -278,8 +289,9 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   // Skip the dynamics where the rigid answer is the answer.
   const RigidTrain rigid = RigidTrainOf(scene);
   const ForceMinimum fmin = MinQuasiStaticForce(*scene.law, rigid, omega);
-  if (!o.force_dynamic && scene.cam->play_m() == 0.0 && oscillations >= kRigidOscillations &&
-      fmin.force_N >= kRigidMargin * scene.train.preload_N && scene.train.preload_N > 0.0) {
+  if (!o.force_dynamic && scene.cam->play_m() == 0.0 && scene.train.coil_masses == 1 &&
+      oscillations >= kRigidOscillations && fmin.force_N >= kRigidMargin * scene.train.preload_N &&
+      scene.train.preload_N > 0.0) {
     r.skipped = true;
     r.method = "rigid";
     r.method_reason = "dynamic run skipped: " + stiffness +

@@ -66,7 +66,9 @@ struct CycleSummary {
   double longest_jump_rad = 0.0;  ///< the longest
   double max_gap_m = 0.0;         ///< largest separation from the cam
   double end_lift_m = 0.0, end_velocity_m_s = 0.0;  ///< the state carried to the next one
-  double energy_residual = 0.0;                     ///< the audit over this revolution
+  /// … with the coil masses' lifts x_i (m) then velocities v_i (m/s); empty without them.
+  std::vector<double> end_coils;
+  double energy_residual = 0.0;  ///< the audit over this revolution
 };
 
 /// How a run ended.

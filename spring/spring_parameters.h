@@ -50,6 +50,11 @@ struct SpringParameters {
   /// How far the preload may fall below Basu's formula and pass, percent (spring_check.h).
   double basu_tolerance_percent = 10.0;
   std::optional<HelicalGeometry> helical;  ///< present when wire_mm etc. are given
+  /// N of the spring in the dynamics, 1…40: 1 the massless rate k beside the moving mass (which
+  /// includes a third of the spring); N > 1 a chain of N segments and coil masses (needs
+  /// `helical`: the active coils' mass).
+  int masses = 1;
+  double surge_damping_ratio = 0.0;  ///< ζ of the first surge mode when masses > 1, in [0, 1]
 };
 
 }  // namespace needle

@@ -15,6 +15,7 @@
 #include "lib/input_file.h"
 #include "lib/toml_text.h"
 #include "lib/units.h"
+#include "spring/resonance.h"
 
 namespace needle {
 namespace {
@@ -355,6 +356,23 @@ SpringSection ReadSpring(SectionReader r) {
   }
   if (!sp.rate_N_m && !sp.helical) {
     r.Fail("rate", "missing; give rate_N_mm (or rate_N_m, rate_kgf_mm …) or the helical geometry");
+  }
+  if (auto n = r.OptionalNumber("masses")) {
+    if (!(*n >= 1.0 && *n <= kMaxCoilMasses) || *n != std::floor(*n))
+      r.Fail("masses", "must be a whole number in [1, " + std::to_string(kMaxCoilMasses) +
+                           "], got " + Number(*n));
+    if (*n > 1.0 && !sp.helical)
+      r.Fail("masses",
+             "needs the helical geometry (wire_mm, coil_mm, active_coils …): the coil "
+             "masses are the active coils' mass");
+    sp.masses = static_cast<int>(*n);
+  }
+  if (auto z = r.OptionalNumber("surge_damping_ratio")) {
+    if (!(*z >= 0.0 && *z <= 1.0))
+      r.Fail("surge_damping_ratio", "must be in [0, 1], got " + Number(*z));
+    if (sp.masses == 1)
+      r.Fail("surge_damping_ratio", "needs masses of at least 2 (a massless spring has no surge)");
+    sp.surge_damping_ratio = *z;
   }
   r.Finish();
   return sp;
@@ -882,6 +900,15 @@ Case ParseCase(const std::string& text, const std::string& path) {
   if (const toml::table* t = Section(root, path, "limits"))
     c.limits = ReadLimits(SectionReader(t, path, "limits"));
   if (c.lift.spline_given) CheckSplineFits(c, c.lift.spline.kind, "[lift] spline");
+  if (c.spring && c.spring->masses > 1 && c.needle) {
+    const double third = ActiveSpringMassKg(*c.spring->helical) / 3.0;
+    if (!(c.needle->mass_kg > third)) {
+      throw CaseError(path + ": [spring] masses: the moving mass [needle] mass_kg = " +
+                      Number(c.needle->mass_kg) +
+                      " kg includes a third of the spring, but a third of the active coils is " +
+                      Number(third) + " kg");
+    }
+  }
   if (c.overspeed && c.overspeed->steady_state && !(c.solver && c.solver->cycles >= 2)) {
     throw CaseError(path +
                     ": [overspeed] steady_state: needs [solver] cycles of at least 2 (the steady "

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "lib/units.h"
+#include "spring/resonance.h"
 
 namespace needle {
 
@@ -41,6 +42,11 @@ Scene MakeScene(const Case& c) {
     s.train.rate_N_m = *c.spring->rate_N_m;
   } else {
     s.train.rate_N_m = HelicalRate(*c.spring->helical);
+  }
+  s.train.coil_masses = c.spring->masses;
+  if (c.spring->masses > 1) {
+    s.train.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
+    s.train.surge_damping_ratio = c.spring->surge_damping_ratio;
   }
   s.train.contact_stiffness_N_m = c.train->contact_stiffness_N_m;
   s.train.contact_damping_ratio = c.train->contact_damping_ratio;

@@ -39,6 +39,16 @@ void TrainParameters::Validate() const {
           "must be in [0, 1]");
   Require(seat_restitution >= 0.0 && seat_restitution <= 1.0, "seat_restitution", seat_restitution,
           "must be in [0, 1]");
+  Require(coil_masses >= 1 && coil_masses <= kMaxCoilMasses, "coil_masses", coil_masses,
+          "must be in [1, " + std::to_string(kMaxCoilMasses) + "]");
+  if (coil_masses > 1) {  // the chain's own parameters
+    Require(rate_N_m > 0.0, "rate_N_m", rate_N_m, "must be positive for a chain of coil masses");
+    Require(spring_mass_kg > 0.0 && spring_mass_kg < 3.0 * mass_kg, "spring_mass_kg",
+            spring_mass_kg,
+            "must be positive and below 3 mass_kg (mass_kg includes a third of the spring)");
+    Require(surge_damping_ratio >= 0.0 && surge_damping_ratio <= 1.0, "surge_damping_ratio",
+            surge_damping_ratio, "must be in [0, 1]");
+  }
 }
 
 NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double omega,
@@ -50,13 +60,23 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
     throw std::invalid_argument("NeedleTrain: ω must be positive, got " + std::to_string(omega));
   }
   const bool rigid = p_.contact == ContactKind::kRigid;
+  coils_ = p_.coil_masses - 1;
+  needle_mass_kg_ = p_.mass_kg;
+  if (coils_ > 0) {
+    const double n = p_.coil_masses, m_s = p_.spring_mass_kg;
+    needle_mass_kg_ = p_.mass_kg - m_s / 3.0 + m_s / (2.0 * n);
+    coil_mass_kg_ = m_s / n;
+    segment_rate_N_m_ = n * p_.rate_N_m;
+    const double omega_1 = std::acos(-1.0) * std::sqrt(p_.rate_N_m / m_s);  // π√(k/m_s)
+    segment_damping_N_s_m_ = 2.0 * p_.surge_damping_ratio * segment_rate_N_m_ / omega_1;
+  }
   if (cam_law) {
     cam_law_ = std::move(cam_law);
   } else if (rigid) {
     cam_law_ = std::make_shared<RigidContact>(p_.restitution);
   } else {
     cam_law_ = std::make_shared<CompliantContact>(p_.contact_stiffness_N_m,
-                                                  p_.contact_damping_ratio, p_.mass_kg);
+                                                  p_.contact_damping_ratio, needle_mass_kg_);
   }
   if (seat_law) {
     seat_law_ = std::move(seat_law);
@@ -64,7 +84,7 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
     seat_law_ = std::make_shared<RigidContact>(p_.seat_restitution);
   } else {
     seat_law_ = std::make_shared<CompliantContact>(p_.seat_stiffness_N_m, p_.seat_damping_ratio,
-                                                   p_.mass_kg);
+                                                   needle_mass_kg_);
   }
   const std::vector<double>& lift = cam_.law().table().lift_m;
   const double top = lift.empty() ? 0.0 : *std::max_element(lift.begin(), lift.end());
@@ -93,13 +113,14 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   c.g_s = -c.y;  // g_s = −y
   c.g_s_rate = -c.v;
   c.f_s_raw = seat_law_->Force(c.g_s, c.g_s_rate);
+  c.spring_N = SpringForce(x, c.y, c.v, nullptr, nullptr);
   if (cam_law_->Constraint() || seat_law_->Constraint()) {
     // Constraint forces: what keeps the needle on a surface it sticks to, from
-    // m ÿ = F_c + F_s − (P₀ + k y) + F_g with ÿ = ω² u'' on the cam and 0 on the seat.
-    const double load = p_.preload_N + p_.rate_N_m * c.y - p_.gas_force_N;
+    // m ÿ = F_c + F_s − S + F_g with ÿ = ω² u'' on the cam and 0 on the seat.
+    const double load = c.spring_N - p_.gas_force_N;
     if (cam_law_->Constraint()) {
       const double seat_push = !seat_law_->Constraint() && phase.mode.seat ? c.f_s_raw : 0.0;
-      c.f_c_raw = p_.mass_kg * omega_ * omega_ * cam_.Curvature(th) + load - seat_push;
+      c.f_c_raw = needle_mass_kg_ * omega_ * omega_ * cam_.Curvature(th) + load - seat_push;
     }
     if (seat_law_->Constraint()) {
       // A cam that sticks carries the whole load (its λ includes it): the seat lets go.
@@ -108,6 +129,45 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
     }
   }
   return c;
+}
+
+double NeedleTrain::SpringForce(const TrainState& x, double y, double v, double* coil_rates,
+                                double* dissipation_W) const {
+  if (coils_ == 0) return p_.preload_N + p_.rate_N_m * y;
+  // Nodes 0 (the needle) … N (the spring's fixed end); segment j joins nodes j − 1 and j.
+  const int n = coils_ + 1;
+  const auto pos = [&](int i) { return i == 0 ? y : (i == n ? 0.0 : x[3 + i]); };
+  const auto vel = [&](int i) { return i == 0 ? v : (i == n ? 0.0 : x[3 + coils_ + i]); };
+  const double k = segment_rate_N_m_, c = segment_damping_N_s_m_;
+  double power = 0.0;
+  double rate = vel(0) - vel(1);
+  double s_prev = k * (pos(0) - pos(1)) + c * rate;  // S_1 − P₀
+  power += c * rate * rate;
+  const double s_1 = s_prev;
+  for (int i = 1; i < n; ++i) {
+    rate = vel(i) - vel(i + 1);
+    const double s_next = k * (pos(i) - pos(i + 1)) + c * rate;  // the preload cancels
+    power += c * rate * rate;
+    if (coil_rates) coil_rates[i - 1] = (s_prev - s_next) / coil_mass_kg_;
+    s_prev = s_next;
+  }
+  if (dissipation_W) *dissipation_W = power;
+  return p_.preload_N + s_1;
+}
+
+double NeedleTrain::LargestCoilSpeed(const TrainState& x) const {
+  double v = 0.0;
+  for (int i = 0; i < coils_; ++i) v = std::max(v, std::abs(x[4 + coils_ + i]));
+  return v;
+}
+
+double NeedleTrain::LargestSegmentCompression(const TrainState& x) const {
+  if (coils_ == 0) return x[0];
+  double most = x[0] - x[4];
+  for (int i = 0; i < coils_; ++i) {
+    most = std::max(most, x[4 + i] - (i + 1 < coils_ ? x[4 + i + 1] : 0.0));
+  }
+  return most;
 }
 
 double NeedleTrain::CamAngle(double crank_rad, const Phase& phase) const {
@@ -131,21 +191,26 @@ double NeedleTrain::AppliedSeatForce(const Contacts& c, const Phase& phase) cons
 void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, TrainJacobian& J,
                            TrainState& dfdt) const {
   const Contacts c = Evaluate(x, t, phase);
-  const double m = p_.mass_kg, w = omega_;
+  const int n = StateSize();
+  const double m = needle_mass_kg_, w = omega_;
   const double up = c.u_slope, upp = cam_.Curvature(CamAngle(c.crank_rad, phase));
   const double ac = phase.mode.cam ? 1.0 : 0.0, as = phase.mode.seat ? 1.0 : 0.0;
   const double kc = cam_law_->ForceStiffness(), ks = seat_law_->ForceStiffness();
   const double cc = cam_law_->ForceDamping(), cs = seat_law_->ForceDamping();
-  J.fill(0.0);
-  dfdt.fill(0.0);
-  J[0 * 4 + 1] = 1.0;                                     // ∂ẏ/∂ẏ
-  J[1 * 4 + 0] = (-kc * ac - ks * as - p_.rate_N_m) / m;  // ∂ÿ/∂y
-  J[1 * 4 + 1] = (-cc * ac - cs * as) / m;                // ∂ÿ/∂ẏ
+  // The spring on the needle: rate and damping of the massless spring or the first segment.
+  const double kr = coils_ > 0 ? segment_rate_N_m_ : p_.rate_N_m;
+  const double cr = coils_ > 0 ? segment_damping_N_s_m_ : 0.0;
+  J.assign(static_cast<size_t>(n) * n, 0.0);
+  dfdt.assign(n, 0.0);
+  const auto at = [&](int r, int col) -> double& { return J[r * n + col]; };
+  at(0, 1) = 1.0;                            // ∂ẏ/∂ẏ
+  at(1, 0) = (-kc * ac - ks * as - kr) / m;  // ∂ÿ/∂y
+  at(1, 1) = (-cc * ac - cs * as - cr) / m;  // ∂ÿ/∂ẏ
   const double fc = ac * c.f_c_raw;
   const double dfc_dt = ac * (kc * w * up + cc * w * w * upp);  // ∂F_c/∂t
   dfdt[1] = dfc_dt / m;
-  J[2 * 4 + 0] = -kc * ac * w * up;  // Ẇ = F_c ω u'
-  J[2 * 4 + 1] = -cc * ac * w * up;
+  at(2, 0) = -kc * ac * w * up;  // Ẇ = F_c ω u'
+  at(2, 1) = -cc * ac * w * up;
   dfdt[2] = dfc_dt * w * up + fc * w * w * upp;
   // Ḋ = A_c ġ_c + A_s ġ_s with A = F − V'(g) (F from the mode). With ∂g_c/∂y = −1,
   // ∂ġ_c/∂ẏ = −1, ∂g_c/∂t = ω u', ∂ġ_c/∂t = ω² u'' (and g_s = −y, ġ_s = −ẏ):
@@ -155,44 +220,98 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   const double vs = seat_law_->ConservativeStiffness(c.g_s);
   const double a_c = fc - cam_law_->ConservativeForce(c.g_c);
   const double a_s = as * c.f_s_raw - seat_law_->ConservativeForce(c.g_s);
-  J[3 * 4 + 0] = c.g_c_rate * (-kc * ac + vc) + c.g_s_rate * (-ks * as + vs);
-  J[3 * 4 + 1] = c.g_c_rate * (-cc * ac) - a_c + c.g_s_rate * (-cs * as) - a_s;
+  at(3, 0) = c.g_c_rate * (-kc * ac + vc) + c.g_s_rate * (-ks * as + vs);
+  at(3, 1) = c.g_c_rate * (-cc * ac) - a_c + c.g_s_rate * (-cs * as) - a_s;
   dfdt[3] = (dfc_dt - vc * w * up) * c.g_c_rate + a_c * w * w * upp;
   // A sticking rigid contact: ÿ is the surface's (ω² u'' or 0), F = λ with ∂λ/∂y = k.
   const bool cam_stuck = cam_law_->Constraint() && phase.mode.cam;
-  if (cam_stuck || (seat_law_->Constraint() && phase.mode.seat)) {
-    J[0 * 4 + 1] = J[1 * 4 + 0] = J[1 * 4 + 1] = 0.0;  // ẏ, ÿ: the surface's, not the state's
+  const bool stuck = cam_stuck || (seat_law_->Constraint() && phase.mode.seat);
+  if (stuck) {
+    at(0, 1) = at(1, 0) = at(1, 1) = 0.0;  // ẏ, ÿ: the surface's, not the state's
     dfdt[0] = cam_stuck ? w * w * upp : 0.0;
     dfdt[1] = 0.0;
     if (cam_stuck) {  // Ẇ = λ ω u'
-      J[2 * 4 + 0] = p_.rate_N_m * w * up;
-      J[2 * 4 + 1] = 0.0;
+      at(2, 0) = p_.rate_N_m * w * up;
+      at(2, 1) = 0.0;
     }
+  }
+  if (coils_ == 0) return;
+  // The chain. Node 0 is the needle (columns 0 and 1, or the surface's motion while it sticks:
+  // then its lift and velocity change with t at ω u' and ω² u''), nodes 1…N−1 the coils, node
+  // N the fixed end. Segment j (nodes j − 1, j) pushes them apart with
+  // S_j = P₀ + K (x_{j−1} − x_j) + C (v_{j−1} − v_j).
+  const int nodes = coils_ + 1;
+  const double K = segment_rate_N_m_, C = segment_damping_N_s_m_, mc = coil_mass_kg_;
+  const double node0_rate = cam_stuck ? w * up : 0.0, node0_accel = cam_stuck ? w * w * upp : 0.0;
+  const auto pos_col = [&](int i) { return i == 0 ? (stuck ? -1 : 0) : (i == nodes ? -1 : 3 + i); };
+  const auto vel_col = [&](int i) {
+    return i == 0 ? (stuck ? -1 : 1) : (i == nodes ? -1 : 3 + coils_ + i);
+  };
+  // Adds g·∂(node i's lift)/∂· and h·∂(its velocity)/∂· to row r.
+  const auto add = [&](int r, int i, double g, double h) {
+    if (pos_col(i) >= 0) at(r, pos_col(i)) += g;
+    if (vel_col(i) >= 0) at(r, vel_col(i)) += h;
+    if (i == 0 && stuck) dfdt[r] += g * node0_rate + h * node0_accel;
+  };
+  if (!stuck) {  // the needle's row: −S_1 depends on x_1, v_1 too
+    add(1, 1, K / m, C / m);
+  } else if (cam_stuck) {  // Ẇ = λ ω u', λ ∋ S_1
+    add(2, 1, -K * w * up, -C * w * up);
+  }
+  for (int i = 1; i < nodes; ++i) {
+    at(3 + i, 3 + coils_ + i) = 1.0;  // ẋ_i = v_i
+    const int r = 3 + coils_ + i;     // v̇_i = (S_i − S_{i+1}) / m_c
+    add(r, i - 1, K / mc, C / mc);
+    add(r, i, -2.0 * K / mc, -2.0 * C / mc);
+    add(r, i + 1, K / mc, C / mc);
+  }
+  // Ḋ ∋ Σ_j C (v_{j−1} − v_j)².
+  const double v0 = stuck ? c.v : x[1];
+  const auto vel = [&](int i) { return i == 0 ? v0 : (i == nodes ? 0.0 : x[3 + coils_ + i]); };
+  for (int j = 1; j <= nodes; ++j) {
+    const double g = 2.0 * C * (vel(j - 1) - vel(j));
+    add(3, j - 1, 0.0, g);
+    add(3, j, 0.0, -g);
   }
 }
 
 double NeedleTrain::NetForce(const Contacts& c, const Phase& phase) const {
-  return AppliedCamForce(c, phase) + AppliedSeatForce(c, phase) -
-         (p_.preload_N + p_.rate_N_m * c.y) + p_.gas_force_N;
+  return AppliedCamForce(c, phase) + AppliedSeatForce(c, phase) - c.spring_N + p_.gas_force_N;
 }
 
 void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase,
                              TrainState& dxdt) const {
   const Contacts c = Evaluate(x, t, phase);
   const double fc = AppliedCamForce(c, phase), fs = AppliedSeatForce(c, phase);
-
-  dxdt[0] = c.v;                              // ẏ (the surface's while stuck to it)
-  dxdt[1] = NetForce(c, phase) / p_.mass_kg;  // ÿ
-  dxdt[2] = fc * omega_ * c.u_slope;          // Ẇ
+  dxdt.resize(x.size());
+  dxdt[0] = c.v;                                   // ẏ (the surface's while stuck to it)
+  dxdt[1] = NetForce(c, phase) / needle_mass_kg_;  // ÿ
+  dxdt[2] = fc * omega_ * c.u_slope;               // Ẇ
   dxdt[3] = (fc - cam_law_->ConservativeForce(c.g_c)) * c.g_c_rate +
             (fs - seat_law_->ConservativeForce(c.g_s)) * c.g_s_rate;  // Ḋ
+  if (coils_ > 0) {
+    double dashpots_W = 0.0;
+    SpringForce(x, c.y, c.v, &dxdt[4 + coils_], &dashpots_W);          // v̇_i
+    for (int i = 0; i < coils_; ++i) dxdt[4 + i] = x[4 + coils_ + i];  // ẋ_i = v_i
+    dxdt[3] += dashpots_W;
+  }
 }
 
 double NeedleTrain::Energy(const TrainState& x, double t) const {
   const Contacts c = Evaluate(x, t);
   const double y = x[0];
-  return 0.5 * p_.mass_kg * x[1] * x[1] + p_.preload_N * y + 0.5 * p_.rate_N_m * y * y -
-         p_.gas_force_N * y + cam_law_->Potential(c.g_c) + seat_law_->Potential(c.g_s);
+  double spring_J = 0.5 * p_.rate_N_m * y * y;
+  if (coils_ > 0) {  // ½ K Σ (x_{j−1} − x_j)² + ½ m_c Σ v_i²
+    spring_J = 0.0;
+    for (int i = 0; i <= coils_; ++i) {
+      const double d = (i == 0 ? y : x[3 + i]) - (i == coils_ ? 0.0 : x[4 + i]);
+      spring_J += 0.5 * segment_rate_N_m_ * d * d;
+    }
+    for (int i = 0; i < coils_; ++i)
+      spring_J += 0.5 * coil_mass_kg_ * x[4 + coils_ + i] * x[4 + coils_ + i];
+  }
+  return 0.5 * needle_mass_kg_ * x[1] * x[1] + p_.preload_N * y + spring_J - p_.gas_force_N * y +
+         cam_law_->Potential(c.g_c) + seat_law_->Potential(c.g_s);
 }
 
 double NeedleTrain::EnergyResidual(const TrainState& x0, const TrainState& xt, double t) const {
@@ -217,9 +336,10 @@ std::optional<TrainState> NeedleTrain::Reset(bool cam, const TrainState& x, doub
   // ġ_c = ω u' − ẏ and ġ_s = −ẏ: the needle's velocity after, from the gap rate after.
   const double surface = cam ? omega_ * c.u_slope : 0.0;  // the contact surface's velocity
   out[1] = surface - *after;
-  const double impulse = p_.mass_kg * (out[1] - x[1]);                        // N·s on the needle
-  const double work = impulse * surface;                                      // ΔW
-  const double kinetic = 0.5 * p_.mass_kg * (out[1] * out[1] - x[1] * x[1]);  // ΔE
+  const double m = needle_mass_kg_;            // the coils take no impulse: springs join them
+  const double impulse = m * (out[1] - x[1]);  // N·s on the needle
+  const double work = impulse * surface;       // ΔW
+  const double kinetic = 0.5 * m * (out[1] * out[1] - x[1] * x[1]);  // ΔE
   out[2] += work;
   out[3] += work - kinetic;  // ΔD = ΔW − ΔE: the audit closes across the impact
   return out;
@@ -259,9 +379,11 @@ TrainState NeedleTrain::Project(const TrainState& x, double t, const Phase& phas
 
 double NeedleTrain::FastestAngularFrequency() const {
   // Rigid contacts add no stiffness; the cam's own speed bounds it from below.
-  return std::max(
-      omega_, std::sqrt((cam_law_->ForceStiffness() + seat_law_->ForceStiffness() + p_.rate_N_m) /
-                        p_.mass_kg));
+  const double rate = coils_ > 0 ? segment_rate_N_m_ : p_.rate_N_m;
+  const double needle = std::sqrt(
+      (cam_law_->ForceStiffness() + seat_law_->ForceStiffness() + rate) / needle_mass_kg_);
+  const double chain = coils_ > 0 ? 2.0 * std::sqrt(segment_rate_N_m_ / coil_mass_kg_) : 0.0;
+  return std::max({omega_, needle, chain});
 }
 
 TrainState NeedleTrain::EquilibriumStart() const {
@@ -280,7 +402,11 @@ TrainState NeedleTrain::EquilibriumStart() const {
     y0 = (p_.contact_stiffness_N_m * u_a - net) /
          (p_.contact_stiffness_N_m + p_.seat_stiffness_N_m + p_.rate_N_m);
   }
-  return {y0, 0.0, 0.0, 0.0};
+  TrainState x0 = {y0, 0.0, 0.0, 0.0};
+  // The chain evenly compressed: node i of N at y₀ (N − i)/N, at rest.
+  for (int i = 1; i <= coils_; ++i) x0.push_back(y0 * (coils_ + 1 - i) / (coils_ + 1));
+  for (int i = 1; i <= coils_; ++i) x0.push_back(0.0);
+  return x0;
 }
 
 }  // namespace needle

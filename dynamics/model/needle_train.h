@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The one-mass needle train (docs/model.md §4), as an Odeint-style system holding its
-/// parameters. State x = [y, ẏ, W, D]: lift (m, 0 = seated), velocity, and the two energy-audit
+/// The needle train (docs/model.md §4 and §4a), as an Odeint-style system holding its
+/// parameters. State x = [y, ẏ, W, D, …coils]: lift (m, 0 = seated), velocity, the two energy-audit
 /// integrals (§6) carried as extra states so the residual is a by-product:
 ///
 ///     m ÿ = F_c + F_s − (P₀ + k y) + F_g
@@ -10,19 +10,31 @@
 ///     Ẇ = F_c ω u'(θ),  Ḋ = (F_c − k_c g_c⁺) ġ_c + (F_s − k_s g_s⁺) ġ_s
 ///     E = ½mẏ² + P₀y + ½ky² − F_g y + ½k_c(g_c⁺)² + ½k_s(g_s⁺)²,   E − E₀ − W + D = 0
 ///
-/// with θ = θ_a + ω t. F_c and F_s come from the two contact laws (dynamics/model/contact_law.h;
-/// the compliant law by default: k g + c ġ with c = 2ζ√(k m)). A rigid contact that sticks is a
-/// constraint: the needle moves with its surface (ÿ = ω² u'' on the cam, 0 on the seat) and
-/// F_c (F_s) is the constraint force λ = m ÿ + P₀ + k y − F_g − (the other contact's force).
-/// Which contacts push is the
-/// contact mode, switched by the event driver (dynamics/solver/event_driver.h) where a law's
-/// witness changes sign, so that the right-hand side is smooth inside every step. The train
-/// holds no integration state: the mode and the segment being integrated come in a Phase.
+/// with θ = θ_a + ω t. With `coil_masses` N > 1 (docs/model.md §4a) the spring is a chain of N
+/// segments of rate N k between the fixed seat of the spring and the needle, with N − 1 coil
+/// masses m_s/N (positions x_i, velocities v_i, i = 1…N−1 from the needle) appended to the
+/// state; the needle carries the top half-segment (m = mass_kg − m_s/3 + m_s/(2N)) and the
+/// spring force P₀ + k y becomes the first segment's S₁ = P₀ + N k (y − x₁) + c (ẏ − v₁):
+///
+///     m_c ẍ_i = S_i − S_{i+1},   S_j = P₀ + N k (x_{j−1} − x_j) + c (v_{j−1} − v_j),  x_0 = y, x_N
+///     = 0
+///
+/// with c = 2 ζ_s N k / ω₁ (ζ_s the first surge mode's damping ratio, ω₁ = π√(k/m_s)); E gains
+/// ½ Σ m_c v_i² and replaces ½ k y² by ½ N k Σ (x_{j−1} − x_j)², and Ḋ gains Σ c (v_{j−1} − v_j)².
+/// F_c and F_s come from the two contact laws (dynamics/model/contact_law.h; the compliant law by
+/// default: k g + c ġ with c = 2ζ√(k m)). A rigid contact that sticks is a constraint: the needle
+/// moves with its surface (ÿ = ω² u'' on the cam, 0 on the seat) and F_c (F_s) is the constraint
+/// force λ = m ÿ + P₀ + k y − F_g − (the other contact's force). Which contacts push is the contact
+/// mode, switched by the event driver (dynamics/solver/event_driver.h) where a law's witness
+/// changes sign, so that the right-hand side is smooth inside every step. The train holds no
+/// integration state: the mode and the segment being integrated come in a Phase.
 
 #include <array>
+#include <boost/container/static_vector.hpp>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "dynamics/model/cam_input.h"
 #include "dynamics/model/contact_law.h"
@@ -48,6 +60,9 @@ struct TrainParameters {
   ContactKind contact = ContactKind::kCompliant;  ///< the law of both contacts
   double restitution = 0.0;                       ///< e of the rigid cam contact, in [0, 1]
   double seat_restitution = 0.0;                  ///< e_s of the rigid seat, in [0, 1]
+  int coil_masses = 1;          ///< N of the spring's chain, in [1, kMaxCoilMasses]; 1: massless k
+  double spring_mass_kg = 0.0;  ///< m_s of the active coils, > 0 and < 3 mass_kg when N > 1
+  double surge_damping_ratio = 0.0;  ///< ζ_s of the first surge mode, in [0, 1] (N > 1)
 
   /// Throws std::invalid_argument naming the field, its value and the rule it broke; k_c, ζ_c,
   /// k_s and ζ_s only when `contact` is compliant (a rigid law has none).
@@ -70,9 +85,13 @@ struct Phase {
   bool gated = false;
 };
 
-using TrainState = std::array<double, 4>;  ///< y, ẏ, W, D
-/// ∂f/∂x of the right-hand side, row-major 4×4.
-using TrainJacobian = std::array<double, 16>;
+/// The largest N of the spring's chain.
+inline constexpr int kMaxCoilMasses = 40;
+/// y, ẏ, W, D, then x_1…x_{N−1} and v_1…v_{N−1} of the coil masses: 4 + 2(N − 1) entries,
+/// stored inline (no allocation when copied).
+using TrainState = boost::container::static_vector<double, 4 + 2 * (kMaxCoilMasses - 1)>;
+/// ∂f/∂x of the right-hand side, row-major n×n (n: the state's size).
+using TrainJacobian = std::vector<double>;
 
 /// Gaps, rates and raw contact forces at one instant.
 struct Contacts {
@@ -83,6 +102,8 @@ struct Contacts {
   double u = 0.0, u_slope = 0.0;                    ///< u(θ) m, du/dθ m/rad
   double g_c = 0.0, g_c_rate = 0.0, f_c_raw = 0.0;  ///< penetration, rate, pushing-branch force
   double g_s = 0.0, g_s_rate = 0.0, f_s_raw = 0.0;
+  /// The spring's force on the needle, closing positive: P₀ + k y, or S₁ of the chain, N.
+  double spring_N = 0.0;
 };
 
 class NeedleTrain {
@@ -136,10 +157,23 @@ class NeedleTrain {
   /// Any contact rigid (ContactLaw::Constraint).
   bool HasConstraint() const { return cam_law_->Constraint() || seat_law_->Constraint(); }
 
-  /// The static-equilibrium start (docs/model.md §5): y₀ and the mode it rests in.
+  /// The static-equilibrium start (docs/model.md §5): y₀ and the mode it rests in (the coils
+  /// of a chain evenly compressed, at rest).
   TrainState EquilibriumStart() const;
-  /// √((k_c + k_s + k)/m), rad/s: the fastest oscillation, for a first step.
+  /// √((k_c + k_s + N k)/m), or the chain's 2√(N k/m_c) if higher, rad/s: the fastest
+  /// oscillation, for a first step.
   double FastestAngularFrequency() const;
+  /// The state's size, 4 + 2(N − 1).
+  int StateSize() const { return 4 + 2 * (coils_ > 0 ? coils_ : 0); }
+  /// N − 1: the coil masses in the state (0 for the massless spring).
+  int Coils() const { return coils_; }
+  /// The needle's mass m in the equation of motion, kg: mass_kg, or mass_kg − m_s/3 + m_s/(2N).
+  double NeedleMassKg() const { return needle_mass_kg_; }
+  /// The largest |v_i| of the coil masses, m/s (0 without them).
+  double LargestCoilSpeed(const TrainState& x) const;
+  /// The largest compression of one segment beyond its installed length, max_j x_{j−1} − x_j,
+  /// m (y for the massless spring).
+  double LargestSegmentCompression(const TrainState& x) const;
 
   double Angle(double t) const { return theta_a_ + omega_ * t; }
   double Time(double crank_rad) const { return (crank_rad - theta_a_) / omega_; }
@@ -156,8 +190,16 @@ class NeedleTrain {
   TrainParameters p_;
   double omega_, theta_a_;
   std::shared_ptr<const ContactLaw> cam_law_, seat_law_;
+  // The spring's force on the needle at needle lift y and velocity v; into `coil_rates` (when
+  // given) the coils' v̇_i, into `dissipation_W` the dashpots' power.
+  double SpringForce(const TrainState& x, double y, double v, double* coil_rates,
+                     double* dissipation_W) const;
+
   double gap_tolerance_ = 0.0;
   double lift_energy_J_ = 0.0;  // P₀L + ½kL²: the residual's least scale
+  int coils_ = 0;               // N − 1
+  double needle_mass_kg_ = 0.0;
+  double coil_mass_kg_ = 0.0, segment_rate_N_m_ = 0.0, segment_damping_N_s_m_ = 0.0;
 };
 
 }  // namespace needle

@@ -5,6 +5,7 @@
 #include <boost/numeric/odeint.hpp>
 #include <functional>
 
+#include "dynamics/solver/odeint_state.h"
 #include "dynamics/solver/stepper.h"
 
 namespace needle {

@@ -96,6 +96,8 @@ bool Recorder::AtRest(double t, const TrainState& x, const Phase& phase) const {
   const TrainParameters& p = train_.parameters();
   const double net = train_.NetForce(c, phase);
   const double scale = std::max(p.preload_N + std::abs(p.gas_force_N), p.mass_kg * 1.0 /* m/s² */);
+  // The needle's own rest: the coils of a spring without damping may ring on (they carry
+  // their state into the next revolution).
   return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= kRestForceFraction * scale;
 }
 

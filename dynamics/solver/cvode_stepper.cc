@@ -11,6 +11,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -90,34 +91,34 @@ struct Memory {
   Memory& operator=(const Memory&) = delete;
 };
 
+TrainState ToState(N_Vector y) {
+  const double* p = N_VGetArrayPointer(y);
+  return TrainState(p, p + N_VGetLength(y));
+}
+
 int Rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   const auto* system = static_cast<const TrainSystem*>(user);
-  TrainState x, dx;
-  const double* in = N_VGetArrayPointer(y);
-  for (int i = 0; i < 4; ++i) x[i] = in[i];
+  const TrainState x = ToState(y);
+  TrainState dx;
   (*system)(x, dx, t);
   double* out = N_VGetArrayPointer(ydot);
-  for (int i = 0; i < 4; ++i) out[i] = dx[i];
-  return std::isfinite(dx[0] + dx[1] + dx[2] + dx[3]) ? 0 : 1;  // recoverable: retry smaller
+  double sum = 0.0;
+  for (size_t i = 0; i < dx.size(); ++i) sum += out[i] = dx[i];
+  return std::isfinite(sum) ? 0 : 1;  // recoverable: retry smaller
 }
 
 int Jacobian(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user, N_Vector, N_Vector,
              N_Vector) {
   const auto* system = static_cast<const TrainSystem*>(user);
-  TrainState x, dfdt;
-  const double* in = N_VGetArrayPointer(y);
-  for (int i = 0; i < 4; ++i) x[i] = in[i];
+  const TrainState x = ToState(y);
+  TrainState dfdt;
   TrainJacobian j;
   system->Jacobian(x, t, j, dfdt);
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) SM_ELEMENT_D(jac, r, c) = j[r * 4 + c];
+  const size_t n = x.size();
+  for (size_t r = 0; r < n; ++r) {
+    for (size_t c = 0; c < n; ++c) SM_ELEMENT_D(jac, r, c) = j[r * n + c];
   }
   return 0;
-}
-
-TrainState ToState(N_Vector y) {
-  const double* p = N_VGetArrayPointer(y);
-  return {p[0], p[1], p[2], p[3]};
 }
 
 // The first step after a restart, as a fraction of the driver's hint.
@@ -127,16 +128,16 @@ class CvodeStepper final : public Stepper {
  public:
   CvodeStepper(TrainSystem& system, const IntegratorOptions& o, bool bdf)
       : system_(system),
-        y_(4, context_.ctx),
-        dky_(4, context_.ctx),
+        y_(system.train().StateSize(), context_.ctx),
+        dky_(system.train().StateSize(), context_.ctx),
         cvode_(bdf ? CV_BDF : CV_ADAMS, context_.ctx),
-        a_(4, context_.ctx),
+        a_(system.train().StateSize(), context_.ctx),
         ls_(y_.v, a_.m, context_.ctx),
         rtol_(o.rtol),
         atol_(o.atol_m) {}
 
   void Initialize(const TrainState& z, double t, double dt) override {
-    for (int i = 0; i < 4; ++i) y_.data()[i] = z[i];
+    std::copy(z.begin(), z.end(), y_.data());
     if (!initialized_) {
       Check(CVodeInit(cvode_.mem, Rhs, t, y_.v), "CVodeInit");
       Check(CVodeSetErrHandlerFn(cvode_.mem, KeepMessage, nullptr), "CVodeSetErrHandlerFn");
@@ -169,7 +170,7 @@ class CvodeStepper final : public Stepper {
     if ((flag == CV_ERR_FAILURE || flag == CV_CONV_FAILURE) && first_step_ > 0.0) {
       // The first step after a restart was too long for order 1: restart with CVODE's own.
       cvode_message.clear();
-      for (int i = 0; i < 4; ++i) y_.data()[i] = x1_[i];
+      std::copy(x1_.begin(), x1_.end(), y_.data());
       Check(CVodeReInit(cvode_.mem, t1_, y_.v), "CVodeReInit");
       Check(CVodeSetInitStep(cvode_.mem, 0.0), "CVodeSetInitStep");  // 0: CVODE estimates
       Check(CVodeSetStopTime(cvode_.mem, stop_), "CVodeSetStopTime");

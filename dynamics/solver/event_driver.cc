@@ -210,7 +210,7 @@ std::optional<double> EventDriver::Accumulate(bool cam, double t, double approac
   const double e = departure / approach;
   if (!(e > 0.0 && e < 1.0 && lambda > 0.0)) return std::nullopt;
   if (std::abs(approach / *before - e) > 0.1 * e) return std::nullopt;  // not geometric
-  const double m = train_.parameters().mass_kg;
+  const double m = train_.NeedleMassKg();
   const double remaining = 2.0 * departure / (lambda / m * (1.0 - e));
   if (!(remaining <= kAccumulationTime * 2.0 * kPi / train_.omega())) return std::nullopt;
   const double t_inf = std::min(t + remaining, limit);

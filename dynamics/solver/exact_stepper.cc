@@ -58,6 +58,10 @@ class ExactStepper final : public Stepper {
 }  // namespace
 
 std::optional<std::string> ExactRefusal(const NeedleTrain& train) {
+  if (train.Coils() > 0) {
+    return std::string(
+        "method \"exact\" carries one mass; the spring has coil masses ([spring] masses > 1)");
+  }
   for (const ContactLaw* law : {&train.cam_law(), &train.seat_law()}) {
     if (!law->Linear()) {
       return std::string(

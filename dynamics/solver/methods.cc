@@ -100,20 +100,26 @@ std::array<double, 4> IntegratorOptions::AbsoluteTolerances() const {
 TrainSystem::TrainSystem(const NeedleTrain& train, const IntegratorOptions& o) : train_(train) {
   const std::array<double, 4> atol = o.AbsoluteTolerances();
   scaled_ = false;
-  for (int i = 0; i < 4; ++i) {
-    scale_[i] = atol[i] / atol[0];
+  const int coils = train.Coils();
+  for (int i = 0; i < train.StateSize(); ++i) {
+    const int like = i < 4 ? i : (i < 4 + coils ? 0 : 1);  // a coil's lift, or its velocity
+    scale_.push_back(atol[like] / atol[0]);
     scaled_ = scaled_ || scale_[i] != 1.0;
   }
 }
 
 TrainState TrainSystem::ToScaled(const TrainState& x) const {
   if (!scaled_) return x;
-  return {x[0] / scale_[0], x[1] / scale_[1], x[2] / scale_[2], x[3] / scale_[3]};
+  TrainState z(x.size());
+  for (size_t i = 0; i < x.size(); ++i) z[i] = x[i] / scale_[i];
+  return z;
 }
 
 TrainState TrainSystem::FromScaled(const TrainState& z) const {
   if (!scaled_) return z;
-  return {z[0] * scale_[0], z[1] * scale_[1], z[2] * scale_[2], z[3] * scale_[3]};
+  TrainState x(z.size());
+  for (size_t i = 0; i < z.size(); ++i) x[i] = z[i] * scale_[i];
+  return x;
 }
 
 void TrainSystem::operator()(const TrainState& z, TrainState& dzdt, double t) const {
@@ -122,17 +128,17 @@ void TrainSystem::operator()(const TrainState& z, TrainState& dzdt, double t) co
     train_.Derivative(z, t, phase, dzdt);
     return;
   }
-  TrainState dxdt;
-  train_.Derivative(FromScaled(z), t, phase, dxdt);
-  for (int i = 0; i < 4; ++i) dzdt[i] = dxdt[i] / scale_[i];
+  train_.Derivative(FromScaled(z), t, phase, dzdt);
+  for (size_t i = 0; i < z.size(); ++i) dzdt[i] /= scale_[i];
 }
 
 void TrainSystem::Jacobian(const TrainState& z, double t, TrainJacobian& J,
                            TrainState& dfdt) const {
   train_.Jacobian(FromScaled(z), t, phase, J, dfdt);
   if (!scaled_) return;
-  for (int r = 0; r < 4; ++r) {  // ∂(f_r/s_r)/∂z_c = J_rc s_c / s_r
-    for (int c = 0; c < 4; ++c) J[r * 4 + c] *= scale_[c] / scale_[r];
+  const size_t n = z.size();
+  for (size_t r = 0; r < n; ++r) {  // ∂(f_r/s_r)/∂z_c = J_rc s_c / s_r
+    for (size_t c = 0; c < n; ++c) J[r * n + c] *= scale_[c] / scale_[r];
     dfdt[r] /= scale_[r];
   }
 }

@@ -15,6 +15,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "dynamics/solver/odeint_state.h"
 #include "dynamics/solver/stepper.h"
 
 namespace needle {
@@ -43,7 +44,10 @@ class Dopri5Stepper final : public OdeintStepper {
     dense_.initialize(z, t, dt);
   }
   std::pair<double, double> DoStep() override { return dense_.do_step(std::ref(system_)); }
-  void CalcState(double t, TrainState& z) override { dense_.calc_state(t, z); }
+  void CalcState(double t, TrainState& z) override {
+    z.resize(dense_.current_state().size());
+    dense_.calc_state(t, z);
+  }
   TrainState CurrentState() const override { return dense_.current_state(); }
   double CurrentTime() const override { return dense_.current_time(); }
   double CurrentStep() const override { return dense_.current_time_step(); }
@@ -88,6 +92,7 @@ class Rkf78Stepper final : public OdeintStepper {
       return;
     }
     TrainState in = x0_;
+    z.resize(in.size());
     controlled_.stepper().do_step(std::ref(system_), in, t0_, z, t - t0_);
   }
   TrainState CurrentState() const override { return x1_; }
@@ -104,7 +109,7 @@ class Rkf78Stepper final : public OdeintStepper {
 // Boost 1.74's rosenbrock4 loses order on non-autonomous systems: with the exact ∂f/∂t its
 // embedded error estimate of a forced oscillator scales as h² instead of h⁴ (measured), and
 // the controller then creeps at tiny steps. The standard cure is applied: time is carried as
-// a fifth state τ (τ' = 1), the system is autonomous, and ∂f/∂t becomes the Jacobian's last
+// a last state τ (τ' = 1), the system is autonomous, and ∂f/∂t becomes the Jacobian's last
 // column.
 class Rosenbrock4Stepper final : public OdeintStepper {
  public:
@@ -113,50 +118,58 @@ class Rosenbrock4Stepper final : public OdeintStepper {
   Rosenbrock4Stepper(TrainSystem& system, const IntegratorOptions& o)
       : system_(system),
         dense_(odeint::make_dense_output(o.atol_m, o.rtol, odeint::rosenbrock4<double>())),
-        v_(5) {}
+        n_(system.train().StateSize()),
+        v_(n_ + 1) {}
   void Initialize(const TrainState& z, double t, double dt) override {
-    for (int i = 0; i < 4; ++i) v_(i) = z[i];
-    v_(4) = t;  // τ
+    for (int i = 0; i < n_; ++i) v_(i) = z[i];
+    v_(n_) = t;  // τ
     dense_.initialize(v_, t, dt);
   }
   std::pair<double, double> DoStep() override {
-    TrainSystem& sys = system_;
-    auto rhs = [&sys](const Vector& x, Vector& dxdt, double /*t*/) {
-      TrainState a{x(0), x(1), x(2), x(3)}, d;
-      sys(a, d, x(4));
-      for (int i = 0; i < 4; ++i) dxdt(i) = d[i];
-      dxdt(4) = 1.0;  // τ' = 1
+    auto rhs = [this](const Vector& x, Vector& dxdt, double /*t*/) {
+      State(x, a_);
+      system_(a_, d_, x(n_));
+      for (int i = 0; i < n_; ++i) dxdt(i) = d_[i];
+      dxdt(n_) = 1.0;  // τ' = 1
     };
-    auto jacobian = [&sys](const Vector& x, Matrix& J, double /*t*/, Vector& dfdt) {
-      TrainState a{x(0), x(1), x(2), x(3)}, ft;
-      TrainJacobian j;
-      sys.Jacobian(a, x(4), j, ft);
-      for (int r = 0; r < 5; ++r) {
+    auto jacobian = [this](const Vector& x, Matrix& J, double /*t*/, Vector& dfdt) {
+      State(x, a_);
+      system_.Jacobian(a_, x(n_), j_, d_);
+      for (int r = 0; r <= n_; ++r) {
         dfdt(r) = 0.0;  // autonomous
-        for (int c = 0; c < 5; ++c) J(r, c) = 0.0;
+        for (int c = 0; c <= n_; ++c) J(r, c) = 0.0;
       }
-      for (int r = 0; r < 4; ++r) {
-        for (int c = 0; c < 4; ++c) J(r, c) = j[r * 4 + c];
-        J(r, 4) = ft[r];  // ∂f/∂τ
+      for (int r = 0; r < n_; ++r) {
+        for (int c = 0; c < n_; ++c) J(r, c) = j_[r * n_ + c];
+        J(r, n_) = d_[r];  // ∂f/∂τ
       }
     };
     return dense_.do_step(std::make_pair(rhs, jacobian));
   }
   void CalcState(double t, TrainState& z) override {
     dense_.calc_state(t, v_);
-    for (int i = 0; i < 4; ++i) z[i] = v_(i);
+    State(v_, z);
   }
   TrainState CurrentState() const override {
-    const Vector& v = dense_.current_state();
-    return {v(0), v(1), v(2), v(3)};
+    TrainState z;
+    State(dense_.current_state(), z);
+    return z;
   }
   double CurrentTime() const override { return dense_.current_time(); }
   double CurrentStep() const override { return dense_.current_time_step(); }
 
  private:
   TrainSystem& system_;
+  void State(const Vector& v, TrainState& z) const {
+    z.resize(n_);
+    for (int i = 0; i < n_; ++i) z[i] = v(i);
+  }
+
   odeint::result_of::make_dense_output<odeint::rosenbrock4<double>>::type dense_;
+  int n_;  // the train's state size (τ is entry n_)
   Vector v_;
+  TrainState a_, d_;  // scratch
+  TrainJacobian j_;
 };
 
 }  // namespace

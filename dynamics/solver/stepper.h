@@ -35,7 +35,7 @@ class TrainSystem {
 
  private:
   const NeedleTrain& train_;
-  std::array<double, 4> scale_;
+  TrainState scale_;  // s_i, the coils' lifts as y's and their velocities as ẏ's
   bool scaled_;
   mutable long evaluations_ = 0;
 };

@@ -76,6 +76,28 @@ TEST(OverspeedTest, EmptyRangeIsRejected) {
   }
 }
 
+TEST(OverspeedTest, SpringSurgeBringsLiftOffBelowTheOneMassSpeed) {
+  // cases/basu-example1-surge.toml: the spring as 20 coil masses (1 % damping in its first
+  // mode), four revolutions judged on the steady state. The coils' ringing from one event meets
+  // the next and the needle leaves its cam at 611 rpm; the same scene with the massless spring
+  // beside a third of its mass (masses = 1) holds to 643 rpm.
+  Case c = LoadCase(kCases + "basu-example1-surge.toml");
+  ASSERT_EQ(c.spring->masses, 20);
+  OverspeedOptions o;
+  o.from_rpm = c.overspeed->from_rpm.value();
+  o.to_rpm = c.overspeed->to_rpm.value();
+  o.simulation = OptionsFromCase(c);
+  o.simulation.steady_state = true;
+  const OverspeedResult chain = OverspeedSearch(MakeScene(c), o);
+  c.spring->masses = 1;
+  const OverspeedResult one = OverspeedSearch(MakeScene(c), o);
+  ASSERT_TRUE(chain.n_dyn_rpm.has_value());
+  ASSERT_TRUE(one.n_dyn_rpm.has_value());
+  EXPECT_NEAR(*one.n_dyn_rpm, 643.1, 0.5);
+  EXPECT_NEAR(*chain.n_dyn_rpm, 611.5, 0.5);
+  EXPECT_LT(*chain.n_dyn_rpm, *one.n_dyn_rpm * 0.96);
+}
+
 }  // namespace
 }  // namespace needle
 

@@ -466,5 +466,47 @@ resonance_margin_percent = 20
             0u);
 }
 
+TEST(CaseFileTest, TheSpringsCoilMasses) {
+  const std::string spring = kGood + R"(
+[needle]
+mass_kg = 2.0
+[spring]
+preload_N = 500
+wire_mm = 4
+coil_mm = 30
+active_coils = 6
+free_length_mm = 80
+shear_modulus_GPa = 80
+tensile_MPa = 1800
+masses = 12
+surge_damping_ratio = 0.02
+)";
+  const Case c = ParseCase(spring, "t.toml");
+  EXPECT_EQ(c.spring->masses, 12);
+  EXPECT_DOUBLE_EQ(c.spring->surge_damping_ratio, 0.02);
+  EXPECT_EQ(ParseCase(Replace(spring, "masses = 12\nsurge_damping_ratio = 0.02", ""), "t.toml")
+                .spring->masses,
+            1);
+  EXPECT_EQ(Error(Replace(spring, "masses = 12", "masses = 12.5")),
+            "t.toml: [spring] masses: must be a whole number in [1, 40], got 12.5");
+  EXPECT_EQ(Error(Replace(spring, "masses = 12", "masses = 41")),
+            "t.toml: [spring] masses: must be a whole number in [1, 40], got 41");
+  EXPECT_EQ(Error(Replace(spring, "masses = 12", "masses = 1")),
+            "t.toml: [spring] surge_damping_ratio: needs masses of at least 2 (a massless spring "
+            "has no surge)");
+  EXPECT_EQ(Error(Replace(spring, "0.02", "1.5")),
+            "t.toml: [spring] surge_damping_ratio: must be in [0, 1], got 1.5");
+  EXPECT_EQ(Error(Replace(spring,
+                          "wire_mm = 4\ncoil_mm = 30\nactive_coils = 6\nfree_length_mm = 80\n"
+                          "shear_modulus_GPa = 80\ntensile_MPa = 1800",
+                          "rate_N_mm = 20")),
+            "t.toml: [spring] masses: needs the helical geometry (wire_mm, coil_mm, active_coils "
+            "…): the coil masses are the active coils' mass");
+  // A third of the active coils (ρπ²d²Dn/4 = 0.0558 kg) must fit in the moving mass.
+  EXPECT_EQ(Error(Replace(spring, "mass_kg = 2.0", "mass_kg = 0.015")),
+            "t.toml: [spring] masses: the moving mass [needle] mass_kg = 0.015 kg includes a third "
+            "of the spring, but a third of the active coils is 0.0185943 kg");
+}
+
 }  // namespace
 }  // namespace needle
