@@ -47,11 +47,8 @@ LiftLaw Bump() {
   return LiftLaw(t, SplineOptions{});
 }
 
-TEST(NeedleTrainTest, JacobianMatchesCentralDifferencesInEveryMode) {
-  // ∂f/∂x and ∂f/∂t of the right-hand side against central differences, on the rise and the
-  // fall, the needle pressed into the cam, into its seat, or clear of both, in all four modes.
-  const LiftLaw law = Bump();
-  const CamInput cam(law, 0.0, RampKind::kLinear, 0.1);
+// The train of the Jacobian tests: both contacts compliant and damped, a gas load.
+TrainParameters BumpTrain() {
   TrainParameters p;
   p.mass_kg = 0.8;
   p.preload_N = 900;
@@ -61,7 +58,15 @@ TEST(NeedleTrainTest, JacobianMatchesCentralDifferencesInEveryMode) {
   p.contact_damping_ratio = 0.07;
   p.seat_stiffness_N_m = 3e8;
   p.seat_damping_ratio = 0.04;
-  const NeedleTrain train(cam, p, 60.0, 0.0);
+  return p;
+}
+
+TEST(NeedleTrainTest, JacobianMatchesCentralDifferencesInEveryMode) {
+  // ∂f/∂x and ∂f/∂t of the right-hand side against central differences, on the rise and the
+  // fall, the needle pressed into the cam, into its seat, or clear of both, in all four modes.
+  const LiftLaw law = Bump();
+  const CamInput cam(law, 0.0, RampKind::kLinear, 0.1);
+  const NeedleTrain train(cam, BumpTrain(), 60.0, 0.0);
   int checked = 0;
   for (double t : {0.0071, 0.0123, 0.0168}) {  // θ = 0.43, 0.74, 1.01 rad
     const double u = cam.U(train.Angle(t));
@@ -119,17 +124,9 @@ TEST(NeedleTrainTest, ParametersAreValidatedByName) {
   EXPECT_THROW(p.Validate(), std::invalid_argument);
 }
 
-// The chain of the Jacobian test: N = 4 coil masses with damping, the needle's own mass 0.6 kg.
+// BumpTrain with its spring as `masses` coil masses: m_s = 0.6 kg, 5 % damping in the first mode.
 TrainParameters ChainTrain(int masses) {
-  TrainParameters p;
-  p.mass_kg = 0.8;
-  p.preload_N = 900;
-  p.rate_N_m = 5e4;
-  p.gas_force_N = 120;
-  p.contact_stiffness_N_m = 2e8;
-  p.contact_damping_ratio = 0.07;
-  p.seat_stiffness_N_m = 3e8;
-  p.seat_damping_ratio = 0.04;
+  TrainParameters p = BumpTrain();
   p.coil_masses = masses;
   p.spring_mass_kg = 0.6;
   p.surge_damping_ratio = 0.05;
