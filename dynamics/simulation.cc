@@ -85,6 +85,10 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
           ? recorder.min_contact_force_during_lift_N()
           : std::min(r.min_contact_force_during_lift_N, recorder.min_contact_force_during_lift_N());
   r.max_seat_force_N = std::max(r.max_seat_force_N, recorder.max_seat_force_N());
+  if (const std::optional<double> gap = recorder.min_coil_gap_m()) {
+    r.min_coil_gap_m = r.min_coil_gap_m ? std::min(*r.min_coil_gap_m, *gap) : *gap;
+  }
+  r.coil_clashes += recorder.coil_clashes();
   r.jump_rad += recorder.jump_rad();
   r.longest_jump_rad = std::max(r.longest_jump_rad, recorder.longest_jump_rad());
   r.stats.steps += stats.steps;

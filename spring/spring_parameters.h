@@ -55,6 +55,12 @@ struct SpringParameters {
   /// `helical`: the active coils' mass).
   int masses = 1;
   double surge_damping_ratio = 0.0;  ///< ζ of the first surge mode when masses > 1, in [0, 1]
+  /// Coil clash in the dynamics (masses > 1): a segment past its travel to solid meets the
+  /// next coils through a compliant contact of this stiffness (N/m, > 0; absent: the [train]
+  /// contact's) and damping ratio (≥ 0; absent: the [train] contact's).
+  bool coil_clash = false;
+  std::optional<double> clash_stiffness_N_m;
+  std::optional<double> clash_damping_ratio;
 };
 
 }  // namespace needle

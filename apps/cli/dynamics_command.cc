@@ -167,6 +167,10 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
     j["max_contact_force_N"] = r.max_contact_force_N;
     j["min_contact_force_during_lift_N"] = r.min_contact_force_during_lift_N;
     j["max_seat_force_N"] = r.max_seat_force_N;
+    if (r.min_coil_gap_m) {  // a chain of coil masses ([spring] masses > 1)
+      j["min_coil_gap_mm"] = *r.min_coil_gap_m * 1e3;
+      j["coil_clashes"] = r.coil_clashes;
+    }
     j["energy_residual"] = r.skipped ? nlohmann::json(nullptr) : nlohmann::json(r.energy_residual);
     j["steps"] = r.stats.steps;
     j["rhs_evaluations"] = r.stats.rhs_evaluations;
@@ -201,6 +205,11 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
         << "contact force: max " << Fixed(r.max_contact_force_N, 1) << " N, min during the lift "
         << Fixed(r.min_contact_force_during_lift_N, 1) << " N; max seat force "
         << Fixed(r.max_seat_force_N, 1) << " N\n";
+    if (r.min_coil_gap_m) {
+      out << "coil gap: least " << Fixed(*r.min_coil_gap_m * 1e3, 3)
+          << " mm to solid in the run (N times the most compressed segment's); " << r.coil_clashes
+          << " coil clashes\n";
+    }
     if (r.cycles_asked > 1 && !r.skipped) {
       out << CyclesText(r);
     }

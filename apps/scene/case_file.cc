@@ -374,6 +374,22 @@ SpringSection ReadSpring(SectionReader r) {
       r.Fail("surge_damping_ratio", "needs masses of at least 2 (a massless spring has no surge)");
     sp.surge_damping_ratio = *z;
   }
+  if (auto clash = r.OptionalBool("clash")) {
+    if (*clash && sp.masses == 1)
+      r.Fail("clash", "needs masses of at least 2 (the coils that meet)");
+    sp.coil_clash = *clash;
+  }
+  if (auto k = r.OptionalQuantity("clash_stiffness", Dimension::kStiffness)) {
+    if (!sp.coil_clash) r.Fail(r.last_key(), "needs clash = true");
+    if (!(*k > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*k) + " N/m");
+    sp.clash_stiffness_N_m = *k;
+  }
+  if (auto z = r.OptionalNumber("clash_damping_ratio")) {
+    if (!sp.coil_clash) r.Fail("clash_damping_ratio", "needs clash = true");
+    if (!(*z >= 0.0 && *z <= 1.0))
+      r.Fail("clash_damping_ratio", "must be in [0, 1], got " + Number(*z));
+    sp.clash_damping_ratio = *z;
+  }
   r.Finish();
   return sp;
 }
@@ -908,6 +924,12 @@ Case ParseCase(const std::string& text, const std::string& path) {
                       " kg includes a third of the spring, but a third of the active coils is " +
                       Number(third) + " kg");
     }
+  }
+  if (c.spring && c.spring->coil_clash && !c.spring->clash_stiffness_N_m && c.train &&
+      c.train->rigid) {
+    throw CaseError(path +
+                    ": [spring] clash: a rigid [train] has no contact stiffness for the coils "
+                    "to take; give clash_stiffness_N_m");
   }
   if (c.overspeed && c.overspeed->steady_state && !(c.solver && c.solver->cycles >= 2)) {
     throw CaseError(path +

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "lib/units.h"
+#include "spring/helical_spring.h"
 #include "spring/resonance.h"
 
 namespace needle {
@@ -47,6 +48,20 @@ Scene MakeScene(const Case& c) {
   if (c.spring->masses > 1) {
     s.train.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
     s.train.surge_damping_ratio = c.spring->surge_damping_ratio;
+    // The travel from installed to solid (the helical check's lengths).
+    try {
+      const HelicalSpringCheck lengths =
+          CheckHelicalSpring(*c.spring->helical, c.spring->preload_N, 0.0, c.engine.speed_rpm,
+                             c.engine.cycle == "four-stroke");
+      s.train.coil_travel_m = lengths.length_preload_m - lengths.solid_length_m;
+    } catch (const std::invalid_argument& e) {
+      throw CaseError(c.path + ": [spring] preload: " + e.what());
+    }
+    s.train.coil_clash = c.spring->coil_clash;
+    s.train.clash_stiffness_N_m =
+        c.spring->clash_stiffness_N_m.value_or(c.train->contact_stiffness_N_m);
+    s.train.clash_damping_ratio =
+        c.spring->clash_damping_ratio.value_or(c.train->contact_damping_ratio);
   }
   s.train.contact_stiffness_N_m = c.train->contact_stiffness_N_m;
   s.train.contact_damping_ratio = c.train->contact_damping_ratio;

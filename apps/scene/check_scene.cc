@@ -147,7 +147,17 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                      " mm: Zimmerli's data cover wire below 10 mm";
     }
     gap.limit = (l.coil_gap_m ? *l.coil_gap_m : h.min_clearance_m) * 1e3;
-    judge(gap, h.clearance_full_lift_m * 1e3, "");
+    if (r.run && r.run->min_coil_gap_m) {
+      // A chain of coil masses: the least gap in the run at the rated speed, where surge may
+      // close one segment well before the static full lift closes them all.
+      gap.name = "coil gap in the run (worst segment x N)";
+      judge(gap, *r.run->min_coil_gap_m * 1e3,
+            "at " + Fixed(r.speed_rpm, 0) + " rpm with " + std::to_string(c.spring->masses) +
+                " coil masses, " + std::to_string(r.run->coil_clashes) + " clashes; " +
+                Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm at full lift statically");
+    } else {
+      judge(gap, h.clearance_full_lift_m * 1e3, "");
+    }
     // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's.
     for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
     r.harmonics = LiftHarmonics(law, four ? 4 * kPi : 2 * kPi, 1000, l.harmonic_threshold);

@@ -49,6 +49,18 @@ void TrainParameters::Validate() const {
     Require(surge_damping_ratio >= 0.0 && surge_damping_ratio <= 1.0, "surge_damping_ratio",
             surge_damping_ratio, "must be in [0, 1]");
   }
+  Require(coil_travel_m >= 0.0 && std::isfinite(coil_travel_m), "coil_travel_m", coil_travel_m,
+          "must not be negative");
+  if (coil_clash) {  // the clash contact's own parameters
+    Require(coil_masses > 1, "coil_masses", coil_masses,
+            "must be at least 2 for coil_clash (the coils that meet)");
+    Require(coil_travel_m > 0.0, "coil_travel_m", coil_travel_m,
+            "must be positive for coil_clash (the travel to solid)");
+    Require(clash_stiffness_N_m > 0.0 && std::isfinite(clash_stiffness_N_m), "clash_stiffness_N_m",
+            clash_stiffness_N_m, "must be positive");
+    Require(clash_damping_ratio >= 0.0 && std::isfinite(clash_damping_ratio), "clash_damping_ratio",
+            clash_damping_ratio, "must not be negative");
+  }
 }
 
 NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double omega,
@@ -69,6 +81,11 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
     segment_rate_N_m_ = n * p_.rate_N_m;
     const double omega_1 = std::acos(-1.0) * std::sqrt(p_.rate_N_m / m_s);  // π√(k/m_s)
     segment_damping_N_s_m_ = 2.0 * p_.surge_damping_ratio * segment_rate_N_m_ / omega_1;
+    segment_travel_m_ = p_.coil_travel_m / n;
+    if (p_.coil_clash) {
+      clash_law_ = std::make_shared<CompliantContact>(p_.clash_stiffness_N_m,
+                                                      p_.clash_damping_ratio, coil_mass_kg_);
+    }
   }
   if (cam_law) {
     cam_law_ = std::move(cam_law);
@@ -113,7 +130,7 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   c.g_s = -c.y;  // g_s = −y
   c.g_s_rate = -c.v;
   c.f_s_raw = seat_law_->Force(c.g_s, c.g_s_rate);
-  c.spring_N = SpringForce(x, c.y, c.v, nullptr, nullptr);
+  c.spring_N = SpringForce(x, c.y, c.v, phase, nullptr, nullptr);
   if (cam_law_->Constraint() || seat_law_->Constraint()) {
     // Constraint forces: what keeps the needle on a surface it sticks to, from
     // m ÿ = F_c + F_s − S + F_g with ÿ = ω² u'' on the cam and 0 on the seat.
@@ -131,28 +148,42 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   return c;
 }
 
-double NeedleTrain::SpringForce(const TrainState& x, double y, double v, double* coil_rates,
-                                double* dissipation_W) const {
+double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const Phase& phase,
+                                double* coil_rates, double* dissipation_W) const {
   if (coils_ == 0) return p_.preload_N + p_.rate_N_m * y;
-  // Nodes 0 (the needle) … N (the spring's fixed end); segment j joins nodes j − 1 and j.
+  // Nodes 0 (the needle) … N (the spring's fixed end); segment j joins nodes j − 1 and j and
+  // pushes them apart with S_j − P₀ (the preload cancels between segments).
   const int n = coils_ + 1;
-  const auto pos = [&](int i) { return i == 0 ? y : (i == n ? 0.0 : x[3 + i]); };
-  const auto vel = [&](int i) { return i == 0 ? v : (i == n ? 0.0 : x[3 + coils_ + i]); };
   const double k = segment_rate_N_m_, c = segment_damping_N_s_m_;
-  double power = 0.0;
-  double rate = vel(0) - vel(1);
-  double s_prev = k * (pos(0) - pos(1)) + c * rate;  // S_1 − P₀
-  power += c * rate * rate;
-  const double s_1 = s_prev;
-  for (int i = 1; i < n; ++i) {
-    rate = vel(i) - vel(i + 1);
-    const double s_next = k * (pos(i) - pos(i + 1)) + c * rate;  // the preload cancels
+  double power = 0.0, s_prev = 0.0, s_1 = 0.0;
+  for (int j = 1; j <= n; ++j) {
+    const double s = NodeLift(x, y, j - 1) - NodeLift(x, y, j);
+    const double rate = NodeVelocity(x, v, j - 1) - NodeVelocity(x, v, j);
+    double s_j = k * s + c * rate;
     power += c * rate * rate;
-    if (coil_rates) coil_rates[i - 1] = (s_prev - s_next) / coil_mass_kg_;
-    s_prev = s_next;
+    if (clash_law_) {  // the coils in contact: F on the mode's (or the gate's) branch
+      const double g = s - segment_travel_m_;
+      const double f = phase.gated                          ? clash_law_->GatedForce(g, rate)
+                       : (phase.mode.clash >> (j - 1)) & 1u ? clash_law_->Force(g, rate)
+                                                            : 0.0;
+      s_j += f;
+      power += (f - clash_law_->ConservativeForce(g)) * rate;
+    }
+    if (j == 1) {
+      s_1 = s_j;
+    } else if (coil_rates) {
+      coil_rates[j - 2] = (s_prev - s_j) / coil_mass_kg_;
+    }
+    s_prev = s_j;
   }
   if (dissipation_W) *dissipation_W = power;
   return p_.preload_N + s_1;
+}
+
+std::array<double, 2> NeedleTrain::SegmentPenetration(const TrainState& x, const Contacts& c,
+                                                      int j) const {
+  return {NodeLift(x, c.y, j - 1) - NodeLift(x, c.y, j) - segment_travel_m_,
+          NodeVelocity(x, c.v, j - 1) - NodeVelocity(x, c.v, j)};
 }
 
 double NeedleTrain::LargestCoilSpeed(const TrainState& x) const {
@@ -163,9 +194,9 @@ double NeedleTrain::LargestCoilSpeed(const TrainState& x) const {
 
 double NeedleTrain::LargestSegmentCompression(const TrainState& x) const {
   if (coils_ == 0) return x[0];
-  double most = x[0] - x[4];
-  for (int i = 0; i < coils_; ++i) {
-    most = std::max(most, x[4 + i] - (i + 1 < coils_ ? x[4 + i + 1] : 0.0));
+  double most = -std::numeric_limits<double>::infinity();
+  for (int j = 1; j <= coils_ + 1; ++j) {
+    most = std::max(most, NodeLift(x, x[0], j - 1) - NodeLift(x, x[0], j));
   }
   return most;
 }
@@ -197,9 +228,18 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   const double ac = phase.mode.cam ? 1.0 : 0.0, as = phase.mode.seat ? 1.0 : 0.0;
   const double kc = cam_law_->ForceStiffness(), ks = seat_law_->ForceStiffness();
   const double cc = cam_law_->ForceDamping(), cs = seat_law_->ForceDamping();
-  // The spring on the needle: rate and damping of the massless spring or the first segment.
-  const double kr = coils_ > 0 ? segment_rate_N_m_ : p_.rate_N_m;
-  const double cr = coils_ > 0 ? segment_damping_N_s_m_ : 0.0;
+  // Segment j's ∂S_j/∂s_j and ∂S_j/∂ṡ_j: the rate and dashpot, and the clash law's while the
+  // mode has the segment solid. Segment 1 (or the massless spring) acts on the needle.
+  const auto seg_k = [&](int j) {
+    const bool solid = clash_law_ && ((phase.mode.clash >> (j - 1)) & 1u);
+    return segment_rate_N_m_ + (solid ? clash_law_->ForceStiffness() : 0.0);
+  };
+  const auto seg_c = [&](int j) {
+    const bool solid = clash_law_ && ((phase.mode.clash >> (j - 1)) & 1u);
+    return segment_damping_N_s_m_ + (solid ? clash_law_->ForceDamping() : 0.0);
+  };
+  const double kr = coils_ > 0 ? seg_k(1) : p_.rate_N_m;
+  const double cr = coils_ > 0 ? seg_c(1) : 0.0;
   J.assign(static_cast<size_t>(n) * n, 0.0);
   dfdt.assign(n, 0.0);
   const auto at = [&](int r, int col) -> double& { return J[r * n + col]; };
@@ -241,7 +281,7 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   // N the fixed end. Segment j (nodes j − 1, j) pushes them apart with
   // S_j = P₀ + K (x_{j−1} − x_j) + C (v_{j−1} − v_j).
   const int nodes = coils_ + 1;
-  const double K = segment_rate_N_m_, C = segment_damping_N_s_m_, mc = coil_mass_kg_;
+  const double mc = coil_mass_kg_;
   const double node0_rate = cam_stuck ? w * up : 0.0, node0_accel = cam_stuck ? w * w * upp : 0.0;
   const auto pos_col = [&](int i) { return i == 0 ? (stuck ? -1 : 0) : (i == nodes ? -1 : 3 + i); };
   const auto vel_col = [&](int i) {
@@ -254,24 +294,34 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
     if (i == 0 && stuck) dfdt[r] += g * node0_rate + h * node0_accel;
   };
   if (!stuck) {  // the needle's row: −S_1 depends on x_1, v_1 too
-    add(1, 1, K / m, C / m);
+    add(1, 1, kr / m, cr / m);
   } else if (cam_stuck) {  // Ẇ = λ ω u', λ ∋ S_1
-    add(2, 1, -K * w * up, -C * w * up);
+    add(2, 1, -kr * w * up, -cr * w * up);
   }
   for (int i = 1; i < nodes; ++i) {
     at(3 + i, 3 + coils_ + i) = 1.0;  // ẋ_i = v_i
     const int r = 3 + coils_ + i;     // v̇_i = (S_i − S_{i+1}) / m_c
-    add(r, i - 1, K / mc, C / mc);
-    add(r, i, -2.0 * K / mc, -2.0 * C / mc);
-    add(r, i + 1, K / mc, C / mc);
+    const double ka = seg_k(i), ca = seg_c(i), kb = seg_k(i + 1), cb = seg_c(i + 1);
+    add(r, i - 1, ka / mc, ca / mc);
+    add(r, i, -(ka + kb) / mc, -(ca + cb) / mc);
+    add(r, i + 1, kb / mc, cb / mc);
   }
-  // Ḋ ∋ Σ_j C (v_{j−1} − v_j)².
-  const double v0 = stuck ? c.v : x[1];
-  const auto vel = [&](int i) { return i == 0 ? v0 : (i == nodes ? 0.0 : x[3 + coils_ + i]); };
+  // Ḋ ∋ Σ_j C ṡ_j² + (F_j − V'(g_j)) ṡ_j, F_j the clash force of the mode, g_j = s_j − δ.
+  const double y0 = stuck ? c.y : x[0], v0 = stuck ? c.v : x[1];
   for (int j = 1; j <= nodes; ++j) {
-    const double g = 2.0 * C * (vel(j - 1) - vel(j));
-    add(3, j - 1, 0.0, g);
-    add(3, j, 0.0, -g);
+    const double rate = NodeVelocity(x, v0, j - 1) - NodeVelocity(x, v0, j);
+    double ds = 0.0, dv = 2.0 * segment_damping_N_s_m_ * rate;
+    if (clash_law_) {
+      const double g = NodeLift(x, y0, j - 1) - NodeLift(x, y0, j) - segment_travel_m_;
+      const bool solid = (phase.mode.clash >> (j - 1)) & 1u;
+      const double f = solid ? clash_law_->Force(g, rate) : 0.0;
+      const double kc_j = solid ? clash_law_->ForceStiffness() : 0.0;
+      const double cc_j = solid ? clash_law_->ForceDamping() : 0.0;
+      ds = (kc_j - clash_law_->ConservativeStiffness(g)) * rate;
+      dv += cc_j * rate + f - clash_law_->ConservativeForce(g);
+    }
+    add(3, j - 1, ds, dv);
+    add(3, j, -ds, -dv);
   }
 }
 
@@ -291,7 +341,7 @@ void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase,
             (fs - seat_law_->ConservativeForce(c.g_s)) * c.g_s_rate;  // Ḋ
   if (coils_ > 0) {
     double dashpots_W = 0.0;
-    SpringForce(x, c.y, c.v, &dxdt[4 + coils_], &dashpots_W);          // v̇_i
+    SpringForce(x, c.y, c.v, phase, &dxdt[4 + coils_], &dashpots_W);   // v̇_i
     for (int i = 0; i < coils_; ++i) dxdt[4 + i] = x[4 + coils_ + i];  // ẋ_i = v_i
     dxdt[3] += dashpots_W;
   }
@@ -303,12 +353,14 @@ double NeedleTrain::Energy(const TrainState& x, double t) const {
   double spring_J = 0.5 * p_.rate_N_m * y * y;
   if (coils_ > 0) {  // ½ K Σ (x_{j−1} − x_j)² + ½ m_c Σ v_i²
     spring_J = 0.0;
-    for (int i = 0; i <= coils_; ++i) {
-      const double d = (i == 0 ? y : x[3 + i]) - (i == coils_ ? 0.0 : x[4 + i]);
+    for (int j = 1; j <= coils_ + 1; ++j) {
+      const double d = NodeLift(x, y, j - 1) - NodeLift(x, y, j);
       spring_J += 0.5 * segment_rate_N_m_ * d * d;
     }
     for (int i = 0; i < coils_; ++i)
       spring_J += 0.5 * coil_mass_kg_ * x[4 + coils_ + i] * x[4 + coils_ + i];
+    for (int j = 1; j <= ClashSegments(); ++j)
+      spring_J += clash_law_->Potential(SegmentPenetration(x, c, j)[0]);
   }
   return 0.5 * needle_mass_kg_ * x[1] * x[1] + p_.preload_N * y + spring_J - p_.gas_force_N * y +
          cam_law_->Potential(c.g_c) + seat_law_->Potential(c.g_s);
@@ -382,7 +434,9 @@ double NeedleTrain::FastestAngularFrequency() const {
   const double rate = coils_ > 0 ? segment_rate_N_m_ : p_.rate_N_m;
   const double needle = std::sqrt(
       (cam_law_->ForceStiffness() + seat_law_->ForceStiffness() + rate) / needle_mass_kg_);
-  const double chain = coils_ > 0 ? 2.0 * std::sqrt(segment_rate_N_m_ / coil_mass_kg_) : 0.0;
+  const double clash = clash_law_ ? clash_law_->ForceStiffness() : 0.0;
+  const double chain =
+      coils_ > 0 ? 2.0 * std::sqrt((segment_rate_N_m_ + clash) / coil_mass_kg_) : 0.0;
   return std::max({omega_, needle, chain});
 }
 

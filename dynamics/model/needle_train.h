@@ -21,6 +21,10 @@
 ///
 /// with c = 2 ζ_s N k / ω₁ (ζ_s the first surge mode's damping ratio, ω₁ = π√(k/m_s)); E gains
 /// ½ Σ m_c v_i² and replaces ½ k y² by ½ N k Σ (x_{j−1} − x_j)², and Ḋ gains Σ c (v_{j−1} − v_j)².
+/// With `coil_clash` a segment whose compression s_j = x_{j−1} − x_j passes its travel to solid
+/// δ = travel/N meets the next coils: a third contact law (compliant, k_cl and ζ_cl against m_c)
+/// on the penetration g_j = s_j − δ adds its force to S_j, its potential to E and its loss to Ḋ,
+/// and its witnesses join the event driver's (docs/model.md §4a).
 /// F_c and F_s come from the two contact laws (dynamics/model/contact_law.h; the compliant law by
 /// default: k g + c ġ with c = 2ζ√(k m)). A rigid contact that sticks is a constraint: the needle
 /// moves with its surface (ÿ = ω² u'' on the cam, 0 on the seat) and F_c (F_s) is the constraint
@@ -31,6 +35,7 @@
 
 #include <array>
 #include <boost/container/static_vector.hpp>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -63,6 +68,12 @@ struct TrainParameters {
   int coil_masses = 1;          ///< N of the spring's chain, in [1, kMaxCoilMasses]; 1: massless k
   double spring_mass_kg = 0.0;  ///< m_s of the active coils, > 0 and < 3 mass_kg when N > 1
   double surge_damping_ratio = 0.0;  ///< ζ_s of the first surge mode, in [0, 1] (N > 1)
+  /// The spring's travel from its installed length to solid, L₁ − L_c, m; ≥ 0 (0: unknown).
+  /// With N > 1 the run records the least coil gap; each segment goes solid at travel/N.
+  double coil_travel_m = 0.0;
+  bool coil_clash = false;  ///< segments meet when solid (needs N > 1 and coil_travel_m > 0)
+  double clash_stiffness_N_m = 1e8;   ///< k_cl of the coils in contact, > 0 (with coil_clash)
+  double clash_damping_ratio = 0.05;  ///< ζ_cl against the coil mass m_c, ≥ 0 (with coil_clash)
 
   /// Throws std::invalid_argument naming the field, its value and the rule it broke; k_c, ζ_c,
   /// k_s and ζ_s only when `contact` is compliant (a rigid law has none).
@@ -73,6 +84,11 @@ struct TrainParameters {
 struct ContactMode {
   bool cam = false;
   bool seat = false;
+  std::uint64_t clash = 0;  ///< bit j − 1: segment j of the chain is solid (coil clash)
+  bool operator==(const ContactMode& o) const {
+    return cam == o.cam && seat == o.seat && clash == o.clash;
+  }
+  bool operator!=(const ContactMode& o) const { return !(*this == o); }
 };
 
 /// What the event driver integrates in: the contact mode, and the end of the cam input's
@@ -174,6 +190,13 @@ class NeedleTrain {
   /// The largest compression of one segment beyond its installed length, max_j x_{j−1} − x_j,
   /// m (y for the massless spring).
   double LargestSegmentCompression(const TrainState& x) const;
+  /// The chain's segments that can clash: N with coil_clash, else 0.
+  int ClashSegments() const { return clash_law_ ? coils_ + 1 : 0; }
+  /// Segment j's (1…N) clash penetration g_j = s_j − travel/N, m, and its rate ṡ_j, m/s, with
+  /// the needle's lift and velocity as the contacts see them in `c`.
+  std::array<double, 2> SegmentPenetration(const TrainState& x, const Contacts& c, int j) const;
+  /// The law of the coils in contact (only with ClashSegments() > 0).
+  const ContactLaw& clash_law() const { return *clash_law_; }
 
   double Angle(double t) const { return theta_a_ + omega_ * t; }
   double Time(double crank_rad) const { return (crank_rad - theta_a_) / omega_; }
@@ -190,10 +213,20 @@ class NeedleTrain {
   TrainParameters p_;
   double omega_, theta_a_;
   std::shared_ptr<const ContactLaw> cam_law_, seat_law_;
-  // The spring's force on the needle at needle lift y and velocity v; into `coil_rates` (when
-  // given) the coils' v̇_i, into `dissipation_W` the dashpots' power.
-  double SpringForce(const TrainState& x, double y, double v, double* coil_rates,
-                     double* dissipation_W) const;
+  // The spring's force on the needle at needle lift y and velocity v in `phase` (its clashing
+  // segments); into `coil_rates` (when given) the coils' v̇_i, into `dissipation_W` the
+  // dashpots' and clash contacts' power.
+  double SpringForce(const TrainState& x, double y, double v, const Phase& phase,
+                     double* coil_rates, double* dissipation_W) const;
+  // Node i's lift and velocity (0: the needle at y, v; N: the fixed end).
+  double NodeLift(const TrainState& x, double y, int i) const {
+    return i == 0 ? y : (i == coils_ + 1 ? 0.0 : x[3 + i]);
+  }
+  double NodeVelocity(const TrainState& x, double v, int i) const {
+    return i == 0 ? v : (i == coils_ + 1 ? 0.0 : x[3 + coils_ + i]);
+  }
+  std::shared_ptr<const ContactLaw> clash_law_;  // null without coil_clash
+  double segment_travel_m_ = 0.0;                // δ = travel/N
 
   double gap_tolerance_ = 0.0;
   double lift_energy_J_ = 0.0;  // P₀L + ½kL²: the residual's least scale

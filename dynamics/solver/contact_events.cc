@@ -32,14 +32,23 @@ EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainStat
   // 5 and 6 only observe a lifted needle: at rest their arguments are zero up to roundoff
   // and would flip sign at every step.
   const bool lifted = x[0] > kSeparationLift_m;
-  return {cam[0],
-          cam[1],
-          seat[0],
-          seat[1],
-          x[0] - kSeparationLift_m,
-          (phase.mode.cam || !lifted) ? 1.0 : c.g_c_rate,
-          lifted ? x[1] : 1.0};
+  EventValues v = {cam[0],
+                   cam[1],
+                   seat[0],
+                   seat[1],
+                   x[0] - kSeparationLift_m,
+                   (phase.mode.cam || !lifted) ? 1.0 : c.g_c_rate,
+                   lifted ? x[1] : 1.0};
+  for (int j = 1; j <= train.ClashSegments(); ++j) {
+    const std::array<double, 2> g = train.SegmentPenetration(x, c, j);
+    const ContactWitnesses w = train.clash_law().Witnesses(g[0], g[1]);
+    v.push_back(w[0]);
+    v.push_back(w[1]);
+  }
+  return v;
 }
+
+int EventCount(const NeedleTrain& train) { return kEventCount + 2 * train.ClashSegments(); }
 
 std::optional<LinearForm> WitnessForm(const NeedleTrain& train, const Phase& phase, int index,
                                       bool lifted) {
@@ -69,9 +78,14 @@ std::optional<LinearForm> WitnessForm(const NeedleTrain& train, const Phase& pha
   return std::nullopt;
 }
 
-ContactMode ModeFromSigns(const NeedleTrain& train, const std::array<int, kEventCount>& s) {
-  return {train.cam_law().Pushes(s[kCamGap], s[kCamBranch]),
-          train.seat_law().Pushes(s[kSeatGap], s[kSeatBranch])};
+ContactMode ModeFromSigns(const NeedleTrain& train, const EventSigns& s) {
+  ContactMode mode{train.cam_law().Pushes(s[kCamGap], s[kCamBranch]),
+                   train.seat_law().Pushes(s[kSeatGap], s[kSeatBranch])};
+  for (int j = 1; j <= train.ClashSegments(); ++j) {
+    const int i = kEventCount + 2 * (j - 1);
+    if (train.clash_law().Pushes(s[i], s[i + 1])) mode.clash |= std::uint64_t{1} << (j - 1);
+  }
+  return mode;
 }
 
 Recorder::Recorder(const NeedleTrain& train, bool record_series)
@@ -128,6 +142,8 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
   }
   max_fc_ = std::max(max_fc_, fc);
   max_fs_ = std::max(max_fs_, fs);
+  max_segment_compression_m_ =
+      std::max(max_segment_compression_m_, train_.LargestSegmentCompression(x));
   // At a break the raw branch may be negative for an instant before its sign flips: a contact
   // never pulls.
   if (in_table) min_fc_lift_ = std::min(min_fc_lift_, std::max(0.0, fc));
@@ -182,6 +198,8 @@ void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
     impacts_.push_back(
         {seat_landed_ ? "seat-bounce" : "seat", c.crank_rad, std::max(0.0, c.g_s_rate)});
     seat_landed_ = true;
+  } else if (index >= kEventCount && (index - kEventCount) % 2 == 0 && direction > 0) {
+    ++coil_clashes_;  // a segment's coils meet
   }
   if (sample) Update(t, x, phase);
 }
@@ -213,6 +231,12 @@ void Recorder::Stopped(double crank_rad) {
     episodes_.back().end_rad = crank_rad;
     episodes_.back().open = true;
   }
+}
+
+std::optional<double> Recorder::min_coil_gap_m() const {
+  const TrainParameters& p = train_.parameters();
+  if (!(p.coil_travel_m > 0.0)) return std::nullopt;
+  return p.coil_travel_m - p.coil_masses * max_segment_compression_m_;
 }
 
 double Recorder::jump_rad() const {

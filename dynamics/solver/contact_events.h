@@ -12,11 +12,12 @@
 ///   5  ġ_c            while the cam does not push and y > 1 µm: its upward crossing is the
 ///                     largest gap (+1 otherwise)
 ///   6  ẏ              while y > 1 µm: its downward crossing is a local maximum of the lift
-
+///   7 + 2(j − 1), 8 + 2(j − 1)   with coil clash (NeedleTrain::ClashSegments), the clash law's
+///                     gap g_j = s_j − δ and force branch of segment j = 1…N
 ///
-/// Functions 0–3 decide the contact mode; 4–6 only observe. The record keeps separation
-/// episodes (jump or bounce), impacts (lash, recontact, seat, seat-bounce), extremes, and the
-/// time series only when asked.
+/// Functions 0–3 and the clash witnesses decide the contact mode; 4–6 only observe. The record
+/// keeps separation episodes (jump or bounce), impacts (lash, recontact, seat, seat-bounce),
+/// extremes, and the time series only when asked.
 
 #include <array>
 #include <optional>
@@ -27,7 +28,10 @@
 
 namespace needle {
 
+/// The witnesses every train has (0–6); a chain with coil clash appends two per segment.
 constexpr int kEventCount = 7;
+/// The most witnesses a train has.
+constexpr int kMaxEventCount = kEventCount + 2 * kMaxCoilMasses;
 /// The witnesses of the two contacts: gap and force branch of the cam (0, 1) and the seat (2, 3).
 constexpr int kCamGap = 0, kCamBranch = 1, kSeatGap = 2, kSeatBranch = 3;
 /// Lift above which a needle off the cam counts as separated, m (docs/model.md §6: 1 µm).
@@ -38,7 +42,12 @@ constexpr double kRestSpeed_m_s = 1e-4;
 /// … and net force below this fraction of P₀ + |F_g| (or of m·1 m/s² without loads).
 constexpr double kRestForceFraction = 1e-3;
 
-using EventValues = std::array<double, kEventCount>;
+/// Witness values, and their signs (+1 above zero, −1 at or below it); inline, no allocation.
+using EventValues = boost::container::static_vector<double, kMaxEventCount>;
+using EventSigns = boost::container::static_vector<int, kMaxEventCount>;
+
+/// The number of witnesses of `train`: kEventCount + 2 ClashSegments().
+int EventCount(const NeedleTrain& train);
 
 /// The event functions at (t, x) in `phase` (its mode and its segment of the cam input).
 EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t);
@@ -55,8 +64,9 @@ struct LinearForm {
 std::optional<LinearForm> WitnessForm(const NeedleTrain& train, const Phase& phase, int index,
                                       bool lifted);
 
-/// The mode implied by the signs of witnesses 0–3, by the train's contact laws.
-ContactMode ModeFromSigns(const NeedleTrain& train, const std::array<int, kEventCount>& signs);
+/// The mode implied by the signs of witnesses 0–3 and the clash witnesses, by the train's contact
+/// laws.
+ContactMode ModeFromSigns(const NeedleTrain& train, const EventSigns& signs);
 
 struct Episode {
   /// "jump" (any part of it where s'' < 0 inside [θ_0, θ_N], docs/model.md §6, or at θ_N when the
@@ -139,6 +149,12 @@ class Recorder {
   double max_contact_force_N() const { return max_fc_; }
   double min_contact_force_during_lift_N() const { return min_fc_lift_; }
   double max_seat_force_N() const { return max_fs_; }
+  /// The least gap to solid in the run, m: the spring's travel to solid less N times the most
+  /// compressed segment's compression (for N = 1, less the lift), over the samples and events;
+  /// nullopt when the train has no travel (TrainParameters::coil_travel_m = 0).
+  std::optional<double> min_coil_gap_m() const;
+  /// Onsets of coil clash (a segment's clash gap witness crossing upward).
+  int coil_clashes() const { return coil_clashes_; }
   /// Total length of jump episodes, rad.
   double jump_rad() const;
   /// Longest jump episode, rad.
@@ -165,6 +181,8 @@ class Recorder {
   bool seat_landed_ = false;     // any seat onset yet (seat vs seat-bounce)
   double max_lift_ = -1e300, max_lift_rad_ = 0.0;
   double max_fc_ = 0.0, min_fc_lift_ = 1e300, max_fs_ = 0.0;
+  double max_segment_compression_m_ = -1e300;
+  int coil_clashes_ = 0;
 };
 
 }  // namespace needle

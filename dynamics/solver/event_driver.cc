@@ -51,9 +51,9 @@ Breaks BreakTimes(const NeedleTrain& train, double t_end) {
 // The sign a witness value counts as: +1 above zero, −1 at or below it.
 int SignOf(double v) { return v > 0.0 ? 1 : -1; }
 
-std::array<int, kEventCount> Signs(const EventValues& v) {
-  std::array<int, kEventCount> s{};
-  for (int i = 0; i < kEventCount; ++i) s[i] = SignOf(v[i]);
+EventSigns Signs(const EventValues& v) {
+  EventSigns s(v.size());
+  for (size_t i = 0; i < v.size(); ++i) s[i] = SignOf(v[i]);
   return s;
 }
 
@@ -99,7 +99,7 @@ class EventDriver {
   // At a state reached without integration (the start, a reset, a rigid contact letting go):
   // the mode its witnesses imply, and their signs in that mode (witness 5 depends on the mode).
   // Rigid contacts stick by NeedleTrain::StickingMode, and x is put on their surfaces.
-  std::array<int, kEventCount> SettleMode(TrainState& x, double t) {
+  EventSigns SettleMode(TrainState& x, double t) {
     Phase& phase = system_.phase;
     phase.mode = ModeFromSigns(train_, Signs(Events(train_, phase, x, t)));
     if (train_.HasConstraint()) {
@@ -114,7 +114,7 @@ class EventDriver {
   // pressing acceleration a = λ/m, end within kAccumulationTime of a cam revolution, the
   // accumulation point t∞ (at most `limit`) with the needle sticking there; else nullopt.
   std::optional<double> Accumulate(bool cam, double t, double approach, double limit,
-                                   TrainState& xs, std::array<int, kEventCount>& signs);
+                                   TrainState& xs, EventSigns& signs);
 
   // Chattering ends in sticking when its remaining flights last less than this fraction of a
   // cam revolution (2π/ω).
@@ -197,7 +197,7 @@ class EventDriver {
 };
 
 std::optional<double> EventDriver::Accumulate(bool cam, double t, double approach, double limit,
-                                              TrainState& xs, std::array<int, kEventCount>& signs) {
+                                              TrainState& xs, EventSigns& signs) {
   Phase& phase = system_.phase;
   std::optional<double>& last = last_approach_[cam ? 0 : 1];
   const bool stuck = cam ? phase.mode.cam : phase.mode.seat;
@@ -323,7 +323,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   double horizon = t_end;  // t_limit once the run goes on to let the needle settle
 
   TrainState x = x0, xs;
-  std::array<int, kEventCount> signs = SettleMode(x, 0.0);
+  EventSigns signs = SettleMode(x, 0.0);
   recorder_.Start(0.0, x, phase);
   while (next_grid_ < grid.size() && grid[next_grid_] <= 0.0)
     recorder_.GridSample(grid[next_grid_++], x, phase);
@@ -360,7 +360,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       // The values at `from`, taken once, and only when a witness is searched.
       std::optional<EventValues> from_values;
       double gate_end = t1;  // 5 and 6 are gated by witness 4: searched up to its crossing
-      for (int i = 0; i < kEventCount; ++i) {
+      for (int i = 0; i < static_cast<int>(end_values.size()); ++i) {
         if (!piece && SignOf(end_values[i]) == signs[i]) continue;
         if (!from_values) from_values = Events(train_, phase, Motion(from), from);
         std::optional<double> root;
@@ -368,7 +368,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
           root = from;  // roundoff at a restart: the function is already past zero
         } else if (piece) {
           // The closed form's step ends at t1 itself (no snapping): its end values serve.
-          const double b = i >= 5 ? gate_end : t1;
+          const double b = (i == 5 || i == 6) ? gate_end : t1;
           root = Certified(*piece, i, signs[i], from, (*from_values)[i], b,
                            b == step.second ? end_values[i] : Value(i, b));
         } else {
@@ -393,7 +393,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       const bool cam = first == kCamGap;
       const bool rigid_impact = impact && (cam ? train_.cam_law() : train_.seat_law()).Constraint();
       const ContactMode next = rigid_impact ? was : ModeFromSigns(train_, signs);
-      bool switched = next.cam != phase.mode.cam || next.seat != phase.mode.seat;
+      bool switched = next != phase.mode;
       if (switched) {
         phase.mode = next;
         signs[5] = SignOf(Events(train_, phase, xs, first_t)[5]);  // depends on the mode

@@ -466,8 +466,8 @@ resonance_margin_percent = 20
             0u);
 }
 
-TEST(CaseFileTest, TheSpringsCoilMasses) {
-  const std::string spring = kGood + R"(
+// A helical spring carried as 12 coil masses, for the chain's keys.
+const std::string kChainSpring = kGood + R"(
 [needle]
 mass_kg = 2.0
 [spring]
@@ -479,8 +479,10 @@ free_length_mm = 80
 shear_modulus_GPa = 80
 tensile_MPa = 1800
 masses = 12
-surge_damping_ratio = 0.02
 )";
+
+TEST(CaseFileTest, TheSpringsCoilMasses) {
+  const std::string spring = kChainSpring + "surge_damping_ratio = 0.02\n";
   const Case c = ParseCase(spring, "t.toml");
   EXPECT_EQ(c.spring->masses, 12);
   EXPECT_DOUBLE_EQ(c.spring->surge_damping_ratio, 0.02);
@@ -506,6 +508,40 @@ surge_damping_ratio = 0.02
   EXPECT_EQ(Error(Replace(spring, "mass_kg = 2.0", "mass_kg = 0.015")),
             "t.toml: [spring] masses: the moving mass [needle] mass_kg = 0.015 kg includes a third "
             "of the spring, but a third of the active coils is 0.0185943 kg");
+}
+
+TEST(CaseFileTest, TheSpringsCoilClash) {
+  // clash = true with its two optional keys, each refused by name where it cannot apply.
+  const std::string spring =
+      kChainSpring + "clash = true\nclash_stiffness_N_mm = 5e5\nclash_damping_ratio = 0.1\n";
+  const Case c = ParseCase(spring, "t.toml");
+  EXPECT_TRUE(c.spring->coil_clash);
+  EXPECT_DOUBLE_EQ(*c.spring->clash_stiffness_N_m, 5e8);
+  EXPECT_DOUBLE_EQ(*c.spring->clash_damping_ratio, 0.1);
+  const Case plain = ParseCase(
+      Replace(spring, "clash = true\nclash_stiffness_N_mm = 5e5\nclash_damping_ratio = 0.1", ""),
+      "t.toml");
+  EXPECT_FALSE(plain.spring->coil_clash);
+  EXPECT_FALSE(plain.spring->clash_stiffness_N_m);
+  EXPECT_EQ(Error(Replace(spring, "masses = 12", "masses = 1")),
+            "t.toml: [spring] clash: needs masses of at least 2 (the coils that meet)");
+  EXPECT_EQ(Error(Replace(spring, "clash = true", "clash = false")),
+            "t.toml: [spring] clash_stiffness_N_mm: needs clash = true");
+  EXPECT_EQ(Error(Replace(spring, "clash = true\nclash_stiffness_N_mm = 5e5", "")),
+            "t.toml: [spring] clash_damping_ratio: needs clash = true");
+  EXPECT_EQ(Error(Replace(spring, "5e5", "-1")),
+            "t.toml: [spring] clash_stiffness_N_mm: must be positive, got -1000 N/m");
+  EXPECT_EQ(Error(Replace(spring, "= 0.1", "= 2")),
+            "t.toml: [spring] clash_damping_ratio: must be in [0, 1], got 2");
+  EXPECT_EQ(Error(Replace(spring, "clash = true", "clash = 1")),
+            "t.toml: [spring] clash: expected true or false");
+  // A rigid [train] has no contact stiffness for the coils to take.
+  const std::string rigid =
+      Replace(spring, "clash_stiffness_N_mm = 5e5\n", "") + "[train]\ncontact = \"rigid\"\n";
+  EXPECT_EQ(Error(rigid),
+            "t.toml: [spring] clash: a rigid [train] has no contact stiffness for the coils to "
+            "take; give clash_stiffness_N_m");
+  EXPECT_TRUE(ParseCase(spring + "[train]\ncontact = \"rigid\"\n", "t.toml").spring->coil_clash);
 }
 
 }  // namespace
