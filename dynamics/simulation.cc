@@ -122,11 +122,10 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
 // revolution besides.
 bool Repeats(const NeedleTrain& train, const TrainState& a, const TrainState& b, double tol,
              double lift_m) {
-  const int coils = train.Coils();
   for (size_t i = 0; i < a.size(); ++i) {
-    if (i == 2 || i == 3) continue;  // W, D
-    const bool velocity = i == 1 || static_cast<int>(i) >= 4 + coils;
-    const double scale = velocity ? train.omega() * lift_m : lift_m;
+    const int like = train.MeasuredLike(static_cast<int>(i));
+    if (like == 2 || like == 3) continue;  // W, D
+    const double scale = like == 1 ? train.omega() * lift_m : lift_m;
     if (!(std::abs(a[i] - b[i]) <= tol * scale)) return false;
   }
   return true;

@@ -98,7 +98,7 @@ struct SimulationResult {
   double max_seat_force_N = 0.0;
   /// With a chain of coil masses and a known travel to solid: the least gap to solid in the
   /// run, m (N times the most compressed segment's, docs/model.md §4a; < 0: the coils passed
-  /// solid), and the onsets of coil clash ([spring] coil_clash).
+  /// solid), and the onsets of coil clash ([spring] clash).
   std::optional<double> min_coil_gap_m;
   int coil_clashes = 0;
   double energy_residual = 0.0;

@@ -16,13 +16,12 @@ struct GradeRow {
 
 // Shigley 9th ed. Table 10-4 (SI): A228 2211 MPa·mm^0.145 for 0.10–6.5 mm; A229 1855, 0.187,
 // 0.5–12.7 mm; A232 2005, 0.168, 0.8–11.1 mm; A401 1974, 0.108, 1.6–9.5 mm. G: EN 13906-1.
+// SH and DH (EN 10270-1's patented cold-drawn grades) both take A228's strengths.
+const WireGradeData kMusicWire = {"EN 10270-1", "A228 music wire", 2211.0, 0.145, 0.10e-3, 6.5e-3,
+                                  81.5e9};
 const GradeRow kGrades[] = {
-    {WireGrade::kSH,
-     "SH",
-     {"EN 10270-1", "A228 music wire", 2211.0, 0.145, 0.10e-3, 6.5e-3, 81.5e9}},
-    {WireGrade::kDH,
-     "DH",
-     {"EN 10270-1", "A228 music wire", 2211.0, 0.145, 0.10e-3, 6.5e-3, 81.5e9}},
+    {WireGrade::kSH, "SH", kMusicWire},
+    {WireGrade::kDH, "DH", kMusicWire},
     {WireGrade::kVDC,
      "VDC",
      {"EN 10270-2", "A229/A230 oil-tempered", 1855.0, 0.187, 0.5e-3, 12.7e-3, 79.5e9}},

@@ -219,6 +219,17 @@ std::optional<double> OptionalPositive(SectionReader& r, const std::string& name
   return v;
 }
 
+// An optional whole number in [1, hi], checked before any cast (a cast of 3e9 or 1e308 is
+// undefined); the message shows the range as "[1, hi_text]".
+std::optional<long> OptionalCount(SectionReader& r, const std::string& key, double hi,
+                                  const std::string& hi_text) {
+  const auto v = r.OptionalNumber(key);
+  if (!v) return std::nullopt;
+  if (!(*v >= 1.0 && *v <= hi) || *v != std::floor(*v))
+    r.Fail(key, "must be a whole number in [1, " + hi_text + "], got " + Number(*v));
+  return static_cast<long>(*v);
+}
+
 NeedleSection ReadNeedle(SectionReader r) {
   NeedleSection n;
   n.mass_kg = r.Quantity("mass", Dimension::kMass);
@@ -357,11 +368,8 @@ SpringSection ReadSpring(SectionReader r) {
   if (!sp.rate_N_m && !sp.helical) {
     r.Fail("rate", "missing; give rate_N_mm (or rate_N_m, rate_kgf_mm …) or the helical geometry");
   }
-  if (auto n = r.OptionalNumber("masses")) {
-    if (!(*n >= 1.0 && *n <= kMaxCoilMasses) || *n != std::floor(*n))
-      r.Fail("masses", "must be a whole number in [1, " + std::to_string(kMaxCoilMasses) +
-                           "], got " + Number(*n));
-    if (*n > 1.0 && !sp.helical)
+  if (auto n = OptionalCount(r, "masses", kMaxCoilMasses, std::to_string(kMaxCoilMasses))) {
+    if (*n > 1 && !sp.helical)
       r.Fail("masses",
              "needs the helical geometry (wire_mm, coil_mm, active_coils …): the coil "
              "masses are the active coils' mass");
@@ -481,26 +489,18 @@ SolverSection ReadSolver(SectionReader r) {
     if (!(*atol > 0.0)) r.Fail("atol", "must be positive");
     s.atol_m = *atol;
   }
-  // Budgets: whole numbers in a range a long holds (a cast of 1e308 is undefined).
+  // Budgets: whole numbers in a range a long holds.
   for (auto [key, into] :
        {std::pair<const char*, long*>{"max_steps", &s.max_steps}, {"max_events", &s.max_events}}) {
-    if (auto v = r.OptionalNumber(key)) {
-      if (!(*v >= 1.0 && *v <= 1e12) || *v != std::floor(*v))
-        r.Fail(key, "must be a whole number in [1, 1e12], got " + Number(*v));
-      *into = static_cast<long>(*v);
-    }
+    if (auto v = OptionalCount(r, key, 1e12, "1e12")) *into = *v;
   }
   if (auto settle = r.OptionalQuantity("settle", Dimension::kAngle)) {
     if (!(*settle > 0.0 && *settle <= 36000.0 * kDeg))
       r.Fail("settle_deg", "must be in (0, 36000] deg, got " + Number(*settle / kDeg));
     s.settle_limit_deg = *settle / kDeg;
   }
-  if (auto v = r.OptionalNumber("cycles")) {
-    if (!(*v >= 1.0 && *v <= kMaxCycles) || *v != std::floor(*v))
-      r.Fail("cycles", "must be a whole number in [1, " + std::to_string(kMaxCycles) + "], got " +
-                           Number(*v));
+  if (auto v = OptionalCount(r, "cycles", kMaxCycles, std::to_string(kMaxCycles)))
     s.cycles = static_cast<int>(*v);
-  }
   if (auto v = r.OptionalNumber("period_tolerance")) {
     if (!(*v > 0.0 && *v <= 1e-2))
       r.Fail("period_tolerance", "must be in (0, 1e-2], got " + Number(*v));
@@ -1022,13 +1022,9 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
   positive("cam_peripheral_velocity", Dimension::kVelocity, 1.0, "cam_peripheral_velocity_m_s",
            d.cam_peripheral_velocity_m_s);
   number("disk_to_roller", 1.0, d.disk_to_roller);
-  if (auto holes = r.OptionalNumber("nozzle_holes")) {
-    // Checked as an integer in range before the cast (3e9 printed "−2147483648 holes").
-    if (!(*holes >= 1.0 && *holes <= 1000.0) || *holes != std::floor(*holes)) {
-      r.Fail("nozzle_holes", "must be a whole number in [1, 1000], got " + Number(*holes));
-    }
+  // Checked as an integer in range before the cast (3e9 printed "−2147483648 holes").
+  if (auto holes = OptionalCount(r, "nozzle_holes", 1000.0, "1000"))
     d.nozzle_holes = static_cast<int>(*holes);
-  }
   if (auto v = r.OptionalQuantity("discharge_passage", Dimension::kLength)) {
     if (!(*v > 0.0)) r.Fail("discharge_passage_mm", "must be positive, got " + Number(*v * 1e3));
     d.discharge_passage_m = *v;

@@ -7,6 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include "lib/units.h"
+#include "spring/resonance.h"
+
 namespace needle {
 namespace {
 
@@ -79,7 +82,7 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
     needle_mass_kg_ = p_.mass_kg - m_s / 3.0 + m_s / (2.0 * n);
     coil_mass_kg_ = m_s / n;
     segment_rate_N_m_ = n * p_.rate_N_m;
-    const double omega_1 = std::acos(-1.0) * std::sqrt(p_.rate_N_m / m_s);  // π√(k/m_s)
+    const double omega_1 = 2.0 * kPi * SurgeFrequencyHz(p_.rate_N_m, m_s, 1);  // π√(k/m_s)
     segment_damping_N_s_m_ = 2.0 * p_.surge_damping_ratio * segment_rate_N_m_ / omega_1;
     segment_travel_m_ = p_.coil_travel_m / n;
     if (p_.coil_clash) {
@@ -157,15 +160,14 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
   const double k = segment_rate_N_m_, c = segment_damping_N_s_m_;
   double power = 0.0, s_prev = 0.0, s_1 = 0.0;
   for (int j = 1; j <= n; ++j) {
-    const double s = NodeLift(x, y, j - 1) - NodeLift(x, y, j);
-    const double rate = NodeVelocity(x, v, j - 1) - NodeVelocity(x, v, j);
+    const auto [s, rate] = SegmentMotion(x, y, v, j);
     double s_j = k * s + c * rate;
     power += c * rate * rate;
     if (clash_law_) {  // the coils in contact: F on the mode's (or the gate's) branch
       const double g = s - segment_travel_m_;
-      const double f = phase.gated                          ? clash_law_->GatedForce(g, rate)
-                       : (phase.mode.clash >> (j - 1)) & 1u ? clash_law_->Force(g, rate)
-                                                            : 0.0;
+      const double f = phase.gated           ? clash_law_->GatedForce(g, rate)
+                       : phase.mode.Solid(j) ? clash_law_->Force(g, rate)
+                                             : 0.0;
       s_j += f;
       power += (f - clash_law_->ConservativeForce(g)) * rate;
     }
@@ -182,8 +184,8 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
 
 std::array<double, 2> NeedleTrain::SegmentPenetration(const TrainState& x, const Contacts& c,
                                                       int j) const {
-  return {NodeLift(x, c.y, j - 1) - NodeLift(x, c.y, j) - segment_travel_m_,
-          NodeVelocity(x, c.v, j - 1) - NodeVelocity(x, c.v, j)};
+  const auto [s, rate] = SegmentMotion(x, c.y, c.v, j);
+  return {s - segment_travel_m_, rate};
 }
 
 double NeedleTrain::LargestCoilSpeed(const TrainState& x) const {
@@ -196,7 +198,7 @@ double NeedleTrain::LargestSegmentCompression(const TrainState& x) const {
   if (coils_ == 0) return x[0];
   double most = -std::numeric_limits<double>::infinity();
   for (int j = 1; j <= coils_ + 1; ++j) {
-    most = std::max(most, NodeLift(x, x[0], j - 1) - NodeLift(x, x[0], j));
+    most = std::max(most, SegmentMotion(x, x[0], x[1], j)[0]);
   }
   return most;
 }
@@ -230,13 +232,12 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   const double cc = cam_law_->ForceDamping(), cs = seat_law_->ForceDamping();
   // Segment j's ∂S_j/∂s_j and ∂S_j/∂ṡ_j: the rate and dashpot, and the clash law's while the
   // mode has the segment solid. Segment 1 (or the massless spring) acts on the needle.
+  const auto solid = [&](int j) { return clash_law_ && phase.mode.Solid(j); };
   const auto seg_k = [&](int j) {
-    const bool solid = clash_law_ && ((phase.mode.clash >> (j - 1)) & 1u);
-    return segment_rate_N_m_ + (solid ? clash_law_->ForceStiffness() : 0.0);
+    return segment_rate_N_m_ + (solid(j) ? clash_law_->ForceStiffness() : 0.0);
   };
   const auto seg_c = [&](int j) {
-    const bool solid = clash_law_ && ((phase.mode.clash >> (j - 1)) & 1u);
-    return segment_damping_N_s_m_ + (solid ? clash_law_->ForceDamping() : 0.0);
+    return segment_damping_N_s_m_ + (solid(j) ? clash_law_->ForceDamping() : 0.0);
   };
   const double kr = coils_ > 0 ? seg_k(1) : p_.rate_N_m;
   const double cr = coils_ > 0 ? seg_c(1) : 0.0;
@@ -309,14 +310,13 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   // Ḋ ∋ Σ_j C ṡ_j² + (F_j − V'(g_j)) ṡ_j, F_j the clash force of the mode, g_j = s_j − δ.
   const double y0 = stuck ? c.y : x[0], v0 = stuck ? c.v : x[1];
   for (int j = 1; j <= nodes; ++j) {
-    const double rate = NodeVelocity(x, v0, j - 1) - NodeVelocity(x, v0, j);
+    const auto [s, rate] = SegmentMotion(x, y0, v0, j);
     double ds = 0.0, dv = 2.0 * segment_damping_N_s_m_ * rate;
     if (clash_law_) {
-      const double g = NodeLift(x, y0, j - 1) - NodeLift(x, y0, j) - segment_travel_m_;
-      const bool solid = (phase.mode.clash >> (j - 1)) & 1u;
-      const double f = solid ? clash_law_->Force(g, rate) : 0.0;
-      const double kc_j = solid ? clash_law_->ForceStiffness() : 0.0;
-      const double cc_j = solid ? clash_law_->ForceDamping() : 0.0;
+      const double g = s - segment_travel_m_;
+      const double f = solid(j) ? clash_law_->Force(g, rate) : 0.0;
+      const double kc_j = solid(j) ? clash_law_->ForceStiffness() : 0.0;
+      const double cc_j = solid(j) ? clash_law_->ForceDamping() : 0.0;
       ds = (kc_j - clash_law_->ConservativeStiffness(g)) * rate;
       dv += cc_j * rate + f - clash_law_->ConservativeForce(g);
     }
@@ -351,16 +351,15 @@ double NeedleTrain::Energy(const TrainState& x, double t) const {
   const Contacts c = Evaluate(x, t);
   const double y = x[0];
   double spring_J = 0.5 * p_.rate_N_m * y * y;
-  if (coils_ > 0) {  // ½ K Σ (x_{j−1} − x_j)² + ½ m_c Σ v_i²
+  if (coils_ > 0) {  // ½ K Σ s_j² (+ the clash potentials V(s_j − δ)) + ½ m_c Σ v_i²
     spring_J = 0.0;
     for (int j = 1; j <= coils_ + 1; ++j) {
-      const double d = NodeLift(x, y, j - 1) - NodeLift(x, y, j);
-      spring_J += 0.5 * segment_rate_N_m_ * d * d;
+      const double s = SegmentMotion(x, y, x[1], j)[0];
+      spring_J += 0.5 * segment_rate_N_m_ * s * s;
+      if (clash_law_) spring_J += clash_law_->Potential(s - segment_travel_m_);
     }
     for (int i = 0; i < coils_; ++i)
       spring_J += 0.5 * coil_mass_kg_ * x[4 + coils_ + i] * x[4 + coils_ + i];
-    for (int j = 1; j <= ClashSegments(); ++j)
-      spring_J += clash_law_->Potential(SegmentPenetration(x, c, j)[0]);
   }
   return 0.5 * needle_mass_kg_ * x[1] * x[1] + p_.preload_N * y + spring_J - p_.gas_force_N * y +
          cam_law_->Potential(c.g_c) + seat_law_->Potential(c.g_s);

@@ -85,6 +85,9 @@ struct ContactMode {
   bool cam = false;
   bool seat = false;
   std::uint64_t clash = 0;  ///< bit j − 1: segment j of the chain is solid (coil clash)
+  /// Whether segment j (1…N) is solid, and making it so.
+  bool Solid(int j) const { return (clash >> (j - 1)) & 1u; }
+  void SetSolid(int j) { clash |= std::uint64_t{1} << (j - 1); }
   bool operator==(const ContactMode& o) const {
     return cam == o.cam && seat == o.seat && clash == o.clash;
   }
@@ -183,6 +186,9 @@ class NeedleTrain {
   int StateSize() const { return 4 + 2 * (coils_ > 0 ? coils_ : 0); }
   /// N − 1: the coil masses in the state (0 for the massless spring).
   int Coils() const { return coils_; }
+  /// The needle's entry that state entry i is measured like: 0 for a lift (y, x_i), 1 for a
+  /// velocity (ẏ, v_i), 2 and 3 for W and D.
+  int MeasuredLike(int i) const { return i < 4 ? i : (i < 4 + coils_ ? 0 : 1); }
   /// The needle's mass m in the equation of motion, kg: mass_kg, or mass_kg − m_s/3 + m_s/(2N).
   double NeedleMassKg() const { return needle_mass_kg_; }
   /// The largest |v_i| of the coil masses, m/s (0 without them).
@@ -224,6 +230,12 @@ class NeedleTrain {
   }
   double NodeVelocity(const TrainState& x, double v, int i) const {
     return i == 0 ? v : (i == coils_ + 1 ? 0.0 : x[3 + coils_ + i]);
+  }
+  // Segment j's compression beyond installed s_j = x_{j−1} − x_j and its rate ṡ_j, the needle
+  // at y, v.
+  std::array<double, 2> SegmentMotion(const TrainState& x, double y, double v, int j) const {
+    return {NodeLift(x, y, j - 1) - NodeLift(x, y, j),
+            NodeVelocity(x, v, j - 1) - NodeVelocity(x, v, j)};
   }
   std::shared_ptr<const ContactLaw> clash_law_;  // null without coil_clash
   double segment_travel_m_ = 0.0;                // δ = travel/N

@@ -48,8 +48,6 @@ EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainStat
   return v;
 }
 
-int EventCount(const NeedleTrain& train) { return kEventCount + 2 * train.ClashSegments(); }
-
 std::optional<LinearForm> WitnessForm(const NeedleTrain& train, const Phase& phase, int index,
                                       bool lifted) {
   const std::optional<LinearWitnesses> cam = train.cam_law().Linear();
@@ -83,7 +81,7 @@ ContactMode ModeFromSigns(const NeedleTrain& train, const EventSigns& s) {
                    train.seat_law().Pushes(s[kSeatGap], s[kSeatBranch])};
   for (int j = 1; j <= train.ClashSegments(); ++j) {
     const int i = kEventCount + 2 * (j - 1);
-    if (train.clash_law().Pushes(s[i], s[i + 1])) mode.clash |= std::uint64_t{1} << (j - 1);
+    if (train.clash_law().Pushes(s[i], s[i + 1])) mode.SetSolid(j);
   }
   return mode;
 }

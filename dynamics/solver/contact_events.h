@@ -46,9 +46,6 @@ constexpr double kRestForceFraction = 1e-3;
 using EventValues = boost::container::static_vector<double, kMaxEventCount>;
 using EventSigns = boost::container::static_vector<int, kMaxEventCount>;
 
-/// The number of witnesses of `train`: kEventCount + 2 ClashSegments().
-int EventCount(const NeedleTrain& train);
-
 /// The event functions at (t, x) in `phase` (its mode and its segment of the cam input).
 EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t);
 

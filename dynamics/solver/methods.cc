@@ -100,10 +100,8 @@ std::array<double, 4> IntegratorOptions::AbsoluteTolerances() const {
 TrainSystem::TrainSystem(const NeedleTrain& train, const IntegratorOptions& o) : train_(train) {
   const std::array<double, 4> atol = o.AbsoluteTolerances();
   scaled_ = false;
-  const int coils = train.Coils();
   for (int i = 0; i < train.StateSize(); ++i) {
-    const int like = i < 4 ? i : (i < 4 + coils ? 0 : 1);  // a coil's lift, or its velocity
-    scale_.push_back(atol[like] / atol[0]);
+    scale_.push_back(atol[train.MeasuredLike(i)] / atol[0]);
     scaled_ = scaled_ || scale_[i] != 1.0;
   }
 }

@@ -406,8 +406,9 @@ TEST(CaseFileTest, BreaksMarkAnExactTableAndRefuseWhatCannotGoWithThem) {
             "t.toml: [lift] breaks_deg: applies to a table (crank_deg + lift_mm, or csv)");
 }
 
-TEST(CaseFileTest, WireGradeAndTheLimitsSection) {
-  const std::string spring = kGood + R"(
+// A 2 kg needle on a helical spring (wire 4 mm on 30 mm, 6 active coils), its material still
+// to be given.
+const std::string kHelicalSpring = kGood + R"(
 [needle]
 mass_kg = 2.0
 [spring]
@@ -416,8 +417,10 @@ wire_mm = 4
 coil_mm = 30
 active_coils = 6
 free_length_mm = 80
-grade = "VDSiCr"
 )";
+
+TEST(CaseFileTest, WireGradeAndTheLimitsSection) {
+  const std::string spring = kHelicalSpring + "grade = \"VDSiCr\"\n";
   const Case c = ParseCase(spring, "t.toml");
   EXPECT_DOUBLE_EQ(c.spring->helical->tensile_Pa, TensileStrengthPa(WireGrade::kVDSiCr, 4e-3));
   EXPECT_DOUBLE_EQ(c.spring->helical->shear_modulus_Pa, 79.5e9);
@@ -466,20 +469,9 @@ resonance_margin_percent = 20
             0u);
 }
 
-// A helical spring carried as 12 coil masses, for the chain's keys.
-const std::string kChainSpring = kGood + R"(
-[needle]
-mass_kg = 2.0
-[spring]
-preload_N = 500
-wire_mm = 4
-coil_mm = 30
-active_coils = 6
-free_length_mm = 80
-shear_modulus_GPa = 80
-tensile_MPa = 1800
-masses = 12
-)";
+// The helical spring above, of stated material, carried as 12 coil masses: the chain's keys.
+const std::string kChainSpring =
+    kHelicalSpring + "shear_modulus_GPa = 80\ntensile_MPa = 1800\nmasses = 12\n";
 
 TEST(CaseFileTest, TheSpringsCoilMasses) {
   const std::string spring = kChainSpring + "surge_damping_ratio = 0.02\n";

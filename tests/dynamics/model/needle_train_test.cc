@@ -12,6 +12,7 @@
 
 #include "dynamics/solver/integrator.h"
 #include "lib/units.h"
+#include "spring/resonance.h"
 #include "tests/dynamics/test_laws.h"
 
 namespace needle {
@@ -213,9 +214,12 @@ TEST(NeedleTrainTest, AChainOfTwentyRingsAtTheWaveEquationsFirstThreeModes) {
     for (int j = 0; j < c; ++j) k(i, j) = -J[(4 + c + i) * n + (4 + j)];  // −∂v̇_i/∂x_j
   }
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(k);
-  const double f_1 = 0.5 * std::sqrt(p.rate_N_m / p.spring_mass_kg);
+  const double f_1 = SurgeFrequencyHz(p.rate_N_m, p.spring_mass_kg, 1);
+  // The lumped chain of the resonance map (spring/resonance.h), the same N segments.
+  const std::vector<double> lumped = ChainNaturalFrequenciesHz(p.rate_N_m, p.spring_mass_kg, 20, 3);
   for (int i = 1; i <= 3; ++i) {
     const double f = std::sqrt(modes.eigenvalues()(i - 1)) / (2.0 * kPi);
+    EXPECT_NEAR(f / lumped[i - 1], 1.0, 1e-12) << "mode " << i;
     EXPECT_NEAR(f / (i * f_1), 1.0, 0.01) << "mode " << i;
     EXPECT_LT(f, i * f_1) << "a lumped chain rings below the continuum";
   }
