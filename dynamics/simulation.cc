@@ -85,6 +85,12 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
           ? recorder.min_contact_force_during_lift_N()
           : std::min(r.min_contact_force_during_lift_N, recorder.min_contact_force_during_lift_N());
   r.max_seat_force_N = std::max(r.max_seat_force_N, recorder.max_seat_force_N());
+  r.min_lift_m = cycle == 0 ? recorder.min_lift_m() : std::min(r.min_lift_m, recorder.min_lift_m());
+  if (recorder.lifted() && !(recorder.min_contact_force_ratio() >= r.min_contact_force_ratio)) {
+    r.min_contact_force_ratio = recorder.min_contact_force_ratio();
+    r.min_contact_force_ratio_rad = recorder.min_contact_force_ratio_rad() + shift_rad;
+    r.min_contact_force_ratio_force_N = recorder.min_contact_force_ratio_force_N();
+  }
   if (const std::optional<double> gap = recorder.min_coil_gap_m()) {
     r.min_coil_gap_m = r.min_coil_gap_m ? std::min(*r.min_coil_gap_m, *gap) : *gap;
   }
@@ -307,11 +313,21 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     r.max_lift_rad = top.crank_rad;
     r.min_contact_force_during_lift_N = fmin.force_N;
     // Largest F_qs over the lift: −min of −F_qs (sampled finely; F_qs is smooth).
+    // … and the least F_qs / (P₀ + k s − F_g) where the needle is lifted (s > 1 µm).
     double fmax = 0.0;
     for (int k = 0; k <= 2000; ++k) {
       const double th =
           scene.law->start_rad() + (scene.law->end_rad() - scene.law->start_rad()) * k / 2000.0;
-      fmax = std::max(fmax, QuasiStaticForce(*scene.law, rigid, omega, th));
+      const double f = QuasiStaticForce(*scene.law, rigid, omega, th);
+      fmax = std::max(fmax, f);
+      const double s = scene.law->Lift(th);
+      const double hold = rigid.SpringForceN(s);
+      const double ratio = hold > 0.0 ? std::max(0.0, f) / hold : 0.0;
+      if (s > kSeparationLift_m && !(ratio >= r.min_contact_force_ratio)) {
+        r.min_contact_force_ratio = ratio;
+        r.min_contact_force_ratio_rad = th;
+        r.min_contact_force_ratio_force_N = std::max(0.0, f);
+      }
     }
     r.max_contact_force_N = fmax;
     r.max_seat_force_N = scene.train.preload_N - scene.train.gas_force_N;

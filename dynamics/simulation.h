@@ -7,6 +7,7 @@
 /// stiffness; the rigid answer reported instead of a dynamic
 /// run when the scene does not need one, with the reason, unless the dynamics is forced.
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -94,7 +95,17 @@ struct SimulationResult {
   std::vector<SeriesPoint> series;
   double max_lift_m = 0.0, max_lift_rad = 0.0;
   double max_contact_force_N = 0.0;
+  /// The least cam contact force while the cam lifts the needle (the cam above the play and the
+  /// needle off its seat, docs/model.md §6), N; 0 when the needle was never lifted.
   double min_contact_force_during_lift_N = 0.0;
+  /// The least ratio of the contact force to the static load holding the needle on the cam
+  /// there, F_c / (P₀ + k y − F_g), in the same window, and its crank angle (rad) and force (N);
+  /// NaN when the needle was never lifted.
+  double min_contact_force_ratio = NAN;
+  double min_contact_force_ratio_rad = 0.0;
+  double min_contact_force_ratio_force_N = 0.0;
+  /// The least lift of the needle, m (< 0: pressed into its seat).
+  double min_lift_m = 0.0;
   double max_seat_force_N = 0.0;
   /// With a chain of coil masses and a known travel to solid: the least gap to solid in the
   /// run, m (N times the most compressed segment's, docs/model.md §4a; < 0: the coils passed

@@ -602,17 +602,22 @@ FollowerKeys ReadFollowerKeys(SectionReader& r) {
 
 LimitsSection ReadLimits(SectionReader r) {
   LimitsSection l;
-  const auto fraction = [&r](const std::string& name, double low, double& into) {
-    if (auto v = r.OptionalQuantity(name, Dimension::kPercent)) {
-      if (!(*v >= low && *v <= 1.0))
-        r.Fail(r.last_key(), "must be in " + Number(low * 100) + "…100 %, got " + Number(*v * 100));
-      into = *v;
-    }
+  const auto optional_fraction = [&r](const std::string& name, double low) {
+    const std::optional<double> v = r.OptionalQuantity(name, Dimension::kPercent);
+    if (v && !(*v >= low && *v <= 1.0))
+      r.Fail(r.last_key(), "must be in " + Number(low * 100) + "…100 %, got " + Number(*v * 100));
+    return v;
+  };
+  const auto fraction = [&](const std::string& name, double low, double& into) {
+    if (auto v = optional_fraction(name, low)) into = *v;
   };
   if (auto v = OptionalPositive(r, "seating_velocity", Dimension::kVelocity, 1.0,
                                 "seating_velocity_m_s", "m/s"))
     l.seating_velocity_m_s = *v;
-  fraction("min_contact_force", 0.0, l.min_contact_force_fraction);
+  if (auto v = OptionalPositive(r, "lash_impact_velocity", Dimension::kVelocity, 1.0,
+                                "lash_impact_velocity_m_s", "m/s"))
+    l.lash_impact_velocity_m_s = *v;
+  l.min_contact_force_fraction = optional_fraction("min_contact_force", 0.0);
   fraction("separation_margin", -1.0, l.separation_margin_fraction);
   if (auto v = OptionalPositive(r, "hertz_stress", Dimension::kPressure, 1e-6, "hertz_stress_MPa",
                                 "MPa"))

@@ -148,9 +148,13 @@ struct LimitsSection {
   /// Largest landing speed of the needle on its seat, m/s: the top of Blair's optimum ramp
   /// velocity range, 1.0–1.5 m/s at the highest operating speed.
   double seating_velocity_m_s = 1.5;
-  /// Least cam contact force during the lift as a fraction of the preload (0: the force stays
-  /// positive, docs/model.md §6's lift-off criterion).
-  double min_contact_force_fraction = 0.0;
+  /// Largest speed at which the cam strikes the roller as it takes up the play (the lash
+  /// impact), m/s: the opening ramp's velocity, the same Blair range as the seating velocity.
+  double lash_impact_velocity_m_s = 1.5;
+  /// Least cam contact force while the cam lifts the needle, as a fraction of the static load
+  /// holding it on the cam there (P₀ + k y − F_g); absent: 1 − 1/f², f = [spring]
+  /// overspeed_factor (the share the inertia of f·n would take, so at least 30.6 % at f = 1.2).
+  std::optional<double> min_contact_force_fraction;
   /// n_dyn at least (1 + this)·f·n (0: the model contract's passing check, n_dyn > f·n).
   double separation_margin_fraction = 0.0;
   /// Largest Hertz stress cam–roller, Pa: ISO 6336-5's σ_Hlim of case-hardened steel, MQ.

@@ -58,6 +58,10 @@ struct LimitRow {
   std::string UnitSuffix() const { return unit.empty() ? "" : " " + unit; }
 };
 
+/// A failing row as one line, its parts apart: "limits: NAME: measured V, limit >= L, margin M
+/// (where/why); rule: SOURCE" — the finding first, the rule's source last.
+std::string FailureLine(const LimitRow& row);
+
 /// Options of CheckScene; every field has a default.
 struct CheckOptions {
   std::optional<double> speed_rpm;  ///< rated speed, rpm; default [engine] speed_rpm

@@ -121,6 +121,10 @@ bool Recorder::InLift(double crank_rad) const {
          crank_rad <= law.end_rad() + AngleTolerance(law.end_rad());
 }
 
+bool Recorder::OnCamWindow(const Contacts& c, const TrainState& x) {
+  return c.u > kSeparationLift_m && x[0] > kSeparationLift_m;
+}
+
 bool Recorder::Decelerating(double crank_rad) const {
   const LiftLaw& law = train_.cam().law();
   const double end = law.end_rad();
@@ -142,9 +146,22 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
   max_fs_ = std::max(max_fs_, fs);
   max_segment_compression_m_ =
       std::max(max_segment_compression_m_, train_.LargestSegmentCompression(x));
+  min_lift_ = std::min(min_lift_, x[0]);
   // At a break the raw branch may be negative for an instant before its sign flips: a contact
   // never pulls.
-  if (in_table) min_fc_lift_ = std::min(min_fc_lift_, std::max(0.0, fc));
+  if (OnCamWindow(c, x)) {
+    lifted_ = true;
+    const double f = std::max(0.0, fc);
+    min_fc_lift_ = std::min(min_fc_lift_, f);
+    const TrainParameters& p = train_.parameters();
+    const double hold = p.preload_N + p.rate_N_m * x[0] - p.gas_force_N;
+    const double ratio = hold > 0.0 ? f / hold : 0.0;
+    if (ratio < min_ratio_) {
+      min_ratio_ = ratio;
+      min_ratio_rad_ = th;
+      min_ratio_force_ = f;
+    }
+  }
   // Separation episode: inside [θ0, θN], the cam not pushing and y > 1 µm.
   // An episode begins inside [θ0, θN]; one still open at θN goes on until the needle is back
   // on the cam or on its seat (docs/model.md §6).

@@ -20,6 +20,7 @@
 /// extremes, and the time series only when asked.
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -144,7 +145,19 @@ class Recorder {
   double max_lift_m() const { return max_lift_; }
   double max_lift_rad() const { return max_lift_rad_; }
   double max_contact_force_N() const { return max_fc_; }
-  double min_contact_force_during_lift_N() const { return min_fc_lift_; }
+  /// The least cam contact force while the cam lifts the needle (OnCamWindow), N; 0 when the
+  /// needle was never lifted.
+  double min_contact_force_during_lift_N() const { return lifted_ ? min_fc_lift_ : 0.0; }
+  /// The least contact force over the static load that holds the needle on the cam there,
+  /// F_c / (P₀ + k y − F_g), in the same window (0 where that load is not positive); NaN when
+  /// the needle was never lifted. Its crank angle, rad, and the force there, N.
+  double min_contact_force_ratio() const { return lifted_ ? min_ratio_ : NAN; }
+  double min_contact_force_ratio_rad() const { return min_ratio_rad_; }
+  double min_contact_force_ratio_force_N() const { return min_ratio_force_; }
+  /// Whether the cam ever lifted the needle off its seat (the window was entered).
+  bool lifted() const { return lifted_; }
+  /// The least lift of the needle in the run, m (< 0: into its seat).
+  double min_lift_m() const { return min_lift_; }
   double max_seat_force_N() const { return max_fs_; }
   /// The least gap to solid in the run, m: the spring's travel to solid less N times the most
   /// compressed segment's compression (for N = 1, less the lift), over the samples and events;
@@ -161,6 +174,10 @@ class Recorder {
   void Update(double t, const TrainState& x, const Phase& phase);
   /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
   bool InLift(double crank_rad) const;
+  /// The window the least contact force is taken over (docs/model.md §6): the cam above the
+  /// play (u > 1 µm) and the needle off its seat (y > 1 µm), so the cam is lifting it — the same
+  /// for an exact and a measured table of one cam, whatever its detected open lift.
+  static bool OnCamWindow(const Contacts& c, const TrainState& x);
   /// Inside the deceleration zone at this angle (docs/model.md §6).
   bool Decelerating(double crank_rad) const;
 
@@ -178,6 +195,9 @@ class Recorder {
   bool seat_landed_ = false;     // any seat onset yet (seat vs seat-bounce)
   double max_lift_ = -1e300, max_lift_rad_ = 0.0;
   double max_fc_ = 0.0, min_fc_lift_ = 1e300, max_fs_ = 0.0;
+  bool lifted_ = false;
+  double min_ratio_ = 1e300, min_ratio_rad_ = 0.0, min_ratio_force_ = 0.0;
+  double min_lift_ = 1e300;
   double max_segment_compression_m_ = -1e300;
   int coil_clashes_ = 0;
 };

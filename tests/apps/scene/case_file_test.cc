@@ -453,7 +453,7 @@ resonance_margin_percent = 20
 )",
                            "t.toml");
   EXPECT_DOUBLE_EQ(l.limits.seating_velocity_m_s, 0.8);
-  EXPECT_DOUBLE_EQ(l.limits.min_contact_force_fraction, 0.1);
+  EXPECT_DOUBLE_EQ(*l.limits.min_contact_force_fraction, 0.1);
   EXPECT_DOUBLE_EQ(l.limits.hertz_stress_Pa, 1300e6);
   EXPECT_DOUBLE_EQ(*l.limits.contact_length_m, 12e-3);
   EXPECT_DOUBLE_EQ(l.limits.fatigue_safety_factor, 1.2);

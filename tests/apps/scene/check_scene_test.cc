@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace needle {
@@ -109,9 +110,10 @@ TEST(CheckSceneTest, AKinematicsOnlySceneSaysWhatItSkipped) {
   EXPECT_EQ(r.skipped.size(), 4u);
   // The limits table names what it could not judge, in one line grouped by what is missing.
   EXPECT_TRUE(Contains(r.skipped,
-                       "limits not judged: seating velocity, least contact force in "
-                       "the lift (no dynamics ([train] missing)); separation margin"));
-  EXPECT_EQ(r.limits.size(), 7u);
+                       "limits not judged: seating velocity, lash impact speed (the cam taking "
+                       "up the play), least contact force while the cam lifts the needle (no "
+                       "dynamics ([train] missing)); separation margin"));
+  EXPECT_EQ(r.limits.size(), 8u);
   for (const LimitRow& x : r.limits) EXPECT_EQ(x.verdict, "not judged") << x.key;
   EXPECT_TRUE(std::isnan(r.n_qs_rpm));
   EXPECT_FALSE(r.spring || r.run || r.sweep || r.profile);
@@ -124,7 +126,7 @@ TEST(CheckSceneTest, TheLimitsTableOfExample2) {
   CheckOptions o;
   o.record_series = false;
   const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
-  ASSERT_EQ(r.limits.size(), 7u);
+  ASSERT_EQ(r.limits.size(), 8u);
   const auto row = [&](const std::string& key) {
     for (const LimitRow& x : r.limits)
       if (x.key == key) return x;
@@ -142,12 +144,130 @@ TEST(CheckSceneTest, TheLimitsTableOfExample2) {
   EXPECT_EQ(row("seating_velocity").verdict, "pass");
   EXPECT_EQ(row("separation_margin").verdict, "pass");
   EXPECT_NEAR(row("separation_margin").value, 100 * (r.sweep->n_dyn_rpm.value() / 480 - 1), 1e-9);
+  // The finding first (measured, limit, margin, where), the rule's source apart.
   EXPECT_TRUE(Contains(r.failing,
-                       "limits: spring fatigue safety factor (Goodman) 1.46 below "
-                       "1.50 (Shigley 10-12: design factor 1.5)"));
+                       "limits: spring fatigue safety factor (Goodman): measured 1.46, limit >= "
+                       "1.50, margin -0.04 (tau 642-689 MPa, unpeened (Zimmerli)); rule: "
+                       "Shigley 10-12: design factor 1.5"));
   EXPECT_FALSE(r.pass);
   ASSERT_EQ(r.surge_modes_hz.size(), 3u);
   EXPECT_NEAR(r.surge_modes_hz[1], 2 * r.surge_modes_hz[0], 1e-9);
+}
+
+// A medium-speed engine of our own (not Basu's): a 2.2 kg needle lifted 1.8 mm on a
+// harmonic lift over 32° of crank at 500 rpm, four-stroke, 330 kgf spring of 70 N/mm, a
+// 3e8 N/m roller on its cam with 0.3 mm play taken up on ramps of `ramp_deg`.
+std::string MediumSpeedEngine(double ramp_deg) {
+  std::string crank = "crank_deg = [", lift = "lift_mm = [";
+  for (int i = 0; i <= 64; ++i) {
+    const double th = 0.5 * i;
+    crank += (i ? ", " : "") + std::to_string(th);
+    lift += (i ? ", " : "") + std::to_string(0.9 * (1 - std::cos(2 * M_PI * th / 32.0)));
+  }
+  return "title = \"medium-speed engine\"\n[engine]\nspeed_rpm = 500\ncycle = \"four-stroke\"\n"
+         "[lift]\n" +
+         crank + "]\n" + lift +
+         "]\nspline = \"quintic\"\n"
+         "[needle]\nmass_kg = 2.2\ndiameter_mm = 10\n"
+         "[spring]\npreload_kgf = 330\nrate_N_mm = 70\n"
+         "[train]\ncontact_stiffness_N_m = 3e8\nplay_mm = 0.3\nramp_deg = " +
+         std::to_string(ramp_deg) + "\n[overspeed]\nfrom_rpm = 500\nto_rpm = 2000\n";
+}
+
+const LimitRow& Row(const CheckResult& r, const std::string& key) {
+  for (const LimitRow& x : r.limits)
+    if (x.key == key) return x;
+  throw std::runtime_error("no row " + key);
+}
+
+// The least contact force of the window the row judges, recomputed from the run's own series:
+// the cam above the play and the needle off its seat, over the static load holding it there.
+double SeriesLeastForceRatio(const CheckResult& r) {
+  double least = INFINITY;
+  for (const SeriesPoint& p : r.run->series) {
+    if (!(p.cam_m > 1e-6 && p.lift_m > 1e-6)) continue;
+    const double hold = r.spring->train.SpringForceN(p.lift_m);
+    least = std::min(least, std::max(0.0, p.contact_force_N) / hold);
+  }
+  return least;
+}
+
+// The ramp's velocity, m/s: from −δ at θ_0 − X to s(θ_0) at θ_0 at ω = 500 rpm. The needle at
+// rest on its seat meets the ramp, so the lash impact's approach speed is this.
+double RampVelocity(const Case& c, double ramp_deg) {
+  const LiftLaw law = MakeLiftLaw(c);
+  return (0.3e-3 + law.Lift(law.start_rad())) / (ramp_deg * M_PI / 180) * (500 * 2 * M_PI / 60);
+}
+
+// The engine as designed passes: it follows its cam, the cam takes up the play at the ramp's
+// velocity, and the least contact force is the series' own.
+TEST(CheckSceneTest, AMediumSpeedEnginePassesWithItsLashImpactJudged) {
+  const Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  EXPECT_TRUE(r.pass) << (r.failing.empty() ? "" : r.failing[0]);
+  const LimitRow& lash = Row(r, "lash_impact_speed");
+  EXPECT_EQ(lash.verdict, "pass");
+  EXPECT_NEAR(lash.value, RampVelocity(c, 6), 1e-9);
+  EXPECT_NEAR(lash.value, 0.15, 1e-4);
+  const LimitRow& force = Row(r, "min_contact_force");
+  EXPECT_EQ(force.verdict, "pass");
+  EXPECT_NEAR(force.limit, 100 * (1 - 1 / 1.44), 1e-12);  // f = 1.2
+  EXPECT_NEAR(force.value, 100 * SeriesLeastForceRatio(r), 1e-9);
+  EXPECT_GT(force.value, 50.0);
+}
+
+// A 0.5° ramp: the cam strikes the roller at 1.8 m/s, which the lash row fails (the only
+// failure: the ramp ends right after, so the needle is not thrown off the cam).
+TEST(CheckSceneTest, AShortRampFailsTheLashRow) {
+  const Case c = ParseCase(MediumSpeedEngine(0.5), "medium.toml");
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  EXPECT_FALSE(r.pass);
+  const LimitRow& lash = Row(r, "lash_impact_speed");
+  EXPECT_EQ(lash.verdict, "fail");
+  EXPECT_NEAR(lash.value, RampVelocity(c, 0.5), 1e-9);
+  ASSERT_EQ(r.failing.size(), 1u);
+  EXPECT_TRUE(Contains(r.failing,
+                       "limits: lash impact speed (the cam taking up the play): "
+                       "measured 1.80 m/s, limit <= 1.50 m/s, margin -0.30 m/s (lash"));
+  EXPECT_EQ(Row(r, "min_contact_force").verdict, "pass");
+}
+
+// Where the needle leaves the cam in the lift the least contact force is 0, which fails the row
+// (its old limit, 0 % of P0, passed it), agreeing with the series; just below n_dyn, where the
+// needle still follows, the row already fails on the overspeed factor's share.
+TEST(CheckSceneTest, ASeparationInTheLiftFailsTheContactForceRow) {
+  const Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
+  CheckOptions o;
+  o.speed_rpm = 1300;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_TRUE(r.run && r.run->liftoff());
+  const LimitRow& force = Row(r, "min_contact_force");
+  EXPECT_EQ(force.verdict, "fail");
+  EXPECT_EQ(force.value, 0.0);
+  EXPECT_EQ(SeriesLeastForceRatio(r), 0.0);
+  ASSERT_TRUE(r.sweep->n_dyn_rpm);
+  o.speed_rpm = *r.sweep->n_dyn_rpm - 5;
+  const CheckResult below = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_FALSE(below.run->liftoff());
+  EXPECT_EQ(Row(below, "min_contact_force").verdict, "fail");
+  EXPECT_GT(Row(below, "min_contact_force").value, 0.0);
+  EXPECT_NEAR(Row(below, "min_contact_force").value, 100 * SeriesLeastForceRatio(below), 1e-9);
+}
+
+// A sign-typo'd stiffness (5e-8 for 5e8 N/m) reaching the check by any road: the seat cannot
+// hold the spring and the cam never lifts the needle; the check fails and says so.
+TEST(CheckSceneTest, ARunThatDoesNotFollowItsCamFails) {
+  Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
+  c.train->contact_stiffness_N_m = c.train->seat_stiffness_N_m = 5e-8;
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_FALSE(r.pass);
+  EXPECT_TRUE(
+      Contains(r.failing, "dynamics: the needle does not follow the cam: its largest lift "));
+  EXPECT_TRUE(Contains(r.failing, "dynamics: the needle sinks "));
+  EXPECT_EQ(Row(r, "min_contact_force").verdict, "fail");
+  EXPECT_EQ(Row(r, "min_contact_force").note, "the cam never lifted the needle off its seat");
 }
 
 }  // namespace
