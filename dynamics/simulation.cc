@@ -1,6 +1,7 @@
 #include "dynamics/simulation.h"
 
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -192,6 +193,34 @@ void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
   }
 }
 
+// A complete run checked against its scene (docs/model.md §6): a needle whose largest lift
+// falls short of the cam's, or that sinks into its seat, by more than kFollowFraction of the
+// cam's lift did not follow it, whatever key caused it (a sign-typo'd stiffness, a seat that
+// cannot hold the spring).
+void JudgeFollowing(const Scene& scene, SimulationResult& r) {
+  if (r.status != RunStatus::kComplete) return;
+  const double cam_lift = scene.law->Max(0).value;
+  std::ostringstream why;
+  why.precision(3);
+  why << std::fixed;
+  if (r.max_lift_m < (1.0 - kFollowFraction) * cam_lift) {
+    why << "the needle does not follow the cam: its largest lift " << r.max_lift_m * 1e3
+        << " mm is " << std::setprecision(1) << 100 * r.max_lift_m / cam_lift << " % of the cam's "
+        << std::setprecision(3) << cam_lift * 1e3 << " mm";
+  } else if (r.min_lift_m < -kFollowFraction * cam_lift) {
+    why << "the needle sinks " << -r.min_lift_m * 1e3 << " mm into its seat, more than "
+        << std::setprecision(0) << 100 * kFollowFraction << " % of the cam's lift";
+  } else {
+    return;
+  }
+  why.unsetf(std::ios::fixed);
+  why << " (seat " << scene.train.seat_stiffness_N_m << " N/m, cam contact "
+      << scene.train.contact_stiffness_N_m << " N/m, preload " << scene.train.preload_N
+      << " N: look at the stiffness keys, the preload and the mass)";
+  r.status = RunStatus::kNotFollowing;
+  r.status_reason = why.str();
+}
+
 }  // namespace
 
 std::string RunStatusName(RunStatus s) {
@@ -202,6 +231,8 @@ std::string RunStatusName(RunStatus s) {
       return "unsettled";
     case RunStatus::kBudget:
       return "budget";
+    case RunStatus::kNotFollowing:
+      return "not-following";
   }
   return "?";
 }
@@ -363,9 +394,10 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   if (o.cycles == 1) {
     RunPass(train, method, train.EquilibriumStart(), (theta_b - theta_a) / omega,
             o.settle_limit_deg, o, 0, 0.0, r);
-    return r;
+  } else {
+    RunCycles(scene, train, method, o, r);
   }
-  RunCycles(scene, train, method, o, r);
+  JudgeFollowing(scene, r);
   return r;
 }
 

@@ -77,8 +77,15 @@ enum class RunStatus {
   kComplete,   ///< the needle at rest at or after θ_b (or the rigid answer)
   kUnsettled,  ///< still moving at θ_b + settle_limit_deg: the last episode may be open
   kBudget,     ///< a step or event budget stopped it: the record runs up to there
+  /// The needle did not follow its scene (docs/model.md §6): its largest lift short of the
+  /// cam's, or its seat penetrated, by more than kFollowFraction of the cam's lift.
+  kNotFollowing,
 };
-/// "complete", "unsettled", "budget".
+/// The share of the cam's largest lift by which a needle's largest lift may fall short of it,
+/// or the needle go into its seat, in a run that follows its scene: compliant steel contacts
+/// deflect by tens of micrometres, about 1 % of a needle lift.
+constexpr double kFollowFraction = 0.10;
+/// "complete", "unsettled", "budget", "not-following".
 std::string RunStatusName(RunStatus s);
 
 struct SimulationResult {
