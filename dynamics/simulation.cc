@@ -87,6 +87,7 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
           : std::min(r.min_contact_force_during_lift_N, recorder.min_contact_force_during_lift_N());
   r.max_seat_force_N = std::max(r.max_seat_force_N, recorder.max_seat_force_N());
   r.min_lift_m = cycle == 0 ? recorder.min_lift_m() : std::min(r.min_lift_m, recorder.min_lift_m());
+  r.max_spring_force_N = std::max(r.max_spring_force_N, recorder.max_spring_force_N());
   if (recorder.lifted() && !(recorder.min_contact_force_ratio() >= r.min_contact_force_ratio)) {
     r.min_contact_force_ratio = recorder.min_contact_force_ratio();
     r.min_contact_force_ratio_rad = recorder.min_contact_force_ratio_rad() + shift_rad;
@@ -362,6 +363,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     }
     r.max_contact_force_N = fmax;
     r.max_seat_force_N = scene.train.preload_N - scene.train.gas_force_N;
+    r.max_spring_force_N = scene.train.preload_N + scene.train.rate_N_m * top.value;
     return r;
   }
 

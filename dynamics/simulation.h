@@ -111,6 +111,9 @@ struct SimulationResult {
   double min_contact_force_ratio = NAN;
   double min_contact_force_ratio_rad = 0.0;
   double min_contact_force_ratio_force_N = 0.0;
+  /// The largest force of the spring on the needle, N: P₀ + k y, or with coil masses the first
+  /// segment's S₁ (surge shows here).
+  double max_spring_force_N = 0.0;
   /// The least lift of the needle, m (< 0: pressed into its seat).
   double min_lift_m = 0.0;
   double max_seat_force_N = 0.0;

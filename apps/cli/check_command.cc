@@ -58,6 +58,7 @@ nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& r
   j["speed_rpm"] = result.speed_rpm;
   j["overall"] = result.pass ? "pass" : "fail";
   j["failing"] = result.failing;
+  j["warnings"] = result.warnings;
   j["skipped"] = result.skipped;
   j["report"] = report_path;
   for (const FieldGroup& group : CheckFields(result)) PutFields(j[group.name], group.fields);
@@ -424,8 +425,10 @@ int RunCheckCommand(const CheckCommandOptions& o) {
         << (judged ? Num(x.value, 2) + u : std::string("—")) << "</td><td>"
         << (x.at_most ? "≤ " : "≥ ") << (std::isfinite(x.limit) ? Num(x.limit, 2) + u : "—")
         << "</td><td>" << (judged ? Num(x.margin, 2) + u : std::string("—")) << "</td><td>"
-        << (judged ? Verdict(x.verdict == "pass") : std::string("not judged")) << "</td><td>"
-        << Escape(x.note) << "</td><td>" << Escape(x.source) << "</td></tr>";
+        << (!judged                  ? std::string("not judged")
+            : x.verdict == "warning" ? std::string("warning")
+                                     : Verdict(x.verdict == "pass"))
+        << "</td><td>" << Escape(x.note) << "</td><td>" << Escape(x.source) << "</td></tr>";
     }
     report.AddHtml(t.str() + "</table>");
   }
@@ -518,6 +521,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
                 << '\n';
     }
   }
+  for (const auto& w : result.warnings) std::cout << "warns: " << w << '\n';
   for (const auto& f : failing) std::cout << "fails: " << f << '\n';
   std::cout << "report: " << path << " (" << report.figures() << " figures)\n"
             << "overall: " << (ok ? "pass" : "FAIL") << '\n';

@@ -637,7 +637,6 @@ LimitsSection ReadLimits(SectionReader r) {
     l.fatigue_safety_factor = *f;
   }
   l.coil_gap_m = OptionalPositive(r, "coil_gap", Dimension::kLength, 1e3, "coil_gap_mm", "mm");
-  fraction("resonance_margin", 0.0, l.resonance_margin_fraction);
   fraction("harmonic_threshold", 0.001, l.harmonic_threshold);
   if (!(l.harmonic_threshold < 1.0)) r.Fail("harmonic_threshold_percent", "must be below 100 %");
   r.Finish();

@@ -167,10 +167,8 @@ struct LimitsSection {
   double fatigue_safety_factor = 1.5;
   /// Least coil gap at full lift, m; absent: EN 13906-1's S_a of the spring.
   std::optional<double> coil_gap_m;
-  /// Least distance of the first surge mode above the highest significant cam harmonic at the
-  /// rated speed, as a fraction of that harmonic's frequency (0: above it).
-  double resonance_margin_fraction = 0.0;
-  /// A cam harmonic is significant when its acceleration reaches this fraction of the largest.
+  /// A cam harmonic is significant when its acceleration reaches this fraction of the largest
+  /// (the resonance map's orders; information, no verdict).
   double harmonic_threshold = 0.05;
 };
 

@@ -8,6 +8,7 @@
 #include "lib/output.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"
+#include "spring/resonance.h"
 
 namespace needle {
 
@@ -31,6 +32,10 @@ std::string FailureLine(const LimitRow& x) {
 }
 
 namespace {
+
+// The first surge mode's damping ratio assumed where the case states none (neither Basu nor
+// EN 13906-1 gives the wire's; cases/basu-example1-surge.toml states the same 1 %).
+constexpr double kAssumedSurgeDamping = 0.01;
 
 // The limits table (README "The limits table"): one row per limit, judged where the scene has
 // what it needs, else "not judged" with the reason.
@@ -171,10 +176,23 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                               "fatigue_safety_factor", "Shigley 10-12: design factor 1.5"));
   LimitRow gap = row("coil_gap", "coil gap at full lift", "mm", false, NAN,
                      l.coil_gap_m ? "[limits] coil_gap_mm" : "EN 13906-1: S_a");
-  LimitRow res = row("resonance_margin", "first surge mode above the cam's harmonics", "%", false,
-                     100 * l.resonance_margin_fraction,
-                     from(l.resonance_margin_fraction != d.resonance_margin_fraction,
-                          "resonance_margin_percent", "no significant harmonic at the mode"));
+  // Surge by its effect, with the spring as coil masses (SurgeStudy): the least contact force,
+  // lift-off at f·n and the spring's stress with the coils' inertia.
+  LimitRow surge_force =
+      row("surge_contact_force", "least contact force with the coils' surge, % of P0 + k y - F_g",
+          "%", false, force.limit, force.source);
+  LimitRow surge_jump = row("surge_overspeed_jump", "longest jump at f n with the coils' surge",
+                            "deg", true, kMinJump_rad / kDeg,
+                            "model: lift-off is a jump of 0.1 deg or more (§6), none at f n (§8)");
+  LimitRow surge_stress =
+      row("surge_spring_stress", "spring shear stress at the surge's peak force", "MPa", true, NAN,
+          "the helical check's allowable stress");
+  LimitRow ratio = row("surge_frequency_ratio", "first surge mode over the cam frequency f_1/f_cam",
+                       "", false, kMinSurgeRatio,
+                       "spring makers' screen f_1 >= 13 f (Rockford Spring, 'Dynamic loading of "
+                       "springs'; Shigley 10-9 asks 15-20); a warning where the coils' dynamics "
+                       "show no harm");
+  const std::string no_helical = "no helical spring geometry ([spring] wire_mm …)";
   if (helical) {
     const HelicalSpringCheck& h = *helical;
     if (h.fatigue_judged) {
@@ -187,30 +205,80 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                      " mm: Zimmerli's data cover wire below 10 mm";
     }
     gap.limit = (l.coil_gap_m ? *l.coil_gap_m : h.min_clearance_m) * 1e3;
-    if (r.run && r.run->min_coil_gap_m) {
+    const SimulationResult* chain =
+        r.surge ? &r.surge->rated : (r.run && r.run->min_coil_gap_m ? &*r.run : nullptr);
+    if (chain && chain->min_coil_gap_m) {
       // A chain of coil masses: the least gap in the run at the rated speed, where surge may
       // close one segment well before the static full lift closes them all.
+      const int n = r.surge ? r.surge->masses : c.spring->masses;
       gap.name = "coil gap in the run (worst segment x N)";
-      judge(gap, *r.run->min_coil_gap_m * 1e3,
-            "at " + Fixed(r.speed_rpm, 0) + " rpm with " + std::to_string(c.spring->masses) +
-                " coil masses, " + std::to_string(r.run->coil_clashes) + " clashes; " +
+      judge(gap, *chain->min_coil_gap_m * 1e3,
+            "at " + Fixed(r.speed_rpm, 0) + " rpm with " + std::to_string(n) + " coil masses, " +
+                std::to_string(chain->coil_clashes) + " clashes; " +
                 Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm at full lift statically");
     } else {
       judge(gap, h.clearance_full_lift_m * 1e3, "");
     }
-    // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's.
+    // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's: the
+    // resonance map's lines (information).
     for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
     r.harmonics = LiftHarmonics(law, four ? 4 * kPi : 2 * kPi, 1000, l.harmonic_threshold);
-    const int top = r.harmonics->highest_significant_order;
-    const double f_top = top * h.cam_hz;
-    judge(res, 100 * (r.surge_modes_hz[0] / f_top - 1),
-          "f_1 " + Fixed(r.surge_modes_hz[0], 1) + " Hz, order " + std::to_string(top) + " at " +
-              Fixed(f_top, 1) + " Hz");
+    if (r.surge) {
+      const SurgeStudy& s = *r.surge;
+      const std::string with = std::to_string(s.masses) + " coil masses, zeta " +
+                               Fixed(100 * s.damping_ratio, 1) + " %" +
+                               (s.damping_assumed ? " (assumed)" : "") + ", converged to " +
+                               Fixed(100 * s.change, 2) + " %" + (s.converged ? "" : " (NOT)");
+      judge(surge_force,
+            std::isfinite(s.rated.min_contact_force_ratio) ? 100 * s.rated.min_contact_force_ratio
+                                                           : 0.0,
+            "with " + with + "; massless spring " +
+                Fixed(100 * s.massless.min_contact_force_ratio, 2) + " %");
+      judge(surge_jump, s.overspeed.longest_jump_rad / kDeg,
+            "at " + Fixed(r.overspeed_rpm, 1) + " rpm with " + with + "; massless spring " +
+                Fixed(s.massless_overspeed.longest_jump_rad / kDeg, 2) + " deg");
+      // τ grows with the force (τ = k 8 F D / π d³): the full-lift stress scaled by the peak.
+      const double f_full = r.spring->train.preload_N + r.spring->train.rate_N_m * law.Max(0).value;
+      surge_stress.limit = h.allowable_stress_Pa * 1e-6;
+      judge(surge_stress, h.stress_full_lift_Pa * 1e-6 * s.rated.max_spring_force_N / f_full,
+            "peak spring force " + Fixed(s.rated.max_spring_force_N, 0) + " N with the coils, " +
+                Fixed(s.massless.max_spring_force_N, 0) + " N massless (" +
+                Fixed(100 * (s.rated.max_spring_force_N / s.massless.max_spring_force_N - 1), 1) +
+                " %)");
+    } else {
+      surge_force.note = surge_jump.note = surge_stress.note =
+          r.run ? "the coils' dynamics could not be run: " + r.surge_reason
+                : "no dynamics ([train] missing)";
+    }
+    judge(ratio, h.surge_ratio,
+          "f_1 " + Fixed(h.surge_hz, 1) + " Hz, cam " + Fixed(h.cam_hz, 2) + " Hz");
+    if (ratio.verdict == "fail" && r.surge) {
+      const bool harm = surge_force.verdict == "fail" || surge_jump.verdict == "fail" ||
+                        surge_stress.verdict == "fail" || gap.verdict == "fail";
+      if (!harm) {
+        ratio.verdict = "warning";
+        ratio.note += "; the coils' dynamics show no harm";
+        // The spring check's own screen (the same f_1/f_cam >= 13) warns with it: its failing
+        // line loses that item, and goes when nothing else is left in it.
+        const std::string head = "spring check: helical spring: ", item = "surge ratio below 13; ";
+        for (auto it = r.failing.begin(); it != r.failing.end(); ++it) {
+          if (it->rfind(head, 0) != 0) continue;
+          if (const size_t at = it->find(item); at != std::string::npos) it->erase(at, item.size());
+          if (*it == head) r.failing.erase(it);
+          break;
+        }
+      } else {
+        ratio.note += "; the coils' dynamics show harm (the surge rows)";
+      }
+    }
   } else {
-    fatigue.note = gap.note = res.note = "no helical spring geometry ([spring] wire_mm …)";
+    fatigue.note = gap.note = ratio.note = no_helical;
+    surge_force.note = surge_jump.note = surge_stress.note = no_helical;
   }
-  r.limits = {seat, lash, force, sep, hertz, fatigue, gap, res};
+  r.limits = {seat, lash,        force,      sep,          hertz, fatigue,
+              gap,  surge_force, surge_jump, surge_stress, ratio};
   for (const LimitRow& x : r.limits) {
+    if (x.verdict == "warning") r.warnings.push_back(FailureLine(x));
     if (x.verdict == "fail") {
       r.failing.push_back(FailureLine(x));
     }
@@ -234,6 +302,50 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     }
     r.skipped.push_back(line);
   }
+}
+
+// The scene with its helical spring as N coil masses (SurgeStudy), against the massless spring.
+// Throws std::invalid_argument when the train refuses the chain (coils of 3 needle masses or
+// more).
+SurgeStudy StudySurge(const Case& c, const CheckResult& r) {
+  SurgeStudy s;
+  Scene scene = MakeScene(c);
+  const HelicalSpringCheck& h = *r.spring->helical;
+  SimulationOptions sim = r.run_options;
+  sim.force_dynamic = true;
+  sim.record_series = false;
+  TrainParameters& t = scene.train;
+  t.coil_masses = 1;
+  t.coil_clash = false;
+  t.coil_travel_m = 0.0;
+  // At f·n lift-off is judged as the sweep judges it (on the steady revolutions when asked).
+  SimulationOptions over = sim;
+  over.steady_state = c.overspeed && c.overspeed->steady_state;
+  s.massless = Simulate(scene, r.speed_rpm, sim);
+  s.massless_overspeed = Simulate(scene, r.overspeed_rpm, over);
+  t.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
+  s.damping_assumed = !(c.spring->surge_damping_ratio > 0.0);
+  s.damping_ratio = s.damping_assumed ? kAssumedSurgeDamping : c.spring->surge_damping_ratio;
+  t.surge_damping_ratio = s.damping_ratio;
+  t.coil_travel_m = h.length_preload_m - h.solid_length_m;
+  t.coil_clash = c.spring->coil_clash;
+  std::optional<SimulationResult> before;
+  for (int n : {5, 10, 20, 40}) {
+    t.coil_masses = n;
+    SimulationResult run = Simulate(scene, r.speed_rpm, sim);
+    s.masses = n;
+    if (before) {
+      const double force = std::abs(run.min_contact_force_ratio - before->min_contact_force_ratio);
+      const double peak = std::abs(run.max_spring_force_N / before->max_spring_force_N - 1.0);
+      s.change = std::isfinite(force) ? std::max(force, peak) : INFINITY;
+      s.converged = s.change < kSurgeConvergence;
+    }
+    s.rated = std::move(run);
+    if (s.converged) break;
+    before = s.rated;
+  }
+  s.overspeed = Simulate(scene, r.overspeed_rpm, over);
+  return s;
 }
 
 }  // namespace
@@ -281,6 +393,15 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     os.to_rpm = r.sweep_range.to_rpm;
     os.threads = options.threads;
     r.sweep = OverspeedSearch(scene, os, options.progress);
+    if (r.spring && r.spring->helical) {
+      try {
+        r.surge = StudySurge(c, r);
+      } catch (const std::invalid_argument& e) {
+        r.surge_reason = e.what();
+      }
+    } else {
+      r.surge_reason = "no helical spring geometry";
+    }
 
     if (r.run->liftoff()) {
       fail("dynamics: the needle lifts off the cam at the rated speed " + Fixed(rpm, 0) + " rpm");

@@ -51,7 +51,8 @@ struct LimitRow {
   double limit = NAN;
   bool at_most = true;  ///< passes when value ≤ limit (else value ≥ limit)
   double margin = NAN;  ///< limit − value (at most) or value − limit (at least), same unit
-  std::string verdict;  ///< "pass", "fail" or "not judged"
+  std::string verdict;  ///< "pass", "fail", "warning" (outside a screen, no harm shown) or
+                        ///< "not judged"
   std::string note;     ///< where or why (not judged: what is missing)
   std::string source;   ///< the default's source, or "[limits] KEY" when the case sets it
   /// " unit" after a number, or nothing for a pure number.
@@ -61,6 +62,25 @@ struct LimitRow {
 /// A failing row as one line, its parts apart: "limits: NAME: measured V, limit >= L, margin M
 /// (where/why); rule: SOURCE" — the finding first, the rule's source last.
 std::string FailureLine(const LimitRow& row);
+
+/// Surge judged by its effect (docs/model.md §8): the scene run with its helical spring as N
+/// coil masses, at the rated speed and at f·n, beside the massless spring.
+struct SurgeStudy {
+  /// N, the first of 5, 10, 20, 40 at which the least contact force (share of the holding
+  /// load) and the peak spring force at the needle both move by less than kSurgeConvergence
+  /// (of the holding load / of the peak) from the N before; 40 when none does.
+  int masses = 0;
+  double change = NAN;                  ///< that last move, the larger of the two, as a fraction
+  bool converged = false;               ///< below kSurgeConvergence at `masses`
+  double damping_ratio = 0.0;           ///< ζ of the first surge mode used
+  bool damping_assumed = false;         ///< the case gives none: needle's 1 %
+  SimulationResult rated;               ///< with coil masses, at the rated speed (no series)
+  SimulationResult overspeed;           ///< with coil masses, at f·n
+  SimulationResult massless;            ///< the massless spring at the rated speed
+  SimulationResult massless_overspeed;  ///< the massless spring at f·n
+};
+/// The convergence rule of SurgeStudy::masses.
+constexpr double kSurgeConvergence = 0.01;
 
 /// Options of CheckScene; every field has a default.
 struct CheckOptions {
@@ -87,6 +107,9 @@ struct CheckResult {
   std::vector<LimitRow> limits;             ///< the limits table, every row (judged or not)
   std::optional<CamHarmonics> harmonics;    ///< the lift's harmonics (with a helical spring)
   std::vector<double> surge_modes_hz;       ///< the spring's first three modes (helical)
+  std::optional<SurgeStudy> surge;          ///< with a helical spring and the dynamics
+  std::string surge_reason;                 ///< why the surge study was not run, if it was not
+  std::vector<std::string> warnings;        ///< rows that warn (verdict "warning"), one line each
   bool pass = true;                         ///< no part failed
   std::vector<std::string> failing;         ///< one line per failing item, named
   std::vector<std::string> skipped;         ///< one line per part not run, and why

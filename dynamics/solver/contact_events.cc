@@ -147,6 +147,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
   max_segment_compression_m_ =
       std::max(max_segment_compression_m_, train_.LargestSegmentCompression(x));
   min_lift_ = std::min(min_lift_, x[0]);
+  max_spring_ = std::max(max_spring_, c.spring_N);
   // At a break the raw branch may be negative for an instant before its sign flips: a contact
   // never pulls.
   if (OnCamWindow(c, x)) {

@@ -154,6 +154,8 @@ class Recorder {
   double min_contact_force_ratio() const { return lifted_ ? min_ratio_ : NAN; }
   double min_contact_force_ratio_rad() const { return min_ratio_rad_; }
   double min_contact_force_ratio_force_N() const { return min_ratio_force_; }
+  /// The largest force of the spring on the needle, N (P₀ + k y, or the chain's S₁).
+  double max_spring_force_N() const { return max_spring_; }
   /// Whether the cam ever lifted the needle off its seat (the window was entered).
   bool lifted() const { return lifted_; }
   /// The least lift of the needle in the run, m (< 0: into its seat).
@@ -198,6 +200,7 @@ class Recorder {
   bool lifted_ = false;
   double min_ratio_ = 1e300, min_ratio_rad_ = 0.0, min_ratio_force_ = 0.0;
   double min_lift_ = 1e300;
+  double max_spring_ = -1e300;
   double max_segment_compression_m_ = -1e300;
   int coil_clashes_ = 0;
 };

@@ -449,7 +449,6 @@ hertz_stress_MPa = 1300
 contact_length_mm = 12
 fatigue_safety_factor = 1.2
 coil_gap_mm = 0.5
-resonance_margin_percent = 20
 )",
                            "t.toml");
   EXPECT_DOUBLE_EQ(l.limits.seating_velocity_m_s, 0.8);
@@ -458,7 +457,6 @@ resonance_margin_percent = 20
   EXPECT_DOUBLE_EQ(*l.limits.contact_length_m, 12e-3);
   EXPECT_DOUBLE_EQ(l.limits.fatigue_safety_factor, 1.2);
   EXPECT_DOUBLE_EQ(*l.limits.coil_gap_m, 0.5e-3);
-  EXPECT_DOUBLE_EQ(l.limits.resonance_margin_fraction, 0.2);
   EXPECT_EQ(Error(spring + "[limits]\nseating_velocity_m_s = -1\n"),
             "t.toml: [limits] seating_velocity_m_s: must be positive, got -1 m/s");
   EXPECT_EQ(Error(spring + "[limits]\nfatigue_safety_factor = 0.5\n"),

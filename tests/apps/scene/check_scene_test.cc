@@ -114,7 +114,7 @@ TEST(CheckSceneTest, AKinematicsOnlySceneSaysWhatItSkipped) {
       "limits not judged: seating velocity, lash impact speed (the cam taking "
       "up the play), least contact force while the cam lifts the needle, % of P0 + k y - F_g (no "
       "dynamics ([train] missing)); separation margin"));
-  EXPECT_EQ(r.limits.size(), 8u);
+  EXPECT_EQ(r.limits.size(), 11u);
   for (const LimitRow& x : r.limits) EXPECT_EQ(x.verdict, "not judged") << x.key;
   EXPECT_TRUE(std::isnan(r.n_qs_rpm));
   EXPECT_FALSE(r.spring || r.run || r.sweep || r.profile);
@@ -127,7 +127,7 @@ TEST(CheckSceneTest, TheLimitsTableOfExample2) {
   CheckOptions o;
   o.record_series = false;
   const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
-  ASSERT_EQ(r.limits.size(), 8u);
+  ASSERT_EQ(r.limits.size(), 11u);
   const auto row = [&](const std::string& key) {
     for (const LimitRow& x : r.limits)
       if (x.key == key) return x;
@@ -140,7 +140,13 @@ TEST(CheckSceneTest, TheLimitsTableOfExample2) {
   EXPECT_NEAR(f.value, 1.462, 1e-3);  // τ 642 → 689 MPa, R_m 1600 MPa, unpeened
   EXPECT_DOUBLE_EQ(f.limit, 1.5);
   EXPECT_NEAR(f.margin, f.value - 1.5, 1e-12);
-  EXPECT_EQ(row("resonance_margin").verdict, "fail");  // 194.6 Hz under order 90 (300 Hz)
+  // Its surge: f_1/f_cam = 58 and the coils' dynamics show no harm (the old rule, the first mode
+  // above the highest order with 5 % of the largest acceleration harmonic, failed it).
+  EXPECT_EQ(row("surge_frequency_ratio").verdict, "pass");
+  EXPECT_EQ(row("surge_contact_force").verdict, "pass");
+  EXPECT_EQ(row("surge_overspeed_jump").verdict, "pass");
+  EXPECT_EQ(row("surge_spring_stress").verdict, "pass");
+  EXPECT_EQ(r.failing.size(), 1u);
   EXPECT_EQ(row("coil_gap").verdict, "pass");
   EXPECT_EQ(row("seating_velocity").verdict, "pass");
   EXPECT_EQ(row("separation_margin").verdict, "pass");
@@ -277,6 +283,74 @@ TEST(CheckSceneTest, ARunThatDoesNotFollowItsCamFails) {
       << sinks.run->status_reason;
   EXPECT_EQ(Row(r, "min_contact_force").verdict, "fail");
   EXPECT_EQ(Row(r, "min_contact_force").note, "the cam never lifted the needle off its seat");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Surge judged by its effect: the surge scene (8 coils, f_1 88 Hz, 1 % damping, four
+// revolutions) at 520 rpm, where f·n = 624 rpm lies above the chain's n_dyn (611 rpm) and below
+// the massless spring's (643 rpm). The coils' surge takes the contact force below the rule's
+// share and makes the needle jump at f·n, where the massless spring shows neither — though the
+// frequency screen f_1/f_cam = 20 passes. With 6 coils (f_1 117 Hz) the same rows pass.
+CheckResult SurgeSceneAt520(int active_coils) {
+  Case c = LoadCase(kCases + "basu-example1-surge.toml");
+  c.spring->helical->active_coils = active_coils;
+  CheckOptions o;
+  o.speed_rpm = 520;
+  o.record_series = false;
+  return CheckScene(c, MakeLiftLaw(c), o);
+}
+
+TEST(CheckSceneSurgeTest, TheCoilsSurgeFailsByItsEffectAndADetunedSpringPasses) {
+  const CheckResult r = SurgeSceneAt520(8);
+  ASSERT_TRUE(r.surge) << r.surge_reason;
+  const SurgeStudy& s = *r.surge;
+  EXPECT_TRUE(s.converged);
+  EXPECT_LT(s.change, kSurgeConvergence);
+  EXPECT_LE(s.masses, 40);
+  EXPECT_TRUE(s.damping_assumed == false && s.damping_ratio == 0.01);
+  EXPECT_EQ(Row(r, "surge_contact_force").verdict, "fail");
+  EXPECT_GT(100 * s.massless.min_contact_force_ratio, Row(r, "surge_contact_force").limit);
+  EXPECT_EQ(Row(r, "surge_overspeed_jump").verdict, "fail");
+  EXPECT_GT(s.overspeed.longest_jump_rad, kMinJump_rad);
+  EXPECT_LT(s.massless_overspeed.longest_jump_rad, kMinJump_rad);
+  EXPECT_GT(s.rated.max_spring_force_N, 1.05 * s.massless.max_spring_force_N);  // surge adds
+  EXPECT_EQ(Row(r, "surge_frequency_ratio").verdict, "pass");  // the screen does not see it
+  EXPECT_TRUE(Contains(r.failing, "limits: longest jump at f n with the coils' surge: measured "));
+
+  const CheckResult d = SurgeSceneAt520(6);
+  ASSERT_TRUE(d.surge);
+  EXPECT_TRUE(d.surge->converged);
+  EXPECT_EQ(Row(d, "surge_contact_force").verdict, "pass");
+  EXPECT_EQ(Row(d, "surge_overspeed_jump").verdict, "pass");
+  EXPECT_EQ(Row(d, "surge_spring_stress").verdict, "pass");
+}
+
+// The frequency screen below 13 is a warning where the coils' dynamics show no harm: Example 2's
+// spring wound with 37 coils (f_1 42 Hz, f_1/f_cam 12.6 at 400 rpm) under its 1.2 kg needle
+// loses 6 % of its contact force to surge and nothing else (its fatigue factor 1.62 passes); the
+// check passes with a warning,
+// and the spring check's own screen (the same rule) warns with it instead of failing.
+TEST(CheckSceneSurgeTest, TheFrequencyScreenWarnsWhereTheDynamicsShowNoHarm) {
+  Case c = LoadCase(kCases + "basu-example2.toml");
+  c.spring->helical->active_coils = 37;
+  c.spring->helical->free_length_m = 0.62;
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_TRUE(r.surge) << r.surge_reason;
+  const LimitRow& ratio = Row(r, "surge_frequency_ratio");
+  EXPECT_NEAR(ratio.value, 12.62, 0.01);
+  EXPECT_EQ(ratio.verdict, "warning");
+  EXPECT_EQ(Row(r, "surge_contact_force").verdict, "pass");
+  EXPECT_LT(r.surge->rated.min_contact_force_ratio, r.surge->massless.min_contact_force_ratio);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_TRUE(r.pass) << r.failing[0];
+  EXPECT_FALSE(r.spring->helical->surge_ok);  // the screen's own result stays as it was
 }
 
 }  // namespace
