@@ -72,9 +72,13 @@ namespace needle {
 /// Reads a lift table from CSV: `#` comment lines and blank lines skipped; a header naming two
 /// columns with their units — the angle `crank_deg` or `cam_deg` (cam angles are turned into
 /// crank angles: ×2 when `four_stroke`, else ×1) and the lift `lift_mm`, `lift_um`, `lift_in`
-/// or `lift_m` — then one row per reading, comma-separated. Angles must increase strictly, every
-/// value be a finite number, and there be at least two rows. Throws CaseError naming the file,
-/// the line and the column ("FILE:LINE:COLUMN: what").
+/// or `lift_m` — then one row per reading. Spreadsheet output is read as written: a UTF-8
+/// byte-order mark, CRLF line ends and double-quoted fields are accepted, and the separator is
+/// taken from the header: ',' (decimal mark '.'), or ';' when the header has ';' and no ','
+/// (decimal mark ',', as a spreadsheet writes in a German or other European locale: `12,5`); a
+/// '.' in such a table is refused (it may be a thousands separator). Angles must increase
+/// strictly, every value be a finite number, and there be at least two rows. Throws CaseError
+/// naming the file, the line and the column ("FILE:LINE:COLUMN: what").
 LiftTable ReadLiftCsv(const std::string& path, bool four_stroke);
 
 /// As ReadLiftCsv, from text already in memory; `path` is used in messages only.

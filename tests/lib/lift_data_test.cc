@@ -376,6 +376,55 @@ TEST(LiftCsvTest, BadTables) {
   EXPECT_EQ(CsvError(""), "m.csv:0: no header; expected crank_deg (or cam_deg) and lift_mm");
 }
 
+// Spreadsheet exports (tests/data/README.md says how they were made): Calc in an English
+// locale (',' and '.', quoted header), in a German one (';' and decimal commas), and the German
+// one with a UTF-8 byte-order mark and CRLF line ends. All read as the same table.
+TEST(LiftCsvTest, SpreadsheetExports) {
+  for (const char* name : {"calc-lift-en.csv", "calc-lift-de.csv", "calc-lift-de-bom-crlf.csv"}) {
+    SCOPED_TRACE(name);
+    const LiftTable t = ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/" + name, true);
+    ASSERT_EQ(t.crank_rad.size(), 21u);
+    for (size_t i = 0; i < t.crank_rad.size(); ++i) {
+      const double deg = -5.0 + 2.5 * i;
+      EXPECT_NEAR(t.crank_rad[i], deg * kDeg, 1e-15);
+      // The 3-4-5 rise and fall of 1.7 mm over 40°, written to 4 decimals.
+      const double xi = deg <= 0 || deg >= 40 ? 0.0 : (deg <= 20 ? deg : 40 - deg) / 20;
+      const double mm = 1.7 * xi * xi * xi * (10 - 15 * xi + 6 * xi * xi);
+      EXPECT_NEAR(t.lift_m[i] * 1e3, mm, 0.5e-4 + 1e-12) << "row " << i;
+    }
+    EXPECT_DOUBLE_EQ(t.lift_m[7], 1.2321e-3);  // 12.5°: "1,2321" in the German exports
+  }
+}
+
+TEST(LiftCsvTest, SpreadsheetSeparators) {
+  const LiftTable semi = ParseLiftCsv(
+      "\xEF\xBB\xBF"
+      "crank_deg;lift_mm\r\n-2,5;0\r\n0;12,5\r\n",
+      "m.csv", true);
+  ASSERT_EQ(semi.crank_rad.size(), 2u);
+  EXPECT_NEAR(semi.crank_rad[0], -2.5 * kDeg, 1e-15);
+  EXPECT_DOUBLE_EQ(semi.lift_m[1], 12.5e-3);
+  const LiftTable bom = ParseLiftCsv(
+      "\xEF\xBB\xBF"
+      "crank_deg,lift_mm\n0,0\n1,0.5\n",
+      "m.csv", true);
+  EXPECT_DOUBLE_EQ(bom.lift_m[1], 0.5e-3);
+  EXPECT_EQ(CsvError("crank_deg;lift_mm\n0;1.700\n1;0\n"),
+            "m.csv:2:2: '1.700' has a '.' in a table separated by ';', whose decimal mark is ',' "
+            "('.' may be a thousands separator); write it without thousands separators and with "
+            "a decimal comma, or save the table with ',' between columns and '.' as the decimal "
+            "mark");
+  EXPECT_EQ(CsvError("crank_deg;lift_mm,x\n0;1\n1;0\n"),
+            "m.csv:1: the header has both ';' and ',', so the separator is ambiguous; separate "
+            "the columns with ',' (decimal mark '.') or with ';' (decimal mark ',')");
+  EXPECT_EQ(CsvError("\xFF\xFE"
+                     "c"),
+            "m.csv:1: the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as "
+            "UTF-8");
+  EXPECT_EQ(CsvError("crank_deg;lift_mm\n0;1,2,3\n1;0\n"),
+            "m.csv:2:2: '1,2,3' is not a number (column lift_mm)");
+}
+
 TEST(LiftCsvTest, UnitsAndCamAngles) {
   const LiftTable t = ParseLiftCsv("cam_deg,lift_um\n# note\n\n0,0\n5,100\n10,0\n", "m.csv", true);
   ASSERT_EQ(t.crank_rad.size(), 3u);
