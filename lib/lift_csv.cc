@@ -145,6 +145,21 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
       v[k] = x;
     }
     const double angle = v[0] * angle_scale, lift = v[1] * lift_scale;
+    // Plausible readings (lib/lift_data.h), shown in the column's own unit.
+    const double limits[2] = {kMaxCrankRad / angle_scale, kMaxLiftM / lift_scale};
+    const double si[2] = {angle, lift};
+    const char* ranges[2] = {
+        "a crank angle within ±720°, a four-stroke cycle either side of dead centre",
+        "a lift within ±1 m"};
+    for (int k = 0; k < 2; ++k) {
+      if (!(std::abs(si[k]) <= (k == 0 ? kMaxCrankRad : kMaxLiftM))) {
+        std::ostringstream m;
+        m << names[k] << " " << v[k] << " is outside the plausible range ±" << limits[k] << " "
+          << names[k].substr(names[k].find('_') + 1) << " (" << ranges[k]
+          << "); a typo or a unit mix-up?";
+        fail(line, cols[k] + 1, m.str());
+      }
+    }
     if (!t.crank_rad.empty() && !(angle > t.crank_rad.back())) {
       std::ostringstream a, b;
       a << v[0];

@@ -29,6 +29,15 @@
 
 namespace needle {
 
+/// Plausible readings of a lift table; a value outside is refused before any fit, naming its
+/// row and column (a typo such as 1e300, or a unit mix-up). A lift within ±1 m: needle lifts are
+/// millimetres and cam lifts centimetres (the largest bundled table, the Siconos cam's, 154 mm),
+/// and a lift written in µm under `lift_mm` (1.7 mm as 1700) lands beyond it.
+constexpr double kMaxLiftM = 1.0;
+/// A crank angle within ±720°, rad: a four-stroke cycle either side of dead centre, so a table
+/// written from −360° to 360° or from 0° to 720° (cam angles 0…360° of a four-stroke) fits.
+constexpr double kMaxCrankRad = 4.0 * 3.14159265358979323846;
+
 /// A table with at least this many points is dense: taken as measured data, smoothed.
 constexpr int kDenseTablePoints = 30;
 /// Closed level of measured data, in σ: the needle is open where the fitted lift exceeds 3σ.

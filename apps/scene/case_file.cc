@@ -693,7 +693,9 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
   const auto normal = r.OptionalString("normal_curve");
   const auto csv = r.OptionalString("csv");
   const auto crank = r.OptionalQuantityArray("crank", Dimension::kAngle);
+  const std::string crank_key = crank ? r.last_key() : "crank_deg";
   const auto values = r.OptionalQuantityArray("lift", Dimension::kLength);
+  const std::string lift_key = values ? r.last_key() : "lift_mm";
   const auto max_lift = r.OptionalQuantity("max_lift", Dimension::kLength);
   if (normal) {
     if (*normal != "basu") r.Fail("normal_curve", "expected \"basu\", got \"" + *normal + "\"");
@@ -727,6 +729,23 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
                             std::to_string(crank->size()));
     }
     if (crank->size() < 2) r.Fail("crank_deg", "needs at least 2 points");
+    // Plausible readings (lib/lift_data.h), shown in the key's own unit.
+    auto plausible = [&](const std::vector<double>& array, const std::string& key,
+                         Dimension dimension, double limit, const std::string& range) {
+      const std::string unit = key.substr(key.find('_') + 1);
+      const double per_unit = ToSi(dimension, unit, 1.0);
+      for (size_t i = 0; i < array.size(); ++i) {
+        if (!(std::abs(array[i]) <= limit)) {
+          r.Fail(key + "[" + std::to_string(i) + "]",
+                 "is " + Number(array[i] / per_unit) + " " + unit +
+                     ", outside the plausible range ±" + Number(limit / per_unit) + " " + unit +
+                     " (" + range + "); a typo or a unit mix-up?");
+        }
+      }
+    };
+    plausible(*crank, crank_key, Dimension::kAngle, kMaxCrankRad,
+              "a crank angle within ±720°, a four-stroke cycle either side of dead centre");
+    plausible(*values, lift_key, Dimension::kLength, kMaxLiftM, "a lift within ±1 m");
     for (size_t i = 1; i < crank->size(); ++i) {
       if (!((*crank)[i] > (*crank)[i - 1])) {
         r.Fail("crank_deg", "angles must increase strictly, but entry " + std::to_string(i) + " (" +

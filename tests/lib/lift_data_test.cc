@@ -370,6 +370,18 @@ TEST(LiftCsvTest, BadTables) {
             "m.csv:4:1: crank_deg 2 does not increase after 2 (line 3); angles must increase "
             "strictly");
   EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1,3\n"), "m.csv:3: expected 2 fields, got 3");
+  // Implausible readings (lib/lift_data.h: |lift| ≤ 1 m, |crank| ≤ 720°), in the column's unit.
+  EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1e300\n"),
+            "m.csv:3:2: lift_mm 1e+300 is outside the plausible range ±1000 mm (a lift within "
+            "±1 m); a typo or a unit mix-up?");
+  EXPECT_EQ(CsvError("lift_um,cam_deg\n0,1\n-1.5e6,2\n"),
+            "m.csv:3:1: lift_um -1.5e+06 is outside the plausible range ±1e+06 um (a lift within "
+            "±1 m); a typo or a unit mix-up?");
+  EXPECT_EQ(CsvError("cam_deg,lift_mm\n1,0\n360.5,1\n"),
+            "m.csv:3:1: cam_deg 360.5 is outside the plausible range ±360 deg (a crank angle "
+            "within ±720°, a four-stroke cycle either side of dead centre); a typo or a unit "
+            "mix-up?");
+  EXPECT_EQ(CsvError("cam_deg,lift_mm\n-360,0\n360,999.9\n"), "(no error)");
   EXPECT_EQ(CsvError("deg,lift_mm\n1,0\n"),
             "m.csv:1:1: unknown column 'deg'; expected a header of crank_deg (or cam_deg) and "
             "lift_mm (or lift_um, lift_in)");
