@@ -40,7 +40,9 @@ std::string Quoted(char c) { return std::string("'") + c + "'"; }
 
 }  // namespace
 
-LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool four_stroke) {
+LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool four_stroke,
+                       std::vector<int>* lines) {
+  if (lines) lines->clear();
   auto fail = [&](int line, int column, const std::string& what) -> void {
     std::string where = path + ":" + std::to_string(line);
     if (column > 0) where += ":" + std::to_string(column);
@@ -170,6 +172,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
     }
     t.crank_rad.push_back(angle);
     t.lift_m.push_back(lift);
+    if (lines) lines->push_back(line);
     last_line = line;
   }
   if (columns == 0) fail(line, 0, "no header; expected crank_deg (or cam_deg) and lift_mm");
@@ -181,8 +184,8 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
   return t;
 }
 
-LiftTable ReadLiftCsv(const std::string& path, bool four_stroke) {
-  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, four_stroke);
+LiftTable ReadLiftCsv(const std::string& path, bool four_stroke, std::vector<int>* lines) {
+  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, four_stroke, lines);
 }
 
 }  // namespace needle

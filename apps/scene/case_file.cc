@@ -715,11 +715,12 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
                                  ? p.string()
                                  : (std::filesystem::path(case_path).parent_path() / p).string();
     try {
-      lift.table = ReadLiftCsv(full, four_stroke);
+      lift.table = ReadLiftCsv(full, four_stroke, &lift.lines);
     } catch (const CaseError& e) {
       r.Fail("csv", e.what());  // "CASE: [lift] csv: TABLE:LINE:COLUMN: what"
     }
     lift.source = "csv " + full;
+    lift.csv_path = full;
   } else {
     if (max_lift) r.Fail("max_lift_mm", "only used with normal_curve = \"basu\"");
     if (!crank) r.Fail("crank_deg", "missing; expected an array of crank angles (or normal_curve)");
@@ -756,6 +757,7 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
     }
     lift.table = {*crank, *values};
     lift.source = "table";
+    lift.lift_key = lift_key;
   }
   if (auto spline = r.OptionalString("spline")) {
     const auto kind = ParseSplineKind(*spline);
@@ -773,6 +775,12 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
     if (!(*noise > 0.0))
       r.Fail(r.last_key(), "must be positive, got " + Number(*noise * 1e3) + " mm");
     lift.noise_m = *noise;
+  }
+  if (auto outliers = r.OptionalString("outliers")) {
+    if (*outliers != "refuse" && *outliers != "drop") {
+      r.Fail("outliers", "expected \"refuse\" or \"drop\", got \"" + *outliers + "\"");
+    }
+    lift.drop_outliers = *outliers == "drop";
   }
   lift.open_rad = r.OptionalQuantity("open", Dimension::kAngle);
   lift.close_rad = r.OptionalQuantity("close", Dimension::kAngle);
@@ -1247,8 +1255,9 @@ Case CaseFromLiftCsv(const std::string& path, const std::string& cycle) {
   Case c;
   c.path = path;
   c.engine.cycle = cycle;
-  c.lift.table = ReadLiftCsv(path, cycle == "four-stroke");
+  c.lift.table = ReadLiftCsv(path, cycle == "four-stroke", &c.lift.lines);
   c.lift.source = "csv " + path;
+  c.lift.csv_path = path;
   return c;
 }
 
@@ -1261,12 +1270,58 @@ LiftLawChoice CaseLiftChoice(const Case& c) {
   o.open_rad = c.lift.open_rad;
   o.close_rad = c.lift.close_rad;
   o.breaks_rad = c.lift.breaks_rad;
-  return ChooseLiftLaw(c.lift.table, o);
+  o.drop_outliers = c.lift.drop_outliers;
+  LiftLawChoice choice = ChooseLiftLaw(c.lift.table, o);
+  if (choice.outliers.empty()) return choice;
+  // Where a reading is: the CSV file's line, or the entry of the case's array.
+  auto where = [&](size_t index) {
+    if (index < c.lift.lines.size()) return "line " + std::to_string(c.lift.lines[index]);
+    return "entry " + std::to_string(index);
+  };
+  auto reading = [&](const LiftOutlier& x) {
+    return Number(x.lift_m * 1e3) + " mm at " + Number(c.lift.table.crank_rad[x.index] / kDeg) +
+           " deg";
+  };
+  const LiftOutlier& first = choice.outliers.front();
+  const size_t more = choice.outliers.size() - 1;
+  if (!c.lift.drop_outliers) {
+    std::string at;
+    if (first.index < c.lift.lines.size()) {
+      at = c.lift.csv_path + ":" + std::to_string(c.lift.lines[first.index]);
+      if (c.lift.csv_path != c.path) at = c.path + ": [lift] csv: " + at;
+    } else {
+      at = c.path + ": [lift] " + c.lift.lift_key + "[" + std::to_string(first.index) + "]";
+    }
+    std::string others;
+    for (size_t k = 1; k < choice.outliers.size() && k <= 5; ++k) {
+      others += (k > 1 ? ", " : "") + where(choice.outliers[k].index);
+    }
+    if (more > 5) others += ", …";
+    throw CaseError(
+        at + ": the reading " + reading(first) + " stands out of its neighbourhood (" +
+        Number(first.expected_m * 1e3) + " mm by the cubic through the four readings around it, " +
+        Number(std::round(first.sigmas)) + " robust sigma of " +
+        Number(choice.robust_noise_m * 1e3) + " mm off): an outlier" +
+        (more ? " (" + std::to_string(more) + " more: " + others + ")" : std::string()) +
+        "; correct it, or set [lift] outliers = \"drop\" to leave it out");
+  }
+  choice.reason += "; " + std::to_string(choice.outliers.size()) + " outlier" + (more ? "s" : "") +
+                   " left out (";
+  for (size_t k = 0; k < choice.outliers.size(); ++k) {
+    const LiftOutlier& x = choice.outliers[k];
+    choice.reason += (k ? "; " : "") + where(x.index) + ": " + reading(x) + ", neighbourhood " +
+                     Number(x.expected_m * 1e3) + " mm";
+  }
+  choice.reason += ")";
+  return choice;
 }
 
 LiftLaw MakeLiftLaw(const Case& c) {
   try {
-    return LiftLaw(c.lift.table, CaseLiftChoice(c).law);
+    const LiftLawChoice choice = CaseLiftChoice(c);
+    return LiftLaw(choice.table, choice.law);
+  } catch (const CaseError&) {
+    throw;
   } catch (const std::exception& e) {
     throw CaseError(c.path + ": [lift]: " + e.what());
   }

@@ -242,16 +242,203 @@ TEST(MeasuredTableTest, NegativeReadingsWithinTheNoiseAreAccepted) {
   far.replace(at, end - at, "-10.00,-0.2");
   const LiftLaw law = MakeLiftLaw(MeasuredCase(low));
   EXPECT_EQ(law.Lift(-10.0 * kDeg), 0.0);  // closed: the curve is clipped at the seat
+  // One reading far below is an outlier of its neighbourhood, refused as such.
   try {
     MakeLiftLaw(MeasuredCase(far));
     FAIL() << "a reading 0.2 mm below the seat was accepted";
   } catch (const CaseError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("measured.csv: [lift] lift_mm[10]: the reading -0.2 mm "
+                                          "at -10 deg stands out of its neighbourhood",
+                                          0),
+              0u)
+        << e.what();
+  }
+  // The seated zone sunk smoothly to −0.05 mm (a gauge off zero): no outlier, but below −4σ.
+  std::istringstream in(csv);
+  std::string line, sunk;
+  while (std::getline(in, line)) {
+    double deg = 0, mm = 0;
+    if (std::sscanf(line.c_str(), "%lf,%lf", &deg, &mm) == 2 && deg >= -15 && deg <= -5) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.2f,%.3f", deg, mm - 0.05 * (1 - std::abs(deg + 10) / 5));
+      line = text;
+    }
+    sunk += line + "\n";
+  }
+  try {
+    MakeLiftLaw(MeasuredCase(sunk));
+    FAIL() << "a seat 0.05 mm below zero was accepted";
+  } catch (const CaseError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("measured.csv: [lift]: entry 10 of the lifts is negative (-0.2 mm)"),
+    EXPECT_NE(what.find("measured.csv: [lift]: entry 4 of the lifts is negative ("),
               std::string::npos)
         << what;
     EXPECT_NE(what.find("by more than the noise allows (4 sigma = "), std::string::npos) << what;
   }
+}
+
+// Outliers (lib/lift_data.h FindOutliers): on our own cam, a 3-4-5 rise and fall of 1.7 mm over
+// 40° (20° each way), read at 0.5° from −10° to 50° with Gaussian noise σ (µm), rounded to
+// 0.1 µm, one comment line and the header before the readings (reading i is on line i + 3).
+double Cam345(double deg) {
+  if (deg <= 0 || deg >= 40) return 0.0;
+  const double xi = (deg <= 20 ? deg : 40 - deg) / 20;
+  return 1.7 * xi * xi * xi * (10 - 15 * xi + 6 * xi * xi);
+}
+
+std::vector<double> CamReadings(double sigma_um, unsigned seed, double spacing_deg = 0.5,
+                                double from_deg = -10, double to_deg = 50) {
+  Noise noise(seed);
+  std::vector<double> mm;
+  const int n = static_cast<int>(std::lround((to_deg - from_deg) / spacing_deg));
+  for (int i = 0; i <= n; ++i) {
+    const double reading = Cam345(from_deg + i * spacing_deg) + sigma_um * 1e-3 * noise();
+    mm.push_back(std::round(reading * 1e4) / 1e4);
+  }
+  return mm;
+}
+
+std::string CamCsv(const std::vector<double>& mm, double spacing_deg = 0.5, double from_deg = -10) {
+  std::ostringstream out;
+  out << "# 3-4-5 cam, 1.7 mm over 40 deg\ncrank_deg,lift_mm\n";
+  out.precision(10);
+  for (size_t i = 0; i < mm.size(); ++i) out << from_deg + i * spacing_deg << "," << mm[i] << "\n";
+  return out.str();
+}
+
+// A bare CSV table as `needle kinematics m.csv` reads it.
+Case CamCase(const std::vector<double>& mm, bool drop = false) {
+  Case c;
+  c.path = c.lift.csv_path = "m.csv";
+  c.engine.speed_rpm = 600;
+  c.lift.table = ParseLiftCsv(CamCsv(mm), "m.csv", true, &c.lift.lines);
+  c.lift.drop_outliers = drop;
+  return c;
+}
+
+std::string ChoiceError(const Case& c) {
+  try {
+    CaseLiftChoice(c);
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(OutlierTest, HonestTablesHaveNone) {
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    for (double sigma_um : {1.0, 3.0, 10.0}) {
+      const std::vector<double> mm = CamReadings(sigma_um, seed);
+      const LiftLawChoice choice = CaseLiftChoice(CamCase(mm));
+      EXPECT_TRUE(choice.outliers.empty()) << "seed " << seed << ", sigma " << sigma_um;
+      EXPECT_NEAR(choice.robust_noise_m * 1e6 / sigma_um, 1.0, 0.5) << "seed " << seed;
+    }
+  }
+}
+
+// Exact dense tables (the laws above, and ours, read at 0.5°, 1° and ~2°, exact or written to
+// 1e-6 mm) have none: the corners where s''' jumps stand below the floor.
+TEST(OutlierTest, ExactDenseTablesHaveNone) {
+  for (double spacing : {0.5, 1.0, 2.0}) {
+    for (int law = 0; law < 4; ++law) {
+      for (bool rounded : {false, true}) {
+        LiftTable t;
+        for (double deg = -15; deg <= 80; deg += spacing) {
+          double mm = law < 3 ? kLaws[law].Lift_mm(deg) : Cam345(deg);
+          if (rounded) mm = std::round(mm * 1e6) / 1e6;
+          t.crank_rad.push_back(deg * kDeg);
+          t.lift_m.push_back(mm * 1e-3);
+        }
+        const LiftLawChoice choice = ChooseLiftLaw(t, {});
+        ASSERT_TRUE(choice.measured);
+        EXPECT_TRUE(choice.outliers.empty()) << "law " << law << ", " << spacing << " deg";
+      }
+    }
+  }
+}
+
+// One reading of −1.0 mm at 15° (mid-lift, reading 50, line 53): refused by default, naming
+// its line; left out when the case says so, and then σ̂ and the lift are the clean table's.
+TEST(OutlierTest, OneBadReadingMidLift) {
+  std::vector<double> mm = CamReadings(3.0, 5);
+  const std::vector<double> clean = mm;
+  ASSERT_NEAR(mm[50], Cam345(15), 0.02);
+  mm[50] = -1.0;
+  EXPECT_EQ(ChoiceError(CamCase(mm))
+                .rfind("m.csv:53: the reading -1 mm at 15 deg stands out of "
+                       "its neighbourhood (1.5",
+                       0),
+            0u)
+      << ChoiceError(CamCase(mm));
+  EXPECT_NE(ChoiceError(CamCase(mm))
+                .find("; correct it, or set [lift] outliers = \"drop\" to "
+                      "leave it out"),
+            std::string::npos);
+  const LiftLawChoice dropped = CaseLiftChoice(CamCase(mm, true));
+  const LiftLawChoice reference = CaseLiftChoice(CamCase(clean));
+  ASSERT_EQ(dropped.outliers.size(), 1u);
+  EXPECT_EQ(dropped.outliers[0].index, 50u);
+  EXPECT_NEAR(dropped.outliers[0].expected_m * 1e3, Cam345(15), 0.01);
+  EXPECT_EQ(dropped.table.lift_m.size(), mm.size() - 1);
+  EXPECT_NE(dropped.reason.find("1 outlier left out (line 53: -1 mm at 15 deg, neighbourhood "),
+            std::string::npos)
+      << dropped.reason;
+  EXPECT_NEAR(dropped.noise_m / reference.noise_m, 1.0, 0.05);  // not 60 times it
+  // The robust σ̂, taken with the bad reading in, is the clean table's within 10 %.
+  EXPECT_NEAR(dropped.robust_noise_m / reference.robust_noise_m, 1.0, 0.1);
+  const LiftLaw law = MakeLiftLaw(CamCase(mm, true));
+  EXPECT_NEAR(law.Max(0).value * 1e3, 1.7, 0.01);
+  EXPECT_NEAR(law.start_rad() / kDeg, MakeLiftLaw(CamCase(clean)).start_rad() / kDeg, 0.05);
+}
+
+// A typo of 500 mm, bad readings at and next to the table's ends, and two bad readings side by
+// side are each named by their own row.
+TEST(OutlierTest, EachBadReadingIsNamed) {
+  const std::vector<double> base = CamReadings(3.0, 9);
+  const size_t n = base.size();
+  const std::vector<std::vector<std::pair<size_t, double>>> cases = {
+      {{80, 500.0}},  {{0, 0.2}},
+      {{1, 0.2}},     {{n - 1, -0.3}},
+      {{n - 2, 0.3}}, {{60, 1.0}, {61, 1.0}},
+      {{30, 0.05}},   {{10, 0.1}, {100, 0.5}}};
+  for (const auto& bad : cases) {
+    std::vector<double> mm = base;
+    for (const auto& [i, value] : bad) mm[i] = value;
+    const LiftLawChoice choice = CaseLiftChoice(CamCase(mm, true));
+    ASSERT_EQ(choice.outliers.size(), bad.size()) << "first at " << bad[0].first;
+    for (size_t k = 0; k < bad.size(); ++k) {
+      EXPECT_EQ(choice.outliers[k].index, bad[k].first);
+      EXPECT_DOUBLE_EQ(choice.outliers[k].lift_m * 1e3, bad[k].second);
+    }
+    const std::string what = ChoiceError(CamCase(mm));
+    EXPECT_EQ(what.rfind("m.csv:" + std::to_string(bad[0].first + 3) + ": the reading ", 0), 0u)
+        << what;
+  }
+}
+
+// The allowances scale with the number of readings: 4σ below zero up to 316 readings, the
+// level one honest table in 100 reaches beyond (5.33σ at 200 000 readings).
+TEST(OutlierTest, AllowancesScaleWithTheReadings) {
+  EXPECT_EQ(TailSigmas(194, kNegativeSigmas), 4.0);
+  EXPECT_EQ(TailSigmas(315, kNegativeSigmas), 4.0);
+  EXPECT_NEAR(TailSigmas(316, kNegativeSigmas), 4.0, 1e-3);
+  EXPECT_NEAR(TailSigmas(200000, kNegativeSigmas), 5.327, 1e-3);
+  EXPECT_EQ(TailSigmas(2 * 194, kOutlierSigmas), 5.0);
+  // 200 001 honest readings (σ = 5 µm, 720° at 0.0036°) of our cam, one seated reading at
+  // −4.1σ: accepted (the 4σ rule refused it), neither an outlier nor below the allowance.
+  std::vector<double> mm = CamReadings(5.0, 3, 0.0036, -360, 360);
+  ASSERT_EQ(mm.size(), 200001u);
+  mm[1000] = -4.1 * 0.005;
+  LiftTable t;
+  for (size_t i = 0; i < mm.size(); ++i) {
+    t.crank_rad.push_back((-360 + 0.0036 * i) * kDeg);
+    t.lift_m.push_back(mm[i] * 1e-3);
+  }
+  const LiftLawChoice choice = ChooseLiftLaw(t, {});
+  EXPECT_TRUE(choice.outliers.empty());
+  EXPECT_NEAR(choice.noise_m / 5e-6, 1.0, 0.05);
+  EXPECT_GT(choice.law.negative_allowance_m, 4.1 * 0.005e-3 * 1.2);
+  EXPECT_NO_THROW(LiftLaw(t, choice.law));
 }
 
 // Stated noise replaces the estimate; stated open and close angles replace the detection.

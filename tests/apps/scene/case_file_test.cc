@@ -405,6 +405,10 @@ TEST(CaseFileTest, BreaksMarkAnExactTableAndRefuseWhatCannotGoWithThem) {
   EXPECT_NEAR(c.lift.breaks_rad[0], 10.0 * kDeg, 1e-15);
   EXPECT_EQ(Error(kGood + "breaks_deg = [10]\nnoise_mm = 0.01\n"),
             "t.toml: [lift] breaks_deg: marks an exact table; it cannot go with noise_mm");
+  EXPECT_EQ(Error(kGood + "outliers = \"keep\"\n"),
+            "t.toml: [lift] outliers: expected \"refuse\" or \"drop\", got \"keep\"");
+  EXPECT_TRUE(ParseCase(kGood + "outliers = \"drop\"\n", "t.toml").lift.drop_outliers);
+  EXPECT_FALSE(ParseCase(kGood + "outliers = \"refuse\"\n", "t.toml").lift.drop_outliers);
   EXPECT_EQ(Error(kGood + "breaks_deg = [10, 0]\n"),
             "t.toml: [lift] breaks_deg: angles must increase strictly (entry 1)");
   EXPECT_EQ(Error(kGood + "breaks_deg = [10]\nspline = \"pchip\"\n"),
