@@ -1303,7 +1303,8 @@ LiftLawChoice CaseLiftChoice(const Case& c) {
         Number(std::round(first.sigmas)) + " robust sigma of " +
         Number(choice.robust_noise_m * 1e3) + " mm off): an outlier" +
         (more ? " (" + std::to_string(more) + " more: " + others + ")" : std::string()) +
-        "; correct it, or set [lift] outliers = \"drop\" to leave it out");
+        "; correct it, or set [lift] outliers = \"drop\" to leave it out" +
+        (c.lift.csv_path == c.path ? " (in a case file reading this table with csv = …)" : ""));
   }
   choice.reason += "; " + std::to_string(choice.outliers.size()) + " outlier" + (more ? "s" : "") +
                    " left out (";

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -372,7 +373,7 @@ TEST(OutlierTest, OneBadReadingMidLift) {
       << ChoiceError(CamCase(mm));
   EXPECT_NE(ChoiceError(CamCase(mm))
                 .find("; correct it, or set [lift] outliers = \"drop\" to "
-                      "leave it out"),
+                      "leave it out (in a case file reading this table with csv = …)"),
             std::string::npos);
   const LiftLawChoice dropped = CaseLiftChoice(CamCase(mm, true));
   const LiftLawChoice reference = CaseLiftChoice(CamCase(clean));
@@ -389,6 +390,37 @@ TEST(OutlierTest, OneBadReadingMidLift) {
   const LiftLaw law = MakeLiftLaw(CamCase(mm, true));
   EXPECT_NEAR(law.Max(0).value * 1e3, 1.7, 0.01);
   EXPECT_NEAR(law.start_rad() / kDeg, MakeLiftLaw(CamCase(clean)).start_rad() / kDeg, 0.05);
+}
+
+// Through a case file: the CSV's line behind the case's key, or the entry of the case's array.
+TEST(OutlierTest, CaseFilesNameTheReading) {
+  std::vector<double> mm = CamReadings(3.0, 5);
+  mm[50] = -1.0;
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  const std::string csv = dir + "/needle-outlier-test.csv";
+  std::ofstream(csv, std::ios::binary) << CamCsv(mm);
+  const std::string head = "[engine]\nspeed_rpm = 600\n[lift]\n";
+  const std::string from_csv = head + "csv = \"needle-outlier-test.csv\"\n";
+  EXPECT_EQ(ChoiceError(ParseCase(from_csv, dir + "/c.toml"))
+                .rfind(dir + "/c.toml: [lift] csv: " + csv +
+                           ":53: the reading -1 mm at 15 deg stands out of its neighbourhood",
+                       0),
+            0u)
+      << ChoiceError(ParseCase(from_csv, dir + "/c.toml"));
+  EXPECT_EQ(CaseLiftChoice(ParseCase(from_csv + "outliers = \"drop\"\n", dir + "/c.toml"))
+                .outliers.size(),
+            1u);
+  std::ostringstream arrays;
+  arrays << head << "crank_deg = [";
+  for (size_t i = 0; i < mm.size(); ++i) arrays << (i ? ", " : "") << -10 + 0.5 * i;
+  arrays << "]\nlift_um = [";
+  for (size_t i = 0; i < mm.size(); ++i) arrays << (i ? ", " : "") << mm[i] * 1e3;
+  arrays << "]\n";
+  EXPECT_EQ(ChoiceError(ParseCase(arrays.str(), "t.toml"))
+                .rfind("t.toml: [lift] lift_um[50]: the reading -1 mm at 15 deg stands out", 0),
+            0u)
+      << ChoiceError(ParseCase(arrays.str(), "t.toml"));
+  std::filesystem::remove(csv);
 }
 
 // A typo of 500 mm, bad readings at and next to the table's ends, and two bad readings side by
