@@ -19,26 +19,47 @@ std::string Trim(const std::string& s) {
   return s.substr(a, b - a + 1);
 }
 
-std::vector<std::string> Fields(const std::string& line) {
+// A field as a spreadsheet writes it: trimmed, and one pair of enclosing double quotes (Calc
+// quotes its text cells, the header) removed.
+std::string Unquote(const std::string& s) {
+  const std::string t = Trim(s);
+  if (t.size() >= 2 && t.front() == '"' && t.back() == '"') return Trim(t.substr(1, t.size() - 2));
+  return t;
+}
+
+std::vector<std::string> Fields(const std::string& line, char separator) {
   std::vector<std::string> out;
   std::string field;
   std::istringstream in(line);
-  while (std::getline(in, field, ',')) out.push_back(Trim(field));
-  if (!line.empty() && line.back() == ',') out.push_back("");
+  while (std::getline(in, field, separator)) out.push_back(Unquote(field));
+  if (!line.empty() && line.back() == separator) out.push_back("");
   return out;
 }
 
+std::string Quoted(char c) { return std::string("'") + c + "'"; }
+
 }  // namespace
 
-LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool four_stroke) {
+LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool four_stroke,
+                       std::vector<int>* lines) {
+  if (lines) lines->clear();
   auto fail = [&](int line, int column, const std::string& what) -> void {
     std::string where = path + ":" + std::to_string(line);
     if (column > 0) where += ":" + std::to_string(column);
     throw CaseError(where + ": " + what);
   };
-  std::istringstream in(text);
+  // A UTF-8 byte-order mark (Excel's "CSV UTF-8", Calc with the option) is no part of the header.
+  constexpr char kUtf8Bom[] = "\xEF\xBB\xBF";
+  const bool bom = text.compare(0, 3, kUtf8Bom) == 0;
+  if (text.compare(0, 2, "\xFF\xFE") == 0 || text.compare(0, 2, "\xFE\xFF") == 0) {
+    fail(1, 0, "the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8");
+  }
+  std::istringstream in(bom ? text.substr(3) : text);
   std::string raw;
   int line = 0;
+  // The column separator, from the header: ',' (decimal mark '.'), or ';' when the header has
+  // ';' and no ',' (a spreadsheet in a locale whose decimal mark is ',': 12,5).
+  char separator = ',';
   int angle_col = -1, lift_col = -1, columns = 0;
   double angle_scale = 0.0, lift_scale = 0.0;
   std::string angle_name, lift_name;
@@ -48,8 +69,19 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
     ++line;
     const std::string s = Trim(raw);
     if (s.empty() || s[0] == '#') continue;
-    const std::vector<std::string> f = Fields(s);
-    if (angle_col < 0 && lift_col < 0 && columns == 0) {  // the header
+    const bool header = angle_col < 0 && lift_col < 0 && columns == 0;
+    if (header) {
+      const bool semicolon = s.find(';') != std::string::npos;
+      const bool comma = s.find(',') != std::string::npos;
+      if (semicolon && comma) {
+        fail(line, 0,
+             "the header has both ';' and ',', so the separator is ambiguous; separate the "
+             "columns with ',' (decimal mark '.') or with ';' (decimal mark ',')");
+      }
+      separator = semicolon ? ';' : ',';
+    }
+    const std::vector<std::string> f = Fields(s, separator);
+    if (header) {
       columns = static_cast<int>(f.size());
       for (int k = 0; k < columns; ++k) {
         const std::string& name = f[k];
@@ -90,10 +122,23 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
     const std::string names[2] = {angle_name, lift_name};
     for (int k = 0; k < 2; ++k) {
       const std::string& field = f[cols[k]];
+      std::string number = field;
+      if (separator == ';') {  // the decimal mark is ','
+        if (field.find('.') != std::string::npos) {
+          fail(line, cols[k] + 1,
+               "'" + field + "' has a '.' in a table separated by " + Quoted(separator) +
+                   ", whose decimal mark is ',' ('.' may be a thousands separator); write it "
+                   "without thousands separators and with a decimal comma, or save the table "
+                   "with ',' between columns and '.' as the decimal mark");
+        }
+        for (char& ch : number) {
+          if (ch == ',') ch = '.';
+        }
+      }
       char* end = nullptr;
       errno = 0;
-      const double x = field.empty() ? NAN : std::strtod(field.c_str(), &end);
-      if (field.empty() || end != field.c_str() + field.size()) {
+      const double x = number.empty() ? NAN : std::strtod(number.c_str(), &end);
+      if (number.empty() || end != number.c_str() + number.size()) {
         fail(line, cols[k] + 1, "'" + field + "' is not a number (column " + names[k] + ")");
       }
       if (!std::isfinite(x) || errno == ERANGE) {
@@ -102,6 +147,21 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
       v[k] = x;
     }
     const double angle = v[0] * angle_scale, lift = v[1] * lift_scale;
+    // Plausible readings (lib/lift_data.h), shown in the column's own unit.
+    const double limits[2] = {kMaxCrankRad / angle_scale, kMaxLiftM / lift_scale};
+    const double si[2] = {angle, lift};
+    const char* ranges[2] = {
+        "a crank angle within ±720°, a four-stroke cycle either side of dead centre",
+        "a lift within ±1 m"};
+    for (int k = 0; k < 2; ++k) {
+      if (!(std::abs(si[k]) <= (k == 0 ? kMaxCrankRad : kMaxLiftM))) {
+        std::ostringstream m;
+        m << names[k] << " " << v[k] << " is outside the plausible range ±" << limits[k] << " "
+          << names[k].substr(names[k].find('_') + 1) << " (" << ranges[k]
+          << "); a typo or a unit mix-up?";
+        fail(line, cols[k] + 1, m.str());
+      }
+    }
     if (!t.crank_rad.empty() && !(angle > t.crank_rad.back())) {
       std::ostringstream a, b;
       a << v[0];
@@ -112,6 +172,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
     }
     t.crank_rad.push_back(angle);
     t.lift_m.push_back(lift);
+    if (lines) lines->push_back(line);
     last_line = line;
   }
   if (columns == 0) fail(line, 0, "no header; expected crank_deg (or cam_deg) and lift_mm");
@@ -123,8 +184,8 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
   return t;
 }
 
-LiftTable ReadLiftCsv(const std::string& path, bool four_stroke) {
-  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, four_stroke);
+LiftTable ReadLiftCsv(const std::string& path, bool four_stroke, std::vector<int>* lines) {
+  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, four_stroke, lines);
 }
 
 }  // namespace needle

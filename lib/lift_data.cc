@@ -1,6 +1,9 @@
 #include "lib/lift_data.h"
 
+#include <algorithm>
+#include <boost/math/distributions/normal.hpp>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace needle {
@@ -13,7 +16,132 @@ std::string Mm(double m) {
   return out.str();
 }
 
+// The fourth divided difference of five readings (x[k[j]], y[k[j]]): its pseudo-residual
+// e = D/√Σw² and the weight of each reading; flat when the five read the same.
+struct Window {
+  double d = 0.0, norm = 0.0;  // D and √Σw²
+  double w[5] = {};
+  bool flat = true;
+};
+
+Window FourthDifference(const std::vector<double>& x, const std::vector<double>& y,
+                        const size_t* k) {
+  constexpr int kOrder = 4;  // fourth divided differences: blind to cubics
+  Window win;
+  double w2 = 0.0;
+  for (int j = 0; j <= kOrder; ++j) {
+    double p = 1.0;
+    for (int l = 0; l <= kOrder; ++l) {
+      if (l != j) p *= x[k[j]] - x[k[l]];
+    }
+    win.w[j] = 1.0 / p;
+    win.d += win.w[j] * y[k[j]];
+    w2 += win.w[j] * win.w[j];
+    if (y[k[j]] != y[k[0]]) win.flat = false;
+  }
+  win.norm = std::sqrt(w2);
+  return win;
+}
+
+// |e| of every window that is not flat.
+std::vector<double> PseudoResiduals(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<double> out;
+  std::vector<size_t> k(5);
+  for (size_t i = 0; i + 4 < x.size(); ++i) {
+    for (size_t j = 0; j < 5; ++j) k[j] = i + j;
+    const Window win = FourthDifference(x, y, k.data());
+    if (!win.flat) out.push_back(std::abs(win.d) / win.norm);
+  }
+  return out;
+}
+
 }  // namespace
+
+double TailSigmas(long readings, double floor_sigmas) {
+  const double p = 1.0 / (100.0 * static_cast<double>(std::max(readings, 1L)));
+  const boost::math::normal_distribution<double> normal;
+  return std::max(floor_sigmas, boost::math::quantile(boost::math::complement(normal, p)));
+}
+
+double EstimateNoiseRobust(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<double> e = PseudoResiduals(x, y);
+  if (e.empty()) return 0.0;
+  const size_t mid = e.size() / 2;
+  std::nth_element(e.begin(), e.begin() + mid, e.end());
+  double median = e[mid];
+  if (e.size() % 2 == 0) median = 0.5 * (median + *std::max_element(e.begin(), e.begin() + mid));
+  return 1.4826 * median;  // 1/Φ⁻¹(3/4): the MAD of a Gaussian is 0.6745 σ
+}
+
+std::vector<LiftOutlier> FindOutliers(const std::vector<double>& x, const std::vector<double>& y,
+                                      double robust_sigma_m) {
+  std::vector<LiftOutlier> found;
+  const long n = static_cast<long>(x.size());
+  if (n < 6) return found;  // five readings always fit a quartic: nothing stands out
+  double largest = 0.0;
+  for (double v : y) largest = std::max(largest, std::abs(v));
+  const double threshold =
+      std::max(TailSigmas(2 * n, kOutlierSigmas) * robust_sigma_m, kOutlierFloorFraction * largest);
+  if (!(threshold > 0.0)) return found;
+  std::vector<size_t> kept(x.size());
+  for (size_t i = 0; i < kept.size(); ++i) kept[i] = i;
+  while (static_cast<int>(found.size()) < kMaxOutliers && kept.size() >= 6) {
+    const long m = static_cast<long>(kept.size());
+    std::vector<Window> windows(m - 4);
+    for (long st = 0; st + 4 < m; ++st) windows[st] = FourthDifference(x, y, &kept[st]);
+    long worst = -1;
+    double worst_z = threshold;
+    for (long p = 0; p < m; ++p) {
+      // The windows that hold p in their middle three places; at the ends, the one there is.
+      double z = std::numeric_limits<double>::infinity();
+      for (long st = std::max(0L, p - 3); st <= std::min(m - 5, p - 1); ++st) {
+        z = std::min(z, std::abs(windows[st].d) / windows[st].norm);
+      }
+      if (std::isinf(z)) {
+        const long st = std::clamp(p - 2, 0L, m - 5);
+        z = std::abs(windows[st].d) / windows[st].norm;
+      }
+      if (z > worst_z) {
+        worst_z = z;
+        worst = p;
+      }
+    }
+    if (worst < 0) break;
+    // Within two readings of an end, where a reading has fewer than two middle windows, the
+    // windows alone cannot tell which of the first (last) three is bad: it is the one whose
+    // leaving out leaves the windows around it flattest.
+    long culprit = worst;
+    double best = std::numeric_limits<double>::infinity();
+    const bool near_end = worst < 2 || worst > m - 3;
+    for (long q = std::max(0L, worst - 2); near_end && q <= std::min(m - 1, worst + 2); ++q) {
+      std::vector<size_t> local;
+      for (long r = std::max(0L, q - 6); r <= std::min(m - 1, q + 6); ++r) {
+        if (r != q) local.push_back(kept[r]);
+      }
+      double largest_e = 0.0;
+      for (size_t st = 0; st + 4 < local.size(); ++st) {
+        const Window win = FourthDifference(x, y, &local[st]);
+        largest_e = std::max(largest_e, std::abs(win.d) / win.norm);
+      }
+      if (largest_e < best ||
+          (largest_e == best && std::abs(q - worst) < std::abs(culprit - worst))) {
+        best = largest_e;
+        culprit = q;
+      }
+    }
+    const long st = std::clamp(culprit - 2, 0L, m - 5);    // the most central window: the cubic
+    const Window win = FourthDifference(x, y, &kept[st]);  // through the other four gives s_i
+    const size_t i = kept[culprit];
+    const double e = std::abs(win.d) / win.norm;
+    found.push_back(
+        {i, y[i], y[i] - win.d / win.w[culprit - st],
+         robust_sigma_m > 0.0 ? e / robust_sigma_m : std::numeric_limits<double>::infinity()});
+    kept.erase(kept.begin() + culprit);
+  }
+  std::sort(found.begin(), found.end(),
+            [](const LiftOutlier& a, const LiftOutlier& b) { return a.index < b.index; });
+  return found;
+}
 
 double EstimateNoise(const std::vector<double>& x, const std::vector<double>& y) {
   constexpr int kOrder = 4;  // fourth divided differences: blind to cubics
@@ -39,15 +167,35 @@ double EstimateNoise(const std::vector<double>& x, const std::vector<double>& y)
   return count > 0 ? std::sqrt(sum / count) : 0.0;
 }
 
-LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& o) {
+LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
   LiftLawChoice c;
   c.law.spline = o.spline;
   c.law.open_rad = o.open_rad;
   c.law.close_rad = o.close_rad;
   c.law.breaks_rad = o.breaks_rad;
-  const int n = static_cast<int>(table.crank_rad.size());
-  const bool dense = n >= kDenseTablePoints;
+  const bool dense = static_cast<int>(given.crank_rad.size()) >= kDenseTablePoints;
   c.measured = (dense || o.noise_m.has_value()) && o.breaks_rad.empty();
+  c.table = given;
+  // Outliers are sought in dense measured data only: on a sparse table the shape itself stands
+  // out of the cubic through each reading's neighbours.
+  if (c.measured && dense && given.crank_rad.size() == given.lift_m.size()) {
+    c.robust_noise_m = EstimateNoiseRobust(given.crank_rad, given.lift_m);
+    c.outliers = FindOutliers(given.crank_rad, given.lift_m, c.robust_noise_m);
+    if (o.drop_outliers && !c.outliers.empty()) {
+      c.table = LiftTable{};
+      size_t next = 0;
+      for (size_t i = 0; i < given.crank_rad.size(); ++i) {
+        if (next < c.outliers.size() && c.outliers[next].index == i) {
+          ++next;
+          continue;
+        }
+        c.table.crank_rad.push_back(given.crank_rad[i]);
+        c.table.lift_m.push_back(given.lift_m[i]);
+      }
+    }
+  }
+  const LiftTable& table = c.table;
+  const int n = static_cast<int>(table.crank_rad.size());
   const std::string points = std::to_string(n) + " points";
   if (o.noise_m) {
     c.noise_m = *o.noise_m;
@@ -69,7 +217,8 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& o) {
   c.law.spline.sigma = c.noise_m;
   if (c.measured) {
     c.law.closed_level_m = kClosedLevelSigmas * c.noise_m;
-    c.law.negative_allowance_m = kNegativeSigmas * c.noise_m;
+    c.law.negative_sigmas = TailSigmas(n, kNegativeSigmas);
+    c.law.negative_allowance_m = c.law.negative_sigmas * c.noise_m;
   }
   const std::string noise = "noise " + Mm(c.noise_m) + " mm (" + c.noise_source + ")";
   if (o.kind) {

@@ -40,14 +40,18 @@ std::string Deg(double rad) {
   return out.str();
 }
 
-void CheckReadings(const LiftTable& table, double allowance_m) {
+void CheckReadings(const LiftTable& table, double allowance_m, double sigmas) {
   for (size_t i = 0; i < table.lift_m.size(); ++i) {
     if (table.lift_m[i] < -allowance_m) {
       std::string what = "entry " + std::to_string(i) + " of the lifts is negative (" +
                          Mm(table.lift_m[i]) +
                          " mm): lift is measured from the seat and cannot be below it";
       if (allowance_m > 0.0) {
-        what += " by more than the noise allows (4 sigma = " + Mm(allowance_m) + " mm)";
+        std::ostringstream n;
+        n.precision(3);
+        n << sigmas;
+        what +=
+            " by more than the noise allows (" + n.str() + " sigma = " + Mm(allowance_m) + " mm)";
       }
       throw std::invalid_argument(what);
     }
@@ -142,7 +146,7 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
   if (th.size() != s.size() || th.empty()) {
     throw std::invalid_argument("the lift table needs as many lifts as crank angles");
   }
-  CheckReadings(table, options.negative_allowance_m);
+  CheckReadings(table, options.negative_allowance_m, options.negative_sigmas);
   if (options.closed_level_m > 0.0) {
     if (!options.breaks_rad.empty())
       throw std::invalid_argument("breaks apply to an exact table only, not to measured data");

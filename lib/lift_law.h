@@ -46,6 +46,8 @@ struct LiftLawOptions {
   /// Readings down to −allowance, m (≥ 0), are accepted as noise of a seated needle; below that
   /// a reading is an error. 0 for exact tables.
   double negative_allowance_m = 0.0;
+  /// The allowance in σ, for messages (lib/lift_data.h TailSigmas: 4 up to 316 readings).
+  double negative_sigmas = 4.0;
   /// θ_open and θ_close stated by the case, rad, inside [θ_0, θ_N]; detected when absent.
   std::optional<double> open_rad, close_rad;
   /// Angles where s'' may jump (a cam of circular arcs), rad, increasing: the spline is built

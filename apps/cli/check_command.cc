@@ -163,6 +163,11 @@ int RunCheckCommand(const CheckCommandOptions& o) {
                                   " mm below the seat at " + Fixed(law.undershoot_rad() / kDeg, 2) +
                                   "° inside the open lift; try another spline kind");
   }
+  if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
+    summary << Row("WARNING", std::to_string(choice.outliers.size()) +
+                                  " outlier(s) of the lift table left out (outliers = \"drop\"; "
+                                  "the spline's reason lists them)");
+  }
   summary << Row("max lift", Fixed(sum.max_lift_m * 1e3, 3) + " mm at " +
                                  Fixed(sum.max_lift_rad / kDeg, 2) + "°")
           << Row("max velocity", Fixed(sum.max_velocity_m_s, 3) + " m/s at " +

@@ -186,6 +186,11 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
           << " mm below the seat at " << Fixed(law.undershoot_rad() / kDeg, 2)
           << " deg inside the open lift; try another spline kind\n";
     }
+    if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
+      out << "WARNING: " << choice.outliers.size()
+          << " outlier(s) of the lift table left out (outliers = \"drop\"; the spline's reason "
+             "lists them)\n";
+    }
     out << "max lift " << Fixed(sum.max_lift_m * 1e3, 3) << " mm at "
         << Fixed(sum.max_lift_rad / kDeg, 2) << " deg, mean lift "
         << Fixed(sum.mean_lift_m * 1e3, 3) << " mm, rho " << Fixed(sum.rho, 3) << '\n';

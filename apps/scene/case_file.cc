@@ -697,7 +697,9 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
   const auto normal = r.OptionalString("normal_curve");
   const auto csv = r.OptionalString("csv");
   const auto crank = r.OptionalQuantityArray("crank", Dimension::kAngle);
+  const std::string crank_key = crank ? r.last_key() : "crank_deg";
   const auto values = r.OptionalQuantityArray("lift", Dimension::kLength);
+  const std::string lift_key = values ? r.last_key() : "lift_mm";
   const auto max_lift = r.OptionalQuantity("max_lift", Dimension::kLength);
   if (normal) {
     if (*normal != "basu") r.Fail("normal_curve", "expected \"basu\", got \"" + *normal + "\"");
@@ -717,11 +719,12 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
                                  ? p.string()
                                  : (std::filesystem::path(case_path).parent_path() / p).string();
     try {
-      lift.table = ReadLiftCsv(full, four_stroke);
+      lift.table = ReadLiftCsv(full, four_stroke, &lift.lines);
     } catch (const CaseError& e) {
       r.Fail("csv", e.what());  // "CASE: [lift] csv: TABLE:LINE:COLUMN: what"
     }
     lift.source = "csv " + full;
+    lift.csv_path = full;
   } else {
     if (max_lift) r.Fail("max_lift_mm", "only used with normal_curve = \"basu\"");
     if (!crank) r.Fail("crank_deg", "missing; expected an array of crank angles (or normal_curve)");
@@ -731,6 +734,23 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
                             std::to_string(crank->size()));
     }
     if (crank->size() < 2) r.Fail("crank_deg", "needs at least 2 points");
+    // Plausible readings (lib/lift_data.h), shown in the key's own unit.
+    auto plausible = [&](const std::vector<double>& array, const std::string& key,
+                         Dimension dimension, double limit, const std::string& range) {
+      const std::string unit = key.substr(key.find('_') + 1);
+      const double per_unit = ToSi(dimension, unit, 1.0);
+      for (size_t i = 0; i < array.size(); ++i) {
+        if (!(std::abs(array[i]) <= limit)) {
+          r.Fail(key + "[" + std::to_string(i) + "]",
+                 "is " + Number(array[i] / per_unit) + " " + unit +
+                     ", outside the plausible range ±" + Number(limit / per_unit) + " " + unit +
+                     " (" + range + "); a typo or a unit mix-up?");
+        }
+      }
+    };
+    plausible(*crank, crank_key, Dimension::kAngle, kMaxCrankRad,
+              "a crank angle within ±720°, a four-stroke cycle either side of dead centre");
+    plausible(*values, lift_key, Dimension::kLength, kMaxLiftM, "a lift within ±1 m");
     for (size_t i = 1; i < crank->size(); ++i) {
       if (!((*crank)[i] > (*crank)[i - 1])) {
         r.Fail("crank_deg", "angles must increase strictly, but entry " + std::to_string(i) + " (" +
@@ -741,6 +761,7 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
     }
     lift.table = {*crank, *values};
     lift.source = "table";
+    lift.lift_key = lift_key;
   }
   if (auto spline = r.OptionalString("spline")) {
     const auto kind = ParseSplineKind(*spline);
@@ -758,6 +779,12 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
     if (!(*noise > 0.0))
       r.Fail(r.last_key(), "must be positive, got " + Number(*noise * 1e3) + " mm");
     lift.noise_m = *noise;
+  }
+  if (auto outliers = r.OptionalString("outliers")) {
+    if (*outliers != "refuse" && *outliers != "drop") {
+      r.Fail("outliers", "expected \"refuse\" or \"drop\", got \"" + *outliers + "\"");
+    }
+    lift.drop_outliers = *outliers == "drop";
   }
   lift.open_rad = r.OptionalQuantity("open", Dimension::kAngle);
   lift.close_rad = r.OptionalQuantity("close", Dimension::kAngle);
@@ -1232,8 +1259,9 @@ Case CaseFromLiftCsv(const std::string& path, const std::string& cycle) {
   Case c;
   c.path = path;
   c.engine.cycle = cycle;
-  c.lift.table = ReadLiftCsv(path, cycle == "four-stroke");
+  c.lift.table = ReadLiftCsv(path, cycle == "four-stroke", &c.lift.lines);
   c.lift.source = "csv " + path;
+  c.lift.csv_path = path;
   return c;
 }
 
@@ -1246,12 +1274,59 @@ LiftLawChoice CaseLiftChoice(const Case& c) {
   o.open_rad = c.lift.open_rad;
   o.close_rad = c.lift.close_rad;
   o.breaks_rad = c.lift.breaks_rad;
-  return ChooseLiftLaw(c.lift.table, o);
+  o.drop_outliers = c.lift.drop_outliers;
+  LiftLawChoice choice = ChooseLiftLaw(c.lift.table, o);
+  if (choice.outliers.empty()) return choice;
+  // Where a reading is: the CSV file's line, or the entry of the case's array.
+  auto where = [&](size_t index) {
+    if (index < c.lift.lines.size()) return "line " + std::to_string(c.lift.lines[index]);
+    return "entry " + std::to_string(index);
+  };
+  auto reading = [&](const LiftOutlier& x) {
+    return Number(x.lift_m * 1e3) + " mm at " + Number(c.lift.table.crank_rad[x.index] / kDeg) +
+           " deg";
+  };
+  const LiftOutlier& first = choice.outliers.front();
+  const size_t more = choice.outliers.size() - 1;
+  if (!c.lift.drop_outliers) {
+    std::string at;
+    if (first.index < c.lift.lines.size()) {
+      at = c.lift.csv_path + ":" + std::to_string(c.lift.lines[first.index]);
+      if (c.lift.csv_path != c.path) at = c.path + ": [lift] csv: " + at;
+    } else {
+      at = c.path + ": [lift] " + c.lift.lift_key + "[" + std::to_string(first.index) + "]";
+    }
+    std::string others;
+    for (size_t k = 1; k < choice.outliers.size() && k <= 5; ++k) {
+      others += (k > 1 ? ", " : "") + where(choice.outliers[k].index);
+    }
+    if (more > 5) others += ", …";
+    throw CaseError(
+        at + ": the reading " + reading(first) + " stands out of its neighbourhood (" +
+        Number(first.expected_m * 1e3) + " mm by the cubic through the four readings around it, " +
+        Number(std::round(first.sigmas)) + " robust sigma of " +
+        Number(choice.robust_noise_m * 1e3) + " mm off): an outlier" +
+        (more ? " (" + std::to_string(more) + " more: " + others + ")" : std::string()) +
+        "; correct it, or set [lift] outliers = \"drop\" to leave it out" +
+        (c.lift.csv_path == c.path ? " (in a case file reading this table with csv = …)" : ""));
+  }
+  choice.reason += "; " + std::to_string(choice.outliers.size()) + " outlier" + (more ? "s" : "") +
+                   " left out (";
+  for (size_t k = 0; k < choice.outliers.size(); ++k) {
+    const LiftOutlier& x = choice.outliers[k];
+    choice.reason += (k ? "; " : "") + where(x.index) + ": " + reading(x) + ", neighbourhood " +
+                     Number(x.expected_m * 1e3) + " mm";
+  }
+  choice.reason += ")";
+  return choice;
 }
 
 LiftLaw MakeLiftLaw(const Case& c) {
   try {
-    return LiftLaw(c.lift.table, CaseLiftChoice(c).law);
+    const LiftLawChoice choice = CaseLiftChoice(c);
+    return LiftLaw(choice.table, choice.law);
+  } catch (const CaseError&) {
+    throw;
   } catch (const std::exception& e) {
     throw CaseError(c.path + ": [lift]: " + e.what());
   }

@@ -14,6 +14,9 @@
 ///               open_deg, close_deg (the open lift; detected when absent)
 ///               end_slope = "at-rest" | end_slope_mm_deg = [start, end]   (clamped only)
 ///               smoothing = "discrepancy" (default) | "gcv"              (smoothing only)
+///               outliers = "refuse" (default) | "drop"   (dense measured data: a reading far out
+///               of
+///                        its neighbourhood refuses the case, or is left out with a warning)
 ///     [needle]  mass_kg, diameter_mm, gas_force_N | combustion_pressure_bar (or _kgf_cm2, _MPa…);
 ///               default gas load: Basu's 35 kg/cm² on the needle diameter, 0 without one
 ///     [spring]  preload_kgf | preload_N, rate_N_mm (or from the geometry), safety_factor = 1.5,
@@ -72,6 +75,12 @@ struct LiftSection {
   std::optional<double> open_rad, close_rad;  ///< `open_deg`, `close_deg`: the open lift
   std::vector<double> breaks_rad;  ///< `breaks_deg`: where s'' jumps (a cam of arcs), rad
   std::string source;              ///< "table", "csv FILE" or "basu normal curve"
+  /// `outliers = "drop"`: outliers of measured data are left out with a warning (default
+  /// "refuse": the case is refused naming the first; lib/lift_data.h FindOutliers).
+  bool drop_outliers = false;
+  std::string csv_path;    ///< the CSV file the table was read from (empty: not from a CSV)
+  std::vector<int> lines;  ///< the CSV file's line of each reading (empty: not from a CSV)
+  std::string lift_key = "lift_mm";  ///< the key of the lifts, as written (`lift_um`, …)
 };
 
 struct PaperSection {

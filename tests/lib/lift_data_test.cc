@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -242,16 +243,234 @@ TEST(MeasuredTableTest, NegativeReadingsWithinTheNoiseAreAccepted) {
   far.replace(at, end - at, "-10.00,-0.2");
   const LiftLaw law = MakeLiftLaw(MeasuredCase(low));
   EXPECT_EQ(law.Lift(-10.0 * kDeg), 0.0);  // closed: the curve is clipped at the seat
+  // One reading far below is an outlier of its neighbourhood, refused as such.
   try {
     MakeLiftLaw(MeasuredCase(far));
     FAIL() << "a reading 0.2 mm below the seat was accepted";
   } catch (const CaseError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("measured.csv: [lift] lift_mm[10]: the reading -0.2 mm "
+                                          "at -10 deg stands out of its neighbourhood",
+                                          0),
+              0u)
+        << e.what();
+  }
+  // The seated zone sunk smoothly to −0.05 mm (a gauge off zero): no outlier, but below −4σ.
+  std::istringstream in(csv);
+  std::string line, sunk;
+  while (std::getline(in, line)) {
+    double deg = 0, mm = 0;
+    if (std::sscanf(line.c_str(), "%lf,%lf", &deg, &mm) == 2 && deg >= -15 && deg <= -5) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.2f,%.3f", deg, mm - 0.05 * (1 - std::abs(deg + 10) / 5));
+      line = text;
+    }
+    sunk += line + "\n";
+  }
+  try {
+    MakeLiftLaw(MeasuredCase(sunk));
+    FAIL() << "a seat 0.05 mm below zero was accepted";
+  } catch (const CaseError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("measured.csv: [lift]: entry 10 of the lifts is negative (-0.2 mm)"),
+    EXPECT_NE(what.find("measured.csv: [lift]: entry 4 of the lifts is negative ("),
               std::string::npos)
         << what;
     EXPECT_NE(what.find("by more than the noise allows (4 sigma = "), std::string::npos) << what;
   }
+}
+
+// Outliers (lib/lift_data.h FindOutliers): on our own cam, a 3-4-5 rise and fall of 1.7 mm over
+// 40° (20° each way), read at 0.5° from −10° to 50° with Gaussian noise σ (µm), rounded to
+// 0.1 µm, one comment line and the header before the readings (reading i is on line i + 3).
+double Cam345(double deg) {
+  if (deg <= 0 || deg >= 40) return 0.0;
+  const double xi = (deg <= 20 ? deg : 40 - deg) / 20;
+  return 1.7 * xi * xi * xi * (10 - 15 * xi + 6 * xi * xi);
+}
+
+std::vector<double> CamReadings(double sigma_um, unsigned seed, double spacing_deg = 0.5,
+                                double from_deg = -10, double to_deg = 50) {
+  Noise noise(seed);
+  std::vector<double> mm;
+  const int n = static_cast<int>(std::lround((to_deg - from_deg) / spacing_deg));
+  for (int i = 0; i <= n; ++i) {
+    const double reading = Cam345(from_deg + i * spacing_deg) + sigma_um * 1e-3 * noise();
+    mm.push_back(std::round(reading * 1e4) / 1e4);
+  }
+  return mm;
+}
+
+std::string CamCsv(const std::vector<double>& mm, double spacing_deg = 0.5, double from_deg = -10) {
+  std::ostringstream out;
+  out << "# 3-4-5 cam, 1.7 mm over 40 deg\ncrank_deg,lift_mm\n";
+  out.precision(10);
+  for (size_t i = 0; i < mm.size(); ++i) out << from_deg + i * spacing_deg << "," << mm[i] << "\n";
+  return out.str();
+}
+
+// A bare CSV table as `needle kinematics m.csv` reads it.
+Case CamCase(const std::vector<double>& mm, bool drop = false) {
+  Case c;
+  c.path = c.lift.csv_path = "m.csv";
+  c.engine.speed_rpm = 600;
+  c.lift.table = ParseLiftCsv(CamCsv(mm), "m.csv", true, &c.lift.lines);
+  c.lift.drop_outliers = drop;
+  return c;
+}
+
+std::string ChoiceError(const Case& c) {
+  try {
+    CaseLiftChoice(c);
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(OutlierTest, HonestTablesHaveNone) {
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    for (double sigma_um : {1.0, 3.0, 10.0}) {
+      const std::vector<double> mm = CamReadings(sigma_um, seed);
+      const LiftLawChoice choice = CaseLiftChoice(CamCase(mm));
+      EXPECT_TRUE(choice.outliers.empty()) << "seed " << seed << ", sigma " << sigma_um;
+      EXPECT_NEAR(choice.robust_noise_m * 1e6 / sigma_um, 1.0, 0.5) << "seed " << seed;
+    }
+  }
+}
+
+// Exact dense tables (the laws above, and ours, read at 0.5°, 1° and ~2°, exact or written to
+// 1e-6 mm) have none: the corners where s''' jumps stand below the floor.
+TEST(OutlierTest, ExactDenseTablesHaveNone) {
+  for (double spacing : {0.5, 1.0, 2.0}) {
+    for (int law = 0; law < 4; ++law) {
+      for (bool rounded : {false, true}) {
+        LiftTable t;
+        for (double deg = -15; deg <= 80; deg += spacing) {
+          double mm = law < 3 ? kLaws[law].Lift_mm(deg) : Cam345(deg);
+          if (rounded) mm = std::round(mm * 1e6) / 1e6;
+          t.crank_rad.push_back(deg * kDeg);
+          t.lift_m.push_back(mm * 1e-3);
+        }
+        const LiftLawChoice choice = ChooseLiftLaw(t, {});
+        ASSERT_TRUE(choice.measured);
+        EXPECT_TRUE(choice.outliers.empty()) << "law " << law << ", " << spacing << " deg";
+      }
+    }
+  }
+}
+
+// One reading of −1.0 mm at 15° (mid-lift, reading 50, line 53): refused by default, naming
+// its line; left out when the case says so, and then σ̂ and the lift are the clean table's.
+TEST(OutlierTest, OneBadReadingMidLift) {
+  std::vector<double> mm = CamReadings(3.0, 5);
+  const std::vector<double> clean = mm;
+  ASSERT_NEAR(mm[50], Cam345(15), 0.02);
+  mm[50] = -1.0;
+  EXPECT_EQ(ChoiceError(CamCase(mm))
+                .rfind("m.csv:53: the reading -1 mm at 15 deg stands out of "
+                       "its neighbourhood (1.5",
+                       0),
+            0u)
+      << ChoiceError(CamCase(mm));
+  EXPECT_NE(ChoiceError(CamCase(mm))
+                .find("; correct it, or set [lift] outliers = \"drop\" to "
+                      "leave it out (in a case file reading this table with csv = …)"),
+            std::string::npos);
+  const LiftLawChoice dropped = CaseLiftChoice(CamCase(mm, true));
+  const LiftLawChoice reference = CaseLiftChoice(CamCase(clean));
+  ASSERT_EQ(dropped.outliers.size(), 1u);
+  EXPECT_EQ(dropped.outliers[0].index, 50u);
+  EXPECT_NEAR(dropped.outliers[0].expected_m * 1e3, Cam345(15), 0.01);
+  EXPECT_EQ(dropped.table.lift_m.size(), mm.size() - 1);
+  EXPECT_NE(dropped.reason.find("1 outlier left out (line 53: -1 mm at 15 deg, neighbourhood "),
+            std::string::npos)
+      << dropped.reason;
+  EXPECT_NEAR(dropped.noise_m / reference.noise_m, 1.0, 0.05);  // not 60 times it
+  // The robust σ̂, taken with the bad reading in, is the clean table's within 10 %.
+  EXPECT_NEAR(dropped.robust_noise_m / reference.robust_noise_m, 1.0, 0.1);
+  const LiftLaw law = MakeLiftLaw(CamCase(mm, true));
+  EXPECT_NEAR(law.Max(0).value * 1e3, 1.7, 0.01);
+  EXPECT_NEAR(law.start_rad() / kDeg, MakeLiftLaw(CamCase(clean)).start_rad() / kDeg, 0.05);
+}
+
+// Through a case file: the CSV's line behind the case's key, or the entry of the case's array.
+TEST(OutlierTest, CaseFilesNameTheReading) {
+  std::vector<double> mm = CamReadings(3.0, 5);
+  mm[50] = -1.0;
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  const std::string csv = dir + "/needle-outlier-test.csv";
+  std::ofstream(csv, std::ios::binary) << CamCsv(mm);
+  const std::string head = "[engine]\nspeed_rpm = 600\n[lift]\n";
+  const std::string from_csv = head + "csv = \"needle-outlier-test.csv\"\n";
+  EXPECT_EQ(ChoiceError(ParseCase(from_csv, dir + "/c.toml"))
+                .rfind(dir + "/c.toml: [lift] csv: " + csv +
+                           ":53: the reading -1 mm at 15 deg stands out of its neighbourhood",
+                       0),
+            0u)
+      << ChoiceError(ParseCase(from_csv, dir + "/c.toml"));
+  EXPECT_EQ(CaseLiftChoice(ParseCase(from_csv + "outliers = \"drop\"\n", dir + "/c.toml"))
+                .outliers.size(),
+            1u);
+  std::ostringstream arrays;
+  arrays << head << "crank_deg = [";
+  for (size_t i = 0; i < mm.size(); ++i) arrays << (i ? ", " : "") << -10 + 0.5 * i;
+  arrays << "]\nlift_um = [";
+  for (size_t i = 0; i < mm.size(); ++i) arrays << (i ? ", " : "") << mm[i] * 1e3;
+  arrays << "]\n";
+  EXPECT_EQ(ChoiceError(ParseCase(arrays.str(), "t.toml"))
+                .rfind("t.toml: [lift] lift_um[50]: the reading -1 mm at 15 deg stands out", 0),
+            0u)
+      << ChoiceError(ParseCase(arrays.str(), "t.toml"));
+  std::filesystem::remove(csv);
+}
+
+// A typo of 500 mm, bad readings at and next to the table's ends, and two bad readings side by
+// side are each named by their own row.
+TEST(OutlierTest, EachBadReadingIsNamed) {
+  const std::vector<double> base = CamReadings(3.0, 9);
+  const size_t n = base.size();
+  const std::vector<std::vector<std::pair<size_t, double>>> cases = {
+      {{80, 500.0}},  {{0, 0.2}},
+      {{1, 0.2}},     {{n - 1, -0.3}},
+      {{n - 2, 0.3}}, {{60, 1.0}, {61, 1.0}},
+      {{30, 0.05}},   {{10, 0.1}, {100, 0.5}}};
+  for (const auto& bad : cases) {
+    std::vector<double> mm = base;
+    for (const auto& [i, value] : bad) mm[i] = value;
+    const LiftLawChoice choice = CaseLiftChoice(CamCase(mm, true));
+    ASSERT_EQ(choice.outliers.size(), bad.size()) << "first at " << bad[0].first;
+    for (size_t k = 0; k < bad.size(); ++k) {
+      EXPECT_EQ(choice.outliers[k].index, bad[k].first);
+      EXPECT_DOUBLE_EQ(choice.outliers[k].lift_m * 1e3, bad[k].second);
+    }
+    const std::string what = ChoiceError(CamCase(mm));
+    EXPECT_EQ(what.rfind("m.csv:" + std::to_string(bad[0].first + 3) + ": the reading ", 0), 0u)
+        << what;
+  }
+}
+
+// The allowances scale with the number of readings: 4σ below zero up to 316 readings, the
+// level one honest table in 100 reaches beyond (5.33σ at 200 000 readings).
+TEST(OutlierTest, AllowancesScaleWithTheReadings) {
+  EXPECT_EQ(TailSigmas(194, kNegativeSigmas), 4.0);
+  EXPECT_EQ(TailSigmas(315, kNegativeSigmas), 4.0);
+  EXPECT_NEAR(TailSigmas(316, kNegativeSigmas), 4.0, 1e-3);
+  EXPECT_NEAR(TailSigmas(200000, kNegativeSigmas), 5.327, 1e-3);
+  EXPECT_EQ(TailSigmas(2 * 194, kOutlierSigmas), 5.0);
+  // 200 001 honest readings (σ = 5 µm, 720° at 0.0036°) of our cam, one seated reading at
+  // −4.1σ: accepted (the 4σ rule refused it), neither an outlier nor below the allowance.
+  std::vector<double> mm = CamReadings(5.0, 3, 0.0036, -360, 360);
+  ASSERT_EQ(mm.size(), 200001u);
+  mm[1000] = -4.1 * 0.005;
+  LiftTable t;
+  for (size_t i = 0; i < mm.size(); ++i) {
+    t.crank_rad.push_back((-360 + 0.0036 * i) * kDeg);
+    t.lift_m.push_back(mm[i] * 1e-3);
+  }
+  const LiftLawChoice choice = ChooseLiftLaw(t, {});
+  EXPECT_TRUE(choice.outliers.empty());
+  EXPECT_NEAR(choice.noise_m / 5e-6, 1.0, 0.05);
+  EXPECT_GT(choice.law.negative_allowance_m, 4.1 * 0.005e-3 * 1.2);
+  EXPECT_NO_THROW(LiftLaw(t, choice.law));
 }
 
 // Stated noise replaces the estimate; stated open and close angles replace the detection.
@@ -370,10 +589,71 @@ TEST(LiftCsvTest, BadTables) {
             "m.csv:4:1: crank_deg 2 does not increase after 2 (line 3); angles must increase "
             "strictly");
   EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1,3\n"), "m.csv:3: expected 2 fields, got 3");
+  // Implausible readings (lib/lift_data.h: |lift| ≤ 1 m, |crank| ≤ 720°), in the column's unit.
+  EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1e300\n"),
+            "m.csv:3:2: lift_mm 1e+300 is outside the plausible range ±1000 mm (a lift within "
+            "±1 m); a typo or a unit mix-up?");
+  EXPECT_EQ(CsvError("lift_um,cam_deg\n0,1\n-1.5e6,2\n"),
+            "m.csv:3:1: lift_um -1.5e+06 is outside the plausible range ±1e+06 um (a lift within "
+            "±1 m); a typo or a unit mix-up?");
+  EXPECT_EQ(CsvError("cam_deg,lift_mm\n1,0\n360.5,1\n"),
+            "m.csv:3:1: cam_deg 360.5 is outside the plausible range ±360 deg (a crank angle "
+            "within ±720°, a four-stroke cycle either side of dead centre); a typo or a unit "
+            "mix-up?");
+  EXPECT_EQ(CsvError("cam_deg,lift_mm\n-360,0\n360,999.9\n"), "(no error)");
   EXPECT_EQ(CsvError("deg,lift_mm\n1,0\n"),
             "m.csv:1:1: unknown column 'deg'; expected a header of crank_deg (or cam_deg) and "
             "lift_mm (or lift_um, lift_in)");
   EXPECT_EQ(CsvError(""), "m.csv:0: no header; expected crank_deg (or cam_deg) and lift_mm");
+}
+
+// Spreadsheet exports (tests/data/README.md says how they were made): Calc in an English
+// locale (',' and '.', quoted header), in a German one (';' and decimal commas), and the German
+// one with a UTF-8 byte-order mark and CRLF line ends. All read as the same table.
+TEST(LiftCsvTest, SpreadsheetExports) {
+  for (const char* name : {"calc-lift-en.csv", "calc-lift-de.csv", "calc-lift-de-bom-crlf.csv"}) {
+    SCOPED_TRACE(name);
+    const LiftTable t = ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/" + name, true);
+    ASSERT_EQ(t.crank_rad.size(), 21u);
+    for (size_t i = 0; i < t.crank_rad.size(); ++i) {
+      const double deg = -5.0 + 2.5 * i;
+      EXPECT_NEAR(t.crank_rad[i], deg * kDeg, 1e-15);
+      // The 3-4-5 rise and fall of 1.7 mm over 40°, written to 4 decimals.
+      const double xi = deg <= 0 || deg >= 40 ? 0.0 : (deg <= 20 ? deg : 40 - deg) / 20;
+      const double mm = 1.7 * xi * xi * xi * (10 - 15 * xi + 6 * xi * xi);
+      EXPECT_NEAR(t.lift_m[i] * 1e3, mm, 0.5e-4 + 1e-12) << "row " << i;
+    }
+    EXPECT_DOUBLE_EQ(t.lift_m[7], 1.2321e-3);  // 12.5°: "1,2321" in the German exports
+  }
+}
+
+TEST(LiftCsvTest, SpreadsheetSeparators) {
+  const LiftTable semi = ParseLiftCsv(
+      "\xEF\xBB\xBF"
+      "crank_deg;lift_mm\r\n-2,5;0\r\n0;12,5\r\n",
+      "m.csv", true);
+  ASSERT_EQ(semi.crank_rad.size(), 2u);
+  EXPECT_NEAR(semi.crank_rad[0], -2.5 * kDeg, 1e-15);
+  EXPECT_DOUBLE_EQ(semi.lift_m[1], 12.5e-3);
+  const LiftTable bom = ParseLiftCsv(
+      "\xEF\xBB\xBF"
+      "crank_deg,lift_mm\n0,0\n1,0.5\n",
+      "m.csv", true);
+  EXPECT_DOUBLE_EQ(bom.lift_m[1], 0.5e-3);
+  EXPECT_EQ(CsvError("crank_deg;lift_mm\n0;1.700\n1;0\n"),
+            "m.csv:2:2: '1.700' has a '.' in a table separated by ';', whose decimal mark is ',' "
+            "('.' may be a thousands separator); write it without thousands separators and with "
+            "a decimal comma, or save the table with ',' between columns and '.' as the decimal "
+            "mark");
+  EXPECT_EQ(CsvError("crank_deg;lift_mm,x\n0;1\n1;0\n"),
+            "m.csv:1: the header has both ';' and ',', so the separator is ambiguous; separate "
+            "the columns with ',' (decimal mark '.') or with ';' (decimal mark ',')");
+  EXPECT_EQ(CsvError("\xFF\xFE"
+                     "c"),
+            "m.csv:1: the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as "
+            "UTF-8");
+  EXPECT_EQ(CsvError("crank_deg;lift_mm\n0;1,2,3\n1;0\n"),
+            "m.csv:2:2: '1,2,3' is not a number (column lift_mm)");
 }
 
 TEST(LiftCsvTest, UnitsAndCamAngles) {

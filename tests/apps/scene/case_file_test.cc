@@ -148,6 +148,15 @@ TEST(CaseFileTest, BadValues) {
   EXPECT_EQ(Error(Replace(kGood, "[-10, 0, 10, 20, 30]", "[-10, 0, 10, 5, 30]")),
             "t.toml: [lift] crank_deg: angles must increase strictly, but entry 3 (5) follows "
             "entry 2 (10)");
+  // Implausible readings (lib/lift_data.h: |lift| ≤ 1 m, |crank| ≤ 720°), in the key's unit.
+  EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, 2e6, 1, 0]")),
+            "t.toml: [lift] lift_mm[2]: is 2e+06 mm, outside the plausible range ±1000 mm (a lift "
+            "within ±1 m); a typo or a unit mix-up?");
+  EXPECT_EQ(Error(Replace(kGood, "[-10, 0, 10, 20, 30]", "[-10, 0, 10, 20, 3000]")),
+            "t.toml: [lift] crank_deg[4]: is 3000 deg, outside the plausible range ±720 deg (a "
+            "crank angle within ±720°, a four-stroke cycle either side of dead centre); a typo or "
+            "a unit mix-up?");
+  EXPECT_EQ(Error(Replace(kGood, "[-10, 0, 10, 20, 30]", "[-10, 0, 10, 20, 720]")), "(no error)");
   EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, nan, 1, 0]")),
             "t.toml: [lift] lift_mm[2]: is NaN; expected a finite number");
   // An exact table takes no reading below the seat (measured data: tests/lib/lift_data_test.cc).
@@ -396,6 +405,10 @@ TEST(CaseFileTest, BreaksMarkAnExactTableAndRefuseWhatCannotGoWithThem) {
   EXPECT_NEAR(c.lift.breaks_rad[0], 10.0 * kDeg, 1e-15);
   EXPECT_EQ(Error(kGood + "breaks_deg = [10]\nnoise_mm = 0.01\n"),
             "t.toml: [lift] breaks_deg: marks an exact table; it cannot go with noise_mm");
+  EXPECT_EQ(Error(kGood + "outliers = \"keep\"\n"),
+            "t.toml: [lift] outliers: expected \"refuse\" or \"drop\", got \"keep\"");
+  EXPECT_TRUE(ParseCase(kGood + "outliers = \"drop\"\n", "t.toml").lift.drop_outliers);
+  EXPECT_FALSE(ParseCase(kGood + "outliers = \"refuse\"\n", "t.toml").lift.drop_outliers);
   EXPECT_EQ(Error(kGood + "breaks_deg = [10, 0]\n"),
             "t.toml: [lift] breaks_deg: angles must increase strictly (entry 1)");
   EXPECT_EQ(Error(kGood + "breaks_deg = [10]\nspline = \"pchip\"\n"),
