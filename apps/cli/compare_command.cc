@@ -151,7 +151,7 @@ int RunCompareCommand(const CompareCommandOptions& o) {
   }
   RequireGnuplot();
   {
-    ProgressBar bar("compare");
+    ProgressBar bar("compare", "runs", o.json);
     int done_before = 0;  // the runs of A, when B is checked
     for (Checked* d : {&a, &b}) {
       d->law.emplace(MakeLiftLaw(d->c));

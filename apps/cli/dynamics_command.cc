@@ -373,7 +373,7 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
   CommandOutput r;
   {
-    ProgressBar bar("overspeed");
+    ProgressBar bar("overspeed", "speeds", o.json);
     r = ComputeOverspeed(c, o, [&](int done, int total) { bar.Update(done, total); });
   }
   return Emit(r, o.json, std::nullopt);

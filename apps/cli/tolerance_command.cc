@@ -137,7 +137,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
   options.threads = o.threads;
   ToleranceResult r;
   {
-    ProgressBar bar("tolerance");
+    ProgressBar bar("tolerance", "samples", o.json);
     if (bar.active()) options.progress = [&](int done, int total) { bar.Update(done, total); };
     r = RunToleranceStudy(c, options);
   }
