@@ -125,7 +125,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   const LiftLaw law = MakeLiftLaw(c);
   CheckResult result;
   {
-    ProgressBar bar("overspeed");
+    ProgressBar bar("overspeed", "speeds", o.json);
     options.progress = [&](int done, int total) { bar.Update(done, total); };
     result = CheckScene(c, law, options);
   }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "apps/scene/case_file.h"
+#include "apps/scene/plausible_ranges.h"
 
 namespace needle {
 
@@ -37,8 +38,26 @@ inline CLI::Validator NumberIn(double lo, double hi, const std::string& what) {
       what, "");
 }
 
-/// Crank speeds: (0, 1e6] rpm (the lower end 1e-3).
-inline CLI::Validator SpeedRpm() { return NumberIn(1e-3, 1e6, "a speed in rpm"); }
+/// A number in a plausible range of apps/scene/plausible_ranges.h, in its shown unit.
+inline CLI::Validator InRange(const PlausibleRange& r, const std::string& what) {
+  return NumberIn(r.lo / r.unit_si, r.hi / r.unit_si, what);
+}
+
+/// Crank speeds (--rpm, --from, --to): the plausible range of [engine] speed_rpm, 1…50000 rpm.
+inline CLI::Validator SpeedRpm() { return InRange(kCrankSpeedRange, "a speed in rpm"); }
+
+/// A 64-bit seed: digits only, at most 18446744073709551615 (CLI11 alone took a longer number
+/// without a word).
+inline CLI::Validator Seed() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        const bool digits =
+            !s.empty() && s.size() <= 20 && s.find_first_not_of("0123456789") == std::string::npos;
+        if (digits && (s.size() < 20 || s <= "18446744073709551615")) return {};
+        return "expected a whole number in " + RangeText(kSeedRange) + ", got " + s;
+      },
+      "SEED", "");
+}
 
 /// The same rule where no parser stood in front (the Compute functions, called from Python):
 /// throws CaseError "OPTION: expected WHAT in [lo, hi], got V".
@@ -49,8 +68,8 @@ inline void RequireIn(const std::string& option, const std::optional<double>& v,
   text << *v;
   throw CaseError(option + ": " + RangeRule(lo, hi, what, text.str()));
 }
-inline void RequireSpeed(const std::optional<double>& rpm) {
-  RequireIn("--rpm", rpm, 1e-3, 1e6, "a speed in rpm");
+inline void RequireSpeed(const std::optional<double>& rpm, const std::string& option = "--rpm") {
+  RequireIn(option, rpm, kCrankSpeedRange.lo, kCrankSpeedRange.hi, "a speed in rpm");
 }
 
 }  // namespace needle

@@ -21,7 +21,8 @@ namespace needle {
 namespace {
 
 // The leaves of a check object, in order: "group.key" → value. Lists (failing, skipped) and
-// the texts that only explain are left out; the paths are data, not verdicts.
+// the texts that only explain are left out; the paths are data, not verdicts. The limits table
+// (a list of rows) gives each row's verdict, value and margin under "limits.KEY.".
 void Leaves(const nlohmann::json& j, const std::string& prefix,
             std::vector<std::pair<std::string, nlohmann::json>>& out) {
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -29,6 +30,13 @@ void Leaves(const nlohmann::json& j, const std::string& prefix,
     const nlohmann::json& v = it.value();
     if (v.is_object()) {
       Leaves(v, key, out);
+    } else if (prefix.empty() && it.key() == "limits" && v.is_array()) {
+      for (const nlohmann::json& row : v) {
+        if (!row.is_object() || !row.contains("name")) continue;
+        const std::string name = "limits." + row["name"].get<std::string>();
+        for (const char* field : {"verdict", "value", "margin"})
+          out.emplace_back(name + "." + field, row.value(field, nlohmann::json(nullptr)));
+      }
     } else if (v.is_number() || v.is_boolean() || v.is_null() ||
                (v.is_string() &&
                 (it.key() == "overall" || it.key() == "status" || it.key() == "spline"))) {
@@ -37,10 +45,30 @@ void Leaves(const nlohmann::json& j, const std::string& prefix,
   }
 }
 
-// A bool or one of the strings Leaves keeps (overall, status, spline), on either side.
+// A bool or one of the strings Leaves keeps (overall, status, spline, a row's verdict), on
+// either side: shown in the verdict table.
 bool IsVerdict(const nlohmann::json& a, const nlohmann::json& b) {
   const auto kind = [](const nlohmann::json& v) { return v.is_boolean() || v.is_string(); };
   return kind(a) || kind(b);
+}
+
+// A pass/fail verdict: a sub-check's bool, or "pass" / "fail" (the overall verdict, a limits
+// row). "not judged", a status, a spline kind and null are not.
+bool IsPassFail(const nlohmann::json& v) {
+  return v.is_boolean() || (v.is_string() && (v == "pass" || v == "fail"));
+}
+
+// Why two checked designs are not like for like: a different rated speed or engine cycle.
+std::vector<std::string> Unlike(double a_rpm, const std::string& a_cycle, double b_rpm,
+                                const std::string& b_cycle) {
+  std::vector<std::string> why;
+  if (a_rpm != b_rpm) {
+    std::ostringstream s;
+    s << "rated speed: A " << a_rpm << " rpm, B " << b_rpm << " rpm";
+    why.push_back(s.str());
+  }
+  if (a_cycle != b_cycle) why.push_back("cycle: A " + a_cycle + ", B " + b_cycle);
+  return why;
 }
 
 std::string Shown(const nlohmann::json& v) {
@@ -93,7 +121,8 @@ std::vector<ComparedItem> CompareChecks(const nlohmann::json& a, const nlohmann:
   }
   for (ComparedItem& i : items) {
     i.verdict = IsVerdict(i.a, i.b);
-    i.flips = i.verdict && i.a != i.b;
+    i.flips = i.verdict && IsPassFail(i.a) && IsPassFail(i.b) && i.a != i.b;
+    i.differs = i.verdict && !i.flips && i.a != i.b;
   }
   return items;
 }
@@ -122,7 +151,7 @@ int RunCompareCommand(const CompareCommandOptions& o) {
   }
   RequireGnuplot();
   {
-    ProgressBar bar("compare");
+    ProgressBar bar("compare", "runs", o.json);
     int done_before = 0;  // the runs of A, when B is checked
     for (Checked* d : {&a, &b}) {
       d->law.emplace(MakeLiftLaw(d->c));
@@ -137,9 +166,18 @@ int RunCompareCommand(const CompareCommandOptions& o) {
     }
   }
   const std::vector<ComparedItem> items = CompareChecks(a.json, b.json);
-  std::vector<std::string> flipped;
-  for (const ComparedItem& i : items)
+  std::vector<std::string> flipped, differing;
+  for (const ComparedItem& i : items) {
     if (i.flips) flipped.push_back(i.key);
+    if (i.differs) differing.push_back(i.key);
+  }
+  const std::vector<std::string> unlike =
+      Unlike(a.result.speed_rpm, a.c.engine.cycle, b.result.speed_rpm, b.c.engine.cycle);
+  const auto joined = [](const std::vector<std::string>& list, const std::string& sep) {
+    std::string s;
+    for (const std::string& x : list) s += (s.empty() ? "" : sep) + x;
+    return s;
+  };
 
   // The report: verdicts, quantities, and both designs' curves overlaid.
   Report report("needle compare: " + Escape(a.c.path) + " against " + Escape(b.c.path));
@@ -147,21 +185,30 @@ int RunCompareCommand(const CompareCommandOptions& o) {
     std::ostringstream t;
     t << "<p>A: " << Escape(a.c.title.empty() ? a.c.path : a.c.title) << " (" << Escape(a.c.path)
       << ")<br>B: " << Escape(b.c.title.empty() ? b.c.path : b.c.title) << " (" << Escape(b.c.path)
-      << ")</p><p>"
+      << ")</p>";
+    if (!unlike.empty()) {
+      t << "<p><span class=\"fail\">Not like for like</span>: " << Escape(joined(unlike, "; "))
+        << ".</p>";
+    }
+    t << "<p>"
       << (flipped.empty() ? "No verdict flips."
                           : "<span class=\"fail\">" + std::to_string(flipped.size()) +
-                                " verdict(s) flip</span>: " + Escape([&] {
-                                  std::string s;
-                                  for (const auto& f : flipped) s += (s.empty() ? "" : ", ") + f;
-                                  return s;
-                                }()))
-      << "</p><h2>Verdicts</h2><table class=\"grid\"><tr><th>item</th><th>A</th><th>B</th><th></th>"
+                                " verdict(s) flip</span>: " + Escape(joined(flipped, ", ")))
+      << "</p>";
+    if (!differing.empty()) {
+      t << "<p>" << differing.size()
+        << " other difference(s), not flips: " << Escape(joined(differing, ", ")) << "</p>";
+    }
+    t << "<h2>Verdicts</h2><table class=\"grid\"><tr><th>item</th><th>A</th><th>B</th><th></th>"
          "</tr>";
     for (const ComparedItem& i : items) {
       if (!i.verdict) continue;
       t << "<tr><td>" << Escape(i.key) << "</td><td>" << Escape(Shown(i.a)) << "</td><td>"
         << Escape(Shown(i.b)) << "</td><td>"
-        << (i.flips ? "<span class=\"fail\">flips</span>" : std::string()) << "</td></tr>";
+        << (i.flips     ? "<span class=\"fail\">flips</span>"
+            : i.differs ? "differs"
+                        : "")
+        << "</td></tr>";
     }
     t << "</table><h2>Failing</h2><table class=\"grid\"><tr><th>A</th><th>B</th></tr><tr><td>";
     for (const Checked* d : {&a, &b}) {
@@ -255,11 +302,15 @@ int RunCompareCommand(const CompareCommandOptions& o) {
     j["b"] = b.json;
     j["report"] = path;
     j["flipped"] = flipped;
+    j["differing"] = differing;
+    j["like_for_like"] = unlike.empty();
+    j["not_like_for_like"] = unlike;
     nlohmann::json rows = nlohmann::json::array();
     for (const ComparedItem& i : items) {
       nlohmann::json r = {{"key", i.key}, {"a", i.a}, {"b", i.b}, {"verdict", i.verdict}};
       if (i.verdict) {
         r["flips"] = i.flips;
+        r["differs"] = i.differs;
       } else if (i.a.is_number() && i.b.is_number()) {
         r["difference"] = i.b.get<double>() - i.a.get<double>();
       } else {
@@ -275,14 +326,19 @@ int RunCompareCommand(const CompareCommandOptions& o) {
   out << "A: " << (a.c.title.empty() ? a.c.path : a.c.title) << " — overall "
       << (a.result.pass ? "pass" : "FAIL") << '\n'
       << "B: " << (b.c.title.empty() ? b.c.path : b.c.title) << " — overall "
-      << (b.result.pass ? "pass" : "FAIL") << "\n\n";
+      << (b.result.pass ? "pass" : "FAIL") << '\n';
+  if (!unlike.empty()) out << "not like for like: " << joined(unlike, "; ") << '\n';
+  out << '\n';
   char line[400];
   std::snprintf(line, sizeof line, "%-44s %14s %14s\n", "verdict", "A", "B");
   out << line;
   for (const ComparedItem& i : items) {
     if (!i.verdict) continue;
     std::snprintf(line, sizeof line, "%-44s %14s %14s%s\n", i.key.c_str(), Shown(i.a).c_str(),
-                  Shown(i.b).c_str(), i.flips ? "  FLIPS" : "");
+                  Shown(i.b).c_str(),
+                  i.flips     ? "  FLIPS"
+                  : i.differs ? "  differs"
+                              : "");
     out << line;
   }
   std::snprintf(line, sizeof line, "\n%-44s %14s %14s  %s\n", "quantity", "A", "B", "B - A");
@@ -298,7 +354,11 @@ int RunCompareCommand(const CompareCommandOptions& o) {
       out << (d == &a ? "A" : "B") << " fails: " << f << '\n';
   out << (flipped.empty() ? "no verdict flips"
                           : std::to_string(flipped.size()) + " verdict(s) flip")
-      << "\nreport: " << path << '\n';
+      << '\n';
+  if (!differing.empty())
+    out << differing.size() << " other difference(s), not flips: " << joined(differing, ", ")
+        << '\n';
+  out << "report: " << path << '\n';
   std::cout << out.str() << std::flush;
   return status;
 }

@@ -83,7 +83,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
   cmd->add_option("--cycles", o.cycles,
                   "cam revolutions run back to back, the state carried over, until the state "
                   "repeats (default: [solver] cycles or 1)")
-      ->check(CLI::Range(1, kMaxCycles));
+      ->check(CLI::Range(1, static_cast<int>(kCyclesRange.hi)));
   cmd->add_flag("--dynamic", o.dynamic,
                 "run the dynamics even where the rigid answer would be reported");
   cmd->add_flag("--json", o.json, "print one JSON object");
@@ -239,27 +239,32 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
       app.add_subcommand("overspeed", "Search the dynamic lift-off speed n_dyn beside n_qs");
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
   cmd->add_option("--from", o.from_rpm,
-                  "start of the sweep, rpm (default: [overspeed] from_rpm or the rated speed)");
+                  "start of the sweep, rpm (default: [overspeed] from_rpm or the rated speed)")
+      ->check(SpeedRpm());
   cmd->add_option(
-      "--to", o.to_rpm,
-      "end of the sweep, rpm (default: [overspeed] to_rpm, else the larger of 2 x n_qs and 2 x the "
-      "rated speed)");
+         "--to", o.to_rpm,
+         "end of the sweep, rpm (default: [overspeed] to_rpm, else the larger of 2 x n_qs and 2 x "
+         "the rated speed)")
+      ->check(SpeedRpm());
   cmd->add_option("--method", o.method, "auto, exact, dopri5, cvode-bdf or cvode-adams");
   cmd->add_option("--rtol", o.rtol, "relative tolerance");
   cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
-      ->check(CLI::Range(0, 4096));
+      ->check(CLI::Range(0, static_cast<int>(kThreadsRange.hi)));
   cmd->add_option("--step-rpm", o.step_rpm,
                   "scan step: speeds are scanned upward from --from in this step (default 2.5 % "
                   "of --from, at least 1 rpm)")
-      ->check(CLI::Range(1e-3, 1e6));
+      ->check(InRange(kSpeedStepRange, "a speed step in rpm"));
   cmd->add_flag("--json", o.json, "print one JSON object");
   return cmd;
 }
 
 CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
                                const std::function<void(int, int)>& progress) {
-  RequireIn("--threads", o.threads, 0, 4096, "a number of threads");
-  RequireIn("--step-rpm", o.step_rpm, 1e-3, 1e6, "a speed step in rpm");
+  RequireIn("--threads", o.threads, kThreadsRange.lo, kThreadsRange.hi, "a number of threads");
+  RequireIn("--step-rpm", o.step_rpm, kSpeedStepRange.lo, kSpeedStepRange.hi,
+            "a speed step in rpm");
+  RequireSpeed(o.from_rpm, "--from");
+  RequireSpeed(o.to_rpm, "--to");
   const Scene scene = MakeScene(c);
   const double n_qs = QuasiStaticLiftoffRpm(scene);
   OverspeedOptions opt;
@@ -368,7 +373,7 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
   CommandOutput r;
   {
-    ProgressBar bar("overspeed");
+    ProgressBar bar("overspeed", "speeds", o.json);
     r = ComputeOverspeed(c, o, [&](int done, int total) { bar.Update(done, total); });
   }
   return Emit(r, o.json, std::nullopt);

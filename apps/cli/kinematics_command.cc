@@ -52,7 +52,7 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
       ->check(SpeedRpm());
   cmd->add_option("--step", o.step_deg,
                   "table spacing in crank degrees, 0.001 to 90 (default 5; at most 100000 rows)")
-      ->check(NumberIn(1e-3, 90, "a spacing in crank degrees"));
+      ->check(InRange(kTableStepRange, "a spacing in crank degrees"));
   cmd->add_option("--spline", o.spline,
                   "spline kind (default: [lift] spline): " + SplineKindList());
   cmd->add_option("--units", o.units,
@@ -65,13 +65,14 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   cmd->add_option("--noise-mm", o.noise_mm,
                   "a bare CSV table: standard deviation of its readings in mm (default: "
                   "estimated)")
-      ->check(NumberIn(1e-9, 10, "a noise in mm"));
+      ->check(InRange(kNoiseOptionRange, "a noise in mm"));
   return cmd;
 }
 
 CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
   RequireSpeed(o.speed_rpm);
-  RequireIn("--step", o.step_deg, 1e-3, 90, "a spacing in crank degrees");
+  RequireIn("--step", o.step_deg, kTableStepRange.lo, kTableStepRange.hi,
+            "a spacing in crank degrees");
   if (o.spline) {
     const auto kind = ParseSplineKind(*o.spline);
     if (!kind) {

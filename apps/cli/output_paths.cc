@@ -56,9 +56,12 @@ std::vector<std::string> CaseInputs(const Case& c) {
 }
 
 std::string ReportPath(const std::string& out_dir, const std::string& name) {
-  std::error_code ec;
+  std::error_code ec, unreachable;
   std::filesystem::create_directories(out_dir, ec);  // a missing folder is made
-  if (!std::filesystem::is_directory(out_dir)) {
+  // Without an error code, is_directory throws on a path it cannot reach (a symlink loop, a
+  // folder it may not search): that was exit 3 with the raw message.
+  if (!std::filesystem::is_directory(out_dir, unreachable)) {
+    if (!ec) ec = unreachable;
     throw CaseError("--out: " + out_dir + " is not a folder and cannot be made one" +
                     (ec ? " (" + ec.message() + ")" : std::string()));
   }

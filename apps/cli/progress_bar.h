@@ -1,26 +1,36 @@
 #pragma once
 /// @file
-/// A progress bar on stderr for long sweeps, drawn only when stdout and stderr are both
-/// terminals (never in pipes or CI logs), and erased when it goes out of scope.
+/// Progress of a long sweep on stderr. Where stdout and stderr are both terminals, a bar drawn
+/// in place and erased when it goes out of scope. Elsewhere (a pipe, a CI log) one line now and
+/// then, "overspeed: 40/173 speeds": each time another tenth is done, or 5 s after the last
+/// line. Quiet (no lines; the bar of a terminal stays) under `--json`: a program reading the
+/// JSON reads stderr as the place of errors and warnings, and no progress is mixed in.
 
+#include <chrono>
 #include <string>
 
 namespace needle {
 
 class ProgressBar {
  public:
-  explicit ProgressBar(std::string label);
+  /// `label` begins every line ("overspeed"); `unit` names what is counted ("speeds").
+  /// `quiet`: no lines when stderr or stdout is not a terminal (the command's --json).
+  explicit ProgressBar(std::string label, std::string unit = "runs", bool quiet = false);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
-  /// `done` runs of about `total`.
+  /// `done` of about `total` (an estimate that may move).
   void Update(int done, int total);
-  bool active() const { return active_; }
+  /// True when Update shows anything (a bar or lines).
+  bool active() const { return bar_ || lines_; }
 
  private:
-  std::string label_;
-  bool active_;
+  std::string label_, unit_;
+  bool bar_;            ///< both terminals: the bar
+  bool lines_;          ///< otherwise, unless quiet: a line now and then
+  int last_tenth_ = 0;  ///< the tenths done at the last line
+  std::chrono::steady_clock::time_point last_line_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace needle

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/cli/cli_checks.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
@@ -107,13 +108,14 @@ CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& o) {
   cmd->add_option("CASE", o.case_path, "case file; its [tolerance] section gives the scatter")
       ->required();
   cmd->add_option("--samples", o.samples, "number of samples (default 1000)")
-      ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--seed", o.seed, "the study's seed (default 1): the same seed, the same study");
+      ->check(CLI::Range(1, static_cast<int>(kSamplesRange.hi)));
+  cmd->add_option("--seed", o.seed, "the study's seed (default 1): the same seed, the same study")
+      ->check(Seed());
   cmd->add_option("--first-sample", o.first_sample,
                   "index of the first sample (default 0): a shard of a larger study")
-      ->check(CLI::Range(0, 1000000000));
+      ->check(CLI::Range(0, static_cast<int>(kFirstSampleRange.hi)));
   cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
-      ->check(CLI::Range(0, 4096));
+      ->check(CLI::Range(0, static_cast<int>(kThreadsRange.hi)));
   cmd->add_option("--out", o.out_dir, "write the report with the histograms to this folder");
   cmd->add_flag("--json", o.json, "print one JSON object (every sample's inputs and outputs too)");
   return cmd;
@@ -135,7 +137,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
   options.threads = o.threads;
   ToleranceResult r;
   {
-    ProgressBar bar("tolerance");
+    ProgressBar bar("tolerance", "samples", o.json);
     if (bar.active()) options.progress = [&](int done, int total) { bar.Update(done, total); };
     r = RunToleranceStudy(c, options);
   }

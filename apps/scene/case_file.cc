@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "apps/scene/plausible_ranges.h"
 #include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/input_file.h"
@@ -83,6 +84,7 @@ class SectionReader {
     const double raw = ToNumber(key->first, *table_->get(key->first));
     const double si = ToSi(dimension, key->second, raw);
     if (!std::isfinite(si) || std::abs(si) > 1e18) Fail(key->first, "is out of range in SI units");
+    read_.push_back({key->first, name, si, false});
     return si;
   }
 
@@ -101,8 +103,9 @@ class SectionReader {
     if (!array) Fail(key->first, "expected an array of numbers");
     std::vector<double> out;
     for (size_t i = 0; i < array->size(); ++i) {
-      const double raw = ToNumber(key->first + "[" + std::to_string(i) + "]", *array->get(i));
-      out.push_back(ToSi(dimension, key->second, raw));
+      const std::string entry = key->first + "[" + std::to_string(i) + "]";
+      out.push_back(ToSi(dimension, key->second, ToNumber(entry, *array->get(i))));
+      read_.push_back({entry, name, out.back(), true});
     }
     return out;
   }
@@ -110,7 +113,9 @@ class SectionReader {
   std::optional<double> OptionalNumber(const std::string& name) {
     if (!table_ || !table_->contains(name)) return std::nullopt;
     used_.insert(name);
-    return ToNumber(name, *table_->get(name));
+    const double v = ToNumber(name, *table_->get(name));
+    read_.push_back({name, name, v, false});
+    return v;
   }
 
   std::optional<std::string> OptionalString(const std::string& name) {
@@ -138,13 +143,28 @@ class SectionReader {
   // The key (with its unit) of the quantity found last, for messages.
   const std::string& last_key() const { return last_key_; }
 
-  // Every key must have been read.
+  // Every key must have been read, and every value read must lie in its plausible range
+  // (apps/scene/plausible_ranges.h, the one table of them). The section's own checks (a sign,
+  // a missing partner) ran as each key was read, so their messages come first.
   void Finish() const {
     if (!table_) return;
     for (const auto& [k, node] : *table_) {
       (void)node;
       const std::string key(k.str());
       if (!used_.count(key)) Fail(key, "unknown key in this section");
+    }
+    for (const ReadValue& v : read_) {
+      const RangedKey* ranged = FindRangedKey(section_, v.name);
+      if (!ranged) continue;
+      const PlausibleRange& range = *ranged->range;
+      if (v.table_entry || ranged->upper_only) {
+        if (v.si > range.hi)
+          Fail(v.key, ShownValue(range, v.si) + " is above the plausible range's end " +
+                          ShownValue(range, range.hi) + " (docs/ranges.md)");
+      } else if (!(v.si >= range.lo && v.si <= range.hi)) {
+        Fail(v.key, ShownValue(range, v.si) + " is outside the plausible range " +
+                        RangeText(range) + " (docs/ranges.md)");
+      }
     }
   }
 
@@ -189,9 +209,18 @@ class SectionReader {
     return v;
   }
 
+  // A value as read, in SI, for the range check in Finish.
+  struct ReadValue {
+    std::string key;   ///< as written ("mass_kg", "lift_mm[3]")
+    std::string name;  ///< without the unit suffix ("mass")
+    double si = 0.0;
+    bool table_entry = false;  ///< an entry of an array
+  };
+
   const toml::table* table_;
   std::string file_;
   std::string section_;
+  std::vector<ReadValue> read_;
   std::set<std::string> used_;
   std::set<std::string> known_plain_;
   std::set<std::string> declared_;

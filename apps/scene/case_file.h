@@ -44,6 +44,8 @@
 ///               max_acceleration_m_s2, inertia_force_kgf, mean_lift_mm
 ///
 /// Every problem is reported as one CaseError line: "FILE: [section] key: what was expected".
+/// Every physical key has a plausible range (apps/scene/plausible_ranges.h, docs/ranges.md),
+/// checked as its section is finished.
 
 #include <optional>
 #include <stdexcept>

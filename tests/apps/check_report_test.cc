@@ -172,6 +172,52 @@ TEST(CheckReportTest, BadInputLeavesNoReport) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CheckReportTest, AnOutFolderThatCannotBeReachedIsBadInput) {
+  // A symbolic link to itself: filesystem::is_directory threw, exit 3 with the raw message.
+  const std::string dir = TempDir("loop"), loop = dir + "/loop";
+  std::filesystem::create_symlink(loop, loop);
+  for (const std::string& command :
+       {"check " + Case("basu-cam4.toml"),
+        "tolerance " + Case("basu-example2.toml") + " --samples 2",
+        "compare " + Case("basu-cam4.toml") + " " + Case("basu-cam4.toml")}) {
+    for (const std::string& out : {loop, loop + "/sub"}) {
+      const auto r = RunNeedle(command + " --out " + out);
+      EXPECT_EQ(r.status, 2) << command;
+      EXPECT_EQ(r.err, "needle: --out: " + out +
+                           " is not a folder and cannot be made one (Too many levels of symbolic "
+                           "links)\n")
+          << command;
+      EXPECT_TRUE(r.out.empty());
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Where stderr is no terminal (here a file), the overspeed sweep and the tolerance study say
+// how far they are in a line now and then; under --json they are quiet, and stdout is the same.
+TEST(CheckReportTest, ProgressIsALineNowAndThenOutsideATerminal) {
+  const std::string dir = TempDir("progress");
+  const std::regex line("overspeed: [0-9]+/[0-9]+ speeds");
+  const auto text = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir);
+  ASSERT_EQ(text.status, 0) << text.err;
+  std::istringstream lines(text.err);
+  int n = 0;
+  for (std::string l; std::getline(lines, l); ++n) EXPECT_TRUE(std::regex_match(l, line)) << l;
+  EXPECT_GE(n, 5);                                             // about one per tenth of the sweep
+  EXPECT_LE(n, 30);                                            // not one per speed
+  EXPECT_EQ(text.out.find("overspeed: "), std::string::npos);  // stdout untouched
+  const auto json = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir + " --json");
+  EXPECT_EQ(json.status, 0);
+  EXPECT_EQ(json.err, "");
+  EXPECT_NO_THROW((void)nlohmann::json::parse(json.out));
+  const auto study = RunNeedle("tolerance " + Case("basu-example2.toml") + " --samples 20");
+  ASSERT_EQ(study.status, 0) << study.err;
+  EXPECT_NE(study.err.find("tolerance: 20/20 samples\n"), std::string::npos) << study.err;
+  const auto quiet = RunNeedle("tolerance " + Case("basu-example2.toml") + " --samples 20 --json");
+  EXPECT_EQ(quiet.err, "");
+  std::filesystem::remove_all(dir);
+}
+
 // Reproducer 1 of issue 11 through `check --json`: every failing item named, one verdict.
 TEST(CheckReportTest, JsonNamesEveryFailingItem) {
   const std::string dir = TempDir("json");

@@ -1,12 +1,16 @@
 // `needle compare`: Basu's Example 1 against the same engine with a weaker spring (the spring
 // verdict flips, and the preload's difference is the closed form), a design against itself (no
-// flips, every difference zero), bad input, and the item matching on hand-made objects.
+// flips, every difference zero), a limits row that flips, a spline kind that only differs, two
+// rated speeds flagged as not like for like, bad input, and the item matching on hand-made
+// objects.
 #include "apps/cli/compare_command.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "lib/units.h"
@@ -22,6 +26,24 @@ std::string Dir(const std::string& tag) {
   const std::string dir = "/tmp/needle_compare_" + tag + "_" + std::to_string(getpid());
   std::filesystem::remove_all(dir);
   return dir;
+}
+
+// Basu's Example 1 with `from` replaced by `to` (or `to` appended when `from` is empty),
+// written as DIR/NAME.toml; returns its path.
+std::string Variant(const std::string& dir, const std::string& name, const std::string& from,
+                    const std::string& to) {
+  std::string text = testing::Slurp(Case("basu-example1.toml"));
+  if (from.empty()) {
+    text += to;
+  } else {
+    const size_t at = text.find(from);
+    if (at == std::string::npos) throw std::runtime_error("no " + from);
+    text.replace(at, from.size(), to);
+  }
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + name + ".toml";
+  std::ofstream(path) << text;
+  return path;
 }
 
 const nlohmann::json& Item(const nlohmann::json& j, const std::string& key) {
@@ -85,6 +107,67 @@ TEST(CompareCommandTest, ADesignAgainstItselfHasNoDifference) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CompareCommandTest, ALimitsRowThatFlipsExitsOneAndIsNamed) {
+  const std::string dir = Dir("limits");
+  // The same design, its seating velocity judged against 1 cm/s instead of 1.5 m/s.
+  const std::string b = Variant(dir, "strict", "", "\n[limits]\nseating_velocity_m_s = 0.01\n");
+  const auto r =
+      RunNeedle("compare " + Case("basu-example1.toml") + " " + b + " --out " + dir + " --json");
+  ASSERT_EQ(r.status, 1) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(Item(j, "limits.seating_velocity.verdict")["a"], "pass");
+  EXPECT_EQ(Item(j, "limits.seating_velocity.verdict")["b"], "fail");
+  EXPECT_EQ(j["flipped"], nlohmann::json({"limits.seating_velocity.verdict", "overall"}));
+  EXPECT_TRUE(j["like_for_like"].get<bool>());
+  EXPECT_EQ(Item(j, "limits.seating_velocity.value")["difference"].get<double>(), 0.0);
+  const auto text = RunNeedle("compare " + Case("basu-example1.toml") + " " + b + " --out " + dir);
+  EXPECT_EQ(text.status, 1);
+  EXPECT_NE(text.out.find("limits.seating_velocity.verdict"), std::string::npos);
+  EXPECT_NE(text.out.find("2 verdict(s) flip"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareCommandTest, ASplineKindAloneIsADifferenceNotAFlip) {
+  const std::string dir = Dir("spline");
+  const std::string b = Variant(dir, "natural", "spline = \"not-a-knot\"", "spline = \"natural\"");
+  const auto r =
+      RunNeedle("compare " + Case("basu-example1.toml") + " " + b + " --out " + dir + " --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["flipped"].empty());
+  EXPECT_EQ(j["differing"], nlohmann::json({"kinematics.spline"}));
+  EXPECT_FALSE(Item(j, "kinematics.spline")["flips"].get<bool>());
+  EXPECT_TRUE(Item(j, "kinematics.spline")["differs"].get<bool>());
+  const auto text = RunNeedle("compare " + Case("basu-example1.toml") + " " + b + " --out " + dir);
+  EXPECT_EQ(text.status, 0);
+  EXPECT_NE(text.out.find("no verdict flips\n1 other difference(s), not flips: kinematics.spline"),
+            std::string::npos)
+      << text.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareCommandTest, DifferentRatedSpeedsAreNotLikeForLike) {
+  const std::string dir = Dir("speed");
+  const std::string b = Variant(dir, "faster", "speed_rpm = 125", "speed_rpm = 130");
+  const auto r =
+      RunNeedle("compare " + Case("basu-example1.toml") + " " + b + " --out " + dir + " --json");
+  ASSERT_NE(r.status, 2) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(j["like_for_like"].get<bool>());
+  EXPECT_EQ(j["not_like_for_like"], nlohmann::json({"rated speed: A 125 rpm, B 130 rpm"}));
+  const auto text = RunNeedle("compare " + Case("basu-example1.toml") + " " + b + " --out " + dir);
+  EXPECT_NE(text.out.find("not like for like: rated speed: A 125 rpm, B 130 rpm\n"),
+            std::string::npos)
+      << text.out;
+  EXPECT_NE(testing::Slurp(dir + "/compare-basu-example1-faster.html").find("Not like for like"),
+            std::string::npos);
+  // --rpm puts both at one speed: like for like again.
+  const auto same = RunNeedle("compare " + Case("basu-example1.toml") + " " + b + " --rpm 125" +
+                              " --out " + dir + " --json");
+  EXPECT_TRUE(nlohmann::json::parse(same.out)["like_for_like"].get<bool>());
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CompareCommandTest, BadInputIsOneLineAndWritesNothing) {
   const std::string dir = Dir("bad");
   const auto r = RunNeedle("compare " + Case("basu-example1.toml") + " " + dir + "/none.toml" +
@@ -120,7 +203,30 @@ TEST(CompareCommandTest, ItemsMatchByPath) {
   EXPECT_EQ(items[3].b.get<double>() - items[3].a.get<double>(), 2.5);
   EXPECT_EQ(items[4].key, "h.status");  // B's own item, after A's
   EXPECT_EQ(items[4].a, nullptr);
-  EXPECT_TRUE(items[4].verdict && items[4].flips);
+  EXPECT_TRUE(items[4].verdict && !items[4].flips && items[4].differs);  // a status: no flip
+}
+
+TEST(CompareCommandTest, OnlyPassAgainstFailFlips) {
+  const auto row = [](const std::string& name, const nlohmann::json& verdict) {
+    return nlohmann::json{{"name", name}, {"verdict", verdict}, {"value", 1.0}, {"margin", 0.5}};
+  };
+  const nlohmann::json a = {{"overall", "pass"},
+                            {"kinematics", {{"spline", "natural"}}},
+                            {"limits", {row("x", "pass"), row("y", "pass"), row("z", "fail")}}};
+  const nlohmann::json b = {{"overall", "pass"},
+                            {"kinematics", {{"spline", "pchip"}}},
+                            {"limits", {row("x", "fail"), row("y", "not judged")}}};
+  std::map<std::string, ComparedItem> by_key;
+  for (const ComparedItem& i : CompareChecks(a, b)) by_key[i.key] = i;
+  EXPECT_TRUE(by_key.at("limits.x.verdict").flips);
+  EXPECT_FALSE(by_key.at("limits.y.verdict").flips);  // pass → not judged: a difference
+  EXPECT_TRUE(by_key.at("limits.y.verdict").differs);
+  EXPECT_FALSE(by_key.at("limits.z.verdict").flips);  // fail → absent: a difference
+  EXPECT_TRUE(by_key.at("limits.z.verdict").differs);
+  EXPECT_FALSE(by_key.at("kinematics.spline").flips);
+  EXPECT_TRUE(by_key.at("kinematics.spline").differs);
+  EXPECT_FALSE(by_key.at("overall").flips || by_key.at("overall").differs);
+  EXPECT_FALSE(by_key.at("limits.x.value").verdict);  // a number
 }
 
 }  // namespace

@@ -146,7 +146,7 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   const auto rpm = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --rpm -3");
   EXPECT_EQ(rpm.status, 2);
   EXPECT_EQ(rpm.err,
-            "needle: --rpm: expected a speed in rpm in [0.001, 1e+06], got -3 (see needle "
+            "needle: --rpm: expected a speed in rpm in [1, 50000], got -3 (see needle "
             "--help)\n");
   const auto step = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --step nan");
   EXPECT_EQ(step.status, 2);
@@ -156,8 +156,28 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   const auto huge = RunNeedle("simulate " + Case("basu-cam4-light-spring.toml") + " --rpm 1e9");
   EXPECT_EQ(huge.status, 2);
   EXPECT_EQ(huge.err,
-            "needle: --rpm: expected a speed in rpm in [0.001, 1e+06], got 1e9 (see needle "
+            "needle: --rpm: expected a speed in rpm in [1, 50000], got 1e9 (see needle "
             "--help)\n");
+  // The sweep's ends and the seed have their ranges too (docs/ranges.md).
+  const auto from = RunNeedle("overspeed " + Case("basu-cam4-light-spring.toml") + " --from 0.5");
+  EXPECT_EQ(from.status, 2);
+  EXPECT_EQ(from.err,
+            "needle: --from: expected a speed in rpm in [1, 50000], got 0.5 (see needle --help)\n");
+  const auto to = RunNeedle("overspeed " + Case("basu-cam4-light-spring.toml") + " --to 1e7");
+  EXPECT_EQ(to.status, 2);
+  EXPECT_EQ(to.err,
+            "needle: --to: expected a speed in rpm in [1, 50000], got 1e7 (see needle --help)\n");
+  const auto seed =
+      RunNeedle("tolerance " + Case("basu-example2.toml") + " --seed 18446744073709551616");
+  EXPECT_EQ(seed.status, 2);
+  EXPECT_EQ(seed.err,
+            "needle: --seed: expected a whole number in [0, 18446744073709551615], got "
+            "18446744073709551616 (see needle --help)\n");
+  EXPECT_TRUE(seed.out.empty());
+  const auto minus = RunNeedle("tolerance " + Case("basu-example2.toml") + " --seed -1");
+  EXPECT_EQ(minus.err,
+            "needle: --seed: expected a whole number in [0, 18446744073709551615], got -1 (see "
+            "needle --help)\n");
   const auto nocase = RunNeedle("kinematics");
   EXPECT_EQ(nocase.status, 2);
   EXPECT_EQ(nocase.err, "needle: CASE is required (see needle --help)\n");

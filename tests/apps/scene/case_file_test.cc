@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "apps/scene/plausible_ranges.h"
 #include "lib/units.h"
 #include "spring/wire_material.h"
 
@@ -545,6 +546,186 @@ TEST(CaseFileTest, TheSpringsCoilClash) {
             "t.toml: [spring] clash: a rigid [train] has no contact stiffness for the coils to "
             "take; give clash_stiffness_N_m");
   EXPECT_TRUE(ParseCase(spring + "[train]\ncontact = \"rigid\"\n", "t.toml").spring->coil_clash);
+}
+
+// Issue "plausible ranges": every physical key has one (apps/scene/plausible_ranges.h), and a
+// value outside is one line naming the file, the key as written, the value and the range.
+const std::string kEveryPhysicalKey = R"(
+[engine]
+speed_rpm = 400
+[lift]
+crank_deg = [-10, 0, 10, 20, 30]
+lift_mm = [0, 1, 2, 1, 0]
+resolution_mm = 0.01
+noise_mm = 0.002
+[needle]
+mass_kg = 2.0
+diameter_mm = 12.8
+gas_force_N = 120
+[spring]
+preload_N = 900
+rate_N_mm = 50
+safety_factor = 1.5
+overspeed_factor = 1.2
+[train]
+contact_stiffness_N_m = 1e9
+seat_stiffness_N_m = 1e9
+contact_damping_ratio = 0.05
+seat_damping_ratio = 0.05
+play_mm = 0.5
+ramp_deg = 10
+[overspeed]
+from_rpm = 400
+to_rpm = 800
+)";
+
+TEST(CaseFileTest, EveryPhysicalKeyHasAPlausibleRange) {
+  EXPECT_NO_THROW(ParseCase(kEveryPhysicalKey, "t.toml"));
+  const auto error = [](const std::string& from, const std::string& to) {
+    return Error(Replace(kEveryPhysicalKey, from, to));
+  };
+  const std::string t = "t.toml: ";
+  EXPECT_EQ(error("speed_rpm = 400", "speed_rpm = 1e7"),
+            t + "[engine] speed_rpm: 1e+07 rpm is outside the plausible range [1, 50000] rpm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("speed_rpm = 400", "speed_rpm = 0.5"),
+            t + "[engine] speed_rpm: 0.5 rpm is outside the plausible range [1, 50000] rpm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("lift_mm = [0, 1, 2, 1, 0]", "lift_mm = [0, 1, 1e300, 1, 0]"),
+            t + "[lift] lift_mm[2]: is 1e+300; expected a magnitude of at most 1e15");
+  EXPECT_EQ(error("lift_mm = [0, 1, 2, 1, 0]", "lift_mm = [0, 1, 300, 1, 0]"),
+            t + "[lift] lift_mm[2]: 300 mm is above the plausible range's end 200 mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("resolution_mm = 0.01", "resolution_mm = 2"),
+            t + "[lift] resolution_mm: 2 mm is outside the plausible range [1e-06, 1] mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("noise_mm = 0.002", "noise_mm = 5"),
+            t + "[lift] noise_mm: 5 mm is outside the plausible range [1e-06, 1] mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("mass_kg = 2.0", "mass_kg = 1e-12"),
+            t + "[needle] mass_kg: 1e-12 kg is outside the plausible range [0.001, 1000] kg "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("mass_kg = 2.0", "mass_g = 2e6"),
+            t + "[needle] mass_g: 2000 kg is outside the plausible range [0.001, 1000] kg "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("diameter_mm = 12.8", "diameter_mm = 0.1"),
+            t + "[needle] diameter_mm: 0.1 mm is outside the plausible range [0.5, 500] mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("gas_force_N = 120", "gas_force_N = -120"),
+            t + "[needle] gas_force_N: -120 N is outside the plausible range [0, 1e+07] N "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("gas_force_N = 120", "combustion_pressure_bar = 900"),
+            t + "[needle] combustion_pressure_bar: 900 bar is outside the plausible range "
+                "[0, 500] bar (docs/ranges.md)");
+  EXPECT_EQ(error("preload_N = 900", "preload_N = 2e6"),
+            t + "[spring] preload_N: 2e+06 N is outside the plausible range [0, 1e+06] N "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("rate_N_mm = 50", "rate_N_mm = 1e6"),
+            t + "[spring] rate_N_mm: 1e+06 N/mm is outside the plausible range [0, 100000] N/mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("safety_factor = 1.5", "safety_factor = 50"),
+            t + "[spring] safety_factor: 50 is outside the plausible range [1, 10] "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("overspeed_factor = 1.2", "overspeed_factor = 12"),
+            t + "[spring] overspeed_factor: 12 is outside the plausible range [1, 5] "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("contact_stiffness_N_m = 1e9", "contact_stiffness_N_m = 5e-8"),
+            t + "[train] contact_stiffness_N_m: 5e-08 N/m is outside the plausible range "
+                "[100000, 1e+11] N/m (docs/ranges.md)");
+  EXPECT_EQ(error("contact_stiffness_N_m = 1e9", "contact_stiffness_N_m = 1e15"),
+            t + "[train] contact_stiffness_N_m: 1e+15 N/m is outside the plausible range "
+                "[100000, 1e+11] N/m (docs/ranges.md)");
+  EXPECT_EQ(error("seat_stiffness_N_m = 1e9", "seat_stiffness_N_m = 1e4"),
+            t + "[train] seat_stiffness_N_m: 10000 N/m is outside the plausible range "
+                "[100000, 1e+11] N/m (docs/ranges.md)");
+  EXPECT_EQ(error("contact_damping_ratio = 0.05", "contact_damping_ratio = 1e6"),
+            t + "[train] contact_damping_ratio: 1e+06 is outside the plausible range [0, 1] "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("seat_damping_ratio = 0.05", "seat_damping_ratio = 1.5"),
+            t + "[train] seat_damping_ratio: 1.5 is outside the plausible range [0, 1] "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("play_mm = 0.5", "play_mm = 20"),
+            t + "[train] play_mm: 20 mm is outside the plausible range [0, 10] mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("ramp_deg = 10", "ramp_deg = 120"),
+            t + "[train] ramp_deg: 120 deg is outside the plausible range [0.1, 90] deg "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("from_rpm = 400", "from_rpm = 0.5"),
+            t + "[overspeed] from_rpm: 0.5 rpm is outside the plausible range [1, 50000] rpm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(error("to_rpm = 800", "to_rpm = 1e6"),
+            t + "[overspeed] to_rpm: 1e+06 rpm is outside the plausible range [1, 50000] rpm "
+                "(docs/ranges.md)");
+  // The normal curve's largest lift.
+  EXPECT_EQ(Error("[engine]\nspeed_rpm = 400\n[lift]\nnormal_curve = \"basu\"\nmax_lift_mm = "
+                  "1e14\n"),
+            t + "[lift] max_lift_mm: 1e+14 mm is outside the plausible range [0.001, 200] mm "
+                "(docs/ranges.md)");
+  // The helical geometry and material.
+  const std::string helical = R"(
+[engine]
+speed_rpm = 400
+[lift]
+crank_deg = [-10, 0, 10, 20, 30]
+lift_mm = [0, 1, 2, 1, 0]
+[spring]
+preload_N = 900
+wire_mm = 4
+coil_mm = 30
+active_coils = 6
+free_length_mm = 80
+shear_modulus_GPa = 80
+tensile_MPa = 1800
+density_kg_m3 = 7850
+)";
+  const auto spring = [&](const std::string& from, const std::string& to) {
+    return Error(Replace(helical, from, to));
+  };
+  EXPECT_NO_THROW(ParseCase(helical, "t.toml"));
+  EXPECT_EQ(spring("wire_mm = 4\ncoil_mm = 30", "wire_mm = 200\ncoil_mm = 1500"),
+            t + "[spring] wire_mm: 200 mm is outside the plausible range [0.1, 100] mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(spring("wire_mm = 4\ncoil_mm = 30", "wire_mm = 0.05\ncoil_mm = 0.5"),
+            t + "[spring] wire_mm: 0.05 mm is outside the plausible range [0.1, 100] mm "
+                "(docs/ranges.md)");
+  // The coil's upper end is the wire's times the largest index; its lower end can be met.
+  EXPECT_EQ(spring("wire_mm = 4\ncoil_mm = 30", "wire_mm = 0.1\ncoil_mm = 0.4"),
+            t + "[spring] coil_mm: 0.4 mm is outside the plausible range [0.5, 2000] mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(spring("free_length_mm = 80", "free_length_mm = 8000"),
+            t + "[spring] free_length_mm: 8000 mm is outside the plausible range [1, 5000] mm "
+                "(docs/ranges.md)");
+  EXPECT_EQ(spring("active_coils = 6", "active_coils = 500"),
+            t + "[spring] active_coils: 500 is outside the plausible range [2, 200] "
+                "(docs/ranges.md)");
+  EXPECT_EQ(spring("shear_modulus_GPa = 80", "shear_modulus_GPa = 8000"),
+            t + "[spring] shear_modulus_GPa: 8000 GPa is outside the plausible range [10, 150] "
+                "GPa (docs/ranges.md)");
+  EXPECT_EQ(spring("tensile_MPa = 1800", "tensile_MPa = 18"),
+            t + "[spring] tensile_MPa: 18 MPa is outside the plausible range [100, 5000] MPa "
+                "(docs/ranges.md)");
+  EXPECT_EQ(spring("density_kg_m3 = 7850", "density_kg_m3 = 78500"),
+            t + "[spring] density_kg_m3: 78500 kg/m3 is outside the plausible range [1000, "
+                "20000] kg/m3 (docs/ranges.md)");
+  // A sign check that was there before keeps its own message.
+  EXPECT_EQ(error("mass_kg = 2.0", "mass_kg = -2"),
+            t + "[needle] mass_kg: must be positive, got -2");
+}
+
+// docs/ranges.md carries the code's table, generated by PlausibleRangesMarkdown: it cannot
+// drift.
+TEST(CaseFileTest, TheDocsRangesTableIsTheCodes) {
+  std::ifstream in(std::string(NEEDLE_SOURCE_DIR) + "/docs/ranges.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string begin = "<!-- ranges: begin -->\n", end = "<!-- ranges: end -->";
+  const size_t b = doc.str().find(begin), e = doc.str().find(end);
+  ASSERT_TRUE(b != std::string::npos && e != std::string::npos);
+  EXPECT_EQ(doc.str().substr(b + begin.size(), e - b - begin.size()), PlausibleRangesMarkdown())
+      << "regenerate docs/ranges.md's table from PlausibleRangesMarkdown()";
+  // Every key the table names has a range the reader finds.
+  for (const RangedKey& k : kRangedKeys) EXPECT_EQ(FindRangedKey(k.section, k.name), &k);
+  EXPECT_EQ(FindRangedKey("limits", "mass"), nullptr);
 }
 
 }  // namespace

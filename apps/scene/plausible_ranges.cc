@@ -1,0 +1,63 @@
+#include "apps/scene/plausible_ranges.h"
+
+#include <sstream>
+
+namespace needle {
+namespace {
+
+std::string Shown(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string WithUnit(const PlausibleRange& r, const std::string& number) {
+  return std::string(r.unit).empty() ? number : number + " " + r.unit;
+}
+
+}  // namespace
+
+const RangedKey* FindRangedKey(const std::string& section, const std::string& name) {
+  for (const RangedKey& k : kRangedKeys) {
+    if (section == k.section && name == k.name) return &k;
+  }
+  return nullptr;
+}
+
+std::string RangeText(const PlausibleRange& r) {
+  // The seed's end is a whole number a double cannot show.
+  if (&r == &kSeedRange) return "[0, 18446744073709551615]";
+  return WithUnit(r, "[" + Shown(r.lo / r.unit_si) + ", " + Shown(r.hi / r.unit_si) + "]");
+}
+
+std::string ShownValue(const PlausibleRange& r, double si) {
+  return WithUnit(r, Shown(si / r.unit_si));
+}
+
+std::string PlausibleRangesMarkdown() {
+  std::string out =
+      "| quantity | plausible range | case-file keys and options | why |\n"
+      "| --- | --- | --- | --- |\n";
+  const PlausibleRange* done[sizeof kRangedKeys / sizeof kRangedKeys[0]] = {};
+  size_t n_done = 0;
+  for (const RangedKey& k : kRangedKeys) {
+    bool seen = false;
+    for (size_t i = 0; i < n_done; ++i) seen = seen || done[i] == k.range;
+    if (seen) continue;
+    done[n_done++] = k.range;
+    std::string where;
+    for (const RangedKey& other : kRangedKeys) {
+      if (other.range != k.range) continue;
+      const std::string section(other.section);
+      where += where.empty() ? "" : ", ";
+      where += section.empty() ? std::string("`") + other.name + "`"
+                               : "`[" + section + "] " + other.name + "`" +
+                                     (other.upper_only ? " (entries: upper end)" : "");
+    }
+    out += std::string("| ") + k.range->quantity + " | " + RangeText(*k.range) + " | " + where +
+           " | " + k.range->reason + " |\n";
+  }
+  return out;
+}
+
+}  // namespace needle
