@@ -21,9 +21,6 @@
 
 namespace needle {
 
-/// Shortest jump that counts as lift-off, rad (0.1°).
-constexpr double kMinJump_rad = 0.1 * kPi / 180.0;
-
 struct OverspeedRow {
   double speed_rpm = 0.0;
   double min_contact_force_N = 0.0;  ///< during the lift

@@ -22,6 +22,10 @@
 
 namespace needle {
 
+/// Shortest jump that counts as lift-off, rad (0.1°): SimulationOptions::stop_at_liftoff and the
+/// overspeed search (dynamics/overspeed.h).
+constexpr double kMinJump_rad = 0.1 * kPi / 180.0;
+
 /// Everything a run needs that does not depend on the speed. Owns its lift law.
 struct Scene {
   std::unique_ptr<LiftLaw> law;
@@ -50,6 +54,12 @@ struct SimulationOptions {
   /// With cycles > 1, lift-off (jump_rad, longest_jump_rad, liftoff()) is judged on the steady
   /// cycles only: the repeating period once found, else every cycle after the first.
   bool steady_state = false;
+  /// A run that asks only "does the needle lift off?": it stops at the end of the step where
+  /// a jump episode reaches kMinJump_rad (status kStopped; the record ends there, so the
+  /// extremes, impacts and audit cover the run up to the jump only). Ignored with steady_state
+  /// (a jump in a transient cycle does not count) and by method baseline-dopri5. Off: the run
+  /// is unchanged.
+  bool stop_at_liftoff = false;
 };
 
 /// Most cam revolutions one run may ask for, and the longest period looked for.
@@ -76,8 +86,9 @@ enum class RunStatus {
   kComplete,   ///< the needle at rest at or after θ_b (or the rigid answer)
   kUnsettled,  ///< still moving at θ_b + settle_limit_deg: the last episode may be open
   kBudget,     ///< a step or event budget stopped it: the record runs up to there
+  kStopped,    ///< stopped at its first lift-off (SimulationOptions::stop_at_liftoff)
 };
-/// "complete", "unsettled", "budget".
+/// "complete", "unsettled", "budget", "stopped".
 std::string RunStatusName(RunStatus s);
 
 struct SimulationResult {

@@ -79,6 +79,10 @@ struct IntegratorOptions {
   /// Past t_end the run goes on until the recorder finds the needle at rest
   /// (Recorder::AtRest), for at most this long, s (docs/model.md §5); 0: stop at t_end. ≥ 0.
   double settle_limit_s = 0.0;
+  /// The run stops at the end of the first step where a jump episode (Recorder) has lasted at
+  /// least this much crank angle, rad: a run that asks only whether the needle lifts off
+  /// (SimulationOptions::stop_at_liftoff). 0: never (the default); ≥ 0 and finite.
+  double stop_jump_rad = 0.0;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
   /// Per-state absolute tolerances (y, ẏ, W, D) with the defaults filled in.
@@ -99,6 +103,8 @@ struct IntegrationStats {
   TrainState final_state{};
   double final_time = 0.0;
   Phase final_phase{};  ///< the contact mode at the end
+  /// The run stopped at a jump of IntegratorOptions::stop_jump_rad (final_time is there).
+  bool stopped_at_jump = false;
 };
 
 /// A step or event budget ran out: the run stopped at `crank_rad`. The message names the angle

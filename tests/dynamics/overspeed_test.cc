@@ -204,3 +204,76 @@ TEST(OverspeedScanTest, ABudgetStopIsARowStatusAndTheScanEndsUndecided) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A light needle on a weak spring (numbers of this test's own): n_qs ≈ 822 rpm, so it lifts off
+// at its rated 1000 rpm already.
+const char* const kWeakSpring = R"(
+[engine]
+speed_rpm = 1000
+cycle = "four-stroke"
+[lift]
+crank_deg = [-20, -14, -8, -2, 4, 10, 16, 22, 28, 34, 40]
+lift_mm = [0.0, 0.12, 0.55, 1.30, 2.15, 2.70, 2.55, 1.90, 1.00, 0.30, 0.0]
+spline = "not-a-knot"
+resolution_mm = 0.01
+[needle]
+mass_kg = 0.8
+[spring]
+preload_N = 390
+rate_N_mm = 30
+[train]
+contact_stiffness_N_m = 1e8
+seat_stiffness_N_m = 1e8
+contact_damping_ratio = 0.1
+seat_damping_ratio = 0.1
+play_mm = 0
+)";
+
+// Whether one full run at n lifts off (a jump of kMinJump_rad), as the search judges.
+bool LiftsOff(const Scene& s, double n) {
+  SimulationOptions o;
+  o.force_dynamic = true;
+  return RowFromResult(Simulate(s, n, o)).lifts_off;
+}
+
+// A run asking only "does it lift off?" gives the full run's verdict, and stops at the jump.
+TEST(StopAtLiftoffTest, TheEarlyStoppedRunGivesTheFullRunsVerdict) {
+  const Scene s = MakeScene(ParseCase(kWeakSpring, "weak-spring.toml"));
+  for (const char* method : {"exact", "dopri5"}) {
+    for (double n : {700.0, 805.0, 820.0, 1000.0}) {
+      SimulationOptions o;
+      o.force_dynamic = true;
+      o.method = method;
+      const SimulationResult full = Simulate(s, n, o);
+      o.stop_at_liftoff = true;
+      const SimulationResult early = Simulate(s, n, o);
+      const bool lifts = RowFromResult(full).lifts_off;
+      EXPECT_EQ(RowFromResult(early).lifts_off, lifts) << method << ' ' << n;
+      EXPECT_EQ(lifts, n > 811.0) << method << ' ' << n;
+      if (!lifts) {
+        EXPECT_EQ(early.status, RunStatus::kComplete);
+        EXPECT_EQ(early.run_end_rad, full.run_end_rad);
+        EXPECT_EQ(early.min_contact_force_during_lift_N, full.min_contact_force_during_lift_N);
+        continue;
+      }
+      EXPECT_EQ(early.status, RunStatus::kStopped) << method << ' ' << n;
+      EXPECT_LT(early.run_end_rad, full.run_end_rad);
+      // It ends in its first jump, at the end of the step (of exact: the closed-form piece) that
+      // took it past kMinJump_rad, before the lift is over.
+      ASSERT_FALSE(early.episodes.empty());
+      const Episode& e = early.episodes.back();
+      EXPECT_EQ(e.kind, "jump");
+      EXPECT_GE(e.end_rad - e.start_rad, kMinJump_rad);
+      EXPECT_LE(e.end_rad, early.run_end_rad);
+      EXPECT_LT(early.run_end_rad - e.start_rad, 5.0 * kDeg) << method << ' ' << n;
+      EXPECT_LT(early.run_end_rad, s.law->end_rad());
+      EXPECT_LT(early.stats.steps, full.stats.steps);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace needle
