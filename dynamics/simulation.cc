@@ -46,6 +46,9 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
       why << "stopped at its first lift-off (a jump of " << kMinJump_rad / kDeg << " deg at "
           << r.run_end_rad / kDeg << " deg), as asked";
       r.status_reason = why.str();
+    } else if (stats.stopped_after_lift) {
+      r.status = RunStatus::kStopped;
+      r.status_reason = "stopped past the lift without lift-off, as asked";
     } else if (settle_deg > 0.0 &&
                !recorder.AtRest(stats.final_time, stats.final_state, stats.final_phase)) {
       r.status = RunStatus::kUnsettled;
@@ -353,6 +356,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   r.method = MethodName(method);
   SimulationOptions run = o;
   if (o.stop_at_liftoff && !o.steady_state) run.integrator.stop_jump_rad = kMinJump_rad;
+  run.integrator.stop_after_lift = o.stop_at_liftoff && o.cycles == 1;
 
   if (o.cycles == 1) {
     RunPass(train, method, train.EquilibriumStart(), (theta_b - theta_a) / omega,

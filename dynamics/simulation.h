@@ -55,10 +55,12 @@ struct SimulationOptions {
   /// cycles only: the repeating period once found, else every cycle after the first.
   bool steady_state = false;
   /// A run that asks only "does the needle lift off?": it stops at the end of the step where
-  /// a jump episode reaches kMinJump_rad (status kStopped; the record ends there, so the
-  /// extremes, impacts and audit cover the run up to the jump only). Ignored with steady_state
-  /// (a jump in a transient cycle does not count) and by method baseline-dopri5. Off: the run
-  /// is unchanged.
+  /// a jump episode reaches kMinJump_rad, or (one window, cycles = 1) at the end of the first
+  /// step past the lift with the needle on the cam, where the verdict and the least contact
+  /// force over the lift are final (status kStopped; the record ends there, so the other
+  /// extremes, impacts and audit cover the run up to there only). The jump stop is ignored
+  /// with steady_state (a jump in a transient cycle does not count); baseline-dopri5 ignores
+  /// both. Off: the run is unchanged.
   bool stop_at_liftoff = false;
 };
 
@@ -86,7 +88,7 @@ enum class RunStatus {
   kComplete,   ///< the needle at rest at or after θ_b (or the rigid answer)
   kUnsettled,  ///< still moving at θ_b + settle_limit_deg: the last episode may be open
   kBudget,     ///< a step or event budget stopped it: the record runs up to there
-  kStopped,    ///< stopped at its first lift-off (SimulationOptions::stop_at_liftoff)
+  kStopped,    ///< stopped at its first lift-off or past the lift (stop_at_liftoff)
 };
 /// "complete", "unsettled", "budget", "stopped".
 std::string RunStatusName(RunStatus s);

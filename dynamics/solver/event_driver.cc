@@ -480,6 +480,11 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       stats.stopped_at_jump = true;
       break;
     }
+    if (o_.stop_after_lift && train_.Angle(t) > train_.cam().law().end_rad() &&
+        !recorder_.separated()) {
+      stats.stopped_after_lift = true;
+      break;
+    }
     bool extended;  // the horizon moved past t_end: the backend restarts as past a break
     if (RunIsOver(t, x, phase, recorder_, t_end, t_limit, horizon, extended)) break;
     if (at_segment_end && t < horizon && train_.HasConstraint() &&
