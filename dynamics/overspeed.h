@@ -3,20 +3,27 @@
 /// The overspeed search (docs/model.md §6): the dynamic lift-off speed n_dyn is the lowest speed
 /// at which a `jump` episode at least kMinJump_rad (0.1°) long appears, above a speed where none
 /// does, found to `resolution_rpm`. Each speed is one run that asks only that question
-/// (SimulationOptions::stop_at_liftoff: a run stops at its first lift-off).
+/// (SimulationOptions::stop_at_liftoff: a run stops at its first lift-off, or just past the
+/// lift where its verdict and its least contact force are final).
 ///
 /// Upward scan from `from`, led by the margin f(n) = F_min(n)/P₀, the least contact force over
-/// the lift as a fraction of the preload. From a speed n without lift-off the next is n + Δ:
-///   - f ≤ 0 (the force reaches zero without a jump, or a rigid contact records none): Δ = Δn
-///     (`step_rpm`; default 2.5 % of `from`, at least 1 rpm), the plain scan;
-///   - else Δ = Δ_max·min(1, f/0.5), with Δ_max = max(Δn, `max_step_fraction`·n), so the steps
-///     shrink as the force approaches zero; and where f fell since the last speed, Δ is at most
-///     the distance to the zero of the secant of f against n² through the two, plus the
-///     resolution; Δ is at least the resolution.
-/// A lift-off at n + Δ gives the bracket; bisection narrows it. So the answer does not depend on
-/// `to` for any `to` above it, nor on the thread count (the speeds run are the same: threads only
-/// run ahead the speeds a bisection may ask next). A lift-off window that the force does not
-/// approach (f stays above 0.5 on both sides of a window narrower than Δ_max) can be missed.
+/// the lift as a fraction of the preload. From a speed n without lift-off the next is n + Δ,
+/// with Δ_max = max(Δn, `max_step_fraction`·n) and Δn = `step_rpm` (default 2.5 % of `from`, at
+/// least 1 rpm):
+///   - f ≤ 0 (the force reaches zero without a jump, or a rigid contact records none): Δ = Δn,
+///     but no larger than the last step where f has just reached zero (the lift-off is near);
+///   - f > 0 and fallen since the last speed: Δ = the distance to the zero of the secant of f
+///     against n² through the two, plus the resolution, at most Δ_max;
+///   - f > 0 otherwise: Δ = Δ_max·min(1, f/0.5), so the steps shrink as the force nears zero;
+///     where f rose, at most half the distance over which it would fall back to zero at the rate
+///     it rose (out of one dip, perhaps into the next);
+///   - Δ at least the resolution.
+/// A lift-off at n + Δ gives the bracket; bisection narrows it (its first probe just past the
+/// secant's zero while f at the low end is positive; plain halving once a probe fails to halve). So
+/// the answer does not depend on `to` for any `to` above it, nor on the thread count (the speeds
+/// asked are the same: threads only run ahead the speeds a bisection may ask next). A lift-off
+/// window that the force does not approach within one step (a window, and the dip of f around it,
+/// narrower than Δ_max) can be missed.
 ///
 /// When the needle lifts off already at `from`, the search goes down: from/2, from/4, … (not
 /// below `floor_rpm`) until a speed without lift-off, then scans up from there; lifting off at
