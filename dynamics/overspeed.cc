@@ -4,10 +4,13 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 #include <thread>
+#include <utility>
 
 #include "lib/units.h"
 
@@ -27,6 +30,12 @@ void OverspeedOptions::Validate() const {
   if (!(step_rpm >= 0.0) || !std::isfinite(step_rpm))
     throw std::invalid_argument("overspeed: step_rpm must be positive (or 0 for the default)");
   if (max_speeds < 1) throw std::invalid_argument("overspeed: max_speeds must be at least 1");
+  if (!(max_step_fraction > 0.0 && max_step_fraction <= 1.0))
+    throw std::invalid_argument("overspeed: max_step_fraction = " +
+                                std::to_string(max_step_fraction) + ": must be in (0, 1]");
+  if (!(floor_rpm >= 0.0 && floor_rpm < from_rpm))
+    throw std::invalid_argument("overspeed: floor_rpm = " + std::to_string(floor_rpm) +
+                                ": must be in [0, from_rpm) (0: from_rpm / 16)");
   if (!std::isfinite(to_rpm)) throw std::invalid_argument("overspeed: to_rpm must be finite");
 }
 
@@ -87,6 +96,71 @@ std::vector<OverspeedRow> RunAll(const Scene& scene, const std::vector<double>& 
 
 }  // namespace
 
+namespace {
+
+// Below this margin f = F_min/P₀ the scan's steps shrink in proportion (OverspeedSearch).
+constexpr double kFullStepMargin = 0.5;
+
+// The runs of one search: each speed run once, on demand; with several threads, Ahead() runs
+// speeds the search may ask next alongside. Only the speeds asked for become rows, so the
+// result does not depend on the thread count.
+class Runs {
+ public:
+  Runs(const Scene& scene, const SimulationOptions& sim, int threads,
+       const std::function<void(int, int)>& progress)
+      : scene_(scene), sim_(sim), threads_(threads), progress_(progress) {}
+
+  // The row at speed n, run now unless run ahead; `ahead`: speeds to run alongside it.
+  const OverspeedRow& At(double n, const std::vector<double>& ahead = {}) {
+    auto it = done_.find(n);
+    if (it == done_.end()) {
+      std::vector<double> batch{n};
+      for (double a : ahead) {
+        if (static_cast<int>(batch.size()) >= threads_) break;
+        if (done_.count(a) == 0 && a != n) batch.push_back(a);
+      }
+      const std::vector<OverspeedRow> rows = RunAll(scene_, batch, sim_, threads_);
+      for (size_t k = 0; k < batch.size(); ++k) done_[batch[k]] = rows[k];
+      it = done_.find(n);
+    }
+    if (asked_.insert(n).second && progress_) progress_(static_cast<int>(asked_.size()), estimate_);
+    return it->second;
+  }
+  void set_estimate(int total) { estimate_ = std::max(total, static_cast<int>(asked_.size())); }
+  std::vector<OverspeedRow> AskedRows() const {
+    std::vector<OverspeedRow> rows;
+    for (double n : asked_) rows.push_back(done_.at(n));
+    return rows;  // sorted: asked_ is
+  }
+
+ private:
+  const Scene& scene_;
+  const SimulationOptions& sim_;
+  int threads_;
+  const std::function<void(int, int)>& progress_;
+  std::map<double, OverspeedRow> done_;
+  std::set<double> asked_;
+  int estimate_ = 0;
+};
+
+// The bisection's next speeds in the order it may ask for them, after the midpoint of
+// [lo, hi]: the midpoints of its halves, then of their halves (breadth first), each computed as
+// the bisection will.
+std::vector<double> BisectionAhead(double lo, double hi, int count) {
+  std::vector<std::pair<double, double>> queue{{lo, hi}};
+  std::vector<double> out;
+  for (size_t i = 0; i < queue.size() && static_cast<int>(out.size()) < count; ++i) {
+    const auto [a, b] = queue[i];
+    const double mid = a + 0.5 * (b - a);
+    if (i > 0) out.push_back(mid);
+    queue.push_back({a, mid});
+    queue.push_back({mid, b});
+  }
+  return out;
+}
+
+}  // namespace
+
 OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
                                 const std::function<void(int, int)>& progress) {
   o.Validate();
@@ -94,6 +168,7 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
   SimulationOptions sim = o.simulation;
   sim.force_dynamic = true;  // lift-off is a dynamic question
   sim.record_series = false;
+  sim.stop_at_liftoff = true;  // … and the only one asked
   const int hw = static_cast<int>(std::thread::hardware_concurrency());
   // More threads than cores do not help: the runs are compute-bound.
   const int cores = std::max(1, hw);
@@ -101,74 +176,131 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
   result.threads = threads;
   const double step = o.step_rpm > 0.0 ? o.step_rpm : std::max(1.0, 0.025 * o.from_rpm);
   result.step_rpm = step;
-  const int estimate = static_cast<int>(
-      std::min<double>(o.max_speeds, std::ceil((o.to_rpm - o.from_rpm) / step) + 1 + 3 * threads));
-  int done = 0;
-  // Scan upward, `threads` speeds at a time, to the first lift-off.
-  double lo = 0.0, hi = 0.0;
+  const double floor = o.floor_rpm > 0.0 ? o.floor_rpm : o.from_rpm / 16.0;
+  result.floor_rpm = floor;
+  const double res = o.resolution_rpm;
+  const double preload = scene.train.preload_N > 0.0 ? scene.train.preload_N : 1.0;
+  Runs runs(scene, sim, threads, progress);
+  runs.set_estimate(static_cast<int>(std::ceil(std::log(o.to_rpm / o.from_rpm) /
+                                               std::log1p(o.max_step_fraction))) +
+                    10);
+  int scanned = 0;
+  const auto budget_stop = [&](const OverspeedRow& row, double n) {
+    result.scanned_to_rpm = n;
+    if (row.status == RunStatus::kNotFollowing) {
+      result.status = "not-following";  // a broken scene: no speed of it can be judged
+      return true;
+    }
+    if (row.lifts_off || row.status != RunStatus::kBudget) return false;
+    result.status = "run-budget";
+    return true;
+  };
+
+  // The start of the upward scan: from_rpm, or below it where the needle lifts off there.
+  double n = o.from_rpm;
+  double top = o.to_rpm;  // the scan ends here (a lift-off known there, or the range's end)
+  ++scanned;
+  const OverspeedRow* row = &runs.At(n);
+  if (budget_stop(*row, n)) {
+    result.rows = runs.AskedRows();
+    return result;
+  }
+  if (row->lifts_off) {
+    result.lifts_off_at_start = true;
+    while (row->lifts_off) {
+      if (n <= floor) {
+        result.status = "floor";
+        result.rows = runs.AskedRows();
+        return result;
+      }
+      top = n;
+      n = std::max(0.5 * n, floor);
+      ++scanned;
+      row = &runs.At(n);
+      if (budget_stop(*row, n)) {
+        result.rows = runs.AskedRows();
+        return result;
+      }
+    }
+  }
+
+  // Upward, led by the margin, to the first lift-off.
+  double lo = 0.0, hi = 0.0, lo_margin = 0.0;
   bool found = false;
-  long index = 0;
-  while (!found) {
-    std::vector<double> speeds;
-    for (int k = 0; k < threads; ++k, ++index) {
-      const double n = std::min(o.from_rpm + step * static_cast<double>(index), o.to_rpm);
-      if (!speeds.empty() && n <= speeds.back()) break;
-      if (index >= o.max_speeds) break;
-      speeds.push_back(n);
-    }
-    if (speeds.empty()) break;
-    const std::vector<OverspeedRow> rows = RunAll(scene, speeds, sim, threads);
-    done += static_cast<int>(rows.size());
-    if (progress) progress(done, std::max(done, estimate));
-    for (size_t k = 0; k < rows.size(); ++k) {
-      result.rows.push_back(rows[k]);
-      result.scanned_to_rpm = speeds[k];
-      if (rows[k].lifts_off) {
-        found = true;
-        hi = speeds[k];
-        lo = k > 0 ? speeds[k - 1] : speeds[k] - step;
-        break;
+  std::optional<std::pair<double, double>> last;  // (n, f) of the speed before
+  while (true) {
+    const double f = row->min_contact_force_N / preload;
+    // No guidance: Δn; but where the force has just reached zero the lift-off is near, and the
+    // step is no larger than the one that came here.
+    double d = last && last->second > 0.0 ? std::min(step, std::max(res, n - last->first)) : step;
+    if (f > 0.0) {
+      const double d_max = std::max(step, o.max_step_fraction * n);
+      if (last && last->second > f) {
+        // Falling: toward the zero of the secant through the last two (n², f), and just past.
+        const double n2 = n * n + f * (n * n - last->first * last->first) / (last->second - f);
+        d = std::min(d_max, std::sqrt(n2) - n + res);
+      } else {
+        d = d_max * std::min(1.0, f / kFullStepMargin);
+        // Rising: out of a dip, perhaps into the next; no further than f would fall at the
+        // rate it rose.
+        if (last && last->second < f)
+          d = std::min(d, 0.5 * f * (n - last->first) / (f - last->second));
       }
-      if (rows[k].status == RunStatus::kBudget) {
-        result.status = "run-budget";
-        break;
-      }
+      d = std::max(d, res);
     }
-    if (found || result.status == "run-budget" || speeds.back() >= o.to_rpm) break;
-    if (index >= o.max_speeds) {
+    if (n >= top) break;
+    const auto before = last;
+    last = std::make_pair(n, f);
+    const double next = std::min(n + d, top);
+    if (scanned >= o.max_speeds) {
       result.status = "budget";
       break;
     }
+    ++scanned;
+    row = &runs.At(next);
+    if (budget_stop(*row, next)) break;
+    if (row->lifts_off) {
+      found = true;
+      last = before;  // the speed before lo
+      lo = n;
+      lo_margin = f;
+      hi = next;
+      break;
+    }
+    n = next;
   }
-  if (found && hi <= o.from_rpm) {
-    result.lifts_off_at_start = true;
-    result.n_dyn_rpm = o.from_rpm;
-    result.bracket_low_rpm = result.bracket_high_rpm = o.from_rpm;
-  } else if (found) {
-    while (hi - lo > o.resolution_rpm) {
-      // k-section: `threads` interior speeds at once.
-      std::vector<double> speeds;
-      for (int k = 1; k <= threads; ++k) speeds.push_back(lo + (hi - lo) * k / (threads + 1));
-      const std::vector<OverspeedRow> more = RunAll(scene, speeds, sim, threads);
-      done += static_cast<int>(more.size());
-      if (progress) progress(done, std::max(done, estimate));
-      double new_lo = lo, new_hi = hi;
-      for (size_t k = 0; k < more.size(); ++k) {
-        if (more[k].lifts_off) {
-          new_hi = speeds[k];
-          break;
+  if (found) {
+    runs.set_estimate(scanned + static_cast<int>(std::ceil(std::log2((hi - lo) / res))));
+    // Bisection, guided: where the margin fell to a positive value at lo, the first probe is
+    // just past the zero of the secant through lo and the speed before it (as in the scan);
+    // a guided probe that did not halve the bracket hands over to plain halving.
+    bool guide = true;
+    while (hi - lo > res) {
+      const double width = hi - lo;
+      double probe = lo + 0.5 * width;
+      std::vector<double> ahead = BisectionAhead(lo, hi, threads - 1);
+      bool guided = false;
+      if (guide && last && last->first < lo && last->second > lo_margin && lo_margin > 0.0) {
+        const double n2 = lo * lo + lo_margin * (lo * lo - last->first * last->first) /
+                                        (last->second - lo_margin);
+        const double g = std::sqrt(n2) + 0.25 * res;
+        if (g > lo + 0.1 * res && g < hi - 0.1 * res) {
+          probe = g;
+          guided = true;
+          ahead.clear();
         }
-        // A run stopped on its budget shows no lift-off but proves none either: the bracket
-        // keeps it on the high side, so n_dyn is never reported below an undecided speed.
-        if (more[k].status == RunStatus::kBudget) {
-          new_hi = speeds[k];
-          break;
-        }
-        new_lo = speeds[k];
       }
-      lo = new_lo;
-      hi = new_hi;
-      result.rows.insert(result.rows.end(), more.begin(), more.end());
+      const OverspeedRow& m = runs.At(probe, ahead);
+      // A run stopped on its budget shows no lift-off but proves none either: the bracket
+      // keeps it on the high side, so n_dyn is never reported below an undecided speed.
+      if (m.lifts_off || m.status == RunStatus::kBudget || m.status == RunStatus::kNotFollowing) {
+        hi = probe;
+      } else {
+        last = std::make_pair(lo, lo_margin);
+        lo = probe;
+        lo_margin = m.min_contact_force_N / preload;
+      }
+      if (guided) guide = hi - lo <= 0.5 * width;
     }
     result.n_dyn_rpm = hi;
     result.bracket_low_rpm = lo;
@@ -176,8 +308,7 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
   } else if (result.status == "found") {
     result.status = "none";
   }
-  std::sort(result.rows.begin(), result.rows.end(),
-            [](const OverspeedRow& a, const OverspeedRow& b) { return a.speed_rpm < b.speed_rpm; });
+  result.rows = runs.AskedRows();
   return result;
 }
 

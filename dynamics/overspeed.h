@@ -1,15 +1,38 @@
 #pragma once
 /// @file
 /// The overspeed search (docs/model.md §6): the dynamic lift-off speed n_dyn is the lowest speed
-/// in [from, to] at which a `jump` episode at least 0.1° long appears, found to 0.5 rpm. The
-/// speeds are scanned upward from `from` in steps of Δn (`step_rpm`; default 2.5 % of `from`,
-/// at least 1 rpm), as many at once as there are threads, until the first lift-off; a
-/// k-section (k = the threads) then narrows that bracket. So the answer does not depend on `to`
-/// for any `to` above it; a lift-off window narrower than Δn can be missed, and Δn is reported.
-/// At most `max_speeds` speeds are scanned: past that the search ends with the status
-/// `budget` and the speed it reached. A run stopped by its step or event budget before it
-/// showed lift-off leaves the speed undecided: the scan ends there with the status
-/// `run-budget` (that row says why), since a lift-off above it could not be claimed the lowest.
+/// at which a `jump` episode at least kMinJump_rad (0.1°) long appears, above a speed where none
+/// does, found to `resolution_rpm`. Each speed is one run that asks only that question
+/// (SimulationOptions::stop_at_liftoff: a run stops at its first lift-off, or just past the
+/// lift where its verdict and its least contact force are final).
+///
+/// Upward scan from `from`, led by the margin f(n) = F_min(n)/P₀, the least contact force over
+/// the lift as a fraction of the preload. From a speed n without lift-off the next is n + Δ,
+/// with Δ_max = max(Δn, `max_step_fraction`·n) and Δn = `step_rpm` (default 2.5 % of `from`, at
+/// least 1 rpm):
+///   - f ≤ 0 (the force reaches zero without a jump, or a rigid contact records none): Δ = Δn,
+///     but no larger than the last step where f has just reached zero (the lift-off is near);
+///   - f > 0 and fallen since the last speed: Δ = the distance to the zero of the secant of f
+///     against n² through the two, plus the resolution, at most Δ_max;
+///   - f > 0 otherwise: Δ = Δ_max·min(1, f/0.5), so the steps shrink as the force nears zero;
+///     where f rose, at most half the distance over which it would fall back to zero at the rate
+///     it rose (out of one dip, perhaps into the next);
+///   - Δ at least the resolution.
+/// A lift-off at n + Δ gives the bracket; bisection narrows it (its first probe just past the
+/// secant's zero while f at the low end is positive; plain halving once a probe fails to halve). So
+/// the answer does not depend on `to` for any `to` above it, nor on the thread count (the speeds
+/// asked are the same: threads only run ahead the speeds a bisection may ask next). A lift-off
+/// window that the force does not approach within one step (a window, and the dip of f around it,
+/// narrower than Δ_max) can be missed.
+///
+/// When the needle lifts off already at `from`, the search goes down: from/2, from/4, … (not
+/// below `floor_rpm`) until a speed without lift-off, then scans up from there; lifting off at
+/// every speed down to the floor is the status `floor`, without a value.
+///
+/// At most `max_speeds` speeds are scanned: past that the search ends with the status `budget`
+/// and the speed it reached. A run stopped by its step or event budget before it showed lift-off
+/// leaves the speed undecided: the scan ends there with the status `run-budget` (that row says
+/// why), since a lift-off above it could not be claimed the lowest.
 
 #include <functional>
 #include <optional>
@@ -20,9 +43,6 @@
 #include "lib/units.h"
 
 namespace needle {
-
-/// Shortest jump that counts as lift-off, rad (0.1°).
-constexpr double kMinJump_rad = 0.1 * kPi / 180.0;
 
 struct OverspeedRow {
   double speed_rpm = 0.0;
@@ -40,27 +60,37 @@ struct OverspeedOptions {
   double from_rpm = 0.0;        ///< start of the range, > 0
   double to_rpm = 0.0;          ///< end, > from
   double resolution_rpm = 0.5;  ///< bracket width at which the search stops
-  double step_rpm = 0.0;        ///< scan step Δn, rpm; 0: 2.5 % of from_rpm, at least 1
-  int max_speeds = 5000;        ///< scan budget (speeds), ≥ 1
-  int threads = 0;              ///< 0: all cores; more than the cores are capped to them
+  /// Scan step Δn where the contact force gives no guidance, rpm, ≥ 0; 0: 2.5 % of from_rpm,
+  /// at least 1.
+  double step_rpm = 0.0;
+  /// Largest scan step as a fraction of the speed (at least Δn), (0, 1].
+  double max_step_fraction = 0.1;
+  /// Lowest speed searched down to when the needle lifts off at from_rpm, rpm, [0, from_rpm);
+  /// 0: from_rpm / 16.
+  double floor_rpm = 0.0;
+  int max_speeds = 5000;  ///< scan budget (speeds), ≥ 1
+  int threads = 0;        ///< 0: all cores; more than the cores are capped to them
   SimulationOptions simulation;
   void Validate() const;
 };
 
 struct OverspeedResult {
-  std::vector<OverspeedRow> rows;   ///< every speed run, sorted
+  std::vector<OverspeedRow> rows;   ///< every speed the search asked about, sorted
   std::optional<double> n_dyn_rpm;  ///< lowest lift-off speed found (upper end of the bracket)
   double bracket_low_rpm = 0.0, bracket_high_rpm = 0.0;
-  bool lifts_off_at_start = false;  ///< already lifts off at from_rpm
+  bool lifts_off_at_start = false;  ///< already lifts off at from_rpm (searched down)
+  double floor_rpm = 0.0;           ///< the floor of the downward search used
   int threads = 1;
   double step_rpm = 0.0;  ///< the scan step Δn used
-  /// "found", "none" (none up to to_rpm), "budget" (scan budget) or "run-budget" (a run at
-  /// scanned_to_rpm stopped on its budget without lift-off)
+  /// "found", "none" (none up to to_rpm), "floor" (lifts off at every speed tried down to
+  /// floor_rpm), "budget" (scan budget), "not-following" (the run at scanned_to_rpm did not follow its
+  /// cam, RunStatus::kNotFollowing) or "run-budget" (a run at scanned_to_rpm stopped on its
+  /// budget without lift-off)
   std::string status = "found";
   double scanned_to_rpm = 0.0;  ///< highest speed scanned
 };
 
-/// `progress(done, total_estimate)` is called after each run (from the calling thread).
+/// `progress(done, total_estimate)` is called after each run or batch (from the calling thread).
 OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& options,
                                 const std::function<void(int, int)>& progress = {});
 

@@ -41,8 +41,17 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
     // What goes on: the needle on the surface it sticks to (a sticking rigid contact's state
     // is the surface's; the integrated one may trail it by a slope jump of the table's end).
     end = train.Project(stats.final_state, stats.final_time, stats.final_phase);
-    if (settle_deg > 0.0 &&
-        !recorder.AtRest(stats.final_time, stats.final_state, stats.final_phase)) {
+    if (stats.stopped_at_jump) {
+      r.status = RunStatus::kStopped;
+      std::ostringstream why;
+      why << "stopped at its first lift-off (a jump of " << kMinJump_rad / kDeg << " deg at "
+          << r.run_end_rad / kDeg << " deg), as asked";
+      r.status_reason = why.str();
+    } else if (stats.stopped_after_lift) {
+      r.status = RunStatus::kStopped;
+      r.status_reason = "stopped past the lift without lift-off, as asked";
+    } else if (settle_deg > 0.0 &&
+               !recorder.AtRest(stats.final_time, stats.final_state, stats.final_phase)) {
       r.status = RunStatus::kUnsettled;
       std::ostringstream why;
       why << "the needle is still moving " << settle_deg
@@ -162,7 +171,7 @@ void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
     const CycleSummary c = RunPass(train, method, x0, revolution / train.omega(), 0.0, o, cycle,
                                    cycle * revolution, r);
     r.cycles.push_back(c);
-    if (r.status == RunStatus::kBudget) break;
+    if (r.status == RunStatus::kBudget || r.status == RunStatus::kStopped) break;
     TrainState end = {c.end_lift_m, c.end_velocity_m_s, 0.0, 0.0};
     end.insert(end.end(), c.end_coils.begin(), c.end_coils.end());
     ends.push_back(end);
@@ -199,7 +208,10 @@ void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
 // cam's lift did not follow it, whatever key caused it (a sign-typo'd stiffness, a seat that
 // cannot hold the spring).
 void JudgeFollowing(const Scene& scene, SimulationResult& r) {
-  if (r.status != RunStatus::kComplete) return;
+  // A run stopped past the lift with the needle on the cam has seen the whole lift; one stopped
+  // at its first jump, or on a budget, has not.
+  const bool stopped_past_lift = r.status == RunStatus::kStopped && !r.liftoff();
+  if (r.status != RunStatus::kComplete && !stopped_past_lift) return;
   const double cam_lift = scene.law->Max(0).value;
   std::ostringstream why;
   why.precision(3);
@@ -234,6 +246,8 @@ std::string RunStatusName(RunStatus s) {
       return "budget";
     case RunStatus::kNotFollowing:
       return "not-following";
+    case RunStatus::kStopped:
+      return "stopped";
   }
   return "?";
 }
@@ -392,12 +406,15 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   }
 
   r.method = MethodName(method);
+  SimulationOptions run = o;
+  if (o.stop_at_liftoff && !o.steady_state) run.integrator.stop_jump_rad = kMinJump_rad;
+  run.integrator.stop_after_lift = o.stop_at_liftoff && o.cycles == 1;
 
   if (o.cycles == 1) {
     RunPass(train, method, train.EquilibriumStart(), (theta_b - theta_a) / omega,
-            o.settle_limit_deg, o, 0, 0.0, r);
+            o.settle_limit_deg, run, 0, 0.0, r);
   } else {
-    RunCycles(scene, train, method, o, r);
+    RunCycles(scene, train, method, run, r);
   }
   JudgeFollowing(scene, r);
   return r;

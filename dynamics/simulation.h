@@ -23,6 +23,10 @@
 
 namespace needle {
 
+/// Shortest jump that counts as lift-off, rad (0.1°): SimulationOptions::stop_at_liftoff and the
+/// overspeed search (dynamics/overspeed.h).
+constexpr double kMinJump_rad = 0.1 * kPi / 180.0;
+
 /// Everything a run needs that does not depend on the speed. Owns its lift law.
 struct Scene {
   std::unique_ptr<LiftLaw> law;
@@ -51,6 +55,14 @@ struct SimulationOptions {
   /// With cycles > 1, lift-off (jump_rad, longest_jump_rad, liftoff()) is judged on the steady
   /// cycles only: the repeating period once found, else every cycle after the first.
   bool steady_state = false;
+  /// A run that asks only "does the needle lift off?": it stops at the end of the step where
+  /// a jump episode reaches kMinJump_rad, or (one window, cycles = 1) at the end of the first
+  /// step past the lift with the needle on the cam, where the verdict and the least contact
+  /// force over the lift are final (status kStopped; the record ends there, so the other
+  /// extremes, impacts and audit cover the run up to there only). The jump stop is ignored
+  /// with steady_state (a jump in a transient cycle does not count); baseline-dopri5 ignores
+  /// both. Off: the run is unchanged.
+  bool stop_at_liftoff = false;
 };
 
 /// Most cam revolutions one run may ask for, and the longest period looked for.
@@ -77,6 +89,7 @@ enum class RunStatus {
   kComplete,   ///< the needle at rest at or after θ_b (or the rigid answer)
   kUnsettled,  ///< still moving at θ_b + settle_limit_deg: the last episode may be open
   kBudget,     ///< a step or event budget stopped it: the record runs up to there
+  kStopped,    ///< stopped at its first lift-off or past the lift (stop_at_liftoff)
   /// The needle did not follow its scene (docs/model.md §6): its largest lift short of the
   /// cam's, or its seat penetrated, by more than kFollowFraction of the cam's lift.
   kNotFollowing,
@@ -85,7 +98,7 @@ enum class RunStatus {
 /// or the needle go into its seat, in a run that follows its scene: compliant steel contacts
 /// deflect by tens of micrometres, about 1 % of a needle lift.
 constexpr double kFollowFraction = 0.10;
-/// "complete", "unsettled", "budget", "not-following".
+/// "complete", "unsettled", "budget", "stopped", "not-following".
 std::string RunStatusName(RunStatus s);
 
 struct SimulationResult {

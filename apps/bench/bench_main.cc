@@ -19,6 +19,7 @@
 #include "apps/bench/work_precision.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_scene.h"
+#include "apps/scene/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "lib/cam_laws.h"
 #include "lib/kinematics.h"
@@ -447,6 +448,122 @@ std::string RunTargets(int repeats) {
   return md.str();
 }
 
+// main's overspeed search before the force-led scan (commit 2cacad4) on one thread, kept here
+// only to time it against the new one in the same process: upward in fixed steps Δn (2.5 % of
+// from, at least 1 rpm) from `from`, every run to the end of its window, then bisection; a
+// lift-off at `from` is reported as n_dyn = from.
+std::optional<double> FixedStepOverspeed(const Scene& scene, OverspeedOptions o, int* runs) {
+  SimulationOptions sim = o.simulation;
+  sim.force_dynamic = true;
+  sim.record_series = false;
+  const double step = std::max(1.0, 0.025 * o.from_rpm);
+  const auto lifts = [&](double n) {
+    ++*runs;
+    const OverspeedRow row = RowFromResult(Simulate(scene, n, sim));
+    return row.lifts_off || row.status == RunStatus::kBudget;
+  };
+  double lo = 0.0, hi = 0.0;
+  for (long i = 0;; ++i) {
+    const double n = std::min(o.from_rpm + step * static_cast<double>(i), o.to_rpm);
+    if (lifts(n)) {
+      if (i == 0) return n;
+      lo = n - step;
+      hi = n;
+      break;
+    }
+    if (n >= o.to_rpm) return std::nullopt;
+  }
+  while (hi - lo > o.resolution_rpm) {
+    const double mid = lo + 0.5 * (hi - lo);
+    (lifts(mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// Before (main's fixed-step search, full runs) against after (the force-led search, runs that
+// stop at lift-off), one thread, interleaved repeats in this one process, medians.
+std::string RunOverspeedComparison(int repeats) {
+  std::ostringstream md;
+  md << "## The overspeed search before and after (one thread, medians of interleaved runs in "
+        "one process)\n\n| what | runs before → after | n_dyn before → after | before | after | "
+        "ratio |\n|---|---|---|---|---|---|\n";
+  struct Timed {
+    std::vector<double> before, after;
+  };
+  const auto ms_of = [](const auto& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  };
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  // 1. The search alone on a lash-and-lift-off scene (Example 2, 600 to 1300 rpm).
+  {
+    const Case c = LoadCase(CaseDir() + "basu-example2.toml");
+    const Scene scene = MakeScene(c);
+    OverspeedOptions o;
+    o.from_rpm = 600;
+    o.to_rpm = 1300;
+    o.threads = 1;
+    o.simulation = OptionsFromCase(c);
+    Timed t;
+    int runs_before = 0;
+    std::optional<double> before;
+    OverspeedResult after;
+    for (int r = 0; r < 3 * repeats; ++r) {
+      runs_before = 0;
+      t.before.push_back(ms_of([&] { before = FixedStepOverspeed(scene, o, &runs_before); }));
+      t.after.push_back(ms_of([&] { after = OverspeedSearch(scene, o); }));
+    }
+    const double b = median(t.before), a = median(t.after);
+    md << "| overspeed search, `basu-example2` 600–1300 rpm to 0.5 rpm | " << runs_before << " → "
+       << after.rows.size() << " | " << Num(before.value_or(NAN), 5) << " → "
+       << Num(after.n_dyn_rpm.value_or(NAN), 5) << " | " << Num(b) << " ms | " << Num(a) << " ms | "
+       << Num(b / a, 3) << "× |\n";
+  }
+  // 2. check end to end without its report, and 3. one tolerance sample (a check on one
+  // thread): the check itself now, and before as the check now less its sweep plus main's sweep
+  // of the same range (the rest of the check is the same code).
+  for (const auto& [name, what] : std::vector<std::pair<std::string, std::string>>{
+           {"basu-example1.toml", "`check basu-example1` without report"},
+           {"basu-example2.toml", "one tolerance sample (a check of `basu-example2`)"}}) {
+    const Case c = LoadCase(CaseDir() + name);
+    const LiftLaw law = MakeLiftLaw(c);
+    const Scene scene = MakeScene(c);
+    CheckOptions co;
+    co.threads = 1;
+    co.record_series = false;
+    const SweepRange range = DefaultSweepRange(c, c.engine.speed_rpm, QuasiStaticLiftoffRpm(scene));
+    OverspeedOptions o;
+    o.from_rpm = range.from_rpm;
+    o.to_rpm = range.to_rpm;
+    o.threads = 1;
+    o.simulation = OptionsFromCase(c);
+    o.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
+    std::vector<double> check, sweep_new, sweep_old;
+    int runs_before = 0;
+    std::optional<double> before;
+    CheckResult after;
+    for (int r = 0; r < 3 * repeats; ++r) {
+      check.push_back(ms_of([&] { after = CheckScene(c, law, co); }));
+      sweep_new.push_back(ms_of([&] { OverspeedSearch(scene, o); }));
+      runs_before = 0;
+      sweep_old.push_back(ms_of([&] { before = FixedStepOverspeed(scene, o, &runs_before); }));
+    }
+    const double a = median(check);
+    const double b = a - median(sweep_new) + median(sweep_old);
+    md << "| " << what << " (before: less the new sweep, plus main's) | " << runs_before << " → "
+       << (after.sweep ? after.sweep->rows.size() : 0) << " sweep runs | "
+       << Num(before.value_or(NAN), 5) << " → "
+       << Num(after.sweep && after.sweep->n_dyn_rpm ? *after.sweep->n_dyn_rpm : NAN, 5) << " | "
+       << Num(b) << " ms | " << Num(a) << " ms | " << Num(b / a, 3) << "× |\n";
+  }
+  md << '\n';
+  return md.str();
+}
+
 }  // namespace
 }  // namespace needle
 
@@ -460,8 +577,10 @@ int main(int argc, char** argv) {
   auto* kin =
       app.add_subcommand("kinematics", "spline error against spacing, build and table time");
   auto* tgt = app.add_subcommand("targets", "the performance targets");
+  auto* ovs = app.add_subcommand(
+      "overspeed", "the overspeed search, check and a tolerance sample: before and after");
   auto* all = app.add_subcommand("all", "everything, and OUT/summary.md");
-  for (auto* c : {dyn, kin, tgt, all}) {
+  for (auto* c : {dyn, kin, tgt, ovs, all}) {
     c->add_option("--out", out, "output folder (default bench)");
     c->add_option("--repeats", repeats, "timed repeats per configuration (median)")
         ->check(CLI::PositiveNumber);
@@ -474,6 +593,7 @@ int main(int argc, char** argv) {
     if (dyn->parsed() || all->parsed()) md += needle::RunDynamics(out, repeats, quick);
     if (kin->parsed() || all->parsed()) md += needle::RunKinematics(out, repeats);
     if (tgt->parsed() || all->parsed()) md += needle::RunTargets(repeats);
+    if (ovs->parsed() || all->parsed()) md += needle::RunOverspeedComparison(repeats);
     needle::WriteFileAtomically(out + "/summary.md", md);
     std::cout << md;
   } catch (const std::exception& e) {

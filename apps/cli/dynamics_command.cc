@@ -251,8 +251,8 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
   cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
       ->check(CLI::Range(0, static_cast<int>(kThreadsRange.hi)));
   cmd->add_option("--step-rpm", o.step_rpm,
-                  "scan step: speeds are scanned upward from --from in this step (default 2.5 % "
-                  "of --from, at least 1 rpm)")
+                  "scan step where the contact force gives no guidance (default 2.5 % of --from, "
+                  "at least 1 rpm); elsewhere the force leads the steps (docs/model.md section 6)")
       ->check(InRange(kSpeedStepRange, "a speed step in rpm"));
   cmd->add_flag("--json", o.json, "print one JSON object");
   return cmd;
@@ -306,6 +306,7 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
     j["liftoff_rpm_dynamic"] = r.n_dyn_rpm ? nlohmann::json(*r.n_dyn_rpm) : nlohmann::json(nullptr);
     j["bracket_rpm"] = {r.bracket_low_rpm, r.bracket_high_rpm};
     j["lifts_off_at_start"] = r.lifts_off_at_start;
+    j["floor_rpm"] = r.floor_rpm;
     j["threads"] = r.threads;
     j["step_rpm"] = r.step_rpm;
     j["status"] = r.status;
@@ -328,8 +329,11 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "sweep " << Fixed(opt.from_rpm, 1) << " .. " << Fixed(opt.to_rpm, 1) << " rpm on "
-        << r.threads << " threads, scanned upward in steps of " << Fixed(r.step_rpm, 2)
-        << " rpm (a lift-off window narrower than that can be missed)\n";
+        << r.threads
+        << " threads, scanned upward led by the least contact force (steps of at "
+           "most "
+        << Fixed(100 * opt.max_step_fraction, 0) << " % of the speed; " << Fixed(r.step_rpm, 2)
+        << " rpm where the force gives no guidance)\n";
     if (opt.simulation.cycles > 1) {
       out << opt.simulation.cycles << " cam revolutions per speed (until the state repeats); "
           << (opt.simulation.steady_state
@@ -342,11 +346,18 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
         << "dynamic lift-off n_dyn = ";
     if (r.n_dyn_rpm) {
       out << Fixed(*r.n_dyn_rpm, 1) << " rpm"
-          << (r.lifts_off_at_start ? " (already at the start of the range)" : "") << " (bracket "
-          << Fixed(r.bracket_low_rpm, 2) << " .. " << Fixed(r.bracket_high_rpm, 2) << ")\n";
+          << (r.lifts_off_at_start ? " (below the start of the range, where it lifts off)" : "")
+          << " (bracket " << Fixed(r.bracket_low_rpm, 2) << " .. " << Fixed(r.bracket_high_rpm, 2)
+          << ")\n";
+    } else if (r.status == "floor") {
+      out << "none found: the needle lifts off at every speed tried down to "
+          << Fixed(r.floor_rpm, 1) << " rpm\n";
     } else if (r.status == "budget") {
       out << "none up to " << Fixed(r.scanned_to_rpm, 1) << " rpm, where the scan budget ("
           << opt.max_speeds << " speeds) ended it; give a larger --step-rpm or a smaller --to\n";
+    } else if (r.status == "not-following") {
+      out << "undecided: the needle does not follow its cam at " << Fixed(r.scanned_to_rpm, 1)
+          << " rpm (see `needle simulate` there)\n";
     } else if (r.status == "run-budget") {
       out << "undecided: the run at " << Fixed(r.scanned_to_rpm, 1)
           << " rpm stopped on its budget before showing lift-off (see its row)\n";
@@ -360,7 +371,7 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
                     row.min_contact_force_N, row.jump_deg, row.max_gap_mm, row.max_impact_speed_m_s,
                     row.lifts_off ? "  lift-off" : "");
       out << line;
-      if (row.status != RunStatus::kComplete)
+      if (row.status != RunStatus::kComplete && row.status != RunStatus::kStopped)
         out << "             run " << RunStatusName(row.status) << ": " << row.status_reason
             << '\n';
     }

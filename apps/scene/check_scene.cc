@@ -124,7 +124,8 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                      100 * l.separation_margin_fraction,
                      from(l.separation_margin_fraction != d.separation_margin_fraction,
                           "separation_margin_percent", "model: n_dyn > f n"));
-  if (r.sweep && r.sweep->status != "run-budget" && r.sweep->status != "budget") {
+  if (r.sweep && r.sweep->status != "run-budget" && r.sweep->status != "budget" &&
+      r.sweep->status != "floor" && r.sweep->status != "not-following") {
     if (r.sweep->n_dyn_rpm) {
       judge(sep, 100 * (*r.sweep->n_dyn_rpm / r.overspeed_rpm - 1),
             "n_dyn " + Fixed(*r.sweep->n_dyn_rpm, 1) + " rpm, f n " + Fixed(r.overspeed_rpm, 1) +
@@ -419,6 +420,14 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
            (s.status == "budget" ? std::string("the scan budget ended the search")
                                  : std::string("the run there stopped on its budget")) +
            ")");
+    }
+    if (s.status == "not-following") {
+      fail("overspeed: undecided: the needle does not follow its cam at " +
+           Fixed(s.scanned_to_rpm, 1) + " rpm");
+    }
+    if (s.status == "floor") {
+      fail("overspeed: the needle lifts off at every speed tried down to " + Fixed(s.floor_rpm, 1) +
+           " rpm");
     }
     if (s.n_dyn_rpm && *s.n_dyn_rpm <= r.overspeed_rpm) {
       fail("overspeed: n_dyn " + Fixed(*s.n_dyn_rpm, 1) + " rpm is at or below " +

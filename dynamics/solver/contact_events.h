@@ -133,6 +133,8 @@ class Recorder {
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
   const std::vector<SeriesPoint>& series() const { return series_; }
+  /// Off the cam in the last episode, which is still open (as of the last sample or event).
+  bool separated() const { return separated_; }
 
   /// Asks integrators to report the state at these times (sorted); empty: none.
   void set_grid(std::vector<double> times) { grid_times_ = std::move(times); }

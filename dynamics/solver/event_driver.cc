@@ -180,6 +180,10 @@ class EventDriver {
   std::optional<Bracket> Isolate(const ClosedFormPiece& piece, const LinearForm& form, int i, int s,
                                  const Bracket& in, int& budget);
 
+  // Whether a jump episode has lasted at least o_.stop_jump_rad by t (closed ones, and the open
+  // one up to t); false when that option is off. Episodes before jump_checked_ are done with.
+  bool JumpReached(double t);
+
   // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
   // sample sets a new largest contact or seat force, or a new least contact force, locates that
   // extreme by Brent's method between the samples around it and records it there.
@@ -194,7 +198,21 @@ class EventDriver {
   size_t next_grid_ = 0;
   // The approach speed of the last impact of each rigid contact while it chatters (cam, seat).
   std::array<std::optional<double>, 2> last_approach_;
+  size_t jump_checked_ = 0;  // episodes closed and shorter than o_.stop_jump_rad
 };
+
+bool EventDriver::JumpReached(double t) {
+  if (!(o_.stop_jump_rad > 0.0)) return false;
+  const std::vector<Episode>& episodes = recorder_.episodes();
+  for (; jump_checked_ < episodes.size(); ++jump_checked_) {
+    const Episode& e = episodes[jump_checked_];
+    const bool open = jump_checked_ + 1 == episodes.size() && recorder_.separated();
+    const double end = open ? train_.Angle(t) : e.end_rad;
+    if (e.kind == "jump" && end - e.start_rad >= o_.stop_jump_rad) return true;
+    if (open) break;  // it may yet become a jump, or grow
+  }
+  return false;
+}
 
 std::optional<double> EventDriver::Accumulate(bool cam, double t, double approach, double limit,
                                               TrainState& xs, EventSigns& signs) {
@@ -458,6 +476,15 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     t = t1;
     x = x_end;
     recorder_.Sample(t, x, phase);
+    if (JumpReached(t)) {
+      stats.stopped_at_jump = true;
+      break;
+    }
+    if (o_.stop_after_lift && train_.Angle(t) > train_.cam().law().end_rad() &&
+        !recorder_.separated()) {
+      stats.stopped_after_lift = true;
+      break;
+    }
     bool extended;  // the horizon moved past t_end: the backend restarts as past a break
     if (RunIsOver(t, x, phase, recorder_, t_end, t_limit, horizon, extended)) break;
     if (at_segment_end && t < horizon && train_.HasConstraint() &&

@@ -79,6 +79,15 @@ struct IntegratorOptions {
   /// Past t_end the run goes on until the recorder finds the needle at rest
   /// (Recorder::AtRest), for at most this long, s (docs/model.md §5); 0: stop at t_end. ≥ 0.
   double settle_limit_s = 0.0;
+  /// The run stops at the end of the first step where a jump episode (Recorder) has lasted at
+  /// least this much crank angle, rad: a run that asks only whether the needle lifts off
+  /// (SimulationOptions::stop_at_liftoff). 0: never (the default); ≥ 0 and finite.
+  double stop_jump_rad = 0.0;
+  /// The run also stops at the end of the first step past the lift law's end θ_N with the needle
+  /// not separated: no episode can begin after it, so its lift-off verdict and its least contact
+  /// force over the lift are final. For one-window runs only (a revolution that carries its end
+  /// state on must run to its end).
+  bool stop_after_lift = false;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
   /// Per-state absolute tolerances (y, ẏ, W, D) with the defaults filled in.
@@ -99,6 +108,10 @@ struct IntegrationStats {
   TrainState final_state{};
   double final_time = 0.0;
   Phase final_phase{};  ///< the contact mode at the end
+  /// The run stopped at a jump of IntegratorOptions::stop_jump_rad (final_time is there).
+  bool stopped_at_jump = false;
+  /// The run stopped past the lift without a jump (IntegratorOptions::stop_after_lift).
+  bool stopped_after_lift = false;
 };
 
 /// A step or event budget ran out: the run stopped at `crank_rad`. The message names the angle

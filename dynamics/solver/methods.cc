@@ -89,6 +89,9 @@ void IntegratorOptions::Validate() const {
     throw std::invalid_argument("IntegratorOptions.max_events must be at least 1");
   if (!(settle_limit_s >= 0.0) || !std::isfinite(settle_limit_s))
     throw std::invalid_argument("IntegratorOptions.settle_limit_s must be finite and ≥ 0");
+  if (!(stop_jump_rad >= 0.0) || !std::isfinite(stop_jump_rad))
+    throw std::invalid_argument("IntegratorOptions.stop_jump_rad = " +
+                                std::to_string(stop_jump_rad) + ": must be finite and ≥ 0");
 }
 
 std::array<double, 4> IntegratorOptions::AbsoluteTolerances() const {

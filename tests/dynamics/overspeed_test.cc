@@ -153,13 +153,13 @@ TEST(OverspeedScanTest, NdynDoesNotDependOnTheTopOfTheRange) {
   // The scan budget ends a search that finds nothing with a status, not an error.
   o.to_rpm = 1e6;
   o.from_rpm = 400;
-  o.step_rpm = 1.0;
-  o.max_speeds = 50;
+  o.max_speeds = 3;
   const OverspeedResult b = OverspeedSearch(s, o);
   EXPECT_FALSE(b.n_dyn_rpm);
   EXPECT_EQ(b.status, "budget");
-  EXPECT_DOUBLE_EQ(b.scanned_to_rpm, 449.0);
-  EXPECT_EQ(b.rows.size(), 50u);
+  EXPECT_EQ(b.rows.size(), 3u);
+  EXPECT_DOUBLE_EQ(b.scanned_to_rpm, b.rows.back().speed_rpm);
+  EXPECT_LT(b.scanned_to_rpm, 600.0);
 }
 
 }  // namespace
@@ -200,6 +200,180 @@ TEST(OverspeedScanTest, ABudgetStopIsARowStatusAndTheScanEndsUndecided) {
   ASSERT_FALSE(r.rows.empty());
   EXPECT_EQ(RunStatusName(r.rows.front().status), "budget");
   EXPECT_NE(r.rows.front().status_reason.find("after 30 steps"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A light needle on a weak spring (numbers of this test's own): n_qs ≈ 822 rpm, so it lifts off
+// at its rated 1000 rpm already.
+const char* const kWeakSpring = R"(
+[engine]
+speed_rpm = 1000
+cycle = "four-stroke"
+[lift]
+crank_deg = [-20, -14, -8, -2, 4, 10, 16, 22, 28, 34, 40]
+lift_mm = [0.0, 0.12, 0.55, 1.30, 2.15, 2.70, 2.55, 1.90, 1.00, 0.30, 0.0]
+spline = "not-a-knot"
+resolution_mm = 0.01
+[needle]
+mass_kg = 0.8
+[spring]
+preload_N = 390
+rate_N_mm = 30
+[train]
+contact_stiffness_N_m = 1e8
+seat_stiffness_N_m = 1e8
+contact_damping_ratio = 0.1
+seat_damping_ratio = 0.1
+play_mm = 0
+)";
+
+// The same cam, a 1 kg needle, 0.3 mm of play on 8° ramps and a contact damped at 0.5 %: the
+// lash impact sets the train ringing, and the least contact force dips and recovers every
+// 20–30 rpm; one dip reaches lift-off in a window 475.8–481 rpm wide, below the next at 505 rpm.
+const char* const kRingingLash = R"(
+[engine]
+speed_rpm = 400
+cycle = "four-stroke"
+[lift]
+crank_deg = [-20, -14, -8, -2, 4, 10, 16, 22, 28, 34, 40]
+lift_mm = [0.0, 0.12, 0.55, 1.30, 2.15, 2.70, 2.55, 1.90, 1.00, 0.30, 0.0]
+spline = "not-a-knot"
+resolution_mm = 0.01
+[needle]
+mass_kg = 1.0
+[spring]
+preload_N = 1500
+rate_N_mm = 20
+[train]
+contact_stiffness_N_m = 2e7
+seat_stiffness_N_m = 2e8
+contact_damping_ratio = 0.005
+seat_damping_ratio = 0.05
+play_mm = 0.3
+ramp_deg = 8
+)";
+
+// Whether one full run at n lifts off (a jump of kMinJump_rad), as the search judges.
+bool LiftsOff(const Scene& s, double n) {
+  SimulationOptions o;
+  o.force_dynamic = true;
+  return RowFromResult(Simulate(s, n, o)).lifts_off;
+}
+
+// The lowest lift-off speed on a grid from `from` in steps of `step`, up to `to`; 0: none.
+double FirstLiftOff(const Scene& s, double from, double to, double step) {
+  for (double n = from; n <= to; n += step) {
+    if (LiftsOff(s, n)) return n;
+  }
+  return 0.0;
+}
+
+// Issue: n_dyn wherever it is. A design that lifts off at the start of the range has its n_dyn
+// below it; the search goes down and finds it, as a fine scan does.
+TEST(OverspeedDownTest, ADesignLiftingOffAtTheStartHasItsNdynFoundBelow) {
+  const Scene s = MakeScene(ParseCase(kWeakSpring, "weak-spring.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 1000;
+  o.to_rpm = 3000;
+  o.threads = 1;
+  const OverspeedResult r = OverspeedSearch(s, o);
+  EXPECT_EQ(r.status, "found");
+  EXPECT_TRUE(r.lifts_off_at_start);
+  ASSERT_TRUE(r.n_dyn_rpm);
+  EXPECT_LE(r.bracket_high_rpm - r.bracket_low_rpm, 0.5);
+  // The fine scan: no lift-off every 5 rpm from 400 rpm to just below, then the first lift-off
+  // on a 0.1 rpm grid.
+  const double n = *r.n_dyn_rpm;
+  EXPECT_EQ(FirstLiftOff(s, 400.0, n - 2.0, 5.0), 0.0);
+  const double fine = FirstLiftOff(s, n - 2.0, n + 1.0, 0.1);
+  EXPECT_NEAR(fine, n, 0.5) << "search " << n << " rpm, fine scan " << fine << " rpm";
+  EXPECT_LT(n, 0.9 * o.from_rpm);
+}
+
+// … and one that lifts off at every speed down to the floor says so, without a value.
+TEST(OverspeedDownTest, LiftingOffDownToTheFloorIsAStatusNotAValue) {
+  const Scene s = MakeScene(ParseCase(kWeakSpring, "weak-spring.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 1000;
+  o.to_rpm = 3000;
+  o.floor_rpm = 900;  // n_dyn is near 811 rpm
+  const OverspeedResult r = OverspeedSearch(s, o);
+  EXPECT_EQ(r.status, "floor");
+  EXPECT_FALSE(r.n_dyn_rpm);
+  EXPECT_DOUBLE_EQ(r.floor_rpm, 900.0);
+  ASSERT_EQ(r.rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.rows.front().speed_rpm, 900.0);
+  EXPECT_TRUE(r.rows.front().lifts_off);
+}
+
+// A run asking only "does it lift off?" gives the full run's verdict, and stops at the jump.
+TEST(StopAtLiftoffTest, TheEarlyStoppedRunGivesTheFullRunsVerdict) {
+  const Scene s = MakeScene(ParseCase(kWeakSpring, "weak-spring.toml"));
+  for (const char* method : {"exact", "dopri5"}) {
+    for (double n : {700.0, 805.0, 820.0, 1000.0}) {
+      SimulationOptions o;
+      o.force_dynamic = true;
+      o.method = method;
+      const SimulationResult full = Simulate(s, n, o);
+      o.stop_at_liftoff = true;
+      const SimulationResult early = Simulate(s, n, o);
+      const bool lifts = RowFromResult(full).lifts_off;
+      EXPECT_EQ(RowFromResult(early).lifts_off, lifts) << method << ' ' << n;
+      EXPECT_EQ(lifts, n > 811.0) << method << ' ' << n;
+      if (!lifts) {
+        // Stopped just past the lift, its least contact force over the lift the full run's.
+        EXPECT_EQ(early.status, RunStatus::kStopped);
+        EXPECT_GT(early.run_end_rad, s.law->end_rad());
+        EXPECT_LT(early.run_end_rad, full.run_end_rad);
+        EXPECT_EQ(early.min_contact_force_during_lift_N, full.min_contact_force_during_lift_N);
+        EXPECT_TRUE(early.episodes.empty() || !early.episodes.back().open);
+        continue;
+      }
+      EXPECT_EQ(early.status, RunStatus::kStopped) << method << ' ' << n;
+      EXPECT_LT(early.run_end_rad, full.run_end_rad);
+      // It ends in its first jump, at the end of the step (of exact: the closed-form piece) that
+      // took it past kMinJump_rad, before the lift is over.
+      ASSERT_FALSE(early.episodes.empty());
+      const Episode& e = early.episodes.back();
+      EXPECT_EQ(e.kind, "jump");
+      EXPECT_GE(e.end_rad - e.start_rad, kMinJump_rad);
+      EXPECT_LE(e.end_rad, early.run_end_rad);
+      EXPECT_LT(early.run_end_rad - e.start_rad, 5.0 * kDeg) << method << ' ' << n;
+      EXPECT_LT(early.run_end_rad, s.law->end_rad());
+      EXPECT_LT(early.stats.steps, full.stats.steps);
+    }
+  }
+}
+
+// A lift-off window narrower than the scan step: a fixed 15 rpm scan from 200 rpm steps over it
+// (470 and 485 rpm hold) and finds the next, at 505 rpm; the search led by the contact force
+// finds the window.
+TEST(OverspeedScanTest, TheForceLedScanFindsANarrowWindowAFixedScanMisses) {
+  const Scene s = MakeScene(ParseCase(kRingingLash, "ringing-lash.toml"));
+  const double fixed = FirstLiftOff(s, 200.0, 600.0, 15.0);
+  EXPECT_GT(fixed, 500.0);
+  OverspeedOptions o;
+  o.from_rpm = 200;
+  o.to_rpm = 600;
+  o.step_rpm = 15;
+  const OverspeedResult r = OverspeedSearch(s, o);
+  ASSERT_TRUE(r.n_dyn_rpm);
+  EXPECT_LT(*r.n_dyn_rpm, 482.0);
+  EXPECT_TRUE(LiftsOff(s, *r.n_dyn_rpm));
+  EXPECT_FALSE(LiftsOff(s, r.bracket_low_rpm));
+  EXPECT_FALSE(LiftsOff(s, 470.0));
+  EXPECT_FALSE(LiftsOff(s, 490.0));  // past the window
+  // The thread count changes nothing: the same speeds, the same answer.
+  o.threads = 1;
+  const OverspeedResult one = OverspeedSearch(s, o);
+  ASSERT_TRUE(one.n_dyn_rpm);
+  EXPECT_EQ(*one.n_dyn_rpm, *r.n_dyn_rpm);
+  EXPECT_EQ(one.rows.size(), r.rows.size());
 }
 
 }  // namespace
