@@ -267,6 +267,32 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
       hi = next;
       break;
     }
+    // The margin went from positive to zero across the step without a lift-off at its end: the
+    // contact was first lost inside it, where a lift-off window may lie that closes again before
+    // `next` (a surge resonance). Bisect on the margin's sign to where it reaches zero and ask
+    // there.
+    if (f > 0.0 && !(row->min_contact_force_N > 0.0)) {
+      double a = n, b = next;
+      while (b - a > res && !found) {
+        const double m = 0.5 * (a + b);
+        ++scanned;
+        const OverspeedRow& probe = runs.At(m);
+        if (budget_stop(probe, m)) break;
+        if (probe.lifts_off) {
+          found = true;
+          last.reset();
+          lo = a;
+          lo_margin = 0.0;
+          hi = m;
+        } else if (probe.min_contact_force_N > 0.0) {
+          a = m;
+        } else {
+          b = m;
+        }
+      }
+      if (found || result.status != "found") break;
+      row = &runs.At(next);
+    }
     n = next;
   }
   if (found) {

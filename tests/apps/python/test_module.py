@@ -127,7 +127,9 @@ def test_computations_release_the_gil():
     # While one thread sweeps in C++, the interpreter keeps running Python in another.
     case = needle.load_case(os.path.join(ROOT, "cases", "basu-example1.toml"))
     done = threading.Event()
-    worker = threading.Thread(target=lambda: (needle.overspeed(case, threads=1), done.set()))
+    # Ten sweeps: one takes some 30 ms since the search stops its runs at their answer.
+    worker = threading.Thread(
+        target=lambda: ([needle.overspeed(case, threads=1) for _ in range(10)], done.set()))
     ticks = 0
     start = time.perf_counter()
     worker.start()
@@ -146,7 +148,7 @@ def test_the_example_script_runs(tmp_path):
     p = subprocess.run([sys.executable, script, str(tmp_path / "svaj.png")], capture_output=True,
                        text=True, env=env)
     assert p.returncode == 0, p.stderr
-    assert "n_qs 649.5 rpm, n_dyn 650.7 rpm" in p.stdout
+    assert "n_qs 649.5 rpm, n_dyn 650.4 rpm" in p.stdout
 
 
 def test_tolerance_shards_are_the_study():
