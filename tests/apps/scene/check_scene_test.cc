@@ -299,9 +299,10 @@ namespace {
 // the massless spring's (643 rpm). The coils' surge takes the contact force below the rule's
 // share and makes the needle jump at f·n, where the massless spring shows neither — though the
 // frequency screen f_1/f_cam = 20 passes. With 6 coils (f_1 117 Hz) the same rows pass.
-CheckResult SurgeSceneAt520(int active_coils) {
+CheckResult SurgeSceneAt520(int active_coils, double tensile_Pa = 1400e6) {
   Case c = LoadCase(kCases + "basu-example1-surge.toml");
   c.spring->helical->active_coils = active_coils;
+  c.spring->helical->tensile_Pa = tensile_Pa;
   CheckOptions o;
   o.speed_rpm = 520;
   o.record_series = false;
@@ -309,7 +310,7 @@ CheckResult SurgeSceneAt520(int active_coils) {
 }
 
 TEST(CheckSceneSurgeTest, TheCoilsSurgeFailsByItsEffectAndADetunedSpringPasses) {
-  const CheckResult r = SurgeSceneAt520(8);
+  const CheckResult r = SurgeSceneAt520(8, 1200e6);
   ASSERT_TRUE(r.surge) << r.surge_reason;
   const SurgeStudy& s = *r.surge;
   EXPECT_TRUE(s.converged);
@@ -322,6 +323,14 @@ TEST(CheckSceneSurgeTest, TheCoilsSurgeFailsByItsEffectAndADetunedSpringPasses) 
   EXPECT_GT(s.overspeed.longest_jump_rad, kMinJump_rad);
   EXPECT_LT(s.massless_overspeed.longest_jump_rad, kMinJump_rad);
   EXPECT_GT(s.rated.max_spring_force_N, 1.05 * s.massless.max_spring_force_N);  // surge adds
+  // Wire of 1200 MPa (allowable 600 MPa): the static full-lift stress (572 MPa) passes the
+  // helical check, the surge's peak spring force (+8 %) takes it past.
+  EXPECT_TRUE(r.spring->helical->stress_ok);
+  EXPECT_EQ(Row(r, "surge_spring_stress").verdict, "fail");
+  EXPECT_NEAR(Row(r, "surge_spring_stress").value,
+              r.spring->helical->stress_full_lift_Pa * 1e-6 * s.rated.max_spring_force_N /
+                  (r.spring->train.preload_N + r.spring->train.rate_N_m * 3.67e-3),
+              1.0);
   EXPECT_EQ(Row(r, "surge_frequency_ratio").verdict, "pass");  // the screen does not see it
   EXPECT_TRUE(Contains(r.failing, "limits: longest jump at f n with the coils' surge: measured "));
 
@@ -354,6 +363,82 @@ TEST(CheckSceneSurgeTest, TheFrequencyScreenWarnsWhereTheDynamicsShowNoHarm) {
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_TRUE(r.pass) << r.failing[0];
   EXPECT_FALSE(r.spring->helical->surge_ok);  // the screen's own result stays as it was
+}
+
+// The rows no other test fails, each on a scene built to fail it. The seating velocity: a
+// sine lift (2.5 mm over 20°, steep at both ends) under a 1500 kgf spring at 800 rpm lands on
+// its seat at its closing tangent ramp's velocity, 1.9 m/s. The Hertz stress: the medium-speed
+// engine's cam (40 mm base circle, 10 mm roller) carrying its 3 kN on 0.5 mm of roller width.
+TEST(CheckSceneTest, TheSeatingAndHertzRowsFailOnScenesBuiltToFailThem) {
+  std::string crank = "crank_deg = [", lift = "lift_mm = [";
+  for (int i = 0; i <= 40; ++i) {
+    const double th = 0.5 * i;
+    crank += (i ? ", " : "") + std::to_string(th);
+    lift += (i ? ", " : "") + std::to_string(2.5 * std::sin(M_PI * th / 20.0));
+  }
+  const std::string sine =
+      "[engine]\nspeed_rpm = 800\ncycle = \"four-stroke\"\n[lift]\n" + crank + "]\n" + lift +
+      "]\nspline = \"quintic\"\n[needle]\nmass_kg = 0.8\ndiameter_mm = 8\n[spring]\n"
+      "preload_kgf = 1500\nrate_N_mm = 40\n[train]\ncontact_stiffness_N_m = 3e8\nplay_mm = 0.2\n";
+  CheckOptions o;
+  o.record_series = false;
+  const Case c = ParseCase(sine, "sine.toml");
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_FALSE(r.run->liftoff());
+  EXPECT_EQ(Row(r, "seating_velocity").verdict, "fail") << Row(r, "seating_velocity").value;
+  // The closing tangent ramp's velocity, s'(θ_N)·ω = 2.5 mm·π/20 per degree at 4800 °/s.
+  EXPECT_NEAR(Row(r, "seating_velocity").value, 2.5e-3 * M_PI / 20 * 4800, 0.01);
+
+  const Case h = ParseCase(MediumSpeedEngine(6) +
+                               "[profile]\nbase_radius_mm = 40\nroller_radius_mm = 10\n"
+                               "[limits]\ncontact_length_mm = 0.5\n",
+                           "medium.toml");
+  const CheckResult rh = CheckScene(h, MakeLiftLaw(h), o);
+  EXPECT_EQ(Row(rh, "hertz_stress").verdict, "fail") << Row(rh, "hertz_stress").note;
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// The spring verdict's sub-checks, each failing on a scene built to fail it: the weak-spring
+// engine (40 kgf on a 14 mm needle) fails the combustion load, Basu's formula and the inertia
+// sizing; Example 2's spring on wire of 1000 MPa fails the Goodman line itself (n_f < 1).
+TEST(CheckSceneTest, TheSpringVerdictsSubChecksFailOnScenesBuiltToFailThem) {
+  const Case weak = LoadCase(kCases + "new-engine-weak-spring.toml");
+  const CheckResult w = CheckScene(weak, MakeLiftLaw(weak));
+  EXPECT_TRUE(Contains(w.failing, "spring check: combustion load: the preload 40.0 kgf"));
+  EXPECT_TRUE(Contains(w.failing, "spring check: Basu's formula: the preload 40.0 kgf"));
+  EXPECT_TRUE(Contains(w.failing, "spring check: inertia sizing: the preload 392.3 N"));
+
+  Case soft = LoadCase(kCases + "basu-example2.toml");
+  soft.spring->helical->tensile_Pa = 1000e6;
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult f = CheckScene(soft, MakeLiftLaw(soft), o);
+  ASSERT_TRUE(f.spring->helical && f.spring->helical->fatigue_judged);
+  EXPECT_FALSE(f.spring->helical->fatigue_ok);
+  EXPECT_FALSE(f.spring->helical->stress_ok);  // τ 689 MPa above 0.5 × 1000 MPa too
+  EXPECT_TRUE(Contains(f.failing,
+                       "spring check: helical spring: shear stress above the "
+                       "allowable; fatigue: the working stroke is outside the Goodman"));
+}
+
+// The frequency screen fails where the coils' dynamics show harm: the surge scene at 850 rpm
+// (f_1/f_cam = 88 Hz / 7.08 Hz = 12.4) loses its contact to the coils' surge.
+TEST(CheckSceneSurgeTest, TheFrequencyScreenFailsWhereTheDynamicsShowHarm) {
+  const Case c = LoadCase(kCases + "basu-example1-surge.toml");
+  CheckOptions o;
+  o.speed_rpm = 850;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const LimitRow& ratio = Row(r, "surge_frequency_ratio");
+  EXPECT_LT(ratio.value, 13.0);
+  EXPECT_EQ(ratio.verdict, "fail");
+  EXPECT_EQ(Row(r, "surge_contact_force").verdict, "fail");
+  EXPECT_TRUE(Contains(r.failing, "spring check: helical spring: surge ratio below 13; "));
 }
 
 }  // namespace
