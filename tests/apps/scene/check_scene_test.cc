@@ -443,3 +443,21 @@ TEST(CheckSceneSurgeTest, TheFrequencyScreenFailsWhereTheDynamicsShowHarm) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// The coil-gap row and the spring's S_a item fail on the clash scene (its spring installed
+// 5.7 mm from solid): 1.97 mm in the run at 125 rpm against S_a 18.9 mm.
+TEST(CheckSceneTest, TheClashSceneFailsTheCoilGap) {
+  const Case c = LoadCase(kCases + "basu-example1-clash.toml");
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_EQ(Row(r, "coil_gap").verdict, "fail");
+  EXPECT_NEAR(Row(r, "coil_gap").value, 1.97, 0.01);
+  EXPECT_TRUE(Contains(r.failing, "spring check: helical spring: coil gaps below S_a; "));
+}
+
+}  // namespace
+}  // namespace needle
