@@ -167,6 +167,17 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
   // An episode begins inside [θ0, θN]; one still open at θN goes on until the needle is back
   // on the cam or on its seat (docs/model.md §6).
   const bool separated = (in_table || separated_) && !(fc > 0.0) && x[0] > kSeparationLift_m;
+  if (t < last_t_) {
+    // A point located inside a step that was already sampled past it (an extreme, an event):
+    // it counts for the extremes and the open episode's largest gap, never for the episodes'
+    // order, so an episode cannot end before it began.
+    if (separated && separated_ && th >= episodes_.back().start_rad) {
+      episodes_.back().max_gap_m = std::max(episodes_.back().max_gap_m, x[0] - c.u);
+    }
+    if (record_series_) series_.push_back({th, t, x[0], x[1], c.u, fc, fs});
+    return;
+  }
+  last_t_ = t;
 
   if (separated && !separated_) {
     Episode e;

@@ -200,6 +200,7 @@ class Recorder {
   double max_lift_ = -1e300, max_lift_rad_ = 0.0;
   double max_fc_ = 0.0, min_fc_lift_ = 1e300, max_fs_ = 0.0;
   bool lifted_ = false;
+  double last_t_ = -1e300;  // the latest time the episodes have seen
   double min_ratio_ = 1e300, min_ratio_rad_ = 0.0, min_ratio_force_ = 0.0;
   double min_lift_ = 1e300;
   double max_spring_ = -1e300;

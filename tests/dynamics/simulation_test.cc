@@ -369,3 +369,42 @@ TEST(SimulationTest, ClashingCoilsStopAtSolidWhereTheChainAloneWouldPassThrough)
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Episodes never end before they start, and the run's rest is located where it happens, for
+// every method on every bundled scene with a train, at its rated speed and above its n_qs
+// (lash, bounces, lift-off and landing).
+TEST(SimulationTest, EpisodesNeverEndBeforeTheyStartForAnyMethod) {
+  int runs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(kCases)) {
+    const std::string stem = e.path().stem().string();
+    if (e.path().extension() != ".toml" || stem.find("-engine") != std::string::npos ||
+        stem.find("-synth") != std::string::npos)
+      continue;
+    const Case c = LoadCase(e.path().string());
+    if (!c.train || c.spring->masses > 1) continue;
+    const Scene s = MakeScene(c);
+    const double n_qs = QuasiStaticLiftoffRpm(s);
+    for (const char* method :
+         {"exact", "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams"}) {
+      if (c.train->rigid && std::string(method).rfind("cvode", 0) == 0) continue;
+      if (c.train->rigid && std::string(method) == "exact") continue;
+      for (double rpm : {c.engine.speed_rpm, 1.1 * n_qs}) {
+        if (!std::isfinite(rpm)) continue;
+        SimulationOptions o = Options(method, 1e-8);
+        const SimulationResult r = Simulate(s, rpm, o);
+        for (const Episode& ep : r.episodes)
+          EXPECT_GE(ep.end_rad, ep.start_rad)
+              << stem << " " << method << " at " << rpm << " rpm: " << ep.kind << " "
+              << ep.start_rad / kDeg << " .. " << ep.end_rad / kDeg;
+        ++runs;
+      }
+    }
+  }
+  EXPECT_GE(runs, 40);
+}
+
+}  // namespace
+}  // namespace needle
