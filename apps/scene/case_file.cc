@@ -523,6 +523,11 @@ SolverSection ReadSolver(SectionReader r) {
        {std::pair<const char*, long*>{"max_steps", &s.max_steps}, {"max_events", &s.max_events}}) {
     if (auto v = OptionalCount(r, key, 1e12, "1e12")) *into = *v;
   }
+  if (auto v = r.OptionalNumber("max_seconds")) {
+    if (!(*v >= 0.0 && *v <= 86400.0))
+      r.Fail("max_seconds", "must be in [0, 86400] s (0: no wall-time budget), got " + Number(*v));
+    s.max_seconds = *v;
+  }
   if (auto settle = r.OptionalQuantity("settle", Dimension::kAngle)) {
     if (!(*settle > 0.0 && *settle <= 36000.0 * kDeg))
       r.Fail("settle_deg", "must be in (0, 36000] deg, got " + Number(*settle / kDeg));

@@ -32,7 +32,8 @@
 ///               0.05; rigid: restitution = 0, seat_restitution = 0; play_mm = 0,
 ///               ramp = "tangent" | ramp_deg
 ///     [solver]  method = "auto" | "dopri5" | "cvode-bdf" | "cvode-adams", rtol = 1e-8, atol_mm,
-///               max_steps = 2e6, max_events = 1e5, start_deg, end_deg (window),
+///               max_steps = 2e6, max_events = 1e5, max_seconds = 60 (0: none), start_deg,
+///               end_deg (window),
 ///               settle_deg = 3600 (past the window, the most run while the needle settles),
 ///               cycles = 1 (cam revolutions back to back), period_tolerance = 1e-6
 ///     [overspeed] from_rpm, to_rpm, steady_state = false (judge the revolutions after the
@@ -115,6 +116,7 @@ struct SolverSection {
   std::optional<double> atol_m;              ///< absolute tolerance (default rtol·1 mm)
   long max_steps = 2000000;                  ///< step budget
   long max_events = 100000;                  ///< event budget
+  double max_seconds = 60.0;                 ///< wall-time budget of one run, s; 0: none
   std::optional<double> start_rad, end_rad;  ///< window override
   /// Past the window's end, at most this much more while the needle settles (docs/model.md §5)
   double settle_limit_deg = 3600.0;

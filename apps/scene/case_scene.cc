@@ -90,6 +90,7 @@ SimulationOptions OptionsFromCase(const Case& c) {
     o.integrator.atol_m = c.solver->atol_m.value_or(DefaultAtol(c.solver->rtol));
     o.integrator.max_steps = c.solver->max_steps;
     o.integrator.max_events = c.solver->max_events;
+    o.integrator.max_seconds = c.solver->max_seconds;
     o.settle_limit_deg = c.solver->settle_limit_deg;
     o.cycles = c.solver->cycles;
     o.period_tolerance = c.solver->period_tolerance;

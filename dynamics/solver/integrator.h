@@ -76,6 +76,9 @@ struct IntegratorOptions {
   double atol_J = 0.0;
   long max_steps = 2000000;  ///< step budget; exceeding it stops the run (BudgetExceeded)
   long max_events = 100000;  ///< event budget (located witness crossings)
+  /// Wall-time budget of one run, s: exceeding it stops the run (BudgetExceeded, status
+  /// `budget`), so no run computes for minutes in silence; 0: none. ≥ 0 and finite.
+  double max_seconds = 60.0;
   /// Past t_end the run goes on until the recorder finds the needle at rest
   /// (Recorder::AtRest), for at most this long, s (docs/model.md §5); 0: stop at t_end. ≥ 0.
   double settle_limit_s = 0.0;

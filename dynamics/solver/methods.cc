@@ -1,6 +1,7 @@
 // The method table (one row per integrator backend), the integrator's options, and the
 // scaled right-hand side the backends integrate.
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -87,6 +88,8 @@ void IntegratorOptions::Validate() const {
   if (max_steps < 1) throw std::invalid_argument("IntegratorOptions.max_steps must be at least 1");
   if (max_events < 1)
     throw std::invalid_argument("IntegratorOptions.max_events must be at least 1");
+  if (!(max_seconds >= 0.0) || !std::isfinite(max_seconds))
+    throw std::invalid_argument("IntegratorOptions.max_seconds must be finite and ≥ 0");
   if (!(settle_limit_s >= 0.0) || !std::isfinite(settle_limit_s))
     throw std::invalid_argument("IntegratorOptions.settle_limit_s must be finite and ≥ 0");
   if (!(stop_jump_rad >= 0.0) || !std::isfinite(stop_jump_rad))
@@ -144,9 +147,19 @@ void TrainSystem::Jacobian(const TrainState& z, double t, TrainJacobian& J,
   }
 }
 
-void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train, double t) {
+namespace {
+// A budget as written in a case file: 2000000, 60, 0.5.
+std::string Shortest(double v) {
+  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+}  // namespace
+
+void ThrowOverBudget(const std::string& what, double budget, const NeedleTrain& train, double t) {
   throw BudgetExceeded("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
-                           " deg after " + std::to_string(budget) + " " + what +
+                           " deg after " + Shortest(budget) + " " + what +
                            " (the budget [solver] max_" + what +
                            "): the scene may chatter or be too stiff for this method; try "
                            "method = \"cvode-bdf\", a looser rtol, or raise max_" +

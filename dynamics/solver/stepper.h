@@ -82,7 +82,7 @@ IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x
                                    Recorder& recorder, const IntegratorOptions& options);
 
 /// Throws the budget message.
-[[noreturn]] void ThrowOverBudget(const std::string& what, long budget, const NeedleTrain& train,
+[[noreturn]] void ThrowOverBudget(const std::string& what, double budget, const NeedleTrain& train,
                                   double t);
 
 }  // namespace needle

@@ -197,6 +197,23 @@ TEST(SimulationTest, StepBudgetStopsWithAMessage) {
   EXPECT_TRUE(std::isnan(r.energy_residual));
 }
 
+// No silent minutes (issue 40): a wall-time budget stops a run with the status `budget` and
+// says which budget; Example 2 with dopri5 at rtol 1e-12 takes far more than a microsecond.
+TEST(SimulationTest, WallTimeBudgetStopsWithAMessage) {
+  const Case c = LoadCase(kCases + "basu-example2.toml");
+  const Scene s = MakeScene(c);
+  SimulationOptions o = Options("dopri5", 1e-12);
+  o.integrator.max_seconds = 1e-6;
+  const SimulationResult r = Simulate(s, 400, o);
+  EXPECT_EQ(RunStatusName(r.status), "budget");
+  EXPECT_NE(r.status_reason.find("after 1e-06 seconds (the budget [solver] max_seconds)"),
+            std::string::npos)
+      << r.status_reason;
+  EXPECT_LT(r.run_end_rad, r.window_end_rad);
+  o.integrator.max_seconds = -1;
+  EXPECT_THROW(Simulate(s, 400, o), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace needle
 
