@@ -25,6 +25,13 @@
 namespace needle {
 namespace {
 
+// Whether the f_1/f_cam screen warns instead of failing (the coils' dynamics show no harm).
+bool ScreenWarns(const CheckResult& r) {
+  for (const LimitRow& x : r.limits)
+    if (x.key == "surge_frequency_ratio") return x.verdict == "warning";
+  return false;
+}
+
 std::string Row(const std::string& name, const std::string& value) {
   return "<tr><th>" + Escape(name) + "</th><td>" + value + "</td></tr>";
 }
@@ -207,6 +214,11 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     for (const auto& f : failing) s += "<li>" + Escape(f) + "</li>";
     report.AddHtml(s + "</ul>");
   }
+  if (!result.warnings.empty()) {
+    std::string s = "<h2>Warnings</h2><ul>";
+    for (const auto& w : result.warnings) s += "<li>" + Escape(w) + "</li>";
+    report.AddHtml(s + "</ul>");
+  }
   report.AddHtml(summary.str());
   if (!skipped.empty()) {
     std::string s = "<h2>Skipped</h2><ul class=\"skip\">";
@@ -293,9 +305,10 @@ int RunCheckCommand(const CheckCommandOptions& o) {
         << Row("helical: coil gaps at full lift",
                Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm, need " +
                    Fixed(h.min_clearance_m * 1e3, 2) + " mm " + Verdict(h.clearance_ok))
-        << Row("helical: surge frequency", Fixed(h.surge_hz, 1) + " Hz, " +
-                                               Fixed(h.surge_ratio, 1) + "× the cam's " +
-                                               Verdict(h.surge_ok));
+        << Row("helical: surge frequency",
+               Fixed(h.surge_hz, 1) + " Hz, " + Fixed(h.surge_ratio, 1) + "× the cam's " +
+                   (ScreenWarns(result) ? std::string("warning (the coils' dynamics show no harm)")
+                                        : Verdict(h.surge_ok)));
     }
     t << Row("combustion load F_g", Fixed(s.gas_force_N / kKgf, 1) + " kgf (" +
                                         Escape(s.gas_source) + "); preload against S·F_g " +

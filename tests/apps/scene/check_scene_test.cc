@@ -363,6 +363,7 @@ TEST(CheckSceneSurgeTest, TheFrequencyScreenWarnsWhereTheDynamicsShowNoHarm) {
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_TRUE(r.pass) << r.failing[0];
   EXPECT_FALSE(r.spring->helical->surge_ok);  // the screen's own result stays as it was
+  EXPECT_TRUE(r.spring->pass);                // … and the spring check warns with the row
 }
 
 // The rows no other test fails, each on a scene built to fail it. The seating velocity: a
