@@ -376,6 +376,31 @@ int RunCheckCommand(const CheckCommandOptions& o) {
             "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
             "plot $force using 1:3 with lines lw 2 title 'quasi-static', $force using 1:2 with "
             "lines lw 1 title 'dynamic'");
+    if (result.surge && !result.surge->rated.series.empty()) {
+      // Surge by its effect: the contact force with the spring as N coil masses against the
+      // massless spring's, at the rated speed, over the lift of each run's last revolution
+      // (folded onto the first: the steady one where the run has several).
+      const SurgeStudy& sg = *result.surge;
+      Series chain{"chain", {}}, massless{"massless", {}};
+      const double from_rad = law.start_rad() - 5 * kDeg, to_rad = law.end_rad() + 20 * kDeg;
+      for (const auto& [run, into] : {std::pair{&sg.rated, &chain}, {&sg.massless, &massless}}) {
+        const double shift =
+            run->cycles.empty() ? 0.0 : run->cycles.back().start_rad - run->cycles[0].start_rad;
+        for (const SeriesPoint& p : run->series) {
+          const double th = p.crank_rad - shift;
+          if (th >= from_rad && th <= to_rad) into->rows.push_back({th / kDeg, p.contact_force_N});
+        }
+        if (into->rows.empty()) into->rows.push_back({NAN, NAN});
+      }
+      report.AddFigure(
+          "Surge: the contact force with the spring as " + std::to_string(sg.masses) +
+              " coil masses against the massless spring, at " + Fixed(rpm, 0) + " rpm",
+          {chain, massless},
+          "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
+          "plot $massless using 1:2 with lines lw 2 title 'massless spring', $chain using 1:2 "
+          "with lines lw 1 title '" +
+              std::to_string(sg.masses) + " coil masses'");
+    }
     report.AddFigure("Needle lift against the cam input u(θ); impacts marked", {motion, impacts},
                      "set xlabel 'crank angle (deg)'\nset ylabel 'lift (mm)'\nset key top right\n"
                      "plot $motion using 1:3 with lines lw 2 title 'cam u', $motion using 1:2 with "

@@ -315,7 +315,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
 // The scene with its helical spring as N coil masses (SurgeStudy), against the massless spring.
 // Throws std::invalid_argument when the train refuses the chain (coils of 3 needle masses or
 // more).
-SurgeStudy StudySurge(const Case& c, const CheckResult& r) {
+SurgeStudy StudySurge(const Case& c, const CheckResult& r, bool series) {
   SurgeStudy s;
   Scene scene = MakeScene(c);
   const HelicalSpringCheck& h = *r.spring->helical;
@@ -329,7 +329,9 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r) {
   // At f·n lift-off is judged as the sweep judges it (on the steady revolutions when asked).
   SimulationOptions over = sim;
   over.steady_state = c.overspeed && c.overspeed->steady_state;
-  s.massless = Simulate(scene, r.speed_rpm, sim);
+  SimulationOptions rated = sim;
+  rated.record_series = series;  // the report's surge figure
+  s.massless = Simulate(scene, r.speed_rpm, rated);
   s.massless_overspeed = Simulate(scene, r.overspeed_rpm, over);
   t.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
   s.damping_assumed = !(c.spring->surge_damping_ratio > 0.0);
@@ -340,7 +342,7 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r) {
   std::optional<SimulationResult> before;
   for (int n : {5, 10, 20, 40}) {
     t.coil_masses = n;
-    SimulationResult run = Simulate(scene, r.speed_rpm, sim);
+    SimulationResult run = Simulate(scene, r.speed_rpm, rated);
     s.masses = n;
     if (before) {
       const double force = std::abs(run.min_contact_force_ratio - before->min_contact_force_ratio);
@@ -403,7 +405,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     r.sweep = OverspeedSearch(scene, os, options.progress);
     if (r.spring && r.spring->helical) {
       try {
-        r.surge = StudySurge(c, r);
+        r.surge = StudySurge(c, r, options.record_series);
       } catch (const std::invalid_argument& e) {
         r.surge_reason = e.what();
       }

@@ -70,11 +70,13 @@ struct SurgeStudy {
   /// load) and the peak spring force at the needle both move by less than kSurgeConvergence
   /// (of the holding load / of the peak) from the N before; 40 when none does.
   int masses = 0;
-  double change = NAN;                  ///< that last move, the larger of the two, as a fraction
-  bool converged = false;               ///< below kSurgeConvergence at `masses`
-  double damping_ratio = 0.0;           ///< ζ of the first surge mode used
-  bool damping_assumed = false;         ///< the case gives none: needle's 1 %
-  SimulationResult rated;               ///< with coil masses, at the rated speed (no series)
+  double change = NAN;           ///< that last move, the larger of the two, as a fraction
+  bool converged = false;        ///< below kSurgeConvergence at `masses`
+  double damping_ratio = 0.0;    ///< ζ of the first surge mode used
+  bool damping_assumed = false;  ///< the case gives none: needle's 1 %
+  /// With coil masses at the rated speed; it and `massless` keep their series when
+  /// CheckOptions::record_series (the report's surge figure).
+  SimulationResult rated;
   SimulationResult overspeed;           ///< with coil masses, at f·n
   SimulationResult massless;            ///< the massless spring at the rated speed
   SimulationResult massless_overspeed;  ///< the massless spring at f·n

@@ -50,12 +50,14 @@ TEST(CheckReportTest, FullSceneHasEveryFigureAndPasses) {
   const std::string dir = TempDir("ex1");
   const auto r = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("report: " + dir + "/basu-example1.html (5 figures)"), std::string::npos)
+  EXPECT_NE(r.out.find("report: " + dir + "/basu-example1.html (6 figures)"), std::string::npos)
       << r.out;
   const std::string html = testing::Slurp(dir + "/basu-example1.html");
-  EXPECT_EQ(Count(html, "<svg"), 5);  // with the resonance map of its helical spring
+  // With its helical spring: the surge figure and the resonance map.
+  EXPECT_EQ(Count(html, "<svg"), 6);
   for (const char* label : {"lift (mm)", "velocity (m/s)", "contact force (N)", "speed (rpm)",
-                            "jump (deg)", "frequency (Hz)", "Resonance map", "<h2>Limits</h2>"}) {
+                            "jump (deg)", "frequency (Hz)", "Resonance map", "<h2>Limits</h2>",
+                            "against the massless spring", "massless spring"}) {
     EXPECT_NE(html.find(label), std::string::npos) << label;
   }
   EXPECT_NE(html.find("energy residual"), std::string::npos);
@@ -267,7 +269,7 @@ TEST(CheckReportTest, ReportRendersInHeadlessChromium) {
   ASSERT_EQ(RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir).status, 0);
   const std::string html = testing::Slurp(dir + "/basu-example1.html");
   const int figures = Count(html, "<svg"), tables = Count(html, "<table");
-  EXPECT_EQ(figures, 5);
+  EXPECT_EQ(figures, 6);
   EXPECT_GE(tables, 7);
   const std::string probe =
       "<script>const out = [];"
