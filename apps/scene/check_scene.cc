@@ -331,7 +331,8 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, bool series) {
   over.steady_state = c.overspeed && c.overspeed->steady_state;
   SimulationOptions rated = sim;
   rated.record_series = series;  // the report's surge figure
-  s.massless = Simulate(scene, r.speed_rpm, rated);
+  // The rated-speed run is the massless spring's already when the case has no coil masses.
+  s.massless = c.spring->masses == 1 && r.run ? *r.run : Simulate(scene, r.speed_rpm, rated);
   s.massless_overspeed = Simulate(scene, r.overspeed_rpm, over);
   t.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
   s.damping_assumed = !(c.spring->surge_damping_ratio > 0.0);
