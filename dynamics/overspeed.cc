@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -37,6 +38,21 @@ void OverspeedOptions::Validate() const {
     throw std::invalid_argument("overspeed: floor_rpm = " + std::to_string(floor_rpm) +
                                 ": must be in [0, from_rpm) (0: from_rpm / 16)");
   if (!std::isfinite(to_rpm)) throw std::invalid_argument("overspeed: to_rpm must be finite");
+}
+
+std::string OverspeedOutcome(const OverspeedResult& r) {
+  const auto rpm = [](double n) { return Fixed(n, 1) + " rpm"; };
+  if (r.n_dyn_rpm) return rpm(*r.n_dyn_rpm);
+  if (r.status == "floor")
+    return "undecided: the needle lifts off at every speed tried down to " + rpm(r.floor_rpm);
+  if (r.status == "budget")
+    return "undecided: the scan budget ended the search at " + rpm(r.scanned_to_rpm);
+  if (r.status == "run-budget")
+    return "undecided: the run at " + rpm(r.scanned_to_rpm) + " stopped on its budget";
+  if (r.status == "not-following")
+    return "undecided: the needle does not follow its cam at " + rpm(r.scanned_to_rpm) +
+           " (needle simulate --rpm " + Fixed(r.scanned_to_rpm, 1) + ")";
+  return "none up to " + rpm(r.scanned_to_rpm);
 }
 
 OverspeedRow RowFromResult(const SimulationResult& r) {

@@ -83,12 +83,18 @@ struct OverspeedResult {
   int threads = 1;
   double step_rpm = 0.0;  ///< the scan step Δn used
   /// "found", "none" (none up to to_rpm), "floor" (lifts off at every speed tried down to
-  /// floor_rpm), "budget" (scan budget), "not-following" (the run at scanned_to_rpm did not follow its
-  /// cam, RunStatus::kNotFollowing) or "run-budget" (a run at scanned_to_rpm stopped on its
+  /// floor_rpm), "budget" (scan budget), "not-following" (the run at scanned_to_rpm did not follow
+  /// its cam, RunStatus::kNotFollowing) or "run-budget" (a run at scanned_to_rpm stopped on its
   /// budget without lift-off)
   std::string status = "found";
   double scanned_to_rpm = 0.0;  ///< highest speed scanned
 };
+
+/// n_dyn as words, for every status: "650.4 rpm", "none up to 1000.0 rpm", or "undecided: …"
+/// (floor, budget, run-budget, not-following), naming the speed.
+std::string OverspeedOutcome(const OverspeedResult& r);
+/// Whether the search decided (status "found" or "none").
+inline bool Decided(const OverspeedResult& r) { return r.status == "found" || r.status == "none"; }
 
 /// `progress(done, total_estimate)` is called after each run or batch (from the calling thread).
 OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& options,

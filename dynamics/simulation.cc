@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lib/output.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"
 
@@ -213,25 +214,25 @@ void JudgeFollowing(const Scene& scene, SimulationResult& r) {
   const bool stopped_past_lift = r.status == RunStatus::kStopped && !r.liftoff();
   if (r.status != RunStatus::kComplete && !stopped_past_lift) return;
   const double cam_lift = scene.law->Max(0).value;
-  std::ostringstream why;
-  why.precision(3);
-  why << std::fixed;
+  // Where the needle rests at the end: a landing may press it deeper for an instant.
+  const double rest_lift = r.stats.final_state.empty() ? 0.0 : r.stats.final_state[0];
+  const auto mm = [](double m) { return Fixed(m * 1e3, 3) + " mm"; };
+  std::string why;
   if (r.max_lift_m < (1.0 - kFollowFraction) * cam_lift) {
-    why << "the needle does not follow the cam: its largest lift " << r.max_lift_m * 1e3
-        << " mm is " << std::setprecision(1) << 100 * r.max_lift_m / cam_lift << " % of the cam's "
-        << std::setprecision(3) << cam_lift * 1e3 << " mm";
-  } else if (r.min_lift_m < -kFollowFraction * cam_lift) {
-    why << "the needle sinks " << -r.min_lift_m * 1e3 << " mm into its seat, more than "
-        << std::setprecision(0) << 100 * kFollowFraction << " % of the cam's lift";
+    why = "the needle does not follow the cam: its largest lift " + mm(r.max_lift_m) + " is " +
+          Fixed(100 * r.max_lift_m / cam_lift, 1) + " % of the cam's " + mm(cam_lift);
+  } else if (r.status == RunStatus::kComplete && rest_lift < -kFollowFraction * cam_lift) {
+    why = "the needle rests " + mm(-rest_lift) + " into its seat, more than " +
+          Fixed(100 * kFollowFraction, 0) + " % of the cam's lift";
   } else {
     return;
   }
-  why.unsetf(std::ios::fixed);
-  why << " (seat " << scene.train.seat_stiffness_N_m << " N/m, cam contact "
-      << scene.train.contact_stiffness_N_m << " N/m, preload " << scene.train.preload_N
-      << " N: look at the stiffness keys, the preload and the mass)";
+  std::ostringstream keys;
+  keys << " (seat " << scene.train.seat_stiffness_N_m << " N/m, cam contact "
+       << scene.train.contact_stiffness_N_m << " N/m, preload " << scene.train.preload_N
+       << " N: look at the stiffness keys, the preload and the mass)";
   r.status = RunStatus::kNotFollowing;
-  r.status_reason = why.str();
+  r.status_reason = why + keys.str();
 }
 
 }  // namespace

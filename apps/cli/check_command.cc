@@ -450,9 +450,10 @@ int RunCheckCommand(const CheckCommandOptions& o) {
       << Row("dynamic lift-off n_dyn", s.n_dyn_rpm ? Fixed(*s.n_dyn_rpm, 1) + " rpm (bracket " +
                                                          Fixed(s.bracket_low_rpm, 2) + "–" +
                                                          Fixed(s.bracket_high_rpm, 2) + ")"
-                                                   : "none in the range")
-      << Row("overspeed to check", Fixed(overspeed_rpm, 1) + " rpm " +
-                                       Verdict(!(s.n_dyn_rpm && *s.n_dyn_rpm <= overspeed_rpm)))
+                                                   : OverspeedOutcome(s))
+      << Row("overspeed to check",
+             Fixed(overspeed_rpm, 1) + " rpm " +
+                 Verdict(Decided(s) && !(s.n_dyn_rpm && *s.n_dyn_rpm <= overspeed_rpm)))
       << "</table>";
     report.AddHtml(t.str());
   }
@@ -547,10 +548,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     std::cout << "lift-off at " << Fixed(rpm, 0) << " rpm: " << (run->liftoff() ? "YES" : "no")
               << '\n';
   if (sweep) {
-    std::cout << "n_qs " << Num(n_qs, 1) << " rpm, n_dyn "
-              << (sweep->n_dyn_rpm ? Fixed(*sweep->n_dyn_rpm, 1) + " rpm"
-                                   : std::string("none in the range"))
-              << '\n';
+    std::cout << "n_qs " << Num(n_qs, 1) << " rpm, n_dyn " << OverspeedOutcome(*sweep) << '\n';
   }
   if (!result.limits.empty()) {
     std::cout << "limits (value, limit, margin, verdict):\n";

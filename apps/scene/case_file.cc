@@ -981,11 +981,14 @@ Case ParseCase(const std::string& text, const std::string& path) {
   if (const toml::table* t = Section(root, path, "limits"))
     c.limits = ReadLimits(SectionReader(t, path, "limits"));
   if (c.lift.spline_given) CheckSplineFits(c, c.lift.spline.kind, "[lift] spline");
-  if (c.spring && c.spring->masses > 1 && c.needle) {
+  // The moving mass includes a third of the spring (docs/model.md §4): with the spring's
+  // geometry known, a lighter one is impossible (and the coil-mass model of check's surge
+  // verdict has no needle left).
+  if (c.spring && c.spring->helical && c.needle) {
     const double third = ActiveSpringMassKg(*c.spring->helical) / 3.0;
     if (!(c.needle->mass_kg > third)) {
-      throw CaseError(path + ": [spring] masses: the moving mass [needle] mass_kg = " +
-                      Number(c.needle->mass_kg) +
+      throw CaseError(path + (c.spring->masses > 1 ? ": [spring] masses" : ": [needle] mass_kg") +
+                      ": the moving mass [needle] mass_kg = " + Number(c.needle->mass_kg) +
                       " kg includes a third of the spring, but a third of the active coils is " +
                       Number(third) + " kg");
     }

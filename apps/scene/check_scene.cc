@@ -60,6 +60,15 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     x.verdict = x.margin >= 0.0 ? "pass" : "fail";
     x.note = std::move(note);
   };
+  // A contact force of zero is a loss of contact, whatever the limit (a limit of 0 %, or an
+  // overspeed factor of 1, would otherwise pass it).
+  const auto judge_force = [&judge](LimitRow& x, double value, std::string note) {
+    judge(x, value, std::move(note));
+    if (!(value > 0.0) && x.verdict != "fail") {
+      x.verdict = "fail";
+      x.note += "; a contact force of 0 fails whatever the limit";
+    }
+  };
   const LimitsSection d;  // the defaults, to name where a limit came from
   const auto from = [](bool set, const std::string& key, const std::string& cited) {
     return set ? "[limits] " + key : cited;
@@ -69,7 +78,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                       from(l.seating_velocity_m_s != d.seating_velocity_m_s, "seating_velocity",
                            "Blair: optimum ramp velocity 1.0-1.5 m/s"));
   LimitRow lash =
-      row("lash_impact_speed", "lash impact speed (the cam taking up the play)", "m/s", true,
+      row("lash_impact_speed", "cam impact speed (lash and recontacts)", "m/s", true,
           l.lash_impact_velocity_m_s,
           from(l.lash_impact_velocity_m_s != d.lash_impact_velocity_m_s, "lash_impact_velocity",
                "Blair: optimum ramp velocity 1.0-1.5 m/s (the opening ramp)"));
@@ -96,12 +105,14 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     }
     judge(seat, landing, where);
     if (c.train && c.train->play_m > 0.0) {
+      // Every strike of the cam on the roller: the lash, and a recontact after a bounce or a
+      // jump (where the cam already touched when the run began, the first strike is one).
       double strike = 0.0;
       std::string at = "the cam never struck the roller";
       for (const Impact& i : run.impacts) {
-        if (i.kind == "lash" && i.speed_m_s >= strike) {
+        if ((i.kind == "lash" || i.kind == "recontact") && i.speed_m_s >= strike) {
           strike = i.speed_m_s;
-          at = "lash at " + Fixed(i.crank_rad / kDeg, 2) + " deg";
+          at = i.kind + " at " + Fixed(i.crank_rad / kDeg, 2) + " deg";
         }
       }
       judge(lash, strike,
@@ -110,11 +121,11 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
       lash.note = "no roller play ([train] play_mm = 0): no lash to take up";
     }
     if (std::isfinite(run.min_contact_force_ratio)) {
-      judge(force, 100 * run.min_contact_force_ratio,
-            Fixed(run.min_contact_force_ratio_force_N, 1) + " N at " +
-                Fixed(run.min_contact_force_ratio_rad / kDeg, 2) + " deg");
+      judge_force(force, 100 * run.min_contact_force_ratio,
+                  Fixed(run.min_contact_force_ratio_force_N, 1) + " N at " +
+                      Fixed(run.min_contact_force_ratio_rad / kDeg, 2) + " deg");
     } else {
-      judge(force, 0.0, "the cam never lifted the needle off its seat");
+      judge_force(force, 0.0, "the cam never lifted the needle off its seat");
     }
   } else {
     seat.note = lash.note = force.note = "no dynamics ([train] missing)";
@@ -206,8 +217,9 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                      " mm: Zimmerli's data cover wire below 10 mm";
     }
     gap.limit = (l.coil_gap_m ? *l.coil_gap_m : h.min_clearance_m) * 1e3;
-    const SimulationResult* chain =
-        r.surge ? &r.surge->rated : (r.run && r.run->min_coil_gap_m ? &*r.run : nullptr);
+    const SimulationResult* chain = r.surge && r.surge->rated.status == RunStatus::kComplete
+                                        ? &r.surge->rated
+                                        : (r.run && r.run->min_coil_gap_m ? &*r.run : nullptr);
     if (chain && chain->min_coil_gap_m) {
       // A chain of coil masses: the least gap in the run at the rated speed, where surge may
       // close one segment well before the static full lift closes them all.
@@ -224,17 +236,28 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     // resonance map's lines (information).
     for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
     r.harmonics = LiftHarmonics(law, four ? 4 * kPi : 2 * kPi, 1000, l.harmonic_threshold);
-    if (r.surge) {
+    const auto undecided = [](const SimulationResult& run) {
+      return run.status != RunStatus::kComplete;
+    };
+    if (r.surge && (undecided(r.surge->rated) || undecided(r.surge->overspeed))) {
+      const SimulationResult& bad = undecided(r.surge->rated) ? r.surge->rated : r.surge->overspeed;
+      const std::string why = "undecided: the run with " + std::to_string(r.surge->masses) +
+                              " coil masses at " + Fixed(bad.speed_rpm, 1) + " rpm is " +
+                              RunStatusName(bad.status) + ": " + bad.status_reason;
+      surge_force.note = surge_jump.note = surge_stress.note = why;
+      r.failing.push_back("surge: " + why);
+    } else if (r.surge) {
       const SurgeStudy& s = *r.surge;
       const std::string with = std::to_string(s.masses) + " coil masses, zeta " +
                                Fixed(100 * s.damping_ratio, 1) + " %" +
                                (s.damping_assumed ? " (assumed)" : "") + ", converged to " +
                                Fixed(100 * s.change, 2) + " %" + (s.converged ? "" : " (NOT)");
-      judge(surge_force,
-            std::isfinite(s.rated.min_contact_force_ratio) ? 100 * s.rated.min_contact_force_ratio
-                                                           : 0.0,
-            "with " + with + "; massless spring " +
-                Fixed(100 * s.massless.min_contact_force_ratio, 2) + " %");
+      judge_force(surge_force,
+                  std::isfinite(s.rated.min_contact_force_ratio)
+                      ? 100 * s.rated.min_contact_force_ratio
+                      : 0.0,
+                  "with " + with + "; massless spring " +
+                      Fixed(100 * s.massless.min_contact_force_ratio, 2) + " %");
       judge(surge_jump, s.overspeed.longest_jump_rad / kDeg,
             "at " + Fixed(r.overspeed_rpm, 1) + " rpm with " + with + "; massless spring " +
                 Fixed(s.massless_overspeed.longest_jump_rad / kDeg, 2) + " deg");
@@ -352,7 +375,7 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, bool series) {
       s.converged = s.change < kSurgeConvergence;
     }
     s.rated = std::move(run);
-    if (s.converged) break;
+    if (s.converged || s.rated.status != RunStatus::kComplete) break;  // done, or undecided
     before = s.rated;
   }
   s.overspeed = Simulate(scene, r.overspeed_rpm, over);
@@ -431,10 +454,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
                                  : std::string("the run there stopped on its budget")) +
            ")");
     }
-    if (s.status == "not-following") {
-      fail("overspeed: undecided: the needle does not follow its cam at " +
-           Fixed(s.scanned_to_rpm, 1) + " rpm");
-    }
+    if (s.status == "not-following") fail("overspeed: " + OverspeedOutcome(s));
     if (s.status == "floor") {
       fail("overspeed: the needle lifts off at every speed tried down to " + Fixed(s.floor_rpm, 1) +
            " rpm");

@@ -512,6 +512,13 @@ TEST(CaseFileTest, TheSpringsCoilMasses) {
   EXPECT_EQ(Error(Replace(spring, "mass_kg = 2.0", "mass_kg = 0.015")),
             "t.toml: [spring] masses: the moving mass [needle] mass_kg = 0.015 kg includes a third "
             "of the spring, but a third of the active coils is 0.0185943 kg");
+  // … with or without coil masses, wherever the spring's geometry is known (found by review: a
+  // 0.03 kg needle on a 0.131 kg spring passed check, its surge rows not judged).
+  EXPECT_EQ(Error(Replace(
+                Replace(Replace(spring, "masses = 12\n", ""), "surge_damping_ratio = 0.02\n", ""),
+                "mass_kg = 2.0", "mass_kg = 0.015")),
+            "t.toml: [needle] mass_kg: the moving mass [needle] mass_kg = 0.015 kg includes a "
+            "third of the spring, but a third of the active coils is 0.0185943 kg");
 }
 
 TEST(CaseFileTest, TheSpringsCoilClash) {
