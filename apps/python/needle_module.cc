@@ -409,7 +409,8 @@ PYBIND11_MODULE(needle, m) {
     throw py::import_error(
         "the needle module needs NumPy (its results hold NumPy arrays), and this Python has "
         "none: apt-get install python3-numpy, or pip install numpy (" +
-        std::string(e.what()) + ")");
+        py::str(e.type().attr("__name__")).cast<std::string>() + ": " +
+        py::str(e.value()).cast<std::string>() + ")");
   }
   m.doc() =
       "needle: cam-driven needle valves. Every function takes a case (a path, a needle.Case or a "
