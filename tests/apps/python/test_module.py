@@ -151,6 +151,7 @@ def test_the_example_script_runs(tmp_path):
                        text=True, env=env)
     assert p.returncode == 0, p.stderr
     assert "n_qs 649.5 rpm, n_dyn 650.4 rpm" in p.stdout
+    assert "with twice the mass (23.0 kg): n_qs 459.3 rpm" in p.stdout
 
 
 def test_tolerance_shards_are_the_study():
