@@ -102,6 +102,12 @@ std::string PyNumber(double v) {
   return py::repr(py::float_(v)).cast<std::string>();
 }
 
+// A bool, Python's or NumPy's (numpy.bool_ is no subclass of bool).
+bool IsBool(const py::handle& v) {
+  const std::string t = TypeName(v);
+  return py::isinstance<py::bool_>(v) || t == "bool_" || t == "bool";
+}
+
 // A keyword's number, as Python would take it: None is absent; a bool or a non-number is
 // refused; a value outside the option's range is refused as "KEY=VALUE: expected …".
 std::optional<double> Number(const py::object& v, const std::string& key, const std::string& what,
@@ -110,7 +116,7 @@ std::optional<double> Number(const py::object& v, const std::string& key, const 
   const std::string rule = key + "=" + Repr(v) + ": expected " + what + " in " + range;
   const bool number = py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) ||
                       (!py::isinstance<py::str>(v) && py::hasattr(v, "__float__"));
-  if (py::isinstance<py::bool_>(v) || !number) throw CaseError(rule + ", not " + AType(v));
+  if (IsBool(v) || !number) throw CaseError(rule + ", not " + AType(v));
   double d = NAN;
   try {
     d = v.attr("__float__")().cast<double>();
@@ -134,11 +140,13 @@ unsigned long long Whole(const py::object& v, const std::string& key, const std:
   const std::string rule =
       key + "=" + Repr(v) + ": expected " + what + " in " +
       (&r == &kSeedRange ? RangeText(r) : "[" + PyNumber(r.lo) + ", " + PyNumber(r.hi) + "]");
-  if (py::isinstance<py::bool_>(v) || !py::isinstance<py::int_>(v))
+  // An integer, Python's or NumPy's (what has __index__).
+  if (IsBool(v) || !(py::isinstance<py::int_>(v) || py::hasattr(v, "__index__")))
     throw CaseError(rule + ", not " + AType(v));
   unsigned long long n = 0;
   try {
-    n = v.cast<unsigned long long>();  // a negative or too large integer does not cast
+    // A negative or too large integer does not cast.
+    n = py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr())).cast<unsigned long long>();
   } catch (const py::cast_error&) {
     throw CaseError(rule);
   }
@@ -165,9 +173,9 @@ std::optional<double> Rtol(const py::object& v) {
   return Number(v, "rtol", "a relative tolerance", RtolRangeText(), kMinRtol, kMaxRtol);
 }
 bool Flag(const py::object& v, const std::string& key) {
-  if (!py::isinstance<py::bool_>(v))
+  if (!IsBool(v))
     throw CaseError(key + "=" + Repr(v) + ": expected True or False, not " + AType(v));
-  return v.cast<bool>();
+  return v.attr("__bool__")().cast<bool>();
 }
 
 // A Python dict as a TOML table (the case-file format), for the loaders. `where` names the key;
@@ -434,6 +442,11 @@ PYBIND11_MODULE(needle, m) {
       "A case: its file's sections, read and written like a dict (case['needle']['mass_kg'] = "
       "1.6, 'train' in case, case.keys(), case.to_dict()). Validated as the file would be when "
       "run, and when a section is assigned or deleted.")
+      .def(py::init(
+               [](const py::object& source, const std::optional<std::string>& name,
+                  const py::object& cycle) { return LoadAnyCase(source, name, cycle, "Case"); }),
+           arg("source"), py::kw_only(), arg("name") = py::none(), arg("cycle") = py::none(),
+           "needle.Case(source): as needle.load_case(source)")
       .def_property_readonly("path", [](const PyCase& c) { return c.name; })
       .def_property_readonly("title", [](PyCase& c) { return Validated(c)->title; })
       .def_property_readonly("speed_rpm", [](PyCase& c) { return Validated(c)->engine.speed_rpm; })

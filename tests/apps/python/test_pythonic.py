@@ -9,6 +9,7 @@ import subprocess
 import sys
 import tomllib
 
+import numpy as np
 import pytest
 
 import needle
@@ -105,6 +106,17 @@ def test_an_integer_too_large_names_its_key(tmp_path):
         "…(401 characters) is too large for a number (a double)"
 
 
+
+def test_numpy_numbers_are_numbers_and_numpy_bools_are_not():
+    case = needle.load_case(EXAMPLE1)
+    assert needle.kinematics(case, rpm=np.float32(300))["speed_rpm"] == 300.0
+    assert needle.overspeed(case, threads=np.int64(1))["threads"] == 1
+    assert message(lambda: needle.kinematics(case, rpm=np.True_)) == \
+        f"rpm={np.True_!r}: expected a speed in rpm in [1, 50000], not a {type(np.True_).__name__}"
+    assert message(lambda: needle.overspeed(case, threads=np.int64(-1))) == \
+        f"threads={np.int64(-1)!r}: expected a number of threads in [0, 4096]"
+
+
 # Sources: a path, an os.PathLike, a needle.Case or a dict, for every function.
 
 def test_every_function_takes_a_path_a_pathlike_a_case_or_a_dict():
@@ -117,6 +129,7 @@ def test_every_function_takes_a_path_a_pathlike_a_case_or_a_dict():
         assert f(data_of(EXAMPLE1))["exit_status"] == expected["exit_status"], command
     spec = os.path.join(ROOT, "cases", "matec-2018-synth.toml")
     assert same(needle.synth(pathlib.Path(spec)), needle.synth(spec))
+    assert same(needle.spring(needle.Case(pathlib.Path(EXAMPLE1))), needle.spring(case))
     with pytest.raises(TypeError) as e:
         needle.spring(42)
     assert str(e.value) == \
