@@ -1,11 +1,14 @@
 """needle from Python: Basu's Example 1 loaded, its lift, velocity, acceleration and jerk (SVAJ)
-plotted when matplotlib is there, one dynamic run, and an overspeed sweep.
+plotted when matplotlib is there, one dynamic run, an overspeed sweep, and the case changed and
+checked again.
 
     cmake --build build && PYTHONPATH=build/python python3 docs/python_example.py [OUT.png]
 
 Every function returns what `needle COMMAND --json` prints, as a dict (the keys name their
 units), with the command's table as NumPy arrays in SI under "columns" and the command's exit
-status under "exit_status"; bad input raises needle.CaseError with the command line's message.
+status under "exit_status"; bad input raises needle.CaseError naming the case's key or the
+keyword. A case is a path, a dict of the file's sections, or a needle.Case, which reads and
+writes like that dict.
 """
 import os
 import sys
@@ -52,3 +55,8 @@ n_dyn = sweep["liftoff_rpm_dynamic"]
 print(f"n_qs {sweep['liftoff_rpm_quasi_static']:.1f} rpm, n_dyn "
       + (f"{n_dyn:.1f} rpm" if n_dyn is not None else "none in the range")
       + f" ({len(sweep['rows'])} speeds on {sweep['threads']} threads)")
+
+case["needle"]["mass_kg"] *= 2  # a needle.Case reads and writes like a dict of its sections
+heavy = needle.spring(case)
+print(f"with twice the mass ({case['needle']['mass_kg']} kg): n_qs "
+      f"{heavy['liftoff_rpm_quasi_static']:.1f} rpm")

@@ -1,6 +1,7 @@
 """The Python module against the command line: on every bundled case and every command that
 applies, the module's dict is the CLI's --json object (plus 'columns' and 'exit_status'), and a
-case the CLI refuses raises needle.CaseError with the CLI's one line. Run by ctest with
+case the CLI refuses raises needle.CaseError with the CLI's one line (test_pythonic.py: the
+keywords, the paths and needle.Case as a mapping). Run by ctest with
 PYTHONPATH=build/python and NEEDLE_BINARY=build/needle."""
 import glob
 import json
@@ -92,20 +93,21 @@ def test_a_bad_dict_raises_the_files_message(tmp_path):
         needle.load_case(data, name=str(bad))
     assert "needle: " + str(e.value) == err
     assert "\n" not in str(e.value)
-    with pytest.raises(needle.CaseError, match="<dict>: engine.speed_rpm: expected a number"):
+    with pytest.raises(needle.CaseError, match=r"^<dict>: \[engine\] speed_rpm: expected a number, string, bool, list or dict, got an object$"):
         needle.load_case({"engine": {"speed_rpm": object()}})
 
 
-def test_bad_options_raise_the_cli_messages():
+def test_bad_options_raise_messages_naming_the_keyword():
     case = needle.load_case(os.path.join(ROOT, "cases", "basu-example1.toml"))
     with pytest.raises(needle.CaseError) as e:
         needle.simulate(case, method="euler")
-    assert str(e.value).startswith('--method: unknown method "euler"')
+    assert str(e.value).startswith("method='euler': unknown method; expected one of auto, dopri5")
     with pytest.raises(needle.CaseError) as e:
         needle.kinematics(case, rpm=float("nan"))
-    assert str(e.value) == "--rpm: expected a speed in rpm in [1, 50000], got nan"
-    with pytest.raises(needle.CaseError, match=r"^--rtol: must be in \[1e-14, 1e-2\]"):
+    assert str(e.value) == "rpm=nan: expected a speed in rpm in [1, 50000]"
+    with pytest.raises(needle.CaseError) as e:
         needle.simulate(case, rtol=1.0)
+    assert str(e.value) == "rtol=1.0: expected a relative tolerance in [1e-14, 1e-2]"
 
 
 def test_columns_are_the_table_in_si():
@@ -149,6 +151,7 @@ def test_the_example_script_runs(tmp_path):
                        text=True, env=env)
     assert p.returncode == 0, p.stderr
     assert "n_qs 649.5 rpm, n_dyn 650.4 rpm" in p.stdout
+    assert "with twice the mass (23.0 kg): n_qs 459.3 rpm" in p.stdout
 
 
 def test_tolerance_shards_are_the_study():
