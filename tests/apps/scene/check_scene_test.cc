@@ -505,3 +505,31 @@ TEST(CheckSceneTest, AContactForceOfZeroFailsWhateverTheLimit) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A limit the case sets names its key as its source; the defaults name theirs (survivors of
+// scripts/mutate.py on JudgeLimits: the source label was never asserted).
+TEST(CheckSceneTest, ALimitTheCaseSetsNamesItsKey) {
+  const Case c = ParseCase(MediumSpeedEngine(6) +
+                               "[profile]\nbase_radius_mm = 40\nroller_radius_mm = 10\n"
+                               "[limits]\nseating_velocity_m_s = 1.4\nlash_impact_velocity_m_s = "
+                               "1.3\nseparation_margin_percent = 5\nhertz_stress_MPa = 1400\n"
+                               "contact_length_mm = 8\n",
+                           "medium.toml");
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_EQ(Row(r, "seating_velocity").source, "[limits] seating_velocity");
+  EXPECT_EQ(Row(r, "lash_impact_speed").source, "[limits] lash_impact_velocity");
+  EXPECT_EQ(Row(r, "separation_margin").source, "[limits] separation_margin_percent");
+  EXPECT_EQ(Row(r, "hertz_stress").source, "[limits] hertz_stress_MPa");
+  const Case d = ParseCase(MediumSpeedEngine(6), "medium.toml");
+  const CheckResult rd = CheckScene(d, MakeLiftLaw(d), o);
+  EXPECT_EQ(Row(rd, "seating_velocity").source, "Blair: optimum ramp velocity 1.0-1.5 m/s");
+  EXPECT_EQ(Row(rd, "separation_margin").source, "model: n_dyn > f n");
+}
+
+}  // namespace
+}  // namespace needle
