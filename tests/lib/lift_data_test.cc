@@ -791,6 +791,18 @@ TEST(CadTableTest, NoisyTablesHaveNoBreaks) {
   EXPECT_TRUE(choice.measured);
 }
 
+// Where only s''' jumps (the top of the cycloidal rise and fall: s'' = 0 on both sides), the
+// lines of s2 see a kink but the cubics no jump of s'': no break, on the exact rounded table.
+TEST(CadTableTest, ThirdDerivativeJumpsAreNoBreaks) {
+  LiftTable t;
+  for (double deg = -15; deg <= 80; deg += 0.5) {
+    t.crank_rad.push_back(deg * kDeg);
+    t.lift_m.push_back(std::round(kLaws[0].Lift_mm(deg) * 1e6) * 1e-9);
+  }
+  EXPECT_TRUE(
+      FindBreaks(t.crank_rad, t.lift_m, EstimateNoiseRobust(t.crank_rad, t.lift_m)).empty());
+}
+
 // A corner (the velocity jumps) is found, located, and refused by a case with one line naming
 // the file, the line, the angle and what to do.
 TEST(CadTableTest, CornersAreRefused) {
