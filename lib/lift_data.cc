@@ -497,7 +497,10 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
       cuts.push_back(x[first]);
       cuts.push_back(x[last]);
       const double between = EstimateNoiseBetweenBreaks(x, y, cuts);
-      const bool exact = q && between <= kExactDigitsFactor * *q / std::sqrt(12.0);
+      double largest = 0.0;
+      for (double v : y) largest = std::max(largest, std::abs(v));
+      const bool exact = q && between <= std::max(kExactDigitsFactor * *q / std::sqrt(12.0),
+                                                  kExactRelativeFloor * largest);
       std::string where;
       for (size_t k = 0; k < at.size() && k < 8; ++k) {
         std::ostringstream deg;

@@ -135,6 +135,12 @@ constexpr double kBreakSnapFraction = 0.02;
 /// twice allows for the law's own sixth derivative and the rounding of the angles.
 constexpr double kExactDigitsFactor = 3.0;
 
+/// ... or at most this fraction of the largest |lift|, whichever is larger: a table printed to
+/// all of a double's digits (1e-12 mm on a 154 mm cam) is exact where its law's own sixth
+/// differences and the last digits' rounding leave ~1e-14 of the lift; no measurement comes
+/// near (the finest gauges read 1e-6 of their range).
+constexpr double kExactRelativeFloor = 1e-13;
+
 /// A place where a derivative of the lift jumps.
 struct LiftBreak {
   double crank_rad = 0.0;  ///< where, rad (between readings, or at one)
