@@ -1,6 +1,8 @@
 #include "lib/lift_data.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <limits>
@@ -167,6 +169,272 @@ double EstimateNoise(const std::vector<double>& x, const std::vector<double>& y)
   return count > 0 ? std::sqrt(sum / count) : 0.0;
 }
 
+namespace {
+
+// A cubic fitted by least squares to readings [from, to) of (x, y), in u = (θ − c)/h.
+struct SideCubic {
+  double c = 0.0, h = 1.0;
+  Eigen::Vector4d a = Eigen::Vector4d::Zero();
+  double Value(double t, int order) const {
+    const double u = (t - c) / h;
+    double v = 0.0;
+    for (int m = 3; m >= order; --m) {
+      double falling = 1.0;
+      for (int j = 0; j < order; ++j) falling *= (m - j);
+      v = v * u + falling * a(m);
+    }
+    return v / std::pow(h, order);
+  }
+};
+
+SideCubic FitSide(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                  size_t to, double c, double h, double* sum_squares = nullptr) {
+  SideCubic s;
+  s.c = c;
+  s.h = h;
+  Eigen::MatrixXd v(to - from, 4);
+  Eigen::VectorXd r(to - from);
+  for (size_t i = from; i < to; ++i) {
+    const double u = (x[i] - c) / h;
+    v.row(i - from) << 1.0, u, u * u, u * u * u;
+    r(i - from) = y[i];
+  }
+  s.a = v.colPivHouseholderQr().solve(r);
+  if (sum_squares) *sum_squares = (v * s.a - r).squaredNorm();
+  return s;
+}
+
+// A root of f on [lo, hi] by sampling and bisection; nullopt when f keeps its sign.
+template <class F>
+std::optional<double> RootIn(F f, double lo, double hi) {
+  constexpr int kSamples = 64;
+  double a = lo, fa = f(lo);
+  for (int k = 1; k <= kSamples; ++k) {
+    double b = lo + (hi - lo) * k / kSamples;
+    const double fb = f(b);
+    if (fa == 0.0) return a;
+    if (fa * fb < 0.0) {
+      for (int it = 0; it < 100; ++it) {
+        const double m = 0.5 * (a + b), fm = f(m);
+        if (fm == 0.0) return m;
+        if ((fm < 0.0) == (fa < 0.0)) {
+          a = m;
+          fa = fm;
+        } else {
+          b = m;
+        }
+      }
+      return 0.5 * (a + b);
+    }
+    a = b;
+    fa = fb;
+  }
+  if (fa == 0.0) return a;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vector<double>& y,
+                                  double sigma_m) {
+  std::vector<LiftBreak> found;
+  const long n = static_cast<long>(x.size());
+  const long m = kBreakSideWindows, d = kBreakSideWindows + 2;
+  if (n != static_cast<long>(y.size()) || n < 2 * (m + d + 6) + 2) return found;
+  // s2[i] = 2 f[x_{i-1}, x_i, x_{i+1}] ≈ s'', i = 1 … n−2, its weights on the three readings.
+  std::vector<double> s2(n, 0.0), at(n, 0.0);
+  std::vector<std::array<double, 3>> w2(n);
+  for (long i = 1; i + 1 < n; ++i) {
+    const double a = x[i - 1], b = x[i], c = x[i + 1];
+    w2[i] = {2.0 / ((a - b) * (a - c)), 2.0 / ((b - a) * (b - c)), 2.0 / ((c - a) * (c - b))};
+    s2[i] = w2[i][0] * y[i - 1] + w2[i][1] * y[i] + w2[i][2] * y[i + 1];
+    at[i] = (a + b + c) / 3.0;
+  }
+  // Ĵ_k over the interval (x_k, x_k+1): the right line's value at its middle minus the left's,
+  // from s2 at k−m … k−1 (readings ≤ x_k) and k+2 … k+m+1 (readings ≥ x_k+1); and its noise.
+  // Ĉ_k: the two windows across the interval less the mean of the two lines there: a corner
+  // (s' jumps by K) makes them K/h apiece, where an s'' jump or a smooth law leaves them between.
+  std::vector<double> jump(n, 0.0), noise(n, 0.0), spike(n, 0.0), spike_noise(n, 0.0);
+  std::vector<double> wy(n, 0.0), wc(n, 0.0);
+  for (long k = m + 1; k + m + 2 < n; ++k) {
+    std::fill(wy.begin() + (k - m - 1), wy.begin() + (k + m + 3), 0.0);
+    std::fill(wc.begin() + (k - m - 1), wc.begin() + (k + m + 3), 0.0);
+    // The line through s2[from … from+m) at `where`, its weights on the readings added to `to`.
+    auto side = [&](long from, double where, double sign, std::vector<double>& to) {
+      double mean = 0.0, sxx = 0.0;
+      for (long i = from; i < from + m; ++i) mean += at[i] / m;
+      for (long i = from; i < from + m; ++i) sxx += (at[i] - mean) * (at[i] - mean);
+      double v = 0.0;
+      for (long i = from; i < from + m; ++i) {
+        const double a = 1.0 / m + (at[i] - mean) * (where - mean) / sxx;  // line's weight
+        v += a * s2[i];
+        for (int j = 0; j < 3; ++j) to[i - 1 + j] += sign * a * w2[i][j];
+      }
+      return v;
+    };
+    const double mid = 0.5 * (x[k] + x[k + 1]);
+    jump[k] = side(k + 2, mid, 1.0, wy) - side(k - m, mid, -1.0, wy);
+    for (long i = k; i <= k + 1; ++i) {
+      spike[k] += s2[i] - 0.5 * (side(k + 2, at[i], -0.5, wc) + side(k - m, at[i], -0.5, wc));
+      for (int j = 0; j < 3; ++j) wc[i - 1 + j] += w2[i][j];
+    }
+    double w = 0.0, c = 0.0;
+    for (long i = k - m - 1; i < k + m + 3; ++i) {
+      w += wy[i] * wy[i];
+      c += wc[i] * wc[i];
+    }
+    noise[k] = sigma_m * std::sqrt(w);
+    spike_noise[k] = sigma_m * std::sqrt(c);
+  }
+  const double tail = TailSigmas(n, kBreakSigmas);
+  // Stands out: above its noise, and above the smooth level around it.
+  auto stands_out = [&](const std::vector<double>& v, const std::vector<double>& v_noise, long k) {
+    double around[8];
+    for (long j = 0; j < 4; ++j) {
+      around[2 * j] = std::abs(v[k - d - j]);
+      around[2 * j + 1] = std::abs(v[k + d + j]);
+    }
+    // The median: a break beside (two or three of them) or the law's smooth level passing
+    // zero on one side (a few) does not move it.
+    std::nth_element(around, around + 4, around + 8);
+    const double smooth = around[4];
+    return std::abs(v[k]) > tail * v_noise[k] && std::abs(v[k]) > kBreakOverSmooth * smooth;
+  };
+  std::vector<long> flagged;
+  for (long k = m + 1 + d + 3; k + m + 2 + d + 3 < n; ++k) {
+    if (stands_out(jump, noise, k) || stands_out(spike, spike_noise, k)) flagged.push_back(k);
+  }
+  // Runs of flagged intervals (a break at a reading flags the two beside it, its neighbours see
+  // a part of it): the largest |Ĵ| of each run is the break's interval.
+  const long p = kBreakFitPoints;
+  for (size_t r = 0; r < flagged.size();) {
+    size_t e = r;
+    long k = flagged[r];
+    while (e + 1 < flagged.size() && flagged[e + 1] - flagged[e] <= 2) {
+      ++e;
+      if (std::max(std::abs(jump[flagged[e]]), std::abs(spike[flagged[e]])) >
+          std::max(std::abs(jump[k]), std::abs(spike[k]))) {
+        k = flagged[e];
+      }
+    }
+    r = e + 1;
+    LiftBreak b;
+    // The interval is the one near the run's whose two sides' cubics fit their readings best:
+    // the readings of a side all lie on it there.
+    {
+      double best = std::numeric_limits<double>::infinity();
+      const long around = k;
+      for (long kk = around - 2; kk <= around + 2; ++kk) {
+        if (kk - p + 1 < 0 || kk + p >= n) continue;
+        const double h = x[kk + 1] - x[kk], c = 0.5 * (x[kk] + x[kk + 1]);
+        double left_ss = 0.0, right_ss = 0.0;
+        FitSide(x, y, kk - p + 1, kk + 1, c, h, &left_ss);
+        FitSide(x, y, kk + 1, kk + p + 1, c, h, &right_ss);
+        if (left_ss + right_ss < best) {
+          best = left_ss + right_ss;
+          k = kk;
+        }
+      }
+    }
+    if (k - p + 1 < 0 || k + p >= n) continue;
+    {
+      const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+      const SideCubic left = FitSide(x, y, k - p + 1, k + 1, c, h);
+      const SideCubic right = FitSide(x, y, k + 1, k + p + 1, c, h);
+      // Equal slopes within half a step of the interval: s'' jumps; else a corner there.
+      const double lo = x[k] - 0.5 * h, hi = x[k + 1] + 0.5 * h;
+      const auto slopes =
+          RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); }, lo, hi);
+      if (slopes) {
+        b.order = 2;
+        b.crank_rad = *slopes;
+        b.jump = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
+      } else {
+        b.order = 1;
+        const auto lifts =
+            RootIn([&](double t) { return right.Value(t, 0) - left.Value(t, 0); }, lo, hi);
+        b.crank_rad = lifts.value_or(c);
+        b.jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
+      }
+      b.lift_m = 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
+    }
+    if (k - p + 1 < 0 || k + p >= n) continue;
+    // A jump, not a steep but smooth change over a few readings (a jerk-limited law's ramp of
+    // s''): the two sides' cubics fit their readings kBreakOverSmooth times better than one
+    // cubic fits them all.
+    {
+      const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+      double left_ss = 0.0, right_ss = 0.0, joint_ss = 0.0;
+      FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
+      FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
+      FitSide(x, y, k - p + 1, k + p + 1, c, h, &joint_ss);
+      const double sides = std::sqrt((left_ss + right_ss) / (2 * p - 8));
+      const double joint = std::sqrt(joint_ss / (2 * p - 4));
+      if (!(kBreakOverSmooth * sides < joint && joint > tail * sigma_m)) continue;
+    }
+    // An s'' jump is measured alike by the lines of s2 and by the cubics; a jump of s''' (a
+    // kink of s'', which the lines see as J₃·h and the cubics as nothing) is no break here.
+    if (b.order == 2 && !(std::abs(b.jump - jump[k]) <= kBreakJumpAgreement * std::abs(jump[k])))
+      continue;
+    const double h = x[k + 1] - x[k];
+    b.index = static_cast<size_t>(k);
+    if (std::abs(b.crank_rad - x[k]) <= kBreakSnapFraction * h) {
+      b.crank_rad = x[k];
+      b.lift_m = y[k];
+    } else if (std::abs(b.crank_rad - x[k + 1]) <= kBreakSnapFraction * h) {
+      b.crank_rad = x[k + 1];
+      b.lift_m = y[k + 1];
+      b.index = static_cast<size_t>(k + 1);
+    }
+    if (found.empty() || b.crank_rad > found.back().crank_rad) found.push_back(b);
+  }
+  return found;
+}
+
+std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
+  for (int k = 0; k <= 12; ++k) {
+    const double q = std::pow(10.0, -k);  // mm
+    bool fits = true;
+    for (double v : lift_m) {
+      const double r = v * 1e3 / q;
+      if (std::abs(r - std::round(r)) > 1e-6 * std::max(1.0, 1e-9 * std::abs(r))) {
+        fits = false;
+        break;
+      }
+    }
+    if (fits) return q * 1e-3;
+  }
+  return std::nullopt;
+}
+
+double EstimateNoiseBetweenBreaks(const std::vector<double>& x, const std::vector<double>& y,
+                                  const std::vector<double>& breaks_rad) {
+  constexpr int kOrder = 6;  // sixth divided differences: blind to quintics
+  double sum = 0.0;
+  long count = 0;
+  for (size_t i = 0; i + kOrder < x.size(); ++i) {
+    bool across = false;
+    for (double b : breaks_rad) across = across || (b > x[i] && b < x[i + kOrder]);
+    if (across) continue;
+    double dd = 0.0, w2 = 0.0;
+    bool flat = true;
+    for (int j = 0; j <= kOrder; ++j) {
+      double prod = 1.0;
+      for (int l = 0; l <= kOrder; ++l) {
+        if (l != j) prod *= x[i + j] - x[i + l];
+      }
+      const double w = 1.0 / prod;
+      dd += w * y[i + j];
+      w2 += w * w;
+      if (y[i + j] != y[i]) flat = false;
+    }
+    if (flat) continue;
+    sum += dd * dd / w2;
+    ++count;
+  }
+  return count > 0 ? std::sqrt(sum / count) : 0.0;
+}
+
 LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
   LiftLawChoice c;
   c.law.spline = o.spline;
@@ -176,6 +444,111 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
   const bool dense = static_cast<int>(given.crank_rad.size()) >= kDenseTablePoints;
   c.measured = (dense || o.noise_m.has_value()) && o.breaks_rad.empty();
   c.table = given;
+  // Breaks found in the table (the file comment's FindBreaks): where they lie inside the open
+  // lift and the table between them is exact to its printed digits, the law is built apart on
+  // each piece, as with stated breaks.
+  std::string found_reason;
+  std::optional<double> noise_between;  // σ̂ with the windows across the breaks left out
+  const size_t count = given.crank_rad.size();
+  const bool seek = o.find_breaks && o.breaks_rad.empty() && !o.noise_m && count > 0 &&
+                    count == given.lift_m.size();
+  if (seek) {
+    const auto& x = given.crank_rad;
+    const auto& y = given.lift_m;
+    // The open lift as LiftLaw takes an exact table's: last leading zero to first trailing one.
+    // A corner at the seat (within a step of it) is the open lift's end, not the lift's.
+    size_t first = 0, last = count - 1;
+    while (first + 1 < count && y[first] <= 0.0 && y[first + 1] <= 0.0) ++first;
+    while (last > first && y[last] <= 0.0 && y[last - 1] <= 0.0) --last;
+    for (const LiftBreak& b : FindBreaks(x, y, EstimateNoiseRobust(x, y))) {
+      if (b.order == 2) {
+        c.breaks_found.push_back(b);
+      } else if (!c.corner && b.crank_rad > x[std::min(first + 1, last)] &&
+                 b.crank_rad < x[std::max(last - 1, first)]) {  // a step clear of the seat
+        c.corner = b;
+      }
+    }
+    if (c.corner) return c;  // refused by the caller
+    const SplineKind kind = o.kind.value_or(SplineKind::kNotAKnot);
+    const bool pieces_fit = kind == SplineKind::kNotAKnot || kind == SplineKind::kNatural ||
+                            kind == SplineKind::kQuintic;
+    // Each piece keeps the readings its spline needs: a break closer to the one before it (or
+    // to the open lift's ends) is left out.
+    std::vector<const LiftBreak*> inside;
+    auto readings = [&](double from, double to) {  // readings strictly between, plus both ends
+      return 2 + std::count_if(x.begin(), x.end(), [&](double t) { return t > from && t < to; });
+    };
+    for (const LiftBreak& b : c.breaks_found) {
+      const double from = inside.empty() ? x[first] : inside.back()->crank_rad;
+      if (b.crank_rad > x[first] && b.crank_rad < x[last] &&
+          readings(from, b.crank_rad) >= MinimumPoints(kind)) {
+        inside.push_back(&b);
+      }
+    }
+    while (!inside.empty() && readings(inside.back()->crank_rad, x[last]) < MinimumPoints(kind)) {
+      inside.pop_back();
+    }
+    if (!inside.empty()) {
+      std::vector<double> at;
+      for (const LiftBreak* b : inside) at.push_back(b->crank_rad);
+      const std::optional<double> q = o.resolution_m ? o.resolution_m : PrintedResolution(y);
+      // The open lift's ends are junctions too (the seat): windows across them are left out.
+      std::vector<double> cuts = at;
+      cuts.push_back(x[first]);
+      cuts.push_back(x[last]);
+      const double between = EstimateNoiseBetweenBreaks(x, y, cuts);
+      double largest = 0.0;
+      for (double v : y) largest = std::max(largest, std::abs(v));
+      const bool exact = q && between <= std::max(kExactDigitsFactor * *q / std::sqrt(12.0),
+                                                  kExactRelativeFloor * largest);
+      std::string where;
+      for (size_t k = 0; k < at.size() && k < 8; ++k) {
+        std::ostringstream deg;
+        deg.precision(6);
+        deg << at[k] * 180.0 / 3.14159265358979323846;
+        where += (k ? ", " : "") + deg.str();
+      }
+      if (at.size() > 8) where += ", …";
+      found_reason = std::to_string(at.size()) + " breaks found (s'' jumps at " + where +
+                     " deg); residual between them " + Mm(between) + " mm, " +
+                     (q ? "printed digits " + Mm(*q) + " mm" : std::string("digits unknown"));
+      if (exact && pieces_fit) {
+        c.measured = false;
+        c.law.breaks_rad = at;
+        c.noise_m = *q / std::sqrt(12.0);
+        c.noise_source = "rounding";
+        // A reading at each break between readings, its lift from the sides' cubics.
+        LiftTable t;
+        size_t next = 0;
+        for (size_t i = 0; i < count; ++i) {
+          while (next < inside.size() && inside[next]->crank_rad < x[i]) {
+            t.crank_rad.push_back(inside[next]->crank_rad);
+            t.lift_m.push_back(inside[next]->lift_m);
+            ++next;
+          }
+          if (next < inside.size() && inside[next]->crank_rad == x[i]) ++next;
+          t.crank_rad.push_back(x[i]);
+          t.lift_m.push_back(y[i]);
+        }
+        c.table = t;
+        const std::string points = std::to_string(count) + " points";
+        if (o.kind) {
+          c.law.spline.kind = *o.kind;
+          c.reason = "stated in the case; exact table (" + points + "), " + found_reason +
+                     ": at them, built apart on each piece";
+        } else {
+          c.law.spline.kind = SplineKind::kNotAKnot;
+          c.reason = "exact table (" + points + "), " + found_reason +
+                     ": not-a-knot cubic on each piece between them";
+        }
+        return c;
+      }
+      found_reason +=
+          exact ? ": \"" + SplineKindName(kind) + "\" cannot be built apart, breaks not used"
+                : ": above them, measured data, breaks not used";
+      if (!exact) noise_between = between;  // the jumps are no noise
+    }
+  }
   // Outliers are sought in dense measured data only: on a sparse table the shape itself stands
   // out of the cubic through each reading's neighbours.
   if (c.measured && dense && given.crank_rad.size() == given.lift_m.size()) {
@@ -201,7 +574,8 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
     c.noise_m = *o.noise_m;
     c.noise_source = "stated";
   } else if (dense) {
-    c.estimated_noise_m = EstimateNoise(table.crank_rad, table.lift_m);
+    c.estimated_noise_m =
+        noise_between ? *noise_between : EstimateNoise(table.crank_rad, table.lift_m);
     c.noise_m = *c.estimated_noise_m;
     c.noise_source = "estimated";
     if (o.resolution_m && c.noise_m < *o.resolution_m / std::sqrt(12.0)) {
@@ -220,7 +594,8 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
     c.law.negative_sigmas = TailSigmas(n, kNegativeSigmas);
     c.law.negative_allowance_m = c.law.negative_sigmas * c.noise_m;
   }
-  const std::string noise = "noise " + Mm(c.noise_m) + " mm (" + c.noise_source + ")";
+  std::string noise = "noise " + Mm(c.noise_m) + " mm (" + c.noise_source + ")";
+  if (!found_reason.empty()) noise += "; " + found_reason;
   if (o.kind) {
     c.law.spline.kind = *o.kind;
     c.reason = std::string("stated in the case; ") +

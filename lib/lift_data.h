@@ -91,6 +91,80 @@ struct LiftOutlier {
 std::vector<LiftOutlier> FindOutliers(const std::vector<double>& crank_rad,
                                       const std::vector<double>& lift_m, double robust_sigma_m);
 
+/// Break detection (docs/model.md §2). A table exported from CAD of a cam drawn from arcs or
+/// joined laws is exact, but its s'' jumps at every junction; a spline across a junction smears
+/// the jump (and a dense table with jumps looks noisy to EstimateNoise). FindBreaks looks for
+/// them in the table alone: the second divided differences (≈ s'') of kBreakSideWindows windows
+/// on each side of every interval are fitted with a line each and extrapolated to the interval;
+/// the difference Ĵ of the two is s'''s jump there. An interval holds a break when |Ĵ| stands
+///  - above TailSigmas(N, kBreakSigmas) times its own noise (σ times the norm of its weights on
+///    the readings): the table's rounding or noise cannot make it, and
+///  - above kBreakOverSmooth times the median of |Ĵ| at the eight intervals kBreakSideWindows
+///    + 2 … + 5 away on either side (clear of this interval's windows): the extrapolation error
+///    of a smooth law changes slowly along the table, a jump stands alone.
+/// A corner (s' jumps by K) shows in the two windows across the interval instead (K/h each):
+/// their excess Ĉ over the two lines is tested the same way. A candidate is kept when the two
+/// sides' cubics (below) fit their readings kBreakOverSmooth times better than one cubic fits
+/// them all: a jump, not a steep but smooth change over a few readings.
+/// The break is then located to a fraction of the grid step: cubics fitted by least squares to
+/// kBreakFitPoints readings on each side meet there with equal slopes (s'' jumps: the root of
+/// the difference of their slopes) or, where their slopes never meet near the interval, with a
+/// corner (s' jumps: the root of the difference of their lifts).
+
+/// Fewer windows of s'' on a side than this and the extrapolation is not checked.
+constexpr int kBreakSideWindows = 4;
+/// Readings of each side's cubic that locates a break: two more than a cubic needs.
+constexpr int kBreakFitPoints = 6;
+/// Least |Ĵ| over its noise, in σ (TailSigmas raises it with the number of intervals): far out
+/// of what the table's rounding or noise gives at any interval.
+constexpr double kBreakSigmas = 6.0;
+/// Least |Ĵ| over the smooth-law level around it: a jump stands ten times above the slowly
+/// changing extrapolation error of the law beside it.
+constexpr double kBreakOverSmooth = 10.0;
+/// An s'' jump's two measures, Ĵ and the jump of the located cubics' s'', agree within this
+/// fraction of Ĵ (within 0.5 % on exact tables at 0.1…0.5°); where s''' jumps instead (a
+/// cycloidal or 3-4-5 law's junction, s'' continuous), Ĵ sees J₃·h and the cubics nothing, so they
+/// disagree by all of it: no break.
+constexpr double kBreakJumpAgreement = 0.05;
+/// A break found within this fraction of the grid step of a reading is put at the reading (no
+/// knot a hair's breadth from another; the lift moves by J·(0.02 h)²/2 there, far below 1e-9 m
+/// on any grid of a degree or less).
+constexpr double kBreakSnapFraction = 0.02;
+/// An exact table: the RMS of its sixth differences' pseudo-residuals, the windows across the
+/// breaks left out, is at most this many times the σ of its printed digits' rounding (q/√12):
+/// twice allows for the law's own sixth derivative and the rounding of the angles.
+constexpr double kExactDigitsFactor = 3.0;
+
+/// ... or at most this fraction of the largest |lift|, whichever is larger: a table printed to
+/// all of a double's digits (1e-12 mm on a 154 mm cam) is exact where its law's own sixth
+/// differences and the last digits' rounding leave ~1e-14 of the lift; no measurement comes
+/// near (the finest gauges read 1e-6 of their range).
+constexpr double kExactRelativeFloor = 1e-13;
+
+/// A place where a derivative of the lift jumps.
+struct LiftBreak {
+  double crank_rad = 0.0;  ///< where, rad (between readings, or at one)
+  int order = 2;           ///< the derivative that jumps: 2 (s'', a junction) or 1 (s', a corner)
+  double jump = 0.0;       ///< its jump, right minus left, m/rad^order
+  double lift_m = 0.0;     ///< the lift there, m (the two sides' cubics, averaged)
+  size_t index = 0;        ///< the reading at or just before it
+};
+
+/// Breaks of a table (see above), increasing; `sigma_m` is the σ of its readings (the robust
+/// σ̂: a few jumps do not move it), m, ≥ 0.
+std::vector<LiftBreak> FindBreaks(const std::vector<double>& crank_rad,
+                                  const std::vector<double>& lift_m, double sigma_m);
+
+/// The rounding of the readings, m: the largest 10^-k mm (k = 0…12) of which every lift in mm is
+/// a multiple (to 1e-6 of it); nullopt when none is (lifts not written in decimal mm).
+std::optional<double> PrintedResolution(const std::vector<double>& lift_m);
+
+/// σ̂ of the readings from sixth divided differences (blind to quintics), leaving out every
+/// window that is flat or holds one of `breaks_rad` strictly inside; m, 0 when none is left.
+double EstimateNoiseBetweenBreaks(const std::vector<double>& crank_rad,
+                                  const std::vector<double>& lift_m,
+                                  const std::vector<double>& breaks_rad);
+
 /// What a case says about its lift data. Every field has a default (nothing stated).
 struct LiftDataOptions {
   std::optional<SplineKind> kind;             ///< stated spline kind
@@ -101,6 +175,9 @@ struct LiftDataOptions {
   /// Stated angles where s'' jumps, rad (LiftLawOptions::breaks_rad): the table is then a
   /// designed cam's exact lift however dense, with a not-a-knot cubic on each piece by default.
   std::vector<double> breaks_rad;
+  /// Breaks are sought in the table (FindBreaks) when none are stated and the noise is not
+  /// stated; false (`breaks_deg = []`) switches that off.
+  bool find_breaks = true;
   /// Outliers of measured data are left out of the fit (and of σ̂); otherwise they are only
   /// listed in LiftLawChoice::outliers, for the caller to refuse the table.
   bool drop_outliers = false;
@@ -117,7 +194,14 @@ struct LiftLawChoice {
   /// Measured data's outliers (FindOutliers with EstimateNoiseRobust), in table order.
   std::vector<LiftOutlier> outliers;
   double robust_noise_m = 0.0;  ///< the robust σ̂ they were sought with, m (measured data)
-  /// The table the law is built on: the given one, less the outliers when they are dropped.
+  /// Breaks found in the table (FindBreaks), s'' jumps only; empty when stated or not sought.
+  /// Those strictly inside the open lift are the law's breaks when the table is judged exact.
+  std::vector<LiftBreak> breaks_found;
+  /// The first corner (s' jumps) found: the table cannot be differentiated there. ChooseLiftLaw
+  /// leaves the refusal to the caller, who knows the file.
+  std::optional<LiftBreak> corner;
+  /// The table the law is built on: the given one, less the outliers when they are dropped,
+  /// plus a reading at each break found between readings (its lift from the sides' cubics).
   LiftTable table;
 };
 

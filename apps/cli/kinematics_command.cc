@@ -138,6 +138,11 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
     j["noise_mm"] = choice.noise_m * 1e3;
     j["noise_source"] = choice.noise_source;
     j["measured"] = choice.measured;
+    if (!choice.breaks_found.empty()) {  // found in the table (stated ones are in the case)
+      nlohmann::json breaks = nlohmann::json::array();
+      for (double b : choice.law.breaks_rad) breaks.push_back(b / kDeg);
+      j["breaks_deg"] = breaks;
+    }
     j["points"] = c.lift.table.crank_rad.size();
     j["open_deg"] = sum.open_rad / kDeg;
     j["close_deg"] = sum.close_rad / kDeg;
@@ -176,6 +181,11 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
     const bool paper = o.units == "paper";
     out << (c.title.empty() ? c.path : c.title) << '\n';
     out << "spline " << SplineKindName(law.kind()) << ": " << choice.reason << '\n';
+    if (!choice.breaks_found.empty() && !choice.law.breaks_rad.empty()) {
+      out << "breaks found (s'' jumps, the spline built apart at them):";
+      for (double b : choice.law.breaks_rad) out << ' ' << Fixed(b / kDeg, 4);
+      out << " deg\n";
+    }
     out << "open lift " << Fixed(sum.open_rad / kDeg, 2) << " to " << Fixed(sum.close_rad / kDeg, 2)
         << " deg";
     if (law.closed_level_m() > 0)

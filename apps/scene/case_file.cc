@@ -14,6 +14,7 @@
 #include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/input_file.h"
+#include "lib/output.h"
 #include "lib/toml_text.h"
 #include "lib/units.h"
 #include "spring/resonance.h"
@@ -837,7 +838,7 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
   if (auto breaks = r.OptionalQuantityArray("breaks", Dimension::kAngle)) {
     if (normal) r.Fail(r.last_key(), "applies to a table (crank_deg + lift_mm, or csv)");
     if (lift.noise_m) r.Fail(r.last_key(), "marks an exact table; it cannot go with noise_mm");
-    if (breaks->empty()) r.Fail(r.last_key(), "expected at least one angle");
+    lift.breaks_given = true;  // `breaks_deg = []`: none, and none sought in the table
     for (size_t i = 1; i < breaks->size(); ++i) {
       if (!((*breaks)[i] > (*breaks)[i - 1]))
         r.Fail(r.last_key(), "angles must increase strictly (entry " + std::to_string(i) + ")");
@@ -1312,7 +1313,21 @@ LiftLawChoice CaseLiftChoice(const Case& c) {
   o.close_rad = c.lift.close_rad;
   o.breaks_rad = c.lift.breaks_rad;
   o.drop_outliers = c.lift.drop_outliers;
+  o.find_breaks = !c.lift.breaks_given;
   LiftLawChoice choice = ChooseLiftLaw(c.lift.table, o);
+  if (choice.corner) {
+    // A corner: the lift's velocity jumps, the law cannot be differentiated there.
+    const LiftBreak& k = *choice.corner;
+    std::string at = c.path + ": [lift] " + c.lift.lift_key + "[" + std::to_string(k.index) + "]";
+    if (k.index < c.lift.lines.size()) {
+      at = c.lift.csv_path + ":" + std::to_string(c.lift.lines[k.index]);
+      if (c.lift.csv_path != c.path) at = c.path + ": [lift] csv: " + at;
+    }
+    throw CaseError(at + ": the lift has a corner at " + Fixed(k.crank_rad / kDeg, 3) +
+                    " deg (its velocity jumps by " + Fixed(k.jump * 1e3 * kDeg, 4) +
+                    " mm/deg): a needle's lift has no corners; correct the readings there, or "
+                    "round the corner off in the law the table was made from");
+  }
   if (choice.outliers.empty()) return choice;
   // Where a reading is: the CSV file's line, or the entry of the case's array.
   auto where = [&](size_t index) {

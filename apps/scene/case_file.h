@@ -77,7 +77,9 @@ struct LiftSection {
   std::optional<double> noise_m;  ///< `noise_mm`: σ of the readings, m
   std::optional<double> open_rad, close_rad;  ///< `open_deg`, `close_deg`: the open lift
   std::vector<double> breaks_rad;  ///< `breaks_deg`: where s'' jumps (a cam of arcs), rad
-  std::string source;              ///< "table", "csv FILE" or "basu normal curve"
+  /// `breaks_deg` stated (also as []): the breaks are not sought in the table (FindBreaks).
+  bool breaks_given = false;
+  std::string source;  ///< "table", "csv FILE" or "basu normal curve"
   /// `outliers = "drop"`: outliers of measured data are left out with a warning (default
   /// "refuse": the case is refused naming the first; lib/lift_data.h FindOutliers).
   bool drop_outliers = false;
