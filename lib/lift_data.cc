@@ -145,16 +145,24 @@ std::vector<LiftOutlier> FindOutliers(const std::vector<double>& x, const std::v
   return found;
 }
 
-double EstimateNoise(const std::vector<double>& x, const std::vector<double>& y) {
-  constexpr int kOrder = 4;  // fourth divided differences: blind to cubics
+namespace {
+
+// The RMS pseudo-residual e = D/√Σw² (D the divided difference of `order`, Σw² the sum of its
+// squared weights) over the windows of order + 1 consecutive readings that are not flat and
+// span none of `breaks_rad`; 0 without any.
+double PseudoResidualRms(const std::vector<double>& x, const std::vector<double>& y, int order,
+                         const std::vector<double>& breaks_rad) {
   double sum = 0.0;
   long count = 0;
-  for (size_t i = 0; i + kOrder < x.size(); ++i) {
+  for (size_t i = 0; i + order < x.size(); ++i) {
+    bool across = false;
+    for (double b : breaks_rad) across = across || (b > x[i] && b < x[i + order]);
+    if (across) continue;
     double d = 0.0, w2 = 0.0;
     bool flat = true;
-    for (int j = 0; j <= kOrder; ++j) {
+    for (int j = 0; j <= order; ++j) {
       double p = 1.0;
-      for (int l = 0; l <= kOrder; ++l) {
+      for (int l = 0; l <= order; ++l) {
         if (l != j) p *= x[i + j] - x[i + l];
       }
       const double w = 1.0 / p;
@@ -163,10 +171,16 @@ double EstimateNoise(const std::vector<double>& x, const std::vector<double>& y)
       if (y[i + j] != y[i]) flat = false;
     }
     if (flat) continue;
-    sum += d * d / w2;  // e² with e = D/√Σw²
+    sum += d * d / w2;  // e²
     ++count;
   }
   return count > 0 ? std::sqrt(sum / count) : 0.0;
+}
+
+}  // namespace
+
+double EstimateNoise(const std::vector<double>& x, const std::vector<double>& y) {
+  return PseudoResidualRms(x, y, 4, {});  // fourth divided differences: blind to cubics
 }
 
 namespace {
@@ -409,30 +423,7 @@ std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
 
 double EstimateNoiseBetweenBreaks(const std::vector<double>& x, const std::vector<double>& y,
                                   const std::vector<double>& breaks_rad) {
-  constexpr int kOrder = 6;  // sixth divided differences: blind to quintics
-  double sum = 0.0;
-  long count = 0;
-  for (size_t i = 0; i + kOrder < x.size(); ++i) {
-    bool across = false;
-    for (double b : breaks_rad) across = across || (b > x[i] && b < x[i + kOrder]);
-    if (across) continue;
-    double dd = 0.0, w2 = 0.0;
-    bool flat = true;
-    for (int j = 0; j <= kOrder; ++j) {
-      double prod = 1.0;
-      for (int l = 0; l <= kOrder; ++l) {
-        if (l != j) prod *= x[i + j] - x[i + l];
-      }
-      const double w = 1.0 / prod;
-      dd += w * y[i + j];
-      w2 += w * w;
-      if (y[i + j] != y[i]) flat = false;
-    }
-    if (flat) continue;
-    sum += dd * dd / w2;
-    ++count;
-  }
-  return count > 0 ? std::sqrt(sum / count) : 0.0;
+  return PseudoResidualRms(x, y, 6, breaks_rad);  // sixth differences: blind to quintics
 }
 
 LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {

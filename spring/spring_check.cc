@@ -8,6 +8,41 @@
 
 namespace needle {
 
+std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_screen) {
+  std::vector<std::string> out;
+  if (!r.combustion_ok) {
+    out.push_back("combustion load: the preload " + Fixed(r.train.preload_N / kKgf, 1) +
+                  " kgf does not withstand S x F_g = " + Fixed(r.safety_factor, 2) + " x " +
+                  Fixed(r.gas_force_N / kKgf, 1) + " kgf (" + r.gas_source + "), margin " +
+                  Fixed(r.combustion_margin_percent, 1) + " %");
+  }
+  if (!r.basu_ok) {
+    out.push_back("Basu's formula: the preload " + Fixed(r.train.preload_N / kKgf, 1) + " kgf is " +
+                  Fixed(-*r.basu_deviation_percent, 1) + " % below " +
+                  Fixed(*r.basu_preload_N / kKgf, 1) + " kgf (tolerance " +
+                  Fixed(r.basu_tolerance_percent, 1) + " %)");
+  }
+  if (!r.preload_ok) {
+    out.push_back("inertia sizing: the preload " + Fixed(r.train.preload_N, 1) +
+                  " N is below the required " + Fixed(r.required_preload_N, 1) + " N, margin " +
+                  Fixed(r.preload_margin_percent, 1) + " %");
+  }
+  const bool helical_fails =
+      r.helical && (!r.helical->stress_ok || !r.helical->clearance_ok || !r.helical->fatigue_ok ||
+                    (!r.helical->surge_ok && surge_screen));
+  if (helical_fails) {
+    out.push_back(std::string("helical spring: ") +
+                  (!r.helical->stress_ok ? "shear stress above the allowable; " : "") +
+                  (!r.helical->clearance_ok ? "coil gaps below S_a; " : "") +
+                  (!r.helical->surge_ok && surge_screen ? "surge ratio below 13; " : "") +
+                  (!r.helical->fatigue_ok
+                       ? "fatigue: the working stroke is outside the Goodman line (n_f " +
+                             Fixed(r.helical->fatigue.goodman_safety_factor, 2) + " < 1)"
+                       : ""));
+  }
+  return out;
+}
+
 SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParameters& spring,
                               const LiftLaw& law, double speed_rpm, bool four_stroke,
                               const std::string& where) {
@@ -52,6 +87,7 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
           : INFINITY;
   r.preload_ok = r.train.preload_N >= r.required_preload_N;
   const double S = spring.safety_factor;
+  r.safety_factor = S;
   r.gas_force_N = r.train.gas_force_N;
   r.gas_source = needle.gas_source;
   r.combustion_ok = r.train.preload_N >= S * r.gas_force_N;
@@ -63,33 +99,6 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
     r.basu_deviation_percent = 100.0 * (r.train.preload_N - *r.basu_preload_N) / *r.basu_preload_N;
     r.basu_ok = *r.basu_deviation_percent >= -r.basu_tolerance_percent;
   }
-  if (!r.combustion_ok) {
-    r.failures.push_back("combustion load: the preload " + Fixed(r.train.preload_N / kKgf, 1) +
-                         " kgf does not withstand S x F_g = " + Fixed(S, 2) + " x " +
-                         Fixed(r.gas_force_N / kKgf, 1) + " kgf (" + r.gas_source + "), margin " +
-                         Fixed(r.combustion_margin_percent, 1) + " %");
-  }
-  if (!r.basu_ok) {
-    r.failures.push_back("Basu's formula: the preload " + Fixed(r.train.preload_N / kKgf, 1) +
-                         " kgf is " + Fixed(-*r.basu_deviation_percent, 1) + " % below " +
-                         Fixed(*r.basu_preload_N / kKgf, 1) + " kgf (tolerance " +
-                         Fixed(r.basu_tolerance_percent, 1) + " %)");
-  }
-  if (!r.preload_ok) {
-    r.failures.push_back("inertia sizing: the preload " + Fixed(r.train.preload_N, 1) +
-                         " N is below the required " + Fixed(r.required_preload_N, 1) +
-                         " N, margin " + Fixed(r.preload_margin_percent, 1) + " %");
-  }
-  if (r.helical && !r.helical->pass()) {
-    r.failures.push_back(std::string("helical spring: ") +
-                         (!r.helical->stress_ok ? "shear stress above the allowable; " : "") +
-                         (!r.helical->clearance_ok ? "coil gaps below S_a; " : "") +
-                         (!r.helical->surge_ok ? "surge ratio below 13; " : "") +
-                         (!r.helical->fatigue_ok
-                              ? "fatigue: the working stroke is outside the Goodman line (n_f " +
-                                    Fixed(r.helical->fatigue.goodman_safety_factor, 2) + " < 1)"
-                              : ""));
-  }
   for (double v : {r.inertia_force_N, r.min_quasi_static.force_N, r.required_preload_N,
                    r.gas_force_N, r.train.preload_N}) {
     if (!std::isfinite(v)) {
@@ -99,6 +108,7 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
                       "preload and rate for absurd values");
     }
   }
+  r.failures = SpringFailures(r);
   r.pass = r.failures.empty();
   return r;
 }

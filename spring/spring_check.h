@@ -39,6 +39,7 @@ struct SpringCheckResult {
   std::string gas_source;                  ///< where F_g comes from
   double combustion_margin_percent = 0.0;  ///< 100·(P₀ − S·F_g)/(S·F_g); +∞ when F_g ≤ 0
   bool combustion_ok = true;               ///< P₀ ≥ S·F_g
+  double safety_factor = 1.5;              ///< S of the combustion load and the sizing
   std::optional<double> basu_deviation_percent;  ///< 100·(P₀ − P_Basu)/P_Basu
   double basu_tolerance_percent = 10.0;
   bool basu_ok = true;  ///< deviation ≥ −tolerance (true without a diameter)
@@ -46,6 +47,11 @@ struct SpringCheckResult {
   std::vector<std::string> failures;  ///< one line per failing sub-check, with its margin
   bool pass = false;
 };
+
+/// The failing sub-checks of `r`, one line each with its margin, from its sub-verdicts. With
+/// `surge_screen` false the helical check's f_e/f_cam ≥ 13 item is left out: a caller that has
+/// judged surge by its effect in the dynamics (apps/scene/check_scene.h) makes it a warning.
+std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_screen = true);
 
 /// The check at `speed_rpm` of `spring` on `needle` driven by `law` (C²), the cam at half
 /// crank speed when `four_stroke`. Throws CaseError prefixed with `where` (the case file) when

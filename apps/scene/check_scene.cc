@@ -282,21 +282,9 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
       if (!harm) {
         ratio.verdict = "warning";
         ratio.note += "; the coils' dynamics show no harm";
-        // The spring check's own screen (the same f_1/f_cam >= 13) warns with it: its failing
-        // line loses that item, and goes when nothing else is left in it; the spring check
-        // passes when nothing else fails it.
-        const auto drop = [](std::vector<std::string>& lines, const std::string& head) {
-          const std::string item = "surge ratio below 13; ";
-          for (auto it = lines.begin(); it != lines.end(); ++it) {
-            if (it->rfind(head, 0) != 0) continue;
-            if (const size_t at = it->find(item); at != std::string::npos)
-              it->erase(at, item.size());
-            if (*it == head) lines.erase(it);
-            break;
-          }
-        };
-        drop(r.failing, "spring check: helical spring: ");
-        drop(r.spring->failures, "helical spring: ");
+        // The spring check's own screen (the same f_1/f_cam >= 13) warns with it: its failures
+        // are those of its other sub-checks (CheckScene lists them after the limits).
+        r.spring->failures = SpringFailures(*r.spring, /*surge_screen=*/false);
         r.spring->pass = r.spring->failures.empty();
       } else {
         ratio.note += "; the coils' dynamics show harm (the surge rows)";
@@ -401,8 +389,6 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
   if (c.needle && c.spring && law.HasAcceleration()) {
     r.spring = CheckSpring(c, law, rpm);
     r.n_qs_rpm = r.spring->liftoff_rpm_quasi_static;
-    for (const std::string& f : r.spring->failures) fail("spring check: " + f);
-    if (!r.spring->pass && r.spring->failures.empty()) fail("spring check: fails");
   } else {
     r.skipped.push_back(!law.HasAcceleration()
                             ? "spring check: the spline is C¹ only (no acceleration)"
@@ -488,6 +474,13 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     r.skipped.push_back("cam profile: the case has no [profile] section");
   }
   if (law.HasAcceleration()) JudgeLimits(c, law, cam_zero_crank_rad, r);
+  // The spring check's failures first, as the surge verdict (JudgeLimits) left them.
+  if (r.spring) {
+    std::vector<std::string> lines;
+    for (const std::string& f : r.spring->failures) lines.push_back("spring check: " + f);
+    if (!r.spring->pass && r.spring->failures.empty()) lines.push_back("spring check: fails");
+    r.failing.insert(r.failing.begin(), lines.begin(), lines.end());
+  }
   r.pass = r.failing.empty();  // one rule: a scene passes when nothing fails
   return r;
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lib/rigid_train.h"
+
 namespace needle {
 namespace {
 
@@ -155,7 +157,8 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
     const double f = std::max(0.0, fc);
     min_fc_lift_ = std::min(min_fc_lift_, f);
     const TrainParameters& p = train_.parameters();
-    const double hold = p.preload_N + p.rate_N_m * x[0] - p.gas_force_N;
+    const double hold =
+        RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(x[0]);
     const double ratio = hold > 0.0 ? f / hold : 0.0;
     if (ratio < min_ratio_) {
       min_ratio_ = ratio;
