@@ -157,7 +157,7 @@ struct ProfileSection {
   int points = 720;  ///< points over one cam revolution
 };
 
-/// [limits]: the design limits `needle check` judges, one row each (README "The limits table"
+/// [limits]: the design limits `needle check` judges, one row each (docs/springs.md "The limits table"
 /// gives the source of every default).
 struct LimitsSection {
   /// Largest landing speed of the needle on its seat, m/s: the top of Blair's optimum ramp
