@@ -61,6 +61,8 @@ def Keys():
                 for m in re.finditer(QUANTITY + r'\(\s*(?:r,\s*|ch,\s*)?"(\w+)",\s*Dimension::k(\w+)',
                                      body):
                     keys[section].add((m.group(1), m.group(2)))
+                if re.search(r"\bOptionalCycle\(", body):  # the engine cycle's key
+                    keys[section].add(("cycle", ""))
                 # plain keys read in a loop: {"key", &member} pairs and lists of key names
                 for m in re.finditer(r'\{"(\w+)", &', body):
                     keys[section].add((m.group(1), ""))
