@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/check_writers.h"  // CheckJson, for the callers of the command
 #include "apps/cli/output_format.h"
 #include "apps/scene/check_scene.h"
 
@@ -26,10 +27,6 @@ struct CheckCommandOptions {
 };
 
 CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& options);
-/// What `check --json` prints for case `c` (lift law `law`) and its result; `report_path` is the
-/// report the run wrote.
-nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
-                         const std::string& report_path);
 int RunCheckCommand(const CheckCommandOptions& options);
 
 }  // namespace needle
