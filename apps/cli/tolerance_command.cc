@@ -10,6 +10,7 @@
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
+#include "apps/cli/result_writers.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/tolerance_study.h"
 #include "lib/output.h"
@@ -27,8 +28,6 @@ const std::vector<std::pair<std::string, std::string>> kHeadline = {
     {"dynamics.min_contact_force_during_lift_N", "least contact force in the lift (N)"},
     {"dynamics.max_impact_speed_m_s", "largest impact speed (m/s)"},
 };
-
-nlohmann::json Finite(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
 // The 95 % Wilson interval of a fraction p of n.
 std::pair<double, double> Wilson(double p, double n) {
