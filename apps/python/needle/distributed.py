@@ -1,0 +1,470 @@
+"""needle.distributed: a tolerance study spread over a Dask cluster, resumable shard by shard.
+
+    python3 -m needle.distributed tolerance CASE --samples N --seed S --out DIR \\
+        [--scheduler tcp://HOST:8786] [--json]
+
+Each task is a pure function of (case text and the files it names, seed, first sample, count):
+a shard of the study, computed by needle.tolerance_shard (the library's samples, as
+`needle tolerance --first-sample` computes them). The client writes every finished shard to
+DIR/shards/ as it arrives (NumPy .npz, with the case's hash, the seed and the range in its
+metadata), gathers the shards in sample order and reduces them once with
+needle.tolerance_reduce (the statistics code of `needle tolerance`): the result is the
+one-machine study's, bit for bit. Started again with the same arguments it computes only the
+shards not yet written. Without --scheduler it starts a local cluster on this machine's cores.
+Bad input (the case, an option, a scheduler that does not answer) is one line on stderr and
+exit status 2, with nothing sent. docs/distributed.md says how to run it on several machines.
+"""
+
+import argparse
+import hashlib
+import json
+import math
+import os
+import socket
+import sys
+import tempfile
+import time
+import tomllib
+
+import numpy as np
+
+import needle
+
+SHARD_PREFIX = "tolerance-"
+#: The most of a shard's time the scheduler may take (the task size is chosen for it).
+OVERHEAD_SHARE = 0.01
+
+
+class BadInput(Exception):
+    """A one-line message about the user's input: exit status 2."""
+
+
+# The case, as shipped: its text and the files it names.
+
+
+def case_bundle(path):
+    """The case file `path` as a task ships it: {'path', 'text', 'files': {name: bytes},
+    'sha256'}; raises BadInput when needle refuses the case."""
+    try:
+        with open(path, "rb") as f:
+            raw = f.read()
+    except OSError as e:
+        raise BadInput(f"{path}: cannot read the case file ({e.strerror})") from None
+    try:
+        text = raw.decode("utf-8")
+        sections = tomllib.loads(text)
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError):
+        sections = None  # needle's own loader names the problem below
+    try:
+        needle.load_case(path)
+    except needle.CaseError as e:
+        raise BadInput(str(e)) from None
+    files = {}
+    csv = (sections or {}).get("lift", {}).get("csv")
+    if isinstance(csv, str):
+        if os.path.isabs(csv) or ".." in csv.replace("\\", "/").split("/"):
+            raise BadInput(f"{path}: [lift] csv: {csv!r}: a distributed study ships the table; "
+                           "expected a path inside the case's folder")
+        with open(os.path.join(os.path.dirname(path), csv), "rb") as f:
+            files[csv] = f.read()
+    digest = hashlib.sha256(raw)
+    for name in sorted(files):
+        digest.update(b"\0" + name.encode() + b"\0" + files[name])
+    return {"path": path, "text": text, "files": files, "sha256": digest.hexdigest()}
+
+
+def _materialized(bundle):
+    """Where a worker reads the case from: the case's own path when it names no file, else a
+    folder of this machine's temporary files holding the case and its files."""
+    if not bundle["files"]:
+        return bundle["path"]
+    folder = os.path.join(tempfile.gettempdir(), "needle-case-" + bundle["sha256"][:16])
+    case_path = os.path.join(folder, os.path.basename(bundle["path"]) or "case.toml")
+    for name, content in list(bundle["files"].items()) + [(case_path, bundle["text"].encode())]:
+        target = os.path.join(folder, name)
+        if os.path.exists(target):
+            continue
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(target))
+        with os.fdopen(fd, "wb") as f:
+            f.write(content)
+        os.replace(tmp, target)
+    return case_path
+
+
+def run_shard(bundle, seed, first, count, threads=1):
+    """One task: samples [first, first + count) of the seed's study of the shipped case, as
+    needle.tolerance_shard's arrays (plus 'seconds' of compute and the 'worker')."""
+    start = time.perf_counter()
+    shard = needle.tolerance_shard(bundle["text"], path=_materialized(bundle),
+                                   shown_as=bundle["path"], seed=seed, first_sample=first,
+                                   samples=count, threads=threads)
+    shard["seconds"] = time.perf_counter() - start
+    shard["worker"] = f"{socket.gethostname()}:{os.getpid()}"
+    return shard
+
+
+# Shard files.
+
+
+def shard_name(first, count):
+    return f"{SHARD_PREFIX}{first:010d}-{count:07d}.npz"
+
+
+def write_shard(folder, meta, shard):
+    """Writes a shard atomically (a reader sees the whole file or none)."""
+    arrays = {
+        "meta": np.array(json.dumps(meta, sort_keys=True)),
+        "input_keys": np.array(shard["input_keys"], dtype=str),
+        "inputs": shard["inputs"],
+        "input_present": shard["input_present"],
+        "output_keys": np.array(shard["output_keys"], dtype=str),
+        "outputs": shard["outputs"],
+        "output_present": shard["output_present"],
+        "pass": shard["pass"],
+        "failing": np.array([json.dumps(f) for f in shard["failing"]], dtype=str),
+        "refused": np.array(shard["refused"], dtype=str),
+    }
+    path = os.path.join(folder, shard_name(meta["first_sample"], meta["samples"]))
+    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".part")
+    with os.fdopen(fd, "wb") as f:
+        np.savez(f, **arrays)
+    os.replace(tmp, path)
+    return path
+
+
+def read_shard(path):
+    """(meta, shard dict as tolerance_reduce takes it), or None for an unreadable file."""
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            meta = json.loads(str(z["meta"]))
+            n = int(meta["samples"])
+            shard = {
+                "first_sample": int(meta["first_sample"]),
+                "samples": n,
+                "input_keys": [str(k) for k in z["input_keys"]],
+                "inputs": z["inputs"].reshape(n, -1),
+                "input_present": z["input_present"].reshape(n, -1),
+                "output_keys": [str(k) for k in z["output_keys"]],
+                "outputs": z["outputs"].reshape(n, -1),
+                "output_present": z["output_present"].reshape(n, -1),
+                "pass": z["pass"],
+                "failing": [json.loads(str(f)) for f in z["failing"]],
+                "refused": [str(r) for r in z["refused"]],
+            }
+    except (OSError, ValueError, KeyError, json.JSONDecodeError):
+        return None
+    return meta, shard
+
+
+def existing_shards(folder, study):
+    """The shards already written for this study inside its range, by first sample. A shard of
+    another case or seed in the folder is refused (BadInput): --out names one study's folder."""
+    found = {}
+    for name in sorted(os.listdir(folder)):
+        if not (name.startswith(SHARD_PREFIX) and name.endswith(".npz")):
+            continue
+        read = read_shard(os.path.join(folder, name))
+        if read is None:
+            continue  # a damaged file: its samples are computed again
+        meta, shard = read
+        if meta.get("case_sha256") != study["case_sha256"] or meta.get("seed") != study["seed"]:
+            raise BadInput(f"--out: {folder} holds shards of another study ({name}: case "
+                           f"{meta.get('case')}, seed {meta.get('seed')}); expected a new folder "
+                           "or this study's")
+        first, n = shard["first_sample"], shard["samples"]
+        if first >= study["first_sample"] and first + n <= study["end"]:
+            found[first] = shard
+    # Overlapping shards (of studies cut into other sizes): keep a chain that does not overlap.
+    chain, end = {}, -1
+    for first in sorted(found):
+        if first >= end:
+            chain[first] = found[first]
+            end = first + found[first]["samples"]
+    return chain
+
+
+def missing_ranges(begin, end, have):
+    """The ranges of [begin, end) no shard in `have` covers."""
+    gaps, at = [], begin
+    for first in sorted(have):
+        if first > at:
+            gaps.append((at, first))
+        at = max(at, first + have[first]["samples"])
+    if at < end:
+        gaps.append((at, end))
+    return gaps
+
+
+def split(gaps, size):
+    return [(a, min(size, hi - a)) for lo, hi in gaps for a in range(lo, hi, size)]
+
+
+# The cluster.
+
+
+def connect(scheduler, workers, timeout):
+    """A Dask client: to the scheduler's address, or to a local cluster of `workers` processes
+    (0: this machine's cores), one thread each."""
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError as e:
+        raise BadInput(f"Dask's distributed is not installed for {sys.executable} ({e}); "
+                       "bash scripts/install-deps.sh installs python3-distributed") from None
+    if scheduler:
+        try:
+            return Client(scheduler, timeout=timeout), None
+        except (OSError, TimeoutError, ValueError) as e:
+            raise BadInput(f"--scheduler {scheduler}: no Dask scheduler answered within "
+                           f"{timeout:g} s ({type(e).__name__}: {str(e).splitlines()[0]})"
+                           ) from None
+    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                           processes=True, host="127.0.0.1",
+                           dashboard_address=":0")  # any free port
+    return Client(cluster, timeout=timeout), cluster
+
+
+def _has_dashboard():
+    try:
+        import bokeh  # noqa: F401  (Dask's dashboard needs it)
+        return True
+    except ImportError:
+        return False
+
+
+def _noop(i):
+    return i
+
+
+def task_overhead(client, rounds=8):
+    """The scheduler's time per task, s: the median round trip of a task that does nothing."""
+    times = []
+    for i in range(rounds):
+        start = time.perf_counter()
+        client.submit(_noop, i, pure=False).result()
+        times.append(time.perf_counter() - start)
+    return sorted(times)[len(times) // 2]
+
+
+def choose_shard_size(samples, slots, seconds_per_sample, overhead_s):
+    """Samples per task: at least enough that the scheduler's time per task stays under 1 % of
+    the task's; then about four tasks per worker thread (a lost shard costs a quarter of a
+    thread's share), and at most 5 minutes of one core."""
+    share = overhead_s / (OVERHEAD_SHARE * max(seconds_per_sample, 1e-9))
+    floor = max(1, math.ceil(share * (1.0 - 1e-12)))  # 10.000000000000002 is 10
+    ceiling = max(floor, math.floor(300.0 / max(seconds_per_sample, 1e-9)))
+    balanced = math.ceil(samples / (4 * max(1, slots)))
+    return min(samples, max(floor, min(balanced, ceiling)))
+
+
+class Progress:
+    """Shards done, samples per second and the time left, on stderr (a terminal: one line
+    redrawn; else a line at most every 5 s and at the end)."""
+
+    def __init__(self, shards, samples, enabled):
+        self.shards, self.samples, self.enabled = shards, samples, enabled
+        self.tty = sys.stderr.isatty()
+        self.start = time.perf_counter()
+        self.shown = 0.0
+        self.done_shards = self.done_samples = 0
+
+    def update(self, n):
+        self.done_shards += 1
+        self.done_samples += n
+        now = time.perf_counter()
+        if not self.enabled or (not self.tty and now - self.shown < 5.0
+                                and self.done_shards < self.shards):
+            return
+        self.shown = now
+        rate = self.done_samples / max(now - self.start, 1e-9)
+        left = (self.samples - self.done_samples) / rate if rate > 0 else math.inf
+        line = (f"tolerance: {self.done_shards}/{self.shards} shards, {self.done_samples}/"
+                f"{self.samples} samples, {rate:.3g} samples/s, {left:.0f} s left")
+        end = "\n" if not self.tty or self.done_shards == self.shards else ""
+        sys.stderr.write(("\r" if self.tty else "") + line + end)
+        sys.stderr.flush()
+
+
+# The study.
+
+
+def tolerance(args):
+    """The study as `python3 -m needle.distributed tolerance` runs it; returns the JSON object."""
+    wall = time.perf_counter()
+    bundle = case_bundle(args.case)
+    # The case as the workers will take it: a case refused here is refused before anything is
+    # sent; the sample's time is the cost the task size is chosen from.
+    probe = time.perf_counter()
+    try:
+        run_shard(bundle, args.seed, args.first_sample, 1)
+    except needle.CaseError as e:
+        raise BadInput(str(e)) from None
+    seconds_per_sample = time.perf_counter() - probe
+    shards_dir = os.path.join(args.out, "shards")
+    study = {"case": args.case, "case_sha256": bundle["sha256"], "seed": args.seed,
+             "first_sample": args.first_sample, "end": args.first_sample + args.samples}
+    have = existing_shards(shards_dir, study) if os.path.isdir(shards_dir) else {}
+    gaps = missing_ranges(study["first_sample"], study["end"], have)
+
+    # Nothing is written before the scheduler answers.
+    client, cluster = connect(args.scheduler, args.workers, args.connect_timeout)
+    try:
+        try:
+            os.makedirs(shards_dir, exist_ok=True)
+        except OSError as e:
+            raise BadInput(f"--out: {args.out}: cannot make the folder ({e.strerror})") from None
+        info = client.scheduler_info()
+        slots = sum(w.get("nthreads", 1) for w in info["workers"].values()) or 1
+        # The dashboard needs Bokeh where the scheduler runs (Debian 12 packages none).
+        dashboard = "dashboard" in info.get("services", {}) and client.run_on_scheduler(
+            _has_dashboard)
+        if dashboard and not args.quiet:
+            print(f"dashboard: {client.dashboard_link}", file=sys.stderr)
+        overhead = task_overhead(client)
+        size = args.shard_size or choose_shard_size(args.samples, slots, seconds_per_sample,
+                                                    overhead)
+        tasks = split(gaps, size)
+        progress = Progress(len(tasks), sum(n for _, n in tasks), not args.quiet)
+        computed, task_seconds = [], 0.0
+        if tasks:
+            from distributed import as_completed
+
+            futures = [client.submit(run_shard, bundle, args.seed, first, n, pure=True,
+                                     key=f"needle-tolerance-{bundle['sha256'][:12]}-"
+                                         f"{args.seed}-{first}-{n}")
+                       for first, n in tasks]
+            for future in as_completed(futures):
+                shard = future.result()
+                meta = {"case": args.case, "case_sha256": bundle["sha256"], "seed": args.seed,
+                        "first_sample": shard["first_sample"], "samples": shard["samples"],
+                        "needle_version": needle.__version__, "worker": shard["worker"]}
+                write_shard(shards_dir, meta, shard)
+                computed.append([shard["first_sample"], shard["samples"]])
+                task_seconds += shard["seconds"]
+                progress.update(shard["samples"])
+                future.release()
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+    gathered = existing_shards(shards_dir, study)
+    if missing_ranges(study["first_sample"], study["end"], gathered):
+        raise RuntimeError("shards are missing after the study: "
+                           f"{missing_ranges(study['first_sample'], study['end'], gathered)}")
+    seconds = time.perf_counter() - wall
+    result = needle.tolerance_reduce(args.case, [gathered[k] for k in sorted(gathered)],
+                                     seed=args.seed, first_sample=args.first_sample,
+                                     threads=slots, seconds=seconds)
+    result.pop("columns", None)
+    result.pop("exit_status", None)
+    computed.sort()
+    result["distributed"] = {
+        "scheduler": args.scheduler or "local",
+        "worker_threads": slots,
+        "shard_size": size,
+        "shards": len(gathered),
+        "computed_shards": computed,
+        "resumed_shards": sorted([k, have[k]["samples"]] for k in have),
+        "probe_seconds_per_sample": seconds_per_sample,
+        "task_overhead_s": overhead,
+        "task_seconds": task_seconds,
+        "samples_per_second": sum(n for _, n in computed) / seconds if computed else None,
+        "shards_folder": shards_dir,
+    }
+    with open(os.path.join(args.out, "tolerance.json"), "w") as f:
+        json.dump(result, f, indent=2)
+    return result
+
+
+def _summary(r):
+    d = r["distributed"]
+    lines = [f"{r['case']}: {r['samples']} samples, seed {r['seed']}, {d['shards']} shards of "
+             f"{d['shard_size']} ({len(d['computed_shards'])} computed, "
+             f"{len(d['resumed_shards'])} already written) on {d['worker_threads']} worker "
+             f"threads, {r['seconds']:.2f} s",
+             f"the check fails in {100 * r['failure_probability']:.2f} % of the samples "
+             f"(95 % {100 * r['failure_probability_95'][0]:.2f} .. "
+             f"{100 * r['failure_probability_95'][1]:.2f} %)"]
+    for item, p in r["failure_by_item"].items():
+        lines.append(f"  {item}: {100 * p:.2f} %")
+    for key in ("overspeed.liftoff_rpm_dynamic", "spring.liftoff_rpm_quasi_static"):
+        dist = r["distributions"].get(key)
+        if dist and dist["count"]:
+            lines.append(f"{key}: mean {dist['mean']:.6g}, 5 % {dist['p05']:.6g}, median "
+                         f"{dist['p50']:.6g}, 95 % {dist['p95']:.6g}")
+    lines.append(f"result: {os.path.join(os.path.dirname(d['shards_folder']), 'tolerance.json')}")
+    return "\n".join(lines)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse's refusals as one line and exit 2."""
+
+    def error(self, message):
+        raise BadInput(message)
+
+
+def parser():
+    p = _Parser(prog="python3 -m needle.distributed",
+                                description="needle studies on a Dask cluster")
+    sub = p.add_subparsers(dest="command", required=True)
+    t = sub.add_parser("tolerance", help="a Monte-Carlo tolerance study (needle tolerance)")
+    t.add_argument("case", metavar="CASE", help="case file; its [tolerance] section")
+    t.add_argument("--samples", type=int, default=1000, help="number of samples (default 1000)")
+    t.add_argument("--seed", type=int, default=1, help="the study's seed (default 1)")
+    t.add_argument("--first-sample", type=int, default=0, help="index of the first sample")
+    t.add_argument("--out", required=True,
+                   help="the study's folder: shards/ as they arrive, tolerance.json at the end")
+    t.add_argument("--scheduler", help="a Dask scheduler's address, tcp://HOST:8786 (default: "
+                   "a local cluster on this machine's cores)")
+    t.add_argument("--workers", type=int, default=0,
+                   help="local cluster only: worker processes (default: the cores)")
+    t.add_argument("--shard-size", type=int, default=0,
+                   help="samples per task (default: from the measured cost per sample, for "
+                   "under 1 %% of scheduling overhead)")
+    t.add_argument("--connect-timeout", type=float, default=10.0,
+                   help="seconds to wait for the scheduler (default 10)")
+    t.add_argument("--json", action="store_true",
+                   help="print needle tolerance --json's object, plus 'distributed'")
+    t.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    return p
+
+
+def check_ranges(args):
+    if not 1 <= args.samples <= 1000000:
+        raise BadInput(f"--samples: expected a number of samples in [1, 1000000], got "
+                       f"{args.samples}")
+    if not 0 <= args.seed < 2**64:
+        raise BadInput(f"--seed: expected a whole number in [0, 2^64), got {args.seed}")
+    if not 0 <= args.first_sample <= 1000000000:
+        raise BadInput(f"--first-sample: expected an index in [0, 1000000000], got "
+                       f"{args.first_sample}")
+    if not 0 <= args.shard_size <= 1000000:
+        raise BadInput(f"--shard-size: expected a number of samples in [1, 1000000] (0: "
+                       f"chosen), got {args.shard_size}")
+    if not 0 <= args.workers <= 1024:
+        raise BadInput(f"--workers: expected a number of processes in [1, 1024] (0: the "
+                       f"cores), got {args.workers}")
+    if not 0 < args.connect_timeout <= 3600:
+        raise BadInput(f"--connect-timeout: expected seconds in (0, 3600], got "
+                       f"{args.connect_timeout}")
+
+
+def main(argv=None):
+    try:
+        args = parser().parse_args(argv)
+        check_ranges(args)
+        result = tolerance(args)
+    except BadInput as e:
+        print(f"needle: {e}", file=sys.stderr)
+        return 2
+    print(json.dumps(result, indent=2) if args.json else _summary(result))
+    return 0
+
+
+if __name__ == "__main__":
+    # Run as the module needle.distributed (not __main__), so that the tasks name their
+    # functions by a module the workers can import.
+    from needle.distributed import main as _main
+
+    sys.exit(_main())

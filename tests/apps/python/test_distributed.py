@@ -1,0 +1,205 @@
+"""needle.distributed on a local Dask cluster of 2 worker processes on the loopback interface:
+the distributed study is `needle tolerance`'s, bit for bit; a study interrupted and started
+again computes only the missing shards; a worker killed while it computes costs nothing but
+time; a scheduler that does not answer is one line and exit 2. Run by ctest with
+PYTHONPATH=build/python and NEEDLE_BINARY=build/needle."""
+import glob
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+import needle
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+BINARY = os.environ.get("NEEDLE_BINARY", os.path.join(ROOT, "build", "needle"))
+# Basu's Example 1 under its own tolerance: 0.1 s a sample, and 6 of these 40 are refused by
+# the model (counted samples, "case refused").
+EXAMPLE1 = os.path.join(ROOT, "cases", "basu-example1.toml")
+SAMPLES, SEED, SHARD = 40, 1, 2
+TIMING = ("seconds", "seconds_per_sample", "threads")
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError as e:
+        pytest.fail(f"Dask's distributed is missing for {sys.executable} ({e}): "
+                    "bash scripts/install-deps.sh installs python3-distributed")
+    c = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                     dashboard_address=":0")
+    client = Client(c)
+    yield c.scheduler_address, client
+    client.close()
+    c.close()
+
+
+def cli_json(case, samples, seed):
+    p = subprocess.run([BINARY, "tolerance", case, "--samples", str(samples), "--seed", str(seed),
+                        "--threads", "2", "--json"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    return json.loads(p.stdout)
+
+
+@pytest.fixture(scope="module")
+def example1_reference():
+    return cli_json(EXAMPLE1, SAMPLES, SEED)
+
+
+def study_args(case, out, scheduler, samples=SAMPLES, seed=SEED, shard=SHARD):
+    return [sys.executable, "-m", "needle.distributed", "tolerance", case, "--samples",
+            str(samples), "--seed", str(seed), "--out", str(out), "--scheduler", scheduler,
+            "--shard-size", str(shard), "--json", "--quiet"]
+
+
+def run_study(*args):
+    p = subprocess.run(study_args(*args), capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    return json.loads(p.stdout)
+
+
+def statistics(j):
+    """The study without the keys that time it (and the distributed run's own)."""
+    return {k: v for k, v in j.items() if k not in TIMING + ("distributed",)}
+
+
+def shard_files(out):
+    return sorted(glob.glob(os.path.join(str(out), "shards", "tolerance-*.npz")))
+
+
+def wait_for_shards(out, count, process, limit_s=120):
+    end = time.monotonic() + limit_s
+    while len(shard_files(out)) < count:
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() < end, "no shards written"
+        time.sleep(0.01)
+
+
+def test_the_distributed_study_is_needle_tolerance(cluster, example1_reference, tmp_path):
+    address, _ = cluster
+    j = run_study(EXAMPLE1, tmp_path / "study", address)
+    assert example1_reference["failure_by_item"]["case refused"] == 0.15  # refused, counted
+    assert statistics(j) == statistics(example1_reference)
+    d = j["distributed"]
+    assert d["shards"] == SAMPLES // SHARD and d["resumed_shards"] == []
+    assert d["computed_shards"] == [[k, SHARD] for k in range(0, SAMPLES, SHARD)]
+    assert d["worker_threads"] == 2
+    assert len(shard_files(tmp_path / "study")) == SAMPLES // SHARD
+    with open(tmp_path / "study" / "tolerance.json") as f:
+        assert json.load(f) == j
+
+
+def test_a_case_with_a_csv_table_is_shipped_with_it(cluster, tmp_path):
+    # The case's table travels with it: the workers read a copy of their own.
+    address, _ = cluster
+    case = os.path.join(ROOT, "cases", "measured-cycloidal.toml")
+    j = run_study(case, tmp_path / "study", address, 20, 5, 5)
+    assert statistics(j) == statistics(cli_json(case, 20, 5))
+
+
+def test_an_interrupted_study_computes_only_the_missing_shards(cluster, example1_reference,
+                                                               tmp_path):
+    address, _ = cluster
+    out = tmp_path / "study"
+    p = subprocess.Popen(study_args(EXAMPLE1, out, address), stdout=subprocess.DEVNULL,
+                         stderr=subprocess.DEVNULL)
+    wait_for_shards(out, 4, p)
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    before = {f: os.stat(f).st_mtime_ns for f in shard_files(out)}
+    assert 4 <= len(before) < SAMPLES // SHARD, "the study was not interrupted"
+    j = run_study(EXAMPLE1, out, address)
+    written = {int(os.path.basename(f).split("-")[1]) for f in before}
+    d = j["distributed"]
+    assert d["resumed_shards"] == [[k, SHARD] for k in sorted(written)]
+    assert d["computed_shards"] == [[k, SHARD] for k in range(0, SAMPLES, SHARD)
+                                    if k not in written]
+    for f, mtime in before.items():
+        assert os.stat(f).st_mtime_ns == mtime, f"{f} was written again"
+    assert statistics(j) == statistics(example1_reference)
+
+
+def test_a_killed_worker_costs_only_time(cluster, example1_reference, tmp_path):
+    address, client = cluster
+    out = tmp_path / "study"
+    p = subprocess.Popen(study_args(EXAMPLE1, out, address), stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    wait_for_shards(out, 2, p)
+    pids = client.run(os.getpid)
+    assert len(pids) == 2
+    # The worker's own process (its nanny starts another); both are computing shards now.
+    victim = sorted(pids.values())[0]
+    assert p.poll() is None and len(shard_files(out)) < SAMPLES // SHARD
+    os.kill(victim, signal.SIGKILL)
+    stdout, stderr = p.communicate(timeout=300)
+    assert p.returncode == 0, stderr
+    j = json.loads(stdout)
+    assert statistics(j) == statistics(example1_reference)
+    assert sorted(k for k, _ in j["distributed"]["computed_shards"]) == list(
+        range(0, SAMPLES, SHARD))
+    client.wait_for_workers(2, timeout=60)
+    assert victim not in client.run(os.getpid).values()
+
+
+def test_a_scheduler_that_does_not_answer_is_one_line_and_exit_2(tmp_path):
+    # Port 9 (discard) on the loopback: nothing listens. The connect timeout is 2 s; with
+    # Python's start, the probe sample and Dask's import the whole refusal takes under 15 s.
+    start = time.monotonic()
+    p = subprocess.run(study_args(EXAMPLE1, tmp_path / "out", "tcp://127.0.0.1:9") +
+                       ["--connect-timeout", "2"], capture_output=True, text=True, timeout=60)
+    elapsed = time.monotonic() - start
+    assert p.returncode == 2
+    assert p.stdout == ""
+    lines = p.stderr.splitlines()
+    assert len(lines) == 1, p.stderr
+    assert lines[0].startswith("needle: --scheduler tcp://127.0.0.1:9: no Dask scheduler "
+                               "answered within 2 s ("), lines[0]
+    assert 2.0 <= elapsed < 15.0
+    assert not os.path.exists(tmp_path / "out"), "something was written"
+
+
+def test_a_bad_case_is_refused_before_anything_is_sent(tmp_path):
+    case = tmp_path / "bad.toml"
+    with open(EXAMPLE1) as f:
+        case.write_text(f.read().replace("mass_kg = ", "mass_kg = -"))
+    p = subprocess.run(study_args(str(case), tmp_path / "out", "tcp://127.0.0.1:9"),
+                       capture_output=True, text=True, timeout=60)
+    cli = subprocess.run([BINARY, "tolerance", str(case)], capture_output=True, text=True)
+    assert cli.returncode == 2 and p.returncode == 2
+    assert p.stderr == cli.stderr and len(p.stderr.splitlines()) == 1
+    assert "mass_kg" in p.stderr
+    assert not os.path.exists(tmp_path / "out")
+
+
+def test_a_folder_of_another_study_is_refused(cluster, tmp_path):
+    address, _ = cluster
+    case = os.path.join(ROOT, "cases", "measured-cycloidal.toml")
+    run_study(case, tmp_path / "study", address, 4, 5, 2)
+    p = subprocess.run(study_args(case, tmp_path / "study", address, 4, 6, 2),
+                       capture_output=True, text=True, timeout=60)
+    assert p.returncode == 2
+    assert p.stderr == (f"needle: --out: {tmp_path / 'study' / 'shards'} holds shards of another "
+                        f"study (tolerance-0000000000-0000002.npz: case {case}, seed 5); "
+                        "expected a new folder or this study's\n")
+
+
+def test_the_package_is_the_module():
+    # `import needle` is the compiled module; needle.distributed is found beside it.
+    import needle.distributed as nd
+    assert nd.needle is needle
+    assert os.path.dirname(os.path.dirname(nd.__file__)) == os.path.dirname(needle.__file__)
+    assert needle.__version__.count(".") == 2
+
+
+def test_shard_sizes_keep_the_scheduler_under_one_percent():
+    from needle.distributed import choose_shard_size
+    # 10 ms a task, 0.1 s a sample: 10 samples are 1 s, of which the 10 ms are 1 %.
+    assert choose_shard_size(10 ** 6, 64, 0.1, 0.01) == 3000  # 5 minutes of one core at most
+    assert choose_shard_size(40, 2, 0.1, 0.01) == 10
+    assert choose_shard_size(40, 64, 0.1, 0.01) == 10  # never under the 1 % floor
+    assert choose_shard_size(5, 64, 0.1, 0.01) == 5
