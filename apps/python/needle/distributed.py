@@ -39,6 +39,10 @@ class BadInput(Exception):
     """A one-line message about the user's input: exit status 2."""
 
 
+class TaskFailed(Exception):
+    """A task the cluster gave up on: one line, exit status 3."""
+
+
 # The case, as shipped: its text and the files it names.
 
 
@@ -334,7 +338,15 @@ def tolerance(args):
                                          f"{args.seed}-{first}-{n}")
                        for first, n in tasks]
             for future in as_completed(futures):
-                shard = future.result()
+                try:
+                    shard = future.result()
+                except Exception as e:  # the cluster gave up on a task (a worker died thrice)
+                    first, n = next(t for t, f in zip(tasks, futures) if f is future)
+                    why = (str(e).splitlines() or [""])[0]
+                    raise TaskFailed(f"shard [{first}, {first + n}) failed on the cluster "
+                                     f"({type(e).__name__}: {why}); the {len(computed)} shards "
+                                     f"written in {shards_dir} are kept: the same command "
+                                     "resumes") from None
                 meta = {"case": args.case, "case_sha256": bundle["sha256"], "seed": args.seed,
                         "first_sample": shard["first_sample"], "samples": shard["samples"],
                         "needle_version": needle.__version__, "worker": shard["worker"]}
@@ -458,6 +470,9 @@ def main(argv=None):
     except BadInput as e:
         print(f"needle: {e}", file=sys.stderr)
         return 2
+    except TaskFailed as e:
+        print(f"needle: {e}", file=sys.stderr)
+        return 3
     print(json.dumps(result, indent=2) if args.json else _summary(result))
     return 0
 
