@@ -768,6 +768,20 @@ PYBIND11_MODULE(needle, m) {
       "pass, failing (each sample's failing items), refused (the model's reason, or '')");
 
   m.def(
+      "case_text",
+      [](const py::object& source) {
+        if (py::isinstance<PyCase>(source)) {
+          PyCase& c = source.cast<PyCase&>();
+          Validated(c);
+          return c.text;
+        }
+        return LoadAnyCase(source, std::nullopt, py::none(), "case_text").text;
+      },
+      py::arg("case"),
+      "The TOML text of a case (a path, a needle.Case or a dict), validated: what the loader "
+      "reads back as the same case (tolerance_shard's `text`)");
+
+  m.def(
       "tolerance_reduce",
       [](const py::object& source, const py::sequence& shards, const py::object& seed,
          const py::object& first_sample, const py::object& threads, double seconds) {

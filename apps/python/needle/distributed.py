@@ -16,7 +16,9 @@ exit status 2, with nothing sent. docs/distributed.md says how to run it on seve
 """
 
 import argparse
+import copy
 import hashlib
+import itertools
 import json
 import math
 import os
@@ -78,13 +80,16 @@ def case_bundle(path):
 
 
 def _materialized(bundle):
-    """Where a worker reads the case from: the case's own path when it names no file, else a
-    folder of this machine's temporary files holding the case and its files."""
+    """The path a worker reads the case as: the case's own when it names no file, else one in a
+    folder of this machine's temporary files holding the files it names (the text itself is
+    parsed as shipped)."""
     if not bundle["files"]:
         return bundle["path"]
-    folder = os.path.join(tempfile.gettempdir(), "needle-case-" + bundle["sha256"][:16])
-    case_path = os.path.join(folder, os.path.basename(bundle["path"]) or "case.toml")
-    for name, content in list(bundle["files"].items()) + [(case_path, bundle["text"].encode())]:
+    digest = hashlib.sha256()
+    for name in sorted(bundle["files"]):
+        digest.update(name.encode() + b"\0" + bundle["files"][name] + b"\0")
+    folder = os.path.join(tempfile.gettempdir(), "needle-case-" + digest.hexdigest()[:16])
+    for name, content in bundle["files"].items():
         target = os.path.join(folder, name)
         if os.path.exists(target):
             continue
@@ -93,7 +98,7 @@ def _materialized(bundle):
         with os.fdopen(fd, "wb") as f:
             f.write(content)
         os.replace(tmp, target)
-    return case_path
+    return os.path.join(folder, os.path.basename(bundle["path"]) or "case.toml")
 
 
 def run_shard(bundle, seed, first, count, threads=1):
@@ -265,8 +270,9 @@ class Progress:
     """Shards done, samples per second and the time left, on stderr (a terminal: one line
     redrawn; else a line at most every 5 s and at the end)."""
 
-    def __init__(self, shards, samples, enabled):
+    def __init__(self, shards, samples, enabled, names=("tolerance", "shards", "samples")):
         self.shards, self.samples, self.enabled = shards, samples, enabled
+        self.names = names
         self.tty = sys.stderr.isatty()
         self.start = time.perf_counter()
         self.shown = 0.0
@@ -282,8 +288,9 @@ class Progress:
         self.shown = now
         rate = self.done_samples / max(now - self.start, 1e-9)
         left = (self.samples - self.done_samples) / rate if rate > 0 else math.inf
-        line = (f"tolerance: {self.done_shards}/{self.shards} shards, {self.done_samples}/"
-                f"{self.samples} samples, {rate:.3g} samples/s, {left:.0f} s left")
+        what, tasks, items = self.names
+        line = (f"{what}: {self.done_shards}/{self.shards} {tasks}, {self.done_samples}/"
+                f"{self.samples} {items}, {rate:.3g} {items}/s, {left:.0f} s left")
         end = "\n" if not self.tty or self.done_shards == self.shards else ""
         sys.stderr.write(("\r" if self.tty else "") + line + end)
         sys.stderr.flush()
@@ -330,6 +337,7 @@ def tolerance(args):
         tasks = split(gaps, size)
         progress = Progress(len(tasks), sum(n for _, n in tasks), not args.quiet)
         computed, task_seconds = [], 0.0
+        submitted = time.perf_counter()
         if tasks:
             from distributed import as_completed
 
@@ -355,6 +363,7 @@ def tolerance(args):
                 task_seconds += shard["seconds"]
                 progress.update(shard["samples"])
                 future.release()
+        compute_wall = time.perf_counter() - submitted
     finally:
         client.close()
         if cluster is not None:
@@ -381,12 +390,187 @@ def tolerance(args):
         "probe_seconds_per_sample": seconds_per_sample,
         "task_overhead_s": overhead,
         "task_seconds": task_seconds,
-        "samples_per_second": sum(n for _, n in computed) / seconds if computed else None,
+        # Samples per second from the tasks' submission to the last shard written (the
+        # cluster's start, the probe and the reduction aside), and over the whole command.
+        "compute_seconds": compute_wall,
+        "samples_per_second": (sum(n for _, n in computed) / compute_wall
+                               if computed else None),
+        "samples_per_second_overall": (sum(n for _, n in computed) / seconds
+                                       if computed else None),
         "shards_folder": shards_dir,
     }
     with open(os.path.join(args.out, "tolerance.json"), "w") as f:
         json.dump(result, f, indent=2)
     return result
+
+
+# Maps: the nominal check on a grid of speeds × case keys.
+
+#: The scatter of a map's points: none (the sample is the nominal case).
+NO_SCATTER = {"lift_mm": 0.0, "lift_correlation_deg": 0.0, "mass_percent": 0.0,
+              "preload_percent": 0.0, "rate_percent": 0.0, "stiffness_percent": 0.0,
+              "play_mm": 0.0, "speed_percent": 0.0}
+
+
+def _value(text, option):
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        raise BadInput(f"{option}: {text!r}: expected a number, true/false or a quoted "
+                       "string") from None
+
+
+def grid_axes(args):
+    """[(key, values)]: the speeds first, then each --set SECTION.KEY=V1,V2,… in order."""
+    axes = [("engine.speed_rpm", [_value(v, "--speeds") for v in args.speeds.split(",")])]
+    for item in args.set or []:
+        key, _, values = item.partition("=")
+        section, _, name = key.partition(".")
+        if not (section and name and values) or "." in name:
+            raise BadInput(f"--set {item!r}: expected SECTION.KEY=V1,V2,… "
+                           "(needle.mass_kg=1.2,1.4)")
+        if key in (k for k, _ in axes):
+            raise BadInput(f"--set {item!r}: {key} is given twice")
+        axes.append((key, [_value(v, f"--set {key}") for v in values.split(",")]))
+    return axes
+
+
+def map_bundles(args, base):
+    """One bundle a grid point: the case with the point's values and no scatter, validated
+    here (a value the case refuses is refused before anything is sent)."""
+    axes = grid_axes(args)
+    data = needle.load_case(args.case).to_dict()
+    bundles, points = [], []
+    for values in itertools.product(*[v for _, v in axes]):
+        d = copy.deepcopy(data)
+        point = {}
+        for (key, _), v in zip(axes, values):
+            section, name = key.split(".")
+            d.setdefault(section, {})[name] = v
+            point[key] = v
+        d["tolerance"] = dict(NO_SCATTER)
+        try:
+            text = needle.case_text(needle.load_case(d, name=args.case))
+        except needle.CaseError as e:
+            raise BadInput(f"{e} (grid point {point})") from None
+        digest = hashlib.sha256(text.encode() + base["sha256"].encode()).hexdigest()
+        bundles.append({"path": args.case, "text": text, "files": base["files"],
+                        "sha256": digest})
+        points.append(point)
+    return axes, points, bundles
+
+
+def run_points(bundles):
+    """One task of a map: each point's nominal check, as a one-sample shard."""
+    return [run_shard(b, 1, 0, 1) for b in bundles]
+
+
+def point_result(point, shard):
+    out = dict(zip(shard["output_keys"], shard["outputs"][0].tolist()))
+    present = dict(zip(shard["output_keys"], shard["output_present"][0].tolist()))
+    value = {k: (v if present[k] and math.isfinite(v) else None) for k, v in out.items()}
+    return dict(point, **{
+        "pass": bool(shard["pass"][0]),
+        "failing": shard["failing"][0],
+        "refused": shard["refused"][0],
+        "n_dyn_rpm": value.get("overspeed.liftoff_rpm_dynamic"),
+        "n_qs_rpm": value.get("spring.liftoff_rpm_quasi_static"),
+        "outputs": value,
+    })
+
+
+def speed_map(args):
+    """The map as `python3 -m needle.distributed map` runs it; returns its JSON object."""
+    wall = time.perf_counter()
+    base = case_bundle(args.case)
+    axes, points, bundles = map_bundles(args, base)
+    grid_hash = hashlib.sha256("".join(b["sha256"] for b in bundles).encode()).hexdigest()
+    probe = time.perf_counter()
+    try:
+        run_shard(bundles[0], 1, 0, 1)
+    except needle.CaseError as e:
+        raise BadInput(str(e)) from None
+    seconds_per_point = time.perf_counter() - probe
+    folder = os.path.join(args.out, "points")
+    have = {}
+    if os.path.isdir(folder):
+        for name in os.listdir(folder):
+            if name.startswith("points-") and name.endswith(".json"):
+                try:
+                    with open(os.path.join(folder, name)) as f:
+                        chunk = json.load(f)
+                except (OSError, ValueError):
+                    continue
+                if chunk.get("grid_sha256") != grid_hash:
+                    raise BadInput(f"--out: {folder} holds points of another map ({name}); "
+                                   "expected a new folder or this map's")
+                have[chunk["first"]] = dict(chunk, samples=len(chunk["points"]))
+    gaps = missing_ranges(0, len(points), have)
+    client, cluster = connect(args.scheduler, args.workers, args.connect_timeout)
+    try:
+        os.makedirs(folder, exist_ok=True)
+        info = client.scheduler_info()
+        slots = sum(w.get("nthreads", 1) for w in info["workers"].values()) or 1
+        overhead = task_overhead(client)
+        size = args.chunk or choose_shard_size(len(points), slots, seconds_per_point, overhead)
+        tasks = split(gaps, size)
+        progress = Progress(len(tasks), sum(n for _, n in tasks), not args.quiet,
+                            ("map", "chunks", "points"))
+        computed = []
+        if tasks:
+            from distributed import as_completed
+
+            futures = {client.submit(run_points, bundles[a:a + n], pure=True,
+                                     key=f"needle-map-{grid_hash[:12]}-{a}-{n}"): (a, n)
+                       for a, n in tasks}
+            for future in as_completed(list(futures)):
+                first, n = futures[future]
+                try:
+                    shards = future.result()
+                except Exception as e:
+                    why = (str(e).splitlines() or [""])[0]
+                    raise TaskFailed(f"points [{first}, {first + n}) failed on the cluster "
+                                     f"({type(e).__name__}: {why}); the points written in "
+                                     f"{folder} are kept: the same command resumes") from None
+                chunk = {"grid_sha256": grid_hash, "first": first,
+                         "points": [point_result(points[first + i], sh)
+                                    for i, sh in enumerate(shards)]}
+                fd, tmp = tempfile.mkstemp(dir=folder, suffix=".part")
+                with os.fdopen(fd, "w") as f:
+                    json.dump(chunk, f)
+                os.replace(tmp, os.path.join(folder, f"points-{first:07d}-{n:05d}.json"))
+                have[first] = dict(chunk, samples=n)
+                computed.append([first, n])
+                progress.update(n)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    results = []
+    for first in sorted(have):
+        results.extend(have[first]["points"])
+    result = {"case": args.case, "grid": dict(axes), "points": results,
+              "seconds": time.perf_counter() - wall,
+              "distributed": {"scheduler": args.scheduler or "local", "worker_threads": slots,
+                              "chunk": size, "computed_chunks": sorted(computed),
+                              "probe_seconds_per_point": seconds_per_point,
+                              "task_overhead_s": overhead, "out": args.out}}
+    with open(os.path.join(args.out, "map.json"), "w") as f:
+        json.dump(result, f, indent=2)
+    return result
+
+
+def _map_summary(r):
+    keys = list(r["grid"])
+    lines = ["  ".join(f"{k:>18}" for k in keys) +
+             f"  {'n_dyn (rpm)':>12}  {'n_qs (rpm)':>11}  verdict"]
+    for p in r["points"]:
+        fmt = lambda v: "-" if v is None else f"{v:.1f}"  # noqa: E731
+        verdict = "pass" if p["pass"] else "FAIL: " + ", ".join(p["failing"])
+        lines.append("  ".join(f"{p[k]!s:>18}" for k in keys) +
+                     f"  {fmt(p['n_dyn_rpm']):>12}  {fmt(p['n_qs_rpm']):>11}  {verdict}")
+    lines.append(f"map: {os.path.join(r['distributed']['out'], 'map.json')}")
+    return "\n".join(lines)
 
 
 def _summary(r):
@@ -439,10 +623,31 @@ def parser():
     t.add_argument("--json", action="store_true",
                    help="print needle tolerance --json's object, plus 'distributed'")
     t.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    m = sub.add_parser("map", help="the nominal check on a grid of speeds × case keys")
+    m.add_argument("case", metavar="CASE", help="case file")
+    m.add_argument("--speeds", required=True, help="crank speeds, rpm: 300,400,500")
+    m.add_argument("--set", action="append", metavar="SECTION.KEY=V1,V2",
+                   help="a case key's values (repeatable): spring.preload_kgf=150,176")
+    m.add_argument("--out", required=True,
+                   help="the map's folder: points/ as they arrive, map.json at the end")
+    m.add_argument("--scheduler", help="a Dask scheduler's address (default: a local cluster)")
+    m.add_argument("--workers", type=int, default=0,
+                   help="local cluster only: worker processes (default: the cores)")
+    m.add_argument("--chunk", type=int, default=0,
+                   help="points per task (default: from the measured cost of one)")
+    m.add_argument("--connect-timeout", type=float, default=10.0,
+                   help="seconds to wait for the scheduler (default 10)")
+    m.add_argument("--json", action="store_true", help="print map.json's object")
+    m.add_argument("--quiet", action="store_true", help="no progress on stderr")
     return p
 
 
 def check_ranges(args):
+    if args.command == "map":
+        if not 0 <= args.chunk <= 1000000:
+            raise BadInput(f"--chunk: expected a number of points in [1, 1000000] (0: chosen), "
+                           f"got {args.chunk}")
+        args.samples, args.seed, args.first_sample, args.shard_size = 1, 1, 0, 0
     if not 1 <= args.samples <= 1000000:
         raise BadInput(f"--samples: expected a number of samples in [1, 1000000], got "
                        f"{args.samples}")
@@ -466,14 +671,15 @@ def main(argv=None):
     try:
         args = parser().parse_args(argv)
         check_ranges(args)
-        result = tolerance(args)
+        result = tolerance(args) if args.command == "tolerance" else speed_map(args)
     except BadInput as e:
         print(f"needle: {e}", file=sys.stderr)
         return 2
     except TaskFailed as e:
         print(f"needle: {e}", file=sys.stderr)
         return 3
-    print(json.dumps(result, indent=2) if args.json else _summary(result))
+    summary = _summary if args.command == "tolerance" else _map_summary
+    print(json.dumps(result, indent=2) if args.json else summary(result))
     return 0
 
 

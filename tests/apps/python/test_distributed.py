@@ -203,3 +203,38 @@ def test_shard_sizes_keep_the_scheduler_under_one_percent():
     assert choose_shard_size(40, 2, 0.1, 0.01) == 10
     assert choose_shard_size(40, 64, 0.1, 0.01) == 10  # never under the 1 % floor
     assert choose_shard_size(5, 64, 0.1, 0.01) == 5
+
+
+def test_a_map_is_the_check_at_each_grid_point(cluster, tmp_path):
+    # Speeds × preloads × masses of Basu's cam No. 4 with a light spring: each point is what
+    # `needle check` says of the case with those values (pass, n_dyn, n_qs).
+    address, _ = cluster
+    case = os.path.join(ROOT, "cases", "basu-cam4-light-spring.toml")
+    p = subprocess.run([sys.executable, "-m", "needle.distributed", "map", case, "--speeds",
+                        "300,500", "--set", "spring.preload_N=250,400", "--set",
+                        "needle.mass_kg=1.0,1.5", "--out", str(tmp_path / "map"), "--scheduler",
+                        address, "--chunk", "3", "--json", "--quiet"],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    m = json.loads(p.stdout)
+    assert m["grid"] == {"engine.speed_rpm": [300, 500], "spring.preload_N": [250, 400],
+                         "needle.mass_kg": [1.0, 1.5]}
+    assert len(m["points"]) == 8 and m["distributed"]["computed_chunks"] == [[0, 3], [3, 3],
+                                                                            [6, 2]]
+    verdicts = set()
+    for i, point in enumerate(m["points"]):
+        d = needle.load_case(case).to_dict()
+        for key in m["grid"]:
+            section, name = key.split(".")
+            d[section][name] = point[key]
+        path = tmp_path / f"point{i}.toml"
+        path.write_text(needle.case_text(d))
+        c = subprocess.run([BINARY, "check", str(path), "--json"], capture_output=True, text=True,
+                           cwd=tmp_path)
+        assert c.returncode in (0, 1), c.stderr
+        j = json.loads(c.stdout)
+        assert point["pass"] == (c.returncode == 0), (point, j["failing"])
+        assert point["n_dyn_rpm"] == j["overspeed"]["liftoff_rpm_dynamic"]
+        assert point["n_qs_rpm"] == j["overspeed"]["liftoff_rpm_quasi_static"]
+        verdicts.add(point["pass"])
+    assert verdicts == {True, False}  # the grid crosses the verdict
