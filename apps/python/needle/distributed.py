@@ -137,9 +137,17 @@ def write_shard(folder, meta, shard):
     path = os.path.join(folder, shard_name(meta["first_sample"], meta["samples"]))
     fd, tmp = tempfile.mkstemp(dir=folder, suffix=".part")
     with os.fdopen(fd, "wb") as f:
-        np.savez(f, **arrays)
-    os.replace(tmp, path)
+        np.savez_compressed(f, **arrays)
+    _publish(tmp, path)
     return path
+
+
+def _publish(tmp, path):
+    """Renames a finished temporary file to its name, with the permissions of a new file."""
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)
+    os.replace(tmp, path)
 
 
 def read_shard(path):
@@ -538,7 +546,7 @@ def speed_map(args):
                 fd, tmp = tempfile.mkstemp(dir=folder, suffix=".part")
                 with os.fdopen(fd, "w") as f:
                     json.dump(chunk, f)
-                os.replace(tmp, os.path.join(folder, f"points-{first:07d}-{n:05d}.json"))
+                _publish(tmp, os.path.join(folder, f"points-{first:07d}-{n:05d}.json"))
                 have[first] = dict(chunk, samples=n)
                 computed.append([first, n])
                 progress.update(n)
@@ -583,7 +591,9 @@ def _summary(r):
              f"(95 % {100 * r['failure_probability_95'][0]:.2f} .. "
              f"{100 * r['failure_probability_95'][1]:.2f} %)"]
     for item, p in r["failure_by_item"].items():
-        lines.append(f"  {item}: {100 * p:.2f} %")
+        first = next((s["refused"] for s in r["sample_results"] if s.get("refused")), None)
+        lines.append(f"  {item}: {100 * p:.2f} %" +
+                     (f" (the first: {first})" if item == "case refused" and first else ""))
     for key in ("overspeed.liftoff_rpm_dynamic", "spring.liftoff_rpm_quasi_static"):
         dist = r["distributions"].get(key)
         if dist and dist["count"]:
