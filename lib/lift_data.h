@@ -19,7 +19,7 @@
 /// out of its neighbourhood (FindOutliers) is an outlier of measured data: listed, and left out
 /// when the case says so. A sparse table is exact (the paper's: read from a drawing, rounded to
 /// `resolution_mm`): when it starts and ends at zero lift it gets the clamped cubic at rest at
-/// both ends (the evidence is in README: Basu's velocity tables and the closed-form laws),
+/// both ends (the evidence is in docs/lift-data.md and docs/validation.md: Basu's velocity tables and the closed-form laws),
 /// otherwise not-a-knot.
 
 #include <optional>

@@ -150,7 +150,7 @@ int RunSynthCommand(const SynthCommandOptions& o) {
   }
   const CommandOutput r = ComputeSynth(f, o);
   if (o.case_out) WriteOutput({"--case", *o.case_out}, r.case_file);
-  return Emit(r, o.json, o.csv);
+  return Emit(r, o.format, o.csv);
 }
 
 CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
@@ -259,7 +259,7 @@ CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& o) {
 int RunProfileCommand(const ProfileCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
-  return Emit(ComputeProfile(c, o), o.json, o.csv);
+  return Emit(ComputeProfile(c, o), o.format, o.csv);
 }
 
 }  // namespace needle

@@ -536,7 +536,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
 
   WriteOutput({"--out", path}, report.Html());
   if (o.json) {
-    std::cout << CheckJson(c, law, result, path).dump(2) << '\n';
+    std::cout << FormatObject(CheckJson(c, law, result, path), o.format);
     return ok ? 0 : 1;
   }
   std::cout << (c.title.empty() ? c.path : c.title) << '\n';

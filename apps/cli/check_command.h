@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/output_format.h"
 #include "apps/scene/check_scene.h"
 
 namespace needle {
@@ -21,6 +22,7 @@ struct CheckCommandOptions {
   std::string out_dir = ".";
   std::optional<double> speed_rpm;
   bool json = false;  ///< one JSON object on stdout instead of the text summary
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
 };
 
 CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& options);

@@ -319,7 +319,7 @@ int RunCompareCommand(const CompareCommandOptions& o) {
       rows.push_back(r);
     }
     j["items"] = rows;
-    std::cout << j.dump(2) << '\n';
+    std::cout << FormatObject(j, o.format);
     return status;
   }
   std::ostringstream out;

@@ -231,7 +231,7 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
 int RunSimulateCommand(const SimulateCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
-  return Emit(ComputeSimulate(c, o), o.json, o.csv);
+  return Emit(ComputeSimulate(c, o), o.format, o.csv);
 }
 
 CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
@@ -387,7 +387,7 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
     ProgressBar bar("overspeed", "speeds", o.json);
     r = ComputeOverspeed(c, o, [&](int done, int total) { bar.Update(done, total); });
   }
-  return Emit(r, o.json, std::nullopt);
+  return Emit(r, o.format, std::nullopt);
 }
 
 }  // namespace needle

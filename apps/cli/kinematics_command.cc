@@ -283,7 +283,7 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
       throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
     c.lift.noise_m = *o.noise_mm * 1e-3;
   }
-  return Emit(ComputeKinematics(std::move(c), o), o.json, o.csv);
+  return Emit(ComputeKinematics(std::move(c), o), o.format, o.csv);
 }
 
 }  // namespace needle

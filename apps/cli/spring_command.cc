@@ -176,7 +176,7 @@ CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
 }
 
 int RunSpringCommand(const SpringCommandOptions& o) {
-  return Emit(ComputeSpring(LoadCase(o.case_path), o), o.json, std::nullopt);
+  return Emit(ComputeSpring(LoadCase(o.case_path), o), o.format, std::nullopt);
 }
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& o) {
@@ -292,7 +292,7 @@ int RunDesignCommand(const DesignCommandOptions& o) {
     j["nozzle_cross_section_mm2"] = r.nozzle_cross_section_m2 * 1e6;
     j["nozzle_holes"] = r.nozzle_holes;
     j["nozzle_hole_mm"] = r.nozzle_hole_m * 1e3;
-    out << j.dump(2) << '\n';
+    out << FormatObject(j, o.format);
   } else {
     out << (in.title.empty() ? in.path : in.title) << '\n'
         << Fixed(in.power_W / 735.49875, 1) << " HP_i per cylinder, " << Fixed(in.speed_rpm, 1)

@@ -201,7 +201,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
   if (o.json) {
     nlohmann::json j = ToleranceJson(c, r);
     if (report_path) j["report"] = *report_path;
-    std::cout << j.dump(2) << '\n';
+    std::cout << FormatObject(j, o.format);
     return 0;
   }
   std::ostringstream out;

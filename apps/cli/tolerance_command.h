@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/output_format.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/tolerance_study.h"
 
@@ -25,6 +26,7 @@ struct ToleranceCommandOptions {
   int threads = 0;                     ///< 0: all cores
   std::optional<std::string> out_dir;  ///< the report's folder; none: no report
   bool json = false;
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
 };
 
 CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& options);

@@ -157,8 +157,8 @@ struct ProfileSection {
   int points = 720;  ///< points over one cam revolution
 };
 
-/// [limits]: the design limits `needle check` judges, one row each (README "The limits table"
-/// gives the source of every default).
+/// [limits]: the design limits `needle check` judges, one row each (docs/springs.md "The limits
+/// table" gives the source of every default).
 struct LimitsSection {
   /// Largest landing speed of the needle on its seat, m/s: the top of Blair's optimum ramp
   /// velocity range, 1.0–1.5 m/s at the highest operating speed.

@@ -37,8 +37,8 @@ namespace {
 // EN 13906-1 gives the wire's; cases/basu-example1-surge.toml states the same 1 %).
 constexpr double kAssumedSurgeDamping = 0.01;
 
-// The limits table (README "The limits table"): one row per limit, judged where the scene has
-// what it needs, else "not judged" with the reason.
+// The limits table (docs/springs.md "The limits table"): one row per limit, judged where the scene
+// has what it needs, else "not judged" with the reason.
 void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r) {
   const LimitsSection& l = c.limits;
   const bool four = c.engine.cycle == "four-stroke";

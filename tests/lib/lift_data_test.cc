@@ -154,7 +154,7 @@ TEST_P(MeasuredTableTest, DefaultsRecoverTheLaw) {
     true_min = std::min(true_min, law.Lift_mm(deg, 2));
   }
   // The target is 6 %; the smoothing spline with λ by the discrepancy principle meets it on
-  // the cycloidal law and misses it elsewhere, by as much as the bound below (measured; README
+  // the cycloidal law and misses it elsewhere, by as much as the bound below (measured; docs/lift-data.md
   // "Measured lift data" has the table). The miss is the method's: where σ̂ comes out low the
   // discrepancy principle under-smooths and the noise adds to the peaks.
   const double bound = law.accel_bound;

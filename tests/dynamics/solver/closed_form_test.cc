@@ -262,7 +262,7 @@ TEST_P(AgreementTest, ExactAgreesWithDopri5AtTheTightestTolerance) {
   }
   ASSERT_EQ(d.episodes.size(), e.episodes.size());
   EXPECT_NEAR(d.max_lift_m * 1e3, e.max_lift_m * 1e3, 1e-9);
-  // The audit closes to the round-off of the contact gaps g = u − y (see README, "Exact").
+  // The audit closes to the round-off of the contact gaps g = u − y (see docs/dynamics.md, "The closed form").
   EXPECT_LT(e.energy_residual, 5e-11);
   std::printf("%s: %zu impacts, dopri5 %ld steps, exact %ld steps, residual %.2e vs %.2e\n",
               GetParam(), e.impacts.size(), d.stats.steps, e.stats.steps, d.energy_residual,
