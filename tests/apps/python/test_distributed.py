@@ -238,3 +238,23 @@ def test_a_map_is_the_check_at_each_grid_point(cluster, tmp_path):
         assert point["n_qs_rpm"] == j["overspeed"]["liftoff_rpm_quasi_static"]
         verdicts.add(point["pass"])
     assert verdicts == {True, False}  # the grid crosses the verdict
+
+
+def test_shards_reduce_to_the_study():
+    # Without Dask: shards [0, 5) and [5, 12) of Example 1, gathered, are the 12-sample study;
+    # sample 10, refused by the model, keeps its place and its reason, and has no outputs.
+    path = os.path.join(ROOT, "cases", "basu-example1.toml")
+    text = open(path).read()
+    shards = [needle.tolerance_shard(text, path=path, seed=1, first_sample=a, samples=n)
+              for a, n in ((0, 5), (5, 7))]
+    assert [s["inputs"].shape[0] for s in shards] == [5, 7]
+    assert shards[1]["refused"][5].startswith(path + ": ")
+    assert not shards[1]["output_present"][5].any() and shards[1]["output_present"][4].all()
+    whole = needle.tolerance(path, samples=12, seed=1, threads=1)
+    assert whole["sample_results"][10]["refused"] == shards[1]["refused"][5]
+    gathered = needle.tolerance_reduce(path, shards, seed=1, threads=1, seconds=whole["seconds"])
+    assert gathered == whole
+    reordered = needle.tolerance_reduce(path, shards[::-1], seed=1)
+    assert reordered["sample_results"] != whole["sample_results"]
+    with pytest.raises(needle.CaseError, match="needs at least one sample"):
+        needle.tolerance_reduce(path, [], seed=1)
