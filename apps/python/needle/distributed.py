@@ -241,11 +241,14 @@ def connect(scheduler, workers, timeout):
     return Client(cluster, timeout=timeout), cluster
 
 
-def _has_dashboard():
+def _scheduler_has_bokeh(client):
+    """Whether the scheduler serves Dask's dashboard: it needs Bokeh where the scheduler runs
+    (Debian 12 packages none). Asked by a function sent by value (the scheduler's machine need
+    not have needle)."""
     try:
-        import bokeh  # noqa: F401  (Dask's dashboard needs it)
-        return True
-    except ImportError:
+        return bool(client.run_on_scheduler(
+            lambda: __import__("importlib.util").util.find_spec("bokeh") is not None))
+    except Exception:  # an older scheduler that refuses run_on_scheduler: no address printed
         return False
 
 
@@ -334,9 +337,7 @@ def tolerance(args):
             raise BadInput(f"--out: {args.out}: cannot make the folder ({e.strerror})") from None
         info = client.scheduler_info()
         slots = sum(w.get("nthreads", 1) for w in info["workers"].values()) or 1
-        # The dashboard needs Bokeh where the scheduler runs (Debian 12 packages none).
-        dashboard = "dashboard" in info.get("services", {}) and client.run_on_scheduler(
-            _has_dashboard)
+        dashboard = "dashboard" in info.get("services", {}) and _scheduler_has_bokeh(client)
         if dashboard and not args.quiet:
             print(f"dashboard: {client.dashboard_link}", file=sys.stderr)
         overhead = task_overhead(client)
