@@ -230,11 +230,19 @@ def connect(scheduler, workers, timeout):
                        "bash scripts/install-deps.sh installs python3-distributed") from None
     if scheduler:
         try:
-            return Client(scheduler, timeout=timeout), None
+            client = Client(scheduler, timeout=timeout)
         except (OSError, TimeoutError, ValueError) as e:
             raise BadInput(f"--scheduler {scheduler}: no Dask scheduler answered within "
                            f"{timeout:g} s ({type(e).__name__}: {str(e).splitlines()[0]})"
                            ) from None
+        try:
+            client.wait_for_workers(1, timeout=timeout)
+        except (OSError, TimeoutError):
+            client.close()
+            raise BadInput(f"--scheduler {scheduler}: the scheduler has no worker after "
+                           f"{timeout:g} s (start dask-worker {scheduler} on the workers' "
+                           "machines)") from None
+        return client, None
     cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
                            processes=True, host="127.0.0.1",
                            dashboard_address=":0")  # any free port

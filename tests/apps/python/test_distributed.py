@@ -258,3 +258,43 @@ def test_shards_reduce_to_the_study():
     assert reordered["sample_results"] != whole["sample_results"]
     with pytest.raises(needle.CaseError, match="needs at least one sample"):
         needle.tolerance_reduce(path, [], seed=1)
+
+
+def test_the_documented_commands_on_the_loopback(tmp_path):
+    # docs/distributed.md's set-up: dask-scheduler (here without needle on its path) and
+    # dask-worker with 2 processes; a scheduler with no worker yet is one line and exit 2.
+    from distributed import Client
+    plain = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    scheduler_file = tmp_path / "scheduler.json"
+    scheduler = subprocess.Popen(
+        [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port",
+         "0", "--dashboard-address", ":0", "--scheduler-file", str(scheduler_file)], env=plain,
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = None
+    try:
+        end = time.monotonic() + 60
+        while not scheduler_file.exists():
+            assert time.monotonic() < end and scheduler.poll() is None, "no scheduler"
+            time.sleep(0.05)
+        time.sleep(0.2)  # the file written whole
+        address = json.loads(scheduler_file.read_text())["address"]
+        p = subprocess.run(study_args(EXAMPLE1, tmp_path / "none", address) +
+                           ["--connect-timeout", "1"], capture_output=True, text=True, timeout=60)
+        assert (p.returncode, p.stderr) == (2, f"needle: --scheduler {address}: the scheduler has "
+                                               f"no worker after 1 s (start dask-worker "
+                                               f"{address} on the workers' machines)\n")
+        worker = subprocess.Popen(
+            [sys.executable, "-m", "distributed.cli.dask_worker", address, "--nworkers", "2",
+             "--nthreads", "1", "--host", "127.0.0.1"], stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL)
+        with Client(address) as client:
+            client.wait_for_workers(2, timeout=60)
+        case = os.path.join(ROOT, "cases", "measured-cycloidal.toml")
+        j = run_study(case, tmp_path / "study", address, 20, 7, 5)
+        assert j["distributed"]["worker_threads"] == 2
+        assert statistics(j) == statistics(cli_json(case, 20, 7))
+    finally:
+        for process in (worker, scheduler):
+            if process is not None:
+                process.terminate()
+                process.wait(timeout=60)
