@@ -45,9 +45,8 @@ def Functions(text):
     """(name, body) of each top-level reader function."""
     starts = [(m.start(), m.group(1)) for m in
               re.finditer(r"^\w[\w:<>]* (Read\w+)\(SectionReader", text, re.M)]
-    for i, (s, name) in enumerate(starts):
-        e = starts[i + 1][0] if i + 1 < len(starts) else len(text)
-        yield name, text[s:e]
+    for s, name in starts:
+        yield name, text[s:text.index("\n}\n", s) + 2]  # to the function's closing brace
 
 
 def Keys():
@@ -61,6 +60,8 @@ def Keys():
                 for m in re.finditer(QUANTITY + r'\(\s*(?:r,\s*|ch,\s*)?"(\w+)",\s*Dimension::k(\w+)',
                                      body):
                     keys[section].add((m.group(1), m.group(2)))
+                if re.search(r"\bOptionalCycle\(", body):  # the engine cycle's key
+                    keys[section].add(("cycle", ""))
                 # plain keys read in a loop: {"key", &member} pairs and lists of key names
                 for m in re.finditer(r'\{"(\w+)", &', body):
                     keys[section].add((m.group(1), ""))

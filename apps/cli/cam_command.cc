@@ -174,8 +174,7 @@ CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& o) {
   double theta0 = 0.0;
   const CamProfile p = MakeCaseProfile(c, law, &theta0);
   // The cam's speed at the rated engine speed (four-stroke: half the crank's).
-  const double cam_omega =
-      OmegaFromRpm(c.engine.speed_rpm) / (c.engine.cycle == "four-stroke" ? 2.0 : 1.0);
+  const double cam_omega = OmegaFromRpm(c.engine.speed_rpm) / CrankTurnsPerCycle(c.engine.cycle);
   CommandOutput result;
   result.status = p.undercut || p.off_face ? 1 : 0;
   for (const ProfilePoint& q : p.points) {

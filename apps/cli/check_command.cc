@@ -152,7 +152,8 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   Report report("needle check: " + (c.title.empty() ? c.path : c.title));
   std::ostringstream summary;
   summary << "<h2>Scene</h2><table>" << Row("case", Escape(c.path))
-          << Row("rated speed", Fixed(rpm, 1) + " rpm") << Row("cycle", Escape(c.engine.cycle))
+          << Row("rated speed", Fixed(rpm, 1) + " rpm")
+          << Row("cycle", Escape(EngineCycleName(c.engine.cycle)))
           << Row("lift law", Escape(c.lift.source) + ", " +
                                  std::to_string(c.lift.table.crank_rad.size()) +
                                  " points, spline " + SplineKindName(law.kind()))
@@ -480,7 +481,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     // The resonance map (a Campbell diagram): each significant cam harmonic's frequency
     // i·f_cam(n) against speed, the spring's modes as horizontal lines.
     const CamHarmonics& h = *result.harmonics;
-    const bool four = c.engine.cycle == "four-stroke";
+    const double crank_turns = CrankTurnsPerCycle(c.engine.cycle);
     const double n_max =
         std::max(2.0 * rpm, sweep ? result.sweep_range.to_rpm : 0.0);  // the speeds shown
     Series lines{"orders", {}}, modes{"modes", {}}, hits{"hits", {}};
@@ -490,7 +491,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
       << ") against the spring's modes f_j = j·½√(k/m_s) = ";
     for (size_t j = 0; j < result.surge_modes_hz.size(); ++j)
       t << (j ? ", " : "") << Fixed(result.surge_modes_hz[j], 1) << " Hz";
-    t << ". Order i meets mode j at n = " << (four ? "120" : "60")
+    t << ". Order i meets mode j at n = " << Fixed(60.0 * crank_turns, 0)
       << "·f_j/i rpm.</p><table class=\"grid\"><tr><th>order i</th><th>acceleration harmonic "
          "(% of largest)</th>";
     for (size_t j = 0; j < result.surge_modes_hz.size(); ++j)

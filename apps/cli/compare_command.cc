@@ -59,15 +59,17 @@ bool IsPassFail(const nlohmann::json& v) {
 }
 
 // Why two checked designs are not like for like: a different rated speed or engine cycle.
-std::vector<std::string> Unlike(double a_rpm, const std::string& a_cycle, double b_rpm,
-                                const std::string& b_cycle) {
+std::vector<std::string> Unlike(double a_rpm, EngineCycle a_cycle, double b_rpm,
+                                EngineCycle b_cycle) {
   std::vector<std::string> why;
   if (a_rpm != b_rpm) {
     std::ostringstream s;
     s << "rated speed: A " << a_rpm << " rpm, B " << b_rpm << " rpm";
     why.push_back(s.str());
   }
-  if (a_cycle != b_cycle) why.push_back("cycle: A " + a_cycle + ", B " + b_cycle);
+  if (a_cycle != b_cycle)
+    why.push_back(std::string("cycle: A ") + EngineCycleName(a_cycle) + ", B " +
+                  EngineCycleName(b_cycle));
   return why;
 }
 

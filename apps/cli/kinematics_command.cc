@@ -276,7 +276,8 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
     throw CaseError("--rpm: " + o.case_path +
                     " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
   }
-  Case c = bare_csv ? CaseFromLiftCsv(o.case_path, o.cycle) : LoadCase(o.case_path);
+  Case c =
+      bare_csv ? CaseFromLiftCsv(o.case_path, *ParseEngineCycle(o.cycle)) : LoadCase(o.case_path);
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   if (o.noise_mm) {
     if (!bare_csv)

@@ -4,36 +4,28 @@
 #include <utility>
 
 #include "apps/cli/markdown_writer.h"
+#include "lib/name_table.h"
 
 namespace needle {
 namespace {
 
 // The one name table of the formats.
-constexpr std::array<std::pair<OutputFormat, const char*>, 3> kFormatNames = {{
+constexpr NameRow<OutputFormat> kFormatNames[] = {
     {OutputFormat::kText, "text"},
     {OutputFormat::kJson, "json"},
     {OutputFormat::kMarkdown, "markdown"},
-}};
+};
 
 }  // namespace
 
-const char* OutputFormatName(OutputFormat format) {
-  for (const auto& [f, name] : kFormatNames) {
-    if (f == format) return name;
-  }
-  return "text";
-}
+const char* OutputFormatName(OutputFormat format) { return NameOf(kFormatNames, format); }
 
 std::optional<OutputFormat> ParseOutputFormat(const std::string& name) {
-  for (const auto& [f, n] : kFormatNames) {
-    if (name == n) return f;
-  }
-  return std::nullopt;
+  return ValueOf(kFormatNames, name);
 }
 
 void AddFormatOption(CLI::App* command, OutputFormat& format, bool& json) {
-  std::string names;
-  for (const auto& [f, n] : kFormatNames) names += (names.empty() ? "" : ", ") + std::string(n);
+  const std::string names = NameList(kFormatNames);
   command
       ->add_option_function<std::string>(
           "--format",

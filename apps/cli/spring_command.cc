@@ -201,9 +201,9 @@ std::string DesignCase(const DesignInputs& in, const DesignResult& r) {
   c << "# Written by `needle design " << in.path << " --case`: Basu's design chain (NACA TM 477).\n"
     << "# Values marked ASSUMED are not computed by the chain; replace them with your own.\n"
     << "title = \"" << (in.title.empty() ? std::string("designed valve") : in.title)
-    << " (designed)\"\n\n[engine]\nspeed_rpm = " << in.speed_rpm << "\ncycle = \"" << in.cycle
-    << "\"\n\n# The normal curve scaled to the maximum lift " << r.max_lift_m * 1e3
-    << " mm.\n[lift]\ncrank_deg = [";
+    << " (designed)\"\n\n[engine]\nspeed_rpm = " << in.speed_rpm << "\ncycle = \""
+    << EngineCycleName(in.cycle) << "\"\n\n# The normal curve scaled to the maximum lift "
+    << r.max_lift_m * 1e3 << " mm.\n[lift]\ncrank_deg = [";
   for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i)
     c << (i ? ", " : "") << r.lift_table.crank_rad[i] / kDeg;
   c << "]\nlift_mm = [";
@@ -296,7 +296,7 @@ int RunDesignCommand(const DesignCommandOptions& o) {
   } else {
     out << (in.title.empty() ? in.path : in.title) << '\n'
         << Fixed(in.power_W / 735.49875, 1) << " HP_i per cylinder, " << Fixed(in.speed_rpm, 1)
-        << " rpm, " << in.cycle << ", " << in.atomizer << " atomizer\n\n"
+        << " rpm, " << EngineCycleName(in.cycle) << ", " << in.atomizer << " atomizer\n\n"
         << "fuel per working cycle      " << Fixed(r.fuel_per_cycle_g, 3)
         << " g = " << Fixed(r.fuel_per_cycle_cm3, 3) << " cm3\n"
         << "mixing ratio                " << Fixed(r.mixing_ratio, 2)

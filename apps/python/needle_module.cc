@@ -320,7 +320,7 @@ std::string NotCsv(const py::object& cycle) {
 PyCase LoadAnyCase(const py::object& source, const std::optional<std::string>& name,
                    const py::object& cycle_arg, const std::string& function) {
   const auto cycle = Text(cycle_arg, "cycle", "'four-stroke' or 'two-stroke'");
-  if (cycle && *cycle != "four-stroke" && *cycle != "two-stroke")
+  if (cycle && !ParseEngineCycle(*cycle))
     throw CaseError("cycle=" + Repr(cycle_arg) + ": expected 'four-stroke' or 'two-stroke'");
   PyCase pc;
   if (py::isinstance<PyCase>(source)) {
@@ -349,7 +349,7 @@ PyCase LoadAnyCase(const py::object& source, const std::optional<std::string>& n
   if (IsCsvPath(path)) {
     // A bare lift table: the case a file naming it would be, but for its speed (give rpm=).
     const std::string stroke = cycle.value_or("four-stroke");
-    pc.loaded = std::make_shared<const Case>(CaseFromLiftCsv(path, stroke));
+    pc.loaded = std::make_shared<const Case>(CaseFromLiftCsv(path, *ParseEngineCycle(stroke)));
     py::dict engine, lift;
     engine["cycle"] = stroke;
     lift["csv"] = std::filesystem::path(path).filename().string();

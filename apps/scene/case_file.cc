@@ -42,9 +42,7 @@ struct SectionEntry {
 const SectionEntry kSectionTable[] = {
     {"engine", true, [](SectionReader r, Case& c) { c.engine = case_internal::ReadEngine(r); }},
     {"lift", true,
-     [](SectionReader r, Case& c) {
-       c.lift = case_internal::ReadLift(r, c.path, c.engine.cycle == "four-stroke");
-     }},
+     [](SectionReader r, Case& c) { c.lift = case_internal::ReadLift(r, c.path, c.engine.cycle); }},
     {"needle", false, [](SectionReader r, Case& c) { c.needle = case_internal::ReadNeedle(r); }},
     {"spring", false, [](SectionReader r, Case& c) { c.spring = case_internal::ReadSpring(r); }},
     {"train", false, [](SectionReader r, Case& c) { c.train = case_internal::ReadTrain(r); }},
@@ -142,11 +140,11 @@ bool IsCsvPath(const std::string& path) {
   return ext == ".csv";
 }
 
-Case CaseFromLiftCsv(const std::string& path, const std::string& cycle) {
+Case CaseFromLiftCsv(const std::string& path, EngineCycle cycle) {
   Case c;
   c.path = path;
   c.engine.cycle = cycle;
-  c.lift.table = ReadLiftCsv(path, cycle == "four-stroke", &c.lift.lines);
+  c.lift.table = ReadLiftCsv(path, cycle, &c.lift.lines);
   c.lift.source = "csv " + path;
   c.lift.csv_path = path;
   return c;

@@ -46,12 +46,7 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
     e.Fail("power_hp", "section [engine] is missing; it needs power_hp and speed_rpm");
   d.power_W = Positive(e, "power", Dimension::kPower, 1.0, "power_hp");
   d.speed_rpm = Positive(e, "speed", Dimension::kRotationSpeed, 1.0, "speed_rpm");
-  if (auto cycle = e.OptionalString("cycle")) {
-    if (*cycle != "four-stroke" && *cycle != "two-stroke") {
-      e.Fail("cycle", "expected \"four-stroke\" or \"two-stroke\", got \"" + *cycle + "\"");
-    }
-    d.cycle = *cycle;
-  }
+  if (auto cycle = case_internal::OptionalCycle(e)) d.cycle = *cycle;
   e.Finish();
   SectionReader r(Section(root, path, "design"), path, "design");
   r.Declare("fuel_density");

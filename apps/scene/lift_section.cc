@@ -19,7 +19,7 @@
 
 namespace needle::case_internal {
 
-LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_stroke) {
+LiftSection ReadLift(SectionReader r, const std::string& case_path, EngineCycle cycle) {
   if (!r.present())
     r.Fail("crank_deg", "section [lift] is missing; it needs crank_deg and lift_mm");
   LiftSection lift;
@@ -49,7 +49,7 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_st
                                  ? p.string()
                                  : (std::filesystem::path(case_path).parent_path() / p).string();
     try {
-      lift.table = ReadLiftCsv(full, four_stroke, &lift.lines);
+      lift.table = ReadLiftCsv(full, cycle, &lift.lines);
     } catch (const CaseError& e) {
       r.Fail("csv", e.what());  // "CASE: [lift] csv: TABLE:LINE:COLUMN: what"
     }

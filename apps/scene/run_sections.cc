@@ -215,12 +215,7 @@ EngineSection ReadEngine(SectionReader r) {
   EngineSection e;
   e.speed_rpm = r.Quantity("speed", Dimension::kRotationSpeed);
   if (!(e.speed_rpm > 0.0)) r.Fail("speed_rpm", "must be positive, got " + Number(e.speed_rpm));
-  if (auto cycle = r.OptionalString("cycle")) {
-    if (*cycle != "four-stroke" && *cycle != "two-stroke") {
-      r.Fail("cycle", "expected \"four-stroke\" or \"two-stroke\", got \"" + *cycle + "\"");
-    }
-    e.cycle = *cycle;
-  }
+  if (auto cycle = OptionalCycle(r)) e.cycle = *cycle;
   r.Finish();
   return e;
 }

@@ -95,6 +95,14 @@ FollowerKeys ReadFollowerKeys(SectionReader& r) {
   return k;
 }
 
+std::optional<EngineCycle> OptionalCycle(SectionReader& r) {
+  const auto name = r.OptionalString("cycle");
+  if (!name) return std::nullopt;
+  const std::optional<EngineCycle> cycle = ParseEngineCycle(*name);
+  if (!cycle) r.Fail("cycle", "expected " + EngineCycleList() + ", got \"" + *name + "\"");
+  return cycle;
+}
+
 const toml::table* Section(const toml::table& root, const std::string& file, const char* name) {
   const toml::node* node = root.get(name);
   if (!node) return nullptr;

@@ -273,6 +273,9 @@ OverspeedSection ReadOverspeed(SectionReader r);
 ToleranceSection ReadTolerance(SectionReader r);
 ProfileSection ReadProfile(SectionReader r);
 PaperSection ReadPaper(SectionReader r);
-LiftSection ReadLift(SectionReader r, const std::string& case_path, bool four_stroke);
+LiftSection ReadLift(SectionReader r, const std::string& case_path, EngineCycle cycle);
+
+/// The optional `cycle` key of [engine] (case and engine file) and [output] (synthesis file).
+std::optional<EngineCycle> OptionalCycle(SectionReader& r);
 
 }  // namespace needle::case_internal

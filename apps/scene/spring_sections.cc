@@ -101,18 +101,9 @@ HelicalGeometry ReadHelical(SectionReader& r) {
                           " is outside 4…20 (EN 13906-1); change the wire or the coil diameter");
   }
   if (auto ends = r.OptionalString("ends")) {
-    if (*ends == "closed-ground") {
-      g.ends = SpringEnds::kClosedGround;
-    } else if (*ends == "closed") {
-      g.ends = SpringEnds::kClosed;
-    } else if (*ends == "open-ground") {
-      g.ends = SpringEnds::kOpenGround;
-    } else if (*ends == "open") {
-      g.ends = SpringEnds::kOpen;
-    } else {
-      r.Fail("ends", "expected \"closed-ground\", \"closed\", \"open-ground\" or \"open\", got \"" +
-                         *ends + "\"");
-    }
+    const std::optional<SpringEnds> e = ParseSpringEnds(*ends);
+    if (!e) r.Fail("ends", "expected " + SpringEndsList() + ", got \"" + *ends + "\"");
+    g.ends = *e;
   }
   if (auto corr = r.OptionalString("stress_correction")) {
     if (*corr != "bergstrasser" && *corr != "wahl") {

@@ -170,11 +170,7 @@ SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& pat
         o.Fail("speed_rpm", "must be in (0, 1e6] rpm, got " + Number(*n));
       f.speed_rpm = *n;
     }
-    if (auto cyc = o.OptionalString("cycle")) {
-      if (*cyc != "four-stroke" && *cyc != "two-stroke")
-        o.Fail("cycle", "expected \"four-stroke\" or \"two-stroke\"");
-      f.cycle = *cyc;
-    }
+    if (auto cycle = case_internal::OptionalCycle(o)) f.cycle = *cycle;
     o.Finish();
   }
   return f;

@@ -53,7 +53,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (on("engine")) Expect([&] { (void)needle::ParseDesignInputs(text, "fuzz.toml"); });
   if (on("synth")) Expect([&] { (void)needle::ParseSynthesisFile(text, "fuzz.toml"); });
   if (on("csv")) {
-    Expect([&] { (void)needle::ParseLiftCsv(text, "fuzz.toml", size % 2 == 0); });
+    Expect([&] {
+      (void)needle::ParseLiftCsv(
+          text, "fuzz.toml",
+          size % 2 == 0 ? needle::EngineCycle::kFourStroke : needle::EngineCycle::kTwoStroke);
+    });
   }
   return 0;
 }
