@@ -13,6 +13,7 @@
 #include <string>
 
 #include "apps/cli/output_format.h"
+#include "apps/cli/report.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/tolerance_study.h"
 
@@ -34,5 +35,11 @@ int RunToleranceCommand(const ToleranceCommandOptions& options);
 
 /// What `tolerance --json` prints for a study of case `c` (without the report's path).
 nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& result);
+/// The study's HTML report: the scatter, the failure probability and its drivers, the
+/// distributions and a histogram of each headline quantity.
+Report ToleranceReport(const Case& c, const ToleranceResult& result, std::uint64_t seed);
+/// What `tolerance` prints without --json.
+std::string ToleranceText(const Case& c, const ToleranceResult& result, std::uint64_t seed,
+                          const std::optional<std::string>& report_path);
 
 }  // namespace needle
