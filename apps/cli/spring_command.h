@@ -36,6 +36,9 @@ struct DesignCommandOptions {
 };
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& options);
+/// Basu's design chain for a loaded engine file: the JSON object or the text, and the --case
+/// file's text when asked. Throws CaseError naming the file when the chain cannot proceed.
+CommandOutput ComputeDesign(const DesignInputs& in, const DesignCommandOptions& options);
 int RunDesignCommand(const DesignCommandOptions& options);
 
 }  // namespace needle

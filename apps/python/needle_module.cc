@@ -21,12 +21,15 @@
 #include <vector>
 
 #include "apps/cli/cam_command.h"
+#include "apps/cli/check_writers.h"
 #include "apps/cli/command_output.h"
+#include "apps/cli/compare_output.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/scene/case_file.h"
+#include "apps/scene/check_scene.h"
 #include "apps/scene/plausible_ranges.h"
 #include "apps/scene/tolerance_study.h"
 #include "dynamics/solver/integrator.h"
@@ -692,6 +695,69 @@ PYBIND11_MODULE(needle, m) {
       arg("case"), py::kw_only(), arg("from_rpm") = py::none(), arg("to_rpm") = py::none(),
       arg("step_rpm") = py::none(), arg("method") = py::none(), arg("rtol") = py::none(),
       arg("threads") = 0, "needle overspeed: the dynamic lift-off speed n_dyn beside n_qs");
+
+  m.def(
+      "check",
+      [](const py::object& source, const py::object& rpm) {
+        const auto c = CaseOf(source, "check");
+        CheckOptions options;
+        options.speed_rpm = Speed(rpm, "rpm");
+        RequireSpeedOf(*c, options.speed_rpm, "rpm");
+        return Run(
+            [&] {
+              const LiftLaw law = MakeLiftLaw(*c);
+              const CheckResult r = CheckScene(*c, law, options);
+              CommandOutput out;
+              out.json = CheckJson(*c, law, r, "");
+              out.json.erase("report");  // no report is written from Python
+              out.status = r.pass ? 0 : 1;
+              return out;
+            },
+            {{"--rpm", "rpm=" + Repr(rpm)}});
+      },
+      arg("case"), py::kw_only(), arg("rpm") = py::none(),
+      "needle check: everything the scene needs, one verdict (the dict of check --json; no "
+      "report)");
+
+  m.def(
+      "compare",
+      [](const py::object& a, const py::object& b, const py::object& rpm) {
+        const auto ca = CaseOf(a, "compare"), cb = CaseOf(b, "compare");
+        const std::optional<double> speed = Speed(rpm, "rpm");
+        RequireSpeedOf(*ca, speed, "rpm");
+        RequireSpeedOf(*cb, speed, "rpm");
+        return Run(
+            [&] {
+              const Comparison cmp = CompareCases(*ca, *cb, speed, "");
+              CommandOutput out;
+              out.json = CompareJson(cmp, "");
+              for (nlohmann::json* j : {&out.json, &out.json["a"], &out.json["b"]})
+                j->erase("report");  // no report is written from Python
+              out.status = cmp.status();
+              return out;
+            },
+            {{"--rpm", "rpm=" + Repr(rpm)}});
+      },
+      arg("a"), arg("b"), py::kw_only(), arg("rpm") = py::none(),
+      "needle compare: two designs checked side by side, the verdicts that flip");
+
+  m.def(
+      "design",
+      [](const py::object& engine, std::optional<std::string> name) {
+        const DesignInputs in =
+            py::isinstance<py::dict>(engine)
+                ? ParseDesignInputs(TomlText(engine.cast<py::dict>(), name.value_or("<dict>")),
+                                    name.value_or("<dict>"))
+            : IsPath(engine) ? LoadDesignInputs(PathOf(engine))
+                             : throw py::type_error(
+                                   "design: expected a path (str or os.PathLike) or a dict, got " +
+                                   AType(engine));
+        DesignCommandOptions o;
+        o.json = true;
+        return Run([&] { return ComputeDesign(in, o); });
+      },
+      arg("engine"), py::kw_only(), arg("name") = py::none(),
+      "needle design: Basu's design chain from an engine file or dict");
 
   m.def(
       "synth",

@@ -167,3 +167,45 @@ def test_tolerance_shards_are_the_study():
     assert shard["sample_results"] == whole["sample_results"][2:]
     status, _, err = cli("tolerance", path, "--samples", "2", "--seed", "11")
     assert status == 0, err
+
+
+# check, compare and design bind the library as the commands do (issue 34): the dict is the
+# command's --json object without the report's path (the module writes no report).
+CHECKED = [os.path.join(ROOT, "cases", n) for n in
+           ("basu-example1.toml", "basu-example2.toml", "new-engine-weak-spring.toml",
+            "measured-cycloidal.toml")]
+
+
+@pytest.mark.parametrize("path", CHECKED, ids=os.path.basename)
+def test_check_equals_cli_json(path, tmp_path):
+    status, expected, err = cli("check", path, "--out", str(tmp_path))
+    assert status in (0, 1), err
+    expected.pop("report")
+    got_status, got = strip(needle.check(path))
+    assert got == expected
+    assert got_status == status
+
+
+def test_compare_equals_cli_json(tmp_path):
+    a = os.path.join(ROOT, "cases", "basu-example1.toml")
+    b = os.path.join(ROOT, "cases", "basu-example1-weak-spring.toml")
+    status, expected, err = cli("compare", a, b, "--out", str(tmp_path))
+    assert status == 1, err
+    for key in ("report",):
+        expected.pop(key)
+    for side in ("a", "b"):
+        expected[side].pop("report")
+    got_status, got = strip(needle.compare(a, needle.load_case(b)))
+    assert got == expected
+    assert got_status == 1
+    assert got["flipped"] == ["overall", "spring.basu_ok", "spring.pass"]
+
+
+def test_design_equals_cli_json():
+    path = os.path.join(ROOT, "cases", "basu-example1-engine.toml")
+    status, expected, err = cli("design", path)
+    assert status == 0, err
+    got_status, got = strip(needle.design(path))
+    assert got == expected and got_status == 0
+    with pytest.raises(TypeError, match="design: expected a path"):
+        needle.design(3)
