@@ -50,7 +50,7 @@ struct SpringCheckResult {
 
 /// The failing sub-checks of `r`, one line each with its margin, from its sub-verdicts. With
 /// `surge_screen` false the helical check's f_e/f_cam ≥ 13 item is left out: a caller that has
-/// judged surge by its effect in the dynamics (apps/scene/check_scene.h) makes it a warning.
+/// judged surge by its effect in the dynamics (apps/study/check_scene.h) makes it a warning.
 std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_screen = true);
 
 /// The check at `speed_rpm` of `spring` on `needle` driven by `law` (C²), the cam at half

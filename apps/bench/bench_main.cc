@@ -19,7 +19,7 @@
 #include "apps/bench/work_precision.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_scene.h"
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "lib/cam_laws.h"
 #include "lib/kinematics.h"

@@ -12,7 +12,7 @@
 #include "apps/cli/result_writers.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_profile.h"
-#include "apps/scene/synthesis_scene.h"
+#include "apps/study/synthesis_scene.h"
 #include "dynamics/model/cam_input.h"
 #include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"

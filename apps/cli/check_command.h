@@ -14,7 +14,7 @@
 
 #include "apps/cli/check_writers.h"  // CheckJson, for the callers of the command
 #include "apps/cli/output_format.h"
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 
 namespace needle {
 

@@ -14,7 +14,7 @@
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_profile.h"
 #include "apps/scene/case_scene.h"
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/kinematics.h"

@@ -2,14 +2,14 @@
 /// @file
 /// The writers of `needle check`'s result: the JSON object (CheckJson, also compare's and the
 /// Python module's), and the HTML report with its gnuplot figures (CheckReport). Writers only:
-/// everything they show was computed by CheckScene (apps/scene/check_scene.h).
+/// everything they show was computed by CheckScene (apps/study/check_scene.h).
 
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "apps/cli/report.h"
 #include "apps/scene/case_file.h"
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 
 namespace needle {
 

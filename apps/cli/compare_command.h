@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `needle compare A.toml B.toml [--out DIR] [--rpm N] [--json]`: two designs side by side.
-/// Both are checked as `needle check` checks them (apps/scene/check_scene.h); every quantity and
+/// Both are checked as `needle check` checks them (apps/study/check_scene.h); every quantity and
 /// verdict `check --json` reports is shown for both, with the difference B − A, every verdict
 /// that flips named, and one report DIR/compare-A-B.html with the lift, velocity and
 /// acceleration of both overlaid, and their quasi-static and dynamic contact forces. Exit 1

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "apps/cli/check_writers.h"
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `needle tolerance CASE [--samples N] [--seed S] [--first-sample K] [--threads T] [--out DIR]
-/// [--json]`: a Monte-Carlo tolerance study (apps/scene/tolerance_study.h) on all cores,
+/// [--json]`: a Monte-Carlo tolerance study (apps/study/tolerance_study.h) on all cores,
 /// reproducible for a seed whatever the thread count: the distributions of what `check` reports,
 /// the probability that the check fails (by item) and the inputs that drive it, with histograms in
 /// DIR/tolerance-<case>.html. Exit 0; 2 on bad input.
@@ -15,7 +15,7 @@
 #include "apps/cli/output_format.h"
 #include "apps/cli/report.h"
 #include "apps/scene/case_file.h"
-#include "apps/scene/tolerance_study.h"
+#include "apps/study/tolerance_study.h"
 
 namespace needle {
 

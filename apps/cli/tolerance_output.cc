@@ -12,7 +12,7 @@
 #include "apps/cli/result_writers.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/scene/case_file.h"
-#include "apps/scene/tolerance_study.h"
+#include "apps/study/tolerance_study.h"
 #include "lib/output.h"
 #include "lib/units.h"
 

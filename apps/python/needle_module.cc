@@ -29,9 +29,9 @@
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/scene/case_file.h"
-#include "apps/scene/check_scene.h"
 #include "apps/scene/plausible_ranges.h"
-#include "apps/scene/tolerance_study.h"
+#include "apps/study/check_scene.h"
+#include "apps/study/tolerance_study.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/spline.h"
 

@@ -1,13 +1,13 @@
 // The tolerance study: its statistics on known data, the lift error's covariance, the failure
 // probability against the normal law's closed form, and the same study for a seed whatever
 // the thread count.
-#include "apps/scene/tolerance_study.h"
+#include "apps/study/tolerance_study.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 #include "lib/units.h"
 
 namespace needle {

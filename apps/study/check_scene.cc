@@ -1,4 +1,4 @@
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 
 #include <algorithm>
 #include <cmath>

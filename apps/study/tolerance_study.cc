@@ -1,4 +1,4 @@
-#include "apps/scene/tolerance_study.h"
+#include "apps/study/tolerance_study.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <numeric>
 #include <thread>
 
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 #include "lib/units.h"
 
 namespace needle {

@@ -1,6 +1,6 @@
 // "Check a scene" as a library function: the pass/fail policy on scenes that must pass, that
 // must fail and that lack parts, and the one default sweep range both commands use.
-#include "apps/scene/check_scene.h"
+#include "apps/study/check_scene.h"
 
 #include <gtest/gtest.h>
 

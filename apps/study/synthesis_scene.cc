@@ -1,4 +1,4 @@
-#include "apps/scene/synthesis_scene.h"
+#include "apps/study/synthesis_scene.h"
 
 #include <algorithm>
 #include <array>

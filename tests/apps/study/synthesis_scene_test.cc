@@ -1,6 +1,6 @@
 // "Synthesize and verify a cam" as a library function: its checks against values computed
 // here from the law, its failing lines, and its fields.
-#include "apps/scene/synthesis_scene.h"
+#include "apps/study/synthesis_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -178,8 +178,8 @@ TEST(SynthesisSceneTest, TheContactStressSteersTheSteps) {
   EXPECT_TRUE(r.pass) << (r.failing.empty() ? "" : r.failing[0]);
 }
 
-// The table of the paper's case in docs/synthesis.md, one row per follower kind: what the law as formed
-// does to each, and, steered to a profile radius ≥ 0, what would have to change.
+// The table of the paper's case in docs/synthesis.md, one row per follower kind: what the law as
+// formed does to each, and, steered to a profile radius ≥ 0, what would have to change.
 TEST(SynthesisSceneTest, ThePapersCaseForEachFollowerKind) {
   struct Row {
     std::string kind, radius_key;
