@@ -1,0 +1,236 @@
+// Breaks found in a lift table: where s'' jumps between two smooth pieces (FindBreaks,
+// lift_data.h; docs/model.md §2), by cubics fitted on each side of every reading.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "lib/lift_data.h"
+
+namespace needle {
+
+namespace {
+
+// A cubic fitted by least squares to readings [from, to) of (x, y), in u = (θ − c)/h.
+struct SideCubic {
+  double c = 0.0, h = 1.0;
+  Eigen::Vector4d a = Eigen::Vector4d::Zero();
+  double Value(double t, int order) const {
+    const double u = (t - c) / h;
+    double v = 0.0;
+    for (int m = 3; m >= order; --m) {
+      double falling = 1.0;
+      for (int j = 0; j < order; ++j) falling *= (m - j);
+      v = v * u + falling * a(m);
+    }
+    return v / std::pow(h, order);
+  }
+};
+
+SideCubic FitSide(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                  size_t to, double c, double h, double* sum_squares = nullptr) {
+  SideCubic s;
+  s.c = c;
+  s.h = h;
+  Eigen::MatrixXd v(to - from, 4);
+  Eigen::VectorXd r(to - from);
+  for (size_t i = from; i < to; ++i) {
+    const double u = (x[i] - c) / h;
+    v.row(i - from) << 1.0, u, u * u, u * u * u;
+    r(i - from) = y[i];
+  }
+  s.a = v.colPivHouseholderQr().solve(r);
+  if (sum_squares) *sum_squares = (v * s.a - r).squaredNorm();
+  return s;
+}
+
+// A root of f on [lo, hi] by sampling and bisection; nullopt when f keeps its sign.
+template <class F>
+std::optional<double> RootIn(F f, double lo, double hi) {
+  constexpr int kSamples = 64;
+  double a = lo, fa = f(lo);
+  for (int k = 1; k <= kSamples; ++k) {
+    double b = lo + (hi - lo) * k / kSamples;
+    const double fb = f(b);
+    if (fa == 0.0) return a;
+    if (fa * fb < 0.0) {
+      for (int it = 0; it < 100; ++it) {
+        const double m = 0.5 * (a + b), fm = f(m);
+        if (fm == 0.0) return m;
+        if ((fm < 0.0) == (fa < 0.0)) {
+          a = m;
+          fa = fm;
+        } else {
+          b = m;
+        }
+      }
+      return 0.5 * (a + b);
+    }
+    a = b;
+    fa = fb;
+  }
+  if (fa == 0.0) return a;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vector<double>& y,
+                                  double sigma_m) {
+  std::vector<LiftBreak> found;
+  const long n = static_cast<long>(x.size());
+  const long m = kBreakSideWindows, d = kBreakSideWindows + 2;
+  if (n != static_cast<long>(y.size()) || n < 2 * (m + d + 6) + 2) return found;
+  // s2[i] = 2 f[x_{i-1}, x_i, x_{i+1}] ≈ s'', i = 1 … n−2, its weights on the three readings.
+  std::vector<double> s2(n, 0.0), at(n, 0.0);
+  std::vector<std::array<double, 3>> w2(n);
+  for (long i = 1; i + 1 < n; ++i) {
+    const double a = x[i - 1], b = x[i], c = x[i + 1];
+    w2[i] = {2.0 / ((a - b) * (a - c)), 2.0 / ((b - a) * (b - c)), 2.0 / ((c - a) * (c - b))};
+    s2[i] = w2[i][0] * y[i - 1] + w2[i][1] * y[i] + w2[i][2] * y[i + 1];
+    at[i] = (a + b + c) / 3.0;
+  }
+  // Ĵ_k over the interval (x_k, x_k+1): the right line's value at its middle minus the left's,
+  // from s2 at k−m … k−1 (readings ≤ x_k) and k+2 … k+m+1 (readings ≥ x_k+1); and its noise.
+  // Ĉ_k: the two windows across the interval less the mean of the two lines there: a corner
+  // (s' jumps by K) makes them K/h apiece, where an s'' jump or a smooth law leaves them between.
+  std::vector<double> jump(n, 0.0), noise(n, 0.0), spike(n, 0.0), spike_noise(n, 0.0);
+  std::vector<double> wy(n, 0.0), wc(n, 0.0);
+  for (long k = m + 1; k + m + 2 < n; ++k) {
+    std::fill(wy.begin() + (k - m - 1), wy.begin() + (k + m + 3), 0.0);
+    std::fill(wc.begin() + (k - m - 1), wc.begin() + (k + m + 3), 0.0);
+    // The line through s2[from … from+m) at `where`, its weights on the readings added to `to`.
+    auto side = [&](long from, double where, double sign, std::vector<double>& to) {
+      double mean = 0.0, sxx = 0.0;
+      for (long i = from; i < from + m; ++i) mean += at[i] / m;
+      for (long i = from; i < from + m; ++i) sxx += (at[i] - mean) * (at[i] - mean);
+      double v = 0.0;
+      for (long i = from; i < from + m; ++i) {
+        const double a = 1.0 / m + (at[i] - mean) * (where - mean) / sxx;  // line's weight
+        v += a * s2[i];
+        for (int j = 0; j < 3; ++j) to[i - 1 + j] += sign * a * w2[i][j];
+      }
+      return v;
+    };
+    const double mid = 0.5 * (x[k] + x[k + 1]);
+    jump[k] = side(k + 2, mid, 1.0, wy) - side(k - m, mid, -1.0, wy);
+    for (long i = k; i <= k + 1; ++i) {
+      spike[k] += s2[i] - 0.5 * (side(k + 2, at[i], -0.5, wc) + side(k - m, at[i], -0.5, wc));
+      for (int j = 0; j < 3; ++j) wc[i - 1 + j] += w2[i][j];
+    }
+    double w = 0.0, c = 0.0;
+    for (long i = k - m - 1; i < k + m + 3; ++i) {
+      w += wy[i] * wy[i];
+      c += wc[i] * wc[i];
+    }
+    noise[k] = sigma_m * std::sqrt(w);
+    spike_noise[k] = sigma_m * std::sqrt(c);
+  }
+  const double tail = TailSigmas(n, kBreakSigmas);
+  // Stands out: above its noise, and above the smooth level around it.
+  auto stands_out = [&](const std::vector<double>& v, const std::vector<double>& v_noise, long k) {
+    double around[8];
+    for (long j = 0; j < 4; ++j) {
+      around[2 * j] = std::abs(v[k - d - j]);
+      around[2 * j + 1] = std::abs(v[k + d + j]);
+    }
+    // The median: a break beside (two or three of them) or the law's smooth level passing
+    // zero on one side (a few) does not move it.
+    std::nth_element(around, around + 4, around + 8);
+    const double smooth = around[4];
+    return std::abs(v[k]) > tail * v_noise[k] && std::abs(v[k]) > kBreakOverSmooth * smooth;
+  };
+  std::vector<long> flagged;
+  for (long k = m + 1 + d + 3; k + m + 2 + d + 3 < n; ++k) {
+    if (stands_out(jump, noise, k) || stands_out(spike, spike_noise, k)) flagged.push_back(k);
+  }
+  // Runs of flagged intervals (a break at a reading flags the two beside it, its neighbours see
+  // a part of it): the largest |Ĵ| of each run is the break's interval.
+  const long p = kBreakFitPoints;
+  for (size_t r = 0; r < flagged.size();) {
+    size_t e = r;
+    long k = flagged[r];
+    while (e + 1 < flagged.size() && flagged[e + 1] - flagged[e] <= 2) {
+      ++e;
+      if (std::max(std::abs(jump[flagged[e]]), std::abs(spike[flagged[e]])) >
+          std::max(std::abs(jump[k]), std::abs(spike[k]))) {
+        k = flagged[e];
+      }
+    }
+    r = e + 1;
+    LiftBreak b;
+    // The interval is the one near the run's whose two sides' cubics fit their readings best:
+    // the readings of a side all lie on it there.
+    {
+      double best = std::numeric_limits<double>::infinity();
+      const long around = k;
+      for (long kk = around - 2; kk <= around + 2; ++kk) {
+        if (kk - p + 1 < 0 || kk + p >= n) continue;
+        const double h = x[kk + 1] - x[kk], c = 0.5 * (x[kk] + x[kk + 1]);
+        double left_ss = 0.0, right_ss = 0.0;
+        FitSide(x, y, kk - p + 1, kk + 1, c, h, &left_ss);
+        FitSide(x, y, kk + 1, kk + p + 1, c, h, &right_ss);
+        if (left_ss + right_ss < best) {
+          best = left_ss + right_ss;
+          k = kk;
+        }
+      }
+    }
+    if (k - p + 1 < 0 || k + p >= n) continue;
+    {
+      const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+      const SideCubic left = FitSide(x, y, k - p + 1, k + 1, c, h);
+      const SideCubic right = FitSide(x, y, k + 1, k + p + 1, c, h);
+      // Equal slopes within half a step of the interval: s'' jumps; else a corner there.
+      const double lo = x[k] - 0.5 * h, hi = x[k + 1] + 0.5 * h;
+      const auto slopes =
+          RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); }, lo, hi);
+      if (slopes) {
+        b.order = 2;
+        b.crank_rad = *slopes;
+        b.jump = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
+      } else {
+        b.order = 1;
+        const auto lifts =
+            RootIn([&](double t) { return right.Value(t, 0) - left.Value(t, 0); }, lo, hi);
+        b.crank_rad = lifts.value_or(c);
+        b.jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
+      }
+      b.lift_m = 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
+    }
+    if (k - p + 1 < 0 || k + p >= n) continue;
+    // A jump, not a steep but smooth change over a few readings (a jerk-limited law's ramp of
+    // s''): the two sides' cubics fit their readings kBreakOverSmooth times better than one
+    // cubic fits them all.
+    {
+      const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+      double left_ss = 0.0, right_ss = 0.0, joint_ss = 0.0;
+      FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
+      FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
+      FitSide(x, y, k - p + 1, k + p + 1, c, h, &joint_ss);
+      const double sides = std::sqrt((left_ss + right_ss) / (2 * p - 8));
+      const double joint = std::sqrt(joint_ss / (2 * p - 4));
+      if (!(kBreakOverSmooth * sides < joint && joint > tail * sigma_m)) continue;
+    }
+    // An s'' jump is measured alike by the lines of s2 and by the cubics; a jump of s''' (a
+    // kink of s'', which the lines see as J₃·h and the cubics as nothing) is no break here.
+    if (b.order == 2 && !(std::abs(b.jump - jump[k]) <= kBreakJumpAgreement * std::abs(jump[k])))
+      continue;
+    const double h = x[k + 1] - x[k];
+    b.index = static_cast<size_t>(k);
+    if (std::abs(b.crank_rad - x[k]) <= kBreakSnapFraction * h) {
+      b.crank_rad = x[k];
+      b.lift_m = y[k];
+    } else if (std::abs(b.crank_rad - x[k + 1]) <= kBreakSnapFraction * h) {
+      b.crank_rad = x[k + 1];
+      b.lift_m = y[k + 1];
+      b.index = static_cast<size_t>(k + 1);
+    }
+    if (found.empty() || b.crank_rad > found.back().crank_rad) found.push_back(b);
+  }
+  return found;
+}
+
+}  // namespace needle
