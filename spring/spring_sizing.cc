@@ -193,8 +193,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
   if (duty.buckling) {
     const double deflection = g.free_length_m - s.installed_m + h;
     if (done(Rule("buckling", "buckling deflection s_K over the deflection at full lift", "mm",
-                  std::isfinite(s.buckling_m) ? s.buckling_m * 1e3 : 1e300, deflection * 1e3,
-                  false)))
+                  s.buckling_m * 1e3, deflection * 1e3, false)))
       return s;
   }
   s.pass = std::all_of(s.rules.begin(), s.rules.end(), [](const SizingRule& r) { return r.pass; });
