@@ -158,6 +158,25 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
                   probe.surge_ratio, duty.min_surge_ratio, false)))
       return s;
   }
+  if (!full && duty.preload_floor_N > 0.0) {
+    // The screen at the floor preload: stress and fatigue only worsen above it.
+    HelicalGeometry long_one = g;
+    long_one.free_length_m = 1e3;
+    const HelicalSpringCheck f =
+        CheckHelicalSpring(long_one, duty.preload_floor_N, h, duty.speed_rpm, duty.four_stroke);
+    if (done(Rule("stress", "shear stress at full lift (at the floor preload)", "MPa",
+                  f.stress_full_lift_Pa * 1e-6, f.allowable_stress_Pa * 1e-6, true)))
+      return s;
+    if (f.fatigue_judged &&
+        done(Rule("fatigue", "spring fatigue safety factor (Goodman, at the floor preload)", "",
+                  f.fatigue.goodman_safety_factor, std::max(1.0, duty.min_fatigue_factor), false)))
+      return s;
+    s.rules.clear();
+    if (duty.speed_rpm > 0.0) {  // the surge rule judged above, kept
+      s.rules.push_back(Rule("surge_ratio", "first surge mode over the cam frequency f_1/f_cam", "",
+                             probe.surge_ratio, duty.min_surge_ratio, false));
+    }
+  }
   const PreloadNeed p = duty.preload(s.rate_N_m, s.active_mass_kg);
   s.preload_N = std::ceil(p.preload_N * 10.0 - 1e-9) / 10.0;  // up to 0.1 N, as written
   s.preload_rule = p.rule;

@@ -82,6 +82,11 @@ struct SizingDuty {
   bool four_stroke = true;  ///< the cam at half crank speed
   /// The least preload for (rate N/m, active coil mass kg).
   std::function<PreloadNeed(double, double)> preload;
+  /// A preload below every `preload` answer (known without the rate: S·F_g, Basu's formula less
+  /// its tolerance), N. A spring that fails the stress or fatigue rule at it fails them at its
+  /// own preload too (both only worsen as P₀ grows with τ_a fixed), so the search screens with
+  /// it before asking `preload`.
+  double preload_floor_N = 0.0;
   double min_fatigue_factor = 1.0;          ///< Goodman n_f at least (where judged)
   std::optional<double> min_gap_m;          ///< gap at full lift at least; absent: S_a
   double min_surge_ratio = kMinSurgeRatio;  ///< f_e/f_cam at least

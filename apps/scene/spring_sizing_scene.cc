@@ -276,6 +276,9 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
       c.needle->diameter_m
           ? std::optional<double>(BasuPreloadN(*c.needle->diameter_m, sum.injection_period_s))
           : std::nullopt;
+  duty.preload_floor_N =
+      std::max(spring.safety_factor * gas,
+               basu ? *basu * (1.0 - spring.basu_tolerance_percent / 100.0) : 0.0);
   const double omega = OmegaFromRpm(rpm);
   duty.preload = [&law, &spring, gas, m0, basu, omega](double rate, double spring_mass) {
     PreloadNeed need{spring.safety_factor * gas, "combustion load S F_g"};

@@ -98,6 +98,7 @@ SizingDuty ValveDuty() {
   d.speed_rpm = 1500.0;
   d.four_stroke = true;
   d.min_fatigue_factor = 1.5;
+  d.preload_floor_N = 300.0;  // the screen before the preload rule
   d.preload = [](double rate, double spring_mass) {
     const double inertia = 1.5 * (0.2 + spring_mass / 3.0) * 2500.0 - rate * 2e-3;
     return inertia > 300.0 ? PreloadNeed{inertia, "inertia"} : PreloadNeed{300.0, "floor"};
