@@ -20,13 +20,11 @@ nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space, double
   nlohmann::json j = {{"wire", space.wires[s.wire_index].label},
                       {"wire_mm", g.wire_m * 1e3},
                       {"coil_mm", g.coil_m * 1e3},
-                      {"outer_diameter_mm", (g.coil_m + g.wire_m) * 1e3},
                       {"active_coils", g.active_coils},
                       {"total_coils", s.total_coils},
                       {"free_length_mm", g.free_length_m * 1e3},
                       {"installed_length_mm", s.installed_m * 1e3},
                       {"preload_N", s.preload_N},
-                      {"preload_kgf", s.preload_N / kKgf},
                       {"preload_rule", s.preload_rule},
                       {"rate_N_mm", s.rate_N_m * 1e-3},
                       {"mass_kg", s.mass_kg},
@@ -36,7 +34,6 @@ nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space, double
   if (s.check) j["fatigue_safety_factor"] = Finite(s.check->fatigue.goodman_safety_factor);
   for (const SizingRule& x : s.rules) {
     j["rules"].push_back({{"key", x.key},
-                          {"name", x.name},
                           {"unit", x.unit},
                           {"value", Finite(x.value)},
                           {"limit", x.limit},
@@ -53,6 +50,15 @@ std::string SpringLine(const SizedSpring& s, const SizingSpace& space) {
          Fixed(g.coil_m * 1e3, 1) + " mm, " + Fixed(g.active_coils, 1) + " active coils, " +
          Fixed(s.mass_kg, 3) + " kg, n_f " +
          (s.check ? Fixed(s.check->fatigue.goodman_safety_factor, 2) : std::string("-"));
+}
+
+// "  NAME: VALUE <= LIMIT, margin M, VERDICT" (an infinite value: buckling's imaginary root).
+std::string RowText(const std::string& name, double value, double limit, bool at_most,
+                    double margin, const std::string& unit, const std::string& verdict) {
+  const std::string u = unit.empty() ? "" : " " + unit;
+  if (!std::isfinite(value)) return "  " + name + ": none at any deflection, " + verdict + "\n";
+  return "  " + name + ": " + Fixed(value, 2) + u + (at_most ? " <= " : " >= ") + Fixed(limit, 2) +
+         u + ", margin " + Fixed(margin, 2) + u + ", " + verdict + "\n";
 }
 
 }  // namespace
@@ -90,12 +96,13 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
   }
   if (o.json) {
     nlohmann::json& j = out.json;
-    j["case"] = c.path;
-    j["objective"] = r.objective;
-    j["space"] = r.space_note;
-    j["stroke_mm"] = r.stroke_m * 1e3;
-    j["mass_without_spring_kg"] = r.mass_without_spring_kg;
-    j["mass_without_spring_source"] = r.mass_note;
+    j = {{"case", c.path},
+         {"objective", r.objective},
+         {"space", r.space_note},
+         {"stroke_mm", r.stroke_m * 1e3},
+         {"mass_without_spring_kg", r.mass_without_spring_kg},
+         {"mass_without_spring_source", r.mass_note},
+         {"pass", r.pass}};
     for (const SizeStage& s : r.stages) {
       j["stages"].push_back({{"name", s.name},
                              {"in", s.in},
@@ -103,15 +110,12 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
                              {"seconds", s.seconds},
                              {"note", s.note}});
     }
-    j["pass"] = r.pass;
     j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
     j["spring"] = chosen ? SpringJson(*chosen, sp, r.mass_without_spring_kg) : nullptr;
-    j["case_spring_mass_kg"] =
-        r.case_spring_mass_kg ? nlohmann::json(*r.case_spring_mass_kg) : nlohmann::json(nullptr);
+    if (r.case_spring_mass_kg) j["case_spring_mass_kg"] = *r.case_spring_mass_kg;
     if (check) {
-      j["check"]["pass"] = check->pass;
-      j["check"]["failing"] = check->failing;
-      j["check"]["warnings"] = check->warnings;
+      j["check"] = {
+          {"pass", check->pass}, {"failing", check->failing}, {"warnings", check->warnings}};
       for (const LimitRow& x : check->limits) {
         j["check"]["limits"].push_back({{"key", x.key},
                                         {"value", Finite(x.value)},
@@ -125,20 +129,13 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
     for (const SizedSpring& s : r.closed_form.best)
       j["candidates"].push_back(SpringJson(s, sp, r.mass_without_spring_kg));
     for (const VerifiedSpring& v : r.verified) {
-      j["verified"].push_back({{"wire_mm", v.spring.geometry.wire_m * 1e3},
-                               {"coil_mm", v.spring.geometry.coil_m * 1e3},
-                               {"active_coils", v.spring.geometry.active_coils},
+      j["verified"].push_back({{"spring", SpringJson(v.spring, sp, r.mass_without_spring_kg)},
                                {"pass", v.check.pass},
                                {"failing", v.check.failing},
                                {"seconds", v.seconds}});
     }
-    for (const SizedSpring& s : front) {
-      j["front"].push_back({{"mass_kg", s.mass_kg},
-                            {"fatigue_safety_factor", s.check->fatigue.goodman_safety_factor},
-                            {"wire_mm", s.geometry.wire_m * 1e3},
-                            {"coil_mm", s.geometry.coil_m * 1e3},
-                            {"active_coils", s.geometry.active_coils}});
-    }
+    for (const SizedSpring& s : front)
+      j["front"].push_back(SpringJson(s, sp, r.mass_without_spring_kg));
     return out;
   }
   std::ostringstream t;
@@ -166,27 +163,15 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
       << ", moving mass " << Fixed(r.mass_without_spring_kg + chosen->active_mass_kg / 3, 4)
       << " kg\n";
     t << "rules (value, limit, margin):\n";
-    for (const SizingRule& x : chosen->rules) {
-      const std::string u = x.unit.empty() ? "" : " " + x.unit;
-      if (!std::isfinite(x.value)) {  // buckling: the root is imaginary
-        t << "  " << x.name << ": none at any deflection, pass\n";
-        continue;
-      }
-      t << "  " << x.name << ": " << Fixed(x.value, 2) << u << (x.at_most ? " <= " : " >= ")
-        << Fixed(x.limit, 2) << u << ", margin " << Fixed(x.margin, 2) << u << ", "
-        << (x.pass ? "pass" : "FAIL") << '\n';
-    }
+    for (const SizingRule& x : chosen->rules)
+      t << RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.pass ? "pass" : "FAIL");
   }
   if (check) {
     t << "check of the sized case (limits, as needle check):\n";
     for (const LimitRow& x : check->limits) {
-      const std::string u = x.UnitSuffix();
-      t << "  " << x.name << ": "
-        << (x.verdict == "not judged"
-                ? "not judged (" + x.note + ")"
-                : Fixed(x.value, 2) + u + (x.at_most ? " <= " : " >= ") + Fixed(x.limit, 2) + u +
-                      ", margin " + Fixed(x.margin, 2) + u + ", " + x.verdict)
-        << '\n';
+      t << (x.verdict == "not judged"
+                ? "  " + x.name + ": not judged (" + x.note + ")\n"
+                : RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.verdict));
     }
   }
   for (const VerifiedSpring& v : r.verified) {

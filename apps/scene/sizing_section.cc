@@ -21,14 +21,13 @@ SizingSection ReadSizing(SectionReader r) {
     if (!v) return v;
     written[name] = r.last_key();
     if (!((zero ? *v >= 0.0 : *v > 0.0) && *v <= hi_m))
-      r.Fail(r.last_key(), std::string("must be ") + (zero ? "≥ 0" : "positive") +
-                               " and at most " + Number(hi_m * 1e3) + " mm, got " +
-                               Number(*v * 1e3) + " mm");
+      r.Fail(r.last_key(), std::string("must be ") + (zero ? "≥ 0" : "positive") + " and at most " +
+                               Number(hi_m * 1e3) + " mm, got " + Number(*v * 1e3) + " mm");
     return v;
   };
-  // An optional plain number in [lo, hi], whole when `whole`.
-  const auto number = [&r](const std::string& name, double lo, double hi, bool whole) {
-    const std::optional<double> v = r.OptionalNumber(name);
+  // An optional plain number read as `v`, in [lo, hi], whole when `whole`.
+  const auto number = [&r](std::optional<double> v, const std::string& name, double lo, double hi,
+                           bool whole) {
     if (v && (!(*v >= lo && *v <= hi) || (whole && *v != std::floor(*v))))
       r.Fail(name, std::string("must be ") + (whole ? "a whole number " : "") + "in [" +
                        Number(lo) + ", " + Number(hi) + "], got " + Number(*v));
@@ -69,16 +68,19 @@ SizingSection ReadSizing(SectionReader r) {
     r.Fail(key("min_inner_diameter"),
            "must be below " + key("max_outer_diameter") + ": no coil fits between them");
   // The [spring] reader's own range of the index (EN 13906-1), so a sized spring reads back.
-  s.min_index = number("min_index", 4.0, 20.0, false);
-  s.max_index = number("max_index", 4.0, 20.0, false);
+  s.min_index = number(r.OptionalNumber("min_index"), "min_index", 4.0, 20.0, false);
+  s.max_index = number(r.OptionalNumber("max_index"), "max_index", 4.0, 20.0, false);
   if (s.min_index && s.max_index && *s.min_index > *s.max_index)
     r.Fail("min_index", "is above max_index: the range is empty");
   if (auto v = length("coil_step", 0.01)) s.coil_step_m = *v;
-  s.min_active_coils = number("min_active_coils", 2.0, 1000.0, false);
-  s.max_active_coils = number("max_active_coils", 2.0, 1000.0, false);
+  s.min_active_coils =
+      number(r.OptionalNumber("min_active_coils"), "min_active_coils", 2.0, 1000.0, false);
+  s.max_active_coils =
+      number(r.OptionalNumber("max_active_coils"), "max_active_coils", 2.0, 1000.0, false);
   if (s.min_active_coils && s.max_active_coils && *s.min_active_coils > *s.max_active_coils)
     r.Fail("min_active_coils", "is above max_active_coils: the range is empty");
-  if (auto v = number("active_coil_step", 0.01, 100.0, false)) s.active_coil_step = *v;
+  if (auto v = number(r.OptionalNumber("active_coil_step"), "active_coil_step", 0.01, 100.0, false))
+    s.active_coil_step = *v;
   s.ends = r.OptionalString("ends");
   if (s.ends && *s.ends != "closed-ground" && *s.ends != "closed" && *s.ends != "open-ground" &&
       *s.ends != "open")
@@ -93,9 +95,12 @@ SizingSection ReadSizing(SectionReader r) {
   s.mass_without_spring_kg = r.OptionalQuantity("mass_without_spring", Dimension::kMass);
   if (s.mass_without_spring_kg && !(*s.mass_without_spring_kg > 0.0))
     r.Fail(r.last_key(), "must be positive, got " + Number(*s.mass_without_spring_kg));
-  if (auto v = number("end_fixation", 0.1, 10.0, false)) s.end_fixation = *v;
-  if (auto v = number("candidates", 1, 100, true)) s.candidates = static_cast<int>(*v);
-  if (auto v = number("verify", 0, 100, true)) s.verify = static_cast<int>(*v);
+  if (auto v = number(r.OptionalNumber("end_fixation"), "end_fixation", 0.1, 10.0, false))
+    s.end_fixation = *v;
+  if (auto v = number(r.OptionalNumber("candidates"), "candidates", 1, 100, true))
+    s.candidates = static_cast<int>(*v);
+  if (auto v = number(r.OptionalNumber("verify"), "verify", 0, 100, true))
+    s.verify = static_cast<int>(*v);
   if (s.verify > s.candidates)
     r.Fail("verify", "verifies " + std::to_string(s.verify) + " springs but only " +
                          std::to_string(s.candidates) + " candidates are kept");
@@ -104,8 +109,9 @@ SizingSection ReadSizing(SectionReader r) {
   const bool one_count =
       s.min_active_coils && s.max_active_coils && *s.min_active_coils == *s.max_active_coils;
   if (one_wire && one_index && one_count)
-    r.Fail(key("wire"), "one wire, one index and one coil count leave nothing to choose; "
-                        "`needle check` judges a given spring");
+    r.Fail(key("wire"),
+           "one wire, one index and one coil count leave nothing to choose; "
+           "`needle check` judges a given spring");
   r.Finish();
   return s;
 }

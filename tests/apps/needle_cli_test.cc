@@ -765,5 +765,42 @@ TEST(SynthCliTest, JerkLimitHoldsInTheCsvAndThePressureAngleIsItsMagnitude) {
   std::remove(csv.c_str());
 }
 
+TEST(NeedleCliTest, SizeWritesACaseThatCheckPassesAndNamesTheBindingRuleWhenNothingFits) {
+  // Example 2 in its own space: no spring; exit 1 with the binding rule and the closest spring.
+  const auto none = RunNeedle("size " + Case("basu-example2.toml") + " --threads 1");
+  EXPECT_EQ(none.status, 1) << none.err;
+  EXPECT_NE(none.out.find("no fit: no spring in the space ("), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("reaches the spring fatigue safety factor (Goodman) of at least 1.50; "
+                          "best 1.40 (short by 0.10) at case wire d = 6.70 mm"),
+            std::string::npos)
+      << none.out;
+  // With 5 mm more outside diameter: a spring, written, and `needle check` passes the file.
+  const std::string in = testing::TempPath("ex2-space.toml");
+  const std::string out = testing::TempPath("ex2-sized.toml");
+  std::filesystem::remove(out);
+  {
+    std::ofstream f(in);
+    f << testing::Slurp(Case("basu-example2.toml")) << "\n[sizing]\nmax_outer_diameter_mm = 52\n";
+  }
+  const auto sized = RunNeedle("size " + in + " --threads 1 --json --case " + out);
+  ASSERT_EQ(sized.status, 0) << sized.err;
+  const auto j = nlohmann::json::parse(sized.out);
+  EXPECT_EQ(j["spring"]["wire_mm"], 8.0);
+  EXPECT_EQ(j["stages"].size(), 2u);
+  const auto check = RunNeedle("check " + out + " --json --out " + ::testing::TempDir());
+  EXPECT_EQ(check.status, 0) << check.out << check.err;
+  // Bad input: exit 2, one line naming the key, nothing written.
+  std::filesystem::remove(out);
+  {
+    std::ofstream f(in);
+    f << testing::Slurp(Case("basu-example2.toml")) << "\n[sizing]\nmin_index = 9\nmax_index = 8\n";
+  }
+  const auto bad = RunNeedle("size " + in + " --case " + out);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err,
+            "needle: " + in + ": [sizing] min_index: is above max_index: the range is empty\n");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 }  // namespace
 }  // namespace needle

@@ -135,8 +135,10 @@ std::string Refusal(const std::string& sizing) {
 }
 
 TEST(SpringSizingSceneTest, SizingKeysAreValidatedNamingTheKey) {
+  EXPECT_EQ(Refusal("colour = \"red\"\n"), "t.toml: [sizing] colour: unknown key in this section");
   EXPECT_EQ(Refusal("wire_size_mm = 4\n"),
-            "t.toml: [sizing] wire_size_mm: unknown key in this section");
+            "t.toml: [sizing] wire_size_mm: unit suffix 'size_mm' is not a unit of length "
+            "(expected wire_mm or wire_cm or wire_m or wire_um)");
   EXPECT_EQ(Refusal("grades = [\"VD\"]\n"),
             "t.toml: [sizing] grades: unknown grade \"VD\"; expected SH, DH, VDC, VDCrV, VDSiCr "
             "or \"case\"");
@@ -155,8 +157,8 @@ TEST(SpringSizingSceneTest, SizingKeysAreValidatedNamingTheKey) {
             "choose; `needle check` judges a given spring");
   EXPECT_EQ(Refusal("candidates = 2\nverify = 3\n"),
             "t.toml: [sizing] verify: verifies 3 springs but only 2 candidates are kept");
-  EXPECT_EQ(Refusal("max_outer_diameter = 50\n").rfind(
-                "t.toml: [sizing] max_outer_diameter: needs a unit suffix: ", 0),
+  EXPECT_EQ(Refusal("max_outer_diameter = 50\n")
+                .rfind("t.toml: [sizing] max_outer_diameter: needs a unit suffix: ", 0),
             0u);
   EXPECT_EQ(
       Refusal("max_outer_diameter_mm = 10\nmin_inner_diameter_mm = 5\n")
