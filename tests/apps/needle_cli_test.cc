@@ -183,9 +183,10 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   EXPECT_EQ(nocase.err, "needle: CASE is required (see needle --help)\n");
   const auto unknown = RunNeedle("frobnicate");
   EXPECT_EQ(unknown.status, 2);
-  EXPECT_EQ(unknown.err,
-            "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
-            "spring, design, simulate, overspeed, synth, profile, tolerance (see needle --help)\n");
+  EXPECT_EQ(
+      unknown.err,
+      "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
+      "spring, size, design, simulate, overspeed, synth, profile, tolerance (see needle --help)\n");
   const auto missing = RunNeedle("kinematics /no/such.toml");
   EXPECT_EQ(missing.status, 2);
   EXPECT_EQ(missing.err, "needle: /no/such.toml: cannot open the case file for reading\n");
