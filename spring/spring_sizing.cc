@@ -183,7 +183,10 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
   double installed = std::max(space.min_installed_m, need + kLengthSlack_m);
   double free = installed + s.preload_N / s.rate_N_m;
   if (space.free_length_step_m > 0.0) {
-    free = std::ceil(free / space.free_length_step_m - 1e-9) * space.free_length_step_m;
+    // Whole nanometres, so that the written free length is the step's decimal.
+    free = std::round(std::ceil(free / space.free_length_step_m - 1e-9) * space.free_length_step_m *
+                      1e9) /
+           1e9;
   }
   g.free_length_m = free;
   s.installed_m = free - s.preload_N / s.rate_N_m;

@@ -82,8 +82,9 @@ std::string SizedCaseText(const std::string& original, const Case& sized, const 
   keys << "wire_mm = " << Exact(g.wire_m * 1e3) << '\n';
   keys << "coil_mm = " << Exact(g.coil_m * 1e3) << '\n';
   keys << "active_coils = " << Exact(g.active_coils) << '\n';
-  // Up to the next 1e-6 mm: the installed length never shorter than sized.
-  keys << "free_length_mm = " << Fixed(std::ceil(g.free_length_m * 1e9) / 1e6, 6) << '\n';
+  // Up to the next 1e-6 mm: the installed length never shorter than sized
+  // (less 1e-12 m of round-off: the sized L₁ has 1e-9 m to spare, kLengthSlack_m)
+  keys << "free_length_mm = " << Exact(std::ceil(g.free_length_m * 1e9 - 1e-3) / 1e6) << '\n';
   if (w.grade) {
     keys << "grade = \"" << WireGradeName(*w.grade) << "\"\n";  // R_m(d) and G of the grade
   } else {
