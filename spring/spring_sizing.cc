@@ -289,6 +289,23 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
     }
     if (group_best) insert(*group_best);
   }
+  if (options.front && !r.best.empty()) {
+    // Every passing spring of the space, for the front (the same early exits as the search).
+    std::vector<SizedSpring> passing;
+    for (const Group& gr : groups) {
+      for (double n : coils) {
+        SizedSpring s = EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, false);
+        ++r.front_evaluated;
+        if (s.pass) {
+          passing.push_back(std::move(s));
+          continue;
+        }
+        const std::string& failed = s.rules.back().key;
+        if (failed == "surge_ratio" || (failed == "coil_gap" && !s.check)) break;
+      }
+    }
+    r.front = MassFatigueFront(passing);
+  }
   if (r.best.empty()) {
     // Nothing passes: the candidate whose worst rule fails least, every rule evaluated.
     double least = INFINITY;

@@ -134,6 +134,9 @@ struct SizingOptions {
   SizingObjective objective = SizingObjective::kMass;
   int keep = 5;             ///< the best springs kept, one per (wire, D) group
   bool exhaustive = false;  ///< evaluate every candidate fully (the reference answer)
+  /// Also scan the whole space for the front between mass and fatigue safety factor (every
+  /// passing spring, not only the kept ones).
+  bool front = false;
 };
 
 struct SizingResult {
@@ -146,6 +149,10 @@ struct SizingResult {
   /// that rule; absent when the space is empty.
   std::optional<SizedSpring> closest;
   std::optional<SizingRule> binding;
+  /// With SizingOptions::front: the front between mass and fatigue factor over every passing
+  /// spring of the space (MassFatigueFront), and the springs that scan evaluated.
+  std::vector<SizedSpring> front;
+  long front_evaluated = 0;
 };
 
 /// Evaluates one candidate: (wire, D, n); all rules when `full`, else up to the first that

@@ -15,7 +15,7 @@ namespace {
 
 nlohmann::json Finite(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
-nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space, double m0) {
+nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space) {
   const HelicalGeometry& g = s.geometry;
   nlohmann::json j = {{"wire", space.wires[s.wire_index].label},
                       {"wire_mm", g.wire_m * 1e3},
@@ -28,8 +28,6 @@ nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space, double
                       {"preload_rule", s.preload_rule},
                       {"rate_N_mm", s.rate_N_m * 1e-3},
                       {"mass_kg", s.mass_kg},
-                      {"moving_mass_kg", m0 + s.active_mass_kg / 3.0},
-                      {"buckling_mm", Finite(s.buckling_m * 1e3)},
                       {"pass", s.pass}};
   if (s.check) j["fatigue_safety_factor"] = Finite(s.check->fatigue.goodman_safety_factor);
   for (const SizingRule& x : s.rules) {
@@ -87,7 +85,7 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
                               : r.closed_form.closest                 ? &*r.closed_form.closest
                                                                       : nullptr;
   const CheckResult* check = r.winner ? &r.verified[*r.winner].check : nullptr;
-  const std::vector<SizedSpring> front = MassFatigueFront(r.closed_form.best);
+  const std::vector<SizedSpring>& front = r.closed_form.front;
   CommandOutput out;
   out.status = r.pass ? 0 : 1;
   if (r.pass && chosen && o.case_out) {
@@ -111,7 +109,7 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
                              {"note", s.note}});
     }
     j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
-    j["spring"] = chosen ? SpringJson(*chosen, sp, r.mass_without_spring_kg) : nullptr;
+    j["spring"] = chosen ? SpringJson(*chosen, sp) : nullptr;
     if (r.case_spring_mass_kg) j["case_spring_mass_kg"] = *r.case_spring_mass_kg;
     if (check) {
       j["check"] = {
@@ -126,16 +124,14 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
       if (check->sweep && check->sweep->n_dyn_rpm)
         j["check"]["n_dyn_rpm"] = *check->sweep->n_dyn_rpm;
     }
-    for (const SizedSpring& s : r.closed_form.best)
-      j["candidates"].push_back(SpringJson(s, sp, r.mass_without_spring_kg));
+    for (const SizedSpring& s : r.closed_form.best) j["candidates"].push_back(SpringJson(s, sp));
     for (const VerifiedSpring& v : r.verified) {
-      j["verified"].push_back({{"spring", SpringJson(v.spring, sp, r.mass_without_spring_kg)},
+      j["verified"].push_back({{"spring", SpringJson(v.spring, sp)},
                                {"pass", v.check.pass},
                                {"failing", v.check.failing},
                                {"seconds", v.seconds}});
     }
-    for (const SizedSpring& s : front)
-      j["front"].push_back(SpringJson(s, sp, r.mass_without_spring_kg));
+    for (const SizedSpring& s : front) j["front"].push_back(SpringJson(s, sp));
     return out;
   }
   std::ostringstream t;
@@ -160,19 +156,17 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
       << " N/mm, mass " << Fixed(chosen->mass_kg, 3) << " kg"
       << (r.case_spring_mass_kg ? " (the case's spring " + Fixed(*r.case_spring_mass_kg, 3) + " kg)"
                                 : "")
-      << ", moving mass " << Fixed(r.mass_without_spring_kg + chosen->active_mass_kg / 3, 4)
-      << " kg\n";
+      << '\n';
     t << "rules (value, limit, margin):\n";
     for (const SizingRule& x : chosen->rules)
       t << RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.pass ? "pass" : "FAIL");
   }
   if (check) {
     t << "check of the sized case (limits, as needle check):\n";
-    for (const LimitRow& x : check->limits) {
+    for (const LimitRow& x : check->limits)
       t << (x.verdict == "not judged"
                 ? "  " + x.name + ": not judged (" + x.note + ")\n"
                 : RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.verdict));
-    }
   }
   for (const VerifiedSpring& v : r.verified) {
     if (!v.check.pass)
@@ -181,7 +175,11 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
   }
   for (size_t i = 1; i < r.closed_form.best.size(); ++i)
     t << "next best: " << SpringLine(r.closed_form.best[i], sp) << '\n';
-  for (const SizedSpring& s : front) t << "front (mass, n_f): " << SpringLine(s, sp) << '\n';
+  const size_t every = front.size() / 8 + 1;  // at most 8 and the last (--json: all)
+  for (size_t i = 0; i < front.size(); ++i)
+    if (i % every == 0 || i + 1 == front.size())
+      t << "front (mass, n_f) " << i + 1 << "/" << front.size() << ": " << SpringLine(front[i], sp)
+        << '\n';
   if (!r.pass) t << "no fit: " << r.no_fit << '\n';
   t << "overall: " << (r.pass ? "pass" : "FAIL") << '\n';
   out.text = t.str();

@@ -303,6 +303,7 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
                  : z.objective == "stress" ? SizingObjective::kStress
                                            : SizingObjective::kMass;
   so.keep = z.candidates;
+  so.front = true;
   r.closed_form = SizeSpring(sp, duty, so);
   if (r.closed_form.groups == 0)
     throw CaseError(fail_where +
@@ -314,7 +315,8 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
   closed.note = std::to_string(r.closed_form.groups) + " (wire, D) groups; " +
                 std::to_string(r.closed_form.evaluated) + " springs evaluated, " +
                 std::to_string(r.closed_form.passed) + " passed; the best of " +
-                std::to_string(r.closed_form.best.size()) + " groups kept";
+                std::to_string(r.closed_form.best.size()) + " groups kept; the front scanned " +
+                std::to_string(r.closed_form.front_evaluated) + " springs";
   r.stages.push_back(closed);
   if (r.closed_form.best.empty()) {
     std::ostringstream m;

@@ -195,6 +195,38 @@ TEST(SpringSizingTest, TheChosenSpringsClosedForms) {
   }
 }
 
+TEST(SpringSizingTest, TheFrontIsTheWholeSpacesFrontBetweenMassAndFatigue) {
+  const SizingSpace space = SmallSpace();
+  const SizingDuty duty = ValveDuty();
+  SizingOptions o;
+  o.front = true;
+  const SizingResult r = SizeSpring(space, duty, o);
+  // Every spring of the space, every rule: the passing ones' front.
+  std::vector<SizedSpring> passing;
+  for (int w = 0; w < static_cast<int>(space.wires.size()); ++w) {
+    const double d = space.wires[w].wire_m;
+    for (double D = 1e-3; D < 0.1; D += 1e-3) {
+      const double coil = std::round(D * 1e9) / 1e9;
+      if (coil < 4 * d - 1e-12 || coil > 20 * d + 1e-12 || coil + d > 36e-3 + 1e-12 ||
+          coil - d < 14e-3 - 1e-12)
+        continue;
+      for (double n = 3; n <= 14; n += 0.5) {
+        SizedSpring s = EvaluateSpring(space, duty, w, coil, n, SizingObjective::kMass, true);
+        if (s.pass) passing.push_back(std::move(s));
+      }
+    }
+  }
+  const std::vector<SizedSpring> all = MassFatigueFront(passing);
+  ASSERT_GT(all.size(), 3u);
+  ASSERT_EQ(r.front.size(), all.size());
+  for (size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(r.front[i].mass_kg, all[i].mass_kg);
+    EXPECT_EQ(r.front[i].check->fatigue.goodman_safety_factor,
+              all[i].check->fatigue.goodman_safety_factor);
+  }
+  EXPECT_EQ(r.front.front().mass_kg, r.best.front().mass_kg);  // its lightest is the answer
+}
+
 TEST(SpringSizingTest, NothingFitsNamesTheBindingRuleAndTheClosestSpring) {
   SizingSpace space = SmallSpace();
   SizingDuty duty = ValveDuty();
