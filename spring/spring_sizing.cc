@@ -30,9 +30,9 @@ SizingRule Rule(std::string key, std::string name, std::string unit, double valu
 
 // The check's own lengths, coil counts, S_a and surge of `g` (its free length aside): a probe
 // with a free length no preload reaches.
-HelicalSpringCheck Probe(HelicalGeometry g, double stroke_m, double speed_rpm, bool four_stroke) {
+HelicalSpringCheck Probe(HelicalGeometry g, double stroke_m, double speed_rpm, EngineCycle cycle) {
   g.free_length_m = 1e3;
-  return CheckHelicalSpring(g, 0.0, stroke_m, speed_rpm, four_stroke);
+  return CheckHelicalSpring(g, 0.0, stroke_m, speed_rpm, cycle);
 }
 
 double CoilMassKg(const HelicalGeometry& g, double coils) {
@@ -133,7 +133,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
   HelicalGeometry& g = s.geometry;
   s.rate_N_m = HelicalRate(g);
   s.active_mass_kg = ActiveSpringMassKg(g);
-  const HelicalSpringCheck probe = Probe(g, duty.stroke_m, duty.speed_rpm, duty.four_stroke);
+  const HelicalSpringCheck probe = Probe(g, duty.stroke_m, duty.speed_rpm, duty.cycle);
   s.total_coils = probe.total_coils;
   s.mass_kg = CoilMassKg(g, s.total_coils);
   s.objective = s.mass_kg;
@@ -163,7 +163,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
     HelicalGeometry long_one = g;
     long_one.free_length_m = 1e3;
     const HelicalSpringCheck f =
-        CheckHelicalSpring(long_one, duty.preload_floor_N, h, duty.speed_rpm, duty.four_stroke);
+        CheckHelicalSpring(long_one, duty.preload_floor_N, h, duty.speed_rpm, duty.cycle);
     if (done(Rule("stress", "shear stress at full lift (at the floor preload)", "MPa",
                   f.stress_full_lift_Pa * 1e-6, f.allowable_stress_Pa * 1e-6, true)))
       return s;
@@ -196,7 +196,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
                   s.installed_m * 1e3, space.max_installed_m * 1e3, true)))
       return s;
   }
-  s.check = CheckHelicalSpring(g, s.preload_N, h, duty.speed_rpm, duty.four_stroke);
+  s.check = CheckHelicalSpring(g, s.preload_N, h, duty.speed_rpm, duty.cycle);
   const HelicalSpringCheck& c = *s.check;
   if (objective == SizingObjective::kStress) s.objective = c.stress_full_lift_Pa * 1e-6;
   if (need <= space.max_installed_m) {
@@ -244,7 +244,7 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
       gr.coil_m = std::round(k * space.coil_step_m * 1e9) / 1e9;
       if (!(gr.coil_m > d)) continue;
       const HelicalGeometry low = CandidateGeometry(space, wi, gr.coil_m, coils.front());
-      const HelicalSpringCheck p = Probe(low, duty.stroke_m, 0.0, duty.four_stroke);
+      const HelicalSpringCheck p = Probe(low, duty.stroke_m, 0.0, duty.cycle);
       if (objective == SizingObjective::kMass) {
         gr.bound = CoilMassKg(low, p.total_coils);
       } else if (objective == SizingObjective::kHeight) {

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "lib/engine_cycle.h"
 #include "spring/helical_spring.h"
 #include "spring/spring_parameters.h"
 #include "spring/wire_material.h"
@@ -77,9 +78,9 @@ struct PreloadNeed {
 
 /// What the spring must do.
 struct SizingDuty {
-  double stroke_m = 0.0;    ///< h, the deflection from seated to full lift
-  double speed_rpm = 0.0;   ///< rated speed for the surge ratio; 0: no surge rule
-  bool four_stroke = true;  ///< the cam at half crank speed
+  double stroke_m = 0.0;   ///< h, the deflection from seated to full lift
+  double speed_rpm = 0.0;  ///< rated speed for the surge ratio; 0: no surge rule
+  EngineCycle cycle = EngineCycle::kFourStroke;  ///< the crank-to-cam rule
   /// The least preload for (rate N/m, active coil mass kg).
   std::function<PreloadNeed(double, double)> preload;
   /// A preload below every `preload` answer (known without the rate: S·F_g, Basu's formula less

@@ -140,7 +140,7 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
   SizeResult r;
   r.objective = z.objective;
   const double rpm = c.engine.speed_rpm;
-  const bool four = c.engine.cycle == "four-stroke";
+  const EngineCycle cycle = c.engine.cycle;
   const KinematicsSummary sum = Kinematics(law, rpm).Summarize();
   r.stroke_m = sum.max_lift_m;
 
@@ -222,7 +222,7 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
   if (own) {
     own_outer = own->coil_m + own->wire_m;
     own_inner = own->coil_m - own->wire_m;
-    own_check = CheckHelicalSpring(*own, c.spring->preload_N, r.stroke_m, rpm, four);
+    own_check = CheckHelicalSpring(*own, c.spring->preload_N, r.stroke_m, rpm, cycle);
     own_installed = own_check.length_preload_m;
     r.case_spring_mass_kg = c.spring->helical->density_kg_m3 * kPi * kPi * own->wire_m *
                             own->wire_m * own->coil_m * own_check.total_coils / 4.0;
@@ -268,7 +268,7 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
   SizingDuty duty;
   duty.stroke_m = r.stroke_m;
   duty.speed_rpm = rpm;
-  duty.four_stroke = four;
+  duty.cycle = cycle;
   duty.min_fatigue_factor = c.limits.fatigue_safety_factor;
   duty.min_gap_m = c.limits.coil_gap_m;
   const SpringParameters& spring = *c.spring;

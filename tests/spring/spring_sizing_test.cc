@@ -96,7 +96,7 @@ SizingDuty ValveDuty() {
   SizingDuty d;
   d.stroke_m = 3e-3;
   d.speed_rpm = 1500.0;
-  d.four_stroke = true;
+  d.cycle = EngineCycle::kFourStroke;
   d.min_fatigue_factor = 1.5;
   d.preload_floor_N = 300.0;  // the screen before the preload rule
   d.preload = [](double rate, double spring_mass) {
