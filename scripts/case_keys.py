@@ -19,16 +19,18 @@ DOC = ROOT / "docs" / "case-file.md"
 BEGIN = "<!-- case-keys: begin (scripts/case_keys.py --write) -->"
 END = "<!-- case-keys: end -->"
 READERS = ["apps/scene/spring_sections.cc", "apps/scene/run_sections.cc",
-           "apps/scene/lift_section.cc", "apps/scene/section_reader.cc"]
+           "apps/scene/lift_section.cc", "apps/scene/section_reader.cc",
+           "apps/scene/sizing_section.cc"]
 # Reader function -> the section(s) it reads.
 SECTIONS = {"ReadNeedle": ["needle"], "ReadHelical": ["spring"], "ReadSpring": ["spring"],
             "ReadLimits": ["limits"], "ReadEngine": ["engine"], "ReadTrain": ["train"],
             "ReadSolver": ["solver"], "ReadOverspeed": ["overspeed"],
             "ReadTolerance": ["tolerance"], "ReadProfile": ["profile"], "ReadPaper": ["paper"],
-            "ReadLift": ["lift"], "ReadFollowerKeys": ["profile", "limits"]}
+            "ReadLift": ["lift"], "ReadFollowerKeys": ["profile", "limits"],
+            "ReadSizing": ["sizing"]}
 ORDER = ["engine", "lift", "needle", "spring", "train", "solver", "overspeed", "profile",
-         "tolerance", "paper", "limits"]
-PLAIN = r"(?:OptionalNumber|OptionalString|OptionalBool|OptionalCount|Known)"
+         "tolerance", "paper", "limits", "sizing"]
+PLAIN = r"(?:OptionalNumber|OptionalStringArray|OptionalString|OptionalBool|OptionalCount|Known)"
 QUANTITY = (r"(?:Quantity|OptionalQuantity|OptionalQuantityArray|FindQuantity|Positive|"
             r"OptionalPositive|sigma)")
 

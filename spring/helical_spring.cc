@@ -38,6 +38,15 @@ double StressCorrection(double w, bool wahl) {
   return (w + 0.5) / (w - 0.75);                                   // Bergsträsser
 }
 
+double BucklingDeflection(const HelicalGeometry& g, double elastic_modulus_Pa,
+                          double end_fixation) {
+  const double q = g.shear_modulus_Pa / elastic_modulus_Pa;  // G/E
+  const double slender = kPi * g.coil_m / (end_fixation * g.free_length_m);
+  const double radicand = 1.0 - (1.0 - q) / (0.5 + q) * slender * slender;
+  if (!(radicand >= 0.0)) return INFINITY;
+  return g.free_length_m * 0.5 / (1.0 - q) * (1.0 - std::sqrt(radicand));
+}
+
 HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N, double max_lift_m,
                                       double speed_rpm, EngineCycle cycle) {
   HelicalSpringCheck c;

@@ -60,6 +60,15 @@ double HelicalRate(const HelicalGeometry& g);
 /// Stress-correction factor k for index w (> 0.75): Bergsträsser, or Wahl when `wahl`.
 double StressCorrection(double index, bool wahl);
 
+/// EN 13906-1's buckling deflection of `g` (free length L₀, mean diameter D) of elastic modulus E
+/// with end-fixation factor ν (0.5 both ends fixed and guided parallel, 1 both hinged, 2 one end
+/// free), m:
+///
+///     s_K = L₀ · 0.5/(1 − G/E) · [1 − √(1 − (1 − G/E)/(0.5 + G/E) · (π D/(ν L₀))²)];
+///
+/// +∞ when the root is imaginary: the spring does not buckle at any deflection.
+double BucklingDeflection(const HelicalGeometry& g, double elastic_modulus_Pa, double end_fixation);
+
 /// Checks `g` carrying `preload_N` at the seat and preload + R·max_lift at full lift.
 /// speed_rpm and `cycle` set the cam frequency. Throws std::invalid_argument when the
 /// preload already compresses the spring beyond its free length.

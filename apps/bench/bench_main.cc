@@ -3,7 +3,8 @@
 //   needle-bench dynamics   --out DIR   work-precision of every integrator on three scenes
 //   needle-bench kinematics --out DIR   spline error against table spacing and build time
 //   needle-bench targets                the four performance targets, met or missed by how much
-//   needle-bench all        --out DIR   all three, and DIR/summary.md
+//   needle-bench size                   needle size: each stage's time and springs kept
+//   needle-bench all        --out DIR   all of them, and DIR/summary.md
 //
 // Times are medians over repeated runs on one core (the overspeed speed-up uses two).
 #include <CLI/CLI.hpp>
@@ -20,8 +21,10 @@
 #include "apps/scene/case_file.h"
 #include "apps/scene/case_scene.h"
 #include "apps/study/check_scene.h"
+#include "apps/study/spring_sizing_scene.h"
 #include "dynamics/overspeed.h"
 #include "lib/cam_laws.h"
+#include "lib/input_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"
@@ -564,6 +567,49 @@ std::string RunOverspeedComparison(int repeats) {
   return md.str();
 }
 
+// `needle size` (issue 35) on one core: the whole sizing, each stage's time and the springs it
+// kept, medians over the repeats; target ≤ 1 s including the dynamic verification.
+std::string RunSizing(int repeats) {
+  std::ostringstream md;
+  md << "## needle size (one thread, medians)\n\n| case | candidates | evaluated | passed | kept "
+        "| checked | closed form | check | whole | target ≤ 1 s |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
+  const std::string ex2 = ReadInputFile(CaseDir() + "basu-example2.toml", "case file");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"basu-example2, [sizing] max_outer_diameter_mm = 52",
+       ex2 + "\n[sizing]\nmax_outer_diameter_mm = 52\n"},
+      {"basu-example2 in its own space (no fit)", ex2},
+      {"basu-example1", ReadInputFile(CaseDir() + "basu-example1.toml", "case file")}};
+  for (const auto& [name, text] : cases) {
+    const Case c = ParseCase(text, name);
+    SizeOptions o;
+    o.threads = 1;
+    std::vector<double> whole, closed, check;
+    SizeResult r;
+    for (int i = 0; i < repeats; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const LiftLaw law = MakeLiftLaw(c);
+      r = SizeCase(c, law, o);
+      whole.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      closed.push_back(r.stages[0].seconds * 1e3);
+      check.push_back(r.stages.size() > 1 ? r.stages[1].seconds * 1e3 : 0.0);
+    }
+    const auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    };
+    const double w = median(whole);
+    md << "| " << name << " | " << r.closed_form.candidates << " | " << r.closed_form.evaluated
+       << " | " << r.closed_form.passed << " | " << r.closed_form.best.size() << " | "
+       << r.verified.size() << (r.winner ? " (1 passed)" : "") << " | " << Num(median(closed))
+       << " ms | " << Num(median(check)) << " ms | " << Num(w) << " ms | "
+       << (w <= 1000.0 ? "met" : "missed by " + Num(w - 1000.0) + " ms") << " |\n";
+  }
+  md << '\n';
+  return md.str();
+}
+
 }  // namespace
 }  // namespace needle
 
@@ -579,8 +625,9 @@ int main(int argc, char** argv) {
   auto* tgt = app.add_subcommand("targets", "the performance targets");
   auto* ovs = app.add_subcommand(
       "overspeed", "the overspeed search, check and a tolerance sample: before and after");
+  auto* siz = app.add_subcommand("size", "needle size: each stage's time and springs kept");
   auto* all = app.add_subcommand("all", "everything, and OUT/summary.md");
-  for (auto* c : {dyn, kin, tgt, ovs, all}) {
+  for (auto* c : {dyn, kin, tgt, ovs, siz, all}) {
     c->add_option("--out", out, "output folder (default bench)");
     c->add_option("--repeats", repeats, "timed repeats per configuration (median)")
         ->check(CLI::PositiveNumber);
@@ -594,6 +641,7 @@ int main(int argc, char** argv) {
     if (kin->parsed() || all->parsed()) md += needle::RunKinematics(out, repeats);
     if (tgt->parsed() || all->parsed()) md += needle::RunTargets(repeats);
     if (ovs->parsed() || all->parsed()) md += needle::RunOverspeedComparison(repeats);
+    if (siz->parsed() || all->parsed()) md += needle::RunSizing(repeats);
     needle::WriteFileAtomically(out + "/summary.md", md);
     std::cout << md;
   } catch (const std::exception& e) {

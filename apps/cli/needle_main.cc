@@ -14,6 +14,7 @@
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/output_format.h"
+#include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/scene/case_file.h"
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
       Register(app, needle::AddCompareCommand, needle::RunCompareCommand),
       Register(app, needle::AddKinematicsCommand, needle::RunKinematicsCommand),
       Register(app, needle::AddSpringCommand, needle::RunSpringCommand),
+      Register(app, needle::AddSizeCommand, needle::RunSizeCommand),
       Register(app, needle::AddDesignCommand, needle::RunDesignCommand),
       Register(app, needle::AddSimulateCommand, needle::RunSimulateCommand),
       Register(app, needle::AddOverspeedCommand, needle::RunOverspeedCommand),

@@ -26,6 +26,7 @@
 #include "apps/cli/compare_output.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
+#include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/scene/case_file.h"
@@ -646,6 +647,18 @@ PYBIND11_MODULE(needle, m) {
         return Run([&] { return ComputeSpring(*c, o); }, {{"--rpm", "rpm=" + Repr(rpm)}});
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), "needle spring: the spring check");
+
+  m.def(
+      "size",
+      [](const py::object& source) {
+        const auto c = CaseOf(source, "size");
+        SizeCommandOptions o;
+        o.json = true;
+        return Run([&] { return ComputeSize(*c, "", o); });
+      },
+      arg("case"),
+      "needle size: the lightest spring that passes every limit, verified by the check (the "
+      "JSON object of `needle size --json`)");
 
   m.def(
       "simulate",

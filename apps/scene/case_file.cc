@@ -54,6 +54,7 @@ const SectionEntry kSectionTable[] = {
      [](SectionReader r, Case& c) { c.tolerance = case_internal::ReadTolerance(r); }},
     {"paper", false, [](SectionReader r, Case& c) { c.paper = case_internal::ReadPaper(r); }},
     {"limits", false, [](SectionReader r, Case& c) { c.limits = case_internal::ReadLimits(r); }},
+    {"sizing", false, [](SectionReader r, Case& c) { c.sizing = case_internal::ReadSizing(r); }},
 };
 
 const SectionEntry* FindSection(const std::string& name) {

@@ -53,6 +53,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/scene/sizing_section.h"
 #include "lib/case_error.h"
 #include "lib/engine_cycle.h"
 #include "lib/follower.h"
@@ -205,7 +206,8 @@ struct Case {
   std::optional<ProfileSection> profile;
   std::optional<ToleranceSection> tolerance;
   std::optional<PaperSection> paper;
-  LimitsSection limits;  ///< [limits], defaults when absent
+  LimitsSection limits;                 ///< [limits], defaults when absent
+  std::optional<SizingSection> sizing;  ///< [sizing] (`needle size`, sizing_section.h)
 };
 
 /// A synthesis specification (`needle synth SPEC.toml`): [rise] angle_deg, lift_mm, step_deg;

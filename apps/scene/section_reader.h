@@ -126,6 +126,21 @@ class SectionReader {
     return s->get();
   }
 
+  std::optional<std::vector<std::string>> OptionalStringArray(const std::string& name) {
+    if (!table_ || !table_->contains(name)) return std::nullopt;
+    used_.insert(name);
+    const toml::array* a = table_->get(name)->as_array();
+    std::vector<std::string> out;
+    for (size_t i = 0; a && i < a->size(); ++i) {
+      const auto* s = a->get(i)->as_string();
+      if (!s) break;
+      out.push_back(s->get());
+    }
+    if (!a || a->empty() || out.size() != a->size())
+      Fail(name, "expected a non-empty array of strings");
+    return out;
+  }
+
   std::optional<bool> OptionalBool(const std::string& name) {
     if (!table_ || !table_->contains(name)) return std::nullopt;
     used_.insert(name);
@@ -266,6 +281,7 @@ NeedleSection ReadNeedle(SectionReader r);
 HelicalGeometry ReadHelical(SectionReader& r);
 SpringSection ReadSpring(SectionReader r);
 LimitsSection ReadLimits(SectionReader r);
+SizingSection ReadSizing(SectionReader r);  ///< sizing_section.cc
 EngineSection ReadEngine(SectionReader r);
 TrainSection ReadTrain(SectionReader r);
 SolverSection ReadSolver(SectionReader r);

@@ -183,9 +183,10 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   EXPECT_EQ(nocase.err, "needle: CASE is required (see needle --help)\n");
   const auto unknown = RunNeedle("frobnicate");
   EXPECT_EQ(unknown.status, 2);
-  EXPECT_EQ(unknown.err,
-            "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
-            "spring, design, simulate, overspeed, synth, profile, tolerance (see needle --help)\n");
+  EXPECT_EQ(
+      unknown.err,
+      "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
+      "spring, size, design, simulate, overspeed, synth, profile, tolerance (see needle --help)\n");
   const auto missing = RunNeedle("kinematics /no/such.toml");
   EXPECT_EQ(missing.status, 2);
   EXPECT_EQ(missing.err, "needle: /no/such.toml: cannot open the case file for reading\n");
@@ -763,6 +764,43 @@ TEST(SynthCliTest, JerkLimitHoldsInTheCsvAndThePressureAngleIsItsMagnitude) {
   EXPECT_GT(j["max_abs_pressure_angle_deg"].get<double>(), 0.0);
   std::remove(path.c_str());
   std::remove(csv.c_str());
+}
+
+TEST(NeedleCliTest, SizeWritesACaseThatCheckPassesAndNamesTheBindingRuleWhenNothingFits) {
+  // Example 2 in its own space: no spring; exit 1 with the binding rule and the closest spring.
+  const auto none = RunNeedle("size " + Case("basu-example2.toml") + " --threads 1");
+  EXPECT_EQ(none.status, 1) << none.err;
+  EXPECT_NE(none.out.find("no fit: no spring in the space ("), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("reaches the spring fatigue safety factor (Goodman) of at least 1.50; "
+                          "best 1.40 (short by 0.10) at case wire d = 6.70 mm"),
+            std::string::npos)
+      << none.out;
+  // With 5 mm more outside diameter: a spring, written, and `needle check` passes the file.
+  const std::string in = testing::TempPath("ex2-space.toml");
+  const std::string out = testing::TempPath("ex2-sized.toml");
+  std::filesystem::remove(out);
+  {
+    std::ofstream f(in);
+    f << testing::Slurp(Case("basu-example2.toml")) << "\n[sizing]\nmax_outer_diameter_mm = 52\n";
+  }
+  const auto sized = RunNeedle("size " + in + " --threads 1 --json --case " + out);
+  ASSERT_EQ(sized.status, 0) << sized.err;
+  const auto j = nlohmann::json::parse(sized.out);
+  EXPECT_EQ(j["spring"]["wire_mm"], 8.0);
+  EXPECT_EQ(j["stages"].size(), 2u);
+  const auto check = RunNeedle("check " + out + " --json --out " + ::testing::TempDir());
+  EXPECT_EQ(check.status, 0) << check.out << check.err;
+  // Bad input: exit 2, one line naming the key, nothing written.
+  std::filesystem::remove(out);
+  {
+    std::ofstream f(in);
+    f << testing::Slurp(Case("basu-example2.toml")) << "\n[sizing]\nmin_index = 9\nmax_index = 8\n";
+  }
+  const auto bad = RunNeedle("size " + in + " --case " + out);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err,
+            "needle: " + in + ": [sizing] min_index: is above max_index: the range is empty\n");
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 }  // namespace

@@ -238,3 +238,21 @@ def test_no_numpy_no_import(tmp_path):
         "ImportError: the needle module needs NumPy (its results hold NumPy arrays), and this "
         "Python has none: apt-get install python3-numpy, or pip install numpy "
         "(ModuleNotFoundError: No module named 'numpy')")
+
+
+# needle.size: the command's JSON object, the [sizing] section set like any other.
+
+def test_size_sizes_a_case_with_a_sizing_section_as_the_command_does():
+    case = needle.load_case(os.path.join(ROOT, "cases", "basu-example2.toml"))
+    plain = needle.size(case)
+    assert plain["pass"] is False and plain["exit_status"] == 1
+    assert "reaches the spring fatigue safety factor (Goodman) of at least 1.50" in plain["no_fit"]
+    case["sizing"] = {"max_outer_diameter_mm": 52}
+    r = needle.size(case)
+    assert r["pass"] is True and r["exit_status"] == 0
+    assert (r["spring"]["wire_mm"], r["spring"]["coil_mm"], r["spring"]["active_coils"]) == \
+        (8.0, 41.0, 3.0)
+    assert r["check"]["pass"] is True
+    assert r["spring"]["mass_kg"] < r["case_spring_mass_kg"]
+    with pytest.raises(needle.CaseError):
+        case["sizing"] = {"max_index": 25}

@@ -131,7 +131,7 @@ TEST(CaseFileTest, UnknownKeysSectionsAndUnits) {
             "t.toml: [engine] bore_mm: unknown key in this section");
   EXPECT_EQ(Error(kGood + "[valve]\nx = 1\n"),
             "t.toml: valve: unknown section (known: title, [engine], [lift], [needle], [spring], "
-            "[train], [solver], [overspeed], [profile], [tolerance], [paper], [limits])");
+            "[train], [solver], [overspeed], [profile], [tolerance], [paper], [limits], [sizing])");
   EXPECT_EQ(Error(Replace(kGood, "speed_rpm = 400", "speed_rps = 400")),
             "t.toml: [engine] speed_rps: unit suffix 'rps' is not a unit of rotation speed "
             "(expected speed_rpm)");

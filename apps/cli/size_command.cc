@@ -1,0 +1,197 @@
+#include "apps/cli/size_command.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "apps/cli/output_paths.h"
+#include "apps/study/spring_sizing_scene.h"
+#include "lib/input_file.h"
+#include "lib/output.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+nlohmann::json Finite(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
+
+nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space) {
+  const HelicalGeometry& g = s.geometry;
+  nlohmann::json j = {{"wire", space.wires[s.wire_index].label},
+                      {"wire_mm", g.wire_m * 1e3},
+                      {"coil_mm", g.coil_m * 1e3},
+                      {"active_coils", g.active_coils},
+                      {"total_coils", s.total_coils},
+                      {"free_length_mm", g.free_length_m * 1e3},
+                      {"installed_length_mm", s.installed_m * 1e3},
+                      {"preload_N", s.preload_N},
+                      {"preload_rule", s.preload_rule},
+                      {"rate_N_mm", s.rate_N_m * 1e-3},
+                      {"mass_kg", s.mass_kg},
+                      {"pass", s.pass}};
+  if (s.check) j["fatigue_safety_factor"] = Finite(s.check->fatigue.goodman_safety_factor);
+  for (const SizingRule& x : s.rules) {
+    j["rules"].push_back({{"key", x.key},
+                          {"unit", x.unit},
+                          {"value", Finite(x.value)},
+                          {"limit", x.limit},
+                          {"at_most", x.at_most},
+                          {"margin", Finite(x.margin)},
+                          {"pass", x.pass}});
+  }
+  return j;
+}
+
+std::string SpringLine(const SizedSpring& s, const SizingSpace& space) {
+  const HelicalGeometry& g = s.geometry;
+  return space.wires[s.wire_index].label + " d " + Fixed(g.wire_m * 1e3, 2) + " mm, D " +
+         Fixed(g.coil_m * 1e3, 1) + " mm, " + Fixed(g.active_coils, 1) + " active coils, " +
+         Fixed(s.mass_kg, 3) + " kg, n_f " +
+         (s.check ? Fixed(s.check->fatigue.goodman_safety_factor, 2) : std::string("-"));
+}
+
+// "  NAME: VALUE <= LIMIT, margin M, VERDICT" (an infinite value: buckling's imaginary root).
+std::string RowText(const std::string& name, double value, double limit, bool at_most,
+                    double margin, const std::string& unit, const std::string& verdict) {
+  const std::string u = unit.empty() ? "" : " " + unit;
+  if (!std::isfinite(value)) return "  " + name + ": none at any deflection, " + verdict + "\n";
+  return "  " + name + ": " + Fixed(value, 2) + u + (at_most ? " <= " : " >= ") + Fixed(limit, 2) +
+         u + ", margin " + Fixed(margin, 2) + u + ", " + verdict + "\n";
+}
+
+}  // namespace
+
+CLI::App* AddSizeCommand(CLI::App& app, SizeCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "size", "Size the valve spring: the lightest that passes every limit, verified end to end");
+  cmd->add_option("CASE", o.case_path, "case file with [needle] and [spring] (and [sizing])")
+      ->required();
+  cmd->add_option("--case", o.case_out, "write the case with the sized spring");
+  cmd->add_option("--threads", o.threads, "threads of the verification's sweeps (0: all cores)")
+      ->check(CLI::Range(0, 256));
+  cmd->add_flag("--json", o.json, "print one JSON object");
+  return cmd;
+}
+
+CommandOutput ComputeSize(const Case& c, const std::string& case_text,
+                          const SizeCommandOptions& o) {
+  SizeOptions options;
+  options.threads = o.threads;
+  const LiftLaw law = MakeLiftLaw(c);
+  const SizeResult r = SizeCase(c, law, options);
+  const SizingSpace& sp = r.space;
+  const SizedSpring* chosen = r.winner ? &r.verified[*r.winner].spring
+                              : r.pass && !r.closed_form.best.empty() ? &r.closed_form.best[0]
+                              : r.closed_form.closest                 ? &*r.closed_form.closest
+                                                                      : nullptr;
+  const CheckResult* check = r.winner ? &r.verified[*r.winner].check : nullptr;
+  const std::vector<SizedSpring>& front = r.closed_form.front;
+  CommandOutput out;
+  out.status = r.pass ? 0 : 1;
+  if (r.pass && chosen && o.case_out) {
+    const Case sized = CaseWithSpring(c, *chosen, sp, r.mass_without_spring_kg);
+    out.case_file = SizedCaseText(case_text, sized, *chosen, sp);
+  }
+  if (o.json) {
+    nlohmann::json& j = out.json;
+    j = {{"case", c.path},
+         {"objective", r.objective},
+         {"space", r.space_note},
+         {"stroke_mm", r.stroke_m * 1e3},
+         {"mass_without_spring_kg", r.mass_without_spring_kg},
+         {"mass_without_spring_source", r.mass_note},
+         {"pass", r.pass}};
+    for (const SizeStage& s : r.stages) {
+      j["stages"].push_back({{"name", s.name},
+                             {"in", s.in},
+                             {"kept", s.kept},
+                             {"seconds", s.seconds},
+                             {"note", s.note}});
+    }
+    j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
+    j["spring"] = chosen ? SpringJson(*chosen, sp) : nullptr;
+    if (r.case_spring_mass_kg) j["case_spring_mass_kg"] = *r.case_spring_mass_kg;
+    if (check) {
+      j["check"] = {
+          {"pass", check->pass}, {"failing", check->failing}, {"warnings", check->warnings}};
+      for (const LimitRow& x : check->limits) {
+        j["check"]["limits"].push_back({{"key", x.key},
+                                        {"value", Finite(x.value)},
+                                        {"limit", Finite(x.limit)},
+                                        {"margin", Finite(x.margin)},
+                                        {"verdict", x.verdict}});
+      }
+      if (check->sweep && check->sweep->n_dyn_rpm)
+        j["check"]["n_dyn_rpm"] = *check->sweep->n_dyn_rpm;
+    }
+    for (const SizedSpring& s : r.closed_form.best) j["candidates"].push_back(SpringJson(s, sp));
+    for (const VerifiedSpring& v : r.verified) {
+      j["verified"].push_back({{"spring", SpringJson(v.spring, sp)},
+                               {"pass", v.check.pass},
+                               {"failing", v.check.failing},
+                               {"seconds", v.seconds}});
+    }
+    for (const SizedSpring& s : front) j["front"].push_back(SpringJson(s, sp));
+    return out;
+  }
+  std::ostringstream t;
+  if (!c.title.empty()) t << c.title << '\n';
+  t << "space: " << r.space_note << "; objective: least " << r.objective << '\n';
+  t << "duty: stroke " << Fixed(r.stroke_m * 1e3, 3) << " mm; moving mass without the spring "
+    << Fixed(r.mass_without_spring_kg, 4) << " kg (" << r.mass_note << ")\n";
+  for (const SizeStage& s : r.stages) {
+    t << "stage " << s.name << ": " << s.in << " in, " << s.kept << " kept, "
+      << Fixed(s.seconds * 1e3, 1) << " ms (" << s.note << ")\n";
+  }
+  if (chosen) {
+    const HelicalGeometry& g = chosen->geometry;
+    t << (r.pass ? "spring: " : "closest spring: ") << sp.wires[chosen->wire_index].label
+      << ", wire " << Fixed(g.wire_m * 1e3, 2) << " mm, coil " << Fixed(g.coil_m * 1e3, 1)
+      << " mm (OD " << Fixed((g.coil_m + g.wire_m) * 1e3, 1) << " mm), " << Fixed(g.active_coils, 1)
+      << " active / " << Fixed(chosen->total_coils, 1) << " total coils, free length "
+      << Fixed(g.free_length_m * 1e3, 2) << " mm, installed " << Fixed(chosen->installed_m * 1e3, 2)
+      << " mm\n";
+    t << "  preload " << Fixed(chosen->preload_N, 1) << " N (" << Fixed(chosen->preload_N / kKgf, 1)
+      << " kgf; set by " << chosen->preload_rule << "), rate " << Fixed(chosen->rate_N_m * 1e-3, 2)
+      << " N/mm, mass " << Fixed(chosen->mass_kg, 3) << " kg"
+      << (r.case_spring_mass_kg ? " (the case's spring " + Fixed(*r.case_spring_mass_kg, 3) + " kg)"
+                                : "")
+      << '\n';
+    t << "rules (value, limit, margin):\n";
+    for (const SizingRule& x : chosen->rules)
+      t << RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.pass ? "pass" : "FAIL");
+  }
+  if (check) {
+    t << "check of the sized case (limits, as needle check):\n";
+    for (const LimitRow& x : check->limits)
+      t << (x.verdict == "not judged"
+                ? "  " + x.name + ": not judged (" + x.note + ")\n"
+                : RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.verdict));
+  }
+  for (const VerifiedSpring& v : r.verified) {
+    if (!v.check.pass)
+      t << "rejected by the check: " << SpringLine(v.spring, sp) << ": "
+        << (v.check.failing.empty() ? "fails" : v.check.failing.front()) << '\n';
+  }
+  for (size_t i = 1; i < r.closed_form.best.size(); ++i)
+    t << "next best: " << SpringLine(r.closed_form.best[i], sp) << '\n';
+  const size_t every = front.size() / 8 + 1;  // at most 8 and the last (--json: all)
+  for (size_t i = 0; i < front.size(); ++i)
+    if (i % every == 0 || i + 1 == front.size())
+      t << "front (mass, n_f) " << i + 1 << "/" << front.size() << ": " << SpringLine(front[i], sp)
+        << '\n';
+  if (!r.pass) t << "no fit: " << r.no_fit << '\n';
+  t << "overall: " << (r.pass ? "pass" : "FAIL") << '\n';
+  out.text = t.str();
+  return out;
+}
+
+int RunSizeCommand(const SizeCommandOptions& o) {
+  const Case c = LoadCase(o.case_path);
+  if (o.case_out) CheckOutputPaths({{"--case", *o.case_out}}, CaseInputs(c));
+  const CommandOutput r = ComputeSize(c, ReadInputFile(o.case_path, "case file"), o);
+  if (o.case_out && !r.case_file.empty()) WriteOutput({"--case", *o.case_out}, r.case_file);
+  return Emit(r, o.format, std::nullopt);
+}
+
+}  // namespace needle

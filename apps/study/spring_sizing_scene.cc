@@ -1,0 +1,388 @@
+#include "apps/study/spring_sizing_scene.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include "lib/kinematics.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/basu_formula.h"
+#include "spring/quasi_static.h"
+#include "spring/resonance.h"
+
+namespace needle {
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+std::string Mm(double m, int digits = 2) { return Fixed(m * 1e3, digits) + " mm"; }
+
+// The default range of the case's own wire: a third to twice its diameter (R40 sizes inside).
+constexpr double kCaseWireLo = 1.0 / 3.0, kCaseWireHi = 2.0;
+
+std::string EndsName(SpringEnds e) {
+  switch (e) {
+    case SpringEnds::kClosedGround:
+      return "closed-ground";
+    case SpringEnds::kClosed:
+      return "closed";
+    case SpringEnds::kOpenGround:
+      return "open-ground";
+    case SpringEnds::kOpen:
+      return "open";
+  }
+  return "closed-ground";
+}
+
+SpringEnds ParseEnds(const std::string& s) {
+  if (s == "closed") return SpringEnds::kClosed;
+  if (s == "open-ground") return SpringEnds::kOpenGround;
+  if (s == "open") return SpringEnds::kOpen;
+  return SpringEnds::kClosedGround;
+}
+
+// A number as the shortest text that reads back to the same double.
+std::string Exact(double v) {
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::ostringstream out;
+    out.precision(digits);
+    out << v;
+    if (std::stod(out.str()) == v) return out.str();
+  }
+  return std::to_string(v);
+}
+
+}  // namespace
+
+Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& space,
+                    double mass_without_spring_kg) {
+  Case out = c;
+  SpringParameters& p = *out.spring;
+  p.preload_N = s.preload_N;
+  p.rate_N_m.reset();
+  p.helical = s.geometry;
+  (void)space;
+  out.needle->mass_kg = mass_without_spring_kg + s.active_mass_kg / 3.0;
+  return out;
+}
+
+std::string SizedCaseText(const std::string& original, const Case& sized, const SizedSpring& s,
+                          const SizingSpace& space) {
+  const HelicalGeometry& g = s.geometry;
+  const SizingWire& w = space.wires.at(s.wire_index);
+  std::ostringstream keys;
+  keys << "# sized by `needle size` (" << w.label << "): the spring's lines below replace "
+       << "the case's\n";
+  keys << "preload_N = " << Fixed(s.preload_N, 1) << '\n';
+  keys << "wire_mm = " << Exact(g.wire_m * 1e3) << '\n';
+  keys << "coil_mm = " << Exact(g.coil_m * 1e3) << '\n';
+  keys << "active_coils = " << Exact(g.active_coils) << '\n';
+  // Up to the next 1e-6 mm: the installed length never shorter than sized
+  // (less 1e-12 m of round-off: the sized L₁ has 1e-9 m to spare, kLengthSlack_m)
+  keys << "free_length_mm = " << Exact(std::ceil(g.free_length_m * 1e9 - 1e-3) / 1e6) << '\n';
+  if (w.grade) {
+    keys << "grade = \"" << WireGradeName(*w.grade) << "\"\n";  // R_m(d) and G of the grade
+  } else {
+    keys << "shear_modulus_GPa = " << Exact(g.shear_modulus_Pa * 1e-9) << '\n';
+    keys << "tensile_MPa = " << Exact(g.tensile_Pa * 1e-6) << '\n';
+  }
+  keys << "density_kg_m3 = " << Exact(g.density_kg_m3) << '\n';
+  keys << "ends = \"" << EndsName(g.ends) << "\"\n";
+  if (g.wahl) keys << "stress_correction = \"wahl\"\n";
+  if (g.shot_peened) keys << "shot_peened = true\n";
+  if (g.allowable_fraction != 0.5)
+    keys << "allowable_stress_fraction = " << Exact(g.allowable_fraction) << '\n';
+
+  static const std::regex header(R"(^\s*\[\s*([A-Za-z0-9_]+)\s*\]\s*(#.*)?$)");
+  static const std::regex key(R"(^\s*([A-Za-z0-9_]+)\s*=)");
+  static const std::regex spring_key(
+      R"(^(preload_|rate_|wire_|coil_|active_coils$|free_length_|shear_modulus_|density_|tensile_|grade$|ends$|stress_correction$|shot_peened$|allowable_stress_fraction$).*)");
+  std::istringstream in(original);
+  std::ostringstream out;
+  std::string line, section;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, header)) {
+      section = m[1];
+      out << line << '\n';
+      if (section == "spring") out << keys.str();
+      continue;
+    }
+    if (std::regex_search(line, m, key)) {
+      const std::string k = m[1];
+      if (section == "spring" && std::regex_match(k, spring_key)) continue;
+      if (section == "needle" && k.rfind("mass_", 0) == 0) {
+        out << "mass_kg = " << Exact(sized.needle->mass_kg)
+            << "  # the needle's parts and a third of the sized spring's active coils\n";
+        continue;
+      }
+    }
+    out << line << '\n';
+  }
+  return out.str();
+}
+
+SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!c.needle || !c.spring)
+    throw CaseError(c.path +
+                    ": [spring]: needle size needs [needle] and [spring] (the moving mass, "
+                    "the safety and overspeed factors)");
+  RequireAcceleration(law);
+  const SizingSection z = c.sizing.value_or(SizingSection{});
+  const std::optional<HelicalGeometry>& own = c.spring->helical;
+  const std::string fail_where = c.path + ": [sizing] ";
+  SizeResult r;
+  r.objective = z.objective;
+  const double rpm = c.engine.speed_rpm;
+  const EngineCycle cycle = c.engine.cycle;
+  const KinematicsSummary sum = Kinematics(law, rpm).Summarize();
+  r.stroke_m = sum.max_lift_m;
+
+  // The space.
+  SizingSpace& sp = r.space;
+  std::vector<std::string> notes;
+  std::vector<std::string> grades = z.grades;
+  if (grades.empty()) {
+    if (own && own->grade) {
+      const std::string family = GradeData(*own->grade).standard;
+      for (WireGrade g : AllWireGrades())
+        if (GradeData(g).standard == family) grades.push_back(WireGradeName(g));
+      notes.push_back("grades " + family + " (the case's " + WireGradeName(*own->grade) + ")");
+    } else if (own) {
+      grades = {"case"};
+    } else {
+      throw CaseError(fail_where +
+                      "grades: the case's spring has no helical geometry; give the "
+                      "space ([sizing] grades, max_outer_diameter_mm, "
+                      "max_installed_length_mm)");
+    }
+  }
+  for (const std::string& name : grades) {
+    const std::optional<WireGrade> grade = ParseWireGrade(name);
+    const double d_own = own ? own->wire_m : 0.0;
+    double lo = z.min_wire_m.value_or(grade ? GradeData(*grade).min_wire_m : kCaseWireLo * d_own);
+    double hi = z.max_wire_m.value_or(grade ? GradeData(*grade).max_wire_m : kCaseWireHi * d_own);
+    if (grade) {
+      lo = std::max(lo, GradeData(*grade).min_wire_m);
+      hi = std::min(hi, GradeData(*grade).max_wire_m);
+    }
+    std::vector<double> sizes = z.wire_m.empty() ? PreferredWireDiameters(lo, hi) : z.wire_m;
+    for (double d : sizes) {
+      if (d < lo * (1 - 1e-12) || d > hi * (1 + 1e-12)) continue;
+      SizingWire w;
+      w.wire_m = d;
+      w.density_kg_m3 = own ? own->density_kg_m3 : 7850.0;
+      if (grade) {
+        w.label = name;
+        w.grade = grade;
+        w.tensile_Pa = TensileStrengthPa(*grade, d);
+        w.shear_modulus_Pa = GradeData(*grade).shear_modulus_Pa;
+      } else {
+        if (!own)
+          throw CaseError(fail_where +
+                          "grades: \"case\" needs the case's helical spring (its wire)");
+        w.label = "case wire";
+        w.tensile_Pa = own->tensile_Pa;
+        w.shear_modulus_Pa = own->shear_modulus_Pa;
+      }
+      sp.wires.push_back(w);
+    }
+    if (name == "case" && own) {
+      notes.push_back("the case's wire (R_m " + Fixed(own->tensile_Pa * 1e-6, 0) + " MPa, G " +
+                      Fixed(own->shear_modulus_Pa * 1e-9, 1) + " GPa) at every diameter");
+    }
+  }
+  if (sp.wires.empty())
+    throw CaseError(fail_where + (z.wire_m.empty() ? "grades" : "wire_mm") +
+                    ": no wire diameter lies in the grades' tabulated ranges");
+  notes.push_back(std::to_string(sp.wires.size()) + " wires (" +
+                  (z.wire_m.empty() ? "ISO 3 R40 preferred sizes" : "[sizing] wire_mm") + ")");
+  sp.min_index = z.min_index.value_or(4.0);
+  sp.max_index = z.max_index.value_or(20.0);
+  sp.coil_step_m = z.coil_step_m;
+  notes.push_back("D/d " + Fixed(sp.min_index, 1) + "..." + Fixed(sp.max_index, 1) + ", D by " +
+                  Mm(sp.coil_step_m, 1));
+  const auto bound = [&](const std::optional<double>& stated, std::optional<double> from_case,
+                         const std::string& what) -> std::optional<double> {
+    if (stated) {
+      notes.push_back(what + Mm(*stated) + " ([sizing])");
+      return stated;
+    }
+    if (from_case) notes.push_back(what + Mm(*from_case) + " (the case's spring)");
+    return from_case;
+  };
+  std::optional<double> own_outer, own_inner, own_installed;
+  HelicalSpringCheck own_check;
+  if (own) {
+    own_outer = own->coil_m + own->wire_m;
+    own_inner = own->coil_m - own->wire_m;
+    own_check = CheckHelicalSpring(*own, c.spring->preload_N, r.stroke_m, rpm, cycle);
+    own_installed = own_check.length_preload_m;
+    r.case_spring_mass_kg = c.spring->helical->density_kg_m3 * kPi * kPi * own->wire_m *
+                            own->wire_m * own->coil_m * own_check.total_coils / 4.0;
+  }
+  sp.max_outer_m = bound(z.max_outer_m, own_outer, "OD <= ");
+  sp.min_inner_m = bound(z.min_inner_m, own_inner, "ID >= ");
+  if (z.min_installed_m) {
+    sp.min_installed_m = *z.min_installed_m;
+    notes.push_back("installed length >= " + Mm(sp.min_installed_m) + " ([sizing])");
+  }
+  if (auto v = bound(z.max_installed_m, own_installed, "installed length <= ")) {
+    sp.max_installed_m = *v;
+  }
+  if (!sp.max_outer_m || (!z.max_installed_m && !own_installed))
+    throw CaseError(fail_where +
+                    (sp.max_outer_m ? "max_installed_length_mm" : "max_outer_diameter_mm") +
+                    ": the space needs a bound (the case's spring has no helical geometry)");
+  sp.min_active_coils = z.min_active_coils.value_or(2.0);
+  sp.max_active_coils = z.max_active_coils.value_or(30.0);
+  sp.active_coil_step = z.active_coil_step;
+  notes.push_back(Fixed(sp.min_active_coils, 1) + "..." + Fixed(sp.max_active_coils, 1) +
+                  " active coils by " + Fixed(sp.active_coil_step, 2));
+  sp.free_length_step_m = z.free_length_step_m;
+  sp.ends = z.ends ? ParseEnds(*z.ends) : (own ? own->ends : SpringEnds::kClosedGround);
+  sp.wahl = own && own->wahl;
+  sp.shot_peened = own && own->shot_peened;
+  sp.allowable_fraction = own ? own->allowable_fraction : 0.5;
+  sp.end_fixation = z.end_fixation;
+  notes.push_back(EndsName(sp.ends) + " ends");
+  for (size_t i = 0; i < notes.size(); ++i) r.space_note += (i ? "; " : "") + notes[i];
+
+  // The duty: the moving mass without the spring, the preload rules.
+  if (z.mass_without_spring_kg) {
+    r.mass_without_spring_kg = *z.mass_without_spring_kg;
+    r.mass_note = "[sizing] mass_without_spring_kg";
+  } else if (own) {
+    r.mass_without_spring_kg = c.needle->mass_kg - ActiveSpringMassKg(*own) / 3.0;
+    r.mass_note = "[needle] mass_kg less a third of the case's active coils";
+  } else {
+    r.mass_without_spring_kg = c.needle->mass_kg;
+    r.mass_note = "[needle] mass_kg (the case's spring has no geometry to take out)";
+  }
+  SizingDuty duty;
+  duty.stroke_m = r.stroke_m;
+  duty.speed_rpm = rpm;
+  duty.cycle = cycle;
+  duty.min_fatigue_factor = c.limits.fatigue_safety_factor;
+  duty.min_gap_m = c.limits.coil_gap_m;
+  const SpringParameters& spring = *c.spring;
+  const double gas = c.needle->gas_force_N, m0 = r.mass_without_spring_kg;
+  const std::optional<double> basu =
+      c.needle->diameter_m
+          ? std::optional<double>(BasuPreloadN(*c.needle->diameter_m, sum.injection_period_s))
+          : std::nullopt;
+  duty.preload_floor_N =
+      std::max(spring.safety_factor * gas,
+               basu ? *basu * (1.0 - spring.basu_tolerance_percent / 100.0) : 0.0);
+  const double omega = OmegaFromRpm(rpm);
+  duty.preload = [&law, &spring, gas, m0, basu, omega](double rate, double spring_mass) {
+    PreloadNeed need{spring.safety_factor * gas, "combustion load S F_g"};
+    if (basu) {
+      const double b = *basu * (1.0 - spring.basu_tolerance_percent / 100.0);
+      if (b > need.preload_N) need = {b, "Basu's formula less its tolerance"};
+    }
+    RigidTrain t;
+    t.mass_kg = m0 + spring_mass / 3.0;
+    t.rate_N_m = rate;
+    t.gas_force_N = gas;
+    const double inertia =
+        RequiredPreloadN(law, t, omega, spring.safety_factor, spring.overspeed_factor);
+    if (inertia > need.preload_N) need = {inertia, "inertia sizing"};
+    return need;
+  };
+
+  // Stage 1: the closed form.
+  SizingOptions so;
+  so.objective = z.objective == "height"   ? SizingObjective::kHeight
+                 : z.objective == "stress" ? SizingObjective::kStress
+                                           : SizingObjective::kMass;
+  so.keep = z.candidates;
+  so.front = true;
+  r.closed_form = SizeSpring(sp, duty, so);
+  if (r.closed_form.groups == 0)
+    throw CaseError(fail_where +
+                    "max_outer_diameter_mm: no coil diameter of any wire fits the "
+                    "space (" +
+                    r.space_note + ")");
+  SizeStage closed{"closed form", r.closed_form.candidates,
+                   static_cast<long>(r.closed_form.best.size()), Seconds(t0), ""};
+  closed.note = std::to_string(r.closed_form.groups) + " (wire, D) groups; " +
+                std::to_string(r.closed_form.evaluated) + " springs evaluated, " +
+                std::to_string(r.closed_form.passed) + " passed; the best of " +
+                std::to_string(r.closed_form.best.size()) + " groups kept; the front scanned " +
+                std::to_string(r.closed_form.front_evaluated) + " springs";
+  r.stages.push_back(closed);
+  if (r.closed_form.best.empty()) {
+    std::ostringstream m;
+    if (r.closed_form.binding && r.closed_form.closest) {
+      const SizingRule& b = *r.closed_form.binding;
+      const SizedSpring& s = *r.closed_form.closest;
+      const std::string u = b.unit.empty() ? "" : " " + b.unit;
+      m << "no spring in the space (" << r.space_note << ") reaches the " << b.name << " of "
+        << (b.at_most ? "at most " : "at least ") << Fixed(b.limit, 2) << u << "; best "
+        << Fixed(b.value, 2) << u << " (short by " << Fixed(-b.margin, 2) << u << ") at "
+        << sp.wires[s.wire_index].label << " d = " << Mm(s.geometry.wire_m)
+        << ", D = " << Mm(s.geometry.coil_m, 1) << ", " << Fixed(s.geometry.active_coils, 1)
+        << " active coils";
+    } else {
+      m << "no spring in the space (" << r.space_note << ")";
+    }
+    r.no_fit = m.str();
+    return r;
+  }
+
+  // Stage 2: the best few, checked end to end, until one passes.
+  const auto t1 = std::chrono::steady_clock::now();
+  const size_t verify = std::min(static_cast<size_t>(z.verify), r.closed_form.best.size());
+  CheckOptions co;
+  co.threads = options.threads;
+  co.record_series = false;
+  for (size_t i = 0; i < verify; ++i) {
+    const auto tv = std::chrono::steady_clock::now();
+    VerifiedSpring v;
+    v.spring = r.closed_form.best[i];
+    v.sized_case = CaseWithSpring(c, v.spring, sp, m0);
+    v.check = CheckScene(v.sized_case, law, co);
+    v.seconds = Seconds(tv);
+    const bool pass = v.check.pass;
+    r.verified.push_back(std::move(v));
+    if (pass) {
+      r.winner = i;
+      break;
+    }
+  }
+  SizeStage dyn{"check (dynamics, overspeed, coil masses, limits)",
+                static_cast<long>(r.verified.size()), r.winner ? 1 : 0, Seconds(t1), ""};
+  if (verify == 0) {
+    dyn.note = "[sizing] verify = 0: not verified";
+    r.winner.reset();
+  } else {
+    dyn.note = std::to_string(r.verified.size()) + " of the " + std::to_string(verify) +
+               " best checked, in order, until one passed";
+  }
+  r.stages.push_back(dyn);
+  if (verify == 0) {
+    r.pass = true;  // the closed form's best, unverified (said so)
+    return r;
+  }
+  r.pass = r.winner.has_value();
+  if (!r.pass) {
+    std::ostringstream m;
+    m << "none of the " << verify << " best springs of the closed form passes the check:";
+    for (const VerifiedSpring& v : r.verified) {
+      m << " [d " << Mm(v.spring.geometry.wire_m) << ", D " << Mm(v.spring.geometry.coil_m, 1)
+        << ", n " << Fixed(v.spring.geometry.active_coils, 1) << ": "
+        << (v.check.failing.empty() ? "fails" : v.check.failing.front()) << "]";
+    }
+    r.no_fit = m.str();
+  }
+  return r;
+}
+
+}  // namespace needle
