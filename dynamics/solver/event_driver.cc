@@ -276,6 +276,11 @@ std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& 
                                                          const LinearForm& form, int i, int s,
                                                          const Bracket& in, int& budget) {
   const bool change = SignOf(in.wb) != s;
+  if (!change) {
+    // The values' range over the whole interval: no crossing where it keeps sign s.
+    const FormRange range = piece.Range(form, in.a, in.b);
+    if (s > 0 ? range.lo > 0.0 : range.hi <= 0.0) return std::nullopt;
+  }
   const FormBounds bounds = piece.Bounds(form, in.a, in.b);
   const double h = in.b - in.a;
   const bool monotone = std::abs(bounds.slope_at_start) > bounds.curvature_bound * h;
