@@ -139,6 +139,19 @@ std::array<double, 3> ClosedFormPiece::Motion(double t) const {
   return {y, v, (Eval(f_, tau) - c_ * v - K_ * y) / m_};
 }
 
+double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
+  const double tau = t - t0_;
+  double ecm1, es;
+  Basis(tau, ecm1, es);
+  const double y = x0_[0] + (Eval(p_, tau) - p_[0]) + Y0_ * (ecm1 + sigma_ * es) + V0_ * es;
+  const double v =
+      x0_[1] + (Eval(dp_, tau) - dp_[0]) - Y0_ * (K_ / m_) * es + V0_ * (ecm1 - sigma_ * es);
+  double w = form.y * y + form.v * v + form.constant;
+  if (form.u != 0.0) w += form.u * Eval(u_, tau);
+  if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, tau);
+  return w;
+}
+
 TrainState ClosedFormPiece::State(double t) const {
   const std::array<double, 3> now = Motion(t);
   TrainState x = {now[0], now[1], x0_[2], x0_[3]};

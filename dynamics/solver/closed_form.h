@@ -70,6 +70,8 @@ class ClosedFormPiece {
   TrainState StateByQuadrature(double t, int parts) const;
   /// y, ẏ, ÿ at t.
   std::array<double, 3> Motion(double t) const;
+  /// The form's value at t on the piece's own polynomials (no search of the cam's segments).
+  double FormValue(const LinearForm& form, double t) const;
   /// Bounds of the form over [t_a, t_b], t₀ ≤ t_a < t_b.
   FormBounds Bounds(const LinearForm& form, double t_a, double t_b) const;
   /// The range of the form over [t_a, t_b], t₀ ≤ t_a ≤ t_b (t_b may be +∞ when the
