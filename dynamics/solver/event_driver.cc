@@ -204,8 +204,9 @@ class EventDriver {
   // The ranges of what the record sees over [t0, t1] of a closed-form piece.
   StretchRanges Ranges(const ClosedFormPiece& piece, double t0, double t1) const;
   // The end of a closed-form piece from t past its cap, up to `limit` and the run's end t_end_:
-  // the limit where the stretch cannot change the record (Recorder::MayChange) and the cam
-  // input is constant on it (a needle resting on its seat, or hanging in its play), else the cap.
+  // the limit where the stretch cannot change the record (Recorder::MayChange), the cam input
+  // is constant on it (a needle resting on its seat, or hanging in its play) and every witness's
+  // range keeps its sign over it (no crossing, certified without halving), else the cap.
   double LongestQuiet(const ClosedFormPiece& piece, double t, double cap, double limit) const;
 
   // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
@@ -369,7 +370,20 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
                                  double limit) const {
   const double end = std::min(limit, t_end_);
   if (!(end > cap) || !piece.InputConstant()) return cap;
-  return recorder_.MayChange(Ranges(piece, t, end)) ? cap : end;
+  const StretchRanges ranges = Ranges(piece, t, end);
+  if (recorder_.MayChange(ranges)) return cap;
+  // Every witness's range over the whole stretch keeps the sign it has at t: the certified
+  // search then ends at its first test, without halving a long interval.
+  const bool lifted = ranges.y_lo > kSeparationLift_m;
+  if (lifted != (ranges.y_hi > kSeparationLift_m)) return cap;  // the gate may change
+  const EventValues now = Events(train_, system_.phase, piece.State(t), t);
+  for (int i = 0; i < static_cast<int>(now.size()); ++i) {
+    const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
+    if (!form) return cap;
+    const FormRange range = piece.Range(*form, t, end);
+    if (!(SignOf(now[i]) > 0 ? range.lo > 0.0 : range.hi <= 0.0)) return cap;
+  }
+  return end;
 }
 
 void EventDriver::RecordExtremes(double t0, double t1) {
