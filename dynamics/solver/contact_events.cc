@@ -156,7 +156,14 @@ bool Recorder::Decelerating(double crank_rad) const {
 }
 
 void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
-  const Contacts c = train_.Evaluate(x, t, phase);
+  Update(t, x, phase, train_.Evaluate(x, t, phase));
+}
+
+void Recorder::Sample(double t, const TrainState& x, const Phase& phase, const Contacts& c) {
+  Update(t, x, phase, c);
+}
+
+void Recorder::Update(double t, const TrainState& x, const Phase& phase, const Contacts& c) {
   const double fc = train_.AppliedCamForce(c, phase), fs = train_.AppliedSeatForce(c, phase);
 
   const double th = c.crank_rad;

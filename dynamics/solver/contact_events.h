@@ -117,6 +117,8 @@ class Recorder {
   /// The initial state: a needle already on the cam has no lash to take up.
   void Start(double t, const TrainState& x, const Phase& phase);
   void Sample(double t, const TrainState& x, const Phase& phase);
+  /// The same with the train's contacts at (t, x) in `phase` already evaluated.
+  void Sample(double t, const TrainState& x, const Phase& phase, const Contacts& c);
   /// An event function `index` crossed zero at t in direction ±1; `phase` is the one after
   /// the crossing. `sample` false: an impact whose reset map follows (a rigid contact; its
   /// impulsive force is not a sample of the contact force), recorded without a sample.
@@ -189,6 +191,7 @@ class Recorder {
 
  private:
   void Update(double t, const TrainState& x, const Phase& phase);
+  void Update(double t, const TrainState& x, const Phase& phase, const Contacts& c);
   /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
   bool InLift(double crank_rad) const;
   /// The window the least contact force is taken over (docs/model.md §6): the cam above the

@@ -404,9 +404,12 @@ void EventDriver::RecordExtremes(double t0, double t1) {
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
     const TrainState x = Motion(ts[k]);
-    const std::array<double, 3> fk = forces(ts[k], x);
-    for (int which = 0; which < 3; ++which) f[which][k] = fk[which];
-    if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase);
+    const Contacts c = train_.Evaluate(x, ts[k], phase);
+    const double fc = train_.AppliedCamForce(c, phase);
+    f[0][k] = -fc;
+    f[1][k] = -train_.AppliedSeatForce(c, phase);
+    f[2][k] = fc;
+    if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase, c);
   }
   const std::array<double, 3> record = {-max_fc, -max_fs, min_fc};
   for (int which = 0; which < 3; ++which) {
