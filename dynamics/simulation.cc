@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lib/name_table.h"
 #include "lib/output.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"
@@ -237,21 +238,18 @@ void JudgeFollowing(const Scene& scene, SimulationResult& r) {
 
 }  // namespace
 
-std::string RunStatusName(RunStatus s) {
-  switch (s) {
-    case RunStatus::kComplete:
-      return "complete";
-    case RunStatus::kUnsettled:
-      return "unsettled";
-    case RunStatus::kBudget:
-      return "budget";
-    case RunStatus::kNotFollowing:
-      return "not-following";
-    case RunStatus::kStopped:
-      return "stopped";
-  }
-  return "?";
-}
+namespace {
+
+// The one name table.
+constexpr NameRow<RunStatus> kRunStatusNames[] = {
+    {RunStatus::kComplete, "complete"}, {RunStatus::kUnsettled, "unsettled"},
+    {RunStatus::kBudget, "budget"},     {RunStatus::kNotFollowing, "not-following"},
+    {RunStatus::kStopped, "stopped"},
+};
+
+}  // namespace
+
+std::string RunStatusName(RunStatus s) { return NameOf(kRunStatusNames, s); }
 
 bool SimulationResult::liftoff() const {
   for (const Episode& e : episodes) {

@@ -6,13 +6,14 @@
 #include <string>
 #include <utility>
 
+#include "lib/name_table.h"
 #include "lib/units.h"
 
 namespace needle {
 namespace {
 
 // The one name table.
-constexpr std::pair<FollowerKind, const char*> kKindNames[] = {
+constexpr NameRow<FollowerKind> kKindNames[] = {
     {FollowerKind::kRoller, "roller"},
     {FollowerKind::kFlat, "flat"},
     {FollowerKind::kCurved, "curved"},
@@ -37,16 +38,10 @@ double AffineCap(const At& at, Fn fn, double dir, double probe) {
 
 }  // namespace
 
-const char* FollowerKindName(FollowerKind kind) {
-  for (const auto& [k, name] : kKindNames)
-    if (k == kind) return name;
-  return "?";
-}
+const char* FollowerKindName(FollowerKind kind) { return NameOf(kKindNames, kind); }
 
 std::optional<FollowerKind> ParseFollowerKind(const std::string& name) {
-  for (const auto& [k, n] : kKindNames)
-    if (name == n) return k;
-  return std::nullopt;
+  return ValueOf(kKindNames, name);
 }
 
 double FollowerGeometry::ContactRadius() const {

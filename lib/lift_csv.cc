@@ -40,7 +40,7 @@ std::string Quoted(char c) { return std::string("'") + c + "'"; }
 
 }  // namespace
 
-LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool four_stroke,
+LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineCycle cycle,
                        std::vector<int>* lines) {
   if (lines) lines->clear();
   auto fail = [&](int line, int column, const std::string& what) -> void {
@@ -89,7 +89,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
           if (angle_col >= 0) fail(line, k + 1, "two angle columns; keep one");
           angle_col = k;
           angle_name = name;
-          angle_scale = kDeg * (name == "cam_deg" ? (four_stroke ? 2.0 : 1.0) : 1.0);
+          angle_scale = kDeg * (name == "cam_deg" ? CrankTurnsPerCycle(cycle) : 1.0);
         } else if (name == "lift_mm" || name == "lift_um" || name == "lift_in" ||
                    name == "lift_m") {
           if (lift_col >= 0) fail(line, k + 1, "two lift columns; keep one");
@@ -184,8 +184,8 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool fo
   return t;
 }
 
-LiftTable ReadLiftCsv(const std::string& path, bool four_stroke, std::vector<int>* lines) {
-  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, four_stroke, lines);
+LiftTable ReadLiftCsv(const std::string& path, EngineCycle cycle, std::vector<int>* lines) {
+  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, cycle, lines);
 }
 
 }  // namespace needle

@@ -19,13 +19,14 @@
 /// out of its neighbourhood (FindOutliers) is an outlier of measured data: listed, and left out
 /// when the case says so. A sparse table is exact (the paper's: read from a drawing, rounded to
 /// `resolution_mm`): when it starts and ends at zero lift it gets the clamped cubic at rest at
-/// both ends (the evidence is in README: Basu's velocity tables and the closed-form laws),
-/// otherwise not-a-knot.
+/// both ends (the evidence is in docs/lift-data.md and docs/validation.md: Basu's velocity tables
+/// and the closed-form laws), otherwise not-a-knot.
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "lib/engine_cycle.h"
 #include "lib/lift_law.h"
 #include "lib/spline.h"
 
@@ -214,19 +215,21 @@ namespace needle {
 
 /// Reads a lift table from CSV: `#` comment lines and blank lines skipped; a header naming two
 /// columns with their units — the angle `crank_deg` or `cam_deg` (cam angles are turned into
-/// crank angles: ×2 when `four_stroke`, else ×1) and the lift `lift_mm`, `lift_um`, `lift_in`
-/// or `lift_m` — then one row per reading. Spreadsheet output is read as written: a UTF-8
-/// byte-order mark, CRLF line ends and double-quoted fields are accepted, and the separator is
-/// taken from the header: ',' (decimal mark '.'), or ';' when the header has ';' and no ','
-/// (decimal mark ',', as a spreadsheet writes in a German or other European locale: `12,5`); a
+/// crank angles by CrankTurnsPerCycle(cycle): ×2 four-stroke, ×1 two-stroke) and the lift
+/// `lift_mm`, `lift_um`, `lift_in` or `lift_m` — then one row per reading. Spreadsheet output is
+/// read as written: a UTF-8 byte-order mark, CRLF line ends and double-quoted fields are accepted,
+/// and the separator is taken from the header: ',' (decimal mark '.'), or ';' when the header has
+/// ';' and no ',' (decimal mark ',', as a spreadsheet writes in a German or other European locale:
+/// `12,5`); a
 /// '.' in such a table is refused (it may be a thousands separator). Angles must increase
 /// strictly, every value be a finite number, and there be at least two rows. Throws CaseError
 /// naming the file, the line and the column ("FILE:LINE:COLUMN: what").
 /// `lines`, when given, gets the file's line number of each reading (for messages).
-LiftTable ReadLiftCsv(const std::string& path, bool four_stroke, std::vector<int>* lines = nullptr);
+LiftTable ReadLiftCsv(const std::string& path, EngineCycle cycle,
+                      std::vector<int>* lines = nullptr);
 
 /// As ReadLiftCsv, from text already in memory; `path` is used in messages only.
-LiftTable ParseLiftCsv(const std::string& text, const std::string& path, bool four_stroke,
+LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineCycle cycle,
                        std::vector<int>* lines = nullptr);
 
 }  // namespace needle

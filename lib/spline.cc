@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lib/name_table.h"
+
 namespace needle {
 
 void SplineOptions::Validate() const {
@@ -20,29 +22,24 @@ void SplineOptions::Validate() const {
   }
 }
 
-std::string SplineKindName(SplineKind kind) {
-  switch (kind) {
-    case SplineKind::kNatural:
-      return "natural";
-    case SplineKind::kNotAKnot:
-      return "not-a-knot";
-    case SplineKind::kClamped:
-      return "clamped";
-    case SplineKind::kQuintic:
-      return "quintic";
-    case SplineKind::kPchip:
-      return "pchip";
-    case SplineKind::kMakima:
-      return "makima";
-    case SplineKind::kSmoothing:
-      return "smoothing";
-  }
-  return "?";
-}
+namespace {
+
+// The one name table, in the order AllSplineKinds lists the kinds.
+constexpr NameRow<SplineKind> kSplineNames[] = {
+    {SplineKind::kNatural, "natural"},     {SplineKind::kNotAKnot, "not-a-knot"},
+    {SplineKind::kClamped, "clamped"},     {SplineKind::kQuintic, "quintic"},
+    {SplineKind::kPchip, "pchip"},         {SplineKind::kMakima, "makima"},
+    {SplineKind::kSmoothing, "smoothing"},
+};
+
+}  // namespace
+
+std::string SplineKindName(SplineKind kind) { return NameOf(kSplineNames, kind); }
 
 std::vector<SplineKind> AllSplineKinds() {
-  return {SplineKind::kNatural, SplineKind::kNotAKnot, SplineKind::kClamped,  SplineKind::kQuintic,
-          SplineKind::kPchip,   SplineKind::kMakima,   SplineKind::kSmoothing};
+  std::vector<SplineKind> out;
+  for (const NameRow<SplineKind>& row : kSplineNames) out.push_back(row.value);
+  return out;
 }
 
 std::optional<SplineKind> ParseSplineKind(const std::string& name) {

@@ -10,3 +10,14 @@ cmake --install "$build" --prefix "$work/prefix" >/dev/null
 cmake -S tests/consumer -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer" cases/basu-example1.toml
+# The Python package, when the build has it: imported from the prefix alone, needle.distributed
+# beside the compiled module, its command line answering.
+python=$(sed -n "s/^_\?Python3_EXECUTABLE:[A-Z]*=//p" "$build/CMakeCache.txt" | head -1)
+site=$(find "$work/prefix" -name 'needle.cpython-*.so' -printf '%h\n' | head -1)
+if [[ -n "$site" ]]; then
+  env -u PYTHONPATH PYTHONPATH="$site" "$python" -c "
+import needle, needle.distributed as d
+assert needle.__file__.startswith('$site/') and d.__file__ == '$site/needle/distributed.py', d
+print('python package: needle', needle.__version__, 'with needle.distributed')"
+  env PYTHONPATH="$site" "$python" -m needle.distributed tolerance --help | grep -q -- --scheduler
+fi

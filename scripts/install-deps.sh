@@ -24,6 +24,7 @@ packages=(
   gnuplot-nox            # figures: needle check reports, scripts/bench.sh
   clang libclang-rt-14-dev  # libFuzzer target for the case loader
   pybind11-dev python3-dev python3-numpy  # the Python module (apps/python)
+  python3-distributed    # Dask: python3 -m needle.distributed (docs/distributed.md)
 )
 if ((tests)); then
   packages+=(

@@ -76,9 +76,8 @@ double OutflowVelocity(double phi, double temperature_K, double r) {
 DesignResult RunDesignChain(const DesignInputs& in) {
   DesignResult r;
   const double n = in.speed_rpm;
-  const bool four_stroke = in.cycle == "four-stroke";
   const double hp = in.power_W / 735.49875;
-  const double cycles_per_rev = four_stroke ? 0.5 : 1.0;
+  const double cycles_per_rev = 1.0 / CrankTurnsPerCycle(in.cycle);
   r.fuel_per_cycle_g = hp * in.fuel_g_hp_h / (60.0 * n * cycles_per_rev);      // N_i b c/(60 n)
   r.fuel_per_cycle_cm3 = r.fuel_per_cycle_g / (in.fuel_density_kg_m3 * 1e-3);  // G/γ
   r.mixing_ratio_from_line = !in.mixing_ratio.has_value();

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "lib/engine_cycle.h"
 #include "lib/lift_law.h"
 #include "lib/units.h"
 
@@ -36,7 +37,7 @@ struct DesignInputs {
   std::string title;
   double power_W = 0.0;  ///< indicated power per cylinder (case: power_hp)
   double speed_rpm = 0.0;
-  std::string cycle = "four-stroke";
+  EngineCycle cycle = EngineCycle::kFourStroke;
   double fuel_g_hp_h = 145.0;  ///< specific fuel consumption, g per metric hp·h
   double fuel_density_kg_m3 = 860.0;
   double injection_crank_rad = 55.0 * kPi / 180.0;

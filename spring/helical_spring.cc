@@ -4,9 +4,29 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/name_table.h"
 #include "lib/units.h"
 
 namespace needle {
+namespace {
+
+// The one name table of the ends.
+constexpr NameRow<SpringEnds> kEndsNames[] = {
+    {SpringEnds::kClosedGround, "closed-ground"},
+    {SpringEnds::kClosed, "closed"},
+    {SpringEnds::kOpenGround, "open-ground"},
+    {SpringEnds::kOpen, "open"},
+};
+
+}  // namespace
+
+const char* SpringEndsName(SpringEnds ends) { return NameOf(kEndsNames, ends); }
+
+std::optional<SpringEnds> ParseSpringEnds(const std::string& name) {
+  return ValueOf(kEndsNames, name);
+}
+
+std::string SpringEndsList() { return NameChoice(kEndsNames); }
 
 double HelicalRate(const HelicalGeometry& g) {
   return g.shear_modulus_Pa * std::pow(g.wire_m, 4) /
@@ -19,7 +39,7 @@ double StressCorrection(double w, bool wahl) {
 }
 
 HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N, double max_lift_m,
-                                      double speed_rpm, bool four_stroke) {
+                                      double speed_rpm, EngineCycle cycle) {
   HelicalSpringCheck c;
   const double d = g.wire_m, D = g.coil_m, n = g.active_coils;
   c.rate_N_m = HelicalRate(g);
@@ -62,7 +82,7 @@ HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N
   c.min_clearance_m = (0.0015 * D * D / d + 0.1 * d) * n;  // S_a = (0.0015 D²/d + 0.1 d) n
   c.surge_hz =
       d / (2.0 * kPi * n * D * D) * std::sqrt(g.shear_modulus_Pa / (2.0 * g.density_kg_m3));
-  c.cam_hz = speed_rpm / (four_stroke ? 120.0 : 60.0);
+  c.cam_hz = speed_rpm / (60.0 * CrankTurnsPerCycle(cycle));
   c.surge_ratio = c.surge_hz / c.cam_hz;
   c.stress_ok = c.stress_full_lift_Pa <= c.allowable_stress_Pa;
   c.clearance_ok = c.clearance_full_lift_m >= c.min_clearance_m;

@@ -20,6 +20,7 @@
 /// f_e/f_cam ≥ 13, and n_f ≥ 1 (the working stroke inside the Goodman line) where Zimmerli's
 /// data apply (wire below 10 mm; beyond, fatigue is not judged and says so).
 
+#include "lib/engine_cycle.h"
 #include "spring/spring_parameters.h"
 #include "spring/wire_material.h"
 
@@ -60,9 +61,9 @@ double HelicalRate(const HelicalGeometry& g);
 double StressCorrection(double index, bool wahl);
 
 /// Checks `g` carrying `preload_N` at the seat and preload + R·max_lift at full lift.
-/// speed_rpm and `four_stroke` set the cam frequency. Throws std::invalid_argument when the
+/// speed_rpm and `cycle` set the cam frequency. Throws std::invalid_argument when the
 /// preload already compresses the spring beyond its free length.
 HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N, double max_lift_m,
-                                      double speed_rpm, bool four_stroke);
+                                      double speed_rpm, EngineCycle cycle);
 
 }  // namespace needle

@@ -44,7 +44,7 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
 }
 
 SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParameters& spring,
-                              const LiftLaw& law, double speed_rpm, bool four_stroke,
+                              const LiftLaw& law, double speed_rpm, EngineCycle cycle,
                               const std::string& where) {
   if (!law.HasAcceleration()) {
     throw CaseError(
@@ -63,8 +63,8 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
   r.train.gas_force_N = needle.gas_force_N;
   if (spring.helical) {
     try {
-      r.helical = CheckHelicalSpring(*spring.helical, spring.preload_N, sum.max_lift_m, speed_rpm,
-                                     four_stroke);
+      r.helical =
+          CheckHelicalSpring(*spring.helical, spring.preload_N, sum.max_lift_m, speed_rpm, cycle);
     } catch (const std::invalid_argument& e) {
       throw CaseError(where + ": [spring]: " + e.what());
     }

@@ -57,7 +57,7 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
 /// crank speed when `four_stroke`. Throws CaseError prefixed with `where` (the case file) when
 /// the law has no acceleration, the helical geometry is impossible or a quantity overflows.
 SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParameters& spring,
-                              const LiftLaw& law, double speed_rpm, bool four_stroke,
+                              const LiftLaw& law, double speed_rpm, EngineCycle cycle,
                               const std::string& where);
 
 }  // namespace needle

@@ -24,6 +24,12 @@ struct NeedleParameters {
 
 /// End type of a helical compression spring (EN 13906-1).
 enum class SpringEnds { kClosedGround, kClosed, kOpenGround, kOpen };
+/// The ends' name in a case file ("closed-ground", "closed", "open-ground", "open").
+const char* SpringEndsName(SpringEnds ends);
+/// The ends of a name, or nullopt.
+std::optional<SpringEnds> ParseSpringEnds(const std::string& name);
+/// The names, quoted, for messages.
+std::string SpringEndsList();
 
 /// Helical compression spring geometry and material, all SI.
 struct HelicalGeometry {

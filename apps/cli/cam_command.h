@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/cli/command_output.h"
+#include "apps/cli/output_format.h"
 #include "apps/scene/case_file.h"
 
 namespace needle {
@@ -16,6 +17,7 @@ namespace needle {
 struct SynthCommandOptions {
   std::string spec_path;
   bool json = false;
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
   std::optional<std::string> csv, case_out;
 };
 CLI::App* AddSynthCommand(CLI::App& app, SynthCommandOptions& options);
@@ -28,6 +30,7 @@ int RunSynthCommand(const SynthCommandOptions& options);
 struct ProfileCommandOptions {
   std::string case_path;
   bool json = false;
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
   std::optional<std::string> csv;
 };
 CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& options);

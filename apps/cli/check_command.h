@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/check_writers.h"  // CheckJson, for the callers of the command
+#include "apps/cli/output_format.h"
 #include "apps/scene/check_scene.h"
 
 namespace needle {
@@ -21,13 +23,10 @@ struct CheckCommandOptions {
   std::string out_dir = ".";
   std::optional<double> speed_rpm;
   bool json = false;  ///< one JSON object on stdout instead of the text summary
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
 };
 
 CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& options);
-/// What `check --json` prints for case `c` (lift law `law`) and its result; `report_path` is the
-/// report the run wrote.
-nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
-                         const std::string& report_path);
 int RunCheckCommand(const CheckCommandOptions& options);
 
 }  // namespace needle

@@ -6,10 +6,10 @@
 
 namespace needle {
 
-int Emit(const CommandOutput& r, bool json, const std::optional<std::string>& csv_path) {
+int Emit(const CommandOutput& r, OutputFormat format, const std::optional<std::string>& csv_path) {
   if (csv_path) WriteOutput({"--csv", *csv_path}, r.csv);
-  if (json) {
-    std::cout << r.json.dump(2) << '\n' << std::flush;
+  if (format != OutputFormat::kText) {
+    std::cout << FormatObject(r.json, format) << std::flush;
   } else {
     std::cout << r.text << std::flush;
   }

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli/output_format.h"
+
 namespace needle {
 
 struct CommandOutput {
@@ -25,7 +27,8 @@ struct CommandOutput {
 };
 
 /// Writes `r.csv` to `csv_path` (when given, atomically, as the --csv option), then prints the
-/// JSON object (`json`) or the text to stdout; returns `r.status`.
-int Emit(const CommandOutput& r, bool json, const std::optional<std::string>& csv_path);
+/// JSON object in `format` (json or markdown) or, for text, the text to stdout; returns
+/// `r.status`.
+int Emit(const CommandOutput& r, OutputFormat format, const std::optional<std::string>& csv_path);
 
 }  // namespace needle

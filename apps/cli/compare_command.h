@@ -13,13 +13,16 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli/output_format.h"
+
 namespace needle {
 
 struct CompareCommandOptions {
-  std::string a_path, b_path;       ///< the design and the one it is set against
-  std::string out_dir = ".";        ///< where the report goes (made when missing)
-  std::optional<double> speed_rpm;  ///< rated speed for both; default each case's own
-  bool json = false;                ///< one JSON object instead of the text
+  std::string a_path, b_path;                 ///< the design and the one it is set against
+  std::string out_dir = ".";                  ///< where the report goes (made when missing)
+  std::optional<double> speed_rpm;            ///< rated speed for both; default each case's own
+  bool json = false;                          ///< one JSON object instead of the text
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
 };
 
 CLI::App* AddCompareCommand(CLI::App& app, CompareCommandOptions& options);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "apps/cli/command_output.h"
+#include "apps/cli/output_format.h"
 #include "apps/scene/case_file.h"
 
 namespace needle {
@@ -21,6 +22,7 @@ struct SimulateCommandOptions {
   std::optional<double> rtol;
   bool dynamic = false;  ///< run the dynamics even where the rigid answer would stand
   bool json = false;
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
   std::optional<std::string> csv;
   bool series = false;        ///< record the time series as columns without a CSV (Python)
   std::optional<int> cycles;  ///< cam revolutions back to back (default: [solver] cycles)
@@ -41,6 +43,7 @@ struct OverspeedCommandOptions {
   int threads = 0;
   std::optional<double> step_rpm;  ///< scan step Δn (default 2.5 % of --from, at least 1 rpm)
   bool json = false;
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
 };
 
 CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& options);

@@ -14,35 +14,6 @@
 #include "lib/units.h"
 
 namespace needle {
-namespace {
-
-nlohmann::json OrNull(const std::optional<double>& v, double scale = 1.0) {
-  return v ? nlohmann::json(*v * scale) : nlohmann::json(nullptr);
-}
-
-// Row angles: θ_0, θ_N, every multiple of the step between them, and the paper's angles.
-// The table's first and last angle, the open lift's ends, every multiple of the step between,
-// and the paper's angles.
-std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const Case& c) {
-  const double lo = law.table_start_rad(), hi = law.table_end_rad();
-  std::vector<double> rows = {lo, hi, law.start_rad(), law.end_rad()};
-  const double first = std::ceil(lo / step_rad - 1e-9);
-  for (double k = first; k * step_rad <= hi + 1e-12; k += 1.0) {
-    rows.push_back(k * step_rad);
-  }
-  if (c.paper) rows.insert(rows.end(), c.paper->crank_rad.begin(), c.paper->crank_rad.end());
-  std::sort(rows.begin(), rows.end());
-  rows.erase(std::unique(rows.begin(), rows.end(),
-                         [](double a, double b) { return std::abs(a - b) < 1e-9; }),
-             rows.end());
-  return rows;
-}
-
-std::string Pad(const std::string& s, size_t width) {
-  return s.size() >= width ? s : std::string(width - s.size(), ' ') + s;
-}
-
-}  // namespace
 
 CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
@@ -69,221 +40,21 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   return cmd;
 }
 
-CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
-  RequireSpeed(o.speed_rpm);
-  RequireIn("--step", o.step_deg, kTableStepRange.lo, kTableStepRange.hi,
-            "a spacing in crank degrees");
-  if (o.spline) {
-    const auto kind = ParseSplineKind(*o.spline);
-    if (!kind) {
-      throw CaseError("--spline: unknown kind \"" + *o.spline + "\"; expected one of " +
-                      SplineKindList());
-    }
-    CheckSplineFits(c, *kind, "--spline");
-    if (*kind == SplineKind::kClamped && c.lift.spline.kind != SplineKind::kClamped) {
-      c.lift.spline.start_slope = c.lift.spline.end_slope = 0.0;  // at rest unless the case says
-    }
-    c.lift.spline.kind = *kind;
-    c.lift.spline_given = true;
-  }
-  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
-  const LiftLawChoice choice = CaseLiftChoice(c);
-  const LiftLaw law = MakeLiftLaw(c);
-  const Kinematics kin(law, speed);
-  const KinematicsSummary sum = kin.Summarize();
-  // A row budget: a table wider than 100 000 rows is no table (--step 1e-9 asked for 4 GB).
-  const double span_deg = (law.table_end_rad() - law.table_start_rad()) / kDeg;
-  if (span_deg / o.step_deg > 1e5) {
-    throw CaseError("--step: " + Fixed(o.step_deg, 6) + " deg gives " +
-                    std::to_string(static_cast<long long>(span_deg / o.step_deg)) +
-                    " rows over the table's " + Fixed(span_deg, 1) +
-                    " deg; at most 100000 (a step of at least " + Fixed(span_deg / 1e5, 6) +
-                    " deg)");
-  }
-  const std::vector<double> angles = RowAngles(law, o.step_deg * kDeg, c);
-  std::vector<KinematicsPoint> rows;
-  rows.reserve(angles.size());
-  for (double a : angles) rows.push_back(kin.At(a));
-
-  // Everything is computed; now compose the outputs, then write them.
-  std::ostringstream csv;
-  csv << "crank_deg,time_s,lift_mm,velocity_m_s,acceleration_m_s2,jerk_m_s3\n";
-  csv.precision(10);
-  for (const auto& r : rows) {
-    csv << r.crank_rad / kDeg << ',' << r.time_s << ',' << r.lift_m * 1e3 << ',' << r.velocity_m_s
-        << ',';
-    if (r.acceleration_m_s2) csv << *r.acceleration_m_s2;
-    csv << ',';
-    if (r.jerk_m_s3) csv << *r.jerk_m_s3;
-    csv << '\n';
-  }
-
-  CommandOutput result;
-  for (const auto& r : rows) {
-    result.columns["crank_rad"].push_back(r.crank_rad);
-    result.columns["time_s"].push_back(r.time_s);
-    result.columns["lift_m"].push_back(r.lift_m);
-    result.columns["velocity_m_s"].push_back(r.velocity_m_s);
-    result.columns["acceleration_m_s2"].push_back(r.acceleration_m_s2.value_or(NAN));
-    result.columns["jerk_m_s3"].push_back(r.jerk_m_s3.value_or(NAN));
-  }
-  if (o.csv) result.csv = csv.str();
-  std::ostringstream out;
-  if (o.json) {
-    nlohmann::json j;
-    j["case"] = c.path;
-    j["speed_rpm"] = speed;
-    j["spline"] = SplineKindName(law.kind());
-    j["spline_reason"] = choice.reason;
-    j["noise_mm"] = choice.noise_m * 1e3;
-    j["noise_source"] = choice.noise_source;
-    j["measured"] = choice.measured;
-    if (!choice.breaks_found.empty()) {  // found in the table (stated ones are in the case)
-      nlohmann::json breaks = nlohmann::json::array();
-      for (double b : choice.law.breaks_rad) breaks.push_back(b / kDeg);
-      j["breaks_deg"] = breaks;
-    }
-    j["points"] = c.lift.table.crank_rad.size();
-    j["open_deg"] = sum.open_rad / kDeg;
-    j["close_deg"] = sum.close_rad / kDeg;
-    j["closed_level_mm"] = law.closed_level_m() * 1e3;
-    j["undershoot_mm"] = law.undershoot_m() * 1e3;
-    j["undershoot_deg"] = law.undershoot_m() > 0 ? nlohmann::json(law.undershoot_rad() / kDeg)
-                                                 : nlohmann::json(nullptr);
-    j["injection_period_s"] = sum.injection_period_s;
-    j["max_lift_mm"] = sum.max_lift_m * 1e3;
-    j["max_lift_deg"] = sum.max_lift_rad / kDeg;
-    j["mean_lift_mm"] = sum.mean_lift_m * 1e3;
-    j["rho"] = sum.rho;
-    j["max_velocity_m_s"] = sum.max_velocity_m_s;
-    j["max_velocity_deg"] = sum.max_velocity_rad / kDeg;
-    j["min_velocity_m_s"] = sum.min_velocity_m_s;
-    j["min_velocity_deg"] = sum.min_velocity_rad / kDeg;
-    j["max_acceleration_m_s2"] = OrNull(sum.max_acceleration_m_s2);
-    j["max_acceleration_deg"] = OrNull(sum.max_acceleration_rad, 1.0 / kDeg);
-    j["min_acceleration_m_s2"] = OrNull(sum.min_acceleration_m_s2);
-    j["min_acceleration_deg"] = OrNull(sum.min_acceleration_rad, 1.0 / kDeg);
-    nlohmann::json table = nlohmann::json::array();
-    for (const auto& r : rows) {
-      nlohmann::json row;
-      row["crank_deg"] = r.crank_rad / kDeg;
-      row["time_s"] = r.time_s;
-      row["lift_mm"] = r.lift_m * 1e3;
-      row["velocity_m_s"] = r.velocity_m_s;
-      row["acceleration_m_s2"] = OrNull(r.acceleration_m_s2);
-      row["jerk_m_s3"] = OrNull(r.jerk_m_s3);
-      if (auto p = PaperVelocityAt(c, r.crank_rad)) row["paper_velocity_m_s"] = *p;
-      table.push_back(row);
-    }
-    j["table"] = table;
-    result.json = std::move(j);
-  } else {
-    const bool paper = o.units == "paper";
-    out << (c.title.empty() ? c.path : c.title) << '\n';
-    out << "spline " << SplineKindName(law.kind()) << ": " << choice.reason << '\n';
-    if (!choice.breaks_found.empty() && !choice.law.breaks_rad.empty()) {
-      out << "breaks found (s'' jumps, the spline built apart at them):";
-      for (double b : choice.law.breaks_rad) out << ' ' << Fixed(b / kDeg, 4);
-      out << " deg\n";
-    }
-    out << "open lift " << Fixed(sum.open_rad / kDeg, 2) << " to " << Fixed(sum.close_rad / kDeg, 2)
-        << " deg";
-    if (law.closed_level_m() > 0)
-      out << " (where the lift exceeds " << Fixed(law.closed_level_m() * 1e3, 4) << " mm, 3 sigma)";
-    out << ", " << Fixed(speed, 1) << " rpm, injection period "
-        << Fixed(sum.injection_period_s * 1e3, 2) << " ms\n";
-    if (law.undershoot_m() > 0) {
-      out << "WARNING: the spline dips " << Fixed(law.undershoot_m() * 1e3, 4)
-          << " mm below the seat at " << Fixed(law.undershoot_rad() / kDeg, 2)
-          << " deg inside the open lift; try another spline kind\n";
-    }
-    if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
-      out << "WARNING: " << choice.outliers.size()
-          << " outlier(s) of the lift table left out (outliers = \"drop\"; the spline's reason "
-             "lists them)\n";
-    }
-    out << "max lift " << Fixed(sum.max_lift_m * 1e3, 3) << " mm at "
-        << Fixed(sum.max_lift_rad / kDeg, 2) << " deg, mean lift "
-        << Fixed(sum.mean_lift_m * 1e3, 3) << " mm, rho " << Fixed(sum.rho, 3) << '\n';
-    out << "velocity " << Fixed(sum.max_velocity_m_s, 3) << " m/s max at "
-        << Fixed(sum.max_velocity_rad / kDeg, 2) << " deg, " << Fixed(sum.min_velocity_m_s, 3)
-        << " m/s min at " << Fixed(sum.min_velocity_rad / kDeg, 2) << " deg\n";
-    if (sum.max_acceleration_m_s2) {
-      out << "acceleration " << Fixed(*sum.max_acceleration_m_s2, 2) << " m/s^2 max at "
-          << Fixed(*sum.max_acceleration_rad / kDeg, 2) << " deg, "
-          << Fixed(*sum.min_acceleration_m_s2, 2) << " m/s^2 min at "
-          << Fixed(*sum.min_acceleration_rad / kDeg, 2) << " deg\n";
-    } else {
-      out << "acceleration unavailable: " << SplineKindName(law.kind())
-          << " is C1 only (its second derivative jumps at the knots)\n";
-    }
-    if (c.paper && c.paper->max_acceleration_m_s2) {
-      const double a_abs =
-          sum.max_acceleration_m_s2
-              ? std::max(std::abs(*sum.max_acceleration_m_s2), std::abs(*sum.min_acceleration_m_s2))
-              : NAN;
-      out << "paper: max acceleration " << Fixed(*c.paper->max_acceleration_m_s2, 1)
-          << " m/s^2; computed max |a| " << Fixed(a_abs, 2) << " m/s^2\n";
-    }
-    const bool has_paper_v = c.paper && !c.paper->velocity_m_s.empty();
-    if (has_paper_v) {
-      double total = 0, worst = -1, worst_deg = 0;
-      for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
-        const double dev = std::abs(std::abs(kin.At(c.paper->crank_rad[i]).velocity_m_s) -
-                                    c.paper->velocity_m_s[i]);  // | |v| − v_paper |
-        total += dev;
-        if (dev > worst) {
-          worst = dev;
-          worst_deg = c.paper->crank_rad[i] / kDeg;
-        }
-      }
-      out << "paper velocity (" << c.paper->crank_rad.size() << " points): mean |deviation| "
-          << Fixed(10.0 * total / c.paper->crank_rad.size(), 2) << " dcm/s, largest "
-          << Fixed(10.0 * worst, 2) << " dcm/s at " << Fixed(worst_deg, 1) << " deg\n";
-    }
-    out << '\n'
-        << Pad("crank deg", 9) << Pad(paper ? "lift mm" : "lift m", 12)
-        << Pad(paper ? "v dcm/s" : "v m/s", 12) << Pad("a m/s^2", 12);
-    if (!paper) out << Pad("j m/s^3", 14);
-    if (has_paper_v) out << Pad("paper |v|", 11) << Pad("|v|-paper", 11);
-    out << '\n';
-    for (const auto& r : rows) {
-      out << Pad(Fixed(r.crank_rad / kDeg, 2), 9);
-      if (paper) {
-        out << Pad(Fixed(r.lift_m * 1e3, 4), 12) << Pad(Fixed(r.velocity_m_s * 10.0, 3), 12);
-      } else {
-        out << Pad(Fixed(r.lift_m, 7), 12) << Pad(Fixed(r.velocity_m_s, 5), 12);
-      }
-      out << Pad(r.acceleration_m_s2 ? Fixed(*r.acceleration_m_s2, 2) : "n/a", 12);
-      if (!paper) out << Pad(r.jerk_m_s3 ? Fixed(*r.jerk_m_s3, 1) : "n/a", 14);
-      if (has_paper_v) {
-        if (auto p = PaperVelocityAt(c, r.crank_rad)) {
-          const double scale = paper ? 10.0 : 1.0;  // dcm/s or m/s
-          out << Pad(Fixed(*p * scale, paper ? 2 : 4), 11)
-              << Pad(Fixed((std::abs(r.velocity_m_s) - *p) * scale, paper ? 2 : 4), 11);
-        }
-      }
-      out << '\n';
-    }
-  }
-  result.text = out.str();
-  return result;
-}
-
 int RunKinematicsCommand(const KinematicsCommandOptions& o) {
   const bool bare_csv = IsCsvPath(o.case_path);
   if (bare_csv && !o.speed_rpm) {
     throw CaseError("--rpm: " + o.case_path +
                     " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
   }
-  Case c = bare_csv ? CaseFromLiftCsv(o.case_path, o.cycle) : LoadCase(o.case_path);
+  Case c =
+      bare_csv ? CaseFromLiftCsv(o.case_path, *ParseEngineCycle(o.cycle)) : LoadCase(o.case_path);
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   if (o.noise_mm) {
     if (!bare_csv)
       throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
     c.lift.noise_m = *o.noise_mm * 1e-3;
   }
-  return Emit(ComputeKinematics(std::move(c), o), o.json, o.csv);
+  return Emit(ComputeKinematics(std::move(c), o), o.format, o.csv);
 }
 
 }  // namespace needle

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/cli/command_output.h"
+#include "apps/cli/output_format.h"
 #include "apps/scene/case_file.h"
 
 namespace needle {
@@ -20,7 +21,8 @@ struct KinematicsCommandOptions {
   std::optional<std::string> spline;  ///< overrides [lift] spline
   std::string units = "paper";        ///< "paper" (mm, dcm/s, m/s²) or "si" (m, m/s, m/s², m/s³)
   bool json = false;                  ///< print one JSON object instead of the table
-  std::optional<std::string> csv;     ///< also write the table as CSV, atomically
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
+  std::optional<std::string> csv;             ///< also write the table as CSV, atomically
   /// A bare CSV lift table as CASE: its cycle (for cam_deg columns) and its noise σ, mm.
   std::string cycle = "four-stroke";
   std::optional<double> noise_mm;

@@ -13,6 +13,7 @@
 #include "apps/cli/compare_command.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
+#include "apps/cli/output_format.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/scene/case_file.h"
@@ -29,6 +30,7 @@ template <typename Options>
 Command Register(CLI::App& app, CLI::App* (*add)(CLI::App&, Options&), int (*run)(const Options&)) {
   auto options = std::make_shared<Options>();
   CLI::App* sub = add(app, *options);
+  needle::AddFormatOption(sub, options->format, options->json);  // every command, once
   return {sub, [options, run] { return run(*options); }};
 }
 

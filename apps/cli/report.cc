@@ -50,51 +50,98 @@ void Report::AddHtml(const std::string& html) { parts_.push_back(html); }
 
 void Report::AddFigure(const std::string& caption, const std::vector<Series>& data,
                        std::string script, int height_px) {
-  char pattern[] = "/tmp/needle-report-XXXXXX";
-  const char* dir = mkdtemp(pattern);
-  if (!dir) throw std::runtime_error("report: cannot create a temporary folder for gnuplot");
-  const std::filesystem::path folder(dir);
-  for (const Series& s : data) {
-    const std::string file = (folder / (s.name + ".dat")).string();
-    std::ofstream out(file);
-    out.precision(10);
-    for (const auto& row : s.rows) {
-      for (size_t i = 0; i < row.size(); ++i) out << (i ? " " : "") << row[i];
-      out << '\n';
-    }
-    // Replace every $name with the quoted file name.
-    const std::string key = "$" + s.name;
-    for (size_t at = script.find(key); at != std::string::npos; at = script.find(key, at)) {
-      script.replace(at, key.size(), "'" + file + "'");
-      at += file.size() + 2;
-    }
+  parts_.emplace_back();  // the figure's place, filled when the report is drawn
+  pending_.push_back({caption, data, std::move(script), height_px, parts_.size() - 1});
+  ++figures_;
+}
+
+namespace {
+
+// A temporary folder, removed with everything in it when the owner goes.
+class TempFolder {
+ public:
+  TempFolder() {
+    char pattern[] = "/tmp/needle-report-XXXXXX";
+    const char* dir = mkdtemp(pattern);
+    if (!dir) throw std::runtime_error("report: cannot create a temporary folder for gnuplot");
+    path_ = dir;
   }
-  const std::string svg = (folder / "figure.svg").string();
-  const std::string gp = (folder / "figure.gp").string();
-  {
-    std::ofstream out(gp);
-    out << "set terminal svg size 860," << height_px << " font 'sans,12' background rgb 'white'\n"
-        << "set output '" << svg << "'\nset grid\n"
-        << script << "\nunset output\n";
+  ~TempFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
   }
-  const std::string command = "gnuplot '" + gp + "' 2>'" + (folder / "err.txt").string() + "'";
-  const int status = std::system(command.c_str());
-  std::ifstream in(svg);
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::string Slurp(const std::filesystem::path& file) {
+  std::ifstream in(file);
   std::stringstream buffer;
   buffer << in.rdbuf();
-  if (status != 0 || buffer.str().find("<svg") == std::string::npos) {
-    std::ifstream err((folder / "err.txt").string());
-    std::stringstream e;
-    e << err.rdbuf();
-    std::filesystem::remove_all(folder);
-    throw std::runtime_error("gnuplot failed drawing \"" + caption + "\": " + e.str());
+  return buffer.str();
+}
+
+}  // namespace
+
+std::vector<std::string> Report::DrawFigures() const {
+  std::vector<std::string> parts = parts_;
+  if (pending_.empty()) return parts;
+  // Every figure in one gnuplot process: each in its own folder (its data files named as the
+  // series, so the SVG's titles name no temporary path), `reset session` between them.
+  const TempFolder folder;
+  std::ostringstream gp;
+  for (size_t k = 0; k < pending_.size(); ++k) {
+    const PendingFigure& f = pending_[k];
+    const std::filesystem::path dir = folder.path() / ("f" + std::to_string(k));
+    std::filesystem::create_directory(dir);
+    std::string script = f.script;
+    for (const Series& s : f.data) {
+      const std::string file = s.name + ".dat";
+      std::ofstream out(dir / file);
+      out.precision(10);
+      for (const auto& row : s.rows) {
+        for (size_t i = 0; i < row.size(); ++i) out << (i ? " " : "") << row[i];
+        out << '\n';
+      }
+      // Replace every $name with the quoted file name.
+      const std::string key = "$" + s.name;
+      for (size_t at = script.find(key); at != std::string::npos; at = script.find(key, at)) {
+        script.replace(at, key.size(), "'" + file + "'");
+        at += file.size() + 2;
+      }
+    }
+    gp << "reset session\ncd '" << dir.string() << "'\n"
+       << "set terminal svg size 860," << f.height_px << " font 'sans,12' background rgb 'white'\n"
+       << "set output 'figure.svg'\nset grid\n"
+       << script << "\nunset output\n";
   }
-  std::filesystem::remove_all(folder);
-  std::string body = buffer.str();
-  const auto start = body.find("<svg");  // drop the XML prologue for inline use
-  parts_.push_back("<figure>" + body.substr(start) + "<figcaption>" + Escape(caption) +
-                   "</figcaption></figure>");
-  ++figures_;
+  {
+    std::ofstream out(folder.path() / "figures.gp");
+    out << gp.str();
+  }
+  const std::string command = "gnuplot '" + (folder.path() / "figures.gp").string() + "' 2>'" +
+                              (folder.path() / "err.txt").string() + "'";
+  const int status = std::system(command.c_str());
+  for (size_t k = 0; k < pending_.size(); ++k) {
+    const PendingFigure& f = pending_[k];
+    const std::string body = Slurp(folder.path() / ("f" + std::to_string(k)) / "figure.svg");
+    const auto start = body.find("<svg");  // drop the XML prologue for inline use
+    if (start == std::string::npos || body.find("</svg>") == std::string::npos) {
+      throw std::runtime_error("gnuplot failed drawing \"" + f.caption +
+                               "\": " + Slurp(folder.path() / "err.txt"));
+    }
+    parts[f.part] = "<figure>" + body.substr(start) + "<figcaption>" + Escape(f.caption) +
+                    "</figcaption></figure>";
+  }
+  if (status != 0) {
+    throw std::runtime_error("gnuplot failed drawing the report's figures: " +
+                             Slurp(folder.path() / "err.txt"));
+  }
+  return parts;
 }
 
 std::string Report::Html() const {
@@ -109,7 +156,7 @@ std::string Report::Html() const {
          "0}figcaption{font-size:.9em;color:#555}svg{max-width:100%;height:auto}"
          ".skip{color:#555}</style></head>\n<body>\n<h1>"
       << Escape(title_) << "</h1>\n";
-  for (const std::string& p : parts_) out << p << '\n';
+  for (const std::string& p : DrawFigures()) out << p << '\n';
   out << "</body></html>\n";
   return out.str();
 }

@@ -19,19 +19,31 @@ class Report {
   explicit Report(std::string title);
 
   void AddHtml(const std::string& html);
-  /// Draws a figure: `script` is gnuplot after the terminal is set; it reads the series as
-  /// files named in `$name` placeholders ($lift, $force, …). Throws std::runtime_error naming
-  /// gnuplot's failure. `height_px`: the figure's height (860 px wide).
+  /// Adds a figure, drawn with the others when the document is made (Html): `script` is gnuplot
+  /// after the terminal is set; it reads the series as files named in `$name` placeholders
+  /// ($lift, $force, …). `height_px`: the figure's height (860 px wide).
   void AddFigure(const std::string& caption, const std::vector<Series>& data, std::string script,
                  int height_px = 420);
   int figures() const { return figures_; }
 
-  /// The whole HTML document.
+  /// The whole HTML document; its figures are drawn here, all in one gnuplot process. Throws
+  /// std::runtime_error naming gnuplot's failure and the figure it failed on.
   std::string Html() const;
 
  private:
+  // A figure to draw: its caption, data and script, and its place in parts_.
+  struct PendingFigure {
+    std::string caption;
+    std::vector<Series> data;
+    std::string script;
+    int height_px;
+    size_t part;
+  };
+  std::vector<std::string> DrawFigures() const;  // parts_ with every figure drawn
+
   std::string title_;
   std::vector<std::string> parts_;
+  std::vector<PendingFigure> pending_;
   int figures_ = 0;
 };
 

@@ -3,6 +3,7 @@
 /// The writers that consume a result's field table (lib/result_fields.h): JSON members and
 /// text values. A command formats; it does not convert units itself.
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -13,6 +14,11 @@
 namespace needle {
 
 /// Sets j[field.Key()] to each field's shown value, or null when it has none.
+/// A number for JSON: the value when finite, else null (JSON has no NaN or infinity).
+inline nlohmann::json Finite(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
 inline void PutFields(nlohmann::json& j, const std::vector<Field>& fields) {
   for (const Field& f : fields) {
     const auto v = f.Shown();

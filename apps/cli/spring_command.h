@@ -11,6 +11,7 @@
 #include <string>
 
 #include "apps/cli/command_output.h"
+#include "apps/cli/output_format.h"
 #include "apps/scene/case_file.h"
 
 namespace needle {
@@ -19,6 +20,7 @@ struct SpringCommandOptions {
   std::string case_path;
   std::optional<double> speed_rpm;  ///< overrides [engine] speed_rpm
   bool json = false;
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
 };
 
 CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& options);
@@ -29,7 +31,8 @@ int RunSpringCommand(const SpringCommandOptions& options);
 struct DesignCommandOptions {
   std::string engine_path;
   bool json = false;
-  std::optional<std::string> case_out;  ///< --case: write a complete case for `needle check`
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
+  std::optional<std::string> case_out;        ///< --case: write a complete case for `needle check`
 };
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& options);

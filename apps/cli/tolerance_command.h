@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli/output_format.h"
+#include "apps/cli/report.h"
 #include "apps/scene/case_file.h"
 #include "apps/scene/tolerance_study.h"
 
@@ -25,6 +27,7 @@ struct ToleranceCommandOptions {
   int threads = 0;                     ///< 0: all cores
   std::optional<std::string> out_dir;  ///< the report's folder; none: no report
   bool json = false;
+  OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
 };
 
 CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& options);
@@ -32,5 +35,11 @@ int RunToleranceCommand(const ToleranceCommandOptions& options);
 
 /// What `tolerance --json` prints for a study of case `c` (without the report's path).
 nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& result);
+/// The study's HTML report: the scatter, the failure probability and its drivers, the
+/// distributions and a histogram of each headline quantity.
+Report ToleranceReport(const Case& c, const ToleranceResult& result, std::uint64_t seed);
+/// What `tolerance` prints without --json.
+std::string ToleranceText(const Case& c, const ToleranceResult& result, std::uint64_t seed,
+                          const std::optional<std::string>& report_path);
 
 }  // namespace needle

@@ -4,11 +4,13 @@
 // Bad input raises needle.CaseError (a ValueError): a case's problem with the command line's
 // one-line message, a keyword's as "KEYWORD=VALUE: …" with the value as Python writes it.
 // Computations run with the GIL released.
+#include <dlfcn.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -318,7 +320,7 @@ std::string NotCsv(const py::object& cycle) {
 PyCase LoadAnyCase(const py::object& source, const std::optional<std::string>& name,
                    const py::object& cycle_arg, const std::string& function) {
   const auto cycle = Text(cycle_arg, "cycle", "'four-stroke' or 'two-stroke'");
-  if (cycle && *cycle != "four-stroke" && *cycle != "two-stroke")
+  if (cycle && !ParseEngineCycle(*cycle))
     throw CaseError("cycle=" + Repr(cycle_arg) + ": expected 'four-stroke' or 'two-stroke'");
   PyCase pc;
   if (py::isinstance<PyCase>(source)) {
@@ -347,7 +349,7 @@ PyCase LoadAnyCase(const py::object& source, const std::optional<std::string>& n
   if (IsCsvPath(path)) {
     // A bare lift table: the case a file naming it would be, but for its speed (give rpm=).
     const std::string stroke = cycle.value_or("four-stroke");
-    pc.loaded = std::make_shared<const Case>(CaseFromLiftCsv(path, stroke));
+    pc.loaded = std::make_shared<const Case>(CaseFromLiftCsv(path, *ParseEngineCycle(stroke)));
     py::dict engine, lift;
     engine["cycle"] = stroke;
     lift["csv"] = std::filesystem::path(path).filename().string();
@@ -403,6 +405,105 @@ py::dict Run(Compute compute,
   return Result(r);
 }
 
+// A shard's samples as arrays: each quantity a column (its keys in order), whether the sample
+// has it (a refused sample has no outputs), pass, the failing items and the refusals.
+py::dict ShardArrays(const std::vector<ToleranceSample>& samples, int first_sample) {
+  const auto table = [&](auto member, const char* keys_name, const char* values_name,
+                         const char* present_name, py::dict& out) {
+    std::vector<std::string> keys;
+    for (const ToleranceSample& s : samples)
+      for (const auto& [k, v] : s.*member)
+        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    std::sort(keys.begin(), keys.end());
+    const auto n = static_cast<py::ssize_t>(samples.size());
+    const auto m = static_cast<py::ssize_t>(keys.size());
+    py::array_t<double> values({n, m});
+    py::array_t<bool> present({n, m});
+    auto v = values.mutable_unchecked<2>();
+    auto p = present.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const auto& map = samples[i].*member;
+      for (py::ssize_t j = 0; j < m; ++j) {
+        const auto it = map.find(keys[j]);
+        p(i, j) = it != map.end();
+        v(i, j) = it != map.end() ? it->second : NAN;
+      }
+    }
+    out[keys_name] = keys;
+    out[values_name] = std::move(values);
+    out[present_name] = std::move(present);
+  };
+  py::dict out;
+  out["first_sample"] = first_sample;
+  out["samples"] = samples.size();
+  table(&ToleranceSample::inputs, "input_keys", "inputs", "input_present", out);
+  table(&ToleranceSample::outputs, "output_keys", "outputs", "output_present", out);
+  py::array_t<bool> pass(static_cast<py::ssize_t>(samples.size()));
+  std::vector<std::vector<std::string>> failing;
+  std::vector<std::string> refused;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    pass.mutable_data()[i] = samples[i].pass;
+    failing.push_back(samples[i].failing);
+    refused.push_back(samples[i].refused);
+  }
+  out["pass"] = std::move(pass);
+  out["failing"] = failing;
+  out["refused"] = refused;
+  return out;
+}
+
+// The samples of shards as ShardArrays gives them (or read back from its files), in order.
+std::vector<ToleranceSample> ShardSamples(const py::sequence& shards) {
+  std::vector<ToleranceSample> samples;
+  for (const auto& handle : shards) {
+    const py::dict shard = py::reinterpret_borrow<py::object>(handle).cast<py::dict>();
+    const auto n = shard["samples"].cast<py::ssize_t>();
+    const size_t base = samples.size();
+    samples.resize(base + n);
+    const auto table = [&](auto member, const char* keys_name, const char* values_name,
+                           const char* present_name) {
+      const auto keys = shard[keys_name].cast<std::vector<std::string>>();
+      const auto values =
+          shard[values_name].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+      const auto present =
+          shard[present_name].cast<py::array_t<bool, py::array::c_style | py::array::forcecast>>();
+      const auto m = static_cast<py::ssize_t>(keys.size());
+      if (values.ndim() != 2 || values.shape(0) != n || values.shape(1) != m ||
+          present.ndim() != 2 || present.shape(0) != n || present.shape(1) != m)
+        throw CaseError(std::string("a shard's ") + values_name + " is not samples × keys");
+      const auto v = values.unchecked<2>();
+      const auto p = present.unchecked<2>();
+      for (py::ssize_t i = 0; i < n; ++i)
+        for (py::ssize_t j = 0; j < m; ++j)
+          if (p(i, j)) (samples[base + i].*member)[keys[j]] = v(i, j);
+    };
+    table(&ToleranceSample::inputs, "input_keys", "inputs", "input_present");
+    table(&ToleranceSample::outputs, "output_keys", "outputs", "output_present");
+    const auto pass =
+        shard["pass"].cast<py::array_t<bool, py::array::c_style | py::array::forcecast>>();
+    const auto failing = shard["failing"].cast<std::vector<std::vector<std::string>>>();
+    const auto refused = shard["refused"].cast<std::vector<std::string>>();
+    if (pass.ndim() != 1 || pass.shape(0) != n || failing.size() != static_cast<size_t>(n) ||
+        refused.size() != static_cast<size_t>(n))
+      throw CaseError("a shard's pass, failing or refused is not one per sample");
+    for (py::ssize_t i = 0; i < n; ++i) {
+      samples[base + i].pass = pass.data()[i];
+      samples[base + i].failing = failing[i];
+      samples[base + i].refused = refused[i];
+    }
+  }
+  return samples;
+}
+
+// The folder of this module's file: needle.distributed and the package's Python files live in
+// its subfolder `needle` (the module is a package whose __init__ is compiled).
+std::string ModuleFolder() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&ModuleFolder), &info) == 0 || info.dli_fname == nullptr)
+    return ".";
+  return std::filesystem::path(info.dli_fname).parent_path().string();
+}
+
 }  // namespace
 }  // namespace needle
 
@@ -426,6 +527,12 @@ PYBIND11_MODULE(needle, m) {
       "as NumPy arrays in SI under 'columns' and its exit status (0, or 1 when a check fails) "
       "under 'exit_status'. Bad input raises needle.CaseError (a ValueError) naming the key or "
       "keyword.";
+  // A package: `import needle.distributed` finds the Python parts in the folder `needle` beside
+  // this file (the build's build/python/needle, the install's site-packages/needle).
+  m.attr("__version__") = NEEDLE_VERSION;
+  py::list package_path;
+  package_path.append((std::filesystem::path(ModuleFolder()) / "needle").string());
+  m.attr("__path__") = package_path;
   static py::exception<CaseError> case_error(m, "CaseError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -628,6 +735,78 @@ PYBIND11_MODULE(needle, m) {
       py::arg("first_sample") = 0, py::arg("threads") = 0,
       "needle tolerance: a Monte-Carlo study (samples [first_sample, first_sample + samples) of "
       "the seed's study: shards of one study on several machines are its parts)");
+
+  m.def(
+      "tolerance_shard",
+      [](const std::string& text, const std::string& path, const py::object& seed,
+         const py::object& first_sample, const py::object& samples, const py::object& threads,
+         const std::optional<std::string>& shown_as) {
+        ToleranceOptions o;
+        o.samples =
+            static_cast<int>(Whole(samples, "samples", "a number of samples", kSamplesRange));
+        o.seed = Whole(seed, "seed", "a whole number", kSeedRange);
+        o.first_sample = static_cast<int>(
+            Whole(first_sample, "first_sample", "a sample number", kFirstSampleRange));
+        o.threads =
+            static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
+        std::vector<ToleranceSample> result;
+        {
+          py::gil_scoped_release release;
+          Case c = ParseCase(text, path);
+          if (shown_as) c.path = *shown_as;
+          RequireSpeedOf(c, std::nullopt, "");
+          result = RunToleranceSamples(c, o);
+        }
+        return ShardArrays(result, o.first_sample);
+      },
+      py::arg("text"), py::kw_only(), py::arg("path"), py::arg("seed"), py::arg("first_sample"),
+      py::arg("samples"), py::arg("threads") = 1, py::arg("shown_as") = py::none(),
+      "A shard of a tolerance study as a worker computes it: the case file's text (read as the "
+      "file `path` would be: a lift CSV beside it; `shown_as`: the path its messages give), the "
+      "samples [first_sample, first_sample + samples) of the seed's study, as arrays: "
+      "input_keys/inputs/input_present, output_keys/outputs/output_present (samples × keys), "
+      "pass, failing (each sample's failing items), refused (the model's reason, or '')");
+
+  m.def(
+      "case_text",
+      [](const py::object& source) {
+        if (py::isinstance<PyCase>(source)) {
+          PyCase& c = source.cast<PyCase&>();
+          Validated(c);
+          return c.text;
+        }
+        return LoadAnyCase(source, std::nullopt, py::none(), "case_text").text;
+      },
+      py::arg("case"),
+      "The TOML text of a case (a path, a needle.Case or a dict), validated: what the loader "
+      "reads back as the same case (tolerance_shard's `text`)");
+
+  m.def(
+      "tolerance_reduce",
+      [](const py::object& source, const py::sequence& shards, const py::object& seed,
+         const py::object& first_sample, const py::object& threads, double seconds) {
+        const auto c = CaseOf(source, "tolerance_reduce");
+        ToleranceOptions o;
+        o.seed = Whole(seed, "seed", "a whole number", kSeedRange);
+        o.first_sample = static_cast<int>(
+            Whole(first_sample, "first_sample", "a sample number", kFirstSampleRange));
+        o.threads =
+            static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
+        std::vector<ToleranceSample> samples = ShardSamples(shards);
+        o.samples = static_cast<int>(samples.size());
+        return Run([&] {
+          ToleranceResult r = ReduceToleranceStudy(*c, o, std::move(samples));
+          r.seconds = seconds;
+          CommandOutput out;
+          out.json = ToleranceJson(*c, r);
+          return out;
+        });
+      },
+      py::arg("case"), py::arg("shards"), py::kw_only(), py::arg("seed"),
+      py::arg("first_sample") = 0, py::arg("threads") = 1, py::arg("seconds") = 0.0,
+      "The study of gathered shards (tolerance_shard's dicts, in sample order, the first "
+      "starting at first_sample): what needle.tolerance returns for those samples, computed by "
+      "the same code (threads and seconds: what the report states of the run)");
 
   m.def(
       "profile",

@@ -54,6 +54,7 @@
 #include <vector>
 
 #include "lib/case_error.h"
+#include "lib/engine_cycle.h"
 #include "lib/follower.h"
 #include "lib/lift_data.h"
 #include "lib/lift_law.h"
@@ -64,8 +65,8 @@
 namespace needle {
 
 struct EngineSection {
-  double speed_rpm = 0.0;             ///< rated crank speed, rpm, > 0
-  std::string cycle = "four-stroke";  ///< "four-stroke" (cam at half crank speed) or "two-stroke"
+  double speed_rpm = 0.0;                        ///< rated crank speed, rpm, > 0
+  EngineCycle cycle = EngineCycle::kFourStroke;  ///< the crank-to-cam rule (lib/engine_cycle.h)
 };
 
 struct LiftSection {
@@ -157,8 +158,8 @@ struct ProfileSection {
   int points = 720;  ///< points over one cam revolution
 };
 
-/// [limits]: the design limits `needle check` judges, one row each (README "The limits table"
-/// gives the source of every default).
+/// [limits]: the design limits `needle check` judges, one row each (docs/springs.md "The limits
+/// table" gives the source of every default).
 struct LimitsSection {
   /// Largest landing speed of the needle on its seat, m/s: the top of Blair's optimum ramp
   /// velocity range, 1.0–1.5 m/s at the highest operating speed.
@@ -235,7 +236,7 @@ struct SynthesisFile {
   bool mirror_fall = true;
   double crank_start_rad = 0.0;
   double speed_rpm = 1000.0;
-  std::string cycle = "four-stroke";
+  EngineCycle cycle = EngineCycle::kFourStroke;
 };
 SynthesisFile LoadSynthesisFile(const std::string& path);
 /// The same from text; `path` names it in messages.
@@ -265,7 +266,7 @@ bool IsCsvPath(const std::string& path);
 
 /// A case made of a bare CSV lift table (ReadLiftCsv) and nothing else: speed 0 (the caller
 /// states it), `cycle` as given, the spline chosen from the data.
-Case CaseFromLiftCsv(const std::string& path, const std::string& cycle);
+Case CaseFromLiftCsv(const std::string& path, EngineCycle cycle);
 
 /// Builds the lift law of a case, turning spline-construction failures into CaseError.
 LiftLaw MakeLiftLaw(const Case& c);

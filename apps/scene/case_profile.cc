@@ -25,7 +25,7 @@ CamProfile MakeCaseProfile(const Case& c, const LiftLaw& law, double* cam_zero_c
     throw CaseError(c.path + ": [train] ramp: " + e.what());
   }
   // Cam angle ψ = 0 at the start of the rise; four-stroke: θ = θ_start + 2ψ.
-  const double k = c.engine.cycle == "four-stroke" ? 2.0 : 1.0;
+  const double k = CrankTurnsPerCycle(c.engine.cycle);
   const double theta0 = cam->rise_start_rad();
   if (cam_zero_crank_rad) *cam_zero_crank_rad = theta0;
   const Displacement disp = [&](double psi) {

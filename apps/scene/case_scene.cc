@@ -50,9 +50,8 @@ Scene MakeScene(const Case& c) {
     s.train.surge_damping_ratio = c.spring->surge_damping_ratio;
     // The travel from installed to solid (the helical check's lengths).
     try {
-      const HelicalSpringCheck lengths =
-          CheckHelicalSpring(*c.spring->helical, c.spring->preload_N, 0.0, c.engine.speed_rpm,
-                             c.engine.cycle == "four-stroke");
+      const HelicalSpringCheck lengths = CheckHelicalSpring(
+          *c.spring->helical, c.spring->preload_N, 0.0, c.engine.speed_rpm, c.engine.cycle);
       s.train.coil_travel_m = lengths.length_preload_m - lengths.solid_length_m;
     } catch (const std::invalid_argument& e) {
       throw CaseError(c.path + ": [spring] preload: " + e.what());
@@ -72,7 +71,7 @@ Scene MakeScene(const Case& c) {
     s.train.restitution = c.train->restitution;
     s.train.seat_restitution = c.train->seat_restitution;
   }
-  s.revolution_rad = (c.engine.cycle == "four-stroke" ? 4.0 : 2.0) * kPi;
+  s.revolution_rad = 2.0 * kPi * CrankTurnsPerCycle(c.engine.cycle);
   if (c.solver) {
     s.start_rad = c.solver->start_rad;
     s.end_rad = c.solver->end_rad;
@@ -111,7 +110,7 @@ SpringCheckResult CheckSpring(const Case& c, const LiftLaw& law, double speed_rp
         c.path +
         ": [spring] preload: section [spring] is missing; the spring check needs preload and rate");
   }
-  return CheckSpring(*c.needle, *c.spring, law, speed_rpm, c.engine.cycle == "four-stroke", c.path);
+  return CheckSpring(*c.needle, *c.spring, law, speed_rpm, c.engine.cycle, c.path);
 }
 
 }  // namespace needle

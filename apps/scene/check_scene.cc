@@ -37,11 +37,11 @@ namespace {
 // EN 13906-1 gives the wire's; cases/basu-example1-surge.toml states the same 1 %).
 constexpr double kAssumedSurgeDamping = 0.01;
 
-// The limits table (README "The limits table"): one row per limit, judged where the scene has
-// what it needs, else "not judged" with the reason.
+// The limits table (docs/springs.md "The limits table"): one row per limit, judged where the scene
+// has what it needs, else "not judged" with the reason.
 void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r) {
   const LimitsSection& l = c.limits;
-  const bool four = c.engine.cycle == "four-stroke";
+  const double crank_turns = CrankTurnsPerCycle(c.engine.cycle);  // per cam turn
   const auto row = [&](std::string key, std::string name, std::string unit, bool at_most,
                        double limit, std::string source) {
     LimitRow x;
@@ -157,7 +157,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
   if (r.profile && r.spring && l.contact_length_m) {
     const FollowerGeometry& g = c.profile->follower;
     const RigidTrain& t = r.spring->train;
-    const double omega = OmegaFromRpm(r.speed_rpm), k = four ? 2.0 : 1.0;
+    const double omega = OmegaFromRpm(r.speed_rpm), k = crank_turns;
     const double play = c.train ? c.train->play_m : 0.0;
     double worst = 0.0, at = 0.0;
     for (const ProfilePoint& q : r.profile->points) {
@@ -235,7 +235,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's: the
     // resonance map's lines (information).
     for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
-    r.harmonics = LiftHarmonics(law, four ? 4 * kPi : 2 * kPi, 1000, l.harmonic_threshold);
+    r.harmonics = LiftHarmonics(law, 2 * kPi * crank_turns, 1000, l.harmonic_threshold);
     const auto undecided = [](const SimulationResult& run) {
       return run.status != RunStatus::kComplete;
     };

@@ -97,7 +97,7 @@ SynthesisSpec SpecOf(const SynthesisFile& f, double cam_omega) {
 SynthesisResult SynthesizeCam(const SynthesisFile& f) {
   SynthesisResult r;
   // The cam turns at half the crank speed in a four-stroke engine.
-  r.cam_omega = OmegaFromRpm(f.speed_rpm) / (f.cycle == "four-stroke" ? 2.0 : 1.0);
+  r.cam_omega = OmegaFromRpm(f.speed_rpm) / CrankTurnsPerCycle(f.cycle);
   r.spec = SpecOf(f, r.cam_omega);
   try {
     r.rise = SynthesizeRise(r.spec);
@@ -256,7 +256,7 @@ std::vector<std::vector<double>> SynthesisRows(const SynthesizedLaw& law) {
 std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& law) {
   const double mm = 1e3;
   // Every 10th step (and the last), as crank angles: ×2 for a four-stroke cam.
-  const double k = f.cycle == "four-stroke" ? 2.0 : 1.0;
+  const double k = CrankTurnsPerCycle(f.cycle);
   std::ostringstream c, angles, lifts;
   angles.precision(10);
   lifts.precision(10);
@@ -270,7 +270,7 @@ std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& la
   }
   c << "# Written by `needle synth " << f.path << "`.\n"
     << "title = \"" << (f.title.empty() ? "synthesized law" : f.title)
-    << "\"\n\n[engine]\nspeed_rpm = " << f.speed_rpm << "\ncycle = \"" << f.cycle
+    << "\"\n\n[engine]\nspeed_rpm = " << f.speed_rpm << "\ncycle = \"" << EngineCycleName(f.cycle)
     << "\"\n\n[lift]\ncrank_deg = [" << angles.str() << "]\nlift_mm = [" << lifts.str()
     << "]\nspline = \"not-a-knot\"\nresolution_mm = 0.000001\n";
   if (f.base_radius_m) {

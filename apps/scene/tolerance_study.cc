@@ -230,18 +230,14 @@ Distribution Describe(std::vector<double> v) {
   return d;
 }
 
-ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options) {
+std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions& options) {
   if (!(options.samples >= 1 && options.samples <= 1000000))
     throw CaseError("--samples: expected a number of samples in [1, 1000000], got " +
                     std::to_string(options.samples));
   if (!(options.first_sample >= 0 && options.first_sample <= 1000000000))
     throw CaseError("--first-sample: expected an index in [0, 1000000000], got " +
                     std::to_string(options.first_sample));
-  const auto start = std::chrono::steady_clock::now();
-  ToleranceResult result;
-  result.tolerance = c.tolerance.value_or(ToleranceSection{});
-  result.options = options;
-  const ToleranceSection& t = result.tolerance;
+  const ToleranceSection t = c.tolerance.value_or(ToleranceSection{});
   // The lift error moves the points inside the open lift: those above zero.
   std::vector<bool> varied;
   for (double y : c.lift.table.lift_m) varied.push_back(y > 0.0);
@@ -252,8 +248,8 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
   const int threads = std::max(
       1, std::min(options.samples, options.threads > 0 ? std::min<int>(options.threads, cores)
                                                        : static_cast<int>(cores)));
-  result.options.threads = threads;
-  result.samples.resize(options.samples);
+  options.threads = threads;
+  std::vector<ToleranceSample> samples(options.samples);
   std::atomic<int> next{0}, done{0};
   std::exception_ptr error;
   std::mutex error_mutex;
@@ -262,7 +258,7 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
       const int i = next++;
       if (i >= options.samples) return;
       try {
-        result.samples[i] = RunSample(c, t, lift_error, options.seed, options.first_sample + i);
+        samples[i] = RunSample(c, t, lift_error, options.seed, options.first_sample + i);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -288,7 +284,16 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
   for (std::thread& th : pool) th.join();
   if (error) std::rethrow_exception(error);
   if (options.progress) options.progress(options.samples, options.samples);
+  return samples;
+}
 
+ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& options,
+                                     std::vector<ToleranceSample> samples) {
+  if (samples.empty()) throw CaseError("a tolerance study needs at least one sample");
+  ToleranceResult result;
+  result.tolerance = c.tolerance.value_or(ToleranceSection{});
+  result.options = options;
+  result.samples = std::move(samples);
   // Distributions, failure, drivers; a quantity a sample lacks (a refused sample) is NaN there.
   std::map<std::string, std::vector<double>> outputs, inputs;
   for (const ToleranceSample& s : result.samples) {
@@ -311,6 +316,14 @@ ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options
       result.output_drivers[key][input] = SpearmanRho(x, values);
   }
   for (const auto& [input, x] : inputs) result.fail_drivers[input] = SpearmanRho(x, fails);
+  return result;
+}
+
+ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  ToleranceOptions used = options;
+  std::vector<ToleranceSample> samples = RunToleranceSamples(c, used);
+  ToleranceResult result = ReduceToleranceStudy(c, used, std::move(samples));
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -75,6 +75,17 @@ struct ToleranceResult {
 /// CaseError on a case that cannot be checked.
 ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options);
 
+/// The samples alone, [first_sample, first_sample + samples) in order (a shard of a study, as a
+/// worker elsewhere computes it); `options.threads` becomes the count used. Throws CaseError
+/// as RunToleranceStudy does; a sample the model refuses is a sample ("case refused").
+std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions& options);
+
+/// The study of samples already computed (gathered from shards, in sample order): what
+/// RunToleranceStudy reports of them, by the same code, bit for bit; `seconds` is left 0.
+/// Throws CaseError when `samples` is empty.
+ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& options,
+                                     std::vector<ToleranceSample> samples);
+
 /// The lift-table error: normal, σ at each point where `varied` is true (0 elsewhere), with
 /// covariance σ² exp(−(θ_i − θ_j)²/2ℓ²) between them (ℓ = 0: independent). The covariance is
 /// factored once (an eigen-decomposition, which a near-singular kernel does not break).

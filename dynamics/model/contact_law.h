@@ -23,7 +23,7 @@
 ///     contact lets go where λ reaches 0
 ///     witnesses: g (free; +1 while stuck) and λ (the train computes it);   V = 0
 ///
-/// A new law is one class deriving from ContactLaw (see README, "How to add").
+/// A new law is one class deriving from ContactLaw (see docs/architecture.md, "How to add").
 
 #include <array>
 #include <optional>

@@ -121,7 +121,7 @@ Case MeasuredCase(const std::string& csv_text) {
   Case c;
   c.path = "measured.csv";
   c.engine.speed_rpm = 600;
-  c.lift.table = ParseLiftCsv(csv_text, "measured.csv", true);
+  c.lift.table = ParseLiftCsv(csv_text, "measured.csv", EngineCycle::kFourStroke);
   return c;
 }
 
@@ -154,9 +154,9 @@ TEST_P(MeasuredTableTest, DefaultsRecoverTheLaw) {
     true_min = std::min(true_min, law.Lift_mm(deg, 2));
   }
   // The target is 6 %; the smoothing spline with λ by the discrepancy principle meets it on
-  // the cycloidal law and misses it elsewhere, by as much as the bound below (measured; README
-  // "Measured lift data" has the table). The miss is the method's: where σ̂ comes out low the
-  // discrepancy principle under-smooths and the noise adds to the peaks.
+  // the cycloidal law and misses it elsewhere, by as much as the bound below (measured;
+  // docs/lift-data.md "Measured lift data" has the table). The miss is the method's: where σ̂ comes
+  // out low the discrepancy principle under-smooths and the noise adds to the peaks.
   const double bound = law.accel_bound;
   const double amax = fitted.Max(2).value * 1e3 / true_max;
   const double amin = fitted.Min(2).value * 1e3 / true_min;
@@ -312,7 +312,7 @@ Case CamCase(const std::vector<double>& mm, bool drop = false) {
   Case c;
   c.path = c.lift.csv_path = "m.csv";
   c.engine.speed_rpm = 600;
-  c.lift.table = ParseLiftCsv(CamCsv(mm), "m.csv", true, &c.lift.lines);
+  c.lift.table = ParseLiftCsv(CamCsv(mm), "m.csv", EngineCycle::kFourStroke, &c.lift.lines);
   c.lift.drop_outliers = drop;
   return c;
 }
@@ -570,7 +570,7 @@ TEST(NoiseEstimateTest, PureNoiseAndCubics) {
 // CSV errors: one line naming file, line and column.
 std::string CsvError(const std::string& text) {
   try {
-    ParseLiftCsv(text, "m.csv", true);
+    ParseLiftCsv(text, "m.csv", EngineCycle::kFourStroke);
   } catch (const CaseError& e) {
     return e.what();
   }
@@ -616,7 +616,8 @@ TEST(LiftCsvTest, BadTables) {
 TEST(LiftCsvTest, SpreadsheetExports) {
   for (const char* name : {"calc-lift-en.csv", "calc-lift-de.csv", "calc-lift-de-bom-crlf.csv"}) {
     SCOPED_TRACE(name);
-    const LiftTable t = ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/" + name, true);
+    const LiftTable t = ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/" + name,
+                                    EngineCycle::kFourStroke);
     ASSERT_EQ(t.crank_rad.size(), 21u);
     for (size_t i = 0; i < t.crank_rad.size(); ++i) {
       const double deg = -5.0 + 2.5 * i;
@@ -634,14 +635,14 @@ TEST(LiftCsvTest, SpreadsheetSeparators) {
   const LiftTable semi = ParseLiftCsv(
       "\xEF\xBB\xBF"
       "crank_deg;lift_mm\r\n-2,5;0\r\n0;12,5\r\n",
-      "m.csv", true);
+      "m.csv", EngineCycle::kFourStroke);
   ASSERT_EQ(semi.crank_rad.size(), 2u);
   EXPECT_NEAR(semi.crank_rad[0], -2.5 * kDeg, 1e-15);
   EXPECT_DOUBLE_EQ(semi.lift_m[1], 12.5e-3);
   const LiftTable bom = ParseLiftCsv(
       "\xEF\xBB\xBF"
       "crank_deg,lift_mm\n0,0\n1,0.5\n",
-      "m.csv", true);
+      "m.csv", EngineCycle::kFourStroke);
   EXPECT_DOUBLE_EQ(bom.lift_m[1], 0.5e-3);
   EXPECT_EQ(CsvError("crank_deg;lift_mm\n0;1.700\n1;0\n"),
             "m.csv:2:2: '1.700' has a '.' in a table separated by ';', whose decimal mark is ',' "
@@ -660,11 +661,13 @@ TEST(LiftCsvTest, SpreadsheetSeparators) {
 }
 
 TEST(LiftCsvTest, UnitsAndCamAngles) {
-  const LiftTable t = ParseLiftCsv("cam_deg,lift_um\n# note\n\n0,0\n5,100\n10,0\n", "m.csv", true);
+  const LiftTable t = ParseLiftCsv("cam_deg,lift_um\n# note\n\n0,0\n5,100\n10,0\n", "m.csv",
+                                   EngineCycle::kFourStroke);
   ASSERT_EQ(t.crank_rad.size(), 3u);
   EXPECT_NEAR(t.crank_rad[1], 10 * kDeg, 1e-15);  // four-stroke: crank = 2 × cam
   EXPECT_NEAR(t.lift_m[1], 100e-6, 1e-18);
-  const LiftTable two = ParseLiftCsv("cam_deg,lift_in\n0,0\n5,0.1\n", "m.csv", false);
+  const LiftTable two =
+      ParseLiftCsv("cam_deg,lift_in\n0,0\n5,0.1\n", "m.csv", EngineCycle::kTwoStroke);
   EXPECT_NEAR(two.crank_rad[1], 5 * kDeg, 1e-15);
   EXPECT_NEAR(two.lift_m[1], 2.54e-3, 1e-15);
 }
@@ -822,7 +825,7 @@ TEST(CadTableTest, CornersAreRefused) {
   }
   const std::string path = (dir / "corner.csv").string();
   try {
-    CaseLiftChoice(CaseFromLiftCsv(path, "two-stroke"));
+    CaseLiftChoice(CaseFromLiftCsv(path, EngineCycle::kTwoStroke));
     ADD_FAILURE() << "a corner was not refused";
   } catch (const CaseError& e) {
     const std::string what = e.what();

@@ -65,7 +65,7 @@ const CamLaw kHarmonic(CamLawKind::kHarmonic, kHeight, kBeta);
 const CamLaw kPoly345(CamLawKind::kPoly345, kHeight, kBeta);
 
 TEST(SplineConvergenceTest, PrintsTheErrorTable) {
-  // Not an assertion: the table this suite checks, for the log and README.
+  // Not an assertion: the table this suite checks, for the log and docs/lift-data.md.
   std::printf("%-18s %-11s %11s %11s %11s %11s %11s\n", "law", "spline", "v err 5deg", "v err 1deg",
               "a err 5deg", "a err 1deg", "a 1deg rnd");
   for (const CamLaw* law : {&kCycloidal, &kHarmonic, &kPoly345}) {

@@ -37,7 +37,7 @@ TEST(HelicalSpringTest, ReproducesBhandariExample10_1) {
   // Free length = solid (Nt·d = 70) + gaps ((Nt − 1)·1 = 9) + deflection under 1250 N:
   // with no preload the spring is solid-plus-gaps at 1250 N, so the check at "preload"
   // 1250 N must leave exactly the 9 mm of gaps.
-  const HelicalSpringCheck c = CheckHelicalSpring(g, 1250.0, 0.0, 600, true);
+  const HelicalSpringCheck c = CheckHelicalSpring(g, 1250.0, 0.0, 600, EngineCycle::kFourStroke);
   EXPECT_NEAR(c.solid_length_m, 70e-3, 1e-12);
   EXPECT_NEAR(c.total_coils, 10.0, 0);
   EXPECT_NEAR(c.clearance_full_lift_m, 9e-3, 1e-9);
@@ -64,7 +64,7 @@ TEST(HelicalSpringTest, SurgeFrequencyIsHalfTheSquareRootOfRateOverSpringMass) {
   // A spring fixed at both ends: f₁ = ½√(R/m_s), m_s = ρ (πd²/4)(π D n).
   HelicalGeometry g = Bhandari101();
   g.density_kg_m3 = 7850;
-  const HelicalSpringCheck c = CheckHelicalSpring(g, 100.0, 1e-3, 1200, true);
+  const HelicalSpringCheck c = CheckHelicalSpring(g, 100.0, 1e-3, 1200, EngineCycle::kFourStroke);
   const double mass =
       g.density_kg_m3 * kPi * g.wire_m * g.wire_m / 4 * kPi * g.coil_m * g.active_coils;
   EXPECT_NEAR(c.surge_hz, 0.5 * std::sqrt(c.rate_N_m / mass), 1e-9 * c.surge_hz);
@@ -80,17 +80,18 @@ TEST(HelicalSpringTest, SolidLengthByEndType) {
                                                  {SpringEnds::kOpen, 9 * 7e-3}};
   for (const auto& [ends, solid] : cases) {
     g.ends = ends;
-    EXPECT_NEAR(CheckHelicalSpring(g, 10.0, 0.0, 600, true).solid_length_m, solid, 1e-12);
+    EXPECT_NEAR(CheckHelicalSpring(g, 10.0, 0.0, 600, EngineCycle::kFourStroke).solid_length_m,
+                solid, 1e-12);
   }
 }
 
 TEST(HelicalSpringTest, MinimumGapsAndFailures) {
   HelicalGeometry g = Bhandari101();
-  const HelicalSpringCheck c = CheckHelicalSpring(g, 1000.0, 2e-3, 600, true);
+  const HelicalSpringCheck c = CheckHelicalSpring(g, 1000.0, 2e-3, 600, EngineCycle::kFourStroke);
   EXPECT_NEAR(c.min_clearance_m, (0.0015 * 42 * 42 / 7 + 0.7) * 8 * 1e-3, 1e-12);  // S_a
   // Too much preload: the spring would be solid.
   try {
-    CheckHelicalSpring(g, 5000.0, 0.0, 600, true);
+    CheckHelicalSpring(g, 5000.0, 0.0, 600, EngineCycle::kFourStroke);
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(
@@ -98,7 +99,7 @@ TEST(HelicalSpringTest, MinimumGapsAndFailures) {
   }
   // Over-stressed: the stress check fails and so does the whole check.
   g.tensile_Pa = 600e6;
-  const HelicalSpringCheck weak = CheckHelicalSpring(g, 1200.0, 0.0, 600, true);
+  const HelicalSpringCheck weak = CheckHelicalSpring(g, 1200.0, 0.0, 600, EngineCycle::kFourStroke);
   EXPECT_FALSE(weak.stress_ok);
   EXPECT_FALSE(weak.pass());
 }

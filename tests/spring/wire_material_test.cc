@@ -39,7 +39,8 @@ TEST(WireMaterialTest, ShigleyExample10_4FatigueToThePrintedDigits) {
   EXPECT_NEAR(StressCorrection(g.coil_m / g.wire_m, false), 1.29, 0.005);  // K_B
   const double rate = HelicalRate(g);
   const double max_lift = (35.0 - 5.0) * kLbf / rate;  // 5 lbf → 35 lbf
-  const HelicalSpringCheck c = CheckHelicalSpring(g, 5.0 * kLbf, max_lift, 1000.0, true);
+  const HelicalSpringCheck c =
+      CheckHelicalSpring(g, 5.0 * kLbf, max_lift, 1000.0, EngineCycle::kFourStroke);
   const FatigueCheck& f = c.fatigue;
   EXPECT_TRUE(c.fatigue_judged);
   EXPECT_NEAR(f.stress_amplitude_Pa / kKpsi, 29.7, 0.05);
@@ -105,7 +106,7 @@ TEST(WireMaterialTest, ThickWireIsNotJudgedForFatigue) {
   g.coil_m = 80e-3;
   g.active_coils = 6;
   g.free_length_m = 200e-3;
-  const HelicalSpringCheck c = CheckHelicalSpring(g, 1000.0, 5e-3, 300.0, true);
+  const HelicalSpringCheck c = CheckHelicalSpring(g, 1000.0, 5e-3, 300.0, EngineCycle::kFourStroke);
   EXPECT_FALSE(c.fatigue_judged);
   EXPECT_TRUE(c.fatigue_ok);
 }

@@ -44,7 +44,7 @@ TEST(DefaultSweepRangeTest, TheCaseSectionWins) {
   EXPECT_EQ(DefaultSweepRange(c, 400, 900).to_rpm, 700);
 }
 
-// Basu's Example 1 passes every part; the numbers are README's.
+// Basu's Example 1 passes every part; the numbers are docs/springs.md's and docs/validation.md's.
 TEST(CheckSceneTest, BasuExampleOnePasses) {
   const Case c = LoadCase(kCases + "basu-example1.toml");
   const CheckResult r = CheckScene(c, MakeLiftLaw(c));

@@ -178,7 +178,7 @@ TEST(SynthesisSceneTest, TheContactStressSteersTheSteps) {
   EXPECT_TRUE(r.pass) << (r.failing.empty() ? "" : r.failing[0]);
 }
 
-// The README's table of the paper's case, one row per follower kind: what the law as formed
+// The table of the paper's case in docs/synthesis.md, one row per follower kind: what the law as formed
 // does to each, and, steered to a profile radius ≥ 0, what would have to change.
 TEST(SynthesisSceneTest, ThePapersCaseForEachFollowerKind) {
   struct Row {

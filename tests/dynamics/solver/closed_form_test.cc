@@ -306,7 +306,7 @@ TEST_P(AgreementTest, ExactAgreesWithDopri5AtTheTightestTolerance) {
   }
   ASSERT_EQ(d.episodes.size(), e.episodes.size());
   EXPECT_NEAR(d.max_lift_m * 1e3, e.max_lift_m * 1e3, 1e-9);
-  // The audit closes to round-off: W and D in closed form (issue 33: ≤ 1e-12).
+  // The audit closes to round-off: W and D in closed form (docs/exact.md; issue 33: ≤ 1e-12).
   EXPECT_LT(e.energy_residual, 1e-12);
   std::printf("%s: %zu impacts, dopri5 %ld steps, exact %ld steps, residual %.2e vs %.2e\n",
               GetParam(), e.impacts.size(), d.stats.steps, e.stats.steps, d.energy_residual,

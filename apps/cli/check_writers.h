@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// The writers of `needle check`'s result: the JSON object (CheckJson, also compare's and the
+/// Python module's), and the HTML report with its gnuplot figures (CheckReport). Writers only:
+/// everything they show was computed by CheckScene (apps/scene/check_scene.h).
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "apps/cli/report.h"
+#include "apps/scene/case_file.h"
+#include "apps/scene/check_scene.h"
+
+namespace needle {
+
+/// What `check --json` prints for case `c` (lift law `law`) and its result; `report_path` is the
+/// report the run wrote.
+nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
+                         const std::string& report_path);
+
+/// The check's HTML report: the scene, the kinematics, the spring, the dynamics, the sweep, the
+/// limits table and the figures. Throws std::runtime_error naming gnuplot's failure.
+Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result);
+
+}  // namespace needle

@@ -1,0 +1,358 @@
+#include "apps/cli/compare_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <sstream>
+
+#include "apps/cli/check_writers.h"
+#include "apps/scene/check_scene.h"
+#include "lib/kinematics.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/quasi_static.h"
+
+namespace needle {
+namespace {
+
+// The leaves of a check object, in order: "group.key" → value. Lists (failing, skipped) and
+// the texts that only explain are left out; the paths are data, not verdicts. The limits table
+// (a list of rows) gives each row's verdict, value and margin under "limits.KEY.".
+void Leaves(const nlohmann::json& j, const std::string& prefix,
+            std::vector<std::pair<std::string, nlohmann::json>>& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    const nlohmann::json& v = it.value();
+    if (v.is_object()) {
+      Leaves(v, key, out);
+    } else if (prefix.empty() && it.key() == "limits" && v.is_array()) {
+      for (const nlohmann::json& row : v) {
+        if (!row.is_object() || !row.contains("name")) continue;
+        const std::string name = "limits." + row["name"].get<std::string>();
+        for (const char* field : {"verdict", "value", "margin"})
+          out.emplace_back(name + "." + field, row.value(field, nlohmann::json(nullptr)));
+      }
+    } else if (v.is_number() || v.is_boolean() || v.is_null() ||
+               (v.is_string() &&
+                (it.key() == "overall" || it.key() == "status" || it.key() == "spline"))) {
+      out.emplace_back(key, v);
+    }
+  }
+}
+
+// A bool or one of the strings Leaves keeps (overall, status, spline, a row's verdict), on
+// either side: shown in the verdict table.
+bool IsVerdict(const nlohmann::json& a, const nlohmann::json& b) {
+  const auto kind = [](const nlohmann::json& v) { return v.is_boolean() || v.is_string(); };
+  return kind(a) || kind(b);
+}
+
+// A pass/fail verdict: a sub-check's bool, or "pass" / "fail" (the overall verdict, a limits
+// row). "not judged", a status, a spline kind and null are not.
+bool IsPassFail(const nlohmann::json& v) {
+  return v.is_boolean() || (v.is_string() && (v == "pass" || v == "fail"));
+}
+
+// Why two checked designs are not like for like: a different rated speed or engine cycle.
+std::vector<std::string> Unlike(double a_rpm, EngineCycle a_cycle, double b_rpm,
+                                EngineCycle b_cycle) {
+  std::vector<std::string> why;
+  if (a_rpm != b_rpm) {
+    std::ostringstream s;
+    s << "rated speed: A " << a_rpm << " rpm, B " << b_rpm << " rpm";
+    why.push_back(s.str());
+  }
+  if (a_cycle != b_cycle)
+    why.push_back(std::string("cycle: A ") + EngineCycleName(a_cycle) + ", B " +
+                  EngineCycleName(b_cycle));
+  return why;
+}
+
+std::string Shown(const nlohmann::json& v) {
+  if (v.is_null()) return "-";
+  if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer() || v.is_number_unsigned()) return v.dump();
+  const double x = v.get<double>();
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+std::string Difference(const ComparedItem& item) {
+  if (!item.a.is_number() || !item.b.is_number()) return "";
+  const double a = item.a.get<double>(), b = item.b.get<double>();
+  std::ostringstream s;
+  s.precision(4);
+  s << (b - a >= 0 ? "+" : "") << b - a;
+  if (a != 0.0 && b != a)
+    s << " (" << (b - a >= 0 ? "+" : "") << Fixed(100.0 * (b - a) / a, 1) << " %)";
+  return s.str();
+}
+
+// One design checked.
+
+std::string Joined(const std::vector<std::string>& list, const std::string& sep) {
+  std::string s;
+  for (const std::string& x : list) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+}  // namespace
+
+std::vector<ComparedItem> CompareChecks(const nlohmann::json& a, const nlohmann::json& b) {
+  std::vector<std::pair<std::string, nlohmann::json>> la, lb;
+  Leaves(a, "", la);
+  Leaves(b, "", lb);
+  std::vector<ComparedItem> items;
+  const auto find = [](const auto& leaves, const std::string& key) {
+    for (const auto& [k, v] : leaves)
+      if (k == key) return v;
+    return nlohmann::json(nullptr);
+  };
+  for (const auto& [key, va] : la) items.push_back({key, va, find(lb, key)});
+  for (const auto& [key, vb] : lb) {
+    if (std::none_of(la.begin(), la.end(), [&](const auto& leaf) { return leaf.first == key; }))
+      items.push_back({key, nullptr, vb});
+  }
+  for (ComparedItem& i : items) {
+    i.verdict = IsVerdict(i.a, i.b);
+    i.flips = i.verdict && IsPassFail(i.a) && IsPassFail(i.b) && i.a != i.b;
+    i.differs = i.verdict && !i.flips && i.a != i.b;
+  }
+  return items;
+}
+
+Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rpm,
+                        const std::string& report_path,
+                        const std::function<void(int, int)>& progress) {
+  Comparison cmp;
+  cmp.a.c = std::move(a_case);
+  cmp.b.c = std::move(b_case);
+  int done_before = 0;  // the runs of A, when B is checked
+  for (CheckedDesign* d : {&cmp.a, &cmp.b}) {
+    d->law.emplace(MakeLiftLaw(d->c));
+    CheckOptions options;
+    options.speed_rpm = speed_rpm;
+    if (progress) {
+      options.progress = [&](int done, int total) {
+        progress(done_before + done, done_before + total);
+      };
+    }
+    d->result = CheckScene(d->c, *d->law, options);
+    d->json = CheckJson(d->c, *d->law, d->result, report_path);
+    if (d->result.sweep) done_before += static_cast<int>(d->result.sweep->rows.size());
+  }
+  cmp.items = CompareChecks(cmp.a.json, cmp.b.json);
+  for (const ComparedItem& i : cmp.items) {
+    if (i.flips) cmp.flipped.push_back(i.key);
+    if (i.differs) cmp.differing.push_back(i.key);
+  }
+  cmp.unlike = Unlike(cmp.a.result.speed_rpm, cmp.a.c.engine.cycle, cmp.b.result.speed_rpm,
+                      cmp.b.c.engine.cycle);
+  return cmp;
+}
+
+nlohmann::json CompareJson(const Comparison& cmp, const std::string& path) {
+  const CheckedDesign &a = cmp.a, &b = cmp.b;
+  const auto& items = cmp.items;
+  const auto& flipped = cmp.flipped;
+  const auto& differing = cmp.differing;
+  const auto& unlike = cmp.unlike;
+  nlohmann::json j;
+  j["a"] = a.json;
+  j["b"] = b.json;
+  j["report"] = path;
+  j["flipped"] = flipped;
+  j["differing"] = differing;
+  j["like_for_like"] = unlike.empty();
+  j["not_like_for_like"] = unlike;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ComparedItem& i : items) {
+    nlohmann::json r = {{"key", i.key}, {"a", i.a}, {"b", i.b}, {"verdict", i.verdict}};
+    if (i.verdict) {
+      r["flips"] = i.flips;
+      r["differs"] = i.differs;
+    } else if (i.a.is_number() && i.b.is_number()) {
+      r["difference"] = i.b.get<double>() - i.a.get<double>();
+    } else {
+      r["difference"] = nullptr;
+    }
+    rows.push_back(r);
+  }
+  j["items"] = rows;
+  return j;
+}
+
+std::string CompareText(const Comparison& cmp, const std::string& path) {
+  const CheckedDesign &a = cmp.a, &b = cmp.b;
+  const auto& items = cmp.items;
+  const auto& flipped = cmp.flipped;
+  const auto& differing = cmp.differing;
+  const auto& unlike = cmp.unlike;
+  std::ostringstream out;
+  out << "A: " << (a.c.title.empty() ? a.c.path : a.c.title) << " — overall "
+      << (a.result.pass ? "pass" : "FAIL") << '\n'
+      << "B: " << (b.c.title.empty() ? b.c.path : b.c.title) << " — overall "
+      << (b.result.pass ? "pass" : "FAIL") << '\n';
+  if (!unlike.empty()) out << "not like for like: " << Joined(unlike, "; ") << '\n';
+  out << '\n';
+  char line[400];
+  std::snprintf(line, sizeof line, "%-44s %14s %14s\n", "verdict", "A", "B");
+  out << line;
+  for (const ComparedItem& i : items) {
+    if (!i.verdict) continue;
+    std::snprintf(line, sizeof line, "%-44s %14s %14s%s\n", i.key.c_str(), Shown(i.a).c_str(),
+                  Shown(i.b).c_str(),
+                  i.flips     ? "  FLIPS"
+                  : i.differs ? "  differs"
+                              : "");
+    out << line;
+  }
+  std::snprintf(line, sizeof line, "\n%-44s %14s %14s  %s\n", "quantity", "A", "B", "B - A");
+  out << line;
+  for (const ComparedItem& i : items) {
+    if (i.verdict) continue;
+    std::snprintf(line, sizeof line, "%-44s %14s %14s  %s\n", i.key.c_str(), Shown(i.a).c_str(),
+                  Shown(i.b).c_str(), Difference(i).c_str());
+    out << line;
+  }
+  for (const CheckedDesign* d : {&a, &b})
+    for (const std::string& f : d->result.failing)
+      out << (d == &a ? "A" : "B") << " fails: " << f << '\n';
+  out << (flipped.empty() ? "no verdict flips"
+                          : std::to_string(flipped.size()) + " verdict(s) flip")
+      << '\n';
+  if (!differing.empty())
+    out << differing.size() << " other difference(s), not flips: " << Joined(differing, ", ")
+        << '\n';
+  out << "report: " << path << '\n';
+  return out.str();
+}
+
+Report CompareReport(const Comparison& cmp) {
+  const CheckedDesign &a = cmp.a, &b = cmp.b;
+  const auto& items = cmp.items;
+  const auto& flipped = cmp.flipped;
+  const auto& differing = cmp.differing;
+  const auto& unlike = cmp.unlike;
+  // The report: verdicts, quantities, and both designs' curves overlaid.
+  Report report("needle compare: " + Escape(a.c.path) + " against " + Escape(b.c.path));
+  {
+    std::ostringstream t;
+    t << "<p>A: " << Escape(a.c.title.empty() ? a.c.path : a.c.title) << " (" << Escape(a.c.path)
+      << ")<br>B: " << Escape(b.c.title.empty() ? b.c.path : b.c.title) << " (" << Escape(b.c.path)
+      << ")</p>";
+    if (!unlike.empty()) {
+      t << "<p><span class=\"fail\">Not like for like</span>: " << Escape(Joined(unlike, "; "))
+        << ".</p>";
+    }
+    t << "<p>"
+      << (flipped.empty() ? "No verdict flips."
+                          : "<span class=\"fail\">" + std::to_string(flipped.size()) +
+                                " verdict(s) flip</span>: " + Escape(Joined(flipped, ", ")))
+      << "</p>";
+    if (!differing.empty()) {
+      t << "<p>" << differing.size()
+        << " other difference(s), not flips: " << Escape(Joined(differing, ", ")) << "</p>";
+    }
+    t << "<h2>Verdicts</h2><table class=\"grid\"><tr><th>item</th><th>A</th><th>B</th><th></th>"
+         "</tr>";
+    for (const ComparedItem& i : items) {
+      if (!i.verdict) continue;
+      t << "<tr><td>" << Escape(i.key) << "</td><td>" << Escape(Shown(i.a)) << "</td><td>"
+        << Escape(Shown(i.b)) << "</td><td>"
+        << (i.flips     ? "<span class=\"fail\">flips</span>"
+            : i.differs ? "differs"
+                        : "")
+        << "</td></tr>";
+    }
+    t << "</table><h2>Failing</h2><table class=\"grid\"><tr><th>A</th><th>B</th></tr><tr><td>";
+    for (const CheckedDesign* d : {&a, &b}) {
+      for (const std::string& f : d->result.failing) t << Escape(f) << "<br>";
+      if (d->result.failing.empty()) t << "nothing";
+      t << (d == &a ? "</td><td>" : "</td></tr></table>");
+    }
+    t << "<h2>Quantities</h2><table class=\"grid\"><tr><th>quantity</th><th>A</th><th>B</th>"
+         "<th>B − A</th></tr>";
+    for (const ComparedItem& i : items) {
+      if (i.verdict) continue;
+      t << "<tr><td>" << Escape(i.key) << "</td><td>" << Shown(i.a) << "</td><td>" << Shown(i.b)
+        << "</td><td>" << Escape(Difference(i)) << "</td></tr>";
+    }
+    report.AddHtml(t.str() + "</table>");
+  }
+  // Lift, velocity and acceleration of both against crank angle, each at its rated speed.
+  std::vector<Series> svaj;
+  for (const CheckedDesign* d : {&a, &b}) {
+    Series s{d == &a ? "a" : "b", {}};
+    const Kinematics kin(*d->law, d->result.speed_rpm);
+    const double th0 = d->law->table_start_rad(), thn = d->law->table_end_rad();
+    for (int i = 0; i <= 600; ++i) {
+      const KinematicsPoint p = kin.At(th0 + (thn - th0) * i / 600.0);
+      s.rows.push_back(
+          {p.crank_rad / kDeg, p.lift_m * 1e3, p.velocity_m_s, p.acceleration_m_s2.value_or(NAN)});
+    }
+    svaj.push_back(s);
+  }
+  const auto plot = [](int column) {
+    const std::string c = std::to_string(column);
+    return "plot $a using 1:" + c + " with lines lw 2 title 'A', $b using 1:" + c +
+           " with lines lw 2 dt 2 title 'B'\n";
+  };
+  report.AddFigure(
+      "Lift, velocity and acceleration of A (solid) and B (dashed) against crank angle", svaj,
+      "set multiplot layout 3,1\nset lmargin 12\nset key top right\nset ylabel 'lift "
+      "(mm)'\nset format x ''\n" +
+          plot(2) + "set ylabel 'velocity (m/s)'\n" + plot(3) +
+          "set ylabel 'acceleration (m/s²)'\nset format x '%g'\nset xlabel 'crank "
+          "angle (deg)'\n" +
+          plot(4) + "unset multiplot",
+      900);
+  // Contact forces: quasi-static F_qs of both, and the dynamic F_c where a run was made.
+  std::vector<Series> forces;
+  std::string script =
+      "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\n"
+      "set key top right\nplot ";
+  bool any = false;
+  for (const CheckedDesign* d : {&a, &b}) {
+    const std::string name = d == &a ? "A" : "B", dash = d == &a ? "1" : "2";
+    if (d->result.spring) {
+      Series s{d == &a ? "qa" : "qb", {}};
+      const double omega = OmegaFromRpm(d->result.speed_rpm);
+      const double th0 = d->law->start_rad(), thn = d->law->end_rad();
+      for (int i = 0; i <= 600; ++i) {
+        const double th = th0 + (thn - th0) * i / 600.0;
+        s.rows.push_back(
+            {th / kDeg, QuasiStaticForce(*d->law, d->result.spring->train, omega, th)});
+      }
+      script += std::string(any ? ", " : "") + "$" + s.name + " using 1:2 with lines lw 2 dt " +
+                dash + " lc rgb '#1f77b4' title '" + name + " quasi-static'";
+      forces.push_back(s);
+      any = true;
+    }
+    if (d->result.run && !d->result.run->series.empty()) {
+      Series s{d == &a ? "da" : "db", {}};
+      const auto& series = d->result.run->series;
+      for (size_t k = 0; k < series.size(); k += std::max<size_t>(1, series.size() / 3000))
+        s.rows.push_back({series[k].crank_rad / kDeg, series[k].contact_force_N});
+      script += std::string(any ? ", " : "") + "$" + s.name + " using 1:2 with lines lw 1 dt " +
+                dash + " lc rgb '#d62728' title '" + name + " dynamic'";
+      forces.push_back(s);
+      any = true;
+    }
+  }
+  if (any) {
+    report.AddFigure(
+        "Contact force of A (solid) and B (dashed): quasi-static F_qs at the rated "
+        "speed and, where the design has a train, the dynamic F_c",
+        forces, script);
+  } else {
+    report.AddHtml("<p>No contact forces: neither design has [needle] and [spring].</p>");
+  }
+  return report;
+}
+
+}  // namespace needle

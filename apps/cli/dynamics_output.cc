@@ -1,0 +1,331 @@
+// What simulate and overspeed compute and print: ComputeSimulate and ComputeOverspeed
+// (dynamics_command.h), the JSON object, the text and the CSV of each.
+#include <unistd.h>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "apps/cli/cli_checks.h"
+#include "apps/cli/command_output.h"
+#include "apps/cli/dynamics_command.h"
+#include "apps/cli/output_paths.h"
+#include "apps/cli/progress_bar.h"
+#include "apps/cli/result_writers.h"
+#include "apps/scene/case_scene.h"
+#include "apps/scene/check_scene.h"
+#include "dynamics/overspeed.h"
+#include "dynamics/simulation.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/quasi_static.h"
+
+namespace needle {
+
+namespace {
+
+SimulationOptions Options(const Case& c, const std::optional<std::string>& method,
+                          const std::optional<double>& rtol) {
+  SimulationOptions o = OptionsFromCase(c);
+  if (method) {
+    if (*method != "auto" && !ParseMethod(*method)) {
+      throw CaseError("--method: unknown method \"" + *method + "\"; expected " + MethodList());
+    }
+
+    o.method = *method;
+  }
+  if (rtol) {
+    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
+      throw CaseError("--rtol: must be in " + RtolRangeText() + ", got " + std::to_string(*rtol));
+    o.integrator.rtol = *rtol;
+    if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = DefaultAtol(*rtol);
+  }
+  return o;
+}
+
+// The revolutions of a run of several: one row each, then whether the state repeated.
+std::string CyclesText(const SimulationResult& r) {
+  std::ostringstream out;
+  out << "cycle  start_deg  impacts  jumps  jump_deg  max_gap_mm  end_lift_mm  end_velocity_m_s\n";
+  for (const CycleSummary& c : r.cycles) {
+    out << std::setw(5) << c.index << std::setw(11) << Fixed(c.start_rad / kDeg, 1) << std::setw(9)
+        << c.impacts << std::setw(7) << c.jumps << std::setw(10) << Fixed(c.jump_rad / kDeg, 3)
+        << std::setw(12) << Fixed(c.max_gap_m * 1e3, 4) << std::setw(13)
+        << Fixed(c.end_lift_m * 1e3, 6) << std::setw(18) << Fixed(c.end_velocity_m_s, 6) << '\n';
+  }
+  if (r.period_cycles > 0) {
+    out << "periodic: the state repeats every " << r.period_cycles << " revolution"
+        << (r.period_cycles > 1 ? "s" : "") << " from cycle " << r.periodic_from << " on ("
+        << r.cycles.size() << " of " << r.cycles_asked << " run)\n";
+  } else {
+    out << "not periodic within " << r.cycles.size() << " revolutions (period up to " << kMaxPeriod
+        << " looked for)\n";
+  }
+  if (r.judged_from > 0) out << "lift-off judged from cycle " << r.judged_from << " on\n";
+  return out.str();
+}
+
+}  // namespace
+
+CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
+  RequireSpeed(o.speed_rpm);
+  const Scene scene = MakeScene(c);
+  SimulationOptions sim = Options(c, o.method, o.rtol);
+  sim.force_dynamic = o.dynamic;
+  sim.record_series = o.csv.has_value() || o.series;
+  if (o.cycles) {
+    sim.cycles = *o.cycles;
+    const auto refusal = sim.cycles > 1 ? CyclesRefusal(scene) : std::nullopt;
+    if (refusal) throw CaseError("--cycles: " + *refusal);
+  }
+  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
+  const SimulationResult r = Simulate(scene, speed, sim);
+  if (o.csv && r.skipped)
+    throw CaseError("--csv: the dynamic run was skipped (" + r.method_reason + ")");
+
+  CommandOutput result;
+  result.status = r.liftoff() ? 1 : 0;
+  const std::vector<std::vector<double>> rows = SeriesRows(r);
+  if (!rows.empty()) result.columns = SiColumns(SeriesColumns(), rows);
+  if (o.csv) result.csv = CsvTable(SeriesColumns(), rows, 10);
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["speed_rpm"] = speed;
+    j["method"] = r.method;
+    j["method_reason"] = r.method_reason;
+    j["skipped_dynamics"] = r.skipped;
+    j["liftoff"] = r.liftoff();
+    nlohmann::json episodes = nlohmann::json::array();
+    for (const Episode& e : r.episodes) {
+      episodes.push_back({{"kind", e.kind},
+                          {"start_deg", e.start_rad / kDeg},
+                          {"end_deg", e.end_rad / kDeg},
+                          {"max_gap_mm", e.max_gap_m * 1e3},
+                          {"impact", e.impact},
+                          {"open", e.open}});
+      if (r.cycles_asked > 1) episodes.back()["cycle"] = e.cycle;
+    }
+    j["episodes"] = episodes;
+    nlohmann::json impacts = nlohmann::json::array();
+    for (const Impact& i : r.impacts) {
+      impacts.push_back({{"kind", i.kind},
+                         {"crank_deg", i.crank_rad / kDeg},
+                         {"speed_m_s", i.speed_m_s},
+                         {"energy_lost_J", i.energy_lost_J}});
+      if (r.cycles_asked > 1) impacts.back()["cycle"] = i.cycle;
+    }
+    if (r.cycles_asked > 1) {
+      nlohmann::json cycles = nlohmann::json::array();
+      for (const CycleSummary& cy : r.cycles) {
+        cycles.push_back({{"index", cy.index},
+                          {"start_deg", cy.start_rad / kDeg},
+                          {"impacts", cy.impacts},
+                          {"jumps", cy.jumps},
+                          {"jump_deg", cy.jump_rad / kDeg},
+                          {"max_gap_mm", cy.max_gap_m * 1e3},
+                          {"end_lift_mm", Finite(cy.end_lift_m * 1e3)},
+                          {"end_velocity_m_s", Finite(cy.end_velocity_m_s)},
+                          {"energy_residual", Finite(cy.energy_residual)}});
+      }
+      j["cycles"] = cycles;
+      j["cycles_asked"] = r.cycles_asked;
+      j["period_cycles"] =
+          r.period_cycles > 0 ? nlohmann::json(r.period_cycles) : nlohmann::json(nullptr);
+      j["periodic_from"] =
+          r.period_cycles > 0 ? nlohmann::json(r.periodic_from) : nlohmann::json(nullptr);
+      j["judged_from"] = r.judged_from;
+    }
+    j["impacts"] = impacts;
+    j["max_lift_mm"] = r.max_lift_m * 1e3;
+    j["max_lift_deg"] = r.max_lift_rad / kDeg;
+    j["max_contact_force_N"] = r.max_contact_force_N;
+    j["min_contact_force_during_lift_N"] = r.min_contact_force_during_lift_N;
+    j["max_seat_force_N"] = r.max_seat_force_N;
+    if (r.min_coil_gap_m) {  // a chain of coil masses ([spring] masses > 1)
+      j["min_coil_gap_mm"] = *r.min_coil_gap_m * 1e3;
+      j["coil_clashes"] = r.coil_clashes;
+    }
+    j["energy_residual"] = r.skipped ? nlohmann::json(nullptr) : nlohmann::json(r.energy_residual);
+    j["steps"] = r.stats.steps;
+    j["rhs_evaluations"] = r.stats.rhs_evaluations;
+    j["accumulations"] = r.stats.accumulations;
+    j["events"] = r.stats.events;
+    j["rtol"] = sim.integrator.rtol;
+    j["window_start_deg"] = r.window_start_rad / kDeg;
+    j["window_end_deg"] = r.window_end_rad / kDeg;
+    j["run_end_deg"] = r.run_end_rad / kDeg;
+    j["status"] = RunStatusName(r.status);
+    j["status_reason"] = r.status_reason;
+    j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoffRpm(scene));
+    result.json = std::move(j);
+  } else {
+    out << (c.title.empty() ? c.path : c.title) << '\n'
+        << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
+        << ")\n";
+    if (!r.skipped) {
+      out << "window " << Fixed(r.window_start_rad / kDeg, 2) << " .. "
+          << Fixed(r.window_end_rad / kDeg, 2) << " deg; rtol " << sim.integrator.rtol << "; "
+          << r.stats.steps << " steps, " << r.stats.rhs_evaluations << " rhs evaluations, "
+          << r.stats.events << " events; energy residual " << r.energy_residual << '\n';
+      if (r.status != RunStatus::kComplete) {
+        out << "run " << RunStatusName(r.status) << ": " << r.status_reason << '\n';
+      } else if (r.run_end_rad > r.window_end_rad) {
+        out << "run went on to " << Fixed(r.run_end_rad / kDeg, 2)
+            << " deg, where the needle came to rest\n";
+      }
+    }
+    out << "max lift " << Fixed(r.max_lift_m * 1e3, 4) << " mm at "
+        << Fixed(r.max_lift_rad / kDeg, 2) << " deg\n"
+        << "contact force: max " << Fixed(r.max_contact_force_N, 1) << " N, min during the lift "
+        << Fixed(r.min_contact_force_during_lift_N, 1) << " N; max seat force "
+        << Fixed(r.max_seat_force_N, 1) << " N\n";
+    if (r.min_coil_gap_m) {
+      out << "coil gap: least " << Fixed(*r.min_coil_gap_m * 1e3, 3)
+          << " mm to solid in the run (N times the most compressed segment's); " << r.coil_clashes
+          << " coil clashes\n";
+    }
+    if (r.cycles_asked > 1 && !r.skipped) {
+      out << CyclesText(r);
+    }
+    out << (r.liftoff() ? "LIFT-OFF: the needle leaves the cam\n" : "no lift-off\n");
+    for (const Episode& e : r.episodes) {
+      out << "  " << e.kind << " " << Fixed(e.start_rad / kDeg, 3) << " .. "
+          << Fixed(e.end_rad / kDeg, 3) << " deg, largest gap " << Fixed(e.max_gap_m * 1e3, 4)
+          << " mm" << (e.open ? " (still open when the run ended)" : "") << '\n';
+    }
+    for (const Impact& i : r.impacts) {
+      out << "  impact " << i.kind << " at " << Fixed(i.crank_rad / kDeg, 4) << " deg, "
+          << Fixed(i.speed_m_s, 4) << " m/s\n";
+    }
+  }
+  result.text = out.str();
+  return result;
+}
+
+CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
+                               const std::function<void(int, int)>& progress) {
+  RequireIn("--threads", o.threads, kThreadsRange.lo, kThreadsRange.hi, "a number of threads");
+  RequireIn("--step-rpm", o.step_rpm, kSpeedStepRange.lo, kSpeedStepRange.hi,
+            "a speed step in rpm");
+  RequireSpeed(o.from_rpm, "--from");
+  RequireSpeed(o.to_rpm, "--to");
+  const Scene scene = MakeScene(c);
+  const double n_qs = QuasiStaticLiftoffRpm(scene);
+  OverspeedOptions opt;
+  opt.simulation = Options(c, o.method, o.rtol);
+  opt.simulation.steady_state = c.overspeed && c.overspeed->steady_state;  // [overspeed]
+  opt.threads = o.threads;
+  opt.step_rpm = o.step_rpm.value_or(0.0);
+  const SweepRange range = DefaultSweepRange(c, c.engine.speed_rpm, n_qs);
+  opt.from_rpm = o.from_rpm.value_or(range.from_rpm);
+  opt.to_rpm = o.to_rpm.value_or(range.to_rpm);
+  if (!(opt.from_rpm > 0.0) || !std::isfinite(opt.from_rpm) || opt.from_rpm > 1e7)
+    throw CaseError("--from: expected a speed in (0, 1e7] rpm, got " +
+                    std::to_string(opt.from_rpm));
+  if (!std::isfinite(opt.to_rpm) || opt.to_rpm > 1e9)
+    throw CaseError("--to: expected a finite speed up to 1e9 rpm, got " +
+                    std::to_string(opt.to_rpm));
+  if (!(opt.to_rpm > opt.from_rpm)) {
+    throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
+                    " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
+  }
+  const OverspeedResult r = OverspeedSearch(scene, opt, progress);
+  CommandOutput result;
+  result.status = r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
+  for (const OverspeedRow& row : r.rows) {
+    result.columns["speed_rpm"].push_back(row.speed_rpm);
+    result.columns["min_contact_force_N"].push_back(row.min_contact_force_N);
+    result.columns["jump_rad"].push_back(row.jump_deg * kDeg);
+    result.columns["max_gap_m"].push_back(row.max_gap_mm * 1e-3);
+    result.columns["max_impact_speed_m_s"].push_back(row.max_impact_speed_m_s);
+    result.columns["lifts_off"].push_back(row.lifts_off ? 1.0 : 0.0);
+  }
+  std::ostringstream out;
+  if (o.json) {
+    nlohmann::json j;
+    j["case"] = c.path;
+    j["from_rpm"] = opt.from_rpm;
+    j["to_rpm"] = opt.to_rpm;
+    j["liftoff_rpm_quasi_static"] = Finite(n_qs);
+    j["liftoff_rpm_dynamic"] = r.n_dyn_rpm ? nlohmann::json(*r.n_dyn_rpm) : nlohmann::json(nullptr);
+    j["bracket_rpm"] = {r.bracket_low_rpm, r.bracket_high_rpm};
+    j["lifts_off_at_start"] = r.lifts_off_at_start;
+    j["floor_rpm"] = r.floor_rpm;
+    j["threads"] = r.threads;
+    j["step_rpm"] = r.step_rpm;
+    j["status"] = r.status;
+    j["scanned_to_rpm"] = r.scanned_to_rpm;
+    j["cycles"] = opt.simulation.cycles;
+    j["steady_state"] = opt.simulation.steady_state;
+    nlohmann::json rows = nlohmann::json::array();
+    for (const OverspeedRow& row : r.rows) {
+      rows.push_back({{"speed_rpm", row.speed_rpm},
+                      {"min_contact_force_N", row.min_contact_force_N},
+                      {"jump_deg", row.jump_deg},
+                      {"max_gap_mm", row.max_gap_mm},
+                      {"max_impact_speed_m_s", row.max_impact_speed_m_s},
+                      {"lifts_off", row.lifts_off},
+                      {"status", RunStatusName(row.status)},
+                      {"status_reason", row.status_reason}});
+    }
+    j["rows"] = rows;
+    result.json = std::move(j);
+  } else {
+    out << (c.title.empty() ? c.path : c.title) << '\n'
+        << "sweep " << Fixed(opt.from_rpm, 1) << " .. " << Fixed(opt.to_rpm, 1) << " rpm on "
+        << r.threads
+        << " threads, scanned upward led by the least contact force (steps of at "
+           "most "
+        << Fixed(100 * opt.max_step_fraction, 0) << " % of the speed; " << Fixed(r.step_rpm, 2)
+        << " rpm where the force gives no guidance)\n";
+    if (opt.simulation.cycles > 1) {
+      out << opt.simulation.cycles << " cam revolutions per speed (until the state repeats); "
+          << (opt.simulation.steady_state
+                  ? "lift-off judged on the steady state (the repeating period, else the "
+                    "revolutions after the first)\n"
+                  : "lift-off in any of them counts\n");
+    }
+    out << "quasi-static lift-off n_qs = "
+        << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
+        << "dynamic lift-off n_dyn = ";
+    if (r.n_dyn_rpm) {
+      out << Fixed(*r.n_dyn_rpm, 1) << " rpm"
+          << (r.lifts_off_at_start ? " (below the start of the range, where it lifts off)" : "")
+          << " (bracket " << Fixed(r.bracket_low_rpm, 2) << " .. " << Fixed(r.bracket_high_rpm, 2)
+          << ")\n";
+    } else if (r.status == "floor") {
+      out << "none found: the needle lifts off at every speed tried down to "
+          << Fixed(r.floor_rpm, 1) << " rpm\n";
+    } else if (r.status == "budget") {
+      out << "none up to " << Fixed(r.scanned_to_rpm, 1) << " rpm, where the scan budget ("
+          << opt.max_speeds << " speeds) ended it; give a larger --step-rpm or a smaller --to\n";
+    } else if (r.status == "not-following") {
+      out << "undecided: the needle does not follow its cam at " << Fixed(r.scanned_to_rpm, 1)
+          << " rpm (see `needle simulate` there)\n";
+    } else if (r.status == "run-budget") {
+      out << "undecided: the run at " << Fixed(r.scanned_to_rpm, 1)
+          << " rpm stopped on its budget before showing lift-off (see its row)\n";
+    } else {
+      out << "none in the range\n";
+    }
+    out << "\n  speed rpm  min Fc N   jump deg  max gap mm  max impact m/s\n";
+    for (const OverspeedRow& row : r.rows) {
+      char line[160];
+      std::snprintf(line, sizeof line, "%11.2f %9.1f %10.3f %11.4f %15.4f%s\n", row.speed_rpm,
+                    row.min_contact_force_N, row.jump_deg, row.max_gap_mm, row.max_impact_speed_m_s,
+                    row.lifts_off ? "  lift-off" : "");
+      out << line;
+      if (row.status != RunStatus::kComplete && row.status != RunStatus::kStopped)
+        out << "             run " << RunStatusName(row.status) << ": " << row.status_reason
+            << '\n';
+    }
+  }
+  result.text = out.str();
+  return result;
+}
+
+}  // namespace needle

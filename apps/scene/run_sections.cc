@@ -1,0 +1,247 @@
+// [engine], [train], [solver], [overspeed], [tolerance], [profile] and [paper]
+// (section_reader.h).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "apps/scene/plausible_ranges.h"
+#include "apps/scene/section_reader.h"
+#include "dynamics/simulation.h"
+#include "dynamics/solver/integrator.h"
+#include "lib/input_file.h"
+#include "lib/output.h"
+#include "lib/toml_text.h"
+#include "lib/units.h"
+#include "spring/resonance.h"
+
+namespace needle::case_internal {
+
+TrainSection ReadTrain(SectionReader r) {
+  TrainSection t;
+  if (auto contact = r.OptionalString("contact")) {
+    if (*contact != "compliant" && *contact != "rigid")
+      r.Fail("contact", "expected \"compliant\" or \"rigid\", got \"" + *contact + "\"");
+    t.rigid = *contact == "rigid";
+  }
+  if (t.rigid) {
+    // Newton's restitution; the compliant law's keys do not apply.
+    for (auto [key, into] : {std::pair<const char*, double*>{"restitution", &t.restitution},
+                             {"seat_restitution", &t.seat_restitution}}) {
+      if (auto e = r.OptionalNumber(key)) {
+        if (!(*e >= 0.0 && *e <= 1.0)) r.Fail(key, "must be in [0, 1], got " + Number(*e));
+        *into = *e;
+      }
+    }
+    for (const char* key : {"contact_stiffness", "seat_stiffness"}) {
+      if (r.OptionalQuantity(key, Dimension::kStiffness))
+        r.Fail(r.last_key(), "applies to contact = \"compliant\"; a rigid contact has none");
+    }
+    for (const char* key : {"contact_damping_ratio", "seat_damping_ratio"}) {
+      if (r.OptionalNumber(key))
+        r.Fail(key, "applies to contact = \"compliant\"; a rigid contact has restitution");
+    }
+  } else {
+    for (const char* key : {"restitution", "seat_restitution"}) {
+      if (r.OptionalNumber(key))
+        r.Fail(key, "applies to contact = \"rigid\"; a compliant contact has a damping ratio");
+    }
+    t.contact_stiffness_N_m = r.Quantity("contact_stiffness", Dimension::kStiffness);
+    if (!(t.contact_stiffness_N_m > 0.0)) {
+      r.Fail(r.last_key(), "must be positive, got " + Number(t.contact_stiffness_N_m) + " N/m");
+    }
+    if (auto ks = r.OptionalQuantity("seat_stiffness", Dimension::kStiffness)) {
+      if (!(*ks > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*ks) + " N/m");
+      t.seat_stiffness_N_m = *ks;
+    } else {
+      t.seat_stiffness_N_m = t.contact_stiffness_N_m;
+    }
+    for (auto [key, into] :
+         {std::pair<const char*, double*>{"contact_damping_ratio", &t.contact_damping_ratio},
+          {"seat_damping_ratio", &t.seat_damping_ratio}}) {
+      if (auto z = r.OptionalNumber(key)) {
+        if (!(*z >= 0.0)) r.Fail(key, "must not be negative, got " + Number(*z));
+        *into = *z;
+      }
+    }
+  }
+  if (auto play = r.OptionalQuantity("play", Dimension::kLength)) {
+    if (!(*play >= 0.0)) r.Fail("play_mm", "must not be negative, got " + Number(*play * 1e3));
+    t.play_m = *play;
+  }
+  r.Known("ramp");
+  const auto ramp = r.OptionalString("ramp");
+  const auto ramp_angle = r.OptionalQuantity("ramp", Dimension::kAngle);
+  if (ramp && *ramp != "tangent")
+    r.Fail("ramp", "expected \"tangent\" or ramp_deg = <angle>, got \"" + *ramp + "\"");
+  if (ramp && ramp_angle) r.Fail("ramp", "give ramp = \"tangent\" or ramp_deg, not both");
+  if (ramp_angle) {
+    if (!(*ramp_angle > 0.0))
+      r.Fail("ramp_deg", "must be positive, got " + Number(*ramp_angle / kDeg));
+    t.linear_ramp = true;
+    t.ramp_rad = *ramp_angle;
+  }
+  r.Finish();
+  return t;
+}
+
+SolverSection ReadSolver(SectionReader r) {
+  SolverSection s;
+  if (auto m = r.OptionalString("method")) {
+    if (*m != "auto" && !ParseMethod(*m)) {  // the names from the method table
+      std::string list = "auto";
+      for (Method known : AllMethods()) list += ", " + MethodName(known);
+      r.Fail("method", "expected one of " + list + "; got \"" + *m + "\"");
+    }
+    s.method = *m;
+  }
+  if (auto rtol = r.OptionalNumber("rtol")) {
+    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
+      r.Fail("rtol", "must be in " + RtolRangeText() + ", got " + Number(*rtol));
+    s.rtol = *rtol;
+  }
+  if (auto atol = r.OptionalQuantity("atol", Dimension::kLength)) {
+    if (!(*atol > 0.0)) r.Fail("atol", "must be positive");
+    s.atol_m = *atol;
+  }
+  // Budgets: whole numbers in a range a long holds.
+  for (auto [key, into] :
+       {std::pair<const char*, long*>{"max_steps", &s.max_steps}, {"max_events", &s.max_events}}) {
+    if (auto v = OptionalCount(r, key, 1e12, "1e12")) *into = *v;
+  }
+  if (auto v = r.OptionalNumber("max_seconds")) {
+    if (!(*v >= 0.0 && *v <= 86400.0))
+      r.Fail("max_seconds", "must be in [0, 86400] s (0: no wall-time budget), got " + Number(*v));
+    s.max_seconds = *v;
+  }
+  if (auto settle = r.OptionalQuantity("settle", Dimension::kAngle)) {
+    if (!(*settle > 0.0 && *settle <= 36000.0 * kDeg))
+      r.Fail("settle_deg", "must be in (0, 36000] deg, got " + Number(*settle / kDeg));
+    s.settle_limit_deg = *settle / kDeg;
+  }
+  if (auto v = OptionalCount(r, "cycles", kMaxCycles, std::to_string(kMaxCycles)))
+    s.cycles = static_cast<int>(*v);
+  if (auto v = r.OptionalNumber("period_tolerance")) {
+    if (!(*v > 0.0 && *v <= 1e-2))
+      r.Fail("period_tolerance", "must be in (0, 1e-2], got " + Number(*v));
+    s.period_tolerance = *v;
+  }
+  s.start_rad = r.OptionalQuantity("start", Dimension::kAngle);
+  s.end_rad = r.OptionalQuantity("end", Dimension::kAngle);
+  if (s.start_rad && s.end_rad && !(*s.end_rad > *s.start_rad)) {
+    r.Fail("end_deg", "must be after start_deg");
+  }
+  r.Finish();
+  return s;
+}
+
+OverspeedSection ReadOverspeed(SectionReader r) {
+  OverspeedSection o;
+  o.from_rpm = r.OptionalQuantity("from", Dimension::kRotationSpeed);
+  o.to_rpm = r.OptionalQuantity("to", Dimension::kRotationSpeed);
+  if (o.from_rpm && !(*o.from_rpm > 0.0))
+    r.Fail("from_rpm", "must be positive, got " + Number(*o.from_rpm));
+  if (o.from_rpm && o.to_rpm && !(*o.to_rpm > *o.from_rpm)) {
+    r.Fail("to_rpm", "the sweep range is empty: to_rpm (" + Number(*o.to_rpm) +
+                         ") must exceed from_rpm (" + Number(*o.from_rpm) + ")");
+  }
+  o.steady_state = r.OptionalBool("steady_state").value_or(false);
+  r.Finish();
+  return o;
+}
+
+ToleranceSection ReadTolerance(SectionReader r) {
+  ToleranceSection t;
+  // A σ ≥ 0 and at most `most` (SI), named as written.
+  const auto sigma = [&r](const std::string& name, Dimension d, double most, double shown,
+                          const std::string& unit, double& into) {
+    if (auto v = r.OptionalQuantity(name, d)) {
+      if (!(*v >= 0.0 && *v <= most))
+        r.Fail(r.last_key(), "must be ≥ 0 and at most " + Number(most * shown) + " " + unit +
+                                 ", got " + Number(*v * shown) + " " + unit);
+      into = *v;
+    }
+  };
+  r.Declare("lift_correlation");  // not a unit of `lift`
+  sigma("lift", Dimension::kLength, 1e-3, 1e3, "mm", t.lift_sigma_m);
+  sigma("lift_correlation", Dimension::kAngle, 2.0 * kPi, 1.0 / kDeg, "deg",
+        t.lift_correlation_rad);
+  sigma("mass", Dimension::kPercent, 0.5, 100.0, "%", t.mass_fraction);
+  sigma("preload", Dimension::kPercent, 0.5, 100.0, "%", t.preload_fraction);
+  sigma("rate", Dimension::kPercent, 0.5, 100.0, "%", t.rate_fraction);
+  sigma("stiffness", Dimension::kPercent, 0.5, 100.0, "%", t.stiffness_fraction);
+  sigma("play", Dimension::kLength, 1e-2, 1e3, "mm", t.play_sigma_m);
+  sigma("speed", Dimension::kPercent, 0.5, 100.0, "%", t.speed_fraction);
+  r.Finish();
+  return t;
+}
+
+ProfileSection ReadProfile(SectionReader r) {
+  ProfileSection p;
+  FollowerGeometry& g = p.follower;
+  const FollowerKeys k = ReadFollowerKeys(r);
+  g.kind = k.kind;
+  g.base_radius_m = Positive(r, "base_radius", Dimension::kLength, 1e3, "base_radius_mm");
+  g.roller_radius_m = k.roller_radius_m.value_or(0.0);
+  g.face_radius_m = k.face_radius_m.value_or(0.0);
+  g.face_half_width_m = k.face_half_width_m.value_or(0.0);
+  g.offset_m = r.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
+  if (!(std::abs(g.offset_m) <= 10.0))
+    r.Fail("offset", "must be within ±10000 mm, got " + Number(g.offset_m * 1e3) + " mm");
+  if (g.kind != FollowerKind::kFlat &&
+      !(std::abs(g.offset_m) < g.base_radius_m + g.ContactRadius())) {
+    r.Fail("offset", "must be smaller than base radius plus " +
+                         std::string(g.kind == FollowerKind::kCurved ? "face" : "roller") +
+                         " radius");
+  }
+  if (auto l = r.OptionalNumber("lever_ratio")) {
+    if (!(*l > 0.0)) r.Fail("lever_ratio", "must be positive, got " + Number(*l));
+    g.lever_ratio = *l;
+  }
+  if (auto n = r.OptionalNumber("points")) {
+    if (!(*n >= 8 && *n <= 1e6) || *n != std::floor(*n))
+      r.Fail("points", "must be a whole number in 8…1e6");
+    p.points = static_cast<int>(*n);
+  }
+  r.Finish();
+  return p;
+}
+
+EngineSection ReadEngine(SectionReader r) {
+  if (!r.present()) r.Fail("speed_rpm", "section [engine] is missing; it needs speed_rpm");
+  EngineSection e;
+  e.speed_rpm = r.Quantity("speed", Dimension::kRotationSpeed);
+  if (!(e.speed_rpm > 0.0)) r.Fail("speed_rpm", "must be positive, got " + Number(e.speed_rpm));
+  if (auto cycle = OptionalCycle(r)) e.cycle = *cycle;
+  r.Finish();
+  return e;
+}
+
+PaperSection ReadPaper(SectionReader r) {
+  PaperSection p;
+  const auto crank = r.OptionalQuantityArray("crank", Dimension::kAngle);
+  const auto velocity = r.OptionalQuantityArray("velocity", Dimension::kVelocity);
+  if (crank.has_value() != velocity.has_value()) {
+    r.Fail(crank ? "crank_deg" : "velocity",
+           "published velocities need both crank_deg and velocity_<unit>");
+  }
+  if (crank) {
+    if (crank->size() != velocity->size()) {
+      r.Fail("velocity", "has " + std::to_string(velocity->size()) + " values but crank_deg has " +
+                             std::to_string(crank->size()));
+    }
+    p.crank_rad = *crank;
+    p.velocity_m_s = *velocity;
+  }
+  p.max_acceleration_m_s2 = r.OptionalQuantity("max_acceleration", Dimension::kAcceleration);
+  p.inertia_force_N = r.OptionalQuantity("inertia_force", Dimension::kForce);
+  p.mean_lift_m = r.OptionalQuantity("mean_lift", Dimension::kLength);
+  p.spring_preload_N = r.OptionalQuantity("spring_preload", Dimension::kForce);
+  r.Finish();
+  return p;
+}
+
+}  // namespace needle::case_internal

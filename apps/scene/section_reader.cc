@@ -1,0 +1,131 @@
+// The key reader's small checks, the follower keys and the TOML front (section_reader.h).
+#include "apps/scene/section_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "apps/scene/plausible_ranges.h"
+#include "dynamics/simulation.h"
+#include "dynamics/solver/integrator.h"
+#include "lib/input_file.h"
+#include "lib/output.h"
+#include "lib/toml_text.h"
+#include "lib/units.h"
+#include "spring/resonance.h"
+
+namespace needle::case_internal {
+
+std::string Number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+// A required or optional quantity that must be positive; the message names the key as written.
+double Positive(SectionReader& r, const std::string& name, Dimension dimension, double si_to_shown,
+                const std::string& shown_key) {
+  const double v = r.Quantity(name, dimension);
+  if (!(v > 0.0)) r.Fail(shown_key, "must be positive, got " + Number(v * si_to_shown));
+  return v;
+}
+
+// An optional quantity that must be positive when given; the message names `shown_key` and,
+// when `unit` is not empty, the unit of the value shown.
+std::optional<double> OptionalPositive(SectionReader& r, const std::string& name,
+                                       Dimension dimension, double si_to_shown,
+                                       const std::string& shown_key, const std::string& unit) {
+  const auto v = r.OptionalQuantity(name, dimension);
+  if (v && !(*v > 0.0)) {
+    r.Fail(shown_key,
+           "must be positive, got " + Number(*v * si_to_shown) + (unit.empty() ? "" : " " + unit));
+  }
+  return v;
+}
+
+// An optional whole number in [1, hi], checked before any cast (a cast of 3e9 or 1e308 is
+// undefined); the message shows the range as "[1, hi_text]".
+std::optional<long> OptionalCount(SectionReader& r, const std::string& key, double hi,
+                                  const std::string& hi_text) {
+  const auto v = r.OptionalNumber(key);
+  if (!v) return std::nullopt;
+  if (!(*v >= 1.0 && *v <= hi) || *v != std::floor(*v))
+    r.Fail(key, "must be a whole number in [1, " + hi_text + "], got " + Number(*v));
+  return static_cast<long>(*v);
+}
+
+// An optional length key, positive (or ≥ 0) and at most 10 m, checked as it is read so that a
+// failure names the key as written.
+std::optional<double> BoundedLength(SectionReader& r, const std::string& name, bool positive) {
+  auto v = r.OptionalQuantity(name, Dimension::kLength);
+  if (v && !((positive ? *v > 0.0 : *v >= 0.0) && *v <= 10.0))
+    r.Fail(r.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") +
+                             " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
+  return v;
+}
+
+FollowerKeys ReadFollowerKeys(SectionReader& r) {
+  FollowerKeys k;
+  auto length = [&](const std::string& name, bool positive) {
+    return BoundedLength(r, name, positive);
+  };
+  if (auto name = r.OptionalString("follower")) {
+    const std::optional<FollowerKind> kind = ParseFollowerKind(*name);
+    if (!kind)
+      r.Fail("follower", "expected \"roller\", \"flat\" or \"curved\", got \"" + *name + "\"");
+    k.kind = *kind;
+  }
+  const std::string kind = FollowerKindName(k.kind);
+  k.roller_radius_m = length("roller_radius", false);
+  if (k.roller_radius_m && k.kind != FollowerKind::kRoller)
+    r.Fail(r.last_key(), "a " + kind + " follower has no roller" +
+                             (k.kind == FollowerKind::kCurved ? "; give face_radius_mm" : ""));
+  k.face_radius_m = length("face_radius", true);
+  if (k.face_radius_m && k.kind != FollowerKind::kCurved)
+    r.Fail(r.last_key(), "only a curved follower has a face radius (follower = \"curved\")");
+  if (k.kind == FollowerKind::kCurved && !k.face_radius_m)
+    r.Fail("face_radius_mm", "a curved follower needs the radius of its face");
+  k.face_half_width_m = length("face_half_width", true);
+  if (k.face_half_width_m && k.kind == FollowerKind::kRoller)
+    r.Fail(r.last_key(), "a roller has no face; set follower = \"flat\" or \"curved\"");
+  return k;
+}
+
+std::optional<EngineCycle> OptionalCycle(SectionReader& r) {
+  const auto name = r.OptionalString("cycle");
+  if (!name) return std::nullopt;
+  const std::optional<EngineCycle> cycle = ParseEngineCycle(*name);
+  if (!cycle) r.Fail("cycle", "expected " + EngineCycleList() + ", got \"" + *name + "\"");
+  return cycle;
+}
+
+const toml::table* Section(const toml::table& root, const std::string& file, const char* name) {
+  const toml::node* node = root.get(name);
+  if (!node) return nullptr;
+  const toml::table* t = node->as_table();
+  if (!t) throw CaseError(file + ": " + name + ": expected a section [" + name + "]");
+  return t;
+}
+
+// Parses TOML text; a malformed document is one CaseError line with its position.
+toml::table ParseToml(const std::string& text, const std::string& path) {
+  // toml++ sees ASCII only (lib/toml_text.h: its non-ASCII paths have undefined behaviour).
+  const std::string ascii = AsciiTomlText(text, path);
+  try {
+    return toml::parse(ascii, path);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    std::string description(e.description());
+    for (char& ch : description) {
+      if (ch == '\n') ch = ' ';
+    }
+    throw CaseError(path + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
+                    ": malformed TOML: " + description);
+  }
+}
+
+}  // namespace needle::case_internal

@@ -1,0 +1,281 @@
+#pragma once
+/// @file
+/// Internal to the case-file layer (not installed): the unit-aware key reader every section
+/// reader is written with, its small checks, and the section readers that `ParseCase` lists
+/// in its one section table (case_file.cc). One file per group of sections:
+/// spring_sections.cc ([needle], [spring], [limits]), run_sections.cc ([engine], [train],
+/// [solver], [overspeed], [tolerance], [profile], [paper]), lift_section.cc ([lift]).
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apps/scene/case_file.h"
+#include "apps/scene/plausible_ranges.h"
+#include "lib/case_error.h"
+#include "lib/follower.h"
+#include "lib/units.h"
+
+namespace needle::case_internal {
+
+// The largest magnitude any number in an input file may have.
+constexpr double kLargestInput = 1e15;
+
+/// A number as `operator<<` prints it, for messages.
+std::string Number(double v);
+
+// Reads the keys of one TOML table against a schema given by the calls made on it; every
+// key must be consumed, and each dimensional key must carry a unit suffix of its dimension.
+class SectionReader {
+ public:
+  SectionReader(const toml::table* table, std::string file, std::string section)
+      : table_(table), file_(std::move(file)), section_(std::move(section)) {}
+
+  bool present() const { return table_ != nullptr; }
+
+  [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
+    std::string where = file_ + ": ";
+    if (!section_.empty()) where += "[" + section_ + "] ";
+    throw CaseError(where + key + ": " + what);
+  }
+
+  // Finds the key `name_<unit>` for a quantity; returns the key and its SI factor's unit.
+  std::optional<std::pair<std::string, std::string>> FindQuantity(const std::string& name,
+                                                                  Dimension dimension) {
+    if (!table_) return std::nullopt;
+    std::optional<std::pair<std::string, std::string>> found;
+    for (const auto& [k, node] : *table_) {
+      const std::string key(k.str());
+      (void)node;
+      if (key == name) {
+        if (IsOtherQuantity(key)) continue;  // a plain key of the same name (`end_slope`)
+        Fail(key, "needs a unit suffix: " + Suggestions(name, dimension));
+      }
+      if (key.size() <= name.size() + 1 || key.compare(0, name.size() + 1, name + "_") != 0) {
+        continue;
+      }
+      if (BelongsToLongerName(key, name)) continue;  // `fuel_density_g_cm3` is not `fuel_…`
+      const std::string unit = key.substr(name.size() + 1);
+      const auto units = UnitSuffixes(dimension);
+      if (std::find(units.begin(), units.end(), unit) == units.end()) {
+        if (IsOtherQuantity(key)) continue;  // e.g. `end_slope` next to `end_slope_mm_deg`
+        Fail(key, "unit suffix '" + unit + "' is not a unit of " + DimensionName(dimension) +
+                      " (expected " + Suggestions(name, dimension) + ")");
+      }
+      if (found) Fail(key, "given twice, also as " + found->first + "; keep one");
+      found = std::make_pair(key, unit);
+    }
+    if (found) {
+      used_.insert(found->first);
+      last_key_ = found->first;
+    }
+    return found;
+  }
+
+  std::optional<double> OptionalQuantity(const std::string& name, Dimension dimension) {
+    const auto key = FindQuantity(name, dimension);
+    if (!key) return std::nullopt;
+    const double raw = ToNumber(key->first, *table_->get(key->first));
+    const double si = ToSi(dimension, key->second, raw);
+    if (!std::isfinite(si) || std::abs(si) > 1e18) Fail(key->first, "is out of range in SI units");
+    read_.push_back({key->first, name, si, false});
+    return si;
+  }
+
+  double Quantity(const std::string& name, Dimension dimension) {
+    const auto v = OptionalQuantity(name, dimension);
+    if (!v) Fail(name, "missing; expected " + Suggestions(name, dimension));
+    return *v;
+  }
+
+  std::optional<std::vector<double>> OptionalQuantityArray(const std::string& name,
+                                                           Dimension dimension) {
+    const auto key = FindQuantity(name, dimension);
+    if (!key) return std::nullopt;
+    const toml::node& node = *table_->get(key->first);
+    const toml::array* array = node.as_array();
+    if (!array) Fail(key->first, "expected an array of numbers");
+    std::vector<double> out;
+    for (size_t i = 0; i < array->size(); ++i) {
+      const std::string entry = key->first + "[" + std::to_string(i) + "]";
+      out.push_back(ToSi(dimension, key->second, ToNumber(entry, *array->get(i))));
+      read_.push_back({entry, name, out.back(), true});
+    }
+    return out;
+  }
+
+  std::optional<double> OptionalNumber(const std::string& name) {
+    if (!table_ || !table_->contains(name)) return std::nullopt;
+    used_.insert(name);
+    const double v = ToNumber(name, *table_->get(name));
+    read_.push_back({name, name, v, false});
+    return v;
+  }
+
+  std::optional<std::string> OptionalString(const std::string& name) {
+    if (!table_ || !table_->contains(name)) return std::nullopt;
+    used_.insert(name);
+    const auto* s = table_->get(name)->as_string();
+    if (!s) Fail(name, "expected a string");
+    return s->get();
+  }
+
+  std::optional<bool> OptionalBool(const std::string& name) {
+    if (!table_ || !table_->contains(name)) return std::nullopt;
+    used_.insert(name);
+    const auto* b = table_->get(name)->as_boolean();
+    if (!b) Fail(name, "expected true or false");
+    return b->get();
+  }
+
+  // Declares a plain key (no unit) the section knows, so FindQuantity does not mistake it.
+  void Known(const std::string& key) { known_plain_.insert(key); }
+
+  // Declares a quantity name that extends a shorter one (`fuel_density` beside `fuel`).
+  void Declare(const std::string& name) { declared_.insert(name); }
+
+  // The key (with its unit) of the quantity found last, for messages.
+  const std::string& last_key() const { return last_key_; }
+
+  // Every key must have been read, and every value read must lie in its plausible range
+  // (apps/scene/plausible_ranges.h, the one table of them). The section's own checks (a sign,
+  // a missing partner) ran as each key was read, so their messages come first.
+  void Finish() const {
+    if (!table_) return;
+    for (const auto& [k, node] : *table_) {
+      (void)node;
+      const std::string key(k.str());
+      if (!used_.count(key)) Fail(key, "unknown key in this section");
+    }
+    for (const ReadValue& v : read_) {
+      const RangedKey* ranged = FindRangedKey(section_, v.name);
+      if (!ranged) continue;
+      const PlausibleRange& range = *ranged->range;
+      if (v.table_entry || ranged->upper_only) {
+        if (v.si > range.hi)
+          Fail(v.key, ShownValue(range, v.si) + " is above the plausible range's end " +
+                          ShownValue(range, range.hi) + " (docs/ranges.md)");
+      } else if (!(v.si >= range.lo && v.si <= range.hi)) {
+        Fail(v.key, ShownValue(range, v.si) + " is outside the plausible range " +
+                        RangeText(range) + " (docs/ranges.md)");
+      }
+    }
+  }
+
+ private:
+  bool IsOtherQuantity(const std::string& key) const { return known_plain_.count(key) > 0; }
+
+  bool BelongsToLongerName(const std::string& key, const std::string& name) const {
+    for (const std::string& other : declared_) {
+      if (other.size() > name.size() && key.compare(0, other.size() + 1, other + "_") == 0) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  static std::string Suggestions(const std::string& name, Dimension dimension) {
+    std::string out;
+    for (const std::string& u : UnitSuffixes(dimension)) {
+      out += (out.empty() ? "" : " or ") + name + "_" + u;
+    }
+    return out;
+  }
+
+  double ToNumber(const std::string& key, const toml::node& node) const {
+    double v;
+    if (const auto* i = node.as_integer()) {
+      v = static_cast<double>(i->get());
+    } else if (const auto* f = node.as_floating_point()) {
+      v = f->get();
+    } else {
+      Fail(key, "expected a number");
+    }
+    if (std::isnan(v)) Fail(key, "is NaN; expected a finite number");
+    if (!std::isfinite(v)) Fail(key, "is infinite; expected a finite number");
+    // No input of a needle valve is this large; beyond it unit conversions and products
+    // overflow (rate_N_mm = 1e308 became an "inf N/m" rate).
+    if (std::abs(v) > kLargestInput) {
+      std::ostringstream m;
+      m << "is " << v << "; expected a magnitude of at most 1e15";
+      Fail(key, m.str());
+    }
+    return v;
+  }
+
+  // A value as read, in SI, for the range check in Finish.
+  struct ReadValue {
+    std::string key;   ///< as written ("mass_kg", "lift_mm[3]")
+    std::string name;  ///< without the unit suffix ("mass")
+    double si = 0.0;
+    bool table_entry = false;  ///< an entry of an array
+  };
+
+  const toml::table* table_;
+  std::string file_;
+  std::string section_;
+  std::vector<ReadValue> read_;
+  std::set<std::string> used_;
+  std::set<std::string> known_plain_;
+  std::set<std::string> declared_;
+  std::string last_key_;
+};
+
+// A required or optional quantity that must be positive; the message names the key as written.
+double Positive(SectionReader& r, const std::string& name, Dimension dimension, double si_to_shown,
+                const std::string& shown_key);
+
+// An optional quantity that must be positive when given; the message names `shown_key` and,
+// when `unit` is not empty, the unit of the value shown.
+std::optional<double> OptionalPositive(SectionReader& r, const std::string& name,
+                                       Dimension dimension, double si_to_shown,
+                                       const std::string& shown_key, const std::string& unit = "");
+
+// An optional whole number in [1, hi], checked before any cast (a cast of 3e9 or 1e308 is
+// undefined); the message shows the range as "[1, hi_text]".
+std::optional<long> OptionalCount(SectionReader& r, const std::string& key, double hi,
+                                  const std::string& hi_text);
+
+// An optional length key, positive (or ≥ 0) and at most 10 m, checked as it is read so that a
+// failure names the key as written.
+std::optional<double> BoundedLength(SectionReader& r, const std::string& name, bool positive);
+
+// The follower's kind and its radius and face keys, the same in [profile] and [checks]: each
+// key belongs to the kinds that have it.
+struct FollowerKeys {
+  FollowerKind kind = FollowerKind::kRoller;
+  std::optional<double> roller_radius_m, face_radius_m, face_half_width_m;
+};
+
+FollowerKeys ReadFollowerKeys(SectionReader& r);
+
+/// The table `name` of `root`, or null when absent; a non-table there is a CaseError.
+const toml::table* Section(const toml::table& root, const std::string& file, const char* name);
+
+/// Parses TOML text; a malformed document is one CaseError line with its position.
+toml::table ParseToml(const std::string& text, const std::string& path);
+
+// The section readers, one per section of a case file.
+NeedleSection ReadNeedle(SectionReader r);
+HelicalGeometry ReadHelical(SectionReader& r);
+SpringSection ReadSpring(SectionReader r);
+LimitsSection ReadLimits(SectionReader r);
+EngineSection ReadEngine(SectionReader r);
+TrainSection ReadTrain(SectionReader r);
+SolverSection ReadSolver(SectionReader r);
+OverspeedSection ReadOverspeed(SectionReader r);
+ToleranceSection ReadTolerance(SectionReader r);
+ProfileSection ReadProfile(SectionReader r);
+PaperSection ReadPaper(SectionReader r);
+LiftSection ReadLift(SectionReader r, const std::string& case_path, EngineCycle cycle);
+
+/// The optional `cycle` key of [engine] (case and engine file) and [output] (synthesis file).
+std::optional<EngineCycle> OptionalCycle(SectionReader& r);
+
+}  // namespace needle::case_internal
