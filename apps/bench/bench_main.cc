@@ -610,6 +610,65 @@ std::string RunSizing(int repeats) {
   return md.str();
 }
 
+// Method "exact" against dopri5 at rtol 1e-8 (issue 33): run time (median of interleaved runs,
+// Simulate as a user calls it, forced dynamic), lift and force error on the window grid against
+// dopri5 at rtol 1e-12, the pieces and the energy residual, per scene; the ratio exact/dopri5.
+std::string RunExactComparison(int repeats) {
+  struct ExactScene {
+    std::string name, file;
+    double rpm;
+  };
+  std::vector<ExactScene> scenes;
+  for (const BenchScene& bs : Scenes()) scenes.push_back({bs.name, bs.file, bs.rpm});
+  scenes.push_back({"lash-1100", "basu-example2.toml", 1100});
+  std::ostringstream md;
+  md << "## Method `exact` against dopri5 at rtol 1e-8\n\n"
+     << "Each run as `needle simulate` makes it (forced dynamic, no series), medians of "
+     << 20 * repeats << " interleaved runs on one core; errors on 2001 points of the window "
+     << "against dopri5 at rtol 1e-12.\n\n"
+     << "| scene | rpm | exact µs | pieces | exact lift error µm | exact energy residual | "
+        "dopri5 1e-8 µs | steps | dopri5 lift error µm | exact / dopri5 |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const ExactScene& es : scenes) {
+    const Case c = LoadCase(CaseDir() + es.file);
+    const Scene scene = MakeScene(c);
+    const std::vector<double> grid = WindowGrid(scene, es.rpm, 2000);
+    const MeasuredRun ref = MeasureRun(scene, es.rpm, Method::kDopri5, 1e-12, grid, 1);
+    const MeasuredRun ex = MeasureRun(scene, es.rpm, Method::kExact, 1e-8, grid, 1);
+    const MeasuredRun dp = MeasureRun(scene, es.rpm, Method::kDopri5, 1e-8, grid, 1);
+    SimulationOptions o = OptionsFromCase(c);
+    o.force_dynamic = true;
+    SimulationOptions oe = o, od = o;
+    oe.method = "exact";
+    od.method = "dopri5";
+    od.integrator.rtol = 1e-8;
+    od.integrator.atol_m = DefaultAtol(1e-8);
+    std::vector<double> te, td;
+    long pieces = 0, steps = 0;
+    double residual = 0.0;
+    for (int r = 0; r < 20 * repeats; ++r) {
+      auto t0 = std::chrono::steady_clock::now();
+      const SimulationResult a = Simulate(scene, es.rpm, oe);
+      te.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      t0 = std::chrono::steady_clock::now();
+      const SimulationResult b = Simulate(scene, es.rpm, od);
+      td.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      pieces = a.stats.steps;
+      steps = b.stats.steps;
+      residual = a.energy_residual;
+    }
+    std::sort(te.begin(), te.end());
+    std::sort(td.begin(), td.end());
+    const double me = te[te.size() / 2] * 1e6, mdp = td[td.size() / 2] * 1e6;
+    md << "| " << es.name << " | " << es.rpm << " | " << Num(me) << " | " << pieces << " | "
+       << Num(CompareRuns(ex, ref).lift_m * 1e6) << " | " << Num(residual, 2) << " | " << Num(mdp)
+       << " | " << steps << " | " << Num(CompareRuns(dp, ref).lift_m * 1e6) << " | "
+       << Num(me / mdp, 3) << " |\n";
+  }
+  md << '\n';
+  return md.str();
+}
+
 }  // namespace
 }  // namespace needle
 
@@ -626,8 +685,9 @@ int main(int argc, char** argv) {
   auto* ovs = app.add_subcommand(
       "overspeed", "the overspeed search, check and a tolerance sample: before and after");
   auto* siz = app.add_subcommand("size", "needle size: each stage's time and springs kept");
+  auto* exa = app.add_subcommand("exact", "method exact against dopri5 at rtol 1e-8, per scene");
   auto* all = app.add_subcommand("all", "everything, and OUT/summary.md");
-  for (auto* c : {dyn, kin, tgt, ovs, siz, all}) {
+  for (auto* c : {dyn, kin, tgt, ovs, siz, exa, all}) {
     c->add_option("--out", out, "output folder (default bench)");
     c->add_option("--repeats", repeats, "timed repeats per configuration (median)")
         ->check(CLI::PositiveNumber);
@@ -642,6 +702,7 @@ int main(int argc, char** argv) {
     if (tgt->parsed() || all->parsed()) md += needle::RunTargets(repeats);
     if (ovs->parsed() || all->parsed()) md += needle::RunOverspeedComparison(repeats);
     if (siz->parsed() || all->parsed()) md += needle::RunSizing(repeats);
+    if (exa->parsed() || all->parsed()) md += needle::RunExactComparison(repeats);
     needle::WriteFileAtomically(out + "/summary.md", md);
     std::cout << md;
   } catch (const std::exception& e) {

@@ -139,25 +139,139 @@ std::array<double, 3> ClosedFormPiece::Motion(double t) const {
   return {y, v, (Eval(f_, tau) - c_ * v - K_ * y) / m_};
 }
 
+double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
+  const double tau = t - t0_;
+  double ecm1, es;
+  Basis(tau, ecm1, es);
+  const double y = x0_[0] + (Eval(p_, tau) - p_[0]) + Y0_ * (ecm1 + sigma_ * es) + V0_ * es;
+  const double v =
+      x0_[1] + (Eval(dp_, tau) - dp_[0]) - Y0_ * (K_ / m_) * es + V0_ * (ecm1 - sigma_ * es);
+  double w = form.y * y + form.v * v + form.constant;
+  if (form.u != 0.0) w += form.u * Eval(u_, tau);
+  if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, tau);
+  return w;
+}
+
 TrainState ClosedFormPiece::State(double t) const {
   const std::array<double, 3> now = Motion(t);
   TrainState x = {now[0], now[1], x0_[2], x0_[3]};
   if (t <= t0_) return x;
-  // W and D: the train's own Ẇ and Ḋ along the closed form, 10-point Gauss–Legendre.
+  if (!(K_ > 0.0)) return StateByQuadrature(t, 1);
+  const AuditTerms a = Audit(t - t0_, now[0], now[1]);
+  x[2] += a.work_J;
+  x[3] += a.dissipated_J;
+  return x;
+}
+
+TrainState ClosedFormPiece::StateByQuadrature(double t, int parts) const {
+  const std::array<double, 3> now = Motion(t);
+  TrainState x = {now[0], now[1], x0_[2], x0_[3]};
+  if (t <= t0_) return x;
   using Rule = boost::math::quadrature::gauss<double, 10>;
   const Phase phase{mode_};
-  const double half = 0.5 * (t - t0_), mid = t0_ + half;
   TrainState dxdt;
-  for (size_t i = 0; i < Rule::abscissa().size(); ++i) {
-    for (const double sign : {-1.0, 1.0}) {
-      const double s = mid + sign * half * Rule::abscissa()[i];
-      const std::array<double, 3> at = Motion(s);
-      train_.Derivative({at[0], at[1], 0.0, 0.0}, s, phase, dxdt);
-      x[2] += half * Rule::weights()[i] * dxdt[2];
-      x[3] += half * Rule::weights()[i] * dxdt[3];
+  const double width = (t - t0_) / parts;
+  for (int part = 0; part < parts; ++part) {
+    const double half = 0.5 * width, mid = t0_ + (part + 0.5) * width;
+    for (size_t i = 0; i < Rule::abscissa().size(); ++i) {
+      for (const double sign : {-1.0, 1.0}) {
+        const double s = mid + sign * half * Rule::abscissa()[i];
+        const std::array<double, 3> at = Motion(s);
+        train_.Derivative({at[0], at[1], 0.0, 0.0}, s, phase, dxdt);
+        x[2] += half * Rule::weights()[i] * dxdt[2];
+        x[3] += half * Rule::weights()[i] * dxdt[3];
+      }
     }
   }
   return x;
+}
+
+namespace {
+
+// ∫₀ᵀ a(τ) b(τ) dτ.
+double ProductIntegral(const Poly& a, const Poly& b, double T) {
+  const int n = ClosedFormPiece::kMaxDegree;
+  double sum = 0.0;
+  for (int d = 2 * n; d >= 0; --d) {  // Σ_d (Σ_{i+j=d} a_i b_j) T^{d+1}/(d+1), by Horner
+    double c = 0.0;
+    for (int i = std::max(0, d - n); i <= std::min(d, n); ++i) c += a[i] * b[d - i];
+    sum = sum * T + c / (d + 1);
+  }
+  return sum * T;
+}
+
+bool IsZero(const Poly& p) {
+  for (double v : p)
+    if (v != 0.0) return false;
+  return true;
+}
+
+}  // namespace
+
+double ClosedFormPiece::HomogeneousIntegral(const Poly& q, double T, double h1, double hv1) const {
+  // J(q) = ∫₀ᵀ q h dτ for h of m h'' + c h' + K h = 0: with h = −(m h'' + c h')/K and
+  // integration by parts, J(q) = −(m([q h'] − [q' h] + J(q'')) + c([q h] − J(q')))/K, which ends
+  // at the polynomial's degree.
+  if (IsZero(q)) return 0.0;
+  const Poly q1 = needle::Derivative(q), q2 = needle::Derivative(q1);
+  const double qT = Eval(q, T), q1T = Eval(q1, T);
+  const double qh1 = qT * hv1 - q[0] * V0_;   // [q h']
+  const double q1h = q1T * h1 - q1[0] * Y0_;  // [q' h]
+  const double qh = qT * h1 - q[0] * Y0_;     // [q h]
+  double j = m_ * (qh1 - q1h + HomogeneousIntegral(q2, T, h1, hv1)) + c_ * qh;
+  if (c_ != 0.0) j -= c_ * HomogeneousIntegral(q1, T, h1, hv1);
+  return -j / K_;
+}
+
+ClosedFormPiece::AuditTerms ClosedFormPiece::Audit(double T, double y1, double v1) const {
+  // y = P + h, h homogeneous (h(0) = Y₀, h'(0) = V₀). Ẇ = F_c u̇ in cam mode; Ḋ = c ġ² for each
+  // pushing contact plus the jump of its conservative part, (F − k g⁺) ġ:
+  //   ∫ c_total h'² = H(0) − H(T), H = ½ m h'² + ½ K h²  (the homogeneous part's energy);
+  //   ∫ q h' = [q h] − ∫ q' h;  ∫ q h by HomogeneousIntegral;  polynomial products exactly;
+  //   ∫ (k g − k g⁺) ġ = [½ k min(g, 0)²] in mode, ∫ −k g⁺ ġ = −[½ k max(g, 0)²] out of it.
+  double ecm1, es;
+  Basis(T, ecm1, es);
+  const double h1 = Y0_ * (1.0 + ecm1 + sigma_ * es) + V0_ * es;
+  const double hv1 = -Y0_ * (K_ / m_) * es + V0_ * (1.0 + ecm1 - sigma_ * es);
+  const auto at = [&](const Poly& q) { return Eval(q, T); };
+  // ∫ q h' dτ.
+  const auto with_rate = [&](const Poly& q) {
+    return at(q) * h1 - q[0] * Y0_ - HomogeneousIntegral(needle::Derivative(q), T, h1, hv1);
+  };
+  AuditTerms out;
+  const double H0 = 0.5 * m_ * V0_ * V0_ + 0.5 * K_ * Y0_ * Y0_;
+  const double H1 = 0.5 * m_ * hv1 * hv1 + 0.5 * K_ * h1 * h1;
+  out.dissipated_J = c_ > 0.0 ? H0 - H1 : 0.0;  // ∫ c h'²: H is conserved without damping
+  const ContactLaw& cam = train_.cam_law();
+  const ContactLaw& seat = train_.seat_law();
+  const double kc = cam.ForceStiffness(), cc = cam.ForceDamping();
+  const double ks = seat.ForceStiffness(), cs = seat.ForceDamping();
+  // Gaps at the ends: g_c = u − y, g_s = −y.
+  const double gc0 = u_[0] - x0_[0], gc1 = at(u_) - y1;
+  const double gs0 = -x0_[0], gs1 = -y1;
+  (void)v1;
+  const auto sq = [](double g) { return g * g; };
+  if (mode_.cam) {
+    Poly rel{};    // u̇ − P'
+    Poly force{};  // k_c (u − P) + c_c (u̇ − P')
+    for (int k = 0; k <= kMaxDegree; ++k) {
+      rel[k] = du_[k] - dp_[k];
+      force[k] = kc * (u_[k] - p_[k]) + cc * rel[k];
+    }
+    out.work_J = ProductIntegral(force, du_, T) - kc * HomogeneousIntegral(du_, T, h1, hv1) -
+                 cc * with_rate(du_);
+    if (cc != 0.0) out.dissipated_J += cc * (ProductIntegral(rel, rel, T) - 2.0 * with_rate(rel));
+    out.dissipated_J += 0.5 * kc * (sq(std::min(gc1, 0.0)) - sq(std::min(gc0, 0.0)));
+  } else {
+    out.dissipated_J -= 0.5 * kc * (sq(std::max(gc1, 0.0)) - sq(std::max(gc0, 0.0)));
+  }
+  if (mode_.seat) {
+    if (cs != 0.0) out.dissipated_J += cs * (ProductIntegral(dp_, dp_, T) + 2.0 * with_rate(dp_));
+    out.dissipated_J += 0.5 * ks * (sq(std::min(gs1, 0.0)) - sq(std::min(gs0, 0.0)));
+  } else {
+    out.dissipated_J -= 0.5 * ks * (sq(std::max(gs1, 0.0)) - sq(std::max(gs0, 0.0)));
+  }
+  return out;
 }
 
 FormBounds ClosedFormPiece::Bounds(const LinearForm& form, double t_a, double t_b) const {
@@ -169,8 +283,8 @@ FormBounds ClosedFormPiece::Bounds(const LinearForm& form, double t_a, double t_
   const Poly q2 = needle::Derivative(q1);
   // The homogeneous part h = y − P: its energy H = ½mh'² + ½Kh² at t_a bounds it from there on;
   // over a short interval a Taylor bound from h' and h'' at t_a is tighter.
-  const std::array<double, 3> at = Motion(t_a);
-  const double h = at[0] - Eval(p_, tau), hv = at[1] - Eval(dp_, tau);
+  const std::array<double, 2> hh = HomogeneousAt(t_a);
+  const double h = hh[0], hv = hh[1];
   const double ha = (-c_ * hv - K_ * h) / m_;  // h''
   const double energy = 0.5 * m_ * hv * hv + 0.5 * K_ * h * h;
   const double e1 = std::sqrt(2.0 * energy / m_);                   // |h'|
@@ -184,6 +298,49 @@ FormBounds ClosedFormPiece::Bounds(const LinearForm& form, double t_a, double t_
   out.curvature_bound = safety * (BoundOn(q2, len) + std::abs(form.y) * b2 + std::abs(form.v) * b3);
   out.slope_at_start = q1[0] + form.y * hv + form.v * ha;
   return out;
+}
+
+std::array<double, 2> ClosedFormPiece::HomogeneousAt(double t) const {
+  if (t != cached_t_) {
+    double ecm1, es;
+    Basis(t - t0_, ecm1, es);
+    cached_h_ = {Y0_ * (1.0 + ecm1 + sigma_ * es) + V0_ * es,
+                 -Y0_ * (K_ / m_) * es + V0_ * (1.0 + ecm1 - sigma_ * es)};
+    cached_t_ = t;
+  }
+  return cached_h_;
+}
+
+double ClosedFormPiece::HomogeneousEnergy(double t) const {
+  const std::array<double, 2> h = HomogeneousAt(t);
+  return 0.5 * m_ * h[1] * h[1] + 0.5 * K_ * h[0] * h[0];
+}
+
+bool ClosedFormPiece::InputConstant() const {
+  for (int k = 1; k <= kMaxDegree; ++k)
+    if (u_[k] != 0.0) return false;
+  return true;
+}
+
+FormRange ClosedFormPiece::Range(const LinearForm& form, double t_a, double t_b) const {
+  const double tau = t_a - t0_, len = t_b - t_a;
+  Poly q{};
+  for (int k = 0; k <= kMaxDegree; ++k)
+    q[k] = form.y * p_[k] + form.v * dp_[k] + form.u * u_[k] + form.u_rate * du_[k];
+  q = Shift(q, tau);
+  double spread = 0.0;  // Σ_{k ≥ 1} |q_k| len^k
+  for (int k = kMaxDegree; k >= 1; --k) {
+    if (q[k] != 0.0) spread += std::abs(q[k]) * std::pow(len, k);
+  }
+  // |h| ≤ √(2H/K), |h'| ≤ √(2H/m) from t_a on.
+  const double energy = HomogeneousEnergy(t_a);
+  double amplitude = std::abs(form.v) * std::sqrt(2.0 * energy / m_);
+  if (form.y != 0.0)
+    amplitude += K_ > 0.0 ? std::abs(form.y) * std::sqrt(2.0 * energy / K_)
+                          : std::numeric_limits<double>::infinity();
+  const double mid = q[0] + form.constant;
+  const double reach = (1.0 + 1e-9) * (spread + amplitude) + 1e-15 * std::abs(mid);
+  return {mid - reach, mid + reach};
 }
 
 }  // namespace needle

@@ -22,9 +22,11 @@
 ///   e^{−στ}C = (e^{r₁τ} + e^{r₂τ})/2, e^{−στ}S = (e^{r₁τ} − e^{r₂τ})/(2μ) with
 ///   r₁ = −(K/m)/(σ + μ), r₂ = −σ − μ: no overflow of cosh against e^{−στ}, no cancellation in r₁.
 ///
-/// The audit integrals W and D (docs/model.md §6) are integrals of the train's own Ẇ and Ḋ along
-/// this solution, by 10-point Gauss–Legendre; the exact stepper keeps pieces within half an
-/// oscillation, where that rule is exact to round-off.
+/// The audit integrals W and D (docs/model.md §6) are the integrals of the train's own Ẇ and Ḋ
+/// along this solution in closed form (Audit): with y = P + h, the products of polynomials
+/// exactly, ∫ c h'² = H(0) − H(τ) from the homogeneous part's energy H = ½mh'² + ½Kh², and
+/// ∫ q h by parts through m h'' + c h' + K h = 0, which ends at q's degree. No quadrature, so a
+/// piece may be as long as its events allow.
 ///
 /// Root isolation needs bounds: for a witness that is a linear form of (y, ẏ, u, u̇) (see
 /// LinearForm), Bounds() gives |w'| and |w''| over an interval, from the polynomial part's
@@ -36,6 +38,12 @@
 #include "dynamics/solver/contact_events.h"
 
 namespace needle {
+
+/// Over [t_a, t_b]: the range of the form's values, lo ≤ w ≤ hi (valid for any t_b, from the
+/// polynomial part's coefficients and the homogeneous part's energy, which never grows).
+struct FormRange {
+  double lo = 0.0, hi = 0.0;
+};
 
 /// Over [t_a, t_b]: bounds on |w'| and |w''|, and w'(t_a) exact.
 struct FormBounds {
@@ -57,16 +65,41 @@ class ClosedFormPiece {
 
   /// The state [y, ẏ, W, D] at t (any t ≥ t₀; exact for y, ẏ).
   TrainState State(double t) const;
+  /// The same with W and D by 10-point Gauss–Legendre on `parts` equal parts of [t₀, t] (the
+  /// rule for K = 0; tests compare the closed form with it).
+  TrainState StateByQuadrature(double t, int parts) const;
   /// y, ẏ, ÿ at t.
   std::array<double, 3> Motion(double t) const;
+  /// The form's value at t on the piece's own polynomials (no search of the cam's segments).
+  double FormValue(const LinearForm& form, double t) const;
   /// Bounds of the form over [t_a, t_b], t₀ ≤ t_a < t_b.
   FormBounds Bounds(const LinearForm& form, double t_a, double t_b) const;
+  /// The range of the form over [t_a, t_b], t₀ ≤ t_a ≤ t_b (t_b may be +∞ when the
+  /// polynomial part is constant).
+  FormRange Range(const LinearForm& form, double t_a, double t_b) const;
+  /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds.
+  double HomogeneousEnergy(double t) const;
+  /// Stiffness K (N/m), mass m (kg) and whether the cam input is constant on the piece.
+  double stiffness() const { return K_; }
+  double mass() const { return m_; }
+  bool InputConstant() const;
+  /// The static (particular) lift where the input is constant, m.
+  double RestLift() const { return p_[0]; }
   /// The longest step in which the 10-point rule is exact to round-off: half an oscillation
   /// (π over the largest of √(K/m) and the decay rates), s; +∞ for K = c = 0.
   double LongestStep() const { return longest_step_; }
   double start_time() const { return t0_; }
 
  private:
+  struct AuditTerms {
+    double work_J = 0.0, dissipated_J = 0.0;
+  };
+  // W and D over [t₀, t₀ + T] in closed form, given y and ẏ at its end (K > 0).
+  AuditTerms Audit(double T, double y1, double v1) const;
+  // ∫₀ᵀ q(τ) h(τ) dτ for the homogeneous part h, which is h1, hv1 (h, h') at T.
+  double HomogeneousIntegral(const Poly& q, double T, double h1, double hv1) const;
+  // h, h' at t (one-entry cache: bounds and ranges ask at the same t_a).
+  std::array<double, 2> HomogeneousAt(double t) const;
   // e^{−στ}C − 1 and e^{−στ}S at τ ≥ 0.
   void Basis(double tau, double& ecm1, double& es) const;
 
@@ -82,6 +115,8 @@ class ClosedFormPiece {
   Poly u_{}, du_{};             // the cam input in τ (cam mode or not), and its derivative
   double Y0_, V0_;
   double longest_step_;
+  mutable double cached_t_ = -1e300;
+  mutable std::array<double, 2> cached_h_{};
 };
 
 }  // namespace needle

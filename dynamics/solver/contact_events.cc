@@ -115,6 +115,27 @@ bool Recorder::AtRest(double t, const TrainState& x, const Phase& phase) const {
   return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= kRestForceFraction * scale;
 }
 
+bool Recorder::MayChange(const StretchRanges& r) const {
+  if (record_series_ || separated_) return true;
+  // The lift's extremes; the spring force P₀ + k y and (one mass) the segment compression y
+  // grow with the lift, so they follow the largest lift.
+  if (r.y_hi > max_lift_ || r.y_lo < min_lift_ || train_.Coils() > 0) return true;
+  if (r.fc_hi > max_fc_ || r.fs_hi > max_fs_) return true;
+  // The least contact force over the lift, and its share of the holding load.
+  if (r.u_hi > kSeparationLift_m && r.y_hi > kSeparationLift_m) {
+    if (!lifted_) return true;
+    const double f_lo = std::max(0.0, r.fc_lo);
+    if (f_lo < min_fc_lift_) return true;
+    const TrainParameters& p = train_.parameters();
+    const RigidTrain rigid{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N};
+    const double hold_lo = std::min(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
+    const double hold_hi = std::max(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
+    const double ratio_lo = hold_lo > 0.0 ? f_lo / hold_hi : 0.0;
+    if (ratio_lo < min_ratio_) return true;
+  }
+  return false;
+}
+
 bool Recorder::InLift(double crank_rad) const {
   // θ_0 and θ_N are breaks the integrators step to exactly; θ = θ_a + ω t is that angle up to
   // roundoff.
@@ -135,7 +156,14 @@ bool Recorder::Decelerating(double crank_rad) const {
 }
 
 void Recorder::Update(double t, const TrainState& x, const Phase& phase) {
-  const Contacts c = train_.Evaluate(x, t, phase);
+  Update(t, x, phase, train_.Evaluate(x, t, phase));
+}
+
+void Recorder::Sample(double t, const TrainState& x, const Phase& phase, const Contacts& c) {
+  Update(t, x, phase, c);
+}
+
+void Recorder::Update(double t, const TrainState& x, const Phase& phase, const Contacts& c) {
   const double fc = train_.AppliedCamForce(c, phase), fs = train_.AppliedSeatForce(c, phase);
 
   const double th = c.crank_rad;

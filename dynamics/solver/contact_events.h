@@ -98,6 +98,15 @@ struct GridPoint {
   double time_s = 0.0, lift_m = 0.0, contact_force_N = 0.0;
 };
 
+/// Bounds on what a stretch of a run can show, for Recorder::MayChange: lift, cam input, and the
+/// contact and seat forces the mode applies (0 when it does not push), each over the stretch.
+struct StretchRanges {
+  double y_lo = 0.0, y_hi = 0.0;    ///< lift, m
+  double u_hi = 0.0;                ///< cam input, m
+  double fc_lo = 0.0, fc_hi = 0.0;  ///< applied cam force, N
+  double fs_hi = 0.0;               ///< applied seat force, N
+};
+
 /// What a run records. Observers keep output apart from integration: the event driver calls
 /// Sample() at step ends (and a few dense points) and Crossing() at located events, each with
 /// the phase the train is in there (the record takes the forces of its mode).
@@ -108,6 +117,8 @@ class Recorder {
   /// The initial state: a needle already on the cam has no lash to take up.
   void Start(double t, const TrainState& x, const Phase& phase);
   void Sample(double t, const TrainState& x, const Phase& phase);
+  /// The same with the train's contacts at (t, x) in `phase` already evaluated.
+  void Sample(double t, const TrainState& x, const Phase& phase, const Contacts& c);
   /// An event function `index` crossed zero at t in direction ±1; `phase` is the one after
   /// the crossing. `sample` false: an impact whose reset map follows (a rigid contact; its
   /// impulsive force is not a sample of the contact force), recorded without a sample.
@@ -129,6 +140,10 @@ class Recorder {
   /// below kRestForceFraction of the spring and gas loads (so a contact oscillation caught at
   /// its turning point is not taken for rest).
   bool AtRest(double t, const TrainState& x, const Phase& phase) const;
+  /// Whether samples inside a stretch with these ranges could change anything recorded (a
+  /// series is kept, an episode is open, or a range reaches past an extreme recorded so far);
+  /// false: the stretch's interior samples may be left out (method "exact").
+  bool MayChange(const StretchRanges& r) const;
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
@@ -176,6 +191,7 @@ class Recorder {
 
  private:
   void Update(double t, const TrainState& x, const Phase& phase);
+  void Update(double t, const TrainState& x, const Phase& phase, const Contacts& c);
   /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
   bool InLift(double crank_rad) const;
   /// The window the least contact force is taken over (docs/model.md §6): the cam above the

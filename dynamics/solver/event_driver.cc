@@ -79,6 +79,9 @@ class EventDriver {
               const IntegratorOptions& o)
       : train_(train), recorder_(recorder), o_(o), system_(train, o) {
     stepper_ = MakeStepper(method, system_, o);
+    stepper_->SetLongest([this](const ClosedFormPiece& piece, double t, double cap, double limit) {
+      return LongestQuiet(piece, t, cap, limit);
+    });
   }
 
   IntegrationStats Run(const TrainState& x0, double t_end);
@@ -128,7 +131,20 @@ class EventDriver {
     }
   }
 
-  double Value(int i, double t) { return Events(train_, system_.phase, Motion(t), t)[i]; }
+  double Value(int i, double t) {
+    if (value_form_) return value_piece_->FormValue(*value_form_, t);
+    return ValuesAt(t)[i];
+  }
+  // Every witness at t (the last time asked is kept: the certified search asks each witness at
+  // the same ends).
+  const EventValues& ValuesAt(double t) {
+    if (!(t == values_t_ && values_valid_)) {
+      values_ = Events(train_, system_.phase, Motion(t), t);
+      values_t_ = t;
+      values_valid_ = true;
+    }
+    return values_;
+  }
   // The root of witness i inside a bracket [a, b] where it leaves sign s, by TOMS 748 to
   // machine precision: the side past the crossing.
   double Refine(int i, double a, double fa, double b, double fb) {
@@ -185,6 +201,14 @@ class EventDriver {
   // one up to t); false when that option is off. Episodes before jump_checked_ are done with.
   bool JumpReached(double t);
 
+  // The ranges of what the record sees over [t0, t1] of a closed-form piece.
+  StretchRanges Ranges(const ClosedFormPiece& piece, double t0, double t1) const;
+  // The end of a closed-form piece from t past its cap, up to `limit` and the run's end t_end_:
+  // the limit where the stretch cannot change the record (Recorder::MayChange), the cam input
+  // is constant on it (a needle resting on its seat, or hanging in its play) and every witness's
+  // range keeps its sign over it (no crossing, certified without halving), else the cap.
+  double LongestQuiet(const ClosedFormPiece& piece, double t, double cap, double limit) const;
+
   // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
   // sample sets a new largest contact or seat force, or a new least contact force, locates that
   // extreme by Brent's method between the samples around it and records it there.
@@ -200,6 +224,13 @@ class EventDriver {
   // The approach speed of the last impact of each rigid contact while it chatters (cam, seat).
   std::array<std::optional<double>, 2> last_approach_;
   size_t jump_checked_ = 0;  // episodes closed and shorter than o_.stop_jump_rad
+  double t_end_ = 0.0;       // the run's window (pieces are not stretched past it)
+  // While a certified search runs: the witness as a linear form on the piece (Value).
+  const LinearForm* value_form_ = nullptr;
+  const ClosedFormPiece* value_piece_ = nullptr;
+  EventValues values_;  // ValuesAt's last answer, at values_t_ in the current step
+  double values_t_ = 0.0;
+  bool values_valid_ = false;
 };
 
 bool EventDriver::JumpReached(double t) {
@@ -258,9 +289,25 @@ std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i
   const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
   if (!form) throw std::logic_error("exact: a witness without a linear form");
   int budget = kIsolationBudget;
+  // Inside the search the witness is evaluated on the piece's own polynomials, where they agree
+  // in sign with the train's own evaluation at both ends (they differ by round-off: a witness at
+  // zero on a break, or just after a restart, is left to the train's).
+  value_form_ = &*form;
+  value_piece_ = &piece;
+  struct Reset {
+    EventDriver* d;
+    ~Reset() { d->value_form_ = nullptr; }
+  } reset{this};
   const std::optional<Bracket> bracket = Isolate(piece, *form, i, s, {a, wa, b, wb}, budget);
   if (!bracket) return std::nullopt;
-  return Refine(i, bracket->a, bracket->wa, bracket->b, bracket->wb);
+  const double root = Refine(i, bracket->a, bracket->wa, bracket->b, bracket->wb);
+  // The root must be past the crossing for the train's own evaluation too (the two differ by
+  // round-off): else it is refined again on the train's.
+  value_form_ = nullptr;
+  if (SignOf(Value(i, root)) != s) return root;
+  const double fa = Value(i, bracket->a), fb = Value(i, bracket->b);
+  if (SignOf(fa) == s && SignOf(fb) != s) return Refine(i, bracket->a, fa, bracket->b, fb);
+  return Refine(i, a, wa, b, wb);
 }
 
 // On [a, b], w(a) = wa of sign s and w(b) = wb: the earliest sub-interval [lo, hi] where w
@@ -276,6 +323,11 @@ std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& 
                                                          const LinearForm& form, int i, int s,
                                                          const Bracket& in, int& budget) {
   const bool change = SignOf(in.wb) != s;
+  if (!change) {
+    // The values' range over the whole interval: no crossing where it keeps sign s.
+    const FormRange range = piece.Range(form, in.a, in.b);
+    if (s > 0 ? range.lo > 0.0 : range.hi <= 0.0) return std::nullopt;
+  }
   const FormBounds bounds = piece.Bounds(form, in.a, in.b);
   const double h = in.b - in.a;
   const bool monotone = std::abs(bounds.slope_at_start) > bounds.curvature_bound * h;
@@ -293,9 +345,52 @@ std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& 
   return Isolate(piece, form, i, s, {mid, wm, in.b, in.wb}, budget);
 }
 
+StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, double t1) const {
+  const Phase& phase = system_.phase;
+  StretchRanges r;
+  const FormRange y = piece.Range(LinearForm{1.0, 0.0, 0.0, 0.0, 0.0}, t0, t1);
+  r.y_lo = y.lo;
+  r.y_hi = y.hi;
+  r.u_hi = piece.Range(LinearForm{0.0, 0.0, 1.0, 0.0, 0.0}, t0, t1).hi;
+  // The applied forces of linear laws: k g + c ġ in mode, with g_c = u − y, g_s = −y.
+  if (phase.mode.cam) {
+    const double k = train_.cam_law().ForceStiffness(), c = train_.cam_law().ForceDamping();
+    const FormRange f = piece.Range(LinearForm{-k, -c, k, c, 0.0}, t0, t1);
+    r.fc_lo = f.lo;
+    r.fc_hi = f.hi;
+  }
+  if (phase.mode.seat) {
+    const double k = train_.seat_law().ForceStiffness(), c = train_.seat_law().ForceDamping();
+    r.fs_hi = piece.Range(LinearForm{-k, -c, 0.0, 0.0, 0.0}, t0, t1).hi;
+  }
+  return r;
+}
+
+double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double cap,
+                                 double limit) const {
+  const double end = std::min(limit, t_end_);
+  if (!(end > cap) || !piece.InputConstant()) return cap;
+  const StretchRanges ranges = Ranges(piece, t, end);
+  if (recorder_.MayChange(ranges)) return cap;
+  // Every witness's range over the whole stretch keeps the sign it has at t: the certified
+  // search then ends at its first test, without halving a long interval.
+  const bool lifted = ranges.y_lo > kSeparationLift_m;
+  if (lifted != (ranges.y_hi > kSeparationLift_m)) return cap;  // the gate may change
+  const EventValues now = Events(train_, system_.phase, piece.State(t), t);
+  for (int i = 0; i < static_cast<int>(now.size()); ++i) {
+    const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
+    if (!form) return cap;
+    const FormRange range = piece.Range(*form, t, end);
+    if (!(SignOf(now[i]) > 0 ? range.lo > 0.0 : range.hi <= 0.0)) return cap;
+  }
+  return end;
+}
+
 void EventDriver::RecordExtremes(double t0, double t1) {
   constexpr int n = 16;
   const Phase& phase = system_.phase;
+  // Nothing recorded can change inside the stretch: its interior samples are left out.
+  if (!recorder_.MayChange(Ranges(*stepper_->ClosedForm(), t0, t1))) return;
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
   const double min_fc = recorder_.min_contact_force_during_lift_N();
   // The three forces at x, each signed so that its extreme is a minimum.
@@ -309,9 +404,12 @@ void EventDriver::RecordExtremes(double t0, double t1) {
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
     const TrainState x = Motion(ts[k]);
-    const std::array<double, 3> fk = forces(ts[k], x);
-    for (int which = 0; which < 3; ++which) f[which][k] = fk[which];
-    if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase);
+    const Contacts c = train_.Evaluate(x, ts[k], phase);
+    const double fc = train_.AppliedCamForce(c, phase);
+    f[0][k] = -fc;
+    f[1][k] = -train_.AppliedSeatForce(c, phase);
+    f[2][k] = fc;
+    if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase, c);
   }
   const std::array<double, 3> record = {-max_fc, -max_fs, min_fc};
   for (int which = 0; which < 3; ++which) {
@@ -333,6 +431,7 @@ void EventDriver::RecordExtremes(double t0, double t1) {
 
 IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   IntegrationStats stats;
+  t_end_ = t_end;
   const auto started = std::chrono::steady_clock::now();
   Phase& phase = system_.phase;
   const double t_limit = t_end + o_.settle_limit_s;
@@ -360,6 +459,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
                                                        : std::numeric_limits<double>::infinity();
     stepper_->LimitTo(segment_end);
     const auto step = stepper_->DoStep();
+    values_valid_ = false;  // a new dense output (and a new phase after a switch)
     if (++stats.steps > o_.max_steps) ThrowOverBudget("steps", o_.max_steps, train_, step.first);
     // The wall clock, every 64 steps (a clock read costs ~20 ns; a step ~100 ns or more).
     if (o_.max_seconds > 0.0 && stats.steps % 64 == 0 &&
@@ -393,10 +493,12 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
         if (SignOf((*from_values)[i]) != signs[i]) {
           root = from;  // roundoff at a restart: the function is already past zero
         } else if (piece) {
-          // The closed form's step ends at t1 itself (no snapping): its end values serve.
-          const double b = (i == 5 || i == 6) ? gate_end : t1;
+          // The closed form's step ends at t1 itself (no snapping): its end values serve. Only
+          // a crossing before the earliest found so far matters: the search ends there.
+          const double b = std::min((i == 5 || i == 6) ? gate_end : t1, first_t);
           root = Certified(*piece, i, signs[i], from, (*from_values)[i], b,
                            b == step.second ? end_values[i] : Value(i, b));
+          if (root && first >= 0 && !(*root < first_t)) root.reset();
         } else {
           root = Sampled(i, signs[i], from, (*from_values)[i], t1, step.second);
         }
@@ -422,6 +524,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       bool switched = next != phase.mode;
       if (switched) {
         phase.mode = next;
+        values_valid_ = false;
         signs[5] = SignOf(Events(train_, phase, xs, first_t)[5]);  // depends on the mode
         // A rigid contact lets go: the needle leaves its surface from on it (integration
         // drift removed), and the other contact settles against the new state.

@@ -1,14 +1,17 @@
 // The closed-form backend of the event driver (method "exact", docs/model.md §9): each step is
 // one ClosedFormPiece, from the step's start in the driver's contact mode on the cam segment the
 // step lies in, and ends at the driver's limit (a break, the horizon) or after half an
-// oscillation, whichever comes first; its dense output is the closed form itself. The driver
+// oscillation, whichever comes first, unless the driver lets it run on (SetLongest: a stretch in
+// which nothing recorded can change); its dense output is the closed form itself. The driver
 // bounds the witnesses on it (ClosedFormPiece::Bounds) so no crossing is missed.
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "dynamics/solver/stepper.h"
 
@@ -33,7 +36,9 @@ class ExactStepper final : public Stepper {
     const double limit = std::isfinite(stop_) ? stop_ : t_ + 1.0;
     piece_.emplace(train, system_.phase.mode, train.Angle(0.5 * (t_ + limit)), t_, x_);
     const double start = t_;
-    t_ = std::min(stop_, t_ + piece_->LongestStep());
+    const double cap = t_ + piece_->LongestStep();
+    t_ = cap < stop_ && longest_ ? std::max(cap, std::min(stop_, longest_(*piece_, t_, cap, stop_)))
+                                 : std::min(stop_, cap);
     step_ = t_ - start;
     x_ = piece_->State(t_);
     return {start, t_};
@@ -47,12 +52,17 @@ class ExactStepper final : public Stepper {
   double CurrentTime() const override { return t_; }
   double CurrentStep() const override { return step_; }
   const ClosedFormPiece* ClosedForm() const override { return piece_ ? &*piece_ : nullptr; }
+  void SetLongest(
+      std::function<double(const ClosedFormPiece&, double, double, double)> longest) override {
+    longest_ = std::move(longest);
+  }
 
  private:
   TrainSystem& system_;
   TrainState x_{};
   double t_ = 0.0, step_ = 0.0, stop_ = 0.0;
   std::optional<ClosedFormPiece> piece_;
+  std::function<double(const ClosedFormPiece&, double, double, double)> longest_;
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 /// (s = 1 for every state by default, and then z = x exactly).
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <utility>
 
@@ -58,6 +59,9 @@ class Stepper {
   virtual TrainState CurrentState() const = 0;
   virtual double CurrentTime() const = 0;
   virtual double CurrentStep() const = 0;
+  /// Method "exact": `longest(piece, t, cap, limit)` gives the end of a piece that starts at t,
+  /// between its cap (half an oscillation) and the limit (LimitTo); the time steppers ignore it.
+  virtual void SetLongest(std::function<double(const ClosedFormPiece&, double, double, double)>) {}
   /// The last step's motion in closed form (method "exact"), whose bounds let the driver
   /// certify that no witness crossing is missed; nullptr for the time steppers.
   virtual const ClosedFormPiece* ClosedForm() const { return nullptr; }

@@ -239,6 +239,50 @@ TEST(ClosedFormTest, WitnessFormsAreTheWitnesses) {
   }
 }
 
+// The audit integrals W and D in closed form against a composite Gauss–Legendre rule (400 parts
+// of 10 points) on pieces of Example 2's train over tens of contact oscillations: pressed into
+// the cam inside the lift (a cam polynomial of degree 5), in flight above it, and ringing on the
+// seat before the lift; each piece keeps its gaps' signs (as the driver's pieces do: they end
+// at every crossing), so the quadrature's integrand is smooth.
+TEST(ClosedFormTest, TheAuditIntegralsInClosedFormAreTheQuadrature) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml");
+  const Scene s = MakeScene(c);
+  const double omega = OmegaFromRpm(1100), theta_a = DefaultRunWindow(s).start_rad;
+  const NeedleTrain train(*s.cam, s.train, omega, theta_a);
+  const LiftLaw& law = s.cam->law();
+  struct Case {
+    double frac;  // of the lift; < 0: before it
+    ContactMode mode;
+    double dy, dv;  // from the cam (in contact, in flight) or absolute (on the seat)
+  };
+  const Case cases[] = {{0.3, {true, false}, -2e-6, 0.0},
+                        {0.12, {true, false}, -2e-6, 0.0},
+                        {0.3, {false, false}, 2e-5, 0.05},
+                        {0.7, {false, false}, 2e-5, 0.05},
+                        {-0.5, {false, true}, -1e-6, 0.01}};
+  for (const Case& k : cases) {
+    const double th = law.start_rad() + k.frac * (law.end_rad() - law.start_rad());
+    const double t0 = (th - theta_a) / omega, t1 = t0 + 2e-4;
+    const double u = s.cam->U(th), u_rate = omega * s.cam->Slope(th);
+    const TrainState x0 = k.mode.seat ? TrainState{k.dy, k.dv, 0.0, 0.0}
+                                      : TrainState{u + k.dy, u_rate + k.dv, 0.0, 0.0};
+    const ClosedFormPiece piece(train, k.mode, th, t0, x0);
+    const auto gaps = [&](double t) {
+      const double y = piece.Motion(t)[0];
+      return std::array<int, 2>{s.cam->U(train.Angle(t)) - y > 0.0, -y > 0.0};
+    };
+    for (int i = 0; i <= 1000; ++i) {  // the gaps keep their signs
+      ASSERT_EQ(gaps(t0 + (t1 - t0) * i / 1000), gaps(t0)) << k.frac << " at " << i;
+    }
+    const TrainState closed = piece.State(t1), quad = piece.StateByQuadrature(t1, 400);
+    const double scale = std::max({std::abs(quad[2]), std::abs(quad[3]), 1e-9});
+    EXPECT_NEAR(closed[2], quad[2], 1e-11 * scale) << k.frac << " " << k.mode.cam << k.mode.seat;
+    EXPECT_NEAR(closed[3], quad[3], 1e-11 * scale) << k.frac << " " << k.mode.cam << k.mode.seat;
+    if (k.mode.cam) EXPECT_GT(std::abs(quad[2]), 1e-4) << k.frac;       // the cam works
+    if (k.mode.cam || k.mode.seat) EXPECT_GT(quad[3], 1e-9) << k.frac;  // a dashpot dissipates
+  }
+}
+
 // Every bundled scene that runs the dynamics, at its rated speed, by dopri5 at rtol 1e-12 and
 // by the closed form: the same impacts to 1e-9°, the same largest lift to 1e-9 mm.
 class AgreementTest : public testing::TestWithParam<const char*> {};
@@ -262,8 +306,8 @@ TEST_P(AgreementTest, ExactAgreesWithDopri5AtTheTightestTolerance) {
   }
   ASSERT_EQ(d.episodes.size(), e.episodes.size());
   EXPECT_NEAR(d.max_lift_m * 1e3, e.max_lift_m * 1e3, 1e-9);
-  // The audit closes to the round-off of the contact gaps g = u − y (see docs/dynamics.md, "The closed form").
-  EXPECT_LT(e.energy_residual, 5e-11);
+  // The audit closes to round-off: W and D in closed form (docs/exact.md; issue 33: ≤ 1e-12).
+  EXPECT_LT(e.energy_residual, 1e-12);
   std::printf("%s: %zu impacts, dopri5 %ld steps, exact %ld steps, residual %.2e vs %.2e\n",
               GetParam(), e.impacts.size(), d.stats.steps, e.stats.steps, d.energy_residual,
               e.energy_residual);

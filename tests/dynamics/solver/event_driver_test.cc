@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "dynamics/solver/integrator.h"
@@ -87,6 +88,80 @@ TEST(EventDriverTest, ACompliantLawHasNoReset) {
   ASSERT_FALSE(recorder.impacts().empty());
   // An undamped compliant seat returns the needle at its approach speed.
   EXPECT_NEAR(recorder.impacts()[0].speed_m_s, std::sqrt(2.0 * 100.0 * 1e-4), 1e-6);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A needle landing on a damped seat (ω_n = 100 rad/s, ζ = 0.05: a half oscillation is 31 ms)
+// with the cam far away (its input constant): once the ringing cannot beat the extremes
+// recorded in its first swings, method "exact" runs one piece to the end of the window instead
+// of one per half oscillation (issue 33), and records what dopri5 at rtol 1e-12 records.
+TEST(EventDriverTest, ANeedleRingingDownOnItsSeatTakesFewPieces) {
+  const LiftLaw law = FarLaw();
+  const CamInput cam(law, 0.5e-3, RampKind::kLinear, 0.1);
+  TrainParameters p;
+  p.mass_kg = 1.0;
+  p.preload_N = 1.0;  // rests 0.1 mm into the seat, above the cam's 0.5 mm play
+  p.rate_N_m = 0.0;
+  auto seat = std::make_shared<CompliantContact>(1e4, 0.05, p.mass_kg);
+  const NeedleTrain train(cam, p, 1.0, 0.0, nullptr, seat);
+  const TrainState x0 = {-1.2e-4, 0.0, 0.0, 0.0};  // 20 µm off its rest, pressed in
+  const double t_end = 0.75;                       // 24 half oscillations
+  std::array<Recorder, 2> recorders = {Recorder(train, false), Recorder(train, false)};
+  std::array<IntegrationStats, 2> stats;
+  IntegratorOptions o;
+  o.rtol = 1e-12;
+  o.atol_m = 1e-15;
+  o.settle_limit_s = 0.0;
+  stats[0] = Integrate(Method::kExact, train, x0, t_end, recorders[0], o);
+  stats[1] = Integrate(Method::kDopri5, train, x0, t_end, recorders[1], o);
+  // 24 half oscillations, one piece each before; now the first swings, then one piece.
+  EXPECT_LE(stats[0].steps, 12) << stats[1].steps;
+  EXPECT_NEAR(recorders[0].min_lift_m(), recorders[1].min_lift_m(), 1e-12);
+  // The top of the first swing is sampled (witness 6 observes a lifted needle only).
+  EXPECT_NEAR(recorders[0].max_lift_m(), recorders[1].max_lift_m(), 1e-9);
+  EXPECT_NEAR(recorders[0].max_seat_force_N(), recorders[1].max_seat_force_N(), 1e-9);
+  EXPECT_NEAR(stats[0].final_state[0], stats[1].final_state[0], 1e-12);
+  EXPECT_LT(train.EnergyResidual(x0, stats[0].final_state, stats[0].final_time), 1e-12);
+}
+
+// Recorder::MayChange: a stretch may change the record exactly where one of its ranges reaches
+// past an extreme recorded so far, or a series is kept.
+TEST(EventDriverTest, AStretchMayChangeTheRecordOnlyPastItsExtremes) {
+  const LiftLaw law = FarLaw();
+  const CamInput cam(law, 0.5e-3, RampKind::kLinear, 0.1);
+  TrainParameters p;
+  p.mass_kg = 1.0;
+  p.preload_N = 10.0;
+  p.seat_stiffness_N_m = 1e4;
+  const NeedleTrain train(cam, p, 1.0, 0.0);
+  Recorder r(train, false);
+  const Phase seat{ContactMode{false, true}};
+  r.Start(0.0, {-2e-3, 0.0, 0.0, 0.0}, seat);  // 20 N on the seat
+  r.Sample(0.1, {-1e-3, 0.0, 0.0, 0.0}, seat);
+  ASSERT_DOUBLE_EQ(r.max_seat_force_N(), 20.0);
+  StretchRanges inside{-1.9e-3, -1.1e-3, -0.5e-3, 0.0, 0.0, 19.0};
+  EXPECT_FALSE(r.MayChange(inside));
+  StretchRanges s = inside;
+  s.y_hi = -0.9e-3;  // above the largest lift
+  EXPECT_TRUE(r.MayChange(s));
+  s = inside;
+  s.y_lo = -2.1e-3;  // below the least
+  EXPECT_TRUE(r.MayChange(s));
+  s = inside;
+  s.fs_hi = 20.5;  // past the largest seat force
+  EXPECT_TRUE(r.MayChange(s));
+  s = inside;
+  s.fc_hi = 1.0;  // past the largest contact force (0)
+  EXPECT_TRUE(r.MayChange(s));
+  Recorder series(train, true);
+  series.Start(0.0, {-2e-3, 0.0, 0.0, 0.0}, seat);
+  series.Sample(0.1, {-1e-3, 0.0, 0.0, 0.0}, seat);
+  EXPECT_TRUE(series.MayChange(inside));
 }
 
 }  // namespace
