@@ -687,6 +687,11 @@ def check_ranges(args):
 
 
 def main(argv=None):
+    # The command's own lines are its messages: Dask's loggers (a connect retry, a timeout while
+    # closing a client that never had a worker) would add lines of their own to the one line of
+    # a refusal, and more of them on a loaded machine. Only their critical records are shown.
+    import logging
+    logging.getLogger("distributed").setLevel(logging.CRITICAL)
     try:
         args = parser().parse_args(argv)
         check_ranges(args)
