@@ -1,0 +1,42 @@
+#include "apps/bench/bench_common.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace needle::bench {
+
+std::string CaseDir() { return std::string(NEEDLE_SOURCE_DIR) + "/cases/"; }
+
+const std::vector<BenchScene>& Scenes() {
+  static const std::vector<BenchScene> scenes = {
+      {"soft", "basu-cam4-light-spring.toml",
+       "light train, no play, 52 contact oscillations per event", 400},
+      {"stiff", "basu-cam4-stiff-train.toml", "stiff train, 942 contact oscillations per event",
+       400},
+      {"liftoff", "basu-example2.toml",
+       "0.5 mm play on 10-degree ramps at 1500 rpm: lash impact and lift-off", 1500},
+  };
+  return scenes;
+}
+
+const std::vector<Method>& Methods() {
+  static const std::vector<Method> m = {
+      Method::kDopri5,     Method::kRkf78, Method::kRosenbrock4,   Method::kCvodeBdf,
+      Method::kCvodeAdams, Method::kExact, Method::kBaselineDopri5};
+  return m;
+}
+
+std::string Num(double v, int digits) {
+  if (!std::isfinite(v)) return "–";
+  std::ostringstream s;
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+std::vector<std::pair<std::string, double>>& EventRatios() {
+  static std::vector<std::pair<std::string, double>> ratios;
+  return ratios;
+}
+
+}  // namespace needle::bench
