@@ -1,0 +1,147 @@
+#pragma once
+/// @file
+/// Internal to the Python module: Python values to and from the library's (JSON, TOML, numbers,
+/// keywords with their messages), needle.Case (PyCase) and how a function runs a job (Run).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <toml++/toml.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apps/cli/command_output.h"
+#include "apps/scene/case_file.h"
+#include "apps/scene/plausible_ranges.h"
+#include "apps/study/tolerance_study.h"
+#include "lib/case_error.h"
+
+namespace py = pybind11;
+
+namespace needle::python {
+
+// JSON → Python: objects to dicts, arrays to lists, null to None.
+py::object ToPython(const nlohmann::json& j);
+
+// What a command computed, for Python: its JSON object, with the columns and the exit status.
+py::dict Result(const CommandOutput& r);
+
+// Short repr of a Python value, for messages: what the user typed, as Python prints it.
+std::string Repr(const py::handle& v);
+
+std::string TypeName(const py::handle& v);
+
+// "a bool", "an int": the type of a refused value, as Python would name it.
+std::string AType(const py::handle& v);
+
+// A range's end as Python writes a number: 50000, 0.001, 1e-14.
+std::string PyNumber(double v);
+
+// A bool, Python's or NumPy's (numpy.bool_ is no subclass of bool).
+bool IsBool(const py::handle& v);
+
+// A keyword's number, as Python would take it: None is absent; a bool or a non-number is
+// refused; a value outside the option's range is refused as "KEY=VALUE: expected …".
+std::optional<double> Number(const py::object& v, const std::string& key, const std::string& what,
+                             const std::string& range, double lo, double hi);
+
+std::optional<double> Number(const py::object& v, const std::string& key, const std::string& what,
+                             const PlausibleRange& r);
+
+std::optional<double> Speed(const py::object& v, const std::string& key);
+
+// A keyword's whole number in [lo, hi] (a bool, a float or a string is refused).
+unsigned long long Whole(const py::object& v, const std::string& key, const std::string& what,
+                         const PlausibleRange& r);
+
+// A keyword's string (None is absent).
+std::optional<std::string> Text(const py::object& v, const std::string& key,
+                                const std::string& what);
+
+std::optional<std::string> MethodKeyword(const py::object& v);
+
+std::optional<double> Rtol(const py::object& v);
+
+bool Flag(const py::object& v, const std::string& key);
+
+toml::table ToToml(const py::dict& d, const std::string& where);
+
+toml::array ToTomlArray(const py::sequence& s, const std::string& where);
+
+// A case from a dict: the same text the file would hold, read by the same loader.
+std::string TomlText(const py::dict& d, const std::string& name);
+
+// TOML → Python: tables to dicts, arrays to lists (what tomllib gives).
+py::object FromToml(const toml::node& n);
+
+bool IsPath(const py::handle& source);
+
+std::string PathOf(const py::handle& source);
+
+// needle.Case: the case as the sections of its file (plain dicts, read and written like a
+// dict), with the validated Case of the text it last was. A change is validated when assigned
+// at the top level, and whenever the case is run.
+struct PyCase {
+  py::dict data;                       ///< the sections, as the file holds them
+  std::string name;                    ///< its path: messages and relative paths
+  std::string text;                    ///< the TOML text `loaded` was read from
+  std::shared_ptr<const Case> loaded;  ///< the validated case of `text`
+};
+
+// The validated case of the sections as they are now (read again when they changed).
+std::shared_ptr<const Case> Validated(PyCase& pc);
+
+py::dict DeepCopy(const py::dict& d);
+
+std::string NotCsv(const py::object& cycle);
+
+// KeyError(key), as a dict raises it.
+[[noreturn]] void NoKey(const py::object& key);
+
+PyCase LoadAnyCase(const py::object& source, const std::optional<std::string>& name,
+                   const py::object& cycle_arg, const std::string& function);
+
+// The case a function was given: a needle.Case (validated as it is now), a path or a dict.
+std::shared_ptr<const Case> CaseOf(const py::object& source, const std::string& function);
+
+// A bare CSV lift table has no speed: the command's `rpm=` gives it (as --rpm does), else the
+// case must state one.
+void RequireSpeedOf(const Case& c, const std::optional<double>& rpm, const std::string& keyword);
+
+// Runs `compute` without the GIL and returns its result as a dict. A message the command
+// names an option in ("--spline: …", also after the case's path) names the keyword instead
+// (`options`: option, keyword=value).
+template <typename Compute>
+py::dict Run(Compute compute,
+             const std::vector<std::pair<std::string, std::string>>& options = {}) {
+  CommandOutput r;
+  try {
+    py::gil_scoped_release release;
+    r = compute();
+  } catch (const CaseError& e) {
+    const std::string what = e.what();
+    for (const auto& [option, keyword] : options) {
+      const size_t at = what.find(option + ": ");  // first, or after the case's "PATH: "
+      if (at != std::string::npos && (at == 0 || what.compare(at - 2, 2, ": ") == 0))
+        throw CaseError(what.substr(0, at) + keyword + what.substr(at + option.size()));
+    }
+    throw;
+  }
+  return Result(r);
+}
+
+// A shard's samples as arrays: each quantity a column (its keys in order), whether the sample
+// has it (a refused sample has no outputs), pass, the failing items and the refusals.
+py::dict ShardArrays(const std::vector<ToleranceSample>& samples, int first_sample);
+
+// The samples of shards as ShardArrays gives them (or read back from its files), in order.
+std::vector<ToleranceSample> ShardSamples(const py::sequence& shards);
+
+// The folder of this module's file: needle.distributed and the package's Python files live in
+// its subfolder `needle` (the module is a package whose __init__ is compiled).
+std::string ModuleFolder();
+
+}  // namespace needle::python
