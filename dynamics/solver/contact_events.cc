@@ -277,6 +277,10 @@ void Recorder::Accumulation(bool cam, double t, const TrainState& x, const Phase
 void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
   Update(t, x, phase);
   SortSeries(series_);
+  // The run ends where the needle came to rest, which may lie inside the last step already
+  // sampled: its samples past the end are not the run's.
+  const double end_rad = train_.Angle(t);
+  while (!series_.empty() && series_.back().crank_rad > end_rad) series_.pop_back();
   if (separated_) {
     episodes_.back().end_rad = train_.Angle(t);
     episodes_.back().open = true;  // still off cam and seat when the run ends: reported

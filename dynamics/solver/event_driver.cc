@@ -213,6 +213,10 @@ class EventDriver {
   // sample sets a new largest contact or seat force, or a new least contact force, locates that
   // extreme by Brent's method between the samples around it and records it there.
   void RecordExtremes(double t0, double t1);
+  // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
+  // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
+  // moving sample and the first at rest.
+  std::optional<double> FirstRest(double lo, double hi, const Phase& phase);
 
   const NeedleTrain& train_;
   Recorder& recorder_;
@@ -429,6 +433,28 @@ void EventDriver::RecordExtremes(double t0, double t1) {
   }
 }
 
+std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& phase) {
+  if (!(hi > lo))
+    return recorder_.AtRest(hi, At(hi), phase) ? std::optional<double>(hi) : std::nullopt;
+  constexpr int kSamples = 64;
+  double moving = lo;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double tk = lo + (hi - lo) * k / kSamples;
+    if (!recorder_.AtRest(tk, At(tk), phase)) {
+      moving = tk;
+      continue;
+    }
+    if (k == 0) return tk;
+    double a = moving, b = tk;  // moving at a, at rest at b
+    for (int i = 0; i < 60 && b - a > 1e-12 * (1.0 + std::abs(b)); ++i) {
+      const double m = 0.5 * (a + b);
+      (recorder_.AtRest(m, At(m), phase) ? b : a) = m;
+    }
+    return b;
+  }
+  return std::nullopt;
+}
+
 IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   IntegrationStats stats;
   t_end_ = t_end;
@@ -597,6 +623,15 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       break;
     }
     bool extended;  // the horizon moved past t_end: the backend restarts as past a break
+    if (t >= t_end) {
+      // The run ends where the needle came to rest, wherever in the step that was (a step of
+      // the closed form may span many oscillations of a needle ringing down on its seat).
+      if (const std::optional<double> rest = FirstRest(std::max(t0, t_end), t1, phase)) {
+        t = *rest;
+        x = At(t);
+        break;
+      }
+    }
     if (RunIsOver(t, x, phase, recorder_, t_end, t_limit, horizon, extended)) break;
     if (at_segment_end && t < horizon && train_.HasConstraint() &&
         train_.cam().SlopeMayJump(phase.segment_end_rad)) {
