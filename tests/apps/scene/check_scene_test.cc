@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "apps/scene/case_scene.h"
+
 namespace needle {
 namespace {
 
@@ -529,6 +531,40 @@ TEST(CheckSceneTest, ALimitTheCaseSetsNamesItsKey) {
   const CheckResult rd = CheckScene(d, MakeLiftLaw(d), o);
   EXPECT_EQ(Row(rd, "seating_velocity").source, "Blair: optimum ramp velocity 1.0-1.5 m/s");
   EXPECT_EQ(Row(rd, "separation_margin").source, "model: n_dyn > f n");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// The inertia sizing takes the larger magnitude of the lift's acceleration, whichever its sign
+// and the margins are the preload's over the required preload and over S·F_g (survivors of
+// scripts/mutate.py on spring_check.cc: m·max|a| and the margins were never asserted).
+TEST(CheckSceneTest, TheInertiaForceIsTheMassTimesTheLargerAccelerationMagnitude) {
+  for (const char* name : {"basu-example1.toml", "basu-example2.toml"}) {
+    const Case c = LoadCase(kCases + name);
+    const LiftLaw law = MakeLiftLaw(c);
+    const SpringCheckResult s = CheckSpring(c, law, c.engine.speed_rpm);
+    const double up = *s.kinematics.max_acceleration_m_s2;
+    const double down = *s.kinematics.min_acceleration_m_s2;
+    ASSERT_NE(std::abs(up), std::abs(down)) << name;
+    const bool up_wins = std::abs(up) > std::abs(down);
+    EXPECT_EQ(s.max_abs_acceleration_m_s2, std::max(std::abs(up), std::abs(down))) << name;
+    EXPECT_EQ(s.max_abs_acceleration_rad,
+              up_wins ? *s.kinematics.max_acceleration_rad : *s.kinematics.min_acceleration_rad)
+        << name;
+    EXPECT_EQ(s.inertia_force_N, c.needle->mass_kg * s.max_abs_acceleration_m_s2) << name;
+    // The margins, where the required preload and the gas load are positive.
+    ASSERT_GT(s.required_preload_N, 0.0) << name;
+    ASSERT_GT(s.gas_force_N, 0.0) << name;
+    const double p0 = s.train.preload_N, sfg = s.safety_factor * s.gas_force_N;
+    EXPECT_DOUBLE_EQ(s.preload_margin_percent,
+                     100 * (p0 - s.required_preload_N) / s.required_preload_N)
+        << name;
+    EXPECT_DOUBLE_EQ(s.combustion_margin_percent, 100 * (p0 - sfg) / sfg) << name;
+  }
 }
 
 }  // namespace
