@@ -569,3 +569,98 @@ TEST(CheckSceneTest, TheInertiaForceIsTheMassTimesTheLargerAccelerationMagnitude
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A [needle] without a [spring] is checked as kinematics, the spring check named as skipped
+// (a survivor of scripts/mutate.py on CheckScene: the spring check ran on a needle alone).
+TEST(CheckSceneTest, ANeedleWithoutASpringSkipsTheSpringCheck) {
+  const Case c = ParseCase(kSmall + "[needle]\nmass_kg = 0.5\n", "t.toml");
+  ASSERT_TRUE(c.needle && !c.spring);
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  EXPECT_TRUE(r.pass);
+  EXPECT_FALSE(r.spring);
+  EXPECT_TRUE(Contains(r.skipped, "spring check: the case has no [needle] and [spring] sections"));
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Without roller play the lash analysis is named as skipped, with play it is not (survivors of
+// scripts/mutate.py on CheckScene: the skipped line was never asserted).
+TEST(CheckSceneTest, NoRollerPlaySkipsTheLashAnalysis) {
+  Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
+  CheckOptions o;
+  o.record_series = false;
+  const std::string skipped = "lash analysis: no roller play ([train] play_mm = 0)";
+  const CheckResult with_play = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_FALSE(Contains(with_play.skipped, skipped));
+  // A spring given by its rate alone has no coils to study (a survivor too: the surge study ran
+  // on a spring without geometry).
+  EXPECT_FALSE(with_play.surge);
+  EXPECT_EQ(with_play.surge_reason, "no helical spring geometry");
+  c.train->play_m = 0.0;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_TRUE(Contains(r.skipped, skipped));
+  EXPECT_EQ(Row(r, "lash_impact_speed").verdict, "not judged");
+  EXPECT_EQ(Row(r, "lash_impact_speed").note,
+            "no roller play ([train] play_mm = 0): no lash to take up");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A sweep whose run stops on its step budget before it shows lift-off is undecided and fails
+// the check, named as a run's budget (not the scan's): the medium-speed engine swept from
+// 50 rpm with [solver] max_steps = 300, which its 500 rpm run (135 steps) keeps (survivors of
+// scripts/mutate.py on CheckScene: no test had an undecided sweep).
+TEST(CheckSceneTest, ASweepRunStoppedOnItsBudgetIsUndecidedAndFails) {
+  Case c = ParseCase(MediumSpeedEngine(6) + "[solver]\nmax_steps = 300\n", "medium.toml");
+  c.overspeed->from_rpm = 50;
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_EQ(r.run->status, RunStatus::kComplete) << r.run->status_reason;
+  EXPECT_EQ(r.sweep->status, "run-budget");
+  EXPECT_FALSE(r.pass);
+  ASSERT_EQ(r.failing.size(), 1u);
+  EXPECT_EQ(r.failing[0],
+            "overspeed: undecided above 50.0 rpm (the run there stopped on its budget)");
+  EXPECT_EQ(Row(r, "separation_margin").verdict, "not judged");
+  EXPECT_EQ(Row(r, "separation_margin").note, "the sweep is undecided (run-budget)");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A flat follower's profile has a cusp where a roller's undercuts: the small lift on a 5 mm base
+// circle (a survivor of scripts/mutate.py on CheckScene: the flat follower's word was never
+// asserted).
+TEST(CheckSceneTest, AFlatFollowersProfileHasACusp) {
+  const Case flat =
+      ParseCase(kSmall + "[profile]\nfollower = \"flat\"\nbase_radius_mm = 5\n", "t.toml");
+  const CheckResult r = CheckScene(flat, MakeLiftLaw(flat));
+  EXPECT_FALSE(r.pass);
+  EXPECT_EQ(r.failing, std::vector<std::string>{
+                           "cam profile: the profile has a cusp (least radius -386.94 mm at cam "
+                           "10.0°)"});
+  const Case roller =
+      ParseCase(kSmall + "[profile]\nbase_radius_mm = 5\nroller_radius_mm = 4\n", "t.toml");
+  const CheckResult u = CheckScene(roller, MakeLiftLaw(roller));
+  EXPECT_EQ(u.failing, std::vector<std::string>{
+                           "cam profile: the profile undercuts (least radius -3.70 mm at cam "
+                           "10.0°)"});
+}
+
+}  // namespace
+}  // namespace needle
