@@ -737,3 +737,37 @@ TEST(CaseFileTest, TheDocsRangesTableIsTheCodes) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// The helical keys a grade, a stress correction and an allowable fraction set, each read and
+// each bounded (survivors of scripts/mutate.py on spring_sections.cc: none was asserted).
+TEST(CaseFileTest, TheHelicalSpringsCorrectionAllowableFractionAndModulus) {
+  const std::string spring = kHelicalSpring + "grade = \"VDSiCr\"\n";
+  // A certificate's modulus wins over the grade's, as its tensile strength does.
+  EXPECT_DOUBLE_EQ(
+      ParseCase(spring + "shear_modulus_GPa = 81\n", "t.toml").spring->helical->shear_modulus_Pa,
+      81e9);
+  const std::string plain = kHelicalSpring + "shear_modulus_GPa = 80\ntensile_MPa = 1800\n";
+  EXPECT_FALSE(ParseCase(plain, "t.toml").spring->helical->wahl);
+  EXPECT_TRUE(ParseCase(plain + "stress_correction = \"wahl\"\n", "t.toml").spring->helical->wahl);
+  EXPECT_FALSE(
+      ParseCase(plain + "stress_correction = \"bergstrasser\"\n", "t.toml").spring->helical->wahl);
+  EXPECT_EQ(Error(plain + "stress_correction = \"goehner\"\n"),
+            "t.toml: [spring] stress_correction: expected \"bergstrasser\" or \"wahl\", got "
+            "\"goehner\"");
+  const auto fraction = [&](const std::string& f) {
+    return ParseCase(plain + "allowable_stress_fraction = " + f + "\n", "t.toml")
+        .spring->helical->allowable_fraction;
+  };
+  EXPECT_DOUBLE_EQ(fraction("0.45"), 0.45);
+  EXPECT_DOUBLE_EQ(fraction("1"), 1.0);  // the upper end is in
+  EXPECT_EQ(Error(plain + "allowable_stress_fraction = 0\n"),
+            "t.toml: [spring] allowable_stress_fraction: must be in (0, 1], got 0");
+  EXPECT_EQ(Error(plain + "allowable_stress_fraction = 1.2\n"),
+            "t.toml: [spring] allowable_stress_fraction: must be in (0, 1], got 1.2");
+}
+
+}  // namespace
+}  // namespace needle
