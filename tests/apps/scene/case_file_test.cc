@@ -771,3 +771,30 @@ TEST(CaseFileTest, TheHelicalSpringsCorrectionAllowableFractionAndModulus) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Basu's tolerance is a percentage in 0…100, both ends in (survivors of scripts/mutate.py on
+// spring_sections.cc: the key was never read in a test).
+TEST(CaseFileTest, BasusToleranceIsAPercentageFrom0To100) {
+  const auto tolerance = [](const std::string& t) {
+    return ParseCase(kHelicalSpring +
+                         "shear_modulus_GPa = 80\ntensile_MPa = 1800\n"
+                         "basu_tolerance_percent = " +
+                         t + "\n",
+                     "t.toml")
+        .spring->basu_tolerance_percent;
+  };
+  EXPECT_DOUBLE_EQ(tolerance("0"), 0.0);
+  EXPECT_DOUBLE_EQ(tolerance("12.5"), 12.5);
+  EXPECT_DOUBLE_EQ(tolerance("100"), 100.0);
+  const std::string plain = kHelicalSpring + "shear_modulus_GPa = 80\ntensile_MPa = 1800\n";
+  EXPECT_EQ(Error(plain + "basu_tolerance_percent = -1\n"),
+            "t.toml: [spring] basu_tolerance_percent: must be in 0…100, got -1");
+  EXPECT_EQ(Error(plain + "basu_tolerance_percent = 101\n"),
+            "t.toml: [spring] basu_tolerance_percent: must be in 0…100, got 101");
+}
+
+}  // namespace
+}  // namespace needle
