@@ -798,3 +798,23 @@ TEST(CaseFileTest, BasusToleranceIsAPercentageFrom0To100) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// [limits] poisson is in [0, 0.5): 0 in, 0.5 out (survivors of scripts/mutate.py on
+// spring_sections.cc: the key was never read in a test).
+TEST(CaseFileTest, ThePoissonRatioIsFrom0ToBelowOneHalf) {
+  const auto poisson = [](const std::string& nu) {
+    return ParseCase(kGood + "[limits]\npoisson = " + nu + "\n", "t.toml").limits.poisson;
+  };
+  EXPECT_DOUBLE_EQ(poisson("0"), 0.0);
+  EXPECT_DOUBLE_EQ(poisson("0.28"), 0.28);
+  EXPECT_EQ(Error(kGood + "[limits]\npoisson = 0.5\n"),
+            "t.toml: [limits] poisson: must be in [0, 0.5), got 0.5");
+  EXPECT_EQ(Error(kGood + "[limits]\npoisson = -0.1\n"),
+            "t.toml: [limits] poisson: must be in [0, 0.5), got -0.1");
+}
+
+}  // namespace
+}  // namespace needle
