@@ -818,3 +818,41 @@ TEST(CaseFileTest, ThePoissonRatioIsFrom0ToBelowOneHalf) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// [solver]'s method, tolerances, wall-time budget, settle angle and window, each read and each
+// bounded at both ends (survivors of scripts/mutate.py on run_sections.cc).
+TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
+  const auto solver = [](const std::string& keys) {
+    return *ParseCase(kGood + "[solver]\n" + keys + "\n", "t.toml").solver;
+  };
+  const auto error = [](const std::string& keys) { return Error(kGood + "[solver]\n" + keys); };
+  EXPECT_EQ(solver("method = \"auto\"").method, "auto");
+  EXPECT_EQ(solver("method = \"dopri5\"").method, "dopri5");
+  EXPECT_EQ(error("method = \"euler\"").rfind("t.toml: [solver] method: expected one of auto, ", 0),
+            0u);
+  EXPECT_DOUBLE_EQ(solver("rtol = 1e-8").rtol, 1e-8);
+  EXPECT_EQ(error("rtol = 0.5").rfind("t.toml: [solver] rtol: must be in ", 0), 0u);
+  EXPECT_DOUBLE_EQ(*solver("atol_mm = 1e-6").atol_m, 1e-9);
+  EXPECT_EQ(error("atol_mm = 0"), "t.toml: [solver] atol: must be positive");
+  EXPECT_DOUBLE_EQ(solver("max_seconds = 0").max_seconds, 0.0);
+  EXPECT_DOUBLE_EQ(solver("max_seconds = 86400").max_seconds, 86400.0);
+  EXPECT_EQ(error("max_seconds = -1"),
+            "t.toml: [solver] max_seconds: must be in [0, 86400] s (0: no wall-time budget), got "
+            "-1");
+  EXPECT_EQ(error("max_seconds = 86401"),
+            "t.toml: [solver] max_seconds: must be in [0, 86400] s (0: no wall-time budget), got "
+            "86401");
+  EXPECT_DOUBLE_EQ(solver("settle_deg = 36000").settle_limit_deg, 36000.0);
+  EXPECT_EQ(error("settle_deg = 36001"),
+            "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 36001");
+  EXPECT_DOUBLE_EQ(*solver("start_deg = -20").start_rad, -20 * kDeg);
+  EXPECT_FALSE(solver("start_deg = -20").end_rad);
+  EXPECT_EQ(error("start_deg = 10\nend_deg = 5"),
+            "t.toml: [solver] end_deg: must be after start_deg");
+}
+
+}  // namespace
+}  // namespace needle
