@@ -856,3 +856,30 @@ TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// [profile]'s lever ratio and point count and a [tolerance] σ, read and bounded (survivors of
+// scripts/mutate.py on run_sections.cc).
+TEST(CaseFileTest, TheProfilePointsLeverAndAToleranceSigmaAreBounded) {
+  const std::string profile = kGood + "[profile]\nbase_radius_mm = 20\nroller_radius_mm = 5\n";
+  const Case c = ParseCase(profile + "lever_ratio = 1.5\npoints = 8\n", "t.toml");
+  EXPECT_DOUBLE_EQ(c.profile->follower.lever_ratio, 1.5);
+  EXPECT_EQ(c.profile->points, 8);
+  EXPECT_EQ(Error(profile + "lever_ratio = 0\n"),
+            "t.toml: [profile] lever_ratio: must be positive, got 0");
+  for (const char* n : {"4", "2e6", "8.5"}) {
+    EXPECT_EQ(Error(profile + "points = " + n + "\n"),
+              "t.toml: [profile] points: must be a whole number in 8…1e6")
+        << n;
+  }
+  EXPECT_DOUBLE_EQ(
+      ParseCase(kGood + "[tolerance]\nmass_percent = 50\n", "t.toml").tolerance->mass_fraction,
+      0.5);
+  EXPECT_EQ(Error(kGood + "[tolerance]\nmass_percent = 60\n"),
+            "t.toml: [tolerance] mass_percent: must be ≥ 0 and at most 50 %, got 60 %");
+}
+
+}  // namespace
+}  // namespace needle
