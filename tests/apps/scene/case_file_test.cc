@@ -883,3 +883,24 @@ TEST(CaseFileTest, TheProfilePointsLeverAndAToleranceSigmaAreBounded) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A normal curve or a CSV with half a lift table (crank_deg alone, or lift_mm alone) is refused
+// as one with the whole table (survivors of scripts/mutate.py on lift_section.cc).
+TEST(CaseFileTest, HalfALiftTableBesideANormalCurveOrACsvIsRefused) {
+  const std::string head = "[engine]\nspeed_rpm = 400\n[lift]\n";
+  for (const char* half : {"crank_deg = [0, 10]\n", "lift_mm = [0, 1]\n"}) {
+    EXPECT_EQ(Error(head + "normal_curve = \"basu\"\nmax_lift_mm = 1\n" + half),
+              "t.toml: [lift] normal_curve: give either normal_curve or crank_deg + lift_mm, not "
+              "both")
+        << half;
+    EXPECT_EQ(Error(head + "csv = \"lift.csv\"\n" + half),
+              "t.toml: [lift] csv: give either csv or crank_deg + lift_mm, not both")
+        << half;
+  }
+}
+
+}  // namespace
+}  // namespace needle
