@@ -904,3 +904,29 @@ TEST(CaseFileTest, HalfALiftTableBesideANormalCurveOrACsvIsRefused) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// open_deg lies in [first, last) of the table, close_deg in (first, last], close after open
+// (survivors of scripts/mutate.py on lift_section.cc).
+TEST(CaseFileTest, OpenAndCloseLieInsideTheTable) {
+  const auto lift = [](const std::string& keys) {
+    return ParseCase(kGood + keys + "\n", "t.toml").lift;
+  };
+  EXPECT_DOUBLE_EQ(*lift("open_deg = -10").open_rad, -10 * kDeg);
+  EXPECT_DOUBLE_EQ(*lift("close_deg = 30").close_rad, 30 * kDeg);
+  EXPECT_EQ(Error(kGood + "open_deg = 30\n"),
+            "t.toml: [lift] open_deg: must lie inside the table (-10 to 30 deg), got 30");
+  EXPECT_EQ(Error(kGood + "open_deg = -11\n"),
+            "t.toml: [lift] open_deg: must lie inside the table (-10 to 30 deg), got -11");
+  EXPECT_EQ(Error(kGood + "close_deg = -10\n"),
+            "t.toml: [lift] close_deg: must lie inside the table (-10 to 30 deg), got -10");
+  EXPECT_EQ(Error(kGood + "close_deg = 31\n"),
+            "t.toml: [lift] close_deg: must lie inside the table (-10 to 30 deg), got 31");
+  EXPECT_EQ(Error(kGood + "open_deg = 10\nclose_deg = 10\n"),
+            "t.toml: [lift] close_deg: must be after open_deg");
+}
+
+}  // namespace
+}  // namespace needle
