@@ -930,3 +930,30 @@ TEST(CaseFileTest, OpenAndCloseLieInsideTheTable) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// end_slope belongs to a clamped spline given as such and reads "at-rest" only; smoothing to a
+// smoothing spline, its rule read by name (survivors of scripts/mutate.py on lift_section.cc).
+TEST(CaseFileTest, EndSlopesAndTheSmoothingRuleBelongToTheirSplines) {
+  const auto with = [](const std::string& keys) { return kGood + keys + "\n"; };
+  EXPECT_EQ(
+      ParseCase(with("spline = \"clamped\"\nend_slope = \"at-rest\""), "t.toml").lift.spline.kind,
+      SplineKind::kClamped);
+  EXPECT_EQ(Error(with("spline = \"clamped\"\nend_slope = \"moving\"")),
+            "t.toml: [lift] end_slope: expected \"at-rest\" or end_slope_mm_deg = [start, end]");
+  EXPECT_EQ(Error(with("spline = \"natural\"\nend_slope = \"at-rest\"")),
+            "t.toml: [lift] end_slope: applies to spline = \"clamped\" only");
+  EXPECT_EQ(ParseCase(with("spline = \"smoothing\"\nsmoothing = \"gcv\""), "t.toml")
+                .lift.spline.smoothing_rule,
+            SmoothingRule::kGcv);
+  EXPECT_EQ(ParseCase(with("spline = \"smoothing\"\nsmoothing = \"discrepancy\""), "t.toml")
+                .lift.spline.smoothing_rule,
+            SmoothingRule::kDiscrepancy);
+  EXPECT_EQ(Error(with("spline = \"smoothing\"\nsmoothing = \"lcurve\"")),
+            "t.toml: [lift] smoothing: expected \"discrepancy\" or \"gcv\", got \"lcurve\"");
+}
+
+}  // namespace
+}  // namespace needle
