@@ -108,6 +108,38 @@ TEST(SimulationTest, LashTakeUpStrikesAtOmegaTimesTheRampSlope) {
   }
 }
 
+// JudgeFollowing (docs/model.md §6) on Example 2 at 400 rpm: the nominal run is complete; a
+// sign-typo'd stiffness (5e-8 N/m) leaves the needle on its seat, short of the cam's lift; a seat
+// too soft for P0 - F_g lets the needle rest more than 10 % of the lift into it; a run asked to
+// stop past the lift is judged too (survivors of scripts/mutate.py on JudgeFollowing).
+TEST(SimulationTest, ARunThatDoesNotFollowItsCamIsNotFollowing) {
+  const Case nominal = LoadCase(kCases + "basu-example2.toml");
+  const SimulationOptions o = Options("dopri5", 1e-8);
+  const SimulationResult ok = Simulate(MakeScene(nominal), 400, o);
+  EXPECT_EQ(RunStatusName(ok.status), "complete") << ok.status_reason;
+  SimulationOptions stop = o;
+  stop.stop_at_liftoff = true;
+  const SimulationResult ok_stopped = Simulate(MakeScene(nominal), 400, stop);
+  EXPECT_EQ(RunStatusName(ok_stopped.status), "stopped") << ok_stopped.status_reason;
+
+  Case soft = nominal;
+  soft.train->contact_stiffness_N_m = soft.train->seat_stiffness_N_m = 5e-8;
+  for (const SimulationOptions& with : {o, stop}) {
+    const SimulationResult r = Simulate(MakeScene(soft), 400, with);
+    EXPECT_EQ(RunStatusName(r.status), "not-following");
+    EXPECT_EQ(r.status_reason.rfind("the needle does not follow the cam: its largest lift ", 0), 0u)
+        << r.status_reason;
+  }
+
+  Case sinks = nominal;
+  const Scene s = MakeScene(nominal);
+  sinks.train->seat_stiffness_N_m = (s.train.preload_N - s.train.gas_force_N) /
+                                    (0.2 * s.law->Max(0).value);  // rests 20 % of the lift deep
+  const SimulationResult r = Simulate(MakeScene(sinks), 400, o);
+  EXPECT_EQ(RunStatusName(r.status), "not-following");
+  EXPECT_EQ(r.status_reason.rfind("the needle rests ", 0), 0u) << r.status_reason;
+}
+
 TEST(SimulationTest, TheTwoIntegratorsAgreeOnEventAnglesTo1e6Degrees) {
   Case c = LoadCase(kCases + "basu-example2.toml");
   const Scene s = MakeScene(c);

@@ -737,3 +737,223 @@ TEST(CaseFileTest, TheDocsRangesTableIsTheCodes) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// The helical keys a grade, a stress correction and an allowable fraction set, each read and
+// each bounded (survivors of scripts/mutate.py on spring_sections.cc: none was asserted).
+TEST(CaseFileTest, TheHelicalSpringsCorrectionAllowableFractionAndModulus) {
+  const std::string spring = kHelicalSpring + "grade = \"VDSiCr\"\n";
+  // A certificate's modulus wins over the grade's, as its tensile strength does.
+  EXPECT_DOUBLE_EQ(
+      ParseCase(spring + "shear_modulus_GPa = 81\n", "t.toml").spring->helical->shear_modulus_Pa,
+      81e9);
+  const std::string plain = kHelicalSpring + "shear_modulus_GPa = 80\ntensile_MPa = 1800\n";
+  EXPECT_FALSE(ParseCase(plain, "t.toml").spring->helical->wahl);
+  EXPECT_TRUE(ParseCase(plain + "stress_correction = \"wahl\"\n", "t.toml").spring->helical->wahl);
+  EXPECT_FALSE(
+      ParseCase(plain + "stress_correction = \"bergstrasser\"\n", "t.toml").spring->helical->wahl);
+  EXPECT_EQ(Error(plain + "stress_correction = \"goehner\"\n"),
+            "t.toml: [spring] stress_correction: expected \"bergstrasser\" or \"wahl\", got "
+            "\"goehner\"");
+  const auto fraction = [&](const std::string& f) {
+    return ParseCase(plain + "allowable_stress_fraction = " + f + "\n", "t.toml")
+        .spring->helical->allowable_fraction;
+  };
+  EXPECT_DOUBLE_EQ(fraction("0.45"), 0.45);
+  EXPECT_DOUBLE_EQ(fraction("1"), 1.0);  // the upper end is in
+  EXPECT_EQ(Error(plain + "allowable_stress_fraction = 0\n"),
+            "t.toml: [spring] allowable_stress_fraction: must be in (0, 1], got 0");
+  EXPECT_EQ(Error(plain + "allowable_stress_fraction = 1.2\n"),
+            "t.toml: [spring] allowable_stress_fraction: must be in (0, 1], got 1.2");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Basu's tolerance is a percentage in 0…100, both ends in (survivors of scripts/mutate.py on
+// spring_sections.cc: the key was never read in a test).
+TEST(CaseFileTest, BasusToleranceIsAPercentageFrom0To100) {
+  const auto tolerance = [](const std::string& t) {
+    return ParseCase(kHelicalSpring +
+                         "shear_modulus_GPa = 80\ntensile_MPa = 1800\n"
+                         "basu_tolerance_percent = " +
+                         t + "\n",
+                     "t.toml")
+        .spring->basu_tolerance_percent;
+  };
+  EXPECT_DOUBLE_EQ(tolerance("0"), 0.0);
+  EXPECT_DOUBLE_EQ(tolerance("12.5"), 12.5);
+  EXPECT_DOUBLE_EQ(tolerance("100"), 100.0);
+  const std::string plain = kHelicalSpring + "shear_modulus_GPa = 80\ntensile_MPa = 1800\n";
+  EXPECT_EQ(Error(plain + "basu_tolerance_percent = -1\n"),
+            "t.toml: [spring] basu_tolerance_percent: must be in 0…100, got -1");
+  EXPECT_EQ(Error(plain + "basu_tolerance_percent = 101\n"),
+            "t.toml: [spring] basu_tolerance_percent: must be in 0…100, got 101");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// [limits] poisson is in [0, 0.5): 0 in, 0.5 out (survivors of scripts/mutate.py on
+// spring_sections.cc: the key was never read in a test).
+TEST(CaseFileTest, ThePoissonRatioIsFrom0ToBelowOneHalf) {
+  const auto poisson = [](const std::string& nu) {
+    return ParseCase(kGood + "[limits]\npoisson = " + nu + "\n", "t.toml").limits.poisson;
+  };
+  EXPECT_DOUBLE_EQ(poisson("0"), 0.0);
+  EXPECT_DOUBLE_EQ(poisson("0.28"), 0.28);
+  EXPECT_EQ(Error(kGood + "[limits]\npoisson = 0.5\n"),
+            "t.toml: [limits] poisson: must be in [0, 0.5), got 0.5");
+  EXPECT_EQ(Error(kGood + "[limits]\npoisson = -0.1\n"),
+            "t.toml: [limits] poisson: must be in [0, 0.5), got -0.1");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// [solver]'s method, tolerances, wall-time budget, settle angle and window, each read and each
+// bounded at both ends (survivors of scripts/mutate.py on run_sections.cc).
+TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
+  const auto solver = [](const std::string& keys) {
+    return *ParseCase(kGood + "[solver]\n" + keys + "\n", "t.toml").solver;
+  };
+  const auto error = [](const std::string& keys) { return Error(kGood + "[solver]\n" + keys); };
+  EXPECT_EQ(solver("method = \"auto\"").method, "auto");
+  EXPECT_EQ(solver("method = \"dopri5\"").method, "dopri5");
+  EXPECT_EQ(error("method = \"euler\"").rfind("t.toml: [solver] method: expected one of auto, ", 0),
+            0u);
+  EXPECT_DOUBLE_EQ(solver("rtol = 1e-8").rtol, 1e-8);
+  EXPECT_EQ(error("rtol = 0.5").rfind("t.toml: [solver] rtol: must be in ", 0), 0u);
+  EXPECT_DOUBLE_EQ(*solver("atol_mm = 1e-6").atol_m, 1e-9);
+  EXPECT_EQ(error("atol_mm = 0"), "t.toml: [solver] atol: must be positive");
+  EXPECT_DOUBLE_EQ(solver("max_seconds = 0").max_seconds, 0.0);
+  EXPECT_DOUBLE_EQ(solver("max_seconds = 86400").max_seconds, 86400.0);
+  EXPECT_EQ(error("max_seconds = -1"),
+            "t.toml: [solver] max_seconds: must be in [0, 86400] s (0: no wall-time budget), got "
+            "-1");
+  EXPECT_EQ(error("max_seconds = 86401"),
+            "t.toml: [solver] max_seconds: must be in [0, 86400] s (0: no wall-time budget), got "
+            "86401");
+  EXPECT_DOUBLE_EQ(solver("settle_deg = 36000").settle_limit_deg, 36000.0);
+  EXPECT_EQ(error("settle_deg = 36001"),
+            "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 36001");
+  EXPECT_DOUBLE_EQ(*solver("start_deg = -20").start_rad, -20 * kDeg);
+  EXPECT_FALSE(solver("start_deg = -20").end_rad);
+  EXPECT_EQ(error("start_deg = 10\nend_deg = 5"),
+            "t.toml: [solver] end_deg: must be after start_deg");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// [profile]'s lever ratio and point count and a [tolerance] σ, read and bounded (survivors of
+// scripts/mutate.py on run_sections.cc).
+TEST(CaseFileTest, TheProfilePointsLeverAndAToleranceSigmaAreBounded) {
+  const std::string profile = kGood + "[profile]\nbase_radius_mm = 20\nroller_radius_mm = 5\n";
+  const Case c = ParseCase(profile + "lever_ratio = 1.5\npoints = 8\n", "t.toml");
+  EXPECT_DOUBLE_EQ(c.profile->follower.lever_ratio, 1.5);
+  EXPECT_EQ(c.profile->points, 8);
+  EXPECT_EQ(Error(profile + "lever_ratio = 0\n"),
+            "t.toml: [profile] lever_ratio: must be positive, got 0");
+  for (const char* n : {"4", "2e6", "8.5"}) {
+    EXPECT_EQ(Error(profile + "points = " + n + "\n"),
+              "t.toml: [profile] points: must be a whole number in 8…1e6")
+        << n;
+  }
+  EXPECT_DOUBLE_EQ(
+      ParseCase(kGood + "[tolerance]\nmass_percent = 50\n", "t.toml").tolerance->mass_fraction,
+      0.5);
+  EXPECT_EQ(Error(kGood + "[tolerance]\nmass_percent = 60\n"),
+            "t.toml: [tolerance] mass_percent: must be ≥ 0 and at most 50 %, got 60 %");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A normal curve or a CSV with half a lift table (crank_deg alone, or lift_mm alone) is refused
+// as one with the whole table (survivors of scripts/mutate.py on lift_section.cc).
+TEST(CaseFileTest, HalfALiftTableBesideANormalCurveOrACsvIsRefused) {
+  const std::string head = "[engine]\nspeed_rpm = 400\n[lift]\n";
+  for (const char* half : {"crank_deg = [0, 10]\n", "lift_mm = [0, 1]\n"}) {
+    EXPECT_EQ(Error(head + "normal_curve = \"basu\"\nmax_lift_mm = 1\n" + half),
+              "t.toml: [lift] normal_curve: give either normal_curve or crank_deg + lift_mm, not "
+              "both")
+        << half;
+    EXPECT_EQ(Error(head + "csv = \"lift.csv\"\n" + half),
+              "t.toml: [lift] csv: give either csv or crank_deg + lift_mm, not both")
+        << half;
+  }
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// open_deg lies in [first, last) of the table, close_deg in (first, last], close after open
+// (survivors of scripts/mutate.py on lift_section.cc).
+TEST(CaseFileTest, OpenAndCloseLieInsideTheTable) {
+  const auto lift = [](const std::string& keys) {
+    return ParseCase(kGood + keys + "\n", "t.toml").lift;
+  };
+  EXPECT_DOUBLE_EQ(*lift("open_deg = -10").open_rad, -10 * kDeg);
+  EXPECT_DOUBLE_EQ(*lift("close_deg = 30").close_rad, 30 * kDeg);
+  EXPECT_EQ(Error(kGood + "open_deg = 30\n"),
+            "t.toml: [lift] open_deg: must lie inside the table (-10 to 30 deg), got 30");
+  EXPECT_EQ(Error(kGood + "open_deg = -11\n"),
+            "t.toml: [lift] open_deg: must lie inside the table (-10 to 30 deg), got -11");
+  EXPECT_EQ(Error(kGood + "close_deg = -10\n"),
+            "t.toml: [lift] close_deg: must lie inside the table (-10 to 30 deg), got -10");
+  EXPECT_EQ(Error(kGood + "close_deg = 31\n"),
+            "t.toml: [lift] close_deg: must lie inside the table (-10 to 30 deg), got 31");
+  EXPECT_EQ(Error(kGood + "open_deg = 10\nclose_deg = 10\n"),
+            "t.toml: [lift] close_deg: must be after open_deg");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// end_slope belongs to a clamped spline given as such and reads "at-rest" only; smoothing to a
+// smoothing spline, its rule read by name (survivors of scripts/mutate.py on lift_section.cc).
+TEST(CaseFileTest, EndSlopesAndTheSmoothingRuleBelongToTheirSplines) {
+  const auto with = [](const std::string& keys) { return kGood + keys + "\n"; };
+  EXPECT_EQ(
+      ParseCase(with("spline = \"clamped\"\nend_slope = \"at-rest\""), "t.toml").lift.spline.kind,
+      SplineKind::kClamped);
+  EXPECT_EQ(Error(with("spline = \"clamped\"\nend_slope = \"moving\"")),
+            "t.toml: [lift] end_slope: expected \"at-rest\" or end_slope_mm_deg = [start, end]");
+  EXPECT_EQ(Error(with("spline = \"natural\"\nend_slope = \"at-rest\"")),
+            "t.toml: [lift] end_slope: applies to spline = \"clamped\" only");
+  EXPECT_EQ(ParseCase(with("spline = \"smoothing\"\nsmoothing = \"gcv\""), "t.toml")
+                .lift.spline.smoothing_rule,
+            SmoothingRule::kGcv);
+  EXPECT_EQ(ParseCase(with("spline = \"smoothing\"\nsmoothing = \"discrepancy\""), "t.toml")
+                .lift.spline.smoothing_rule,
+            SmoothingRule::kDiscrepancy);
+  EXPECT_EQ(Error(with("spline = \"smoothing\"\nsmoothing = \"lcurve\"")),
+            "t.toml: [lift] smoothing: expected \"discrepancy\" or \"gcv\", got \"lcurve\"");
+}
+
+}  // namespace
+}  // namespace needle

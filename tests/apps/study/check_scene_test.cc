@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "apps/scene/case_scene.h"
+
 namespace needle {
 namespace {
 
@@ -529,6 +531,135 @@ TEST(CheckSceneTest, ALimitTheCaseSetsNamesItsKey) {
   const CheckResult rd = CheckScene(d, MakeLiftLaw(d), o);
   EXPECT_EQ(Row(rd, "seating_velocity").source, "Blair: optimum ramp velocity 1.0-1.5 m/s");
   EXPECT_EQ(Row(rd, "separation_margin").source, "model: n_dyn > f n");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// The inertia sizing takes the larger magnitude of the lift's acceleration, whichever its sign
+// and the margins are the preload's over the required preload and over S·F_g (survivors of
+// scripts/mutate.py on spring_check.cc: m·max|a| and the margins were never asserted).
+TEST(CheckSceneTest, TheInertiaForceIsTheMassTimesTheLargerAccelerationMagnitude) {
+  for (const char* name : {"basu-example1.toml", "basu-example2.toml"}) {
+    const Case c = LoadCase(kCases + name);
+    const LiftLaw law = MakeLiftLaw(c);
+    const SpringCheckResult s = CheckSpring(c, law, c.engine.speed_rpm);
+    const double up = *s.kinematics.max_acceleration_m_s2;
+    const double down = *s.kinematics.min_acceleration_m_s2;
+    ASSERT_NE(std::abs(up), std::abs(down)) << name;
+    const bool up_wins = std::abs(up) > std::abs(down);
+    EXPECT_EQ(s.max_abs_acceleration_m_s2, std::max(std::abs(up), std::abs(down))) << name;
+    EXPECT_EQ(s.max_abs_acceleration_rad,
+              up_wins ? *s.kinematics.max_acceleration_rad : *s.kinematics.min_acceleration_rad)
+        << name;
+    EXPECT_EQ(s.inertia_force_N, c.needle->mass_kg * s.max_abs_acceleration_m_s2) << name;
+    // The margins, where the required preload and the gas load are positive.
+    ASSERT_GT(s.required_preload_N, 0.0) << name;
+    ASSERT_GT(s.gas_force_N, 0.0) << name;
+    const double p0 = s.train.preload_N, sfg = s.safety_factor * s.gas_force_N;
+    EXPECT_DOUBLE_EQ(s.preload_margin_percent,
+                     100 * (p0 - s.required_preload_N) / s.required_preload_N)
+        << name;
+    EXPECT_DOUBLE_EQ(s.combustion_margin_percent, 100 * (p0 - sfg) / sfg) << name;
+  }
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A [needle] without a [spring] is checked as kinematics, the spring check named as skipped
+// (a survivor of scripts/mutate.py on CheckScene: the spring check ran on a needle alone).
+TEST(CheckSceneTest, ANeedleWithoutASpringSkipsTheSpringCheck) {
+  const Case c = ParseCase(kSmall + "[needle]\nmass_kg = 0.5\n", "t.toml");
+  ASSERT_TRUE(c.needle && !c.spring);
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  EXPECT_TRUE(r.pass);
+  EXPECT_FALSE(r.spring);
+  EXPECT_TRUE(Contains(r.skipped, "spring check: the case has no [needle] and [spring] sections"));
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Without roller play the lash analysis is named as skipped, with play it is not (survivors of
+// scripts/mutate.py on CheckScene: the skipped line was never asserted).
+TEST(CheckSceneTest, NoRollerPlaySkipsTheLashAnalysis) {
+  Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
+  CheckOptions o;
+  o.record_series = false;
+  const std::string skipped = "lash analysis: no roller play ([train] play_mm = 0)";
+  const CheckResult with_play = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_FALSE(Contains(with_play.skipped, skipped));
+  // A spring given by its rate alone has no coils to study (a survivor too: the surge study ran
+  // on a spring without geometry).
+  EXPECT_FALSE(with_play.surge);
+  EXPECT_EQ(with_play.surge_reason, "no helical spring geometry");
+  c.train->play_m = 0.0;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_TRUE(Contains(r.skipped, skipped));
+  EXPECT_EQ(Row(r, "lash_impact_speed").verdict, "not judged");
+  EXPECT_EQ(Row(r, "lash_impact_speed").note,
+            "no roller play ([train] play_mm = 0): no lash to take up");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A sweep whose run stops on its step budget before it shows lift-off is undecided and fails
+// the check, named as a run's budget (not the scan's): the medium-speed engine swept from
+// 50 rpm with [solver] max_steps = 300, which its 500 rpm run (135 steps) keeps (survivors of
+// scripts/mutate.py on CheckScene: no test had an undecided sweep).
+TEST(CheckSceneTest, ASweepRunStoppedOnItsBudgetIsUndecidedAndFails) {
+  Case c = ParseCase(MediumSpeedEngine(6) + "[solver]\nmax_steps = 300\n", "medium.toml");
+  c.overspeed->from_rpm = 50;
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_EQ(r.run->status, RunStatus::kComplete) << r.run->status_reason;
+  EXPECT_EQ(r.sweep->status, "run-budget");
+  EXPECT_FALSE(r.pass);
+  ASSERT_EQ(r.failing.size(), 1u);
+  EXPECT_EQ(r.failing[0],
+            "overspeed: undecided above 50.0 rpm (the run there stopped on its budget)");
+  EXPECT_EQ(Row(r, "separation_margin").verdict, "not judged");
+  EXPECT_EQ(Row(r, "separation_margin").note, "the sweep is undecided (run-budget)");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A flat follower's profile has a cusp where a roller's undercuts: the small lift on a 5 mm base
+// circle (a survivor of scripts/mutate.py on CheckScene: the flat follower's word was never
+// asserted).
+TEST(CheckSceneTest, AFlatFollowersProfileHasACusp) {
+  const Case flat =
+      ParseCase(kSmall + "[profile]\nfollower = \"flat\"\nbase_radius_mm = 5\n", "t.toml");
+  const CheckResult r = CheckScene(flat, MakeLiftLaw(flat));
+  EXPECT_FALSE(r.pass);
+  EXPECT_EQ(r.failing, std::vector<std::string>{
+                           "cam profile: the profile has a cusp (least radius -386.94 mm at cam "
+                           "10.0°)"});
+  const Case roller =
+      ParseCase(kSmall + "[profile]\nbase_radius_mm = 5\nroller_radius_mm = 4\n", "t.toml");
+  const CheckResult u = CheckScene(roller, MakeLiftLaw(roller));
+  EXPECT_EQ(u.failing, std::vector<std::string>{
+                           "cam profile: the profile undercuts (least radius -3.70 mm at cam "
+                           "10.0°)"});
 }
 
 }  // namespace
