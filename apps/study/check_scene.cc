@@ -31,6 +31,12 @@ std::string FailureLine(const LimitRow& x) {
   return line + "; rule: " + x.source;
 }
 
+bool SurgeShowsHarm(const LimitRow& force, const LimitRow& jump, const LimitRow& stress,
+                    const LimitRow& gap) {
+  return force.verdict == "fail" || jump.verdict == "fail" || stress.verdict == "fail" ||
+         gap.verdict == "fail";
+}
+
 namespace {
 
 // The first surge mode's damping ratio assumed where the case states none (neither Basu nor
@@ -277,9 +283,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     judge(ratio, h.surge_ratio,
           "f_1 " + Fixed(h.surge_hz, 1) + " Hz, cam " + Fixed(h.cam_hz, 2) + " Hz");
     if (ratio.verdict == "fail" && r.surge) {
-      const bool harm = surge_force.verdict == "fail" || surge_jump.verdict == "fail" ||
-                        surge_stress.verdict == "fail" || gap.verdict == "fail";
-      if (!harm) {
+      if (!SurgeShowsHarm(surge_force, surge_jump, surge_stress, gap)) {
         ratio.verdict = "warning";
         ratio.note += "; the coils' dynamics show no harm";
         // The spring check's own screen (the same f_1/f_cam >= 13) warns with it: its failures

@@ -125,4 +125,10 @@ std::vector<FieldGroup> CheckFields(const CheckResult& r);
 /// cannot be checked (a section that is present but invalid).
 CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options = {});
 
+/// Whether the coils' dynamics show harm: the surge rows' contact force, jump or stress, or the
+/// coil gap, fails. A failing f_1/f_cam screen (13, the classic rule) only warns when they
+/// show none (docs/model.md §8): the screen judges a frequency, the rows its effect.
+bool SurgeShowsHarm(const LimitRow& force, const LimitRow& jump, const LimitRow& stress,
+                    const LimitRow& gap);
+
 }  // namespace needle

@@ -664,3 +664,28 @@ TEST(CheckSceneTest, AFlatFollowersProfileHasACusp) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// The harm that keeps a failing f_1/f_cam screen a failure: any one of the surge rows or the
+// coil gap failing is harm; rows that pass, warn or are not judged are none (the three
+// survivors of scripts/mutate.py on the disjunction, docs/mutation.md).
+TEST(SurgeHarmTest, AnyOneFailingRowIsHarm) {
+  const auto row = [](const char* verdict) {
+    LimitRow x;
+    x.verdict = verdict;
+    return x;
+  };
+  const LimitRow pass = row("pass"), fail = row("fail"), none = row("not judged");
+  EXPECT_FALSE(SurgeShowsHarm(pass, pass, pass, pass));
+  EXPECT_FALSE(SurgeShowsHarm(none, row("warning"), none, pass));
+  EXPECT_TRUE(SurgeShowsHarm(fail, pass, pass, pass));
+  EXPECT_TRUE(SurgeShowsHarm(pass, fail, pass, pass));
+  EXPECT_TRUE(SurgeShowsHarm(pass, pass, fail, pass));
+  EXPECT_TRUE(SurgeShowsHarm(pass, pass, pass, fail));
+  EXPECT_TRUE(SurgeShowsHarm(fail, fail, fail, fail));
+}
+
+}  // namespace
+}  // namespace needle
