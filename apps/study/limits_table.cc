@@ -1,0 +1,300 @@
+// The limits table (limits_table.h).
+#include "apps/study/limits_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "apps/scene/case_profile.h"
+#include "apps/scene/case_scene.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/quasi_static.h"
+#include "spring/resonance.h"
+
+namespace needle {
+
+// The limits table (docs/springs.md "The limits table"): one row per limit, judged where the scene
+// has what it needs, else "not judged" with the reason.
+void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r) {
+  const LimitsSection& l = c.limits;
+  const double crank_turns = CrankTurnsPerCycle(c.engine.cycle);  // per cam turn
+  const auto row = [&](std::string key, std::string name, std::string unit, bool at_most,
+                       double limit, std::string source) {
+    LimitRow x;
+    x.key = std::move(key);
+    x.name = std::move(name);
+    x.unit = std::move(unit);
+    x.at_most = at_most;
+    x.limit = limit;
+    x.source = std::move(source);
+    x.verdict = "not judged";
+    return x;
+  };
+  const auto judge = [](LimitRow& x, double value, std::string note) {
+    x.value = value;
+    x.margin = x.at_most ? x.limit - value : value - x.limit;
+    x.verdict = x.margin >= 0.0 ? "pass" : "fail";
+    x.note = std::move(note);
+  };
+  // A contact force of zero is a loss of contact, whatever the limit (a limit of 0 %, or an
+  // overspeed factor of 1, would otherwise pass it).
+  const auto judge_force = [&judge](LimitRow& x, double value, std::string note) {
+    judge(x, value, std::move(note));
+    if (!(value > 0.0) && x.verdict != "fail") {
+      x.verdict = "fail";
+      x.note += "; a contact force of 0 fails whatever the limit";
+    }
+  };
+  const LimitsSection d;  // the defaults, to name where a limit came from
+  const auto from = [](bool set, const std::string& key, const std::string& cited) {
+    return set ? "[limits] " + key : cited;
+  };
+
+  LimitRow seat = row("seating_velocity", "seating velocity", "m/s", true, l.seating_velocity_m_s,
+                      from(l.seating_velocity_m_s != d.seating_velocity_m_s, "seating_velocity",
+                           "Blair: optimum ramp velocity 1.0-1.5 m/s"));
+  LimitRow lash =
+      row("lash_impact_speed", "cam impact speed (lash and recontacts)", "m/s", true,
+          l.lash_impact_velocity_m_s,
+          from(l.lash_impact_velocity_m_s != d.lash_impact_velocity_m_s, "lash_impact_velocity",
+               "Blair: optimum ramp velocity 1.0-1.5 m/s (the opening ramp)"));
+  // Least contact force while the cam lifts the needle, against the static load holding it
+  // there: at f·n the inertia grows by f², so a share 1 − 1/f² of that load must remain.
+  const double f_over = c.spring ? c.spring->overspeed_factor : 1.2;
+  const double force_limit = l.min_contact_force_fraction.value_or(1.0 - 1.0 / (f_over * f_over));
+  LimitRow force = row("min_contact_force",
+                       "least contact force while the cam lifts the needle, % of P0 + k y - F_g",
+                       "%", false, 100 * force_limit,
+                       l.min_contact_force_fraction
+                           ? "[limits] min_contact_force_percent"
+                           : "overspeed factor f = " + Fixed(f_over, 2) +
+                                 ": 1 - 1/f^2 of the holding load left for f n's inertia");
+  if (r.run && c.spring) {
+    const SimulationResult& run = *r.run;
+    double landing = 0.0;
+    std::string where = "no landing on the seat in the run";
+    for (const Impact& i : run.impacts) {
+      if (i.kind.rfind("seat", 0) == 0 && i.kind != "seat-sticking" && i.speed_m_s >= landing) {
+        landing = i.speed_m_s;
+        where = i.kind + " at " + Fixed(i.crank_rad / kDeg, 2) + " deg";
+      }
+    }
+    judge(seat, landing, where);
+    if (c.train && c.train->play_m > 0.0) {
+      // Every strike of the cam on the roller: the lash, and a recontact after a bounce or a
+      // jump (where the cam already touched when the run began, the first strike is one).
+      double strike = 0.0;
+      std::string at = "the cam never struck the roller";
+      for (const Impact& i : run.impacts) {
+        if ((i.kind == "lash" || i.kind == "recontact") && i.speed_m_s >= strike) {
+          strike = i.speed_m_s;
+          at = i.kind + " at " + Fixed(i.crank_rad / kDeg, 2) + " deg";
+        }
+      }
+      judge(lash, strike,
+            at + "; peak contact force in the run " + Fixed(run.max_contact_force_N, 0) + " N");
+    } else {
+      lash.note = "no roller play ([train] play_mm = 0): no lash to take up";
+    }
+    if (std::isfinite(run.min_contact_force_ratio)) {
+      judge_force(force, 100 * run.min_contact_force_ratio,
+                  Fixed(run.min_contact_force_ratio_force_N, 1) + " N at " +
+                      Fixed(run.min_contact_force_ratio_rad / kDeg, 2) + " deg");
+    } else {
+      judge_force(force, 0.0, "the cam never lifted the needle off its seat");
+    }
+  } else {
+    seat.note = lash.note = force.note = "no dynamics ([train] missing)";
+  }
+
+  LimitRow sep = row("separation_margin", "separation margin n_dyn/(f n) - 1", "%", false,
+                     100 * l.separation_margin_fraction,
+                     from(l.separation_margin_fraction != d.separation_margin_fraction,
+                          "separation_margin_percent", "model: n_dyn > f n"));
+  if (r.sweep && r.sweep->status != "run-budget" && r.sweep->status != "budget" &&
+      r.sweep->status != "floor" && r.sweep->status != "not-following") {
+    if (r.sweep->n_dyn_rpm) {
+      judge(sep, 100 * (*r.sweep->n_dyn_rpm / r.overspeed_rpm - 1),
+            "n_dyn " + Fixed(*r.sweep->n_dyn_rpm, 1) + " rpm, f n " + Fixed(r.overspeed_rpm, 1) +
+                " rpm");
+    } else {
+      judge(sep, 100 * (r.sweep->scanned_to_rpm / r.overspeed_rpm - 1),
+            "no lift-off up to " + Fixed(r.sweep->scanned_to_rpm, 1) + " rpm (a lower bound)");
+    }
+  } else {
+    sep.note = r.sweep ? "the sweep is undecided (" + r.sweep->status + ")"
+                       : "no overspeed sweep ([train] missing)";
+  }
+
+  LimitRow hertz =
+      row("hertz_stress", "Hertz stress cam-roller", "MPa", true, l.hertz_stress_Pa * 1e-6,
+          from(l.hertz_stress_Pa != d.hertz_stress_Pa, "hertz_stress_MPa",
+               "ISO 6336-5 case-hardened MQ, 1500 MPa"));
+  if (r.profile && r.spring && l.contact_length_m) {
+    const FollowerGeometry& g = c.profile->follower;
+    const RigidTrain& t = r.spring->train;
+    const double omega = OmegaFromRpm(r.speed_rpm), k = crank_turns;
+    const double play = c.train ? c.train->play_m : 0.0;
+    double worst = 0.0, at = 0.0;
+    for (const ProfilePoint& q : r.profile->points) {
+      const double th = cam_zero_crank_rad + k * q.cam_rad;
+      const bool open = th >= law.start_rad() && th <= law.end_rad();
+      const double f_needle = open ? QuasiStaticForce(law, t, omega, th)
+                                   : (play > 0 ? 0.0 : t.preload_N - t.gas_force_N);  // base circle
+      const double stress = ContactStress(g, q, std::max(0.0, f_needle) / g.lever_ratio,
+                                          l.elastic_modulus_Pa, l.poisson, *l.contact_length_m);
+      if (stress > worst) {
+        worst = stress;
+        at = q.cam_rad;
+      }
+    }
+    judge(hertz, worst * 1e-6,
+          "quasi-static force at " + Fixed(r.speed_rpm, 0) + " rpm, worst at cam " +
+              Fixed(at / kDeg, 1) + " deg");
+  } else {
+    hertz.note = !r.profile  ? "no [profile] (the cam's radius)"
+                 : !r.spring ? "no spring check (the contact force)"
+                             : "no [limits] contact_length_mm (the roller's width)";
+  }
+
+  const HelicalSpringCheck* helical = r.spring && r.spring->helical ? &*r.spring->helical : nullptr;
+  LimitRow fatigue = row("fatigue_safety_factor", "spring fatigue safety factor (Goodman)", "",
+                         false, l.fatigue_safety_factor,
+                         from(l.fatigue_safety_factor != d.fatigue_safety_factor,
+                              "fatigue_safety_factor", "Shigley 10-12: design factor 1.5"));
+  LimitRow gap = row("coil_gap", "coil gap at full lift", "mm", false, NAN,
+                     l.coil_gap_m ? "[limits] coil_gap_mm" : "EN 13906-1: S_a");
+  // Surge by its effect, with the spring as coil masses (SurgeStudy): the least contact force,
+  // lift-off at f·n and the spring's stress with the coils' inertia.
+  LimitRow surge_force =
+      row("surge_contact_force", "least contact force with the coils' surge, % of P0 + k y - F_g",
+          "%", false, force.limit, force.source);
+  LimitRow surge_jump = row("surge_overspeed_jump", "longest jump at f n with the coils' surge",
+                            "deg", true, kMinJump_rad / kDeg,
+                            "model: lift-off is a jump of 0.1 deg or more (§6), none at f n (§8)");
+  LimitRow surge_stress =
+      row("surge_spring_stress", "spring shear stress at the surge's peak force", "MPa", true, NAN,
+          "the helical check's allowable stress");
+  LimitRow ratio = row("surge_frequency_ratio", "first surge mode over the cam frequency f_1/f_cam",
+                       "", false, kMinSurgeRatio,
+                       "spring makers' screen f_1 >= 13 f (Rockford Spring, 'Dynamic loading of "
+                       "springs'; Shigley 10-9 asks 15-20); a warning where the coils' dynamics "
+                       "show no harm");
+  const std::string no_helical = "no helical spring geometry ([spring] wire_mm …)";
+  if (helical) {
+    const HelicalSpringCheck& h = *helical;
+    if (h.fatigue_judged) {
+      judge(fatigue, h.fatigue.goodman_safety_factor,
+            "tau " + Fixed(h.stress_preload_Pa * 1e-6, 0) + "-" +
+                Fixed(h.stress_full_lift_Pa * 1e-6, 0) + " MPa, " +
+                (c.spring->helical->shot_peened ? "shot-peened" : "unpeened") + " (Zimmerli)");
+    } else {
+      fatigue.note = "wire " + Fixed(c.spring->helical->wire_m * 1e3, 1) +
+                     " mm: Zimmerli's data cover wire below 10 mm";
+    }
+    gap.limit = (l.coil_gap_m ? *l.coil_gap_m : h.min_clearance_m) * 1e3;
+    const SimulationResult* chain = r.surge && r.surge->rated.status == RunStatus::kComplete
+                                        ? &r.surge->rated
+                                        : (r.run && r.run->min_coil_gap_m ? &*r.run : nullptr);
+    if (chain && chain->min_coil_gap_m) {
+      // A chain of coil masses: the least gap in the run at the rated speed, where surge may
+      // close one segment well before the static full lift closes them all.
+      const int n = r.surge ? r.surge->masses : c.spring->masses;
+      gap.name = "coil gap in the run (worst segment x N)";
+      judge(gap, *chain->min_coil_gap_m * 1e3,
+            "at " + Fixed(r.speed_rpm, 0) + " rpm with " + std::to_string(n) + " coil masses, " +
+                std::to_string(chain->coil_clashes) + " clashes; " +
+                Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm at full lift statically");
+    } else {
+      judge(gap, h.clearance_full_lift_m * 1e3, "");
+    }
+    // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's: the
+    // resonance map's lines (information).
+    for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
+    r.harmonics = LiftHarmonics(law, 2 * kPi * crank_turns, 1000, l.harmonic_threshold);
+    const auto undecided = [](const SimulationResult& run) {
+      return run.status != RunStatus::kComplete;
+    };
+    if (r.surge && (undecided(r.surge->rated) || undecided(r.surge->overspeed))) {
+      const SimulationResult& bad = undecided(r.surge->rated) ? r.surge->rated : r.surge->overspeed;
+      const std::string why = "undecided: the run with " + std::to_string(r.surge->masses) +
+                              " coil masses at " + Fixed(bad.speed_rpm, 1) + " rpm is " +
+                              RunStatusName(bad.status) + ": " + bad.status_reason;
+      surge_force.note = surge_jump.note = surge_stress.note = why;
+      r.failing.push_back("surge: " + why);
+    } else if (r.surge) {
+      const SurgeStudy& s = *r.surge;
+      const std::string with = std::to_string(s.masses) + " coil masses, zeta " +
+                               Fixed(100 * s.damping_ratio, 1) + " %" +
+                               (s.damping_assumed ? " (assumed)" : "") + ", converged to " +
+                               Fixed(100 * s.change, 2) + " %" + (s.converged ? "" : " (NOT)");
+      judge_force(surge_force,
+                  std::isfinite(s.rated.min_contact_force_ratio)
+                      ? 100 * s.rated.min_contact_force_ratio
+                      : 0.0,
+                  "with " + with + "; massless spring " +
+                      Fixed(100 * s.massless.min_contact_force_ratio, 2) + " %");
+      judge(surge_jump, s.overspeed.longest_jump_rad / kDeg,
+            "at " + Fixed(r.overspeed_rpm, 1) + " rpm with " + with + "; massless spring " +
+                Fixed(s.massless_overspeed.longest_jump_rad / kDeg, 2) + " deg");
+      // τ grows with the force (τ = k 8 F D / π d³): the full-lift stress scaled by the peak.
+      const double f_full = r.spring->train.preload_N + r.spring->train.rate_N_m * law.Max(0).value;
+      surge_stress.limit = h.allowable_stress_Pa * 1e-6;
+      judge(surge_stress, h.stress_full_lift_Pa * 1e-6 * s.rated.max_spring_force_N / f_full,
+            "peak spring force " + Fixed(s.rated.max_spring_force_N, 0) + " N with the coils, " +
+                Fixed(s.massless.max_spring_force_N, 0) + " N massless (" +
+                Fixed(100 * (s.rated.max_spring_force_N / s.massless.max_spring_force_N - 1), 1) +
+                " %)");
+    } else {
+      surge_force.note = surge_jump.note = surge_stress.note =
+          r.run ? "the coils' dynamics could not be run: " + r.surge_reason
+                : "no dynamics ([train] missing)";
+    }
+    judge(ratio, h.surge_ratio,
+          "f_1 " + Fixed(h.surge_hz, 1) + " Hz, cam " + Fixed(h.cam_hz, 2) + " Hz");
+    if (ratio.verdict == "fail" && r.surge) {
+      if (!SurgeShowsHarm(surge_force, surge_jump, surge_stress, gap)) {
+        ratio.verdict = "warning";
+        ratio.note += "; the coils' dynamics show no harm";
+        // The spring check's own screen (the same f_1/f_cam >= 13) warns with it: its failures
+        // are those of its other sub-checks (CheckScene lists them after the limits).
+        r.spring->failures = SpringFailures(*r.spring, /*surge_screen=*/false);
+        r.spring->pass = r.spring->failures.empty();
+      } else {
+        ratio.note += "; the coils' dynamics show harm (the surge rows)";
+      }
+    }
+  } else {
+    fatigue.note = gap.note = ratio.note = no_helical;
+    surge_force.note = surge_jump.note = surge_stress.note = no_helical;
+  }
+  r.limits = {seat, lash,        force,      sep,          hertz, fatigue,
+              gap,  surge_force, surge_jump, surge_stress, ratio};
+  for (const LimitRow& x : r.limits) {
+    if (x.verdict == "warning") r.warnings.push_back(FailureLine(x));
+    if (x.verdict == "fail") {
+      r.failing.push_back(FailureLine(x));
+    }
+  }
+  // The rows not judged, in one line grouped by reason.
+  std::vector<std::pair<std::string, std::string>> by_reason;  // reason, names
+  for (const LimitRow& x : r.limits) {
+    if (x.verdict != "not judged") continue;
+    auto it = std::find_if(by_reason.begin(), by_reason.end(),
+                           [&](const auto& p) { return p.first == x.note; });
+    if (it == by_reason.end()) {
+      by_reason.push_back({x.note, x.name});
+    } else {
+      it->second += ", " + x.name;
+    }
+  }
+  if (!by_reason.empty()) {
+    std::string line = "limits not judged: ";
+    for (size_t i = 0; i < by_reason.size(); ++i) {
+      line += (i ? "; " : "") + by_reason[i].second + " (" + by_reason[i].first + ")";
+    }
+    r.skipped.push_back(line);
+  }
+}
+
+}  // namespace needle
