@@ -661,20 +661,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
 
 std::optional<std::string> RigidRefusal(Method method, const NeedleTrain& train) {
   if (!train.HasConstraint()) return std::nullopt;
-  switch (method) {
-    case Method::kBaselineDopri5:
-      return "method \"baseline-dopri5\" gates compliant forces and has no events; a rigid "
-             "contact needs dopri5, rkf78 or rosenbrock4";
-    case Method::kCvodeBdf:
-    case Method::kCvodeAdams:
-      // Measured: restarted at every impact, CVODE's low-order start misplaces the short
-      // flights of a chattering sequence (1e-6 s where the one-step methods give 4e-11 s).
-      return "method \"" + MethodName(method) +
-             "\" restarts at first order after every impact and misplaces the short flights "
-             "of a rigid contact; use dopri5, rkf78 or rosenbrock4";
-    default:
-      return std::nullopt;
-  }
+  return MethodRigidRefusal(method);  // the method table says which methods take one
 }
 
 IntegrationStats Integrate(Method method, const NeedleTrain& train, const TrainState& x0,

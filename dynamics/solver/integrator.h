@@ -53,6 +53,8 @@ std::string MethodName(Method m);
 std::optional<Method> ParseMethod(const std::string& name);
 /// "auto, dopri5, rkf78, …" for messages.
 std::string MethodList();
+/// Why method `m` does not take a rigid contact, from the method table, or nullopt when it does.
+std::optional<std::string> MethodRigidRefusal(Method m);
 
 /// Why method "exact" cannot solve `train` (a contact law not linear in the gap and its rate),
 /// or nullopt when it can. `auto` falls back to a time stepper then.
