@@ -30,7 +30,16 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
                      double settle_deg, const SimulationOptions& o, int cycle, double shift_rad,
                      SimulationResult& r) {
   const double shift_s = shift_rad / train.omega();
-  Recorder recorder(train, o.record_series);
+  // A streamed series: each revolution's points shifted as the kept ones are below.
+  std::function<void(const SeriesPoint&)> sink;
+  if (o.series_sink) {
+    sink = [&o, shift_rad, shift_s](SeriesPoint p) {
+      p.crank_rad += shift_rad;
+      p.time_s += shift_s;
+      o.series_sink(p);
+    };
+  }
+  Recorder recorder(train, o.record_series, sink);
   IntegratorOptions io = o.integrator;
   io.settle_limit_s = settle_deg * kDeg / train.omega();
   IntegrationStats stats;
@@ -273,12 +282,17 @@ std::vector<Column> SeriesColumns() {
           {"cam", kMm},       {"contact_force", kN}, {"seat_force", kN}};
 }
 
+std::array<double, 7> SeriesRow(const SeriesPoint& p) {
+  return {p.crank_rad, p.time_s,          p.lift_m,      p.velocity_m_s,
+          p.cam_m,     p.contact_force_N, p.seat_force_N};
+}
+
 std::vector<std::vector<double>> SeriesRows(const SimulationResult& r) {
   std::vector<std::vector<double>> rows;
   rows.reserve(r.series.size());
   for (const SeriesPoint& p : r.series) {
-    rows.push_back({p.crank_rad, p.time_s, p.lift_m, p.velocity_m_s, p.cam_m, p.contact_force_N,
-                    p.seat_force_N});
+    const std::array<double, 7> row = SeriesRow(p);
+    rows.emplace_back(row.begin(), row.end());
   }
   return rows;
 }

@@ -7,7 +7,9 @@
 /// stiffness; the rigid answer reported instead of a dynamic
 /// run when the scene does not need one, with the reason, unless the dynamics is forced.
 
+#include <array>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,7 +44,11 @@ struct SimulationOptions {
   std::string method = "auto";   ///< "auto" or a method name (dynamics/solver/integrator.h)
   IntegratorOptions integrator;  ///< tolerances and budgets
   bool record_series = false;    ///< keep the time series (for --csv)
-  bool force_dynamic = false;    ///< never report the rigid answer instead
+  /// With record_series: each point of the series, in time order, as soon as no earlier one
+  /// can follow, instead of SimulationResult::series (a streamed series: memory independent of
+  /// the run's length). Empty: the series is kept.
+  std::function<void(const SeriesPoint&)> series_sink;
+  bool force_dynamic = false;  ///< never report the rigid answer instead
   /// Past θ_b the run goes on until the needle has landed and come to rest, for at most this
   /// much crank angle, deg (docs/model.md §5); > 0 and ≤ 36000.
   double settle_limit_deg = 3600.0;
@@ -159,7 +165,11 @@ double QuasiStaticLiftoffRpm(const Scene& scene);
 /// The recorded series as a table, described once for its writers: crank_deg, time_s, lift_mm,
 /// velocity_m_s, cam_mm, contact_force_N, seat_force_N (columns, and one SI row per point).
 std::vector<Column> SeriesColumns();
+/// One point as a row of those columns, SI.
+std::array<double, 7> SeriesRow(const SeriesPoint& p);
 std::vector<std::vector<double>> SeriesRows(const SimulationResult& r);
+/// Significant digits of the series' CSV.
+constexpr int kSeriesCsvPrecision = 10;
 
 /// The run window [θ_a, θ_b] in crank rad (docs/model.md §5): from 5° before the cam input's
 /// rise to 20° after its fall, unless the scene gives its own start or end.

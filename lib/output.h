@@ -5,8 +5,32 @@
 /// file or the complete new one, never half a file.
 
 #include <string>
+#include <string_view>
 
 namespace needle {
+
+/// A file written as it is produced and put in place atomically: the text goes to a temporary
+/// file beside `path` (buffered), and Commit() flushes, syncs and renames it over `path`; an
+/// AtomicFile destroyed before Commit() removes its temporary file, so a failed run writes
+/// nothing. Errors throw std::runtime_error naming the path and the failing system call.
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string& path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  void Write(std::string_view text);
+  void Commit();
+
+ private:
+  void Flush();
+  [[noreturn]] void Fail(const char* call);
+
+  std::string path_, tmp_;
+  int fd_ = -1;
+  std::string buffer_;  // written out at 1 MiB
+};
 
 /// Writes `content` to `path` atomically. Throws std::runtime_error naming the path and
 /// the failing system call.

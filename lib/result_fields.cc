@@ -36,20 +36,33 @@ std::optional<double> Field::Shown() const {
 std::string Column::Key() const { return KeyOf(name, unit.key); }
 std::string Column::SiKey() const { return KeyOf(name, unit.si_key); }
 
+std::string CsvHeader(const std::vector<Column>& columns) {
+  std::string line;
+  for (size_t i = 0; i < columns.size(); ++i) line += (i ? "," : "") + columns[i].Key();
+  return line + '\n';
+}
+
+void AppendCsvRow(const std::vector<Column>& columns, const double* row_si, int precision,
+                  std::string& out) {
+  thread_local std::ostringstream csv;  // one stream for every row: no locale set-up per row
+  csv.str(std::string());
+  csv.precision(precision);
+  for (size_t i = 0; i < columns.size(); ++i)
+    csv << (i ? "," : "") << columns[i].unit.FromSi(row_si[i]);
+  csv << '\n';
+  out += csv.str();
+}
+
 std::string CsvTable(const std::vector<Column>& columns,
                      const std::vector<std::vector<double>>& rows_si, int precision) {
-  std::ostringstream csv;
-  csv.precision(precision);
-  for (size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i].Key();
-  csv << '\n';
+  std::string csv = CsvHeader(columns);
   for (const auto& row : rows_si) {
     if (row.size() != columns.size())
       throw std::logic_error("CsvTable: a row has " + std::to_string(row.size()) + " values for " +
                              std::to_string(columns.size()) + " columns");
-    for (size_t i = 0; i < row.size(); ++i) csv << (i ? "," : "") << columns[i].unit.FromSi(row[i]);
-    csv << '\n';
+    AppendCsvRow(columns, row.data(), precision, csv);
   }
-  return csv.str();
+  return csv;
 }
 
 std::map<std::string, std::vector<double>> SiColumns(

@@ -75,6 +75,13 @@ struct Column {
   std::string SiKey() const;
 };
 
+/// A CSV table's header line (with its newline): each column's Key(), comma separated.
+std::string CsvHeader(const std::vector<Column>& columns);
+/// One CSV row (with its newline): `row_si`'s values (columns.size() of them) converted by
+/// their columns' units, with `precision` significant digits. Appended to `out`.
+void AppendCsvRow(const std::vector<Column>& columns, const double* row_si, int precision,
+                  std::string& out);
+
 /// A CSV table: header from `columns`, each row's SI values converted by its column's unit,
 /// printed with `precision` significant digits. Every row has columns.size() values.
 std::string CsvTable(const std::vector<Column>& columns,

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -45,8 +46,16 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
 
 int RunSimulateCommand(const SimulateCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
-  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
-  return Emit(ComputeSimulate(c, o), o.format, o.csv);
+  if (!o.csv) return Emit(ComputeSimulate(c, o), o.format, std::nullopt);
+  // The series streamed to the CSV as the run makes it, put in place once the run is done.
+  CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+  StreamedCsv csv({"--csv", *o.csv}, SeriesColumns(), kSeriesCsvPrecision);
+  const CommandOutput r = ComputeSimulate(c, o, [&csv](const SeriesPoint& p) {
+    const std::array<double, 7> row = SeriesRow(p);
+    csv.Row(row.data());
+  });
+  csv.Commit();
+  return Emit(r, o.format, std::nullopt);
 }
 
 CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {

@@ -12,6 +12,7 @@
 #include "apps/cli/command_output.h"
 #include "apps/cli/output_format.h"
 #include "apps/scene/case_file.h"
+#include "dynamics/solver/contact_events.h"
 
 namespace needle {
 
@@ -29,9 +30,11 @@ struct SimulateCommandOptions {
 };
 
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& options);
-/// The run of a loaded case (its time series as columns when `series` or `csv`). Throws
-/// CaseError on bad input.
-CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& options);
+/// The run of a loaded case: its time series as columns when `series`; with `csv`, each point
+/// to `series_sink` as the run makes it (streamed; the CSV's rows, SeriesColumns()), or without
+/// one into the output's csv. Throws CaseError on bad input.
+CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& options,
+                              const std::function<void(const SeriesPoint&)>& series_sink = {});
 /// Exit 1 when the needle lifts off (a jump episode) at the speed simulated.
 int RunSimulateCommand(const SimulateCommandOptions& options);
 

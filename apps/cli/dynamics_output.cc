@@ -2,6 +2,7 @@
 // (dynamics_command.h), the JSON object, the text and the CSV of each.
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -69,12 +70,25 @@ std::string CyclesText(const SimulationResult& r) {
 
 }  // namespace
 
-CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
+CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
+                              const std::function<void(const SeriesPoint&)>& series_sink) {
   RequireSpeed(o.speed_rpm);
   const Scene scene = MakeScene(c);
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
   sim.record_series = o.csv.has_value() || o.series;
+  // Streamed: to the caller's sink, and as SI columns when asked; none is kept as a whole.
+  const std::vector<Column> columns = SeriesColumns();
+  std::vector<std::vector<double>> si(columns.size());
+  const bool to_sink = o.csv && series_sink;
+  if (to_sink || o.series) {
+    sim.series_sink = [&](const SeriesPoint& p) {
+      if (to_sink) series_sink(p);
+      if (!o.series) return;
+      const std::array<double, 7> row = SeriesRow(p);
+      for (size_t i = 0; i < row.size(); ++i) si[i].push_back(row[i]);
+    };
+  }
   if (o.cycles) {
     sim.cycles = *o.cycles;
     const auto refusal = sim.cycles > 1 ? CyclesRefusal(scene) : std::nullopt;
@@ -87,9 +101,11 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o) {
 
   CommandOutput result;
   result.status = r.liftoff() ? 1 : 0;
-  const std::vector<std::vector<double>> rows = SeriesRows(r);
-  if (!rows.empty()) result.columns = SiColumns(SeriesColumns(), rows);
-  if (o.csv) result.csv = CsvTable(SeriesColumns(), rows, 10);
+  if (!si[0].empty()) {
+    for (size_t i = 0; i < columns.size(); ++i)
+      result.columns[columns[i].SiKey()] = std::move(si[i]);
+  }
+  if (o.csv && !series_sink) result.csv = CsvTable(columns, SeriesRows(r), kSeriesCsvPrecision);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;

@@ -76,4 +76,31 @@ void WriteOutput(const OutputPath& output, const std::string& content) {
   }
 }
 
+template <typename F>
+void StreamedCsv::Guard(F&& f) {
+  try {
+    f();
+  } catch (const std::runtime_error& e) {
+    throw CaseError(output_.option + ": " + e.what());
+  }
+}
+
+StreamedCsv::StreamedCsv(const OutputPath& output, std::vector<Column> columns, int precision)
+    : output_(output), columns_(std::move(columns)), precision_(precision) {
+  Guard([&] {
+    file_ = std::make_unique<AtomicFile>(output_.path);
+    file_->Write(CsvHeader(columns_));
+  });
+}
+
+void StreamedCsv::Row(const double* row_si) {
+  line_.clear();
+  AppendCsvRow(columns_, row_si, precision_, line_);
+  Guard([&] { file_->Write(line_); });
+}
+
+void StreamedCsv::Commit() {
+  Guard([&] { file_->Commit(); });
+}
+
 }  // namespace needle

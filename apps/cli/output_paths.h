@@ -9,10 +9,13 @@
 ///   - it is not one of the command's inputs (`--csv case.toml` would overwrite the case);
 ///   - no two outputs of one run are the same file.
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "apps/scene/case_file.h"
+#include "lib/output.h"
+#include "lib/result_fields.h"
 
 namespace needle {
 
@@ -36,5 +39,26 @@ std::string ReportPath(const std::string& out_dir, const std::string& name);
 
 /// Writes `content` atomically (lib/output.h); a failure is a CaseError naming the option.
 void WriteOutput(const OutputPath& output, const std::string& content);
+
+/// A CSV output written row by row as a run makes them (memory independent of the row count)
+/// and put in place by Commit(), atomically; destroyed uncommitted it leaves nothing. Failures
+/// are CaseErrors naming the option.
+class StreamedCsv {
+ public:
+  StreamedCsv(const OutputPath& output, std::vector<Column> columns, int precision);
+  /// One row of columns().size() SI values.
+  void Row(const double* row_si);
+  void Commit();
+
+ private:
+  template <typename F>
+  void Guard(F&& f);
+
+  OutputPath output_;
+  std::vector<Column> columns_;
+  int precision_;
+  std::unique_ptr<AtomicFile> file_;
+  std::string line_;
+};
 
 }  // namespace needle

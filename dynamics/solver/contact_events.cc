@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "lib/rigid_train.h"
 
@@ -88,8 +90,11 @@ ContactMode ModeFromSigns(const NeedleTrain& train, const EventSigns& s) {
   return mode;
 }
 
-Recorder::Recorder(const NeedleTrain& train, bool record_series)
-    : train_(train), record_series_(record_series) {
+Recorder::Recorder(const NeedleTrain& train, bool record_series,
+                   std::function<void(const SeriesPoint&)> sink)
+    : train_(train),
+      record_series_(record_series),
+      sink_(record_series ? std::move(sink) : nullptr) {
   // A table that ends while still rising (or falling faster than the ramp after it): the cam
   // input's slope drops at θ_N, a deceleration concentrated at one angle (u'' has a negative
   // Dirac there). A separation there is lift-off (docs/model.md §6, docs/model.md).
@@ -205,7 +210,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
     if (separated && separated_ && th >= episodes_.back().start_rad) {
       episodes_.back().max_gap_m = std::max(episodes_.back().max_gap_m, x[0] - c.u);
     }
-    if (record_series_) series_.push_back({th, t, x[0], x[1], c.u, fc, fs});
+    if (record_series_) Keep({th, t, x[0], x[1], c.u, fc, fs});
     return;
   }
   last_t_ = t;
@@ -227,9 +232,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
     if (Decelerating(th)) e.kind = "jump";
   }
   separated_ = separated;
-  if (record_series_) {
-    series_.push_back({th, t, x[0], x[1], c.u, fc, fs});
-  }
+  if (record_series_) Keep({th, t, x[0], x[1], c.u, fc, fs});
 }
 
 void Recorder::Start(double t, const TrainState& x, const Phase& phase) {
@@ -274,6 +277,30 @@ void Recorder::Accumulation(bool cam, double t, const TrainState& x, const Phase
   Update(t, x, phase);
 }
 
+void Recorder::Keep(const SeriesPoint& p) {
+  if (sink_ && p.time_s < committed_t_) {
+    throw std::logic_error("Recorder: a series point at t = " + std::to_string(p.time_s) +
+                           " s after the series was committed up to " +
+                           std::to_string(committed_t_) + " s");
+  }
+  series_.push_back(p);
+}
+
+void Recorder::Commit(double t) {
+  if (!sink_ || !(t > committed_t_)) return;
+  committed_t_ = t;
+  SortSeries(series_);
+  size_t n = 0;
+  while (n < series_.size() && series_[n].time_s < t) sink_(series_[n++]);
+  series_.erase(series_.begin(), series_.begin() + static_cast<std::ptrdiff_t>(n));
+}
+
+void Recorder::SendAll() {
+  if (!sink_) return;
+  for (const SeriesPoint& p : series_) sink_(p);
+  series_.clear();
+}
+
 void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
   Update(t, x, phase);
   SortSeries(series_);
@@ -281,6 +308,7 @@ void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
   // sampled: its samples past the end are not the run's.
   const double end_rad = train_.Angle(t);
   while (!series_.empty() && series_.back().crank_rad > end_rad) series_.pop_back();
+  SendAll();
   if (separated_) {
     episodes_.back().end_rad = train_.Angle(t);
     episodes_.back().open = true;  // still off cam and seat when the run ends: reported
@@ -289,6 +317,7 @@ void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
 
 void Recorder::Stopped(double crank_rad) {
   SortSeries(series_);
+  SendAll();
   if (separated_) {
     episodes_.back().end_rad = crank_rad;
     episodes_.back().open = true;

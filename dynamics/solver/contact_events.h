@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -112,7 +113,10 @@ struct StretchRanges {
 /// the phase the train is in there (the record takes the forces of its mode).
 class Recorder {
  public:
-  Recorder(const NeedleTrain& train, bool record_series);
+  /// `sink` (with record_series): every series point goes to it once no earlier point can
+  /// follow (Commit), in time order, instead of being kept: a streamed series.
+  Recorder(const NeedleTrain& train, bool record_series,
+           std::function<void(const SeriesPoint&)> sink = {});
 
   /// The initial state: a needle already on the cam has no lash to take up.
   void Start(double t, const TrainState& x, const Phase& phase);
@@ -131,6 +135,9 @@ class Recorder {
   /// the rest of the series dissipates.
   void Accumulation(bool cam, double t, const TrainState& x, const Phase& phase, double speed_m_s,
                     double energy_J);
+  /// No point before time t will be recorded any more (the driver is past it): with a sink,
+  /// the points kept before t go to it.
+  void Commit(double t);
   /// Closes an open episode at the end of the run.
   void Finish(double t, const TrainState& x, const Phase& phase);
   /// The run stopped on a budget at this angle: an open episode ends there, marked open.
@@ -147,6 +154,7 @@ class Recorder {
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
+  /// The series (with a sink: the points not yet sent, none after Finish or Stopped).
   const std::vector<SeriesPoint>& series() const { return series_; }
   /// Off the cam in the last episode, which is still open (as of the last sample or event).
   bool separated() const { return separated_; }
@@ -190,6 +198,11 @@ class Recorder {
   double longest_jump_rad() const;
 
  private:
+  /// A series point: kept (with a sink, until committed); throws std::logic_error for one
+  /// before the committed time (a driver that broke its promise).
+  void Keep(const SeriesPoint& p);
+  /// With a sink: every point kept goes to it (the run is over).
+  void SendAll();
   void Update(double t, const TrainState& x, const Phase& phase);
   void Update(double t, const TrainState& x, const Phase& phase, const Contacts& c);
   /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
@@ -203,6 +216,8 @@ class Recorder {
 
   const NeedleTrain& train_;
   bool record_series_;
+  std::function<void(const SeriesPoint&)> sink_;
+  double committed_t_ = -1e300;  // with a sink: the points before this time went to it
   std::vector<Episode> episodes_;
   std::vector<Impact> impacts_;
   std::vector<SeriesPoint> series_;

@@ -495,6 +495,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     }
     const double t0 = step.first;
     double t1 = step.second;
+    recorder_.Commit(t0);  // nothing is recorded before the step any more
     const bool at_segment_end = t1 >= segment_end - 1e-14 * std::max(1.0, std::abs(segment_end));
     if (at_segment_end) t1 = segment_end;
 

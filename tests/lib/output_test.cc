@@ -87,3 +87,41 @@ TEST(OutputTest, FixedNeverPrintsNegativeZero) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A file written as it is produced: nothing at the path until Commit(), then all of it (here
+// 3 MiB in pieces, past the 1 MiB buffer), and an AtomicFile given up leaves no file at all.
+TEST(OutputTest, AnAtomicFileIsInPlaceOnlyOnceCommitted) {
+  const auto dir = std::filesystem::temp_directory_path() / "needle_output_stream";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "series.csv").string();
+  std::string expected;
+  {
+    AtomicFile file(path);
+    for (int i = 0; i < 3 * 1024; ++i) {
+      const std::string piece(1024, static_cast<char>('a' + i % 26));
+      file.Write(piece);
+      expected += piece;
+    }
+    EXPECT_FALSE(std::filesystem::exists(path));
+    file.Commit();
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  EXPECT_EQ(s.str(), expected);
+  {
+    AtomicFile abandoned((dir / "abandoned.csv").string());
+    abandoned.Write(std::string(2 << 20, 'x'));
+  }  // destroyed uncommitted: as if the run had failed
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace needle
