@@ -19,6 +19,9 @@ constexpr double kStiffOscillations = 2000.0;
 // The rigid answer stands in when contact oscillates this often per event and the
 // quasi-static force never falls below this fraction of the preload.
 constexpr double kRigidOscillations = 500.0;
+// A linear train this stiff is run by rosenbrock4 at rtol >= kRosenbrockFromRtol (the stiff
+// bench scene has 942 contact oscillations per event, the soft one 52).
+constexpr double kStiffLinearOscillations = 500.0;
 constexpr double kRigidMargin = 0.5;
 
 // One integration from x0 over [0, t_end] (then on while the needle settles, for at most
@@ -320,6 +323,41 @@ double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm) {
   return omega_c * event_s / (2.0 * kPi);
 }
 
+MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double rtol) {
+  if (train.HasConstraint()) {
+    return {Method::kDopri5,
+            "auto: rigid contacts (restitution and sticking): explicit Dormand–Prince, a one-step "
+            "method that restarts at full order after every impact"};
+  }
+  const std::string stiffness = "the contact oscillates " +
+                                std::to_string(static_cast<long>(std::lround(oscillations))) +
+                                " times per cam event";
+  if (const std::optional<std::string> refusal = ExactRefusal(train)) {
+    const bool stiff = oscillations > kStiffOscillations;
+    return {stiff ? Method::kCvodeBdf : Method::kDopri5,
+            "auto: " + *refusal + "; " + stiffness +
+                (stiff ? " (> 2000: stiff, BDF)" : " (≤ 2000: explicit Dormand–Prince)")};
+  }
+  if (rtol >= kExactBelowRtol) {
+    std::ostringstream asked;
+    asked << rtol;
+    const bool stiff = oscillations > kStiffLinearOscillations && rtol >= kRosenbrockFromRtol;
+    return {stiff ? Method::kRosenbrock4 : Method::kDopri5,
+            "auto: rtol " + asked.str() +
+                " >= 1e-6 asks less than the closed form's roundoff, and " +
+                (stiff ? stiffness + " (> 500) at rtol >= 1e-4: Rosenbrock (linearly implicit)"
+                       : std::string("explicit Dormand–Prince")) +
+                " reaches it in less time (BENCHMARKS.md, auto by tolerance)"};
+  }
+  return {Method::kExact, "auto: the train is linear in every contact mode, solved in closed form"};
+}
+
+MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol) {
+  const RunWindow window = DefaultRunWindow(scene);
+  const NeedleTrain train(*scene.cam, scene.train, OmegaFromRpm(speed_rpm), window.start_rad);
+  return AutoMethod(train, ContactOscillationsPerEvent(scene, speed_rpm), rtol);
+}
+
 SimulationResult Simulate(const Scene& scene, double speed_rpm, const SimulationOptions& o) {
   if (!(speed_rpm > 0.0) || !std::isfinite(speed_rpm)) {
     throw std::invalid_argument("speed must be positive, got " + std::to_string(speed_rpm) +
@@ -397,20 +435,9 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   NeedleTrain train(*scene.cam, scene.train, omega, theta_a);
   Method method;
   if (o.method == "auto") {
-    if (train.HasConstraint()) {
-      method = Method::kDopri5;
-      r.method_reason =
-          "auto: rigid contacts (restitution and sticking): explicit Dormand–Prince, a one-step "
-          "method that restarts at full order after every impact";
-    } else if (const std::optional<std::string> refusal = ExactRefusal(train)) {
-      method = oscillations > kStiffOscillations ? Method::kCvodeBdf : Method::kDopri5;
-      r.method_reason = "auto: " + *refusal + "; " + stiffness +
-                        (method == Method::kCvodeBdf ? " (> 2000: stiff, BDF)"
-                                                     : " (≤ 2000: explicit Dormand–Prince)");
-    } else {
-      method = Method::kExact;
-      r.method_reason = "auto: the train is linear in every contact mode, solved in closed form";
-    }
+    const MethodChoice choice = AutoMethod(train, oscillations, o.integrator.rtol);
+    method = choice.method;
+    r.method_reason = choice.reason;
   } else if (auto m = ParseMethod(o.method)) {
     method = *m;
     r.method_reason = "asked for";

@@ -187,6 +187,26 @@ std::optional<std::string> CyclesRefusal(const Scene& scene);
 /// `auto` decides by.
 double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm);
 
+/// What `auto` runs, and why (SimulationResult::method_reason): a rigid contact, dopri5; a
+/// nonlinear contact law, dopri5 or (> 2000 contact oscillations per event) CVODE BDF; a train
+/// linear in every contact mode, the closed form `exact`, unless rtol >= kExactBelowRtol asks
+/// so little that dopri5 (a stiff one at rtol >= kRosenbrockFromRtol: rosenbrock4) is faster
+/// (BENCHMARKS.md, "auto by tolerance", measures the rule).
+struct MethodChoice {
+  Method method;
+  std::string reason;
+};
+/// The loosest tolerance at which `auto` still takes the closed form for a linear train: from
+/// rtol 1e-6 on, dopri5 took 0.3–0.9 of exact's time on every bench scene; at 1e-7, 0.7–1.2.
+constexpr double kExactBelowRtol = 1e-6;
+/// From this tolerance on, a linear train with more than 500 contact oscillations per event is
+/// run by rosenbrock4: on the stiff bench scene (942) it took 0.46 and 0.85 of dopri5's time at
+/// rtol 1e-3 and 1e-4, with less error; at 1e-5, 1.7 times dopri5's.
+constexpr double kRosenbrockFromRtol = 1e-4;
+MethodChoice AutoMethod(const NeedleTrain& train, double oscillations_per_event, double rtol);
+/// The same for a scene at a speed.
+MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol);
+
 SimulationResult Simulate(const Scene& scene, double speed_rpm, const SimulationOptions& options);
 
 }  // namespace needle

@@ -228,6 +228,29 @@ TEST(SimulationTest, AutoPicksTheClosedFormAndSaysWhy) {
             "auto: the train is linear in every contact mode, solved in closed form");
   s.train.contact_stiffness_N_m = 1e12;  // ~3300 oscillations per event
   EXPECT_EQ(Simulate(s, 400, o).method, "exact");
+  // A loose tolerance: Dormand–Prince is faster there (BENCHMARKS.md, auto by tolerance).
+  o.integrator.rtol = 9.9e-7;
+  EXPECT_EQ(Simulate(s, 400, o).method, "exact");
+  o.integrator.rtol = 1e-6;
+  const SimulationResult loose = Simulate(s, 400, o);
+  EXPECT_EQ(loose.method, "dopri5");
+  EXPECT_EQ(loose.method_reason,
+            "auto: rtol 1e-06 >= 1e-6 asks less than the closed form's roundoff, and explicit "
+            "Dormand–Prince reaches it in less time (BENCHMARKS.md, auto by tolerance)");
+  EXPECT_EQ(AutoMethod(s, 400, 1e-8).method, Method::kExact);
+  EXPECT_EQ(AutoMethod(s, 400, 9.9e-5).method, Method::kDopri5);
+  // Stiff (≈ 3300 oscillations per event) and loose: Rosenbrock.
+  const MethodChoice stiff = AutoMethod(s, 400, 1e-4);
+  EXPECT_EQ(stiff.method, Method::kRosenbrock4);
+  EXPECT_EQ(stiff.reason,
+            "auto: rtol 0.0001 >= 1e-6 asks less than the closed form's roundoff, and the contact "
+            "oscillates " +
+                std::to_string(std::lround(ContactOscillationsPerEvent(s, 400))) +
+                " times per cam event (> 500) at rtol >= 1e-4: Rosenbrock (linearly implicit) "
+                "reaches it in less time (BENCHMARKS.md, auto by tolerance)");
+  EXPECT_GT(ContactOscillationsPerEvent(s, 400), 3000);
+  s.train.contact_stiffness_N_m = c.train->contact_stiffness_N_m;  // the case's: 58 per event
+  EXPECT_EQ(AutoMethod(s, 400, 1e-3).method, Method::kDopri5);
   o.method = "dopri5";
   const SimulationResult d = Simulate(s, 400, o);
   EXPECT_EQ(d.method, "dopri5");
