@@ -1,0 +1,170 @@
+// The closed form's side of the event driver (event_driver.h): crossings certified on a piece's
+// own polynomials (Certified, Isolate), the ranges of what the record sees over a stretch, how
+// far a piece may run where nothing can change (LongestQuiet), and the extremes of the forces
+// located inside a step (RecordExtremes).
+#include <algorithm>
+#include <array>
+#include <boost/math/tools/minima.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "dynamics/solver/event_driver.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace internal {
+
+std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i, int s, double a,
+                                             double wa, double b, double wb) {
+  if (!(b > a)) return std::nullopt;
+  // Witnesses 5 and 6 are gated by y > 1 µm; on [a, b] (up to witness 4's crossing) the gate
+  // is the one in the middle.
+  const bool lifted = piece.Motion(0.5 * (a + b))[0] > kSeparationLift_m;
+  const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
+  if (!form) throw std::logic_error("exact: a witness without a linear form");
+  int budget = kIsolationBudget;
+  // Inside the search the witness is evaluated on the piece's own polynomials, where they agree
+  // in sign with the train's own evaluation at both ends (they differ by round-off: a witness at
+  // zero on a break, or just after a restart, is left to the train's).
+  value_form_ = &*form;
+  value_piece_ = &piece;
+  struct Reset {
+    EventDriver* d;
+    ~Reset() { d->value_form_ = nullptr; }
+  } reset{this};
+  const std::optional<Bracket> bracket = Isolate(piece, *form, i, s, {a, wa, b, wb}, budget);
+  if (!bracket) return std::nullopt;
+  const double root = Refine(i, bracket->a, bracket->wa, bracket->b, bracket->wb);
+  // The root must be past the crossing for the train's own evaluation too (the two differ by
+  // round-off): else it is refined again on the train's.
+  value_form_ = nullptr;
+  if (SignOf(Value(i, root)) != s) return root;
+  const double fa = Value(i, bracket->a), fb = Value(i, bracket->b);
+  if (SignOf(fa) == s && SignOf(fb) != s) return Refine(i, bracket->a, fa, bracket->b, fb);
+  return Refine(i, a, wa, b, wb);
+}
+
+// On [a, b], w(a) = wa of sign s and w(b) = wb: the earliest sub-interval [lo, hi] where w
+// leaves sign s, holding exactly one crossing, or nullopt when w keeps sign s on [a, b]. With
+// |w'| ≤ L₁ and |w''| ≤ L₂ on [a, b] (ClosedFormPiece::Bounds):
+//   no crossing   when |w(a)| + |w(b)| > L₁ (b − a) (a root would need more slope), or when w is
+//                 monotone (|w'(a)| > L₂ (b − a)) and keeps its sign at both ends;
+//   one crossing  when w is monotone and changes sign;
+//   otherwise the interval is halved, the left half first. Below the time's round-off, or past
+//   kIsolationBudget halvings, an interval without a sign change at its ends counts as none (a
+//   tangency, or a witness pinned at zero by round-off).
+std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& piece,
+                                                         const LinearForm& form, int i, int s,
+                                                         const Bracket& in, int& budget) {
+  const bool change = SignOf(in.wb) != s;
+  if (!change) {
+    // The values' range over the whole interval: no crossing where it keeps sign s.
+    const FormRange range = piece.Range(form, in.a, in.b);
+    if (s > 0 ? range.lo > 0.0 : range.hi <= 0.0) return std::nullopt;
+  }
+  const FormBounds bounds = piece.Bounds(form, in.a, in.b);
+  const double h = in.b - in.a;
+  const bool monotone = std::abs(bounds.slope_at_start) > bounds.curvature_bound * h;
+  if (!change && (monotone || std::abs(in.wa) + std::abs(in.wb) > bounds.slope_bound * h))
+    return std::nullopt;
+  if (change && monotone) return in;
+  const double mid = in.a + 0.5 * h;
+  // The time's round-off, or a witness that stays within its own round-off of zero (a needle
+  // resting on its seat without load): the ends decide, as on the time steppers.
+  if (--budget < 0 || !(mid > in.a && mid < in.b)) {
+    return change ? std::optional<Bracket>(in) : std::nullopt;
+  }
+  const double wm = Value(i, mid);
+  if (auto left = Isolate(piece, form, i, s, {in.a, in.wa, mid, wm}, budget)) return left;
+  return Isolate(piece, form, i, s, {mid, wm, in.b, in.wb}, budget);
+}
+
+StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, double t1) const {
+  const Phase& phase = system_.phase;
+  StretchRanges r;
+  const FormRange y = piece.Range(LinearForm{1.0, 0.0, 0.0, 0.0, 0.0}, t0, t1);
+  r.y_lo = y.lo;
+  r.y_hi = y.hi;
+  r.u_hi = piece.Range(LinearForm{0.0, 0.0, 1.0, 0.0, 0.0}, t0, t1).hi;
+  // The applied forces of linear laws: k g + c ġ in mode, with g_c = u − y, g_s = −y.
+  if (phase.mode.cam) {
+    const double k = train_.cam_law().ForceStiffness(), c = train_.cam_law().ForceDamping();
+    const FormRange f = piece.Range(LinearForm{-k, -c, k, c, 0.0}, t0, t1);
+    r.fc_lo = f.lo;
+    r.fc_hi = f.hi;
+  }
+  if (phase.mode.seat) {
+    const double k = train_.seat_law().ForceStiffness(), c = train_.seat_law().ForceDamping();
+    r.fs_hi = piece.Range(LinearForm{-k, -c, 0.0, 0.0, 0.0}, t0, t1).hi;
+  }
+  return r;
+}
+
+double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double cap,
+                                 double limit) const {
+  const double end = std::min(limit, t_end_);
+  if (!(end > cap) || !piece.InputConstant()) return cap;
+  const StretchRanges ranges = Ranges(piece, t, end);
+  if (recorder_.MayChange(ranges)) return cap;
+  // Every witness's range over the whole stretch keeps the sign it has at t: the certified
+  // search then ends at its first test, without halving a long interval.
+  const bool lifted = ranges.y_lo > kSeparationLift_m;
+  if (lifted != (ranges.y_hi > kSeparationLift_m)) return cap;  // the gate may change
+  const EventValues now = Events(train_, system_.phase, piece.State(t), t);
+  for (int i = 0; i < static_cast<int>(now.size()); ++i) {
+    const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
+    if (!form) return cap;
+    const FormRange range = piece.Range(*form, t, end);
+    if (!(SignOf(now[i]) > 0 ? range.lo > 0.0 : range.hi <= 0.0)) return cap;
+  }
+  return end;
+}
+
+void EventDriver::RecordExtremes(double t0, double t1) {
+  constexpr int n = 16;
+  const Phase& phase = system_.phase;
+  // Nothing recorded can change inside the stretch: its interior samples are left out.
+  if (!recorder_.MayChange(Ranges(*stepper_->ClosedForm(), t0, t1))) return;
+  const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
+  const double min_fc = recorder_.min_contact_force_during_lift_N();
+  // The three forces at x, each signed so that its extreme is a minimum.
+  const auto forces = [&](double t, const TrainState& x) {
+    const Contacts c = train_.Evaluate(x, t, phase);
+    const double fc = train_.AppliedCamForce(c, phase);
+    return std::array<double, 3>{-fc, -train_.AppliedSeatForce(c, phase), fc};
+  };
+  std::array<double, n + 1> ts;
+  std::array<std::array<double, n + 1>, 3> f;
+  for (int k = 0; k <= n; ++k) {
+    ts[k] = t0 + (t1 - t0) * k / n;
+    const TrainState x = Motion(ts[k]);
+    const Contacts c = train_.Evaluate(x, ts[k], phase);
+    const double fc = train_.AppliedCamForce(c, phase);
+    f[0][k] = -fc;
+    f[1][k] = -train_.AppliedSeatForce(c, phase);
+    f[2][k] = fc;
+    if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase, c);
+  }
+  const std::array<double, 3> record = {-max_fc, -max_fs, min_fc};
+  for (int which = 0; which < 3; ++which) {
+    const auto& v = f[which];
+    const int k = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
+    // Only a new record inside the step, and for the least contact force one while pushing.
+    if (k == 0 || k == n || !(v[k] < record[which])) continue;
+    if (which == 2 && !(v[k] > 0.0)) continue;
+    std::uintmax_t iterations = 60;
+    // In the fraction of the bracket: Brent's tolerance has an absolute part.
+    const double base = ts[k - 1], width = ts[k + 1] - ts[k - 1];
+    const auto at = [&](double d) { return base + d * width; };
+    const auto best = boost::math::tools::brent_find_minima(
+        [&](double d) { return forces(at(d), Motion(at(d)))[which]; }, 0.0, 1.0,
+        std::numeric_limits<double>::digits / 2, iterations);
+    recorder_.Sample(at(best.first), Motion(at(best.first)), phase);
+  }
+}
+
+}  // namespace internal
+}  // namespace needle

@@ -1,0 +1,211 @@
+#pragma once
+/// @file
+/// Internal to the solver (not installed): the one event driver, declared for its two files —
+/// event_driver.cc (the run: steps, events, resets, rest) and event_certification.cc (the
+/// closed form's certified crossings, quiet stretches and located extremes).
+///
+/// The one event driver (after Drake's Simulator with witness functions). It owns, for every
+/// backend alike:
+///   - the contact mode: the witnesses' signs decide it (ModeFromSigns); inside a step the mode
+///     is fixed, so the right-hand side is smooth;
+///   - event location: a witness whose sign at the step's end differs from its stored sign is
+///     bracketed by 16 samples of the dense output and refined by TOMS 748 to machine
+///     precision; the earliest crossing is taken first;
+///   - reset maps: at an impact of a law that has one, the state jumps (NeedleTrain::Reset);
+///   - restarts: after a mode switch or a reset the backend restarts at the event;
+///   - the cam input's breaks: steps end exactly on every break, the cam is evaluated on the
+///     segment's own side of it, and the backend restarts past it;
+///   - budgets (steps, events), recording (Recorder) and the end of the run (docs/model.md §5).
+#include <array>
+#include <boost/math/tools/roots.hpp>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "dynamics/solver/contact_events.h"
+#include "dynamics/solver/integrator.h"
+#include "dynamics/solver/stepper.h"
+
+namespace needle {
+namespace internal {
+
+// Halvings one certified search may spend (ClosedFormPiece bounds are tight enough that a
+// simple crossing takes a few dozen; only a witness pinned at zero by round-off runs out).
+inline constexpr int kIsolationBudget = 256;
+
+// The sign a witness value counts as: +1 above zero, −1 at or below it.
+inline int SignOf(double v) { return v > 0.0 ? 1 : -1; }
+
+inline EventSigns Signs(const EventValues& v) {
+  EventSigns s(v.size());
+  for (size_t i = 0; i < v.size(); ++i) s[i] = SignOf(v[i]);
+  return s;
+}
+
+class EventDriver {
+ public:
+  EventDriver(Method method, const NeedleTrain& train, Recorder& recorder,
+              const IntegratorOptions& o)
+      : train_(train), recorder_(recorder), o_(o), system_(train, o) {
+    stepper_ = MakeStepper(method, system_, o);
+    stepper_->SetLongest([this](const ClosedFormPiece& piece, double t, double cap, double limit) {
+      return LongestQuiet(piece, t, cap, limit);
+    });
+  }
+
+  IntegrationStats Run(const TrainState& x0, double t_end);
+
+ private:
+  // The state at t from the backend's dense output.
+  TrainState At(double t) {
+    stepper_->CalcState(t, z_);
+    return system_.FromScaled(z_);
+  }
+  // y and ẏ at t (W and D may be left out): for witnesses and samples.
+  TrainState Motion(double t) {
+    stepper_->CalcMotion(t, z_);
+    return system_.FromScaled(z_);
+  }
+  void Restart(const TrainState& x, double t, double dt) {
+    stepper_->Initialize(system_.ToScaled(x), t, dt);
+  }
+  // At a state reached without integration (the start, a reset, a rigid contact letting go):
+  // the mode its witnesses imply, and their signs in that mode (witness 5 depends on the mode).
+  // Rigid contacts stick by NeedleTrain::StickingMode, and x is put on their surfaces.
+  EventSigns SettleMode(TrainState& x, double t) {
+    Phase& phase = system_.phase;
+    phase.mode = ModeFromSigns(train_, Signs(Events(train_, phase, x, t)));
+    if (train_.HasConstraint()) {
+      phase.mode = train_.StickingMode(x, t, phase);
+      x = train_.Project(x, t, phase);
+    }
+    return Signs(Events(train_, phase, x, t));
+  }
+  // After an impact of a rigid contact (`cam` or the seat) at t with approach speed ġ⁻ > 0,
+  // the state xs after its reset: when the impacts form a geometric series (this one's speed
+  // is e times the last one's, to 10 %) whose remaining flights, 2 e ġ⁻/(a (1 − e)) under the
+  // pressing acceleration a = λ/m, end within kAccumulationTime of a cam revolution, the
+  // accumulation point t∞ (at most `limit`) with the needle sticking there; else nullopt.
+  std::optional<double> Accumulate(bool cam, double t, double approach, double limit,
+                                   TrainState& xs, EventSigns& signs);
+
+  // Chattering ends in sticking when its remaining flights last less than this fraction of a
+  // cam revolution (2π/ω).
+  static constexpr double kAccumulationTime = 1e-6;
+  void GridUpTo(double t) {
+    const std::vector<double>& grid = recorder_.grid_times();
+    while (next_grid_ < grid.size() && grid[next_grid_] <= t) {
+      recorder_.GridSample(grid[next_grid_], Motion(grid[next_grid_]), system_.phase);
+      ++next_grid_;
+    }
+  }
+
+  double Value(int i, double t) {
+    if (value_form_) return value_piece_->FormValue(*value_form_, t);
+    return ValuesAt(t)[i];
+  }
+  // Every witness at t (the last time asked is kept: the certified search asks each witness at
+  // the same ends).
+  const EventValues& ValuesAt(double t) {
+    if (!(t == values_t_ && values_valid_)) {
+      values_ = Events(train_, system_.phase, Motion(t), t);
+      values_t_ = t;
+      values_valid_ = true;
+    }
+    return values_;
+  }
+  // The root of witness i inside a bracket [a, b] where it leaves sign s, by TOMS 748 to
+  // machine precision: the side past the crossing.
+  double Refine(int i, double a, double fa, double b, double fb) {
+    std::uintmax_t iterations = 100;
+    const auto r = boost::math::tools::toms748_solve(
+        [&](double at) { return Value(i, at); }, a, b, fa, fb,
+        boost::math::tools::eps_tolerance<double>(52), iterations);
+    // TOMS 748 may end on an exact zero, which counts as the negative side, or inside the
+    // round-off band of the function: then the earliest time found past the crossing, by
+    // bisection between its answer and b (which is past).
+    const int s = SignOf(fa);
+    const auto past = [&](double at) { return SignOf(Value(i, at)) != s; };
+    if (past(r.second)) return r.second;
+    double lo = std::max(a, r.second), hi = b;
+    while (true) {
+      const double mid = lo + 0.5 * (hi - lo);
+      if (!(mid > lo && mid < hi)) break;
+      (past(mid) ? hi : lo) = mid;
+    }
+    return hi;
+  }
+  // The time steppers: witness i keeps sign s at `from` (value wa) and not at the step end
+  // (t_end, the dense output's end t_dense): the first of 16 samples without sign s brackets
+  // the crossing.
+  std::optional<double> Sampled(int i, int s, double from, double wa, double t_end,
+                                double t_dense) {
+    const int n = 16;
+    double a = from, fa = wa;
+    for (int k = 1; k <= n; ++k) {
+      const double b = k == n ? t_dense : from + (t_end - from) * k / n;
+      const double fb = Value(i, b);
+      if (SignOf(fb) == s) {
+        a = b;
+        fa = fb;
+        continue;
+      }
+      return Refine(i, a, fa, b, fb);
+    }
+    return std::nullopt;
+  }
+  // The closed form: the earliest time in [a, b] where witness i (values wa at a, of sign s,
+  // and wb at b) leaves sign s, or nullopt, certified by the bounds of its linear form on the
+  // piece.
+  std::optional<double> Certified(const ClosedFormPiece& piece, int i, int s, double a, double wa,
+                                  double b, double wb);
+  // A bracket [a, b] of one crossing with the witness's values at its ends.
+  struct Bracket {
+    double a, wa, b, wb;
+  };
+  std::optional<Bracket> Isolate(const ClosedFormPiece& piece, const LinearForm& form, int i, int s,
+                                 const Bracket& in, int& budget);
+
+  // Whether a jump episode has lasted at least o_.stop_jump_rad by t (closed ones, and the open
+  // one up to t); false when that option is off. Episodes before jump_checked_ are done with.
+  bool JumpReached(double t);
+
+  // The ranges of what the record sees over [t0, t1] of a closed-form piece.
+  StretchRanges Ranges(const ClosedFormPiece& piece, double t0, double t1) const;
+  // The end of a closed-form piece from t past its cap, up to `limit` and the run's end t_end_:
+  // the limit where the stretch cannot change the record (Recorder::MayChange), the cam input
+  // is constant on it (a needle resting on its seat, or hanging in its play) and every witness's
+  // range keeps its sign over it (no crossing, certified without halving), else the cap.
+  double LongestQuiet(const ClosedFormPiece& piece, double t, double cap, double limit) const;
+
+  // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
+  // sample sets a new largest contact or seat force, or a new least contact force, locates that
+  // extreme by Brent's method between the samples around it and records it there.
+  void RecordExtremes(double t0, double t1);
+  // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
+  // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
+  // moving sample and the first at rest.
+  std::optional<double> FirstRest(double lo, double hi, const Phase& phase);
+
+  const NeedleTrain& train_;
+  Recorder& recorder_;
+  const IntegratorOptions& o_;
+  TrainSystem system_;
+  std::unique_ptr<Stepper> stepper_;
+  TrainState z_{};
+  size_t next_grid_ = 0;
+  // The approach speed of the last impact of each rigid contact while it chatters (cam, seat).
+  std::array<std::optional<double>, 2> last_approach_;
+  size_t jump_checked_ = 0;  // episodes closed and shorter than o_.stop_jump_rad
+  double t_end_ = 0.0;       // the run's window (pieces are not stretched past it)
+  // While a certified search runs: the witness as a linear form on the piece (Value).
+  const LinearForm* value_form_ = nullptr;
+  const ClosedFormPiece* value_piece_ = nullptr;
+  EventValues values_;  // ValuesAt's last answer, at values_t_ in the current step
+  double values_t_ = 0.0;
+  bool values_valid_ = false;
+};
+
+}  // namespace internal
+}  // namespace needle
