@@ -29,10 +29,12 @@ namespace needle {
 /// overspeed search (dynamics/overspeed.h).
 constexpr double kMinJump_rad = 0.1 * kPi / 180.0;
 
-/// Everything a run needs that does not depend on the speed. Owns its lift law.
+/// Everything a run needs that does not depend on the speed. Shares its lift law and cam
+/// input (neither changes once built): a copy of a scene with other train parameters costs
+/// no rebuilding.
 struct Scene {
-  std::unique_ptr<LiftLaw> law;
-  std::unique_ptr<CamInput> cam;
+  std::shared_ptr<const LiftLaw> law;
+  std::shared_ptr<const CamInput> cam;  ///< on *law
   TrainParameters train;
   std::optional<double> start_rad, end_rad;  ///< window override
   /// Crank angle of one cam revolution, rad: 4π four-stroke, 2π two-stroke ([solver] cycles).

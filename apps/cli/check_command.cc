@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include "apps/cli/check_writers.h"
 #include "apps/cli/cli_checks.h"
@@ -44,12 +45,13 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   RequireGnuplot();
   CheckOptions options;
   options.speed_rpm = o.speed_rpm;
-  const LiftLaw law = MakeLiftLaw(c);
+  const auto shared_law = std::make_shared<const LiftLaw>(MakeLiftLaw(c));
+  const LiftLaw& law = *shared_law;
   CheckResult result;
   {
     ProgressBar bar("overspeed", "speeds", o.json);
     options.progress = [&](int done, int total) { bar.Update(done, total); };
-    result = CheckScene(c, law, options);
+    result = CheckScene(c, shared_law, options);
   }
   const double rpm = result.speed_rpm;
   const std::vector<std::string>& skipped = result.skipped;

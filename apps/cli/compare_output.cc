@@ -133,7 +133,7 @@ Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rp
   cmp.b.c = std::move(b_case);
   int done_before = 0;  // the runs of A, when B is checked
   for (CheckedDesign* d : {&cmp.a, &cmp.b}) {
-    d->law.emplace(MakeLiftLaw(d->c));
+    d->law = std::make_shared<const LiftLaw>(MakeLiftLaw(d->c));
     CheckOptions options;
     options.speed_rpm = speed_rpm;
     if (progress) {
@@ -141,7 +141,7 @@ Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rp
         progress(done_before + done, done_before + total);
       };
     }
-    d->result = CheckScene(d->c, *d->law, options);
+    d->result = CheckScene(d->c, d->law, options);
     d->json = CheckJson(d->c, *d->law, d->result, report_path);
     if (d->result.sweep) done_before += static_cast<int>(d->result.sweep->rows.size());
   }

@@ -5,6 +5,7 @@
 /// and CompareReport write the comparison. Internal to the command line and the Python module.
 
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -20,7 +21,7 @@ namespace needle {
 /// One design checked: the case, its lift law, the check and its `check --json` object.
 struct CheckedDesign {
   Case c;
-  std::optional<LiftLaw> law;
+  std::shared_ptr<const LiftLaw> law;
   CheckResult result;
   nlohmann::json json;
 };

@@ -1,7 +1,9 @@
 #include "apps/scene/case_scene.h"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "lib/units.h"
 #include "spring/helical_spring.h"
@@ -10,6 +12,10 @@
 namespace needle {
 
 Scene MakeScene(const Case& c) {
+  return MakeScene(c, std::make_shared<const LiftLaw>(MakeLiftLaw(c)));
+}
+
+Scene MakeScene(const Case& c, std::shared_ptr<const LiftLaw> law) {
   if (!c.needle)
     throw CaseError(
         c.path +
@@ -23,14 +29,14 @@ Scene MakeScene(const Case& c) {
                     ": [train] contact_stiffness: section [train] is missing; the dynamics needs "
                     "the contact stiffness");
   Scene s;
-  s.law = std::make_unique<LiftLaw>(MakeLiftLaw(c));
+  s.law = std::move(law);
   if (!s.law->HasAcceleration()) {
     throw CaseError(c.path + ": [lift] spline: \"" + SplineKindName(s.law->kind()) +
                     "\" is C1 only; the dynamics needs a C2 spline (not-a-knot, natural, clamped, "
                     "quintic, smoothing)");
   }
   try {
-    s.cam = std::make_unique<CamInput>(
+    s.cam = std::make_shared<const CamInput>(
         *s.law, c.train->play_m, c.train->linear_ramp ? RampKind::kLinear : RampKind::kTangent,
         c.train->ramp_rad);
   } catch (const std::invalid_argument& e) {

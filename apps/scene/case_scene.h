@@ -5,6 +5,8 @@
 /// (spring/spring_check.h). Each throws CaseError naming the file, the section and what is
 /// missing or invalid.
 
+#include <memory>
+
 #include "apps/scene/case_file.h"
 #include "dynamics/simulation.h"
 #include "spring/spring_check.h"
@@ -14,6 +16,8 @@ namespace needle {
 /// Builds the scene of a case with [needle], [spring] and [train]; throws CaseError naming
 /// the missing section or the invalid value.
 Scene MakeScene(const Case& c);
+/// The same on a lift law already built for the case (MakeLiftLaw(c)): the scene shares it.
+Scene MakeScene(const Case& c, std::shared_ptr<const LiftLaw> law);
 
 /// The options a case's [solver] section asks for.
 SimulationOptions OptionsFromCase(const Case& c);

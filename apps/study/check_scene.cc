@@ -47,9 +47,8 @@ constexpr double kAssumedSurgeDamping = 0.01;
 // The scene with its helical spring as N coil masses (SurgeStudy), against the massless spring.
 // Throws std::invalid_argument when the train refuses the chain (coils of 3 needle masses or
 // more).
-SurgeStudy StudySurge(const Case& c, const CheckResult& r, bool series) {
+SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene, bool series) {
   SurgeStudy s;
-  Scene scene = MakeScene(c);
   const HelicalSpringCheck& h = *r.spring->helical;
   SimulationOptions sim = r.run_options;
   sim.force_dynamic = true;
@@ -94,6 +93,12 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, bool series) {
 }  // namespace
 
 CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options) {
+  return CheckScene(c, std::make_shared<const LiftLaw>(law), options);
+}
+
+CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
+                       const CheckOptions& options) {
+  const LiftLaw& law = *shared_law;
   CheckResult r;
   r.speed_rpm = options.speed_rpm.value_or(c.engine.speed_rpm);
   const double rpm = r.speed_rpm;
@@ -118,7 +123,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
 
   // The dynamics: one run at the rated speed, and the overspeed sweep.
   if (c.train && c.needle && c.spring && law.HasAcceleration()) {
-    const Scene scene = MakeScene(c);
+    const Scene scene = MakeScene(c, shared_law);  // the one scene of the check
     r.run_options = OptionsFromCase(c);
     SimulationOptions sim = r.run_options;
     sim.force_dynamic = true;  // the report shows the dynamic force
@@ -136,7 +141,7 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
     r.sweep = OverspeedSearch(scene, os, options.progress);
     if (r.spring && r.spring->helical) {
       try {
-        r.surge = StudySurge(c, r, options.record_series);
+        r.surge = StudySurge(c, r, scene, options.record_series);
       } catch (const std::invalid_argument& e) {
         r.surge_reason = e.what();
       }

@@ -16,6 +16,7 @@
 /// only formats the result (text, JSON, the HTML report).
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -124,6 +125,10 @@ std::vector<FieldGroup> CheckFields(const CheckResult& r);
 /// Checks case `c` with lift law `law` (MakeLiftLaw(c)). Throws CaseError on a case that
 /// cannot be checked (a section that is present but invalid).
 CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options = {});
+/// The same on a shared law: the check's scene and its surge study's scenes share it (the lift
+/// law is built once per check).
+CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> law,
+                       const CheckOptions& options = {});
 
 /// Whether the coils' dynamics show harm: the surge rows' contact force, jump or stress, or the
 /// coil gap, fails. A failing f_1/f_cam screen (13, the classic rule) only warns when they

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <thread>
@@ -128,7 +129,7 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   // result, not the end of the study: it fails as "case refused", with the reason.
   CheckResult r;
   try {
-    r = CheckScene(c, MakeLiftLaw(c), options);
+    r = CheckScene(c, std::make_shared<const LiftLaw>(MakeLiftLaw(c)), options);
   } catch (const CaseError& refusal) {
     s.pass = false;
     s.failing = {"case refused"};
