@@ -279,6 +279,34 @@ double QuasiStaticLiftoffRpm(const Scene& scene) {
   return QuasiStaticLiftoffRpm(*scene.law, RigidTrainOf(scene));
 }
 
+std::vector<Field> SimulationFields(const SimulationResult& r) {
+  using namespace display;
+  std::vector<Field> f = {
+      {"max_lift", kMm, r.max_lift_m, 4},
+      {"max_lift", kDegree, r.max_lift_rad, 2},
+      {"max_contact_force", kN, r.max_contact_force_N, 1},
+      {"min_contact_force_during_lift", kN, r.min_contact_force_during_lift_N, 1},
+      {"max_seat_force", kN, r.max_seat_force_N, 1},
+  };
+  if (r.min_coil_gap_m) {  // a chain of coil masses with a travel to solid
+    f.push_back({"min_coil_gap", kMm, *r.min_coil_gap_m, 3});
+    f.push_back({"coil_clashes", kNone, static_cast<double>(r.coil_clashes), 0, "", true});
+  }
+  const auto count = [](const char* name, long n) {
+    return Field{name, display::kNone, static_cast<double>(n), 0, "", true};
+  };
+  f.push_back({"energy_residual", kNone,
+               r.skipped ? std::nullopt : std::optional<double>(r.energy_residual), 3});
+  f.push_back(count("steps", r.stats.steps));
+  f.push_back(count("rhs_evaluations", r.stats.rhs_evaluations));
+  f.push_back(count("accumulations", r.stats.accumulations));
+  f.push_back(count("events", r.stats.events));
+  f.push_back({"window_start", kDegree, r.window_start_rad, 2});
+  f.push_back({"window_end", kDegree, r.window_end_rad, 2});
+  f.push_back({"run_end", kDegree, r.run_end_rad, 2});
+  return f;
+}
+
 std::vector<Column> SeriesColumns() {
   using namespace display;
   return {{"crank", kDegree}, {"time", kS},          {"lift", kMm},     {"velocity", kMPerS},

@@ -164,6 +164,11 @@ RigidTrain RigidTrainOf(const Scene& scene);
 /// The scene's quasi-static lift-off speed n_qs, rpm (spring/quasi_static.h on RigidTrainOf).
 double QuasiStaticLiftoffRpm(const Scene& scene);
 
+/// A run's numbers, described once for its writers (lib/result_fields.h): the extremes, the
+/// window and where the run ended, the coil gap (with coil masses), the energy residual (none
+/// when the run was skipped) and the work done. Episodes, impacts and cycles are lists.
+std::vector<Field> SimulationFields(const SimulationResult& r);
+
 /// The recorded series as a table, described once for its writers: crank_deg, time_s, lift_mm,
 /// velocity_m_s, cam_mm, contact_force_N, seat_force_N (columns, and one SI row per point).
 std::vector<Column> SeriesColumns();

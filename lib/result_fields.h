@@ -53,6 +53,8 @@ struct Field {
   /// The JSON key when it is not name_unit (a published key kept as it was, e.g.
   /// `liftoff_rpm_quasi_static`); empty: name_unit.
   std::string key = {};
+  /// A count (steps, impacts): written as an integer.
+  bool count = false;
 
   /// `key` if set, else name + "_" + unit key (or the name alone for plain numbers).
   std::string Key() const;

@@ -101,6 +101,8 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
 
   CommandOutput result;
   result.status = r.liftoff() ? 1 : 0;
+  const std::vector<Field> fields = SimulationFields(r);
+  const auto text = [&fields](const char* key) { return ValueText(FieldAt(fields, key)); };
   if (!si[0].empty()) {
     for (size_t i = 0; i < columns.size(); ++i)
       result.columns[columns[i].SiKey()] = std::move(si[i]);
@@ -156,24 +158,8 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
       j["judged_from"] = r.judged_from;
     }
     j["impacts"] = impacts;
-    j["max_lift_mm"] = r.max_lift_m * 1e3;
-    j["max_lift_deg"] = r.max_lift_rad / kDeg;
-    j["max_contact_force_N"] = r.max_contact_force_N;
-    j["min_contact_force_during_lift_N"] = r.min_contact_force_during_lift_N;
-    j["max_seat_force_N"] = r.max_seat_force_N;
-    if (r.min_coil_gap_m) {  // a chain of coil masses ([spring] masses > 1)
-      j["min_coil_gap_mm"] = *r.min_coil_gap_m * 1e3;
-      j["coil_clashes"] = r.coil_clashes;
-    }
-    j["energy_residual"] = r.skipped ? nlohmann::json(nullptr) : nlohmann::json(r.energy_residual);
-    j["steps"] = r.stats.steps;
-    j["rhs_evaluations"] = r.stats.rhs_evaluations;
-    j["accumulations"] = r.stats.accumulations;
-    j["events"] = r.stats.events;
+    PutFields(j, fields);
     j["rtol"] = sim.integrator.rtol;
-    j["window_start_deg"] = r.window_start_rad / kDeg;
-    j["window_end_deg"] = r.window_end_rad / kDeg;
-    j["run_end_deg"] = r.run_end_rad / kDeg;
     j["status"] = RunStatusName(r.status);
     j["status_reason"] = r.status_reason;
     j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoffRpm(scene));
@@ -183,26 +169,24 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
         << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
         << ")\n";
     if (!r.skipped) {
-      out << "window " << Fixed(r.window_start_rad / kDeg, 2) << " .. "
-          << Fixed(r.window_end_rad / kDeg, 2) << " deg; rtol " << sim.integrator.rtol << "; "
-          << r.stats.steps << " steps, " << r.stats.rhs_evaluations << " rhs evaluations, "
-          << r.stats.events << " events; energy residual " << r.energy_residual << '\n';
+      out << "window " << text("window_start_deg") << " .. " << text("window_end_deg")
+          << " deg; rtol " << sim.integrator.rtol << "; " << text("steps") << " steps, "
+          << text("rhs_evaluations") << " rhs evaluations, " << text("events")
+          << " events; energy residual " << r.energy_residual << '\n';
       if (r.status != RunStatus::kComplete) {
         out << "run " << RunStatusName(r.status) << ": " << r.status_reason << '\n';
       } else if (r.run_end_rad > r.window_end_rad) {
-        out << "run went on to " << Fixed(r.run_end_rad / kDeg, 2)
-            << " deg, where the needle came to rest\n";
+        out << "run went on to " << text("run_end_deg") << " deg, where the needle came to rest\n";
       }
     }
-    out << "max lift " << Fixed(r.max_lift_m * 1e3, 4) << " mm at "
-        << Fixed(r.max_lift_rad / kDeg, 2) << " deg\n"
-        << "contact force: max " << Fixed(r.max_contact_force_N, 1) << " N, min during the lift "
-        << Fixed(r.min_contact_force_during_lift_N, 1) << " N; max seat force "
-        << Fixed(r.max_seat_force_N, 1) << " N\n";
+    out << "max lift " << text("max_lift_mm") << " mm at " << text("max_lift_deg") << " deg\n"
+        << "contact force: max " << text("max_contact_force_N") << " N, min during the lift "
+        << text("min_contact_force_during_lift_N") << " N; max seat force "
+        << text("max_seat_force_N") << " N\n";
     if (r.min_coil_gap_m) {
-      out << "coil gap: least " << Fixed(*r.min_coil_gap_m * 1e3, 3)
-          << " mm to solid in the run (N times the most compressed segment's); " << r.coil_clashes
-          << " coil clashes\n";
+      out << "coil gap: least " << text("min_coil_gap_mm")
+          << " mm to solid in the run (N times the most compressed segment's); "
+          << text("coil_clashes") << " coil clashes\n";
     }
     if (r.cycles_asked > 1 && !r.skipped) {
       out << CyclesText(r);

@@ -22,7 +22,13 @@ inline nlohmann::json Finite(double v) {
 inline void PutFields(nlohmann::json& j, const std::vector<Field>& fields) {
   for (const Field& f : fields) {
     const auto v = f.Shown();
-    j[f.Key()] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    if (!v) {
+      j[f.Key()] = nullptr;
+    } else if (f.count) {
+      j[f.Key()] = static_cast<long long>(*v);
+    } else {
+      j[f.Key()] = *v;
+    }
   }
 }
 
@@ -33,10 +39,11 @@ inline const Field& FieldAt(const std::vector<Field>& fields, const std::string&
   throw std::logic_error("no result field " + key);
 }
 
-/// "value" with the field's decimals (no unit), or "none".
+/// "value" with the field's decimals (no unit; a count as an integer), or "none".
 inline std::string ValueText(const Field& f) {
   const auto v = f.Shown();
-  return v ? Fixed(*v, f.decimals) : std::string("none");
+  if (!v) return "none";
+  return f.count ? std::to_string(static_cast<long long>(*v)) : Fixed(*v, f.decimals);
 }
 
 /// "value unit" in the field's display unit, or "none".
