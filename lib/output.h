@@ -12,7 +12,11 @@ namespace needle {
 /// A file written as it is produced and put in place atomically: the text goes to a temporary
 /// file beside `path` (buffered), and Commit() flushes, syncs and renames it over `path`; an
 /// AtomicFile destroyed before Commit() removes its temporary file, so a failed run writes
-/// nothing. Errors throw std::runtime_error naming the path and the failing system call.
+/// nothing. A symbolic link is written through (its target replaced, the link kept); the file
+/// gets 0666 less the umask. SIGINT, SIGTERM or SIGHUP while it is written (where the program
+/// has no handler of its own) remove the temporary file before the program ends as the signal
+/// asks. Errors throw std::runtime_error naming the path and the failing
+/// system call.
 class AtomicFile {
  public:
   explicit AtomicFile(const std::string& path);
@@ -27,8 +31,11 @@ class AtomicFile {
   void Flush();
   [[noreturn]] void Fail(const char* call);
 
-  std::string path_, tmp_;
+  std::string path_;    // as the user named it (messages)
+  std::string target_;  // where it lands: a symbolic link's target, written through
+  std::string tmp_;
   int fd_ = -1;
+  int slot_ = -1;       // in the list an interrupting signal's handler removes
   std::string buffer_;  // written out at 1 MiB
 };
 

@@ -309,16 +309,27 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result)
           const double th = p.crank_rad - shift;
           if (th >= from_rad && th <= to_rad) into->rows.push_back({th / kDeg, p.contact_force_N});
         }
-        if (into->rows.empty()) into->rows.push_back({NAN, NAN});
       }
-      report.AddFigure(
-          "Surge: the contact force with the spring as " + std::to_string(sg.masses) +
-              " coil masses against the massless spring, at " + Fixed(rpm, 0) + " rpm",
-          {chain, massless},
-          "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
-          "plot $massless using 1:2 with lines lw 2 title 'massless spring', $chain using 1:2 "
-          "with lines lw 1 title '" +
-              std::to_string(sg.masses) + " coil masses'");
+      // Runs stopped on a budget before the lift have nothing to draw (the check fails them as
+      // undecided): the figure is left out, saying why.
+      const bool drawn = !chain.rows.empty() || !massless.rows.empty();
+      if (!drawn) {
+        report.AddHtml(
+            "<p>Surge figure not drawn: neither run reached the lift (the massless run is " +
+            RunStatusName(sg.massless.status) + ", the run with coil masses " +
+            RunStatusName(sg.rated.status) + ").</p>");
+      }
+      for (Series* s : {&chain, &massless})
+        if (s->rows.empty()) s->rows.push_back({NAN, NAN});
+      if (drawn)
+        report.AddFigure(
+            "Surge: the contact force with the spring as " + std::to_string(sg.masses) +
+                " coil masses against the massless spring, at " + Fixed(rpm, 0) + " rpm",
+            {chain, massless},
+            "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
+            "plot $massless using 1:2 with lines lw 2 title 'massless spring', $chain using 1:2 "
+            "with lines lw 1 title '" +
+                std::to_string(sg.masses) + " coil masses'");
     }
     report.AddFigure("Needle lift against the cam input u(θ); impacts marked", {motion, impacts},
                      "set xlabel 'crank angle (deg)'\nset ylabel 'lift (mm)'\nset key top right\n"

@@ -29,9 +29,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
   cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
       ->check(SpeedRpm());
-  cmd->add_option(
-      "--method", o.method,
-      "auto, exact, dopri5, cvode-bdf or cvode-adams (default: [solver] method or auto)");
+  cmd->add_option("--method", o.method, MethodList() + " (default: [solver] method or auto)");
   cmd->add_option("--rtol", o.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");
   cmd->add_option("--cycles", o.cycles,
                   "cam revolutions run back to back, the state carried over, until the state "
@@ -70,7 +68,7 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
          "end of the sweep, rpm (default: [overspeed] to_rpm, else the larger of 2 x n_qs and 2 x "
          "the rated speed)")
       ->check(SpeedRpm());
-  cmd->add_option("--method", o.method, "auto, exact, dopri5, cvode-bdf or cvode-adams");
+  cmd->add_option("--method", o.method, MethodList());
   cmd->add_option("--rtol", o.rtol, "relative tolerance");
   cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
       ->check(CLI::Range(0, static_cast<int>(kThreadsRange.hi)));

@@ -96,8 +96,7 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
   }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   const SimulationResult r = Simulate(scene, speed, sim);
-  if (o.csv && r.skipped)
-    throw CaseError("--csv: the dynamic run was skipped (" + r.method_reason + ")");
+  if (o.csv && r.skipped) throw CaseError("--csv: no time series to write: the " + r.method_reason);
 
   CommandOutput result;
   result.status = r.liftoff() ? 1 : 0;

@@ -1,6 +1,7 @@
 #include "dynamics/solver/contact_events.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,6 +15,19 @@ namespace {
 void SortSeries(std::vector<SeriesPoint>& series) {
   std::stable_sort(series.begin(), series.end(),
                    [](const SeriesPoint& a, const SeriesPoint& b) { return a.time_s < b.time_s; });
+}
+
+// The same point twice (a crossing or an extreme sampled where a step ends, the run's last
+// point): one row of the series.
+bool SamePoint(const SeriesPoint& a, const SeriesPoint& b) {
+  return a.time_s == b.time_s && a.crank_rad == b.crank_rad && a.lift_m == b.lift_m &&
+         a.velocity_m_s == b.velocity_m_s && a.cam_m == b.cam_m &&
+         a.contact_force_N == b.contact_force_N && a.seat_force_N == b.seat_force_N;
+}
+
+// Drops each point that repeats the one before it.
+void DropRepeats(std::vector<SeriesPoint>& series) {
+  series.erase(std::unique(series.begin(), series.end(), SamePoint), series.end());
 }
 
 // Angles equal to a break up to the roundoff of θ = θ_a + ω t.
@@ -286,19 +300,29 @@ void Recorder::Keep(const SeriesPoint& p) {
   series_.push_back(p);
 }
 
+void Recorder::Send(size_t n) {
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < n; ++i) {
+    if (sent_any_ && SamePoint(series_[i], last_sent_)) continue;
+    sink_(series_[i]);
+    last_sent_ = series_[i];
+    sent_any_ = true;
+  }
+  series_.erase(series_.begin(), series_.begin() + static_cast<std::ptrdiff_t>(n));
+  sink_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 void Recorder::Commit(double t) {
   if (!sink_ || !(t > committed_t_)) return;
   committed_t_ = t;
   SortSeries(series_);
   size_t n = 0;
-  while (n < series_.size() && series_[n].time_s < t) sink_(series_[n++]);
-  series_.erase(series_.begin(), series_.begin() + static_cast<std::ptrdiff_t>(n));
+  while (n < series_.size() && series_[n].time_s < t) ++n;
+  if (n > 0) Send(n);
 }
 
 void Recorder::SendAll() {
-  if (!sink_) return;
-  for (const SeriesPoint& p : series_) sink_(p);
-  series_.clear();
+  if (sink_) Send(series_.size());
 }
 
 void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
@@ -308,6 +332,7 @@ void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
   // sampled: its samples past the end are not the run's.
   const double end_rad = train_.Angle(t);
   while (!series_.empty() && series_.back().crank_rad > end_rad) series_.pop_back();
+  DropRepeats(series_);
   SendAll();
   if (separated_) {
     episodes_.back().end_rad = train_.Angle(t);
@@ -317,6 +342,7 @@ void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
 
 void Recorder::Stopped(double crank_rad) {
   SortSeries(series_);
+  DropRepeats(series_);
   SendAll();
   if (separated_) {
     episodes_.back().end_rad = crank_rad;

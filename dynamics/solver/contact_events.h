@@ -154,6 +154,9 @@ class Recorder {
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }
+  /// Wall time spent in the sink, s (writing a streamed series is not the run's work: the
+  /// driver's wall-clock budget leaves it out).
+  double sink_seconds() const { return sink_seconds_; }
   /// The series (with a sink: the points not yet sent, none after Finish or Stopped).
   const std::vector<SeriesPoint>& series() const { return series_; }
   /// Off the cam in the last episode, which is still open (as of the last sample or event).
@@ -203,6 +206,9 @@ class Recorder {
   void Keep(const SeriesPoint& p);
   /// With a sink: every point kept goes to it (the run is over).
   void SendAll();
+  /// Sends the first n points kept (a point repeating the last one sent is not sent again) and
+  /// drops them; the time spent in the sink counts in sink_seconds().
+  void Send(size_t n);
   void Update(double t, const TrainState& x, const Phase& phase);
   void Update(double t, const TrainState& x, const Phase& phase, const Contacts& c);
   /// Inside [θ_0, θ_N], up to the roundoff of θ = θ_a + ω t.
@@ -218,6 +224,9 @@ class Recorder {
   bool record_series_;
   std::function<void(const SeriesPoint&)> sink_;
   double committed_t_ = -1e300;  // with a sink: the points before this time went to it
+  SeriesPoint last_sent_{};
+  bool sent_any_ = false;
+  double sink_seconds_ = 0.0;
   std::vector<Episode> episodes_;
   std::vector<Impact> impacts_;
   std::vector<SeriesPoint> series_;

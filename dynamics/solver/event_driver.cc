@@ -158,7 +158,8 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     if (++stats.steps > o_.max_steps) ThrowOverBudget("steps", o_.max_steps, train_, step.first);
     // The wall clock, every 64 steps (a clock read costs ~20 ns; a step ~100 ns or more).
     if (o_.max_seconds > 0.0 && stats.steps % 64 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() -
+                recorder_.sink_seconds() >
             o_.max_seconds) {
       ThrowOverBudget("seconds", o_.max_seconds, train_, step.first);
     }

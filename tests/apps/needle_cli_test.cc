@@ -807,3 +807,34 @@ TEST(NeedleCliTest, SizeWritesACaseThatCheckPassesAndNamesTheBindingRuleWhenNoth
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+using testing::RunNeedle;
+
+// A check whose runs stop on a budget before the lift (max_steps = 100) is a failing result
+// with its reasons, exit 1, and a report without the figure that has nothing to draw; it was
+// exit 3 (gnuplot refused the surge figure's empty data; found by a user's test).
+TEST(NeedleCliTest, ACheckWhoseRunsStopOnABudgetFailsWithAReport) {
+  const std::string path = testing::TempPath("budget-check.toml");
+  std::ofstream(path) << testing::Slurp(std::string(NEEDLE_SOURCE_DIR) +
+                                        "/cases/basu-example1.toml")
+                      << "\n[solver]\nmax_steps = 100\n";
+  const std::string out = testing::TempPath("budget-check-report");
+  const auto r = RunNeedle("check " + path + " --out " + out);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.out.find("fails: surge: undecided: the run with 5 coil masses at 125.0 rpm is "
+                       "budget"),
+            std::string::npos)
+      << r.out;
+  const std::string html =
+      out + "/" + std::filesystem::path(path).stem().string() + ".html";  // named for the case
+  EXPECT_NE(testing::Slurp(html).find("Surge figure not drawn: neither run reached the lift"),
+            std::string::npos);
+  std::filesystem::remove_all(out);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace needle

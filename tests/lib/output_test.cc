@@ -124,3 +124,64 @@ TEST(OutputTest, AnAtomicFileIsInPlaceOnlyOnceCommitted) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// An output named through a symbolic link is written through it: the link stays a link and its
+// target gets the content (a user's test turned /dev/stdout into a regular file).
+TEST(OutputTest, ASymbolicLinkIsWrittenThrough) {
+  const auto dir = std::filesystem::temp_directory_path() / "needle_output_link";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "other");
+  WriteFileAtomically((dir / "other" / "real.csv").string(), "old\n");
+  std::filesystem::create_symlink(std::filesystem::path("other") / "real.csv", dir / "via.csv");
+  WriteFileAtomically((dir / "via.csv").string(), "new\n");
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "via.csv"));
+  std::ifstream in(dir / "other" / "real.csv");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "new");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "other"), {}), 1);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A run interrupted while it writes (SIGINT, SIGTERM, SIGHUP) leaves no temporary file and the
+// old file whole, and still ends by the signal (a user's test found a 10 MB temporary left per
+// interrupted run). Here a child process is stopped by SIGTERM in the middle of a file.
+TEST(OutputTest, AnInterruptedWriteLeavesNoTemporaryFile) {
+  const auto dir = std::filesystem::temp_directory_path() / "needle_output_signal";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "series.csv").string();
+  WriteFileAtomically(path, "old\n");
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      AtomicFile file(path);
+      file.Write(std::string(3 << 20, 'x'));  // past the buffer: the temporary is on disk
+      raise(signal_number);
+      _exit(9);  // not reached
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << signal_number;
+    EXPECT_EQ(WTERMSIG(status), signal_number);
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "old");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace needle
