@@ -585,3 +585,32 @@ TEST(SimulationTest, ALooseToleranceKeepsTheVerdictsOfATightOne) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 33's bound on the closed form's energy audit: ≤ 1e-12 on every bundled scene `exact`
+// runs (one mass, compliant contacts), at the rated speed and above n_qs (measured: at most
+// 3.1e-13, the stiff train at 400 rpm).
+TEST(SimulationTest, TheClosedFormsEnergyResidualIsBelow1e12OnEveryBundledScene) {
+  int runs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(kCases)) {
+    const std::string stem = e.path().stem().string();
+    if (e.path().extension() != ".toml" || stem.find("-engine") != std::string::npos ||
+        stem.find("-synth") != std::string::npos)
+      continue;
+    const Case c = LoadCase(e.path().string());
+    if (!c.train || c.train->rigid || c.spring->masses > 1) continue;
+    const Scene s = MakeScene(c);
+    for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s)}) {
+      if (!std::isfinite(rpm)) continue;
+      const SimulationResult r = Simulate(s, rpm, Options("exact", 1e-8));
+      EXPECT_LE(std::abs(r.energy_residual), 1e-12) << stem << " at " << rpm << " rpm";
+      ++runs;
+    }
+  }
+  EXPECT_GE(runs, 8);
+}
+
+}  // namespace
+}  // namespace needle
