@@ -71,6 +71,7 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
       r.status_reason = why.str();
     }
   } catch (const BudgetExceeded& e) {
+    stats = e.stats;  // the work done up to the stop
     recorder.Stopped(e.crank_rad);
     r.run_end_rad = e.crank_rad + shift_rad;
     r.status = RunStatus::kBudget;

@@ -190,7 +190,10 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
     if (r.cycles_asked > 1 && !r.skipped) {
       out << CyclesText(r);
     }
-    out << (r.liftoff() ? "LIFT-OFF: the needle leaves the cam\n" : "no lift-off\n");
+    out << (r.liftoff()                      ? "LIFT-OFF: the needle leaves the cam\n"
+            : r.status == RunStatus::kBudget ? "no lift-off up to where the run stopped; "
+                                               "undecided past it\n"
+                                             : "no lift-off\n");
     for (const Episode& e : r.episodes) {
       out << "  " << e.kind << " " << Fixed(e.start_rad / kDeg, 3) << " .. "
           << Fixed(e.end_rad / kDeg, 3) << " deg, largest gap " << Fixed(e.max_gap_m * 1e3, 4)

@@ -122,9 +122,10 @@ struct IntegrationStats {
 /// A step or event budget ran out: the run stopped at `crank_rad`. The message names the angle
 /// and what to do; the recorder holds the run up to there.
 struct BudgetExceeded : std::runtime_error {
-  BudgetExceeded(const std::string& message, double crank)
-      : std::runtime_error(message), crank_rad(crank) {}
+  BudgetExceeded(const std::string& message, double crank, const IntegrationStats& done)
+      : std::runtime_error(message), crank_rad(crank), stats(done) {}
   double crank_rad;
+  IntegrationStats stats;  ///< the work done up to the stop (steps, events, evaluations)
 };
 
 /// Why `method` cannot integrate `train` with a rigid contact (docs/model.md §4), or nullopt:

@@ -174,14 +174,15 @@ std::string Shortest(double v) {
 }
 }  // namespace
 
-void ThrowOverBudget(const std::string& what, double budget, const NeedleTrain& train, double t) {
+void ThrowOverBudget(const std::string& what, double budget, const NeedleTrain& train, double t,
+                     const IntegrationStats& done) {
   throw BudgetExceeded("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
                            " deg after " + Shortest(budget) + " " + what +
                            " (the budget [solver] max_" + what +
                            "): the scene may chatter or be too stiff for this method; try "
                            "method = \"cvode-bdf\", a looser rtol, or raise max_" +
                            what,
-                       train.Angle(t));
+                       train.Angle(t), done);
 }
 
 }  // namespace needle

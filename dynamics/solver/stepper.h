@@ -85,8 +85,8 @@ std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const Integr
 IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x0, double t_end,
                                    Recorder& recorder, const IntegratorOptions& options);
 
-/// Throws the budget message.
+/// Throws the budget message, with the work done up to t.
 [[noreturn]] void ThrowOverBudget(const std::string& what, double budget, const NeedleTrain& train,
-                                  double t);
+                                  double t, const IntegrationStats& done);
 
 }  // namespace needle

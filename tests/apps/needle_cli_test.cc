@@ -832,6 +832,15 @@ TEST(NeedleCliTest, ACheckWhoseRunsStopOnABudgetFailsWithAReport) {
       out + "/" + std::filesystem::path(path).stem().string() + ".html";  // named for the case
   EXPECT_NE(testing::Slurp(html).find("Surge figure not drawn: neither run reached the lift"),
             std::string::npos);
+  // simulate of the same case: the work done up to the stop (not 0 steps), and no verdict
+  // past it (it said "no lift-off" of a run that stopped before the lift).
+  const auto sim = RunNeedle("simulate " + path);
+  EXPECT_EQ(sim.status, 0) << sim.err;
+  EXPECT_NE(sim.out.find("; 100 steps, "), std::string::npos) << sim.out;
+  EXPECT_NE(sim.out.find("after 100 steps (the budget [solver] max_steps)"), std::string::npos);
+  EXPECT_NE(sim.out.find("no lift-off up to where the run stopped; undecided past it\n"),
+            std::string::npos)
+      << sim.out;
   std::filesystem::remove_all(out);
   std::filesystem::remove(path);
 }
