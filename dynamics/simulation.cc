@@ -280,6 +280,9 @@ double QuasiStaticLiftoffRpm(const Scene& scene) {
 
 std::vector<Field> SimulationFields(const SimulationResult& r) {
   using namespace display;
+  const auto count = [](const char* name, long n) {
+    return Field{name, display::kNone, static_cast<double>(n), 0, "", true};
+  };
   std::vector<Field> f = {
       {"max_lift", kMm, r.max_lift_m, 4},
       {"max_lift", kDegree, r.max_lift_rad, 2},
@@ -289,11 +292,8 @@ std::vector<Field> SimulationFields(const SimulationResult& r) {
   };
   if (r.min_coil_gap_m) {  // a chain of coil masses with a travel to solid
     f.push_back({"min_coil_gap", kMm, *r.min_coil_gap_m, 3});
-    f.push_back({"coil_clashes", kNone, static_cast<double>(r.coil_clashes), 0, "", true});
+    f.push_back(count("coil_clashes", r.coil_clashes));
   }
-  const auto count = [](const char* name, long n) {
-    return Field{name, display::kNone, static_cast<double>(n), 0, "", true};
-  };
   f.push_back({"energy_residual", kNone,
                r.skipped ? std::nullopt : std::optional<double>(r.energy_residual), 3});
   f.push_back(count("steps", r.stats.steps));
@@ -315,16 +315,6 @@ std::vector<Column> SeriesColumns() {
 std::array<double, 7> SeriesRow(const SeriesPoint& p) {
   return {p.crank_rad, p.time_s,          p.lift_m,      p.velocity_m_s,
           p.cam_m,     p.contact_force_N, p.seat_force_N};
-}
-
-std::vector<std::vector<double>> SeriesRows(const SimulationResult& r) {
-  std::vector<std::vector<double>> rows;
-  rows.reserve(r.series.size());
-  for (const SeriesPoint& p : r.series) {
-    const std::array<double, 7> row = SeriesRow(p);
-    rows.emplace_back(row.begin(), row.end());
-  }
-  return rows;
 }
 
 RunWindow DefaultRunWindow(const Scene& scene) {
@@ -350,15 +340,23 @@ double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm) {
   return omega_c * event_s / (2.0 * kPi);
 }
 
+namespace {
+
+// "the contact oscillates N times per cam event": why auto and the rigid skip decide as they do.
+std::string StiffnessText(double oscillations) {
+  return "the contact oscillates " + std::to_string(static_cast<long>(std::lround(oscillations))) +
+         " times per cam event";
+}
+
+}  // namespace
+
 MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double rtol) {
   if (train.HasConstraint()) {
     return {Method::kDopri5,
             "auto: rigid contacts (restitution and sticking): explicit Dormand–Prince, a one-step "
             "method that restarts at full order after every impact"};
   }
-  const std::string stiffness = "the contact oscillates " +
-                                std::to_string(static_cast<long>(std::lround(oscillations))) +
-                                " times per cam event";
+  const std::string stiffness = StiffnessText(oscillations);
   if (const std::optional<std::string> refusal = ExactRefusal(train)) {
     const bool stiff = oscillations > kStiffOscillations;
     return {stiff ? Method::kCvodeBdf : Method::kDopri5,
@@ -417,9 +415,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
                                 std::to_string(o.cycles));
   }
   const double oscillations = ContactOscillationsPerEvent(scene, speed_rpm);
-  const std::string stiffness = "the contact oscillates " +
-                                std::to_string(static_cast<long>(std::lround(oscillations))) +
-                                " times per cam event";
+  const std::string stiffness = StiffnessText(oscillations);
 
   // Skip the dynamics where the rigid answer is the answer.
   const RigidTrain rigid = RigidTrainOf(scene);

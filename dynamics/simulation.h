@@ -174,7 +174,6 @@ std::vector<Field> SimulationFields(const SimulationResult& r);
 std::vector<Column> SeriesColumns();
 /// One point as a row of those columns, SI.
 std::array<double, 7> SeriesRow(const SeriesPoint& p);
-std::vector<std::vector<double>> SeriesRows(const SimulationResult& r);
 /// Significant digits of the series' CSV.
 constexpr int kSeriesCsvPrecision = 10;
 

@@ -30,9 +30,9 @@ struct SimulateCommandOptions {
 };
 
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& options);
-/// The run of a loaded case: its time series as columns when `series`; with `csv`, each point
-/// to `series_sink` as the run makes it (streamed; the CSV's rows, SeriesColumns()), or without
-/// one into the output's csv. Throws CaseError on bad input.
+/// The run of a loaded case: its time series as columns when `series`, and each point to
+/// `series_sink` (when given) as the run makes it (streamed: the --csv rows, SeriesColumns()).
+/// With `csv` set, a run whose dynamics is skipped is refused. Throws CaseError on bad input.
 CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& options,
                               const std::function<void(const SeriesPoint&)>& series_sink = {});
 /// Exit 1 when the needle lifts off (a jump episode) at the speed simulated.

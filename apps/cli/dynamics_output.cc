@@ -76,14 +76,13 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
   const Scene scene = MakeScene(c);
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
-  sim.record_series = o.csv.has_value() || o.series;
   // Streamed: to the caller's sink, and as SI columns when asked; none is kept as a whole.
   const std::vector<Column> columns = SeriesColumns();
   std::vector<std::vector<double>> si(columns.size());
-  const bool to_sink = o.csv && series_sink;
-  if (to_sink || o.series) {
+  sim.record_series = series_sink || o.series;
+  if (sim.record_series) {
     sim.series_sink = [&](const SeriesPoint& p) {
-      if (to_sink) series_sink(p);
+      if (series_sink) series_sink(p);
       if (!o.series) return;
       const std::array<double, 7> row = SeriesRow(p);
       for (size_t i = 0; i < row.size(); ++i) si[i].push_back(row[i]);
@@ -96,7 +95,7 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
   }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   const SimulationResult r = Simulate(scene, speed, sim);
-  if (o.csv && r.skipped) throw CaseError("--csv: no time series to write: the " + r.method_reason);
+  if (o.csv && r.skipped) throw CaseError("--csv: no time series to write, " + r.method_reason);
 
   CommandOutput result;
   result.status = r.liftoff() ? 1 : 0;
@@ -106,7 +105,6 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
     for (size_t i = 0; i < columns.size(); ++i)
       result.columns[columns[i].SiKey()] = std::move(si[i]);
   }
-  if (o.csv && !series_sink) result.csv = CsvTable(columns, SeriesRows(r), kSeriesCsvPrecision);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;

@@ -146,6 +146,11 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   double t = 0.0;
   Restart(x, t, std::min(t_end, 0.01 / train_.FastestAngularFrequency()));
 
+  // A budget stops the run with the work done so far (its statistics go with the message).
+  const auto over = [&](const char* what, double budget, double at) {
+    stats.rhs_evaluations = system_.evaluations();
+    ThrowOverBudget(what, budget, train_, at, stats);
+  };
   while (t < horizon) {
     while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
     const double segment_end =
@@ -155,11 +160,6 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     stepper_->LimitTo(segment_end);
     const auto step = stepper_->DoStep();
     values_valid_ = false;  // a new dense output (and a new phase after a switch)
-    // A budget stops the run with the work done so far (its statistics go with the message).
-    const auto over = [&](const char* what, double budget, double at) {
-      stats.rhs_evaluations = system_.evaluations();
-      ThrowOverBudget(what, budget, train_, at, stats);
-    };
     if (stats.steps >= o_.max_steps) over("steps", o_.max_steps, step.first);
     ++stats.steps;
     // The wall clock, every 64 steps (a clock read costs ~20 ns; a step ~100 ns or more).

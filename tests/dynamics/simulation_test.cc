@@ -19,6 +19,21 @@ namespace {
 
 const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
 
+// Every bundled scene with a train (its file stem and case); the engine-file and synthesis
+// specs are not scenes.
+std::vector<std::pair<std::string, Case>> BundledTrainScenes() {
+  std::vector<std::pair<std::string, Case>> out;
+  for (const auto& e : std::filesystem::directory_iterator(kCases)) {
+    const std::string stem = e.path().stem().string();
+    if (e.path().extension() != ".toml" || stem.find("-engine") != std::string::npos ||
+        stem.find("-synth") != std::string::npos)
+      continue;
+    Case c = LoadCase(e.path().string());
+    if (c.train) out.emplace_back(stem, std::move(c));
+  }
+  return out;
+}
+
 SimulationOptions Options(const std::string& method, double rtol, bool series = false) {
   SimulationOptions o;
   o.method = method;
@@ -29,9 +44,9 @@ SimulationOptions Options(const std::string& method, double rtol, bool series = 
   return o;
 }
 
-// The series' CSV: its header and its units follow from one column table.
+// The series' CSV (as simulate --csv streams it): its header and its units follow from one
+// column table.
 TEST(SimulationTest, TheSeriesTableConvertsEachColumnFromSi) {
-  SimulationResult r;
   SeriesPoint p;
   p.crank_rad = kPi;
   p.time_s = 0.5;
@@ -40,8 +55,9 @@ TEST(SimulationTest, TheSeriesTableConvertsEachColumnFromSi) {
   p.cam_m = 1e-3;
   p.contact_force_N = 10;
   p.seat_force_N = 0;
-  r.series = {p};
-  EXPECT_EQ(CsvTable(SeriesColumns(), SeriesRows(r), 10),
+  std::string csv = CsvHeader(SeriesColumns());
+  AppendCsvRow(SeriesColumns(), SeriesRow(p).data(), kSeriesCsvPrecision, csv);
+  EXPECT_EQ(csv,
             "crank_deg,time_s,lift_mm,velocity_m_s,cam_mm,contact_force_N,seat_force_N\n"
             "180,0.5,2,0.25,1,10,0\n");
 }
@@ -188,18 +204,11 @@ TEST(SimulationTest, EveryMethodFindsTheRestWhereItHappens) {
 
 TEST(SimulationTest, EnergyResidualBelow1e8AtRtol1e10OnEveryBundledScene) {
   int scenes = 0;
-  for (const auto& e : std::filesystem::directory_iterator(kCases)) {
-    if (e.path().extension() != ".toml" ||
-        e.path().stem().string().find("-engine") != std::string::npos ||
-        e.path().stem().string().find("-synth") != std::string::npos)
-
-      continue;
-    const Case c = LoadCase(e.path().string());
-    if (!c.train) continue;
+  for (const auto& [stem, c] : BundledTrainScenes()) {
     const Scene s = MakeScene(c);
     SimulationOptions o = Options("auto", 1e-10);
     const SimulationResult r = Simulate(s, c.engine.speed_rpm, o);
-    EXPECT_LT(r.energy_residual, 1e-8) << e.path() << " (" << r.method << ")";
+    EXPECT_LT(r.energy_residual, 1e-8) << stem << " (" << r.method << ")";
     ++scenes;
   }
   EXPECT_GE(scenes, 4);
@@ -472,13 +481,8 @@ namespace {
 // (lash, bounces, lift-off and landing).
 TEST(SimulationTest, EpisodesNeverEndBeforeTheyStartForAnyMethod) {
   int runs = 0;
-  for (const auto& e : std::filesystem::directory_iterator(kCases)) {
-    const std::string stem = e.path().stem().string();
-    if (e.path().extension() != ".toml" || stem.find("-engine") != std::string::npos ||
-        stem.find("-synth") != std::string::npos)
-      continue;
-    const Case c = LoadCase(e.path().string());
-    if (!c.train || c.spring->masses > 1) continue;
+  for (const auto& [stem, c] : BundledTrainScenes()) {
+    if (c.spring->masses > 1) continue;
     const Scene s = MakeScene(c);
     const double n_qs = QuasiStaticLiftoffRpm(s);
     for (const char* method :
@@ -594,13 +598,8 @@ namespace {
 // 3.1e-13, the stiff train at 400 rpm).
 TEST(SimulationTest, TheClosedFormsEnergyResidualIsBelow1e12OnEveryBundledScene) {
   int runs = 0;
-  for (const auto& e : std::filesystem::directory_iterator(kCases)) {
-    const std::string stem = e.path().stem().string();
-    if (e.path().extension() != ".toml" || stem.find("-engine") != std::string::npos ||
-        stem.find("-synth") != std::string::npos)
-      continue;
-    const Case c = LoadCase(e.path().string());
-    if (!c.train || c.train->rigid || c.spring->masses > 1) continue;
+  for (const auto& [stem, c] : BundledTrainScenes()) {
+    if (c.train->rigid || c.spring->masses > 1) continue;
     const Scene s = MakeScene(c);
     for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s)}) {
       if (!std::isfinite(rpm)) continue;

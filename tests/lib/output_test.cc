@@ -15,10 +15,29 @@
 namespace needle {
 namespace {
 
-TEST(OutputTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
-  const auto dir = std::filesystem::temp_directory_path() / "needle_output_test";
+// An empty folder of this name under the system's temporary folder.
+std::filesystem::path FreshDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The entries of a folder (a temporary file left behind counts).
+std::ptrdiff_t Entries(const std::filesystem::path& dir) {
+  return std::distance(std::filesystem::directory_iterator(dir), {});
+}
+
+// The first line of a file.
+std::string FirstLine(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+TEST(OutputTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
+  const auto dir = FreshDir("needle_output_test");
   const std::string path = (dir / "table.csv").string();
   WriteFileAtomically(path, "old\n");
   WriteFileAtomically(path, "a,b\n1,2\n");
@@ -36,9 +55,7 @@ TEST(OutputTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
 // after 4 KiB of 64 KiB) must leave the old file whole and no temporary behind. A plain
 // fopen/fwrite over the target would leave 4 KiB of the new content: this test tells.
 TEST(OutputTest, AWriteThatFailsHalfWayLeavesTheOldFileWhole) {
-  const auto dir = std::filesystem::temp_directory_path() / "needle_output_half";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = FreshDir("needle_output_half");
   const std::string path = (dir / "table.csv").string();
   WriteFileAtomically(path, "old\n");
   const pid_t child = fork();
@@ -96,9 +113,7 @@ namespace {
 // A file written as it is produced: nothing at the path until Commit(), then all of it (here
 // 3 MiB in pieces, past the 1 MiB buffer), and an AtomicFile given up leaves no file at all.
 TEST(OutputTest, AnAtomicFileIsInPlaceOnlyOnceCommitted) {
-  const auto dir = std::filesystem::temp_directory_path() / "needle_output_stream";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = FreshDir("needle_output_stream");
   const std::string path = (dir / "series.csv").string();
   std::string expected;
   {
@@ -118,7 +133,7 @@ TEST(OutputTest, AnAtomicFileIsInPlaceOnlyOnceCommitted) {
     AtomicFile abandoned((dir / "abandoned.csv").string());
     abandoned.Write(std::string(2 << 20, 'x'));
   }  // destroyed uncommitted: as if the run had failed
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);
+  EXPECT_EQ(Entries(dir), 1);
   std::filesystem::remove_all(dir);
 }
 
@@ -131,18 +146,14 @@ namespace {
 // An output named through a symbolic link is written through it: the link stays a link and its
 // target gets the content (a user's test turned /dev/stdout into a regular file).
 TEST(OutputTest, ASymbolicLinkIsWrittenThrough) {
-  const auto dir = std::filesystem::temp_directory_path() / "needle_output_link";
-  std::filesystem::remove_all(dir);
+  const auto dir = FreshDir("needle_output_link");
   std::filesystem::create_directories(dir / "other");
   WriteFileAtomically((dir / "other" / "real.csv").string(), "old\n");
   std::filesystem::create_symlink(std::filesystem::path("other") / "real.csv", dir / "via.csv");
   WriteFileAtomically((dir / "via.csv").string(), "new\n");
   EXPECT_TRUE(std::filesystem::is_symlink(dir / "via.csv"));
-  std::ifstream in(dir / "other" / "real.csv");
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "new");
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "other"), {}), 1);
+  EXPECT_EQ(FirstLine(dir / "other" / "real.csv"), "new");
+  EXPECT_EQ(Entries(dir / "other"), 1);
   std::filesystem::remove_all(dir);
 }
 
@@ -156,9 +167,7 @@ namespace {
 // old file whole, and still ends by the signal (a user's test found a 10 MB temporary left per
 // interrupted run). Here a child process is stopped by SIGTERM in the middle of a file.
 TEST(OutputTest, AnInterruptedWriteLeavesNoTemporaryFile) {
-  const auto dir = std::filesystem::temp_directory_path() / "needle_output_signal";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = FreshDir("needle_output_signal");
   const std::string path = (dir / "series.csv").string();
   WriteFileAtomically(path, "old\n");
   for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
@@ -175,11 +184,8 @@ TEST(OutputTest, AnInterruptedWriteLeavesNoTemporaryFile) {
     ASSERT_TRUE(WIFSIGNALED(status)) << signal_number;
     EXPECT_EQ(WTERMSIG(status), signal_number);
   }
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "old");
+  EXPECT_EQ(Entries(dir), 1);
+  EXPECT_EQ(FirstLine(path), "old");
   std::filesystem::remove_all(dir);
 }
 
