@@ -55,4 +55,54 @@ KinematicsSummary Kinematics::Summarize() const {
   return s;
 }
 
+std::vector<Field> KinematicsFields(const KinematicsSummary& s) {
+  using namespace display;
+  return {
+      {"open", kDegree, s.open_rad, 2},
+      {"close", kDegree, s.close_rad, 2},
+      {"injection_period", kS, s.injection_period_s, 5},
+      {"max_lift", kMm, s.max_lift_m, 3},
+      {"max_lift", kDegree, s.max_lift_rad, 2},
+      {"mean_lift", kMm, s.mean_lift_m, 3},
+      {"rho", kNone, s.rho, 3},
+      {"max_velocity", kMPerS, s.max_velocity_m_s, 3},
+      {"max_velocity", kDegree, s.max_velocity_rad, 2},
+      {"min_velocity", kMPerS, s.min_velocity_m_s, 3},
+      {"min_velocity", kDegree, s.min_velocity_rad, 2},
+      {"max_acceleration", kMPerS2, s.max_acceleration_m_s2, 2},
+      {"max_acceleration", kDegree, s.max_acceleration_rad, 2},
+      {"min_acceleration", kMPerS2, s.min_acceleration_m_s2, 2},
+      {"min_acceleration", kDegree, s.min_acceleration_rad, 2},
+  };
+}
+
+std::vector<Field> LiftLawFields(const LiftLaw& law) {
+  using namespace display;
+  const bool dips = law.undershoot_m() > 0;
+  return {
+      TextField("spline", SplineKindName(law.kind())),
+      {"closed_level", kMm, law.closed_level_m(), 4},
+      {"undershoot", kMm, law.undershoot_m(), 4},
+      {"undershoot", kDegree, dips ? std::optional<double>(law.undershoot_rad()) : std::nullopt, 2},
+  };
+}
+
+const std::vector<Column>& KinematicsColumns() {
+  using namespace display;
+  static const std::vector<Column> columns = {
+      {"crank", kDegree},        {"time", kS},      {"lift", kMm}, {"velocity", kMPerS},
+      {"acceleration", kMPerS2}, {"jerk", kMPerS3},
+  };
+  return columns;
+}
+
+std::vector<double> KinematicsRowSi(const KinematicsPoint& p) {
+  return {p.crank_rad,
+          p.time_s,
+          p.lift_m,
+          p.velocity_m_s,
+          p.acceleration_m_s2.value_or(NAN),
+          p.jerk_m_s3.value_or(NAN)};
+}
+
 }  // namespace needle

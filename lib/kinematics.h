@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lib/lift_law.h"
+#include "lib/result_fields.h"
 
 namespace needle {
 
@@ -64,5 +65,22 @@ class Kinematics {
   double speed_rpm_;
   double omega_;
 };
+
+/// The summary as fields (lib/result_fields.h): open and close (deg), the injection period (s),
+/// the lift's, velocity's and acceleration's extremes and where they are, ρ. Every writer's
+/// JSON keys (`max_lift_mm`, `max_lift_deg`, …) and text values come from here.
+std::vector<Field> KinematicsFields(const KinematicsSummary& s);
+
+/// The lift law's own fields beside the summary: its spline's name, its closed level (mm) and the
+/// spline's largest dip below the seat inside the open lift (mm) and where (deg; none without a
+/// dip).
+std::vector<Field> LiftLawFields(const LiftLaw& law);
+
+/// The table's columns: crank (deg), time (s), lift (mm), velocity (m/s), acceleration
+/// (m/s²), jerk (m/s³).
+const std::vector<Column>& KinematicsColumns();
+
+/// One row's SI values in KinematicsColumns()' order; NaN where a derivative is missing.
+std::vector<double> KinematicsRowSi(const KinematicsPoint& p);
 
 }  // namespace needle

@@ -397,4 +397,19 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
   return c;
 }
 
+std::vector<Field> LiftChoiceFields(const LiftLawChoice& choice) {
+  std::vector<Field> fields = {
+      TextField("spline_reason", choice.reason),
+      {"noise", display::kMm, choice.noise_m},
+      TextField("noise_source", choice.noise_source),
+      FlagField("measured", choice.measured),
+  };
+  // Found in the table (stated ones are in the case): the law's breaks.
+  if (!choice.breaks_found.empty()) {
+    fields.push_back(ListField("breaks", display::kDegree, choice.law.breaks_rad));
+    fields.back().decimals = 4;
+  }
+  return fields;
+}
+
 }  // namespace needle

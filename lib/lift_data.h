@@ -28,6 +28,7 @@
 
 #include "lib/engine_cycle.h"
 #include "lib/lift_law.h"
+#include "lib/result_fields.h"
 #include "lib/spline.h"
 
 namespace needle {
@@ -208,6 +209,10 @@ struct LiftLawChoice {
 
 /// Decides the spline, σ and the open-lift rule for `table` (see the file comment).
 LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& options);
+
+/// The choice as fields (lib/result_fields.h): the spline's reason, σ (mm) and its source,
+/// whether the table is measured, and the breaks found in the table (deg; only when some were).
+std::vector<Field> LiftChoiceFields(const LiftLawChoice& choice);
 
 }  // namespace needle
 

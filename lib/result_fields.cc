@@ -1,7 +1,9 @@
 #include "lib/result_fields.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "lib/units.h"
 
@@ -13,6 +15,9 @@ const DisplayUnit kDegree{"deg", "deg", ::needle::kDeg, true, "rad"};
 const DisplayUnit kN{"N", "N", 1.0, false, "N"};
 const DisplayUnit kRpm{"rpm", "rpm", 1.0, false, "rpm"};
 const DisplayUnit kMPerS{"m_s", "m/s", 1.0, false, "m_s"};
+const DisplayUnit kMPerS2{"m_s2", "m/s^2", 1.0, false, "m_s2"};
+const DisplayUnit kMPerS3{"m_s3", "m/s^3", 1.0, false, "m_s3"};
+const DisplayUnit kMs{"ms", "ms", 1e3, false, "s"};
 const DisplayUnit kS{"s", "s", 1.0, false, "s"};
 const DisplayUnit kMPa{"MPa", "MPa", 1e-6, false, "Pa"};
 const DisplayUnit kMmPerRad{"mm_rad", "mm/rad", 1e3, false, "m_rad"};
@@ -33,6 +38,27 @@ std::optional<double> Field::Shown() const {
   return unit.FromSi(*si);
 }
 
+Field TextField(std::string name, std::string text) {
+  Field f{std::move(name), display::kNone, std::nullopt};
+  f.kind = Field::Kind::kText;
+  f.text = std::move(text);
+  return f;
+}
+
+Field FlagField(std::string name, bool flag) {
+  Field f{std::move(name), display::kNone, std::nullopt};
+  f.kind = Field::Kind::kFlag;
+  f.flag = flag;
+  return f;
+}
+
+Field ListField(std::string name, DisplayUnit unit, std::vector<double> list_si) {
+  Field f{std::move(name), unit, std::nullopt};
+  f.kind = Field::Kind::kList;
+  f.list_si = std::move(list_si);
+  return f;
+}
+
 std::string Column::Key() const { return KeyOf(name, unit.key); }
 std::string Column::SiKey() const { return KeyOf(name, unit.si_key); }
 
@@ -47,8 +73,10 @@ void AppendCsvRow(const std::vector<Column>& columns, const double* row_si, int 
   thread_local std::ostringstream csv;  // one stream for every row: no locale set-up per row
   csv.str(std::string());
   csv.precision(precision);
-  for (size_t i = 0; i < columns.size(); ++i)
-    csv << (i ? "," : "") << columns[i].unit.FromSi(row_si[i]);
+  for (size_t i = 0; i < columns.size(); ++i) {
+    if (i) csv << ',';
+    if (!std::isnan(row_si[i])) csv << columns[i].unit.FromSi(row_si[i]);  // NaN: left empty
+  }
   csv << '\n';
   out += csv.str();
 }

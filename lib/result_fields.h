@@ -37,6 +37,9 @@ extern const DisplayUnit kDegree;     ///< rad → deg
 extern const DisplayUnit kN;          ///< N
 extern const DisplayUnit kRpm;        ///< rpm (speeds are kept in rpm at the edges)
 extern const DisplayUnit kMPerS;      ///< m/s
+extern const DisplayUnit kMPerS2;     ///< m/s² (text m/s^2)
+extern const DisplayUnit kMPerS3;     ///< m/s³ (text m/s^3)
+extern const DisplayUnit kMs;         ///< s → ms
 extern const DisplayUnit kS;          ///< s
 extern const DisplayUnit kMPa;        ///< Pa → MPa
 extern const DisplayUnit kMmPerRad;   ///< m/rad → mm/rad (a cam law's S')
@@ -44,8 +47,12 @@ extern const DisplayUnit kMmPerRad2;  ///< m/rad² → mm/rad² (S'')
 extern const DisplayUnit kMmPerRad3;  ///< m/rad³ → mm/rad³ (S''')
 }  // namespace display
 
-/// One scalar of a result. An empty `si` is shown as null (JSON) or "none" (text).
+/// One value of a result: a number (`si`; a count when `count`), or with `kind` a string, a
+/// yes/no or a list of numbers. An empty number is shown as null (JSON) or "none" (text).
 struct Field {
+  /// What the value is; a number unless a helper below says otherwise.
+  enum class Kind { kNumber, kText, kFlag, kList };
+
   std::string name;          ///< key stem, e.g. "max_lift"; the key is name_unit
   DisplayUnit unit;          ///< how it is shown
   std::optional<double> si;  ///< the value in SI (or rpm for speeds)
@@ -55,12 +62,23 @@ struct Field {
   std::string key = {};
   /// A count (steps, impacts): written as an integer.
   bool count = false;
+  Kind kind = Kind::kNumber;         ///< kText: `text`; kFlag: `flag`; kList: `list_si`
+  std::string text = {};             ///< a string value (kText)
+  bool flag = false;                 ///< a yes/no value (kFlag)
+  std::vector<double> list_si = {};  ///< a list of numbers in SI (kList), shown in `unit`
 
   /// `key` if set, else name + "_" + unit key (or the name alone for plain numbers).
   std::string Key() const;
   /// The value in its display unit; empty when `si` is.
   std::optional<double> Shown() const;
 };
+
+/// A string-valued field (a name, a reason); its key is `name`.
+Field TextField(std::string name, std::string text);
+/// A yes/no field; its key is `name`.
+Field FlagField(std::string name, bool flag);
+/// A list of numbers in SI, shown in `unit` (key name_unit).
+Field ListField(std::string name, DisplayUnit unit, std::vector<double> list_si);
 
 /// A named group of fields (a JSON object inside the result's).
 struct FieldGroup {
@@ -80,7 +98,8 @@ struct Column {
 /// A CSV table's header line (with its newline): each column's Key(), comma separated.
 std::string CsvHeader(const std::vector<Column>& columns);
 /// One CSV row (with its newline): `row_si`'s values (columns.size() of them) converted by
-/// their columns' units, with `precision` significant digits. Appended to `out`.
+/// their columns' units, with `precision` significant digits; a NaN (a missing value) is
+/// left empty. Appended to `out`.
 void AppendCsvRow(const std::vector<Column>& columns, const double* row_si, int precision,
                   std::string& out);
 

@@ -8,6 +8,7 @@
 #include "apps/cli/command_output.h"
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/output_paths.h"
+#include "apps/cli/result_writers.h"
 #include "apps/scene/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
@@ -16,10 +17,6 @@
 namespace needle {
 
 namespace {
-
-nlohmann::json OrNull(const std::optional<double>& v, double scale = 1.0) {
-  return v ? nlohmann::json(*v * scale) : nlohmann::json(nullptr);
-}
 
 // Row angles: θ_0, θ_N, every multiple of the step between them, and the paper's angles.
 // The table's first and last angle, the open lift's ends, every multiple of the step between,
@@ -82,73 +79,30 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
   for (double a : angles) rows.push_back(kin.At(a));
 
   // Everything is computed; now compose the outputs, then write them.
-  std::ostringstream csv;
-  csv << "crank_deg,time_s,lift_mm,velocity_m_s,acceleration_m_s2,jerk_m_s3\n";
-  csv.precision(10);
-  for (const auto& r : rows) {
-    csv << r.crank_rad / kDeg << ',' << r.time_s << ',' << r.lift_m * 1e3 << ',' << r.velocity_m_s
-        << ',';
-    if (r.acceleration_m_s2) csv << *r.acceleration_m_s2;
-    csv << ',';
-    if (r.jerk_m_s3) csv << *r.jerk_m_s3;
-    csv << '\n';
-  }
-
+  const std::vector<Column>& columns = KinematicsColumns();
+  std::vector<std::vector<double>> rows_si;
+  rows_si.reserve(rows.size());
+  for (const auto& r : rows) rows_si.push_back(KinematicsRowSi(r));
   CommandOutput result;
-  for (const auto& r : rows) {
-    result.columns["crank_rad"].push_back(r.crank_rad);
-    result.columns["time_s"].push_back(r.time_s);
-    result.columns["lift_m"].push_back(r.lift_m);
-    result.columns["velocity_m_s"].push_back(r.velocity_m_s);
-    result.columns["acceleration_m_s2"].push_back(r.acceleration_m_s2.value_or(NAN));
-    result.columns["jerk_m_s3"].push_back(r.jerk_m_s3.value_or(NAN));
-  }
-  if (o.csv) result.csv = csv.str();
+  result.columns = SiColumns(columns, rows_si);
+  if (o.csv) result.csv = CsvTable(columns, rows_si, 10);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
     j["case"] = c.path;
     j["speed_rpm"] = speed;
-    j["spline"] = SplineKindName(law.kind());
-    j["spline_reason"] = choice.reason;
-    j["noise_mm"] = choice.noise_m * 1e3;
-    j["noise_source"] = choice.noise_source;
-    j["measured"] = choice.measured;
-    if (!choice.breaks_found.empty()) {  // found in the table (stated ones are in the case)
-      nlohmann::json breaks = nlohmann::json::array();
-      for (double b : choice.law.breaks_rad) breaks.push_back(b / kDeg);
-      j["breaks_deg"] = breaks;
-    }
+    PutFields(j, LiftChoiceFields(choice));
     j["points"] = c.lift.table.crank_rad.size();
-    j["open_deg"] = sum.open_rad / kDeg;
-    j["close_deg"] = sum.close_rad / kDeg;
-    j["closed_level_mm"] = law.closed_level_m() * 1e3;
-    j["undershoot_mm"] = law.undershoot_m() * 1e3;
-    j["undershoot_deg"] = law.undershoot_m() > 0 ? nlohmann::json(law.undershoot_rad() / kDeg)
-                                                 : nlohmann::json(nullptr);
-    j["injection_period_s"] = sum.injection_period_s;
-    j["max_lift_mm"] = sum.max_lift_m * 1e3;
-    j["max_lift_deg"] = sum.max_lift_rad / kDeg;
-    j["mean_lift_mm"] = sum.mean_lift_m * 1e3;
-    j["rho"] = sum.rho;
-    j["max_velocity_m_s"] = sum.max_velocity_m_s;
-    j["max_velocity_deg"] = sum.max_velocity_rad / kDeg;
-    j["min_velocity_m_s"] = sum.min_velocity_m_s;
-    j["min_velocity_deg"] = sum.min_velocity_rad / kDeg;
-    j["max_acceleration_m_s2"] = OrNull(sum.max_acceleration_m_s2);
-    j["max_acceleration_deg"] = OrNull(sum.max_acceleration_rad, 1.0 / kDeg);
-    j["min_acceleration_m_s2"] = OrNull(sum.min_acceleration_m_s2);
-    j["min_acceleration_deg"] = OrNull(sum.min_acceleration_rad, 1.0 / kDeg);
+    PutFields(j, KinematicsFields(sum));
+    PutFields(j, LiftLawFields(law));
     nlohmann::json table = nlohmann::json::array();
-    for (const auto& r : rows) {
+    for (size_t i = 0; i < rows.size(); ++i) {
       nlohmann::json row;
-      row["crank_deg"] = r.crank_rad / kDeg;
-      row["time_s"] = r.time_s;
-      row["lift_mm"] = r.lift_m * 1e3;
-      row["velocity_m_s"] = r.velocity_m_s;
-      row["acceleration_m_s2"] = OrNull(r.acceleration_m_s2);
-      row["jerk_m_s3"] = OrNull(r.jerk_m_s3);
-      if (auto p = PaperVelocityAt(c, r.crank_rad)) row["paper_velocity_m_s"] = *p;
+      for (size_t k = 0; k < columns.size(); ++k)
+        row[columns[k].Key()] = std::isnan(rows_si[i][k])
+                                    ? nlohmann::json(nullptr)
+                                    : nlohmann::json(columns[k].unit.FromSi(rows_si[i][k]));
+      if (auto p = PaperVelocityAt(c, rows[i].crank_rad)) row["paper_velocity_m_s"] = *p;
       table.push_back(row);
     }
     j["table"] = table;
@@ -158,37 +112,34 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
     out << (c.title.empty() ? c.path : c.title) << '\n';
     out << "spline " << SplineKindName(law.kind()) << ": " << choice.reason << '\n';
     if (!choice.breaks_found.empty() && !choice.law.breaks_rad.empty()) {
-      out << "breaks found (s'' jumps, the spline built apart at them):";
-      for (double b : choice.law.breaks_rad) out << ' ' << Fixed(b / kDeg, 4);
-      out << " deg\n";
+      out << "breaks found (s'' jumps, the spline built apart at them): "
+          << FieldText(FieldAt(LiftChoiceFields(choice), "breaks_deg")) << " deg\n";
     }
-    out << "open lift " << Fixed(sum.open_rad / kDeg, 2) << " to " << Fixed(sum.close_rad / kDeg, 2)
-        << " deg";
+    const std::vector<Field> fields = KinematicsFields(sum), law_fields = LiftLawFields(law);
+    const auto t = [&](const char* key) { return FieldText(FieldAt(fields, key)); };
+    const auto lt = [&](const char* key) { return FieldText(FieldAt(law_fields, key)); };
+    out << "open lift " << ValueText(FieldAt(fields, "open_deg")) << " to " << t("close_deg");
     if (law.closed_level_m() > 0)
-      out << " (where the lift exceeds " << Fixed(law.closed_level_m() * 1e3, 4) << " mm, 3 sigma)";
+      out << " (where the lift exceeds " << lt("closed_level_mm") << ", 3 sigma)";
     out << ", " << Fixed(speed, 1) << " rpm, injection period "
-        << Fixed(sum.injection_period_s * 1e3, 2) << " ms\n";
+        << FieldText({"injection_period", display::kMs, sum.injection_period_s, 2}) << '\n';
     if (law.undershoot_m() > 0) {
-      out << "WARNING: the spline dips " << Fixed(law.undershoot_m() * 1e3, 4)
-          << " mm below the seat at " << Fixed(law.undershoot_rad() / kDeg, 2)
-          << " deg inside the open lift; try another spline kind\n";
+      out << "WARNING: the spline dips " << lt("undershoot_mm") << " below the seat at "
+          << lt("undershoot_deg") << " inside the open lift; try another spline kind\n";
     }
     if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
       out << "WARNING: " << choice.outliers.size()
           << " outlier(s) of the lift table left out (outliers = \"drop\"; the spline's reason "
              "lists them)\n";
     }
-    out << "max lift " << Fixed(sum.max_lift_m * 1e3, 3) << " mm at "
-        << Fixed(sum.max_lift_rad / kDeg, 2) << " deg, mean lift "
-        << Fixed(sum.mean_lift_m * 1e3, 3) << " mm, rho " << Fixed(sum.rho, 3) << '\n';
-    out << "velocity " << Fixed(sum.max_velocity_m_s, 3) << " m/s max at "
-        << Fixed(sum.max_velocity_rad / kDeg, 2) << " deg, " << Fixed(sum.min_velocity_m_s, 3)
-        << " m/s min at " << Fixed(sum.min_velocity_rad / kDeg, 2) << " deg\n";
+    out << "max lift " << t("max_lift_mm") << " at " << t("max_lift_deg") << ", mean lift "
+        << t("mean_lift_mm") << ", rho " << t("rho") << '\n';
+    out << "velocity " << t("max_velocity_m_s") << " max at " << t("max_velocity_deg") << ", "
+        << t("min_velocity_m_s") << " min at " << t("min_velocity_deg") << '\n';
     if (sum.max_acceleration_m_s2) {
-      out << "acceleration " << Fixed(*sum.max_acceleration_m_s2, 2) << " m/s^2 max at "
-          << Fixed(*sum.max_acceleration_rad / kDeg, 2) << " deg, "
-          << Fixed(*sum.min_acceleration_m_s2, 2) << " m/s^2 min at "
-          << Fixed(*sum.min_acceleration_rad / kDeg, 2) << " deg\n";
+      out << "acceleration " << t("max_acceleration_m_s2") << " max at "
+          << t("max_acceleration_deg") << ", " << t("min_acceleration_m_s2") << " min at "
+          << t("min_acceleration_deg") << '\n';
     } else {
       out << "acceleration unavailable: " << SplineKindName(law.kind())
           << " is C1 only (its second derivative jumps at the knots)\n";

@@ -22,7 +22,15 @@ inline nlohmann::json Finite(double v) {
 inline void PutFields(nlohmann::json& j, const std::vector<Field>& fields) {
   for (const Field& f : fields) {
     const auto v = f.Shown();
-    if (!v) {
+    if (f.kind == Field::Kind::kText) {
+      j[f.Key()] = f.text;
+    } else if (f.kind == Field::Kind::kFlag) {
+      j[f.Key()] = f.flag;
+    } else if (f.kind == Field::Kind::kList) {
+      nlohmann::json list = nlohmann::json::array();
+      for (double si : f.list_si) list.push_back(f.unit.FromSi(si));
+      j[f.Key()] = list;
+    } else if (!v) {
       j[f.Key()] = nullptr;
     } else if (f.count) {
       j[f.Key()] = static_cast<long long>(*v);
@@ -39,8 +47,16 @@ inline const Field& FieldAt(const std::vector<Field>& fields, const std::string&
   throw std::logic_error("no result field " + key);
 }
 
-/// "value" with the field's decimals (no unit; a count as an integer), or "none".
+/// "value" with the field's decimals (no unit; a count as an integer; a list space separated),
+/// or "none".
 inline std::string ValueText(const Field& f) {
+  if (f.kind == Field::Kind::kText) return f.text;
+  if (f.kind == Field::Kind::kFlag) return f.flag ? "yes" : "no";
+  if (f.kind == Field::Kind::kList) {
+    std::string s;
+    for (double si : f.list_si) s += (s.empty() ? "" : " ") + Fixed(f.unit.FromSi(si), f.decimals);
+    return s;
+  }
   const auto v = f.Shown();
   if (!v) return "none";
   return f.count ? std::to_string(static_cast<long long>(*v)) : Fixed(*v, f.decimals);
@@ -48,6 +64,7 @@ inline std::string ValueText(const Field& f) {
 
 /// "value unit" in the field's display unit, or "none".
 inline std::string FieldText(const Field& f) {
+  if (f.kind != Field::Kind::kNumber) return ValueText(f);
   const auto v = f.Shown();
   if (!v) return "none";
   return f.unit.text[0] == '\0' ? Fixed(*v, f.decimals) : Fixed(*v, f.decimals) + " " + f.unit.text;

@@ -110,5 +110,34 @@ TEST(PaperKinematicsTest, Example1AccelerationBesideBasus67) {
   }
 }
 
+// The summary's fields are its SI values shown in their units, under the keys every writer
+// uses; a C¹ spline's acceleration extremes are fields without a value.
+TEST(PaperKinematicsTest, SummaryFieldsShowTheSummaryInTheirUnits) {
+  Case c = LoadCase(kCases + "basu-example1.toml");
+  const LiftLaw law = MakeLiftLaw(c);
+  const KinematicsSummary s = Kinematics(law, c.engine.speed_rpm).Summarize();
+  const std::vector<Field> fields = KinematicsFields(s);
+  const auto shown = [&](const std::string& key) {
+    for (const Field& f : fields)
+      if (f.Key() == key) return f.Shown();
+    ADD_FAILURE() << "no field " << key;
+    return std::optional<double>();
+  };
+  EXPECT_EQ(*shown("max_lift_mm"), s.max_lift_m * 1e3);
+  EXPECT_EQ(*shown("max_lift_deg"), s.max_lift_rad / kDeg);
+  EXPECT_EQ(*shown("injection_period_s"), s.injection_period_s);
+  EXPECT_EQ(*shown("rho"), s.rho);
+  EXPECT_EQ(*shown("min_acceleration_m_s2"), *s.min_acceleration_m_s2);
+  EXPECT_EQ(fields.size(), 15u);
+
+  c.lift.spline.kind = SplineKind::kPchip;
+  const LiftLaw c1 = MakeLiftLaw(c);
+  for (const Field& f : KinematicsFields(Kinematics(c1, c.engine.speed_rpm).Summarize())) {
+    if (f.name.find("acceleration") != std::string::npos) {
+      EXPECT_FALSE(f.Shown().has_value()) << f.Key();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace needle

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 
+#include "lib/kinematics.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -56,6 +58,48 @@ TEST(ResultFieldsTest, CsvTableRefusesARaggedRow) {
   } catch (const std::logic_error& e) {
     EXPECT_STREQ(e.what(), "CsvTable: a row has 1 values for 2 columns");
   }
+}
+
+// A missing value (NaN: a C¹ spline's acceleration) is an empty CSV cell, not "nan".
+TEST(ResultFieldsTest, CsvTableLeavesAMissingValueEmpty) {
+  const std::string csv = CsvTable({{"lift", display::kMm}, {"acceleration", display::kMPerS2}},
+                                   {{1e-3, std::nan("")}, {2e-3, 4.5}}, 6);
+  EXPECT_EQ(csv, "lift_mm,acceleration_m_s2\n1,\n2,4.5\n");
+}
+
+// A string, a yes/no and a list are keyed by their name (a list by name_unit) and keep their
+// values; a list is held in SI.
+TEST(ResultFieldsTest, TextFlagAndListFieldsKeepTheirValues) {
+  const Field text = TextField("spline", "quintic");
+  EXPECT_EQ(text.Key(), "spline");
+  EXPECT_EQ(text.kind, Field::Kind::kText);
+  EXPECT_EQ(text.text, "quintic");
+  const Field flag = FlagField("measured", true);
+  EXPECT_EQ(flag.Key(), "measured");
+  EXPECT_TRUE(flag.flag);
+  const Field list = ListField("breaks", display::kDegree, {kPi / 2, kPi});
+  EXPECT_EQ(list.Key(), "breaks_deg");
+  EXPECT_EQ(list.list_si, (std::vector<double>{kPi / 2, kPi}));
+}
+
+// The kinematics table's columns and their SI keys (the Python module's arrays).
+TEST(ResultFieldsTest, KinematicsColumnsAreKeyedByTheirUnits) {
+  std::vector<std::string> keys, si_keys;
+  for (const Column& c : KinematicsColumns()) {
+    keys.push_back(c.Key());
+    si_keys.push_back(c.SiKey());
+  }
+  EXPECT_EQ(keys, (std::vector<std::string>{"crank_deg", "time_s", "lift_mm", "velocity_m_s",
+                                            "acceleration_m_s2", "jerk_m_s3"}));
+  EXPECT_EQ(si_keys, (std::vector<std::string>{"crank_rad", "time_s", "lift_m", "velocity_m_s",
+                                               "acceleration_m_s2", "jerk_m_s3"}));
+  KinematicsPoint p;
+  p.crank_rad = kPi;
+  p.lift_m = 1e-3;
+  const std::vector<double> row = KinematicsRowSi(p);
+  EXPECT_EQ(row[0], kPi);
+  EXPECT_TRUE(std::isnan(row[4]));  // no acceleration: a C¹ spline
+  EXPECT_TRUE(std::isnan(row[5]));
 }
 
 }  // namespace
