@@ -23,6 +23,14 @@ const DisplayUnit kMPa{"MPa", "MPa", 1e-6, false, "Pa"};
 const DisplayUnit kMmPerRad{"mm_rad", "mm/rad", 1e3, false, "m_rad"};
 const DisplayUnit kMmPerRad2{"mm_rad2", "mm/rad2", 1e3, false, "m_rad2"};
 const DisplayUnit kMmPerRad3{"mm_rad3", "mm/rad3", 1e3, false, "m_rad3"};
+const DisplayUnit kKgForce{"kgf", "kgf", ::needle::kKgf, true, "N"};
+const DisplayUnit kNPerMm{"N_mm", "N/mm", 1e-3, false, "N_m"};
+const DisplayUnit kHz{"hz", "Hz", 1.0, false, "hz"};
+const DisplayUnit kMm2{"mm2", "mm2", 1e6, false, "m2"};
+const DisplayUnit kCm3{"cm3", "cm3", 1.0, false, "cm3"};
+const DisplayUnit kGram{"g", "g", 1.0, false, "g"};
+const DisplayUnit kHp{"hp", "HP", 735.49875, true, "W"};
+const DisplayUnit kPercent{"percent", "%", 1.0, false, "percent"};
 }  // namespace display
 
 namespace {

@@ -45,6 +45,14 @@ extern const DisplayUnit kMPa;        ///< Pa → MPa
 extern const DisplayUnit kMmPerRad;   ///< m/rad → mm/rad (a cam law's S')
 extern const DisplayUnit kMmPerRad2;  ///< m/rad² → mm/rad² (S'')
 extern const DisplayUnit kMmPerRad3;  ///< m/rad³ → mm/rad³ (S''')
+extern const DisplayUnit kKgForce;    ///< N → kgf (÷ g₀)
+extern const DisplayUnit kNPerMm;     ///< N/m → N/mm
+extern const DisplayUnit kHz;         ///< Hz
+extern const DisplayUnit kMm2;        ///< m² → mm²
+extern const DisplayUnit kCm3;        ///< cm³ (the design chain's volumes, kept in cm³)
+extern const DisplayUnit kGram;       ///< g (the design chain's fuel, kept in g)
+extern const DisplayUnit kHp;         ///< W → HP (metric, ÷ 735.49875)
+extern const DisplayUnit kPercent;    ///< a percentage
 }  // namespace display
 
 /// One value of a result: a number (`si`; a count when `count`), or with `kind` a string, a

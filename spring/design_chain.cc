@@ -144,4 +144,53 @@ DesignResult RunDesignChain(const DesignInputs& in) {
   return r;
 }
 
+std::vector<Field> DesignFields(const DesignResult& r) {
+  using namespace display;
+  return {
+      {"fuel_per_cycle", kGram, r.fuel_per_cycle_g, 3},
+      {"fuel_per_cycle", kCm3, r.fuel_per_cycle_cm3, 3},
+      {"mixing_ratio", kNone, r.mixing_ratio, 2},
+      {"air_per_cycle", kCm3, r.air_per_cycle_cm3, 1},
+      {"air_expanded", kCm3, r.air_expanded_cm3, 1},
+      {"mixture", kCm3, r.mixture_cm3, 1},
+      {"injection_period", kS, r.injection_period_s, 4},
+      {"pressure_ratio", kNone, r.pressure_ratio, 4},
+      {"air_velocity", kMPerS, r.air_velocity_m_s, 1},
+      {"mean_cross_section", kMm2, r.mean_cross_section_m2, 2},
+      {"discharge_passage", kMm, r.discharge_passage_m, 1},
+      {"mean_lift", kMm, r.mean_lift_m, 3},
+      {"max_lift", kMm, r.max_lift_m, 3},
+      {"cam_disk_computed", kMm, r.cam_disk_computed_m, 1},
+      {"cam_disk", kMm, r.cam_disk_m, 1},
+      {"roller", kMm, r.roller_m, 1},
+      {"passage_height", kMm, r.passage_height_m, 2},
+      {"needle_diameter_suggested", kMm, r.needle_diameter_suggested_m, 1},
+      {"needle_diameter", kMm, r.needle_diameter_m, 2},
+      {"cage_diameter", kMm, r.cage_diameter_m, 1},
+      {"spring_preload", kKgForce, r.spring_preload_N, 1},
+      {"spring_preload", kN, r.spring_preload_N, 0},
+      {"max_lift_cross_section", kMm2, r.max_lift_cross_section_m2, 2},
+      {"nozzle_cross_section", kMm2, r.nozzle_cross_section_m2, 2},
+      {"nozzle_holes", kNone, static_cast<double>(r.nozzle_holes), 0, "", true},
+      {"nozzle_hole", kMm, r.nozzle_hole_m, 3},
+  };
+}
+
+std::vector<Field> PassageTrialFields(const PassageTrial& t) {
+  const auto finite = [](double v) {
+    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+  };
+  return {
+      {"discharge_passage", display::kMm, t.passage_m, 1},
+      {"mean_lift", display::kMm, finite(t.mean_lift_m), 3},
+      {"max_lift", display::kMm, finite(t.max_lift_m), 3},
+      FlagField("accepted", t.accepted),
+  };
+}
+
+const std::vector<Column>& DesignLiftColumns() {
+  static const std::vector<Column> columns = {{"crank", display::kDegree}, {"lift", display::kMm}};
+  return columns;
+}
+
 }  // namespace needle

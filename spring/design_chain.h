@@ -26,6 +26,7 @@
 
 #include "lib/engine_cycle.h"
 #include "lib/lift_law.h"
+#include "lib/result_fields.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -115,6 +116,17 @@ struct DesignResult {
   int nozzle_holes = 0;
   double nozzle_hole_m = 0.0;
 };
+
+/// The chain's results as fields (lib/result_fields.h), each in the unit Basu's tables use
+/// (g, cm³, mm, mm², kgf). The passage trials and the lift table are listed apart.
+std::vector<Field> DesignFields(const DesignResult& r);
+
+/// One passage trial as fields: the passage (mm), its mean and maximum lift (mm; none when its
+/// largest cross-section is below the mean) and whether it was taken.
+std::vector<Field> PassageTrialFields(const PassageTrial& t);
+
+/// The lift table's columns: crank (deg), lift (mm).
+const std::vector<Column>& DesignLiftColumns();
 
 /// Runs the whole chain. Throws std::invalid_argument when no candidate passage keeps the
 /// maximum lift within the limit, or a step's input is out of its formula's range.

@@ -102,4 +102,30 @@ HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N
   return c;
 }
 
+std::vector<Field> HelicalFields(const HelicalSpringCheck& h) {
+  using namespace display;
+  return {
+      {"rate", kNPerMm, h.rate_N_m, 2},
+      {"index", kNone, h.index, 2},
+      TextField("stress_correction", h.wahl ? "wahl" : "bergstrasser"),
+      {"correction_factor", kNone, h.correction_factor, 3},
+      {"stress_preload", kMPa, h.stress_preload_Pa, 0},
+      {"stress_full_lift", kMPa, h.stress_full_lift_Pa, 0},
+      {"allowable_stress", kMPa, h.allowable_stress_Pa, 0},
+      {"total_coils", kNone, h.total_coils, 1},
+      {"solid_length", kMm, h.solid_length_m, 1},
+      {"length_preload", kMm, h.length_preload_m, 1},
+      {"length_full_lift", kMm, h.length_full_lift_m, 1},
+      {"clearance_full_lift", kMm, h.clearance_full_lift_m, 2},
+      {"min_clearance", kMm, h.min_clearance_m, 2},
+      {"surge", kHz, h.surge_hz, 1},
+      {"cam", kHz, h.cam_hz, 3},
+      {"surge_ratio", kNone, h.surge_ratio, 1},
+      FlagField("stress_ok", h.stress_ok),
+      FlagField("clearance_ok", h.clearance_ok),
+      FlagField("surge_ok", h.surge_ok),
+      FlagField("pass", h.pass()),
+  };
+}
+
 }  // namespace needle

@@ -21,6 +21,7 @@
 /// data apply (wire below 10 mm; beyond, fatigue is not judged and says so).
 
 #include "lib/engine_cycle.h"
+#include "lib/result_fields.h"
 #include "spring/spring_parameters.h"
 #include "spring/wire_material.h"
 
@@ -53,6 +54,11 @@ struct HelicalSpringCheck {
   bool fatigue_ok = true;  ///< n_f ≥ 1 (true when not judged)
   bool pass() const { return stress_ok && clearance_ok && surge_ok && fatigue_ok; }
 };
+
+/// The check as fields (lib/result_fields.h): rate (N/mm), index, correction and its factor,
+/// the stresses (MPa), coils, lengths and clearances (mm), surge and cam (Hz) and their ratio,
+/// each sub-verdict and the whole.
+std::vector<Field> HelicalFields(const HelicalSpringCheck& h);
 
 /// The rate R = G d⁴ / (8 D³ n) of `g`, N/m.
 double HelicalRate(const HelicalGeometry& g);

@@ -113,4 +113,34 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
   return r;
 }
 
+std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {
+  using namespace display;
+  const auto finite = [](double v) {
+    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+  };
+  return {
+      {"basu_preload", kKgForce, r.basu_preload_N, 1},
+      {"actual_preload", kKgForce, r.train.preload_N, 1},
+      {"deviation", kPercent, r.basu_deviation_percent, 1},
+      {"max_abs_acceleration", kMPerS2, r.max_abs_acceleration_m_s2, 2},
+      {"max_abs_acceleration", kDegree, r.max_abs_acceleration_rad, 1},
+      {"inertia_force", kKgForce, r.inertia_force_N, 2},
+      {"spring_rate", kNPerMm, r.train.rate_N_m, 2},
+      {"min_quasi_static_force", kN, r.min_quasi_static.force_N, 1},
+      {"min_quasi_static_force", kDegree, r.min_quasi_static.crank_rad, 2},
+      {"n_qs", kRpm, finite(r.liftoff_rpm_quasi_static), 1, "liftoff_rpm_quasi_static"},
+      {"required_preload", kN, r.required_preload_N, 1},
+      {"required_preload", kKgForce, r.required_preload_N, 2},
+      {"preload_margin", kPercent, finite(r.preload_margin_percent), 1},
+      {"gas_force", kN, r.gas_force_N, 1},
+      TextField("gas_source", r.gas_source),
+      FlagField("combustion_ok", r.combustion_ok),
+      {"combustion_margin", kPercent, finite(r.combustion_margin_percent), 1},
+      {"basu_tolerance", kPercent, r.basu_tolerance_percent, 1},
+      FlagField("basu_ok", r.basu_ok),
+      FlagField("preload_ok", r.preload_ok),
+      FlagField("pass", r.pass),
+  };
+}
+
 }  // namespace needle

@@ -53,6 +53,13 @@ struct SpringCheckResult {
 /// judged surge by its effect in the dynamics (apps/study/check_scene.h) makes it a warning.
 std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_screen = true);
 
+/// The check as fields (lib/result_fields.h): Basu's preload and the case's (kgf) and their
+/// deviation (%), the largest |a| and where, the inertia force (kgf), the rate (N/mm), the
+/// least quasi-static force and where, n_qs (none when the needle never decelerates), the
+/// required preload (N and kgf) and the margins (%; none when unbounded), the combustion load,
+/// each sub-verdict and the whole. The helical check's are HelicalFields.
+std::vector<Field> SpringCheckFields(const SpringCheckResult& r);
+
 /// The check at `speed_rpm` of `spring` on `needle` driven by `law` (C²), the cam at half
 /// crank speed when `four_stroke`. Throws CaseError prefixed with `where` (the case file) when
 /// the law has no acceleration, the helical geometry is impossible or a quantity overflows.

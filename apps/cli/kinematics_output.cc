@@ -97,11 +97,7 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
     PutFields(j, LiftLawFields(law));
     nlohmann::json table = nlohmann::json::array();
     for (size_t i = 0; i < rows.size(); ++i) {
-      nlohmann::json row;
-      for (size_t k = 0; k < columns.size(); ++k)
-        row[columns[k].Key()] = std::isnan(rows_si[i][k])
-                                    ? nlohmann::json(nullptr)
-                                    : nlohmann::json(columns[k].unit.FromSi(rows_si[i][k]));
+      nlohmann::json row = RowObject(columns, rows_si[i]);
       if (auto p = PaperVelocityAt(c, rows[i].crank_rad)) row["paper_velocity_m_s"] = *p;
       table.push_back(row);
     }

@@ -40,6 +40,18 @@ inline void PutFields(nlohmann::json& j, const std::vector<Field>& fields) {
   }
 }
 
+/// One row of a table as a JSON object: each column's Key() to its SI value shown in its
+/// unit, or null for a NaN (a missing value).
+inline nlohmann::json RowObject(const std::vector<Column>& columns,
+                                const std::vector<double>& row_si) {
+  nlohmann::json row = nlohmann::json::object();
+  for (size_t k = 0; k < columns.size(); ++k)
+    row[columns[k].Key()] = std::isnan(row_si[k])
+                                ? nlohmann::json(nullptr)
+                                : nlohmann::json(columns[k].unit.FromSi(row_si[k]));
+  return row;
+}
+
 /// The field named `key` (its Key()) from a table; throws std::logic_error when absent.
 inline const Field& FieldAt(const std::vector<Field>& fields, const std::string& key) {
   for (const Field& f : fields)

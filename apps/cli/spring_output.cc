@@ -37,13 +37,7 @@ CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
   const RigidTrain& train = check.train;
   const std::optional<HelicalSpringCheck>& helical = check.helical;
   const std::optional<double>& basu_N = check.basu_preload_N;
-  const double a_abs = check.max_abs_acceleration_m_s2;
-  const double a_deg = check.max_abs_acceleration_rad / kDeg;
-  const double inertia_N = check.inertia_force_N;
-  const ForceMinimum& fmin = check.min_quasi_static;
   const double n_qs = check.liftoff_rpm_quasi_static;
-  const double required_N = check.required_preload_N;
-  const double margin = check.preload_margin_percent;
   const bool preload_ok = check.preload_ok;
   const bool ok = check.pass;
 
@@ -56,104 +50,64 @@ CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
     j["speed_rpm"] = speed;
     j["spline"] = SplineKindName(law.kind());
     j["injection_period_s"] = sum.injection_period_s;
-    j["basu_preload_kgf"] = basu_N ? nlohmann::json(*basu_N / kKgf) : nlohmann::json(nullptr);
-    j["actual_preload_kgf"] = train.preload_N / kKgf;
-    j["deviation_percent"] = basu_N ? nlohmann::json(100.0 * (train.preload_N - *basu_N) / *basu_N)
-                                    : nlohmann::json(nullptr);
-    j["max_abs_acceleration_m_s2"] = a_abs;
-    j["max_abs_acceleration_deg"] = a_deg;
-    j["inertia_force_kgf"] = inertia_N / kKgf;
-    j["spring_rate_N_mm"] = train.rate_N_m * 1e-3;
-    j["min_quasi_static_force_N"] = fmin.force_N;
-    j["min_quasi_static_force_deg"] = fmin.crank_rad / kDeg;
-    j["liftoff_rpm_quasi_static"] = Finite(n_qs);
+    PutFields(j, SpringCheckFields(check));
     j["safety_factor"] = c.spring->safety_factor;
     j["overspeed_factor"] = c.spring->overspeed_factor;
-    j["required_preload_N"] = required_N;
-    j["required_preload_kgf"] = required_N / kKgf;
-    j["preload_margin_percent"] = Finite(margin);
-    j["gas_force_N"] = check.gas_force_N;
-    j["gas_source"] = check.gas_source;
-    j["combustion_ok"] = check.combustion_ok;
-    j["combustion_margin_percent"] = Finite(check.combustion_margin_percent);
-    j["basu_tolerance_percent"] = check.basu_tolerance_percent;
-    j["basu_ok"] = check.basu_ok;
-    j["preload_ok"] = preload_ok;
     j["failures"] = check.failures;
-    j["pass"] = ok;
-    if (helical) {
-      const auto& h = *helical;
-      j["helical"] = {{"rate_N_mm", h.rate_N_m * 1e-3},
-                      {"index", h.index},
-                      {"stress_correction", h.wahl ? "wahl" : "bergstrasser"},
-                      {"correction_factor", h.correction_factor},
-                      {"stress_preload_MPa", h.stress_preload_Pa * 1e-6},
-                      {"stress_full_lift_MPa", h.stress_full_lift_Pa * 1e-6},
-                      {"allowable_stress_MPa", h.allowable_stress_Pa * 1e-6},
-                      {"total_coils", h.total_coils},
-                      {"solid_length_mm", h.solid_length_m * 1e3},
-                      {"length_preload_mm", h.length_preload_m * 1e3},
-                      {"length_full_lift_mm", h.length_full_lift_m * 1e3},
-                      {"clearance_full_lift_mm", h.clearance_full_lift_m * 1e3},
-                      {"min_clearance_mm", h.min_clearance_m * 1e3},
-                      {"surge_hz", h.surge_hz},
-                      {"cam_hz", h.cam_hz},
-                      {"surge_ratio", h.surge_ratio},
-                      {"stress_ok", h.stress_ok},
-                      {"clearance_ok", h.clearance_ok},
-                      {"surge_ok", h.surge_ok},
-                      {"pass", h.pass()}};
-    }
+    if (helical) PutFields(j["helical"], HelicalFields(*helical));
     result.json = std::move(j);
   } else {
+    const std::vector<Field> fields = SpringCheckFields(check);
+    const auto t = [&](const char* key) { return FieldText(FieldAt(fields, key)); };
+    const auto or_unbounded = [&](const char* key) {
+      return FieldAt(fields, key).si ? t(key) : std::string("unbounded");
+    };
     out << (c.title.empty() ? c.path : c.title) << '\n';
     out << "speed " << Fixed(speed, 1) << " rpm, spline " << SplineKindName(law.kind())
         << ", injection period " << Fixed(sum.injection_period_s, 4) << " s\n\n";
     if (basu_N) {
       out << "Basu's formula (d = " << Fixed(*c.needle->diameter_m * 1e3, 1)
-          << " mm): " << Fixed(*basu_N / kKgf, 1) << " kgf; the case's spring "
-          << Fixed(train.preload_N / kKgf, 1) << " kgf ("
-          << Fixed(100.0 * (train.preload_N - *basu_N) / *basu_N, 1) << " %; tolerance "
-          << Fixed(check.basu_tolerance_percent, 1) << " %) -> " << PassFail(check.basu_ok) << '\n';
+          << " mm): " << t("basu_preload_kgf") << "; the case's spring " << t("actual_preload_kgf")
+          << " (" << t("deviation_percent") << "; tolerance " << t("basu_tolerance_percent")
+          << ") -> " << PassFail(check.basu_ok) << '\n';
     }
-    out << "combustion load F_g = " << Fixed(check.gas_force_N / kKgf, 1) << " kgf ("
+    out << "combustion load F_g = "
+        << FieldText({"gas_force", display::kKgForce, check.gas_force_N, 1}) << " ("
         << check.gas_source << "); preload against S x F_g: margin "
-        << (std::isfinite(check.combustion_margin_percent)
-                ? Fixed(check.combustion_margin_percent, 1) + " %"
-                : std::string("unbounded"))
-        << " -> " << PassFail(check.combustion_ok) << '\n';
-    out << "inertia force m*max|a| = " << Fixed(train.mass_kg, 2) << " kg x " << Fixed(a_abs, 2)
-        << " m/s^2 (at " << Fixed(a_deg, 1) << " deg) = " << Fixed(inertia_N / kKgf, 2) << " kgf\n";
-    out << "quasi-static contact force: min " << Fixed(fmin.force_N, 1) << " N at "
-        << Fixed(fmin.crank_rad / kDeg, 2) << " deg (spring rate "
-        << Fixed(train.rate_N_m * 1e-3, 2) << " N/mm)\n";
+        << or_unbounded("combustion_margin_percent") << " -> " << PassFail(check.combustion_ok)
+        << '\n';
+    out << "inertia force m*max|a| = " << Fixed(train.mass_kg, 2) << " kg x "
+        << t("max_abs_acceleration_m_s2") << " (at " << t("max_abs_acceleration_deg")
+        << ") = " << t("inertia_force_kgf") << '\n';
+    out << "quasi-static contact force: min " << t("min_quasi_static_force_N") << " at "
+        << t("min_quasi_static_force_deg") << " (spring rate " << t("spring_rate_N_mm") << ")\n";
     out << "quasi-static lift-off speed n_qs = "
-        << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm (" + Fixed(n_qs / speed, 2) + " x rated)"
-                                : "none (never decelerates)")
+        << (std::isfinite(n_qs)
+                ? t("liftoff_rpm_quasi_static") + " (" + Fixed(n_qs / speed, 2) + " x rated)"
+                : "none (never decelerates)")
         << '\n';
     out << "required preload (S = " << Fixed(c.spring->safety_factor, 2) << " at "
         << Fixed(c.spring->overspeed_factor, 2) << " x " << Fixed(speed, 0)
-        << " rpm): " << Fixed(required_N, 1) << " N = " << Fixed(required_N / kKgf, 2)
-        << " kgf; margin of the case's spring "
-        << (std::isfinite(margin) ? Fixed(margin, 1) + " %" : "unbounded") << " -> "
+        << " rpm): " << t("required_preload_N") << " = " << t("required_preload_kgf")
+        << "; margin of the case's spring " << or_unbounded("preload_margin_percent") << " -> "
         << PassFail(preload_ok) << '\n';
     if (helical) {
-      const auto& h = *helical;
-      out << "\nhelical spring (" << (h.wahl ? "Wahl" : "Bergstrasser") << " correction "
-          << Fixed(h.correction_factor, 3) << ")\n"
-          << "  rate " << Fixed(h.rate_N_m * 1e-3, 2) << " N/mm, index D/d " << Fixed(h.index, 2)
-          << ", total coils " << Fixed(h.total_coils, 1) << '\n'
-          << "  shear stress " << Fixed(h.stress_preload_Pa * 1e-6, 0) << " MPa at preload, "
-          << Fixed(h.stress_full_lift_Pa * 1e-6, 0) << " MPa at full lift, allowable "
-          << Fixed(h.allowable_stress_Pa * 1e-6, 0) << " MPa -> " << PassFail(h.stress_ok) << '\n'
-          << "  length " << Fixed(h.length_preload_m * 1e3, 1) << " mm at preload, "
-          << Fixed(h.length_full_lift_m * 1e3, 1) << " mm at full lift, solid "
-          << Fixed(h.solid_length_m * 1e3, 1) << " mm; coil gaps "
-          << Fixed(h.clearance_full_lift_m * 1e3, 2) << " mm against S_a "
-          << Fixed(h.min_clearance_m * 1e3, 2) << " mm -> " << PassFail(h.clearance_ok) << '\n'
-          << "  surge " << Fixed(h.surge_hz, 1) << " Hz, cam " << Fixed(h.cam_hz, 3)
-          << " Hz, ratio " << Fixed(h.surge_ratio, 1) << " (>= 13) -> " << PassFail(h.surge_ok)
-          << '\n';
+      const std::vector<Field> hf = HelicalFields(*helical);
+      const auto ht = [&](const char* key) { return FieldText(FieldAt(hf, key)); };
+      const auto pf = [&](const char* key) { return PassFail(FieldAt(hf, key).flag); };
+      out << "\nhelical spring (" << (helical->wahl ? "Wahl" : "Bergstrasser") << " correction "
+          << ht("correction_factor") << ")\n"
+          << "  rate " << ht("rate_N_mm") << ", index D/d " << ht("index") << ", total coils "
+          << ht("total_coils") << '\n'
+          << "  shear stress " << ht("stress_preload_MPa") << " at preload, "
+          << ht("stress_full_lift_MPa") << " at full lift, allowable " << ht("allowable_stress_MPa")
+          << " -> " << pf("stress_ok") << '\n'
+          << "  length " << ht("length_preload_mm") << " at preload, " << ht("length_full_lift_mm")
+          << " at full lift, solid " << ht("solid_length_mm") << "; coil gaps "
+          << ht("clearance_full_lift_mm") << " against S_a " << ht("min_clearance_mm") << " -> "
+          << pf("clearance_ok") << '\n'
+          << "  surge " << ht("surge_hz") << ", cam " << ht("cam_hz") << ", ratio "
+          << ht("surge_ratio") << " (>= 13) -> " << pf("surge_ok") << '\n';
     }
     out << "\nspring check: " << (ok ? "pass" : "FAIL") << '\n';
     for (const std::string& f : check.failures) out << "  fails: " << f << '\n';
@@ -219,94 +173,69 @@ CommandOutput ComputeDesign(const DesignInputs& in, const DesignCommandOptions& 
   if (o.json) {
     nlohmann::json j;
     j["engine"] = in.path;
-    j["power_hp"] = in.power_W / 735.49875;
+    PutFields(j, {{"power", display::kHp, in.power_W}});
     j["speed_rpm"] = in.speed_rpm;
     j["atomizer"] = in.atomizer;
-    j["fuel_per_cycle_g"] = r.fuel_per_cycle_g;
-    j["fuel_per_cycle_cm3"] = r.fuel_per_cycle_cm3;
-    j["mixing_ratio"] = r.mixing_ratio;
-    j["air_per_cycle_cm3"] = r.air_per_cycle_cm3;
-    j["air_expanded_cm3"] = r.air_expanded_cm3;
-    j["mixture_cm3"] = r.mixture_cm3;
-    j["injection_period_s"] = r.injection_period_s;
-    j["pressure_ratio"] = r.pressure_ratio;
-    j["air_velocity_m_s"] = r.air_velocity_m_s;
-    j["mean_cross_section_mm2"] = r.mean_cross_section_m2 * 1e6;
+    PutFields(j, DesignFields(r));
     nlohmann::json trials = nlohmann::json::array();
-    for (const auto& t : r.trials) {
-      trials.push_back({{"discharge_passage_mm", t.passage_m * 1e3},
-                        {"mean_lift_mm", Finite(t.mean_lift_m * 1e3)},
-                        {"max_lift_mm", Finite(t.max_lift_m * 1e3)},
-                        {"accepted", t.accepted}});
+    for (const PassageTrial& trial : r.trials) {
+      trials.push_back(nlohmann::json::object());
+      PutFields(trials.back(), PassageTrialFields(trial));
     }
     j["passage_trials"] = trials;
-    j["discharge_passage_mm"] = r.discharge_passage_m * 1e3;
-    j["mean_lift_mm"] = r.mean_lift_m * 1e3;
-    j["max_lift_mm"] = r.max_lift_m * 1e3;
     nlohmann::json table = nlohmann::json::array();
-    for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i) {
-      table.push_back({{"crank_deg", r.lift_table.crank_rad[i] / kDeg},
-                       {"lift_mm", r.lift_table.lift_m[i] * 1e3}});
-    }
+    for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i)
+      table.push_back(
+          RowObject(DesignLiftColumns(), {r.lift_table.crank_rad[i], r.lift_table.lift_m[i]}));
     j["lift_table"] = table;
-    j["cam_disk_computed_mm"] = r.cam_disk_computed_m * 1e3;
-    j["cam_disk_mm"] = r.cam_disk_m * 1e3;
-    j["roller_mm"] = r.roller_m * 1e3;
-    j["passage_height_mm"] = r.passage_height_m * 1e3;
-    j["needle_diameter_suggested_mm"] = r.needle_diameter_suggested_m * 1e3;
-    j["needle_diameter_mm"] = r.needle_diameter_m * 1e3;
-    j["cage_diameter_mm"] = r.cage_diameter_m * 1e3;
-    j["spring_preload_kgf"] = r.spring_preload_N / kKgf;
-    j["spring_preload_N"] = r.spring_preload_N;
-    j["max_lift_cross_section_mm2"] = r.max_lift_cross_section_m2 * 1e6;
-    j["nozzle_cross_section_mm2"] = r.nozzle_cross_section_m2 * 1e6;
-    j["nozzle_holes"] = r.nozzle_holes;
-    j["nozzle_hole_mm"] = r.nozzle_hole_m * 1e3;
     result.json = std::move(j);
   } else {
+    const std::vector<Field> fields = DesignFields(r);
+    const auto t = [&](const char* key) { return FieldText(FieldAt(fields, key)); };
+    const auto v = [&](const char* key) { return ValueText(FieldAt(fields, key)); };
     out << (in.title.empty() ? in.path : in.title) << '\n'
-        << Fixed(in.power_W / 735.49875, 1) << " HP_i per cylinder, " << Fixed(in.speed_rpm, 1)
-        << " rpm, " << EngineCycleName(in.cycle) << ", " << in.atomizer << " atomizer\n\n"
-        << "fuel per working cycle      " << Fixed(r.fuel_per_cycle_g, 3)
-        << " g = " << Fixed(r.fuel_per_cycle_cm3, 3) << " cm3\n"
-        << "mixing ratio                " << Fixed(r.mixing_ratio, 2)
+        << ValueText({"power", display::kHp, in.power_W, 1}) << " HP_i per cylinder, "
+        << Fixed(in.speed_rpm, 1) << " rpm, " << EngineCycleName(in.cycle) << ", " << in.atomizer
+        << " atomizer\n\n"
+        << "fuel per working cycle      " << t("fuel_per_cycle_g") << " = "
+        << t("fuel_per_cycle_cm3") << '\n'
+        << "mixing ratio                " << v("mixing_ratio")
         << (r.mixing_ratio_from_line ? " (Basu's line)" : " (given)") << '\n'
-        << "injection air (p1, T1)      " << Fixed(r.air_per_cycle_cm3, 1) << " cm3\n"
-        << "expanded to p0              " << Fixed(r.air_expanded_cm3, 1) << " cm3; mixture "
-        << Fixed(r.mixture_cm3, 1) << " cm3\n"
-        << "outflow velocity w0         " << Fixed(r.air_velocity_m_s, 1)
-        << " m/s (p0/p1 = " << Fixed(r.pressure_ratio, 4) << ")\n"
-        << "injection period            " << Fixed(r.injection_period_s, 4) << " s\n"
-        << "mean cross-section          " << Fixed(r.mean_cross_section_m2 * 1e6, 2) << " mm2\n";
-    for (const auto& t : r.trials) {
-      out << "  passage " << Fixed(t.passage_m * 1e3, 1) << " mm: ";
-      if (std::isnan(t.mean_lift_m)) {
+        << "injection air (p1, T1)      " << t("air_per_cycle_cm3") << '\n'
+        << "expanded to p0              " << t("air_expanded_cm3") << "; mixture "
+        << t("mixture_cm3") << '\n'
+        << "outflow velocity w0         " << t("air_velocity_m_s")
+        << " (p0/p1 = " << v("pressure_ratio") << ")\n"
+        << "injection period            " << t("injection_period_s") << '\n'
+        << "mean cross-section          " << t("mean_cross_section_mm2") << '\n';
+    for (const PassageTrial& trial : r.trials) {
+      const std::vector<Field> tf = PassageTrialFields(trial);
+      out << "  passage " << FieldText(FieldAt(tf, "discharge_passage_mm")) << ": ";
+      if (!FieldAt(tf, "mean_lift_mm").si) {
         out << "its largest cross-section is below the mean -> rejected\n";
         continue;
       }
-      out << "mean lift " << Fixed(t.mean_lift_m * 1e3, 3) << " mm, max lift "
-          << Fixed(t.max_lift_m * 1e3, 3) << " mm -> " << (t.accepted ? "taken" : "rejected")
-          << '\n';
+      out << "mean lift " << FieldText(FieldAt(tf, "mean_lift_mm")) << ", max lift "
+          << FieldText(FieldAt(tf, "max_lift_mm")) << " -> "
+          << (trial.accepted ? "taken" : "rejected") << '\n';
     }
-    out << "maximum lift (rho " << Fixed(in.rho, 2) << ")        " << Fixed(r.max_lift_m * 1e3, 3)
-        << " mm\n"
+    out << "maximum lift (rho " << Fixed(in.rho, 2) << ")        " << t("max_lift_mm") << '\n'
         << "lift table (normal curve)  ";
     for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i) {
       out << ' ' << Fixed(r.lift_table.crank_rad[i] / kDeg, 0) << ":"
           << Fixed(r.lift_table.lift_m[i] * 1e3, 3);
     }
-    out << "\ncam disk                    " << Fixed(r.cam_disk_computed_m * 1e3, 1)
-        << " mm computed, " << Fixed(r.cam_disk_m * 1e3, 1) << " mm adopted; roller "
-        << Fixed(r.roller_m * 1e3, 1) << " mm\n"
-        << "discharge passage height    " << Fixed(r.passage_height_m * 1e3, 2) << " mm\n"
-        << "needle diameter             " << Fixed(r.needle_diameter_m * 1e3, 2)
-        << " mm (2d = " << Fixed(r.needle_diameter_suggested_m * 1e3, 1) << " mm); cage "
-        << Fixed(r.cage_diameter_m * 1e3, 1) << " mm\n"
-        << "spring preload (formula)    " << Fixed(r.spring_preload_N / kKgf, 1)
-        << " kgf = " << Fixed(r.spring_preload_N, 0) << " N\n"
-        << "cross-section at max lift   " << Fixed(r.max_lift_cross_section_m2 * 1e6, 2) << " mm2\n"
-        << "nozzle cross-section        " << Fixed(r.nozzle_cross_section_m2 * 1e6, 2) << " mm2 in "
-        << r.nozzle_holes << " holes of " << Fixed(r.nozzle_hole_m * 1e3, 3) << " mm\n";
+    out << "\ncam disk                    " << v("cam_disk_computed_mm") << " mm computed, "
+        << t("cam_disk_mm") << " adopted; roller " << t("roller_mm") << '\n'
+        << "discharge passage height    " << t("passage_height_mm") << '\n'
+        << "needle diameter             " << t("needle_diameter_mm")
+        << " (2d = " << t("needle_diameter_suggested_mm") << "); cage " << t("cage_diameter_mm")
+        << '\n'
+        << "spring preload (formula)    " << t("spring_preload_kgf") << " = "
+        << t("spring_preload_N") << '\n'
+        << "cross-section at max lift   " << t("max_lift_cross_section_mm2") << '\n'
+        << "nozzle cross-section        " << t("nozzle_cross_section_mm2") << " in "
+        << v("nozzle_holes") << " holes of " << t("nozzle_hole_mm") << '\n';
     if (o.case_out) out << "case written: " << *o.case_out << '\n';
   }
   if (o.case_out) result.case_file = DesignCase(in, r);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "lib/units.h"
 
@@ -102,6 +103,27 @@ TEST(HelicalSpringTest, MinimumGapsAndFailures) {
   const HelicalSpringCheck weak = CheckHelicalSpring(g, 1200.0, 0.0, 600, EngineCycle::kFourStroke);
   EXPECT_FALSE(weak.stress_ok);
   EXPECT_FALSE(weak.pass());
+}
+
+// The check as fields: Bhandari's spring in the units a designer reads (N/mm, MPa, mm), the
+// correction by name and every sub-verdict.
+TEST(HelicalSpringTest, FieldsShowTheCheckInItsUnits) {
+  const HelicalSpringCheck c =
+      CheckHelicalSpring(Bhandari101(), 1250.0, 0.0, 600, EngineCycle::kFourStroke);
+  const std::vector<Field> f = HelicalFields(c);
+  const auto at = [&](const std::string& key) -> const Field& {
+    for (const Field& x : f)
+      if (x.Key() == key) return x;
+    throw std::logic_error("no field " + key);
+  };
+  EXPECT_NEAR(*at("rate_N_mm").Shown(), 81370.0 * 2401.0 / (8.0 * 74088.0 * 8.0), 1e-9);
+  EXPECT_NEAR(*at("solid_length_mm").Shown(), 70.0, 1e-9);
+  EXPECT_NEAR(*at("clearance_full_lift_mm").Shown(), 9.0, 1e-6);
+  EXPECT_EQ(*at("stress_preload_MPa").Shown(), c.stress_preload_Pa * 1e-6);
+  EXPECT_EQ(at("stress_correction").text, c.wahl ? "wahl" : "bergstrasser");
+  EXPECT_EQ(at("stress_ok").flag, c.stress_ok);
+  EXPECT_EQ(at("pass").flag, c.pass());
+  EXPECT_EQ(*at("surge_hz").Shown(), c.surge_hz);
 }
 
 }  // namespace
