@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "lib/follower.h"
+#include "lib/result_fields.h"
 
 namespace needle {
 
@@ -35,5 +36,21 @@ struct CamProfile {
 /// The profile on `n` equal steps of a full turn starting at ψ = 0 (lib/follower.h for each
 /// point). The least profile radius is taken over convex stretches (flat: everywhere).
 CamProfile MakeCamProfile(const Displacement& s, const FollowerGeometry& g, int n);
+
+/// The follower as fields (lib/result_fields.h): its kind, the base radius, the roller's or
+/// the face's radius and the face's half-width where the kind has them, offset and lever.
+std::vector<Field> FollowerFields(const FollowerGeometry& g);
+
+/// The profile's extremes as fields: the contact's offset on the face, the entrainment and
+/// sliding speeds at the cam speed `cam_omega` (rad/s), the pressure angle and the least
+/// radius of curvature, each with the cam angle where it is, and the two verdicts.
+std::vector<Field> CamProfileFields(const CamProfile& p, double cam_omega);
+
+/// Every point's columns: cam angle (deg), x and y (mm), pressure angle (deg), radius of
+/// curvature (mm), contact offset (mm); the first three are the CAD coordinates.
+const std::vector<Column>& ProfileColumns();
+
+/// One point's SI values in ProfileColumns()' order.
+std::vector<double> ProfileRowSi(const ProfilePoint& q);
 
 }  // namespace needle

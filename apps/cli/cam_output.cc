@@ -140,79 +140,61 @@ CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& o) {
   const double cam_omega = OmegaFromRpm(c.engine.speed_rpm) / CrankTurnsPerCycle(c.engine.cycle);
   CommandOutput result;
   result.status = p.undercut || p.off_face ? 1 : 0;
-  for (const ProfilePoint& q : p.points) {
-    result.columns["cam_rad"].push_back(q.cam_rad);
-    result.columns["x_m"].push_back(q.x_m);
-    result.columns["y_m"].push_back(q.y_m);
-    result.columns["pressure_angle_rad"].push_back(q.pressure_angle_rad);
-    result.columns["profile_radius_m"].push_back(q.profile_radius_m);
-    result.columns["contact_offset_m"].push_back(q.contact_offset_m);
-  }
+  std::vector<std::vector<double>> rows_si;
+  rows_si.reserve(p.points.size());
+  for (const ProfilePoint& q : p.points) rows_si.push_back(ProfileRowSi(q));
+  result.columns = SiColumns(ProfileColumns(), rows_si);
+  const std::vector<Field> follower = FollowerFields(g), extremes = CamProfileFields(p, cam_omega);
+  const std::vector<Field> placing = {{"roller_play", display::kMm, play, 3},
+                                      {"cam_angle_zero_crank", display::kDegree, theta0, 2}};
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
     j["case"] = c.path;
-    j["follower"] = FollowerKindName(g.kind);
-    j["base_radius_mm"] = g.base_radius_m * 1e3;
-    if (g.kind == FollowerKind::kRoller) j["roller_radius_mm"] = g.roller_radius_m * 1e3;
-    if (g.kind == FollowerKind::kCurved) j["face_radius_mm"] = g.face_radius_m * 1e3;
-    if (g.face_half_width_m > 0.0) j["face_half_width_mm"] = g.face_half_width_m * 1e3;
-    j["max_contact_offset_mm"] = p.max_contact_offset_m * 1e3;
-    j["max_contact_offset_at_cam_deg"] = p.max_contact_offset_at_rad / kDeg;
-    j["off_face"] = p.off_face;
-    j["min_entrainment_speed_m_s"] = p.min_entrainment_m_rad * cam_omega;
-    j["min_entrainment_speed_at_cam_deg"] = p.min_entrainment_at_rad / kDeg;
-    j["max_sliding_speed_m_s"] = p.max_sliding_m_rad * cam_omega;
-    j["offset_mm"] = g.offset_m * 1e3;
-    j["lever_ratio"] = g.lever_ratio;
-    j["roller_play_mm"] = play * 1e3;
-    j["cam_angle_zero_crank_deg"] = theta0 / kDeg;
-    j["max_pressure_angle_deg"] = p.max_pressure_angle_rad / kDeg;
-    j["max_pressure_angle_at_cam_deg"] = p.max_pressure_angle_at_rad / kDeg;
-    j["min_profile_radius_mm"] = p.min_profile_radius_m * 1e3;
-    j["min_profile_radius_at_cam_deg"] = p.min_profile_radius_at_rad / kDeg;
-    j["undercut"] = p.undercut;
+    PutFields(j, follower);
+    PutFields(j, extremes);
+    PutFields(j, placing);
     j["points"] = p.points.size();
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << FollowerKindName(g.kind) << " follower: base circle radius "
-        << Fixed(g.base_radius_m * 1e3, 2) << " mm, "
+        << TextAt(follower, "base_radius_mm") << ", "
         << (g.kind == FollowerKind::kRoller
-                ? "roller radius " + Fixed(g.roller_radius_m * 1e3, 2) + " mm, "
+                ? "roller radius " + TextAt(follower, "roller_radius_mm") + ", "
             : g.kind == FollowerKind::kCurved
-                ? "face radius " + Fixed(g.face_radius_m * 1e3, 2) + " mm, "
+                ? "face radius " + TextAt(follower, "face_radius_mm") + ", "
                 : std::string())
         << (g.face_half_width_m > 0.0
-                ? "face half-width " + Fixed(g.face_half_width_m * 1e3, 2) + " mm, "
+                ? "face half-width " + TextAt(follower, "face_half_width_mm") + ", "
                 : std::string())
-        << "offset " << Fixed(g.offset_m * 1e3, 2) << " mm, lever " << Fixed(g.lever_ratio, 3)
-        << ", play " << Fixed(play * 1e3, 3) << " mm; cam 0 deg at crank "
-        << Fixed(theta0 / kDeg, 2) << " deg\n"
-        << "pressure angle largest |phi| " << Fixed(std::abs(p.max_pressure_angle_rad) / kDeg, 3)
-        << " deg at cam " << Fixed(p.max_pressure_angle_at_rad / kDeg, 2) << " deg\n"
-        << "profile radius of curvature min " << Fixed(p.min_profile_radius_m * 1e3, 3)
-        << " mm at cam " << Fixed(p.min_profile_radius_at_rad / kDeg, 2) << " deg; "
+        << "offset " << TextAt(follower, "offset_mm") << ", lever "
+        << TextAt(follower, "lever_ratio") << ", play " << TextAt(placing, "roller_play_mm")
+        << "; cam 0 deg at crank " << TextAt(placing, "cam_angle_zero_crank_deg") << '\n'
+        << "pressure angle largest |phi| "
+        << FieldText({"", display::kDegree, std::abs(p.max_pressure_angle_rad), 3}) << " at cam "
+        << TextAt(extremes, "max_pressure_angle_at_cam_deg") << '\n'
+        << "profile radius of curvature min " << TextAt(extremes, "min_profile_radius_mm")
+        << " at cam " << TextAt(extremes, "min_profile_radius_at_cam_deg") << "; "
         << (p.undercut ? (g.kind == FollowerKind::kFlat ? "CUSP" : "UNDERCUT") : "no undercut")
         << '\n';
     if (g.kind != FollowerKind::kRoller)
-      out << "contact up to " << Fixed(p.max_contact_offset_m * 1e3, 3)
-          << " mm off the axis at cam " << Fixed(p.max_contact_offset_at_rad / kDeg, 2) << " deg"
+      out << "contact up to " << TextAt(extremes, "max_contact_offset_mm")
+          << " off the axis at cam " << TextAt(extremes, "max_contact_offset_at_cam_deg")
           << (g.face_half_width_m > 0.0 ? (p.off_face ? ": OFF THE FACE" : ": on the face")
                                         : std::string())
           << '\n';
     out << "at " << Fixed(c.engine.speed_rpm, 0) << " rpm: entrainment speed min "
-        << Fixed(p.min_entrainment_m_rad * cam_omega, 3) << " m/s at cam "
-        << Fixed(p.min_entrainment_at_rad / kDeg, 2) << " deg, sliding speed max "
-        << Fixed(p.max_sliding_m_rad * cam_omega, 3) << " m/s\n";
+        << TextAt(extremes, "min_entrainment_speed_m_s") << " at cam "
+        << TextAt(extremes, "min_entrainment_speed_at_cam_deg") << ", sliding speed max "
+        << TextAt(extremes, "max_sliding_speed_m_s") << '\n';
   }
-  if (o.csv) {
-    std::ostringstream csv;
-    csv.precision(10);
-    csv << "cam_deg,x_mm,y_mm\n";
-    for (const ProfilePoint& q : p.points)
-      csv << q.cam_rad / kDeg << ',' << q.x_m * 1e3 << ',' << q.y_m * 1e3 << '\n';
-    result.csv = csv.str();
+  if (o.csv) {  // the CAD coordinates: the first three columns
+    const std::vector<Column> xy(ProfileColumns().begin(), ProfileColumns().begin() + 3);
+    std::vector<std::vector<double>> xy_si;
+    xy_si.reserve(rows_si.size());
+    for (const auto& row : rows_si) xy_si.emplace_back(row.begin(), row.begin() + 3);
+    result.csv = CsvTable(xy, xy_si, 10);
   }
   result.text = out.str();
   return result;

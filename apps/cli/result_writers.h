@@ -82,4 +82,9 @@ inline std::string FieldText(const Field& f) {
   return f.unit.text[0] == '\0' ? Fixed(*v, f.decimals) : Fixed(*v, f.decimals) + " " + f.unit.text;
 }
 
+/// FieldText of the field named `key` in `fields`.
+inline std::string TextAt(const std::vector<Field>& fields, const std::string& key) {
+  return FieldText(FieldAt(fields, key));
+}
+
 }  // namespace needle

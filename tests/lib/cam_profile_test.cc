@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "lib/units.h"
 
@@ -97,6 +99,55 @@ TEST(CamProfileTest, HertzLineStressByHand) {
   EXPECT_LT(HertzLineStress(1000, -0.05, 0.00825, 210e9, 0.3, 0.010),
             HertzLineStress(1000, 0.05, 0.00825, 210e9, 0.3, 0.010));
   EXPECT_EQ(HertzLineStress(-1, 0.01, 0.01, 210e9, 0.3, 0.01), 0.0);
+}
+
+// The profile's fields: a follower shows only the radii its kind has; the eccentric disk's
+// least radius of curvature is R in mm; the speeds are per-radian values times the cam's ω.
+TEST(CamProfileTest, FieldsShowWhatTheFollowerAndProfileHave) {
+  const double R = 0.04, eps = 0.006, r = 0.01, q = R + r;
+  const Displacement s = [&](double psi) {
+    const double sn = std::sin(psi), c = std::cos(psi);
+    const double w = std::sqrt(q * q - eps * eps * sn * sn);
+    const double dw = -eps * eps * sn * c / w;
+    return std::array<double, 3>{
+        eps * c + w - (R - eps + r), -eps * sn + dw,
+        -eps * c - eps * eps * ((c * c - sn * sn) * w - sn * c * dw) / (w * w)};
+  };
+  FollowerGeometry g;
+  g.base_radius_m = R - eps;
+  g.roller_radius_m = r;
+  const auto keys = [](const std::vector<Field>& fields) {
+    std::vector<std::string> k;
+    for (const Field& f : fields) k.push_back(f.Key());
+    return k;
+  };
+  EXPECT_EQ(keys(FollowerFields(g)),
+            (std::vector<std::string>{"follower", "base_radius_mm", "roller_radius_mm", "offset_mm",
+                                      "lever_ratio"}));
+  FollowerGeometry flat = g;
+  flat.kind = FollowerKind::kFlat;
+  flat.face_half_width_m = 0.02;
+  EXPECT_EQ(keys(FollowerFields(flat)),
+            (std::vector<std::string>{"follower", "base_radius_mm", "face_half_width_mm",
+                                      "offset_mm", "lever_ratio"}));
+  EXPECT_EQ(FollowerFields(flat)[0].text, "flat");
+
+  const CamProfile p = MakeCamProfile(s, g, 720);
+  const double omega = 50.0;
+  const std::vector<Field> f = CamProfileFields(p, omega);
+  const auto at = [&](const std::string& key) -> const Field& {
+    for (const Field& x : f)
+      if (x.Key() == key) return x;
+    throw std::logic_error("no field " + key);
+  };
+  EXPECT_NEAR(*at("min_profile_radius_mm").Shown(), R * 1e3, 1e-6);
+  EXPECT_EQ(*at("max_sliding_speed_m_s").Shown(), p.max_sliding_m_rad * omega);
+  EXPECT_EQ(*at("min_entrainment_speed_m_s").Shown(), p.min_entrainment_m_rad * omega);
+  EXPECT_FALSE(at("undercut").flag);
+  std::vector<std::string> si_keys;
+  for (const Column& c : ProfileColumns()) si_keys.push_back(c.SiKey());
+  EXPECT_EQ(si_keys, (std::vector<std::string>{"cam_rad", "x_m", "y_m", "pressure_angle_rad",
+                                               "profile_radius_m", "contact_offset_m"}));
 }
 
 }  // namespace
