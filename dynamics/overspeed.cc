@@ -59,9 +59,9 @@ OverspeedRow RowFromResult(const SimulationResult& r) {
   OverspeedRow row;
   row.speed_rpm = r.speed_rpm;
   row.min_contact_force_N = r.min_contact_force_during_lift_N;
-  row.jump_deg = r.jump_rad / kDeg;
-  row.longest_jump_deg = r.longest_jump_rad / kDeg;
-  for (const Episode& e : r.episodes) row.max_gap_mm = std::max(row.max_gap_mm, e.max_gap_m * 1e3);
+  row.jump_rad = r.jump_rad;
+  row.longest_jump_rad = r.longest_jump_rad;
+  for (const Episode& e : r.episodes) row.max_gap_m = std::max(row.max_gap_m, e.max_gap_m);
   for (const Impact& i : r.impacts)
     row.max_impact_speed_m_s = std::max(row.max_impact_speed_m_s, i.speed_m_s);
   row.lifts_off = r.longest_jump_rad >= kMinJump_rad;
@@ -352,6 +352,47 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
   }
   result.rows = runs.AskedRows();
   return result;
+}
+
+std::vector<Field> OverspeedFields(const OverspeedResult& r) {
+  using namespace display;
+  return {
+      {"n_dyn", kRpm, r.n_dyn_rpm, 1, "liftoff_rpm_dynamic"},
+      ListField("bracket", kRpm, {r.bracket_low_rpm, r.bracket_high_rpm}),
+      FlagField("lifts_off_at_start", r.lifts_off_at_start),
+      {"floor", kRpm, r.floor_rpm, 1},
+      CountField("threads", r.threads),
+      {"step", kRpm, r.step_rpm, 2},
+      TextField("status", r.status),
+      {"scanned_to", kRpm, r.scanned_to_rpm, 1},
+  };
+}
+
+std::vector<Field> OverspeedRowFields(const OverspeedRow& row) {
+  using namespace display;
+  return {
+      {"speed", kRpm, row.speed_rpm, 2},
+      {"min_contact_force", kN, row.min_contact_force_N, 1},
+      {"jump", kDegree, row.jump_rad, 3},
+      {"max_gap", kMm, row.max_gap_m, 4},
+      {"max_impact_speed", kMPerS, row.max_impact_speed_m_s, 4},
+      FlagField("lifts_off", row.lifts_off),
+      TextField("status", RunStatusName(row.status)),
+      TextField("status_reason", row.status_reason),
+  };
+}
+
+const std::vector<Column>& OverspeedColumns() {
+  using namespace display;
+  static const std::vector<Column> columns = {
+      {"speed", kRpm},  {"min_contact_force", kN},    {"jump", kDegree},
+      {"max_gap", kMm}, {"max_impact_speed", kMPerS}, {"lifts_off", kNone}};
+  return columns;
+}
+
+std::vector<double> OverspeedRowSi(const OverspeedRow& row) {
+  return {row.speed_rpm, row.min_contact_force_N,  row.jump_rad,
+          row.max_gap_m, row.max_impact_speed_m_s, row.lifts_off ? 1.0 : 0.0};
 }
 
 }  // namespace needle

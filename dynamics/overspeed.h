@@ -47,9 +47,9 @@ namespace needle {
 struct OverspeedRow {
   double speed_rpm = 0.0;
   double min_contact_force_N = 0.0;  ///< during the lift
-  double jump_deg = 0.0;             ///< total length of jump episodes
-  double longest_jump_deg = 0.0;
-  double max_gap_mm = 0.0;
+  double jump_rad = 0.0;             ///< total length of jump episodes, crank rad
+  double longest_jump_rad = 0.0;     ///< the longest, crank rad
+  double max_gap_m = 0.0;            ///< largest separation from the cam, m
   double max_impact_speed_m_s = 0.0;
   bool lifts_off = false;                   ///< a jump of at least 0.1°
   RunStatus status = RunStatus::kComplete;  ///< how the run at this speed ended
@@ -102,5 +102,18 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& opti
 
 /// One row from one run.
 OverspeedRow RowFromResult(const SimulationResult& r);
+
+/// The search's outcome as fields (lib/result_fields.h): n_dyn (`liftoff_rpm_dynamic`, none
+/// when not found), its bracket, whether it lifts off at the start, the floor, threads, the
+/// scan step, the status and the highest speed scanned.
+std::vector<Field> OverspeedFields(const OverspeedResult& r);
+/// One speed's row as fields: speed, least contact force, jump length (deg), largest gap (mm),
+/// largest impact speed, whether it lifts off, and how its run ended.
+std::vector<Field> OverspeedRowFields(const OverspeedRow& row);
+/// The rows' numeric columns: speed, least contact force, jump (deg), largest gap (mm), largest
+/// impact speed, lift-off (1 or 0).
+const std::vector<Column>& OverspeedColumns();
+/// One row's values in OverspeedColumns()' order (SI; speed in rpm).
+std::vector<double> OverspeedRowSi(const OverspeedRow& row);
 
 }  // namespace needle

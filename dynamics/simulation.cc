@@ -280,9 +280,7 @@ double QuasiStaticLiftoffRpm(const Scene& scene) {
 
 std::vector<Field> SimulationFields(const SimulationResult& r) {
   using namespace display;
-  const auto count = [](const char* name, long n) {
-    return Field{name, display::kNone, static_cast<double>(n), 0, "", true};
-  };
+  const auto count = [](const char* name, long long n) { return CountField(name, n); };
   std::vector<Field> f = {
       {"max_lift", kMm, r.max_lift_m, 4},
       {"max_lift", kDegree, r.max_lift_rad, 2},
@@ -483,6 +481,41 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   }
   JudgeFollowing(scene, r);
   return r;
+}
+
+std::vector<Field> EpisodeFields(const Episode& e, bool with_cycle) {
+  using namespace display;
+  std::vector<Field> f = {TextField("kind", e.kind),      {"start", kDegree, e.start_rad, 3},
+                          {"end", kDegree, e.end_rad, 3}, {"max_gap", kMm, e.max_gap_m, 4},
+                          CountField("impact", e.impact), FlagField("open", e.open)};
+  if (with_cycle) f.push_back(CountField("cycle", e.cycle));
+  return f;
+}
+
+std::vector<Field> ImpactFields(const Impact& i, bool with_cycle) {
+  using namespace display;
+  std::vector<Field> f = {TextField("kind", i.kind),
+                          {"crank", kDegree, i.crank_rad, 4},
+                          {"speed", kMPerS, i.speed_m_s, 4},
+                          {"energy_lost", kJoule, i.energy_lost_J, 4}};
+  if (with_cycle) f.push_back(CountField("cycle", i.cycle));
+  return f;
+}
+
+std::vector<Field> CycleFields(const CycleSummary& c) {
+  using namespace display;
+  const auto finite = [](double v) {
+    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+  };
+  return {CountField("index", c.index),
+          {"start", kDegree, c.start_rad, 1},
+          CountField("impacts", c.impacts),
+          CountField("jumps", c.jumps),
+          {"jump", kDegree, c.jump_rad, 3},
+          {"max_gap", kMm, c.max_gap_m, 4},
+          {"end_lift", kMm, finite(c.end_lift_m), 6},
+          {"end_velocity", kMPerS, finite(c.end_velocity_m_s), 6},
+          {"energy_residual", kNone, finite(c.energy_residual), 3}};
 }
 
 }  // namespace needle

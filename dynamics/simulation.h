@@ -169,6 +169,17 @@ double QuasiStaticLiftoffRpm(const Scene& scene);
 /// when the run was skipped) and the work done. Episodes, impacts and cycles are lists.
 std::vector<Field> SimulationFields(const SimulationResult& r);
 
+/// One separation episode as fields: its kind, start and end (deg), largest gap (mm), the
+/// index of the impact that ends it (−1: none), whether it is still open, and with
+/// `with_cycle` the revolution it began in.
+std::vector<Field> EpisodeFields(const Episode& e, bool with_cycle);
+/// One impact as fields: its kind, crank angle (deg), approach speed (m/s), energy lost (J)
+/// and with `with_cycle` its revolution.
+std::vector<Field> ImpactFields(const Impact& i, bool with_cycle);
+/// One revolution of a run of several as fields (CycleSummary); the state it ends in and its
+/// energy residual without a value where they are not finite.
+std::vector<Field> CycleFields(const CycleSummary& c);
+
 /// The recorded series as a table, described once for its writers: crank_deg, time_s, lift_mm,
 /// velocity_m_s, cam_mm, contact_force_N, seat_force_N (columns, and one SI row per point).
 std::vector<Column> SeriesColumns();

@@ -31,6 +31,7 @@ const DisplayUnit kCm3{"cm3", "cm3", 1.0, false, "cm3"};
 const DisplayUnit kGram{"g", "g", 1.0, false, "g"};
 const DisplayUnit kHp{"hp", "HP", 735.49875, true, "W"};
 const DisplayUnit kPercent{"percent", "%", 1.0, false, "percent"};
+const DisplayUnit kJoule{"J", "J", 1.0, false, "J"};
 }  // namespace display
 
 namespace {
@@ -44,6 +45,10 @@ std::string Field::Key() const { return key.empty() ? KeyOf(name, unit.key) : ke
 std::optional<double> Field::Shown() const {
   if (!si) return std::nullopt;
   return unit.FromSi(*si);
+}
+
+Field CountField(std::string name, long long n) {
+  return Field{std::move(name), display::kNone, static_cast<double>(n), 0, "", true};
 }
 
 Field TextField(std::string name, std::string text) {

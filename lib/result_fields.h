@@ -53,6 +53,7 @@ extern const DisplayUnit kCm3;        ///< cm³ (the design chain's volumes, kep
 extern const DisplayUnit kGram;       ///< g (the design chain's fuel, kept in g)
 extern const DisplayUnit kHp;         ///< W → HP (metric, ÷ 735.49875)
 extern const DisplayUnit kPercent;    ///< a percentage
+extern const DisplayUnit kJoule;      ///< J
 }  // namespace display
 
 /// One value of a result: a number (`si`; a count when `count`), or with `kind` a string, a
@@ -81,6 +82,8 @@ struct Field {
   std::optional<double> Shown() const;
 };
 
+/// A count (steps, impacts, an index); its key is `name`, written as an integer.
+Field CountField(std::string name, long long n);
 /// A string-valued field (a name, a reason); its key is `name`.
 Field TextField(std::string name, std::string text);
 /// A yes/no field; its key is `name`.

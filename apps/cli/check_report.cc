@@ -355,7 +355,7 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result)
     const OverspeedResult& s = *sweep;
     Series rows{"rows", {}};
     for (const OverspeedRow& row : s.rows)
-      rows.rows.push_back({row.speed_rpm, row.min_contact_force_N, row.jump_deg});
+      rows.rows.push_back({row.speed_rpm, row.min_contact_force_N, row.jump_rad / kDeg});
     std::string marks;
     if (std::isfinite(n_qs))
       marks += "set arrow from " + Fixed(n_qs, 2) + ", graph 0 to " + Fixed(n_qs, 2) +

@@ -51,10 +51,12 @@ std::string CyclesText(const SimulationResult& r) {
   std::ostringstream out;
   out << "cycle  start_deg  impacts  jumps  jump_deg  max_gap_mm  end_lift_mm  end_velocity_m_s\n";
   for (const CycleSummary& c : r.cycles) {
-    out << std::setw(5) << c.index << std::setw(11) << Fixed(c.start_rad / kDeg, 1) << std::setw(9)
-        << c.impacts << std::setw(7) << c.jumps << std::setw(10) << Fixed(c.jump_rad / kDeg, 3)
-        << std::setw(12) << Fixed(c.max_gap_m * 1e3, 4) << std::setw(13)
-        << Fixed(c.end_lift_m * 1e3, 6) << std::setw(18) << Fixed(c.end_velocity_m_s, 6) << '\n';
+    const std::vector<Field> f = CycleFields(c);
+    const auto v = [&f](const char* key) { return ValueText(FieldAt(f, key)); };
+    out << std::setw(5) << v("index") << std::setw(11) << v("start_deg") << std::setw(9)
+        << v("impacts") << std::setw(7) << v("jumps") << std::setw(10) << v("jump_deg")
+        << std::setw(12) << v("max_gap_mm") << std::setw(13) << v("end_lift_mm") << std::setw(18)
+        << v("end_velocity_m_s") << '\n';
   }
   if (r.period_cycles > 0) {
     out << "periodic: the state repeats every " << r.period_cycles << " revolution"
@@ -114,39 +116,21 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
     j["method_reason"] = r.method_reason;
     j["skipped_dynamics"] = r.skipped;
     j["liftoff"] = r.liftoff();
-    nlohmann::json episodes = nlohmann::json::array();
-    for (const Episode& e : r.episodes) {
-      episodes.push_back({{"kind", e.kind},
-                          {"start_deg", e.start_rad / kDeg},
-                          {"end_deg", e.end_rad / kDeg},
-                          {"max_gap_mm", e.max_gap_m * 1e3},
-                          {"impact", e.impact},
-                          {"open", e.open}});
-      if (r.cycles_asked > 1) episodes.back()["cycle"] = e.cycle;
-    }
-    j["episodes"] = episodes;
-    nlohmann::json impacts = nlohmann::json::array();
-    for (const Impact& i : r.impacts) {
-      impacts.push_back({{"kind", i.kind},
-                         {"crank_deg", i.crank_rad / kDeg},
-                         {"speed_m_s", i.speed_m_s},
-                         {"energy_lost_J", i.energy_lost_J}});
-      if (r.cycles_asked > 1) impacts.back()["cycle"] = i.cycle;
-    }
-    if (r.cycles_asked > 1) {
-      nlohmann::json cycles = nlohmann::json::array();
-      for (const CycleSummary& cy : r.cycles) {
-        cycles.push_back({{"index", cy.index},
-                          {"start_deg", cy.start_rad / kDeg},
-                          {"impacts", cy.impacts},
-                          {"jumps", cy.jumps},
-                          {"jump_deg", cy.jump_rad / kDeg},
-                          {"max_gap_mm", cy.max_gap_m * 1e3},
-                          {"end_lift_mm", Finite(cy.end_lift_m * 1e3)},
-                          {"end_velocity_m_s", Finite(cy.end_velocity_m_s)},
-                          {"energy_residual", Finite(cy.energy_residual)}});
+    const bool with_cycle = r.cycles_asked > 1;
+    const auto records = [](const auto& items, const auto& fields_of) {
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& item : items) {
+        list.push_back(nlohmann::json::object());
+        PutFields(list.back(), fields_of(item));
       }
-      j["cycles"] = cycles;
+      return list;
+    };
+    j["episodes"] =
+        records(r.episodes, [&](const Episode& e) { return EpisodeFields(e, with_cycle); });
+    const nlohmann::json impacts =
+        records(r.impacts, [&](const Impact& i) { return ImpactFields(i, with_cycle); });
+    if (with_cycle) {
+      j["cycles"] = records(r.cycles, CycleFields);
       j["cycles_asked"] = r.cycles_asked;
       j["period_cycles"] =
           r.period_cycles > 0 ? nlohmann::json(r.period_cycles) : nlohmann::json(nullptr);
@@ -193,13 +177,15 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
                                                "undecided past it\n"
                                              : "no lift-off\n");
     for (const Episode& e : r.episodes) {
-      out << "  " << e.kind << " " << Fixed(e.start_rad / kDeg, 3) << " .. "
-          << Fixed(e.end_rad / kDeg, 3) << " deg, largest gap " << Fixed(e.max_gap_m * 1e3, 4)
-          << " mm" << (e.open ? " (still open when the run ended)" : "") << '\n';
+      const std::vector<Field> ef = EpisodeFields(e, false);
+      out << "  " << e.kind << " " << ValueText(FieldAt(ef, "start_deg")) << " .. "
+          << TextAt(ef, "end_deg") << ", largest gap " << TextAt(ef, "max_gap_mm")
+          << (e.open ? " (still open when the run ended)" : "") << '\n';
     }
     for (const Impact& i : r.impacts) {
-      out << "  impact " << i.kind << " at " << Fixed(i.crank_rad / kDeg, 4) << " deg, "
-          << Fixed(i.speed_m_s, 4) << " m/s\n";
+      const std::vector<Field> f = ImpactFields(i, false);
+      out << "  impact " << i.kind << " at " << TextAt(f, "crank_deg") << ", "
+          << TextAt(f, "speed_m_s") << '\n';
     }
   }
   result.text = out.str();
@@ -236,14 +222,9 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
   const OverspeedResult r = OverspeedSearch(scene, opt, progress);
   CommandOutput result;
   result.status = r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
-  for (const OverspeedRow& row : r.rows) {
-    result.columns["speed_rpm"].push_back(row.speed_rpm);
-    result.columns["min_contact_force_N"].push_back(row.min_contact_force_N);
-    result.columns["jump_rad"].push_back(row.jump_deg * kDeg);
-    result.columns["max_gap_m"].push_back(row.max_gap_mm * 1e-3);
-    result.columns["max_impact_speed_m_s"].push_back(row.max_impact_speed_m_s);
-    result.columns["lifts_off"].push_back(row.lifts_off ? 1.0 : 0.0);
-  }
+  std::vector<std::vector<double>> rows_si;
+  for (const OverspeedRow& row : r.rows) rows_si.push_back(OverspeedRowSi(row));
+  result.columns = SiColumns(OverspeedColumns(), rows_si);
   std::ostringstream out;
   if (o.json) {
     nlohmann::json j;
@@ -251,26 +232,13 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
     j["from_rpm"] = opt.from_rpm;
     j["to_rpm"] = opt.to_rpm;
     j["liftoff_rpm_quasi_static"] = Finite(n_qs);
-    j["liftoff_rpm_dynamic"] = r.n_dyn_rpm ? nlohmann::json(*r.n_dyn_rpm) : nlohmann::json(nullptr);
-    j["bracket_rpm"] = {r.bracket_low_rpm, r.bracket_high_rpm};
-    j["lifts_off_at_start"] = r.lifts_off_at_start;
-    j["floor_rpm"] = r.floor_rpm;
-    j["threads"] = r.threads;
-    j["step_rpm"] = r.step_rpm;
-    j["status"] = r.status;
-    j["scanned_to_rpm"] = r.scanned_to_rpm;
+    PutFields(j, OverspeedFields(r));
     j["cycles"] = opt.simulation.cycles;
     j["steady_state"] = opt.simulation.steady_state;
     nlohmann::json rows = nlohmann::json::array();
     for (const OverspeedRow& row : r.rows) {
-      rows.push_back({{"speed_rpm", row.speed_rpm},
-                      {"min_contact_force_N", row.min_contact_force_N},
-                      {"jump_deg", row.jump_deg},
-                      {"max_gap_mm", row.max_gap_mm},
-                      {"max_impact_speed_m_s", row.max_impact_speed_m_s},
-                      {"lifts_off", row.lifts_off},
-                      {"status", RunStatusName(row.status)},
-                      {"status_reason", row.status_reason}});
+      rows.push_back(nlohmann::json::object());
+      PutFields(rows.back(), OverspeedRowFields(row));
     }
     j["rows"] = rows;
     result.json = std::move(j);
@@ -314,10 +282,12 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
     }
     out << "\n  speed rpm  min Fc N   jump deg  max gap mm  max impact m/s\n";
     for (const OverspeedRow& row : r.rows) {
+      const std::vector<Field> f = OverspeedRowFields(row);
+      const auto shown = [&f](const char* key) { return *FieldAt(f, key).Shown(); };
       char line[160];
-      std::snprintf(line, sizeof line, "%11.2f %9.1f %10.3f %11.4f %15.4f%s\n", row.speed_rpm,
-                    row.min_contact_force_N, row.jump_deg, row.max_gap_mm, row.max_impact_speed_m_s,
-                    row.lifts_off ? "  lift-off" : "");
+      std::snprintf(line, sizeof line, "%11.2f %9.1f %10.3f %11.4f %15.4f%s\n", shown("speed_rpm"),
+                    shown("min_contact_force_N"), shown("jump_deg"), shown("max_gap_mm"),
+                    shown("max_impact_speed_m_s"), row.lifts_off ? "  lift-off" : "");
       out << line;
       if (row.status != RunStatus::kComplete && row.status != RunStatus::kStopped)
         out << "             run " << RunStatusName(row.status) << ": " << row.status_reason

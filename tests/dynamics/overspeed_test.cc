@@ -376,5 +376,41 @@ TEST(OverspeedScanTest, TheForceLedScanFindsANarrowWindowAFixedScanMisses) {
   EXPECT_EQ(one.rows.size(), r.rows.size());
 }
 
+// A row and the outcome as fields: SI inside (rad, m), deg and mm shown; an n_dyn not found is
+// a field without a value under its published key; the columns' SI keys are Python's.
+TEST(OverspeedFieldsTest, RowsAndOutcomeShowTheirUnits) {
+  OverspeedRow row;
+  row.speed_rpm = 812.5;
+  row.jump_rad = 2.0 * kDeg;
+  row.max_gap_m = 1e-4;
+  row.lifts_off = true;
+  const std::vector<Field> f = OverspeedRowFields(row);
+  const auto at = [](const std::vector<Field>& fields, const std::string& key) -> const Field& {
+    for (const Field& x : fields)
+      if (x.Key() == key) return x;
+    throw std::logic_error("no field " + key);
+  };
+  EXPECT_NEAR(*at(f, "jump_deg").Shown(), 2.0, 1e-14);
+  EXPECT_NEAR(*at(f, "max_gap_mm").Shown(), 0.1, 1e-15);
+  EXPECT_TRUE(at(f, "lifts_off").flag);
+  EXPECT_EQ(at(f, "status").text, "complete");
+  const std::vector<double> si = OverspeedRowSi(row);
+  std::vector<std::string> keys;
+  for (const Column& c : OverspeedColumns()) keys.push_back(c.SiKey());
+  EXPECT_EQ(keys, (std::vector<std::string>{"speed_rpm", "min_contact_force_N", "jump_rad",
+                                            "max_gap_m", "max_impact_speed_m_s", "lifts_off"}));
+  EXPECT_EQ(si[2], row.jump_rad);
+  EXPECT_EQ(si[5], 1.0);
+
+  OverspeedResult r;
+  r.status = "none";
+  r.bracket_low_rpm = 900.0;
+  r.bracket_high_rpm = 905.0;
+  const std::vector<Field> o = OverspeedFields(r);
+  EXPECT_FALSE(at(o, "liftoff_rpm_dynamic").Shown().has_value());
+  EXPECT_EQ(at(o, "bracket_rpm").list_si, (std::vector<double>{900.0, 905.0}));
+  EXPECT_EQ(at(o, "status").text, "none");
+}
+
 }  // namespace
 }  // namespace needle

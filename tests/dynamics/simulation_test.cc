@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "apps/scene/case_scene.h"
 #include "dynamics/overspeed.h"
@@ -609,6 +610,42 @@ TEST(SimulationTest, TheClosedFormsEnergyResidualIsBelow1e12OnEveryBundledScene)
     }
   }
   EXPECT_GE(runs, 8);
+}
+
+// Episodes, impacts and revolutions as fields: degrees and millimetres shown from SI, the
+// revolution only when asked, a state that is not finite shown as none.
+TEST(SimulationFieldsTest, RecordsShowTheirUnits) {
+  Episode e;
+  e.kind = "jump";
+  e.start_rad = 10.0 * kDeg;
+  e.max_gap_m = 2e-5;
+  e.cycle = 2;
+  const auto keys = [](const std::vector<Field>& fields) {
+    std::vector<std::string> k;
+    for (const Field& f : fields) k.push_back(f.Key());
+    return k;
+  };
+  EXPECT_EQ(
+      keys(EpisodeFields(e, false)),
+      (std::vector<std::string>{"kind", "start_deg", "end_deg", "max_gap_mm", "impact", "open"}));
+  const std::vector<Field> with = EpisodeFields(e, true);
+  EXPECT_EQ(with.back().Key(), "cycle");
+  EXPECT_EQ(*with.back().Shown(), 2.0);
+  EXPECT_NEAR(*with[1].Shown(), 10.0, 1e-13);
+  EXPECT_NEAR(*with[3].Shown(), 0.02, 1e-17);
+  EXPECT_EQ(*with[4].Shown(), -1.0);  // no impact ends it
+  Impact i;
+  i.energy_lost_J = 0.25;
+  EXPECT_EQ(keys(ImpactFields(i, false)),
+            (std::vector<std::string>{"kind", "crank_deg", "speed_m_s", "energy_lost_J"}));
+  CycleSummary c;
+  c.end_lift_m = std::nan("");
+  const std::vector<Field> cf = CycleFields(c);
+  for (const Field& f : cf) {
+    if (f.Key() == "end_lift_mm") {
+      EXPECT_FALSE(f.Shown().has_value());
+    }
+  }
 }
 
 }  // namespace
