@@ -29,8 +29,7 @@ CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
       "check", "The main job: check a scene end to end and write an HTML report");
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
   cmd->add_option("--out", o.out_dir, "folder for the report (default: the current folder)");
-  cmd->add_option("--rpm", o.speed_rpm, "rated speed in rpm (default: [engine] speed_rpm)")
-      ->check(SpeedRpm());
+  AddSpeedOption(cmd, o.speed_rpm, "rated speed in rpm (default: [engine] speed_rpm)");
   cmd->add_flag("--json", o.json,
                 "print one JSON object (the verdict, every failing item, what was skipped and the "
                 "numbers behind them) instead of the text summary");
@@ -53,31 +52,24 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     options.progress = [&](int done, int total) { bar.Update(done, total); };
     result = CheckScene(c, shared_law, options);
   }
-  const double rpm = result.speed_rpm;
-  const std::vector<std::string>& skipped = result.skipped;
-  const std::vector<std::string>& failing = result.failing;
-  const bool ok = result.pass;
-  const std::optional<SpringCheckResult>& spring = result.spring;
-  const std::optional<SimulationResult>& run = result.run;
-  const std::optional<OverspeedResult>& sweep = result.sweep;
-  const std::optional<CamProfile>& profile = result.profile;
-  const double n_qs = result.n_qs_rpm;
   const Report report = CheckReport(c, law, result);
   WriteOutput({"--out", path}, report.Html());
   if (o.json) {
     std::cout << FormatObject(CheckJson(c, law, result, path), o.format);
-    return ok ? 0 : 1;
+    return result.pass ? 0 : 1;
   }
   std::cout << (c.title.empty() ? c.path : c.title) << '\n';
-  for (const auto& k : skipped) std::cout << "skipped: " << k << '\n';
-  if (spring) std::cout << "spring check: " << (spring->pass ? "pass" : "FAIL") << '\n';
-  if (profile)
-    std::cout << "cam profile: " << (profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
-  if (run)
-    std::cout << "lift-off at " << Fixed(rpm, 0) << " rpm: " << (run->liftoff() ? "YES" : "no")
-              << '\n';
-  if (sweep) {
-    std::cout << "n_qs " << Num(n_qs, 1) << " rpm, n_dyn " << OverspeedOutcome(*sweep) << '\n';
+  for (const auto& k : result.skipped) std::cout << "skipped: " << k << '\n';
+  if (result.spring)
+    std::cout << "spring check: " << (result.spring->pass ? "pass" : "FAIL") << '\n';
+  if (result.profile)
+    std::cout << "cam profile: " << (result.profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
+  if (result.run)
+    std::cout << "lift-off at " << Fixed(result.speed_rpm, 0)
+              << " rpm: " << (result.run->liftoff() ? "YES" : "no") << '\n';
+  if (result.sweep) {
+    std::cout << "n_qs " << Num(result.n_qs_rpm, 1) << " rpm, n_dyn "
+              << OverspeedOutcome(*result.sweep) << '\n';
   }
   if (!result.limits.empty()) {
     std::cout << "limits (value, limit, margin, verdict):\n";
@@ -92,10 +84,10 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     }
   }
   for (const auto& w : result.warnings) std::cout << "warns: " << w << '\n';
-  for (const auto& f : failing) std::cout << "fails: " << f << '\n';
+  for (const auto& f : result.failing) std::cout << "fails: " << f << '\n';
   std::cout << "report: " << path << " (" << report.figures() << " figures)\n"
-            << "overall: " << (ok ? "pass" : "FAIL") << '\n';
-  return ok ? 0 : 1;
+            << "overall: " << (result.pass ? "pass" : "FAIL") << '\n';
+  return result.pass ? 0 : 1;
 }
 
 }  // namespace needle

@@ -46,6 +46,14 @@ inline CLI::Validator InRange(const PlausibleRange& r, const std::string& what) 
 /// Crank speeds (--rpm, --from, --to): the plausible range of [engine] speed_rpm, 1…50000 rpm.
 inline CLI::Validator SpeedRpm() { return InRange(kCrankSpeedRange, "a speed in rpm"); }
 
+/// The commands' `--rpm` option: a crank speed checked against kCrankSpeedRange.
+inline void AddSpeedOption(CLI::App* cmd, std::optional<double>& speed_rpm,
+                           const std::string& help =
+                               "crank speed in rpm (default: [engine] "
+                               "speed_rpm)") {
+  cmd->add_option("--rpm", speed_rpm, help)->check(SpeedRpm());
+}
+
 /// A 64-bit seed: digits only, at most 18446744073709551615 (CLI11 alone took a longer number
 /// without a word).
 inline CLI::Validator Seed() {

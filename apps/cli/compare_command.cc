@@ -18,8 +18,7 @@ CLI::App* AddCompareCommand(CLI::App& app, CompareCommandOptions& o) {
   cmd->add_option("A", o.a_path, "the design (case file)")->required();
   cmd->add_option("B", o.b_path, "the design set against it (case file)")->required();
   cmd->add_option("--out", o.out_dir, "folder for the report compare-A-B.html (default .)");
-  cmd->add_option("--rpm", o.speed_rpm, "rated speed for both, rpm (default: each case's own)")
-      ->check(SpeedRpm());
+  AddSpeedOption(cmd, o.speed_rpm, "rated speed for both, rpm (default: each case's own)");
   cmd->add_flag("--json", o.json, "print one JSON object instead of the text");
   return cmd;
 }

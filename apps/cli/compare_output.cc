@@ -156,21 +156,16 @@ Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rp
 }
 
 nlohmann::json CompareJson(const Comparison& cmp, const std::string& path) {
-  const CheckedDesign &a = cmp.a, &b = cmp.b;
-  const auto& items = cmp.items;
-  const auto& flipped = cmp.flipped;
-  const auto& differing = cmp.differing;
-  const auto& unlike = cmp.unlike;
   nlohmann::json j;
-  j["a"] = a.json;
-  j["b"] = b.json;
+  j["a"] = cmp.a.json;
+  j["b"] = cmp.b.json;
   j["report"] = path;
-  j["flipped"] = flipped;
-  j["differing"] = differing;
-  j["like_for_like"] = unlike.empty();
-  j["not_like_for_like"] = unlike;
+  j["flipped"] = cmp.flipped;
+  j["differing"] = cmp.differing;
+  j["like_for_like"] = cmp.unlike.empty();
+  j["not_like_for_like"] = cmp.unlike;
   nlohmann::json rows = nlohmann::json::array();
-  for (const ComparedItem& i : items) {
+  for (const ComparedItem& i : cmp.items) {
     nlohmann::json r = {{"key", i.key}, {"a", i.a}, {"b", i.b}, {"verdict", i.verdict}};
     if (i.verdict) {
       r["flips"] = i.flips;
@@ -188,21 +183,17 @@ nlohmann::json CompareJson(const Comparison& cmp, const std::string& path) {
 
 std::string CompareText(const Comparison& cmp, const std::string& path) {
   const CheckedDesign &a = cmp.a, &b = cmp.b;
-  const auto& items = cmp.items;
-  const auto& flipped = cmp.flipped;
-  const auto& differing = cmp.differing;
-  const auto& unlike = cmp.unlike;
   std::ostringstream out;
   out << "A: " << (a.c.title.empty() ? a.c.path : a.c.title) << " — overall "
       << (a.result.pass ? "pass" : "FAIL") << '\n'
       << "B: " << (b.c.title.empty() ? b.c.path : b.c.title) << " — overall "
       << (b.result.pass ? "pass" : "FAIL") << '\n';
-  if (!unlike.empty()) out << "not like for like: " << Joined(unlike, "; ") << '\n';
+  if (!cmp.unlike.empty()) out << "not like for like: " << Joined(cmp.unlike, "; ") << '\n';
   out << '\n';
   char line[400];
   std::snprintf(line, sizeof line, "%-44s %14s %14s\n", "verdict", "A", "B");
   out << line;
-  for (const ComparedItem& i : items) {
+  for (const ComparedItem& i : cmp.items) {
     if (!i.verdict) continue;
     std::snprintf(line, sizeof line, "%-44s %14s %14s%s\n", i.key.c_str(), Shown(i.a).c_str(),
                   Shown(i.b).c_str(),
@@ -213,7 +204,7 @@ std::string CompareText(const Comparison& cmp, const std::string& path) {
   }
   std::snprintf(line, sizeof line, "\n%-44s %14s %14s  %s\n", "quantity", "A", "B", "B - A");
   out << line;
-  for (const ComparedItem& i : items) {
+  for (const ComparedItem& i : cmp.items) {
     if (i.verdict) continue;
     std::snprintf(line, sizeof line, "%-44s %14s %14s  %s\n", i.key.c_str(), Shown(i.a).c_str(),
                   Shown(i.b).c_str(), Difference(i).c_str());
@@ -222,22 +213,18 @@ std::string CompareText(const Comparison& cmp, const std::string& path) {
   for (const CheckedDesign* d : {&a, &b})
     for (const std::string& f : d->result.failing)
       out << (d == &a ? "A" : "B") << " fails: " << f << '\n';
-  out << (flipped.empty() ? "no verdict flips"
-                          : std::to_string(flipped.size()) + " verdict(s) flip")
+  out << (cmp.flipped.empty() ? "no verdict flips"
+                              : std::to_string(cmp.flipped.size()) + " verdict(s) flip")
       << '\n';
-  if (!differing.empty())
-    out << differing.size() << " other difference(s), not flips: " << Joined(differing, ", ")
-        << '\n';
+  if (!cmp.differing.empty())
+    out << cmp.differing.size()
+        << " other difference(s), not flips: " << Joined(cmp.differing, ", ") << '\n';
   out << "report: " << path << '\n';
   return out.str();
 }
 
 Report CompareReport(const Comparison& cmp) {
   const CheckedDesign &a = cmp.a, &b = cmp.b;
-  const auto& items = cmp.items;
-  const auto& flipped = cmp.flipped;
-  const auto& differing = cmp.differing;
-  const auto& unlike = cmp.unlike;
   // The report: verdicts, quantities, and both designs' curves overlaid.
   Report report("needle compare: " + Escape(a.c.path) + " against " + Escape(b.c.path));
   {
@@ -245,22 +232,22 @@ Report CompareReport(const Comparison& cmp) {
     t << "<p>A: " << Escape(a.c.title.empty() ? a.c.path : a.c.title) << " (" << Escape(a.c.path)
       << ")<br>B: " << Escape(b.c.title.empty() ? b.c.path : b.c.title) << " (" << Escape(b.c.path)
       << ")</p>";
-    if (!unlike.empty()) {
-      t << "<p><span class=\"fail\">Not like for like</span>: " << Escape(Joined(unlike, "; "))
+    if (!cmp.unlike.empty()) {
+      t << "<p><span class=\"fail\">Not like for like</span>: " << Escape(Joined(cmp.unlike, "; "))
         << ".</p>";
     }
     t << "<p>"
-      << (flipped.empty() ? "No verdict flips."
-                          : "<span class=\"fail\">" + std::to_string(flipped.size()) +
-                                " verdict(s) flip</span>: " + Escape(Joined(flipped, ", ")))
+      << (cmp.flipped.empty() ? "No verdict flips."
+                              : "<span class=\"fail\">" + std::to_string(cmp.flipped.size()) +
+                                    " verdict(s) flip</span>: " + Escape(Joined(cmp.flipped, ", ")))
       << "</p>";
-    if (!differing.empty()) {
-      t << "<p>" << differing.size()
-        << " other difference(s), not flips: " << Escape(Joined(differing, ", ")) << "</p>";
+    if (!cmp.differing.empty()) {
+      t << "<p>" << cmp.differing.size()
+        << " other difference(s), not flips: " << Escape(Joined(cmp.differing, ", ")) << "</p>";
     }
     t << "<h2>Verdicts</h2><table class=\"grid\"><tr><th>item</th><th>A</th><th>B</th><th></th>"
          "</tr>";
-    for (const ComparedItem& i : items) {
+    for (const ComparedItem& i : cmp.items) {
       if (!i.verdict) continue;
       t << "<tr><td>" << Escape(i.key) << "</td><td>" << Escape(Shown(i.a)) << "</td><td>"
         << Escape(Shown(i.b)) << "</td><td>"
@@ -277,7 +264,7 @@ Report CompareReport(const Comparison& cmp) {
     }
     t << "<h2>Quantities</h2><table class=\"grid\"><tr><th>quantity</th><th>A</th><th>B</th>"
          "<th>B − A</th></tr>";
-    for (const ComparedItem& i : items) {
+    for (const ComparedItem& i : cmp.items) {
       if (i.verdict) continue;
       t << "<tr><td>" << Escape(i.key) << "</td><td>" << Shown(i.a) << "</td><td>" << Shown(i.b)
         << "</td><td>" << Escape(Difference(i)) << "</td></tr>";

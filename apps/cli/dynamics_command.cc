@@ -27,8 +27,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Dynamic run: lift-off episodes, impacts, forces, energy audit");
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
-  cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
-      ->check(SpeedRpm());
+  AddSpeedOption(cmd, o.speed_rpm);
   cmd->add_option("--method", o.method, MethodList() + " (default: [solver] method or auto)");
   cmd->add_option("--rtol", o.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");
   cmd->add_option("--cycles", o.cycles,

@@ -19,8 +19,7 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "kinematics", "Velocity and acceleration table of a lift law (like NACA TM 477's)");
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
-  cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
-      ->check(SpeedRpm());
+  AddSpeedOption(cmd, o.speed_rpm);
   cmd->add_option("--step", o.step_deg,
                   "table spacing in crank degrees, 0.001 to 90 (default 5; at most 100000 rows)")
       ->check(InRange(kTableStepRange, "a spacing in crank degrees"));

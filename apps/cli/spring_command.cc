@@ -27,8 +27,7 @@ CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& o) {
       "spring",
       "Spring check: Basu's formula, quasi-static lift-off, preload sizing, helical spring");
   cmd->add_option("CASE", o.case_path, "case file (TOML) with [needle] and [spring]")->required();
-  cmd->add_option("--rpm", o.speed_rpm, "crank speed in rpm (default: [engine] speed_rpm)")
-      ->check(SpeedRpm());
+  AddSpeedOption(cmd, o.speed_rpm);
   cmd->add_flag("--json", o.json, "print one JSON object");
   return cmd;
 }
