@@ -54,6 +54,7 @@ extern const DisplayUnit kGram;       ///< g (the design chain's fuel, kept in g
 extern const DisplayUnit kHp;         ///< W → HP (metric, ÷ 735.49875)
 extern const DisplayUnit kPercent;    ///< a percentage
 extern const DisplayUnit kJoule;      ///< J
+extern const DisplayUnit kKg;         ///< kg
 }  // namespace display
 
 /// One value of a result: a number (`si`; a count when `count`), or with `kind` a string, a

@@ -349,4 +349,27 @@ std::vector<SizedSpring> MassFatigueFront(const std::vector<SizedSpring>& spring
   return front;
 }
 
+std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& space) {
+  using namespace display;
+  const HelicalGeometry& g = s.geometry;
+  std::vector<Field> f = {TextField("wire", space.wires[s.wire_index].label),
+                          {"wire", kMm, g.wire_m, 2},
+                          {"coil", kMm, g.coil_m, 1},
+                          {"active_coils", kNone, g.active_coils, 1},
+                          {"total_coils", kNone, s.total_coils, 1},
+                          {"free_length", kMm, g.free_length_m, 2},
+                          {"installed_length", kMm, s.installed_m, 2},
+                          {"preload", kN, s.preload_N, 1},
+                          TextField("preload_rule", s.preload_rule),
+                          {"rate", kNPerMm, s.rate_N_m, 2},
+                          {"mass", kKg, s.mass_kg, 3},
+                          FlagField("pass", s.pass)};
+  if (s.check) {
+    const double n_f = s.check->fatigue.goodman_safety_factor;
+    f.push_back({"fatigue_safety_factor", kNone,
+                 std::isfinite(n_f) ? std::optional<double>(n_f) : std::nullopt, 2});
+  }
+  return f;
+}
+
 }  // namespace needle

@@ -128,6 +128,11 @@ struct SizedSpring {
   double objective = 0.0;
 };
 
+/// A spring as fields (lib/result_fields.h): its wire's label, d, D (mm), active and total
+/// coils, free and installed length (mm), preload (N) and the rule that set it, rate (N/mm),
+/// mass (kg), whether it passes, and its Goodman factor n_f when checked (none if infinite).
+std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& space);
+
 /// Orders by objective, then mass, wire, D, n: true when a is better than b.
 bool BetterSpring(const SizedSpring& a, const SizedSpring& b);
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "apps/cli/output_paths.h"
+#include "apps/cli/result_writers.h"
 #include "apps/study/spring_sizing_scene.h"
 #include "lib/input_file.h"
 #include "lib/output.h"
@@ -13,23 +14,10 @@
 namespace needle {
 namespace {
 
-nlohmann::json Finite(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
 nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space) {
-  const HelicalGeometry& g = s.geometry;
-  nlohmann::json j = {{"wire", space.wires[s.wire_index].label},
-                      {"wire_mm", g.wire_m * 1e3},
-                      {"coil_mm", g.coil_m * 1e3},
-                      {"active_coils", g.active_coils},
-                      {"total_coils", s.total_coils},
-                      {"free_length_mm", g.free_length_m * 1e3},
-                      {"installed_length_mm", s.installed_m * 1e3},
-                      {"preload_N", s.preload_N},
-                      {"preload_rule", s.preload_rule},
-                      {"rate_N_mm", s.rate_N_m * 1e-3},
-                      {"mass_kg", s.mass_kg},
-                      {"pass", s.pass}};
-  if (s.check) j["fatigue_safety_factor"] = Finite(s.check->fatigue.goodman_safety_factor);
+  nlohmann::json j = nlohmann::json::object();
+  PutFields(j, SizedSpringFields(s, space));
   for (const SizingRule& x : s.rules) {
     j["rules"].push_back({{"key", x.key},
                           {"unit", x.unit},
@@ -43,10 +31,10 @@ nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space) {
 }
 
 std::string SpringLine(const SizedSpring& s, const SizingSpace& space) {
-  const HelicalGeometry& g = s.geometry;
-  return space.wires[s.wire_index].label + " d " + Fixed(g.wire_m * 1e3, 2) + " mm, D " +
-         Fixed(g.coil_m * 1e3, 1) + " mm, " + Fixed(g.active_coils, 1) + " active coils, " +
-         Fixed(s.mass_kg, 3) + " kg, n_f " +
+  const std::vector<Field> f = SizedSpringFields(s, space);
+  return space.wires[s.wire_index].label + " d " + TextAt(f, "wire_mm") + ", D " +
+         TextAt(f, "coil_mm") + ", " + TextAt(f, "active_coils") + " active coils, " +
+         TextAt(f, "mass_kg") + ", n_f " +
          (s.check ? Fixed(s.check->fatigue.goodman_safety_factor, 2) : std::string("-"));
 }
 
@@ -97,10 +85,10 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
     j = {{"case", c.path},
          {"objective", r.objective},
          {"space", r.space_note},
-         {"stroke_mm", r.stroke_m * 1e3},
          {"mass_without_spring_kg", r.mass_without_spring_kg},
          {"mass_without_spring_source", r.mass_note},
          {"pass", r.pass}};
+    PutFields(j, {{"stroke", display::kMm, r.stroke_m}});
     for (const SizeStage& s : r.stages) {
       j["stages"].push_back({{"name", s.name},
                              {"in", s.in},
@@ -137,23 +125,26 @@ CommandOutput ComputeSize(const Case& c, const std::string& case_text,
   std::ostringstream t;
   if (!c.title.empty()) t << c.title << '\n';
   t << "space: " << r.space_note << "; objective: least " << r.objective << '\n';
-  t << "duty: stroke " << Fixed(r.stroke_m * 1e3, 3) << " mm; moving mass without the spring "
-    << Fixed(r.mass_without_spring_kg, 4) << " kg (" << r.mass_note << ")\n";
+  t << "duty: stroke " << FieldText({"stroke", display::kMm, r.stroke_m, 3})
+    << "; moving mass without the spring " << Fixed(r.mass_without_spring_kg, 4) << " kg ("
+    << r.mass_note << ")\n";
   for (const SizeStage& s : r.stages) {
     t << "stage " << s.name << ": " << s.in << " in, " << s.kept << " kept, "
       << Fixed(s.seconds * 1e3, 1) << " ms (" << s.note << ")\n";
   }
   if (chosen) {
     const HelicalGeometry& g = chosen->geometry;
+    const std::vector<Field> f = SizedSpringFields(*chosen, sp);
     t << (r.pass ? "spring: " : "closest spring: ") << sp.wires[chosen->wire_index].label
-      << ", wire " << Fixed(g.wire_m * 1e3, 2) << " mm, coil " << Fixed(g.coil_m * 1e3, 1)
-      << " mm (OD " << Fixed((g.coil_m + g.wire_m) * 1e3, 1) << " mm), " << Fixed(g.active_coils, 1)
-      << " active / " << Fixed(chosen->total_coils, 1) << " total coils, free length "
-      << Fixed(g.free_length_m * 1e3, 2) << " mm, installed " << Fixed(chosen->installed_m * 1e3, 2)
-      << " mm\n";
-    t << "  preload " << Fixed(chosen->preload_N, 1) << " N (" << Fixed(chosen->preload_N / kKgf, 1)
-      << " kgf; set by " << chosen->preload_rule << "), rate " << Fixed(chosen->rate_N_m * 1e-3, 2)
-      << " N/mm, mass " << Fixed(chosen->mass_kg, 3) << " kg"
+      << ", wire " << TextAt(f, "wire_mm") << ", coil " << TextAt(f, "coil_mm") << " (OD "
+      << FieldText({"outer_diameter", display::kMm, g.coil_m + g.wire_m, 1}) << "), "
+      << TextAt(f, "active_coils") << " active / " << TextAt(f, "total_coils")
+      << " total coils, free length " << TextAt(f, "free_length_mm") << ", installed "
+      << TextAt(f, "installed_length_mm") << '\n';
+    t << "  preload " << TextAt(f, "preload_N") << " ("
+      << FieldText({"preload", display::kKgForce, chosen->preload_N, 1}) << "; set by "
+      << chosen->preload_rule << "), rate " << TextAt(f, "rate_N_mm") << ", mass "
+      << TextAt(f, "mass_kg")
       << (r.case_spring_mass_kg ? " (the case's spring " + Fixed(*r.case_spring_mass_kg, 3) + " kg)"
                                 : "")
       << '\n';
