@@ -69,7 +69,7 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene,
   if (!options.verdict_only) s.massless_overspeed = Simulate(scene, r.overspeed_rpm, over);
   // Only the rows' verdicts asked: the chain's runs stop at their first lift-off or past the lift
   // (RunStatus::kStopped), where the rows' numbers are final; the needle's settling after the
-  // lift is not run (docs/commands.md "needle tolerance", measured).
+  // lift is not run (docs/commands.md, "What a sample takes from the nominal", measured).
   if (options.verdict_only) rated.stop_at_liftoff = over.stop_at_liftoff = true;
   t.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
   s.damping_assumed = !(c.spring->surge_damping_ratio > 0.0);

@@ -94,7 +94,8 @@ struct CheckOptions {
   int threads = 0;            ///< the overspeed sweep's threads (0: all cores)
   bool record_series = true;  ///< keep the rated-speed run's time series (the report's figures)
   // What a check may take from a check of a nearby scene (a tolerance study's nominal,
-  // docs/commands.md "needle tolerance"): the verdict stays this scene's own, but see each.
+  // docs/commands.md, "What a sample takes from the nominal"): the verdict stays this scene's own,
+  // but see each.
   /// Where the overspeed search's scan starts (OverspeedOptions::start_rpm): a nearby scene's
   /// n_dyn. A search that does not end "found" from there is run again from the sweep's start.
   std::optional<double> overspeed_start_rpm;
