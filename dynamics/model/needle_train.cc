@@ -173,6 +173,7 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
     }
     if (j == 1) {
       s_1 = s_j;
+      if (!coil_rates && !dissipation_W) break;  // the force at the needle alone: segment 1's
     } else if (coil_rates) {
       coil_rates[j - 2] = (s_prev - s_j) / coil_mass_kg_;
     }
