@@ -116,8 +116,9 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   Contacts c;
   c.crank_rad = Angle(t);
   const double th = CamAngle(c.crank_rad, phase);
-  c.u = cam_.U(th);
-  c.u_slope = cam_.Slope(th);
+  const auto [u, u_slope] = cam_.USlope(th);
+  c.u = u;
+  c.u_slope = u_slope;
 
   c.y = x[0];
   c.v = x[1];
