@@ -303,12 +303,14 @@ std::string RunOverspeedComparison(int repeats) {
        << Num(after.n_dyn_rpm.value_or(NAN), 5) << " | " << Num(b) << " ms | " << Num(a) << " ms | "
        << Num(b / a, 3) << "× |\n";
   }
-  // 2. check end to end without its report, and 3. one tolerance sample (a check on one
-  // thread): the check itself now, and before as the check now less its sweep plus main's sweep
-  // of the same range (the rest of the check is the same code).
+  // 2. check end to end without its report, and 3. Example 2's (a tolerance sample before row 4: a
+  // check on one thread): the check itself now, and before as the check now less its sweep plus
+  // main's sweep of the same range (the rest of the check is the same code).
   for (const auto& [name, what] : std::vector<std::pair<std::string, std::string>>{
            {"basu-example1.toml", "`check basu-example1` without report"},
-           {"basu-example2.toml", "one tolerance sample (a check of `basu-example2`)"}}) {
+           {"basu-example2.toml",
+            "`check basu-example2` without report (a tolerance sample before it took from the "
+            "nominal)"}}) {
     const Case c = LoadCase(CaseDir() + name);
     const LiftLaw law = MakeLiftLaw(c);
     const Scene scene = MakeScene(c);
