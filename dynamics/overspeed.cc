@@ -38,6 +38,8 @@ void OverspeedOptions::Validate() const {
     throw std::invalid_argument("overspeed: floor_rpm = " + std::to_string(floor_rpm) +
                                 ": must be in [0, from_rpm) (0: from_rpm / 16)");
   if (!std::isfinite(to_rpm)) throw std::invalid_argument("overspeed: to_rpm must be finite");
+  if (start_rpm && !(std::isfinite(*start_rpm) && *start_rpm > 0.0))
+    throw std::invalid_argument("overspeed: start_rpm must be positive and finite");
 }
 
 std::string OverspeedOutcome(const OverspeedResult& r) {
@@ -116,6 +118,8 @@ namespace {
 
 // Below this margin f = F_min/P₀ the scan's steps shrink in proportion (OverspeedSearch).
 constexpr double kFullStepMargin = 0.5;
+// The first step down from a start_rpm that lifts off, as a fraction of it (then doubling).
+constexpr double kStartStepFraction = 0.05;
 
 // The runs of one search: each speed run once, on demand; with several threads, Ahead() runs
 // speeds the search may ask next alongside. Only the speeds asked for become rows, so the
@@ -212,12 +216,31 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
     return true;
   };
 
-  // The start of the upward scan: from_rpm, or below it where the needle lifts off there.
-  double n = o.from_rpm;
+  // The start of the upward scan: start_rpm or below it, from_rpm, or below that where the needle
+  // lifts off there.
+  const bool hinted = o.start_rpm && *o.start_rpm > o.from_rpm && *o.start_rpm < o.to_rpm;
+  double n = hinted ? *o.start_rpm : o.from_rpm;
   double top = o.to_rpm;  // the scan ends here (a lift-off known there, or the range's end)
   ++scanned;
   const OverspeedRow* row = &runs.At(n);
   if (budget_stop(*row, n)) {
+    result.rows = runs.AskedRows();
+    return result;
+  }
+  for (double down = std::max(step, kStartStepFraction * n);
+       hinted && row->lifts_off && n > o.from_rpm && scanned < o.max_speeds; down *= 2.0) {
+    top = n;
+    n = std::max(n - down, o.from_rpm);
+    ++scanned;
+    row = &runs.At(n);
+    if (budget_stop(*row, n)) {
+      result.rows = runs.AskedRows();
+      return result;
+    }
+  }
+  if (row->lifts_off && n > o.from_rpm) {  // the scan budget ended the way down
+    result.status = "budget";
+    result.scanned_to_rpm = n;
     result.rows = runs.AskedRows();
     return result;
   }

@@ -25,6 +25,14 @@
 /// window that the force does not approach within one step (a window, and the dip of f around it,
 /// narrower than Δ_max) can be missed.
 ///
+/// With `start_rpm` (a guess, such as a nearby scene's n_dyn: a tolerance study's nominal) the
+/// scan starts there instead of at `from`: where the needle lifts off there, it goes down in
+/// steps of 5 % of `start_rpm` (at least Δn), doubling, until a speed without lift-off (or
+/// `from`, where the search goes on as below), and scans up from there as from `from`. The
+/// bracket is run at both ends as always (no lift-off at its low end, lift-off at its high end),
+/// so n_dyn is a lift-off onset of the scene; but a lift-off window below the speed the scan
+/// starts from is not looked for (the search from `from` may find one).
+///
 /// When the needle lifts off already at `from`, the search goes down: from/2, from/4, … (not
 /// below `floor_rpm`) until a speed without lift-off, then scans up from there; lifting off at
 /// every speed down to the floor is the status `floor`, without a value.
@@ -68,6 +76,8 @@ struct OverspeedOptions {
   /// Lowest speed searched down to when the needle lifts off at from_rpm, rpm, [0, from_rpm);
   /// 0: from_rpm / 16.
   double floor_rpm = 0.0;
+  /// Where the upward scan starts (see above); used when from_rpm < start_rpm < to_rpm.
+  std::optional<double> start_rpm;
   int max_speeds = 5000;  ///< scan budget (speeds), ≥ 1
   int threads = 0;        ///< 0: all cores; more than the cores are capped to them
   SimulationOptions simulation;

@@ -15,6 +15,7 @@
 #include "apps/scene/case_scene.h"
 #include "apps/study/check_scene.h"
 #include "apps/study/spring_sizing_scene.h"
+#include "apps/study/tolerance_study.h"
 #include "dynamics/overspeed.h"
 #include "lib/cam_laws.h"
 #include "lib/input_file.h"
@@ -302,12 +303,14 @@ std::string RunOverspeedComparison(int repeats) {
        << Num(after.n_dyn_rpm.value_or(NAN), 5) << " | " << Num(b) << " ms | " << Num(a) << " ms | "
        << Num(b / a, 3) << "× |\n";
   }
-  // 2. check end to end without its report, and 3. one tolerance sample (a check on one
-  // thread): the check itself now, and before as the check now less its sweep plus main's sweep
-  // of the same range (the rest of the check is the same code).
+  // 2. check end to end without its report, and 3. Example 2's (a tolerance sample before row 4: a
+  // check on one thread): the check itself now, and before as the check now less its sweep plus
+  // main's sweep of the same range (the rest of the check is the same code).
   for (const auto& [name, what] : std::vector<std::pair<std::string, std::string>>{
            {"basu-example1.toml", "`check basu-example1` without report"},
-           {"basu-example2.toml", "one tolerance sample (a check of `basu-example2`)"}}) {
+           {"basu-example2.toml",
+            "`check basu-example2` without report (a tolerance sample before it took from the "
+            "nominal)"}}) {
     const Case c = LoadCase(CaseDir() + name);
     const LiftLaw law = MakeLiftLaw(c);
     const Scene scene = MakeScene(c);
@@ -338,6 +341,43 @@ std::string RunOverspeedComparison(int repeats) {
        << Num(before.value_or(NAN), 5) << " → "
        << Num(after.sweep && after.sweep->n_dyn_rpm ? *after.sweep->n_dyn_rpm : NAN, 5) << " | "
        << Num(b) << " ms | " << Num(a) << " ms | " << Num(b / a, 3) << "× |\n";
+  }
+  // 4. One tolerance sample as the study runs it: 20 samples of Example 2 (seed 1) on one
+  // thread, per sample. Before: each sample a full check (ToleranceOptions::reuse_nominal off).
+  // After: the nominal checked once (its cost included, 1/20 of it a sample), each sample for
+  // its verdict only, its scan from the nominal's n_dyn. The same samples both ways: their
+  // verdicts compared, and n_dyn.
+  {
+    const Case c = LoadCase(CaseDir() + "basu-example2.toml");
+    ToleranceOptions o;
+    o.samples = 20;
+    o.seed = 1;
+    o.threads = 1;
+    std::vector<double> before, after;
+    std::vector<ToleranceSample> full, reused;
+    for (int r = 0; r < repeats; ++r) {
+      o.reuse_nominal = false;
+      before.push_back(ms_of([&] { full = RunToleranceSamples(c, o); }) / o.samples);
+      o.reuse_nominal = true;
+      after.push_back(ms_of([&] { reused = RunToleranceSamples(c, o); }) / o.samples);
+    }
+    int differ = 0;
+    double worst = 0.0, mean_before = 0.0, mean_after = 0.0;
+    for (size_t i = 0; i < full.size(); ++i) {
+      differ += full[i].pass != reused[i].pass || full[i].failing != reused[i].failing;
+      const double x = full[i].outputs.at("overspeed.liftoff_rpm_dynamic");
+      const double y = reused[i].outputs.at("overspeed.liftoff_rpm_dynamic");
+      worst = std::max(worst, std::abs(x - y));
+      mean_before += x / full.size();
+      mean_after += y / full.size();
+    }
+    const double b = median(before), a = median(after);
+    md << "| one tolerance sample of `basu-example2` (20 samples on one thread, per sample; "
+          "after: the nominal's check included; target ≤ 3 ms) | full checks → verdict only, "
+          "scan from the nominal's n_dyn; verdicts differing: "
+       << differ << " of " << full.size() << " | mean " << Num(mean_before, 5) << " → "
+       << Num(mean_after, 5) << " (largest change " << Num(worst, 2) << " rpm) | " << Num(b)
+       << " ms | " << Num(a) << " ms | " << Num(b / a, 3) << "× |\n";
   }
   md << '\n';
   return md.str();

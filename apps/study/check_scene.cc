@@ -47,7 +47,9 @@ constexpr double kAssumedSurgeDamping = 0.01;
 // The scene with its helical spring as N coil masses (SurgeStudy), against the massless spring.
 // Throws std::invalid_argument when the train refuses the chain (coils of 3 needle masses or
 // more).
-SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene, bool series) {
+SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene,
+                      const CheckOptions& options) {
+  const bool series = options.record_series;
   SurgeStudy s;
   const HelicalSpringCheck& h = *r.spring->helical;
   SimulationOptions sim = r.run_options;
@@ -64,7 +66,11 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene, bool ser
   rated.record_series = series;  // the report's surge figure
   // The rated-speed run is the massless spring's already when the case has no coil masses.
   s.massless = c.spring->masses == 1 && r.run ? *r.run : Simulate(scene, r.speed_rpm, rated);
-  s.massless_overspeed = Simulate(scene, r.overspeed_rpm, over);
+  if (!options.verdict_only) s.massless_overspeed = Simulate(scene, r.overspeed_rpm, over);
+  // Only the rows' verdicts asked: the chain's runs stop at their first lift-off or past the lift
+  // (RunStatus::kStopped), where the rows' numbers are final; the needle's settling after the
+  // lift is not run (docs/commands.md, "What a sample takes from the nominal", measured).
+  if (options.verdict_only) rated.stop_at_liftoff = over.stop_at_liftoff = true;
   t.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
   s.damping_assumed = !(c.spring->surge_damping_ratio > 0.0);
   s.damping_ratio = s.damping_assumed ? kAssumedSurgeDamping : c.spring->surge_damping_ratio;
@@ -83,7 +89,9 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene, bool ser
       s.converged = s.change < kSurgeConvergence;
     }
     s.rated = std::move(run);
-    if (s.converged || s.rated.status != RunStatus::kComplete) break;  // done, or undecided
+    if (s.converged ||
+        (s.rated.status != RunStatus::kComplete && s.rated.status != RunStatus::kStopped))
+      break;  // done, or undecided
     before = s.rated;
   }
   s.overspeed = Simulate(scene, r.overspeed_rpm, over);
@@ -138,10 +146,19 @@ CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
     os.from_rpm = r.sweep_range.from_rpm;
     os.to_rpm = r.sweep_range.to_rpm;
     os.threads = options.threads;
-    r.sweep = OverspeedSearch(scene, os, options.progress);
+    if (options.overspeed_start_rpm) {
+      // From a nearby scene's n_dyn; a search that does not find a bracket from there is run
+      // again as any check runs it.
+      OverspeedOptions hinted = os;
+      hinted.start_rpm = options.overspeed_start_rpm;
+      r.sweep = OverspeedSearch(scene, hinted, options.progress);
+      if (r.sweep->status != "found") r.sweep = OverspeedSearch(scene, os, options.progress);
+    } else {
+      r.sweep = OverspeedSearch(scene, os, options.progress);
+    }
     if (r.spring && r.spring->helical) {
       try {
-        r.surge = StudySurge(c, r, scene, options.record_series);
+        r.surge = StudySurge(c, r, scene, options);
       } catch (const std::invalid_argument& e) {
         r.surge_reason = e.what();
       }
@@ -199,7 +216,7 @@ CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
   } else {
     r.skipped.push_back("cam profile: the case has no [profile] section");
   }
-  if (law.HasAcceleration()) JudgeLimits(c, law, cam_zero_crank_rad, r);
+  if (law.HasAcceleration()) JudgeLimits(c, law, cam_zero_crank_rad, r, !options.verdict_only);
   // The spring check's failures first, as the surge verdict (JudgeLimits) left them.
   if (r.spring) {
     std::vector<std::string> lines;

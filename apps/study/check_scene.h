@@ -78,9 +78,10 @@ struct SurgeStudy {
   /// With coil masses at the rated speed; it and `massless` keep their series when
   /// CheckOptions::record_series (the report's surge figure).
   SimulationResult rated;
-  SimulationResult overspeed;           ///< with coil masses, at f·n
-  SimulationResult massless;            ///< the massless spring at the rated speed
-  SimulationResult massless_overspeed;  ///< the massless spring at f·n
+  SimulationResult overspeed;  ///< with coil masses, at f·n
+  SimulationResult massless;   ///< the massless spring at the rated speed
+  /// The massless spring at f·n (a note of the report; not run with CheckOptions::verdict_only).
+  SimulationResult massless_overspeed;
 };
 /// The convergence rule of SurgeStudy::masses.
 constexpr double kSurgeConvergence = 0.01;
@@ -92,6 +93,18 @@ struct CheckOptions {
   std::function<void(int, int)> progress;
   int threads = 0;            ///< the overspeed sweep's threads (0: all cores)
   bool record_series = true;  ///< keep the rated-speed run's time series (the report's figures)
+  // What a check may take from a check of a nearby scene (a tolerance study's nominal,
+  // docs/commands.md, "What a sample takes from the nominal"): the verdict stays this scene's own,
+  // but see each.
+  /// Where the overspeed search's scan starts (OverspeedOptions::start_rpm): a nearby scene's
+  /// n_dyn. A search that does not end "found" from there is run again from the sweep's start.
+  std::optional<double> overspeed_start_rpm;
+  /// Compute what the verdict reads, no more: no massless spring's run at f·n (SurgeStudy), no
+  /// lift harmonics (CheckResult::harmonics), and the surge study's chain runs stop at their
+  /// first lift-off or past the lift (SimulationOptions::stop_at_liftoff, RunStatus::kStopped:
+  /// the rows' numbers are final there; the needle's settling after the lift is not run, so a
+  /// chain run that would end unsettled is not seen). No number of CheckFields changes.
+  bool verdict_only = false;
 };
 
 /// What `needle check` found. All SI except speeds (rpm).

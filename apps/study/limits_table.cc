@@ -15,7 +15,8 @@ namespace needle {
 
 // The limits table (docs/springs.md "The limits table"): one row per limit, judged where the scene
 // has what it needs, else "not judged" with the reason.
-void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r) {
+void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r,
+                 bool harmonics) {
   const LimitsSection& l = c.limits;
   const double crank_turns = CrankTurnsPerCycle(c.engine.cycle);  // per cam turn
   const auto row = [&](std::string key, std::string name, std::string unit, bool at_most,
@@ -193,7 +194,12 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                      " mm: Zimmerli's data cover wire below 10 mm";
     }
     gap.limit = (l.coil_gap_m ? *l.coil_gap_m : h.min_clearance_m) * 1e3;
-    const SimulationResult* chain = r.surge && r.surge->rated.status == RunStatus::kComplete
+    // A chain run decided: complete, or stopped past the lift or at its first lift-off when only
+    // the verdict was asked (CheckOptions::verdict_only).
+    const auto decided = [](const SimulationResult& run) {
+      return run.status == RunStatus::kComplete || run.status == RunStatus::kStopped;
+    };
+    const SimulationResult* chain = r.surge && decided(r.surge->rated)
                                         ? &r.surge->rated
                                         : (r.run && r.run->min_coil_gap_m ? &*r.run : nullptr);
     if (chain && chain->min_coil_gap_m) {
@@ -211,10 +217,9 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's: the
     // resonance map's lines (information).
     for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
-    r.harmonics = LiftHarmonics(law, 2 * kPi * crank_turns, 1000, l.harmonic_threshold);
-    const auto undecided = [](const SimulationResult& run) {
-      return run.status != RunStatus::kComplete;
-    };
+    if (harmonics)
+      r.harmonics = LiftHarmonics(law, 2 * kPi * crank_turns, 1000, l.harmonic_threshold);
+    const auto undecided = [&](const SimulationResult& run) { return !decided(run); };
     if (r.surge && (undecided(r.surge->rated) || undecided(r.surge->overspeed))) {
       const SimulationResult& bad = undecided(r.surge->rated) ? r.surge->rated : r.surge->overspeed;
       const std::string why = "undecided: the run with " + std::to_string(r.surge->masses) +

@@ -11,6 +11,8 @@ namespace needle {
 
 /// Judges every row of the limits table into `r.limits` (and `r.warnings`), from the check's
 /// results already in `r`; `cam_zero_crank_rad` is the crank angle of the cam's zero.
-void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r);
+/// `harmonics`: compute the lift's harmonics (`r.harmonics`, information; no row reads them).
+void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r,
+                 bool harmonics = true);
 
 }  // namespace needle

@@ -68,7 +68,8 @@ std::string FailingItem(const std::string& line) {
 
 // One sample of the case: its inputs drawn, its case changed, its check run.
 ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
-                          const LiftErrorModel& lift_error, uint64_t seed, int index) {
+                          const LiftErrorModel& lift_error, const CheckOptions& base, uint64_t seed,
+                          int index) {
   std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32),
                     static_cast<uint32_t>(index)};
   std::mt19937_64 gen(seq);
@@ -120,11 +121,9 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
     s.inputs["play_deviation_m"] = play - c.train->play_m;
     c.train->play_m = play;
   }
-  CheckOptions options;
+  CheckOptions options = base;
   options.speed_rpm = c.engine.speed_rpm * scale(t.speed_fraction, z_speed);
   s.inputs["speed_deviation"] = t.speed_fraction * z_speed;
-  options.threads = 1;
-  options.record_series = false;
   // A sample the model refuses (a lift table the spline or the ramps cannot take) is a
   // result, not the end of the study: it fails as "case refused", with the reason.
   CheckResult r;
@@ -166,6 +165,25 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
       s.failing.push_back(item);
   }
   return s;
+}
+
+// The options of every sample's check: one thread, no series; with `reuse`, only what the verdict
+// reads (CheckOptions::verdict_only) and the nominal case's n_dyn as the overspeed scan's start.
+CheckOptions SampleOptions(const Case& c, bool reuse) {
+  CheckOptions options;
+  options.threads = 1;
+  options.record_series = false;
+  if (!reuse) return options;
+  options.verdict_only = true;
+  CheckResult nominal;
+  try {
+    nominal = CheckScene(c, std::make_shared<const LiftLaw>(MakeLiftLaw(c)), options);
+  } catch (const CaseError&) {
+    return options;  // nothing to take: each sample is checked in full
+  }
+  if (nominal.sweep && nominal.sweep->n_dyn_rpm)
+    options.overspeed_start_rpm = nominal.sweep->n_dyn_rpm;
+  return options;
 }
 
 std::vector<double> Ranks(const std::vector<double>& v) {
@@ -245,6 +263,11 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
   const LiftErrorModel lift_error(c.lift.table.crank_rad, varied, t.lift_sigma_m,
                                   t.lift_correlation_rad);
   MakeLiftLaw(c);  // a case that cannot be checked fails here, before any thread starts
+  // Without scatter every sample is the nominal case, checked in full (a map's points).
+  const bool scatter = t.lift_sigma_m > 0.0 || t.mass_fraction > 0.0 || t.preload_fraction > 0.0 ||
+                       t.rate_fraction > 0.0 || t.stiffness_fraction > 0.0 ||
+                       t.play_sigma_m > 0.0 || t.speed_fraction > 0.0;
+  const CheckOptions base = SampleOptions(c, options.reuse_nominal && scatter);
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const int threads = std::max(
       1, std::min(options.samples, options.threads > 0 ? std::min<int>(options.threads, cores)
@@ -259,7 +282,7 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
       const int i = next++;
       if (i >= options.samples) return;
       try {
-        samples[i] = RunSample(c, t, lift_error, options.seed, options.first_sample + i);
+        samples[i] = RunSample(c, t, lift_error, base, options.seed, options.first_sample + i);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();

@@ -30,6 +30,11 @@ struct ToleranceOptions {
   /// (a shard on another machine), [0, 1e9].
   int first_sample = 0;
   int threads = 0;  ///< 0: all cores; each sample is checked on one thread
+  /// Check the nominal case once, and check each sample for its verdict only, its overspeed scan
+  /// started at the nominal's n_dyn (CheckOptions::verdict_only, overspeed_start_rpm). Off, or a
+  /// section without scatter (every sample is then the nominal case): each sample a full check.
+  /// What it changes, measured: docs/commands.md, "What a sample takes from the nominal".
+  bool reuse_nominal = true;
   /// Called after each sample (done, N), from the calling thread; may be empty.
   std::function<void(int, int)> progress;
 };

@@ -91,6 +91,21 @@ double CamInput::Slope(double th) const {
   return th < fall_end_ ? slopen_ : 0.0;
 }
 
+std::array<double, 2> CamInput::USlope(double th) const {
+  const double th0 = law_.start_rad(), thn = law_.end_rad();
+  if (!(th >= th0 && th < thn)) return {U(th), Slope(th)};
+  // PiecewisePolynomial::Evaluate(th, 0) and (th, 1), their operations in their order, on one
+  // search for the piece.
+  const PiecewisePolynomial& spline = law_.spline();
+  const int i = spline.Piece(th);
+  const Eigen::MatrixXd& c = spline.coefficients();
+  const double t = th - spline.breaks()[i];
+  double value = 0.0, slope = 0.0;
+  for (int k = spline.degree(); k >= 0; --k) value = value * t + 1.0 * c(i, k);
+  for (int k = spline.degree(); k >= 1; --k) slope = slope * t + 1.0 * k * c(i, k);
+  return {value, slope};
+}
+
 CamPiece CamInput::Piece(double th) const {
   const double th0 = law_.start_rad(), thn = law_.end_rad();
   if (th >= th0 && th < thn) {

@@ -11,6 +11,7 @@
 /// u is C¹ inside the table and has slope jumps at the ramp joins; Breaks() lists every angle
 /// where a derivative of u jumps, so integrators can step to them exactly.
 
+#include <array>
 #include <vector>
 
 #include "lib/lift_law.h"
@@ -41,6 +42,8 @@ class CamInput {
   double Slope(double crank_rad) const;
   /// d²u/dθ², m/rad² (0 on ramps and the base circle).
   double Curvature(double crank_rad) const;
+  /// {U, Slope} at once (one search for the spline's piece), the same numbers bit for bit.
+  std::array<double, 2> USlope(double crank_rad) const;
 
   /// The polynomial u is on the segment that holds θ (segments are [a, b) between breaks).
   CamPiece Piece(double crank_rad) const;

@@ -116,8 +116,9 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   Contacts c;
   c.crank_rad = Angle(t);
   const double th = CamAngle(c.crank_rad, phase);
-  c.u = cam_.U(th);
-  c.u_slope = cam_.Slope(th);
+  const auto [u, u_slope] = cam_.USlope(th);
+  c.u = u;
+  c.u_slope = u_slope;
 
   c.y = x[0];
   c.v = x[1];
@@ -173,6 +174,7 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
     }
     if (j == 1) {
       s_1 = s_j;
+      if (!coil_rates && !dissipation_W) break;  // the force at the needle alone: segment 1's
     } else if (coil_rates) {
       coil_rates[j - 2] = (s_prev - s_j) / coil_mass_kg_;
     }

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 #include "apps/scene/case_scene.h"
 #include "spring/quasi_static.h"
 
@@ -410,6 +414,56 @@ TEST(OverspeedFieldsTest, RowsAndOutcomeShowTheirUnits) {
   EXPECT_FALSE(at(o, "liftoff_rpm_dynamic").Shown().has_value());
   EXPECT_EQ(at(o, "bracket_rpm").list_si, (std::vector<double>{900.0, 905.0}));
   EXPECT_EQ(at(o, "status").text, "none");
+}
+
+// A start guess (OverspeedOptions::start_rpm: a tolerance sample starts at its nominal's n_dyn)
+// below, at and above n_dyn finds the lift-off of the scan from `from`, to its resolution, with a
+// bracket run at both ends; from the guess at n_dyn in fewer runs.
+TEST(OverspeedScanTest, AStartGuessFindsTheLiftOffOfTheWholeScan) {
+  const Scene s = MakeScene(LoadCase(kCases + "basu-cam4-light-spring.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 400;
+  o.to_rpm = 1200;
+  o.threads = 1;
+  const OverspeedResult whole = OverspeedSearch(s, o);
+  ASSERT_TRUE(whole.n_dyn_rpm);
+  for (const double guess : {0.93 * *whole.n_dyn_rpm, *whole.n_dyn_rpm, 1.08 * *whole.n_dyn_rpm}) {
+    o.start_rpm = guess;
+    const OverspeedResult r = OverspeedSearch(s, o);
+    ASSERT_EQ(r.status, "found") << guess;
+    ASSERT_TRUE(r.n_dyn_rpm);
+    EXPECT_NEAR(*r.n_dyn_rpm, *whole.n_dyn_rpm, o.resolution_rpm) << guess;
+    EXPECT_LE(r.bracket_high_rpm - r.bracket_low_rpm, o.resolution_rpm);
+    bool low = false, high = false;
+    for (const OverspeedRow& row : r.rows) {
+      if (row.speed_rpm == r.bracket_low_rpm) low = !row.lifts_off;
+      if (row.speed_rpm == r.bracket_high_rpm) high = row.lifts_off;
+      EXPECT_GE(row.speed_rpm, 400.0);
+    }
+    EXPECT_TRUE(low && high) << guess;  // both ends run: none at the low, lift-off at the high
+    if (guess == *whole.n_dyn_rpm) {
+      EXPECT_LT(r.rows.size(), whole.rows.size());
+    }
+  }
+}
+
+// What a start guess gives up: a lift-off window below the speed the scan starts from is not
+// looked for (dynamics/overspeed.h). From 495 rpm the ringing-lash scene's window below 482 rpm
+// is not found; the scan from 200 rpm finds it.
+TEST(OverspeedScanTest, AStartGuessAboveAWindowDoesNotLookBelowIt) {
+  const Scene s = MakeScene(ParseCase(kRingingLash, "ringing-lash.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 200;
+  o.to_rpm = 600;
+  o.step_rpm = 15;
+  o.start_rpm = 495;
+  const OverspeedResult r = OverspeedSearch(s, o);
+  ASSERT_TRUE(r.n_dyn_rpm);
+  EXPECT_GT(*r.n_dyn_rpm, 490.0);
+  EXPECT_TRUE(LiftsOff(s, *r.n_dyn_rpm));
+  EXPECT_FALSE(LiftsOff(s, r.bracket_low_rpm));
+  o.start_rpm.reset();
+  EXPECT_LT(*OverspeedSearch(s, o).n_dyn_rpm, 482.0);
 }
 
 }  // namespace

@@ -212,5 +212,69 @@ TEST(ToleranceStudyTest, BadSampleCountsAreRefused) {
   }
 }
 
+// Samples that take from the nominal's check (ToleranceOptions::reuse_nominal: its n_dyn as the
+// scan's start, the verdict's work only) say what a full check of each says: the same verdict and
+// failing items, every output the same but n_dyn (within the search's resolution, 0.5 rpm: both
+// brackets are run at both ends) and the speed the scan reached.
+TEST(ToleranceStudyTest, ASampleTakingFromTheNominalHasItsFullChecksVerdict) {
+  const Case c = LoadCase(kCases + "basu-example2.toml");
+  ToleranceOptions o;
+  o.samples = 6;
+  o.seed = 33;
+  o.threads = 2;
+  const std::vector<ToleranceSample> reused = RunToleranceSamples(c, o);
+  o.reuse_nominal = false;
+  const std::vector<ToleranceSample> full = RunToleranceSamples(c, o);
+  ASSERT_EQ(reused.size(), full.size());
+  for (size_t i = 0; i < full.size(); ++i) {
+    EXPECT_EQ(reused[i].pass, full[i].pass) << i;
+    EXPECT_EQ(reused[i].failing, full[i].failing) << i;
+    ASSERT_EQ(reused[i].outputs.size(), full[i].outputs.size());
+    for (const auto& [key, v] : full[i].outputs) {
+      const double w = reused[i].outputs.at(key);
+      if (key == "overspeed.liftoff_rpm_dynamic") {
+        EXPECT_NEAR(w, v, 0.5) << i;
+      } else if (key != "overspeed.scanned_to_rpm") {
+        EXPECT_TRUE(w == v || (std::isnan(w) && std::isnan(v))) << i << ' ' << key;
+      }
+    }
+  }
+}
+
+// A check for its verdict only, its scan started at the nominal's n_dyn (what a tolerance sample
+// runs), judges every limit as the full check of the same perturbed case, with the same numbers:
+// the surge study's chain runs stopped past the lift have seen what its rows read.
+TEST(ToleranceStudyTest, AVerdictOnlyCheckJudgesEveryLimitAsTheFullCheck) {
+  const Case nominal = LoadCase(kCases + "basu-example2.toml");
+  CheckOptions options;
+  options.threads = 1;
+  options.record_series = false;
+  const CheckResult first = CheckScene(nominal, MakeLiftLaw(nominal), options);
+  ASSERT_TRUE(first.surge && first.sweep && first.sweep->n_dyn_rpm);
+  Case c = nominal;
+  c.spring->preload_N *= 0.94;
+  c.needle->mass_kg *= 1.03;
+  const CheckResult full = CheckScene(c, MakeLiftLaw(c), options);
+  CheckOptions asked = options;
+  asked.overspeed_start_rpm = first.sweep->n_dyn_rpm;
+  asked.verdict_only = true;
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), asked);
+  EXPECT_EQ(r.surge->rated.status, RunStatus::kStopped);
+  EXPECT_EQ(r.surge->masses, full.surge->masses);
+  EXPECT_EQ(r.pass, full.pass);
+  EXPECT_EQ(r.failing, full.failing);
+  ASSERT_EQ(r.limits.size(), full.limits.size());
+  for (size_t i = 0; i < r.limits.size(); ++i) {
+    const LimitRow &a = r.limits[i], &b = full.limits[i];
+    EXPECT_EQ(a.verdict, b.verdict) << a.key;
+    if (a.key != "separation_margin") {
+      EXPECT_TRUE(a.value == b.value || (std::isnan(a.value) && std::isnan(b.value))) << a.key;
+    }
+  }
+  EXPECT_NEAR(*r.sweep->n_dyn_rpm, *full.sweep->n_dyn_rpm, 0.5);
+  EXPECT_LT(r.sweep->rows.size(), full.sweep->rows.size());
+  EXPECT_FALSE(r.harmonics);  // report-only: not computed
+}
+
 }  // namespace
 }  // namespace needle

@@ -46,6 +46,24 @@ TEST(CamInputTest, TangentRampsReachTheBaseCircle) {
   EXPECT_EQ(cam.Breaks().back(), cam.fall_end_rad());
 }
 
+// USlope (one search for the piece, NeedleTrain::Evaluate's) is U and Slope bit for bit, on every
+// spline kind, the ramps, the base circle and at the breaks.
+TEST(CamInputTest, USlopeIsUAndSlopeBitForBit) {
+  for (const SplineKind kind : {SplineKind::kNotAKnot, SplineKind::kPchip, SplineKind::kMakima}) {
+    const LiftLaw law = Law(kind);
+    for (const double play : {0.0, 0.4e-3}) {
+      const CamInput cam(law, play, RampKind::kLinear, 0.2);
+      std::vector<double> angles = cam.Breaks();
+      for (int i = 0; i <= 1000; ++i) angles.push_back(-0.5 + 1.4 * i / 1000.0);
+      for (const double th : angles) {
+        const auto [u, slope] = cam.USlope(th);
+        EXPECT_EQ(u, cam.U(th)) << th;
+        EXPECT_EQ(slope, cam.Slope(th)) << th;
+      }
+    }
+  }
+}
+
 TEST(CamInputTest, LinearRamps) {
   const LiftLaw law = Law();
   const CamInput cam(law, 0.4e-3, RampKind::kLinear, 0.2);
