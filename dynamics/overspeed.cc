@@ -218,7 +218,9 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
 
   // The start of the upward scan: start_rpm or below it, from_rpm, or below that where the needle
   // lifts off there.
-  const bool hinted = o.start_rpm && *o.start_rpm > o.from_rpm && *o.start_rpm < o.to_rpm;
+  const bool guessed = o.start_rpm && *o.start_rpm > o.from_rpm && *o.start_rpm < o.to_rpm;
+  const bool hinted = guessed && !o.start_after_rpm;     // start at the guess
+  bool jump = guessed && o.start_after_rpm.has_value();  // jump to it past start_after_rpm
   double n = hinted ? *o.start_rpm : o.from_rpm;
   double top = o.to_rpm;  // the scan ends here (a lift-off known there, or the range's end)
   ++scanned;
@@ -331,6 +333,39 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
       }
       if (found || result.status != "found") break;
       row = &runs.At(next);
+    }
+    // Past start_after_rpm without a lift-off (every speed below it run as without a guess): on
+    // to the guess, down from it while the needle lifts off there (not below `next`), and the
+    // scan goes on up from the highest speed known not to lift off.
+    if (jump && next >= *o.start_after_rpm && *o.start_rpm > next && *o.start_rpm < top) {
+      jump = false;
+      double known = next, m = *o.start_rpm;
+      bool stopped = false;
+      for (double down = std::max(step, kStartStepFraction * m);; down *= 2.0) {
+        if (scanned >= o.max_speeds) {
+          result.status = "budget";
+          stopped = true;
+          break;
+        }
+        ++scanned;
+        const OverspeedRow& probe = runs.At(m);
+        if (budget_stop(probe, m)) {
+          stopped = true;
+          break;
+        }
+        if (!probe.lifts_off) {
+          known = m;
+          break;
+        }
+        top = m;
+        m = std::max(m - down, known);
+        if (m == known) break;  // scan up from `next` to the lift-off at `top`
+      }
+      if (stopped) break;
+      last.reset();
+      n = known;
+      row = &runs.At(known);
+      continue;
     }
     n = next;
   }

@@ -31,7 +31,11 @@
 /// `from`, where the search goes on as below), and scans up from there as from `from`. The
 /// bracket is run at both ends as always (no lift-off at its low end, lift-off at its high end),
 /// so n_dyn is a lift-off onset of the scene; but a lift-off window below the speed the scan
-/// starts from is not looked for (the search from `from` may find one).
+/// starts from is not looked for (the search from `from` may find one). With `start_after_rpm`
+/// too, the scan first runs from `from` exactly as without a guess, up to the first speed at or
+/// above `start_after_rpm` without lift-off, and only then goes to the guess (down from it, not
+/// below that speed): a lift-off up to there — where a check's verdict reads it, below f·n — is
+/// found exactly as without a guess.
 ///
 /// When the needle lifts off already at `from`, the search goes down: from/2, from/4, … (not
 /// below `floor_rpm`) until a speed without lift-off, then scans up from there; lifting off at
@@ -78,6 +82,10 @@ struct OverspeedOptions {
   double floor_rpm = 0.0;
   /// Where the upward scan starts (see above); used when from_rpm < start_rpm < to_rpm.
   std::optional<double> start_rpm;
+  /// With start_rpm: scan from from_rpm as without a guess until a speed at or above this one
+  /// without lift-off, then go on from the guess (see above); rpm. Every speed up to it is the
+  /// scan's without a guess, so a lift-off found up to there is the same.
+  std::optional<double> start_after_rpm;
   int max_speeds = 5000;  ///< scan budget (speeds), ≥ 1
   int threads = 0;        ///< 0: all cores; more than the cores are capped to them
   SimulationOptions simulation;

@@ -147,10 +147,12 @@ CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
     os.to_rpm = r.sweep_range.to_rpm;
     os.threads = options.threads;
     if (options.overspeed_start_rpm) {
-      // From a nearby scene's n_dyn; a search that does not find a bracket from there is run
-      // again as any check runs it.
+      // On to a nearby scene's n_dyn once the scan has passed f·n without lift-off (below f·n,
+      // where the verdict reads it, every speed of the scan is run as without the guess); a
+      // search that does not find a bracket so is run again as any check runs it.
       OverspeedOptions hinted = os;
       hinted.start_rpm = options.overspeed_start_rpm;
+      hinted.start_after_rpm = r.overspeed_rpm;
       r.sweep = OverspeedSearch(scene, hinted, options.progress);
       if (r.sweep->status != "found") r.sweep = OverspeedSearch(scene, os, options.progress);
     } else {

@@ -96,8 +96,10 @@ struct CheckOptions {
   // What a check may take from a check of a nearby scene (a tolerance study's nominal,
   // docs/commands.md, "What a sample takes from the nominal"): the verdict stays this scene's own,
   // but see each.
-  /// Where the overspeed search's scan starts (OverspeedOptions::start_rpm): a nearby scene's
-  /// n_dyn. A search that does not end "found" from there is run again from the sweep's start.
+  /// A nearby scene's n_dyn, where the overspeed scan goes on once it has passed f·n without
+  /// lift-off (OverspeedOptions::start_rpm, start_after_rpm): every speed up to f·n is run as
+  /// without it, so the verdict's n_dyn ≥ f·n is the full scan's. A search that does not end
+  /// "found" so is run again from the sweep's start.
   std::optional<double> overspeed_start_rpm;
   /// Compute what the verdict reads, no more: no massless spring's run at f·n (SurgeStudy), no
   /// lift harmonics (CheckResult::harmonics), and the surge study's chain runs stop at their

@@ -466,5 +466,43 @@ TEST(OverspeedScanTest, AStartGuessAboveAWindowDoesNotLookBelowIt) {
   EXPECT_LT(*OverspeedSearch(s, o).n_dyn_rpm, 482.0);
 }
 
+// With start_after_rpm the scan runs from `from` as without a guess up to there: the window
+// below the guess that the guess alone steps over (the test above) is found, with the same
+// n_dyn and the same runs as the scan without a guess; past a window-free start_after the guess
+// still saves runs and finds the same lift-off.
+TEST(OverspeedScanTest, AGuessTakenOnlyPastAGivenSpeedKeepsTheScanBelowIt) {
+  const Scene s = MakeScene(ParseCase(kRingingLash, "ringing-lash.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 200;
+  o.to_rpm = 600;
+  o.step_rpm = 15;
+  const OverspeedResult full = OverspeedSearch(s, o);
+  ASSERT_TRUE(full.n_dyn_rpm);
+  ASSERT_LT(*full.n_dyn_rpm, 482.0);
+  o.start_rpm = 495;
+  o.start_after_rpm = 470;  // the window lies below: the scan reaches it before the jump
+  const OverspeedResult guarded = OverspeedSearch(s, o);
+  ASSERT_TRUE(guarded.n_dyn_rpm);
+  EXPECT_EQ(*guarded.n_dyn_rpm, *full.n_dyn_rpm);
+  ASSERT_EQ(guarded.rows.size(), full.rows.size());
+  for (size_t i = 0; i < full.rows.size(); ++i)
+    EXPECT_EQ(guarded.rows[i].speed_rpm, full.rows[i].speed_rpm) << i;
+
+  const Scene light = MakeScene(LoadCase(kCases + "basu-cam4-light-spring.toml"));
+  OverspeedOptions p;
+  p.from_rpm = 400;
+  p.to_rpm = 1500;
+  const OverspeedResult whole = OverspeedSearch(light, p);
+  ASSERT_TRUE(whole.n_dyn_rpm);
+  p.start_rpm = *whole.n_dyn_rpm;
+  p.start_after_rpm = 410;
+  const OverspeedResult jumped = OverspeedSearch(light, p);
+  ASSERT_TRUE(jumped.n_dyn_rpm);
+  EXPECT_NEAR(*jumped.n_dyn_rpm, *whole.n_dyn_rpm, 0.5);
+  EXPECT_LT(jumped.rows.size(), whole.rows.size()) << *whole.n_dyn_rpm;
+  EXPECT_TRUE(LiftsOff(light, *jumped.n_dyn_rpm));
+  EXPECT_FALSE(LiftsOff(light, jumped.bracket_low_rpm));
+}
+
 }  // namespace
 }  // namespace needle
