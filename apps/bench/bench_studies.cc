@@ -345,8 +345,8 @@ std::string RunOverspeedComparison(int repeats) {
   // 4. One tolerance sample as the study runs it: 20 samples of Example 2 (seed 1) on one
   // thread, per sample. Before: each sample a full check (ToleranceOptions::reuse_nominal off).
   // After: the nominal checked once (its cost included, 1/20 of it a sample), each sample for
-  // its verdict only, its scan from the nominal's n_dyn. The same samples both ways: their
-  // verdicts compared, and n_dyn.
+  // its verdict only, its scan on from the nominal's n_dyn past f·n. The same samples both ways:
+  // their verdicts compared, and n_dyn.
   {
     const Case c = LoadCase(CaseDir() + "basu-example2.toml");
     ToleranceOptions o;
@@ -374,7 +374,7 @@ std::string RunOverspeedComparison(int repeats) {
     const double b = median(before), a = median(after);
     md << "| one tolerance sample of `basu-example2` (20 samples on one thread, per sample; "
           "after: the nominal's check included; target ≤ 3 ms) | full checks → verdict only, "
-          "scan from the nominal's n_dyn; verdicts differing: "
+          "scan on from the nominal's n_dyn past f·n; verdicts differing: "
        << differ << " of " << full.size() << " | mean " << Num(mean_before, 5) << " → "
        << Num(mean_after, 5) << " (largest change " << Num(worst, 2) << " rpm) | " << Num(b)
        << " ms | " << Num(a) << " ms | " << Num(b / a, 3) << "× |\n";
