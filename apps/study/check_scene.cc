@@ -66,11 +66,10 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene,
   rated.record_series = series;  // the report's surge figure
   // The rated-speed run is the massless spring's already when the case has no coil masses.
   s.massless = c.spring->masses == 1 && r.run ? *r.run : Simulate(scene, r.speed_rpm, rated);
+  // The massless spring at f·n is a note of the report only (not run for a verdict alone). The
+  // chain's runs go to their end either way: a run that would not settle after the lift, and
+  // the seat's landing that loads the spring and closes the coils, are the verdict's too.
   if (!options.verdict_only) s.massless_overspeed = Simulate(scene, r.overspeed_rpm, over);
-  // Only the rows' verdicts asked: the chain's runs stop at their first lift-off or past the lift
-  // (RunStatus::kStopped), where the rows' numbers are final; the needle's settling after the
-  // lift is not run (docs/commands.md, "What a sample takes from the nominal", measured).
-  if (options.verdict_only) rated.stop_at_liftoff = over.stop_at_liftoff = true;
   t.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
   s.damping_assumed = !(c.spring->surge_damping_ratio > 0.0);
   s.damping_ratio = s.damping_assumed ? kAssumedSurgeDamping : c.spring->surge_damping_ratio;
@@ -147,12 +146,14 @@ CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
     os.to_rpm = r.sweep_range.to_rpm;
     os.threads = options.threads;
     if (options.overspeed_start_rpm) {
-      // On to a nearby scene's n_dyn once the scan has passed f·n without lift-off (below f·n,
-      // where the verdict reads it, every speed of the scan is run as without the guess); a
+      // On to a nearby scene's n_dyn once the scan has passed the speeds the verdict reads
+      // without lift-off (up to there every speed of the scan is run as without the guess); a
       // search that does not find a bracket so is run again as any check runs it.
       OverspeedOptions hinted = os;
       hinted.start_rpm = options.overspeed_start_rpm;
-      hinted.start_after_rpm = r.overspeed_rpm;
+      // Up to f·n (1 + the separation margin): the highest speed the separation row reads.
+      hinted.start_after_rpm =
+          r.overspeed_rpm * (1.0 + std::max(0.0, c.limits.separation_margin_fraction));
       r.sweep = OverspeedSearch(scene, hinted, options.progress);
       if (r.sweep->status != "found") r.sweep = OverspeedSearch(scene, os, options.progress);
     } else {

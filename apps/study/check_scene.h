@@ -96,16 +96,17 @@ struct CheckOptions {
   // What a check may take from a check of a nearby scene (a tolerance study's nominal,
   // docs/commands.md, "What a sample takes from the nominal"): the verdict stays this scene's own,
   // but see each.
-  /// A nearby scene's n_dyn, where the overspeed scan goes on once it has passed f·n without
-  /// lift-off (OverspeedOptions::start_rpm, start_after_rpm): every speed up to f·n is run as
-  /// without it, so the verdict's n_dyn ≥ f·n is the full scan's. A search that does not end
-  /// "found" so is run again from the sweep's start.
+  /// A nearby scene's n_dyn, where the overspeed scan goes on once it has passed f·n (1 + the
+  /// separation margin) without lift-off (OverspeedOptions::start_rpm, start_after_rpm): every
+  /// speed up to there is run as without it, so a lift-off the verdict reads is the full scan's.
+  /// A search that does not end "found" so is run again from the sweep's start. The speeds
+  /// between that point and the guess are not run: a run there that would end on its budget or
+  /// not follow its cam (which makes a full check's search undecided) is not seen, and n_dyn
+  /// and scanned_to may differ from the full scan's where it steps over a window above f·n.
   std::optional<double> overspeed_start_rpm;
-  /// Compute what the verdict reads, no more: no massless spring's run at f·n (SurgeStudy), no
-  /// lift harmonics (CheckResult::harmonics), and the surge study's chain runs stop at their
-  /// first lift-off or past the lift (SimulationOptions::stop_at_liftoff, RunStatus::kStopped:
-  /// the rows' numbers are final there; the needle's settling after the lift is not run, so a
-  /// chain run that would end unsettled is not seen). No number of CheckFields changes.
+  /// Compute what the verdict reads, no more: no massless spring's run at f·n (SurgeStudy, a
+  /// note of the report) and no lift harmonics (CheckResult::harmonics). Every limits row and
+  /// verdict is the full check's.
   bool verdict_only = false;
 };
 

@@ -16,7 +16,7 @@ namespace needle {
 // The limits table (docs/springs.md "The limits table"): one row per limit, judged where the scene
 // has what it needs, else "not judged" with the reason.
 void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r,
-                 bool harmonics) {
+                 bool report_notes) {
   const LimitsSection& l = c.limits;
   const double crank_turns = CrankTurnsPerCycle(c.engine.cycle);  // per cam turn
   const auto row = [&](std::string key, std::string name, std::string unit, bool at_most,
@@ -217,7 +217,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     // The modes j·f_e of the spring held at both ends (spring/resonance.h), f_e the check's: the
     // resonance map's lines (information).
     for (int j = 1; j <= 3; ++j) r.surge_modes_hz.push_back(j * h.surge_hz);
-    if (harmonics)
+    if (report_notes)
       r.harmonics = LiftHarmonics(law, 2 * kPi * crank_turns, 1000, l.harmonic_threshold);
     const auto undecided = [&](const SimulationResult& run) { return !decided(run); };
     if (r.surge && (undecided(r.surge->rated) || undecided(r.surge->overspeed))) {
@@ -240,8 +240,10 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                   "with " + with + "; massless spring " +
                       Fixed(100 * s.massless.min_contact_force_ratio, 2) + " %");
       judge(surge_jump, s.overspeed.longest_jump_rad / kDeg,
-            "at " + Fixed(r.overspeed_rpm, 1) + " rpm with " + with + "; massless spring " +
-                Fixed(s.massless_overspeed.longest_jump_rad / kDeg, 2) + " deg");
+            "at " + Fixed(r.overspeed_rpm, 1) + " rpm with " + with +
+                (report_notes ? "; massless spring " +
+                                    Fixed(s.massless_overspeed.longest_jump_rad / kDeg, 2) + " deg"
+                              : std::string()));
       // τ grows with the force (τ = k 8 F D / π d³): the full-lift stress scaled by the peak.
       const double f_full = r.spring->train.preload_N + r.spring->train.rate_N_m * law.Max(0).value;
       surge_stress.limit = h.allowable_stress_Pa * 1e-6;

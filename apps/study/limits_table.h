@@ -11,8 +11,9 @@ namespace needle {
 
 /// Judges every row of the limits table into `r.limits` (and `r.warnings`), from the check's
 /// results already in `r`; `cam_zero_crank_rad` is the crank angle of the cam's zero.
-/// `harmonics`: compute the lift's harmonics (`r.harmonics`, information; no row reads them).
+/// `report_notes`: the notes only the report reads — the lift's harmonics (`r.harmonics`) and
+/// the massless spring at f·n beside the surge jump row (false: not computed, not written).
 void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r,
-                 bool harmonics = true);
+                 bool report_notes = true);
 
 }  // namespace needle
