@@ -12,13 +12,14 @@ what fails (a spring sub-check, a limits row, the overspeed rule, ...), n_qs and
 0.1 rpm with the sweep's status. ctest runs --check (test `documented_verdicts`), so a verdict
 written in the docs that the program no longer gives fails the suite.
 """
-import argparse
 import json
 import os
 import pathlib
 import subprocess
 import sys
 import tempfile
+
+from doc_block import Block, WriteOrCheck
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "validation.md"
@@ -72,20 +73,13 @@ def Table(rows):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--needle", default=str(ROOT / "build" / "needle"))
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--write", action="store_true")
-    g.add_argument("--check", action="store_true")
-    a = p.parse_args()
-    text = DOC.read_text()
-    if BEGIN not in text or END not in text:
-        sys.exit("bundled_verdicts: %s: the markers of the table are missing" % DOC)
-    head, rest = text.split(BEGIN, 1)
-    old, tail = rest.split(END, 1)
+    a = WriteOrCheck(__doc__.split("\n")[0], lambda p: p.add_argument(
+        "--needle", default=str(ROOT / "build" / "needle")))
+    block = Block(DOC, BEGIN, END, "bundled_verdicts")
+    old = block.old
     new = Table(Rows(a.needle))
     if a.write:
-        DOC.write_text(head + BEGIN + "\n" + new + "\n" + END + tail)
+        block.Write(new)
         print("wrote the table of %s" % DOC.relative_to(ROOT))
         return 0
     documented = old.strip().splitlines()

@@ -9,10 +9,11 @@ lift_section.cc, section_reader.cc for the follower keys shared by [profile] and
 the unit suffixes are lib/units.cc's table. ctest runs --check (test `case_key_reference`):
 a key added to a reader and not to the docs, or documented and no longer read, fails it.
 """
-import argparse
 import pathlib
 import re
 import sys
+
+from doc_block import Block, WriteOrCheck
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "case-file.md"
@@ -86,19 +87,12 @@ def Keys():
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--write", action="store_true")
-    g.add_argument("--check", action="store_true")
-    a = p.parse_args()
-    text = DOC.read_text()
-    if BEGIN not in text or END not in text:
-        sys.exit("case_keys: %s: the markers of the reference are missing" % DOC)
-    head, rest = text.split(BEGIN, 1)
-    old, tail = rest.split(END, 1)
+    a = WriteOrCheck(__doc__.split("\n")[0])
+    block = Block(DOC, BEGIN, END, "case_keys")
+    old = block.old
     new = Keys()
     if a.write:
-        DOC.write_text(head + BEGIN + "\n" + new + "\n" + END + tail)
+        block.Write(new)
         print("wrote the key reference of docs/case-file.md")
         return 0
     old_rows, new_rows = set(old.strip().splitlines()), set(new.splitlines())

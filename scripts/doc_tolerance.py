@@ -14,6 +14,8 @@ import pathlib
 import subprocess
 import sys
 
+from doc_block import Block
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "commands.md"
 BEGIN = "<!-- tolerance-figures: begin (scripts/doc_tolerance.py) -->"
@@ -77,10 +79,7 @@ def main():
             "samples refused (with tangent ramps and 0.01 mm on the lift, the spline's start slope "
             "can flip or flatten, and a tangent ramp no longer takes up the play); a stated "
             "`ramp_deg` is the robust choice." % refused]
-    text = DOC.read_text()
-    head, rest = text.split(BEGIN, 1)
-    _, tail = rest.split(END, 1)
-    DOC.write_text(head + BEGIN + "\n" + "\n".join(out) + "\n" + END + tail)
+    Block(DOC, BEGIN, END, "doc_tolerance").Write("\n".join(out))
     print("wrote the tolerance figures of docs/commands.md")
 
 

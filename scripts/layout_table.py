@@ -8,10 +8,11 @@ largest file; written from the tree and checked against it.
                                               `layout_table`); line counts are reported, not
                                               checked, so an edit need not rewrite the page
 """
-import argparse
 import pathlib
 import re
 import sys
+
+from doc_block import Block, WriteOrCheck
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "architecture.md"
@@ -43,17 +44,12 @@ def Table(rows):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--write", action="store_true")
-    g.add_argument("--check", action="store_true")
-    a = p.parse_args()
-    text = DOC.read_text()
-    head, rest = text.split(BEGIN, 1)
-    old, tail = rest.split(END, 1)
+    a = WriteOrCheck(__doc__.split("\n")[0])
+    block = Block(DOC, BEGIN, END, "layout_table")
+    old = block.old
     rows = Rows()
     if a.write:
-        DOC.write_text(head + BEGIN + "\n" + Table(rows) + "\n" + END + tail)
+        block.Write(Table(rows))
         print("wrote the layout table of docs/architecture.md")
         return 0
     documented = {m.group(1): int(m.group(2))
