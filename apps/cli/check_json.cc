@@ -26,11 +26,6 @@ namespace needle {
 
 nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
                          const std::string& report_path) {
-  const std::optional<SpringCheckResult>& spring = result.spring;
-  const std::optional<SimulationResult>& run = result.run;
-  const std::optional<OverspeedResult>& sweep = result.sweep;
-  const std::optional<CamProfile>& profile = result.profile;
-  const LiftLawChoice& choice = result.choice;
   nlohmann::json j;
   j["case"] = c.path;
   j["speed_rpm"] = result.speed_rpm;
@@ -41,41 +36,16 @@ nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& r
   j["report"] = report_path;
   for (const FieldGroup& group : CheckFields(result)) PutFields(j[group.name], group.fields);
   j["kinematics"]["spline"] = SplineKindName(law.kind());
-  j["kinematics"]["spline_reason"] = choice.reason;
-  if (spring) {
-    nlohmann::json& s = j["spring"];
-    s["pass"] = spring->pass;
-    s["preload_ok"] = spring->preload_ok;
-    s["combustion_ok"] = spring->combustion_ok;
-    s["basu_ok"] = spring->basu_ok;
-    s["failures"] = spring->failures;
-  }
-  if (run) {
-    nlohmann::json& d = j["dynamics"];
-    d["liftoff"] = run->liftoff();
-    d["status"] = RunStatusName(run->status);
-    d["status_reason"] = run->status_reason;
-    d["episodes"] = run->episodes.size();
-    d["impacts"] = run->impacts.size();
-  }
-  if (sweep) j["overspeed"]["status"] = sweep->status;
+  if (result.spring) j["spring"]["failures"] = result.spring->failures;
   j["limits"] = nlohmann::json::array();
   for (const LimitRow& x : result.limits) {
-    nlohmann::json row = {{"name", x.key},        {"unit", x.unit}, {"at_most", x.at_most},
-                          {"verdict", x.verdict}, {"note", x.note}, {"source", x.source}};
-    // NaN (not judged) is null in JSON.
-    for (auto [k, v] : {std::pair<const char*, double>{"value", x.value},
-                        {"limit", x.limit},
-                        {"margin", x.margin}}) {
-      row[k] = std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-    }
-    j["limits"].push_back(row);
+    j["limits"].push_back(nlohmann::json::object());
+    PutFields(j["limits"].back(), LimitRowFields(x));
   }
   if (result.harmonics) {
     j["resonance"]["surge_modes_Hz"] = result.surge_modes_hz;
     j["resonance"]["highest_significant_order"] = result.harmonics->highest_significant_order;
   }
-  if (profile) j["profile"]["undercut"] = profile->undercut;
   return j;
 }
 

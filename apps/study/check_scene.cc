@@ -240,14 +240,27 @@ std::vector<FieldGroup> CheckFields(const CheckResult& r) {
   g.push_back({"kinematics",
                {{"max_lift", kMm, r.kinematics.max_lift_m, 3},
                 {"open", kDegree, r.kinematics.open_rad, 2},
-                {"close", kDegree, r.kinematics.close_rad, 2}}});
+                {"close", kDegree, r.kinematics.close_rad, 2},
+                TextField("spline_reason", r.choice.reason)}});
   if (r.spring) {
     g.push_back({"spring",
                  {{"preload", kN, r.spring->train.preload_N, 1},
                   {"gas_force", kN, r.spring->gas_force_N, 1},
-                  {"basu_preload", kN, r.spring->basu_preload_N, 1}}});
+                  {"basu_preload", kN, r.spring->basu_preload_N, 1},
+                  FlagField("pass", r.spring->pass),
+                  FlagField("preload_ok", r.spring->preload_ok),
+                  FlagField("combustion_ok", r.spring->combustion_ok),
+                  FlagField("basu_ok", r.spring->basu_ok)}});
   }
-  if (r.run) g.push_back({"dynamics", {{"run_end", kDegree, r.run->run_end_rad, 2}}});
+  if (r.run) {
+    g.push_back({"dynamics",
+                 {{"run_end", kDegree, r.run->run_end_rad, 2},
+                  FlagField("liftoff", r.run->liftoff()),
+                  TextField("status", RunStatusName(r.run->status)),
+                  TextField("status_reason", r.run->status_reason),
+                  CountField("episodes", static_cast<long long>(r.run->episodes.size())),
+                  CountField("impacts", static_cast<long long>(r.run->impacts.size()))}});
+  }
   if (r.sweep) {
     const OverspeedResult& s = *r.sweep;
     g.push_back({"overspeed",
@@ -255,15 +268,32 @@ std::vector<FieldGroup> CheckFields(const CheckResult& r) {
                   {"n_dyn", kRpm, s.n_dyn_rpm, 1, "liftoff_rpm_dynamic"},
                   {"overspeed", kRpm, r.overspeed_rpm, 1},
                   {"step", kRpm, s.step_rpm, 2},
-                  {"scanned_to", kRpm, s.scanned_to_rpm, 1}}});
+                  {"scanned_to", kRpm, s.scanned_to_rpm, 1},
+                  TextField("status", s.status)}});
   }
   if (r.profile) {
     g.push_back(
         {"profile",
          {{"min_profile_radius", kMm, r.profile->min_profile_radius_m, 2},
-          {"max_abs_pressure_angle", kDegree, std::abs(r.profile->max_pressure_angle_rad), 2}}});
+          {"max_abs_pressure_angle", kDegree, std::abs(r.profile->max_pressure_angle_rad), 2},
+          FlagField("undercut", r.profile->undercut)}});
   }
   return g;
+}
+
+std::vector<Field> LimitRowFields(const LimitRow& x) {
+  const auto finite = [](double v) {
+    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;  // not judged: none
+  };
+  return {TextField("name", x.key),
+          TextField("unit", x.unit),
+          FlagField("at_most", x.at_most),
+          TextField("verdict", x.verdict),
+          TextField("note", x.note),
+          TextField("source", x.source),
+          {"value", display::kNone, finite(x.value), 2},
+          {"limit", display::kNone, finite(x.limit), 2},
+          {"margin", display::kNone, finite(x.margin), 2}};
 }
 
 }  // namespace needle

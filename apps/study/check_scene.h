@@ -134,9 +134,14 @@ struct CheckResult {
   std::vector<std::string> skipped;         ///< one line per part not run, and why
 };
 
-/// The result's numbers, described once, by part (kinematics, spring, dynamics, overspeed,
-/// profile; a part the scene lacks is absent). Verdicts and names stay in the struct.
+/// The result's fields, described once, by part (kinematics, spring, dynamics, overspeed,
+/// profile; a part the scene lacks is absent): its numbers, and the verdicts, statuses and
+/// counts `check --json` shows (a tolerance study takes the numbers only).
 std::vector<FieldGroup> CheckFields(const CheckResult& r);
+
+/// One limits row as fields: its key (as `name`), unit, direction, verdict, note, source, and
+/// its value, limit and margin in the row's own unit (none when not judged).
+std::vector<Field> LimitRowFields(const LimitRow& row);
 
 /// Checks case `c` with lift law `law` (MakeLiftLaw(c)). Throws CaseError on a case that
 /// cannot be checked (a section that is present but invalid).

@@ -137,6 +137,7 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   }
   for (const FieldGroup& group : CheckFields(r)) {
     for (const Field& f : group.fields) {
+      if (f.kind != Field::Kind::kNumber || f.count) continue;  // the numbers only
       const auto v = f.Shown();
       s.outputs[group.name + "." + f.Key()] = v ? *v : NAN;
     }
