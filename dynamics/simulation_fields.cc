@@ -1,19 +1,17 @@
 // The run's field tables (dynamics/simulation.h): the result's scalars, its series' columns,
 // and its episodes, impacts and revolutions, each in the unit it is shown in.
-#include "dynamics/simulation.h"
-
 #include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
 
+#include "dynamics/simulation.h"
 #include "lib/result_fields.h"
 
 namespace needle {
 
 std::vector<Field> SimulationFields(const SimulationResult& r) {
   using namespace display;
-  const auto count = [](const char* name, long long n) { return CountField(name, n); };
   std::vector<Field> f = {
       {"max_lift", kMm, r.max_lift_m, 4},
       {"max_lift", kDegree, r.max_lift_rad, 2},
@@ -23,14 +21,14 @@ std::vector<Field> SimulationFields(const SimulationResult& r) {
   };
   if (r.min_coil_gap_m) {  // a chain of coil masses with a travel to solid
     f.push_back({"min_coil_gap", kMm, *r.min_coil_gap_m, 3});
-    f.push_back(count("coil_clashes", r.coil_clashes));
+    f.push_back(CountField("coil_clashes", r.coil_clashes));
   }
   f.push_back({"energy_residual", kNone,
                r.skipped ? std::nullopt : std::optional<double>(r.energy_residual), 3});
-  f.push_back(count("steps", r.stats.steps));
-  f.push_back(count("rhs_evaluations", r.stats.rhs_evaluations));
-  f.push_back(count("accumulations", r.stats.accumulations));
-  f.push_back(count("events", r.stats.events));
+  f.push_back(CountField("steps", r.stats.steps));
+  f.push_back(CountField("rhs_evaluations", r.stats.rhs_evaluations));
+  f.push_back(CountField("accumulations", r.stats.accumulations));
+  f.push_back(CountField("events", r.stats.events));
   f.push_back({"window_start", kDegree, r.window_start_rad, 2});
   f.push_back({"window_end", kDegree, r.window_end_rad, 2});
   f.push_back({"run_end", kDegree, r.run_end_rad, 2});
@@ -69,18 +67,15 @@ std::vector<Field> ImpactFields(const Impact& i, bool with_cycle) {
 
 std::vector<Field> CycleFields(const CycleSummary& c) {
   using namespace display;
-  const auto finite = [](double v) {
-    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
-  };
   return {CountField("index", c.index),
           {"start", kDegree, c.start_rad, 1},
           CountField("impacts", c.impacts),
           CountField("jumps", c.jumps),
           {"jump", kDegree, c.jump_rad, 3},
           {"max_gap", kMm, c.max_gap_m, 4},
-          {"end_lift", kMm, finite(c.end_lift_m), 6},
-          {"end_velocity", kMPerS, finite(c.end_velocity_m_s), 6},
-          {"energy_residual", kNone, finite(c.energy_residual), 3}};
+          {"end_lift", kMm, FiniteOrNone(c.end_lift_m), 6},
+          {"end_velocity", kMPerS, FiniteOrNone(c.end_velocity_m_s), 6},
+          {"energy_residual", kNone, FiniteOrNone(c.energy_residual), 3}};
 }
 
 }  // namespace needle

@@ -48,6 +48,16 @@ std::optional<double> Field::Shown() const {
   return unit.FromSi(*si);
 }
 
+std::optional<double> FiniteOrNone(double v) {
+  return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+}
+
+const Field& FieldAt(const std::vector<Field>& fields, const std::string& key) {
+  for (const Field& f : fields)
+    if (f.Key() == key) return f;
+  throw std::logic_error("no result field " + key);
+}
+
 Field CountField(std::string name, long long n) {
   return Field{std::move(name), display::kNone, static_cast<double>(n), 0, "", true};
 }

@@ -83,6 +83,11 @@ struct Field {
   std::optional<double> Shown() const;
 };
 
+/// `v` when finite, else none (unbounded or undefined: shown as null or "none").
+std::optional<double> FiniteOrNone(double v);
+/// The field named `key` (its Key()) from a table; throws std::logic_error when absent.
+const Field& FieldAt(const std::vector<Field>& fields, const std::string& key);
+
 /// A count (steps, impacts, an index); its key is `name`, written as an integer.
 Field CountField(std::string name, long long n);
 /// A string-valued field (a name, a reason); its key is `name`.

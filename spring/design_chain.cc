@@ -177,13 +177,10 @@ std::vector<Field> DesignFields(const DesignResult& r) {
 }
 
 std::vector<Field> PassageTrialFields(const PassageTrial& t) {
-  const auto finite = [](double v) {
-    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
-  };
   return {
       {"discharge_passage", display::kMm, t.passage_m, 1},
-      {"mean_lift", display::kMm, finite(t.mean_lift_m), 3},
-      {"max_lift", display::kMm, finite(t.max_lift_m), 3},
+      {"mean_lift", display::kMm, FiniteOrNone(t.mean_lift_m), 3},
+      {"max_lift", display::kMm, FiniteOrNone(t.max_lift_m), 3},
       FlagField("accepted", t.accepted),
   };
 }

@@ -115,9 +115,6 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
 
 std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {
   using namespace display;
-  const auto finite = [](double v) {
-    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
-  };
   return {
       {"basu_preload", kKgForce, r.basu_preload_N, 1},
       {"actual_preload", kKgForce, r.train.preload_N, 1},
@@ -128,14 +125,14 @@ std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {
       {"spring_rate", kNPerMm, r.train.rate_N_m, 2},
       {"min_quasi_static_force", kN, r.min_quasi_static.force_N, 1},
       {"min_quasi_static_force", kDegree, r.min_quasi_static.crank_rad, 2},
-      {"n_qs", kRpm, finite(r.liftoff_rpm_quasi_static), 1, "liftoff_rpm_quasi_static"},
+      {"n_qs", kRpm, FiniteOrNone(r.liftoff_rpm_quasi_static), 1, "liftoff_rpm_quasi_static"},
       {"required_preload", kN, r.required_preload_N, 1},
       {"required_preload", kKgForce, r.required_preload_N, 2},
-      {"preload_margin", kPercent, finite(r.preload_margin_percent), 1},
+      {"preload_margin", kPercent, FiniteOrNone(r.preload_margin_percent), 1},
       {"gas_force", kN, r.gas_force_N, 1},
       TextField("gas_source", r.gas_source),
       FlagField("combustion_ok", r.combustion_ok),
-      {"combustion_margin", kPercent, finite(r.combustion_margin_percent), 1},
+      {"combustion_margin", kPercent, FiniteOrNone(r.combustion_margin_percent), 1},
       {"basu_tolerance", kPercent, r.basu_tolerance_percent, 1},
       FlagField("basu_ok", r.basu_ok),
       FlagField("preload_ok", r.preload_ok),

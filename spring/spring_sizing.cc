@@ -365,9 +365,8 @@ std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& sp
                           {"mass", kKg, s.mass_kg, 3},
                           FlagField("pass", s.pass)};
   if (s.check) {
-    const double n_f = s.check->fatigue.goodman_safety_factor;
-    f.push_back({"fatigue_safety_factor", kNone,
-                 std::isfinite(n_f) ? std::optional<double>(n_f) : std::nullopt, 2});
+    f.push_back(
+        {"fatigue_safety_factor", kNone, FiniteOrNone(s.check->fatigue.goodman_safety_factor), 2});
   }
   return f;
 }

@@ -37,11 +37,7 @@ nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& r
   for (const FieldGroup& group : CheckFields(result)) PutFields(j[group.name], group.fields);
   j["kinematics"]["spline"] = SplineKindName(law.kind());
   if (result.spring) j["spring"]["failures"] = result.spring->failures;
-  j["limits"] = nlohmann::json::array();
-  for (const LimitRow& x : result.limits) {
-    j["limits"].push_back(nlohmann::json::object());
-    PutFields(j["limits"].back(), LimitRowFields(x));
-  }
+  j["limits"] = RecordList(result.limits, LimitRowFields);
   if (result.harmonics) {
     j["resonance"]["surge_modes_Hz"] = result.surge_modes_hz;
     j["resonance"]["highest_significant_order"] = result.harmonics->highest_significant_order;

@@ -117,20 +117,12 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
     j["skipped_dynamics"] = r.skipped;
     j["liftoff"] = r.liftoff();
     const bool with_cycle = r.cycles_asked > 1;
-    const auto records = [](const auto& items, const auto& fields_of) {
-      nlohmann::json list = nlohmann::json::array();
-      for (const auto& item : items) {
-        list.push_back(nlohmann::json::object());
-        PutFields(list.back(), fields_of(item));
-      }
-      return list;
-    };
     j["episodes"] =
-        records(r.episodes, [&](const Episode& e) { return EpisodeFields(e, with_cycle); });
+        RecordList(r.episodes, [&](const Episode& e) { return EpisodeFields(e, with_cycle); });
     const nlohmann::json impacts =
-        records(r.impacts, [&](const Impact& i) { return ImpactFields(i, with_cycle); });
+        RecordList(r.impacts, [&](const Impact& i) { return ImpactFields(i, with_cycle); });
     if (with_cycle) {
-      j["cycles"] = records(r.cycles, CycleFields);
+      j["cycles"] = RecordList(r.cycles, CycleFields);
       j["cycles_asked"] = r.cycles_asked;
       j["period_cycles"] =
           r.period_cycles > 0 ? nlohmann::json(r.period_cycles) : nlohmann::json(nullptr);
@@ -235,12 +227,7 @@ CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
     PutFields(j, OverspeedFields(r));
     j["cycles"] = opt.simulation.cycles;
     j["steady_state"] = opt.simulation.steady_state;
-    nlohmann::json rows = nlohmann::json::array();
-    for (const OverspeedRow& row : r.rows) {
-      rows.push_back(nlohmann::json::object());
-      PutFields(rows.back(), OverspeedRowFields(row));
-    }
-    j["rows"] = rows;
+    j["rows"] = RecordList(r.rows, OverspeedRowFields);
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'

@@ -52,13 +52,6 @@ inline nlohmann::json RowObject(const std::vector<Column>& columns,
   return row;
 }
 
-/// The field named `key` (its Key()) from a table; throws std::logic_error when absent.
-inline const Field& FieldAt(const std::vector<Field>& fields, const std::string& key) {
-  for (const Field& f : fields)
-    if (f.Key() == key) return f;
-  throw std::logic_error("no result field " + key);
-}
-
 /// "value" with the field's decimals (no unit; a count as an integer; a list space separated),
 /// or "none".
 inline std::string ValueText(const Field& f) {
@@ -80,6 +73,17 @@ inline std::string FieldText(const Field& f) {
   const auto v = f.Shown();
   if (!v) return "none";
   return f.unit.text[0] == '\0' ? Fixed(*v, f.decimals) : Fixed(*v, f.decimals) + " " + f.unit.text;
+}
+
+/// A JSON array of records, one object per item, each from its field table `fields_of(item)`.
+template <class Items, class FieldsOf>
+nlohmann::json RecordList(const Items& items, const FieldsOf& fields_of) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& item : items) {
+    list.push_back(nlohmann::json::object());
+    PutFields(list.back(), fields_of(item));
+  }
+  return list;
 }
 
 /// FieldText of the field named `key` in `fields`.

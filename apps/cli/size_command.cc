@@ -14,7 +14,6 @@
 namespace needle {
 namespace {
 
-
 nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space) {
   nlohmann::json j = nlohmann::json::object();
   PutFields(j, SizedSpringFields(s, space));

@@ -177,12 +177,7 @@ CommandOutput ComputeDesign(const DesignInputs& in, const DesignCommandOptions& 
     j["speed_rpm"] = in.speed_rpm;
     j["atomizer"] = in.atomizer;
     PutFields(j, DesignFields(r));
-    nlohmann::json trials = nlohmann::json::array();
-    for (const PassageTrial& trial : r.trials) {
-      trials.push_back(nlohmann::json::object());
-      PutFields(trials.back(), PassageTrialFields(trial));
-    }
-    j["passage_trials"] = trials;
+    j["passage_trials"] = RecordList(r.trials, PassageTrialFields);
     nlohmann::json table = nlohmann::json::array();
     for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i)
       table.push_back(

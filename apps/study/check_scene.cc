@@ -233,9 +233,6 @@ CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
 
 std::vector<FieldGroup> CheckFields(const CheckResult& r) {
   using namespace display;
-  const auto finite = [](double v) {
-    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
-  };
   std::vector<FieldGroup> g;
   g.push_back({"kinematics",
                {{"max_lift", kMm, r.kinematics.max_lift_m, 3},
@@ -264,7 +261,7 @@ std::vector<FieldGroup> CheckFields(const CheckResult& r) {
   if (r.sweep) {
     const OverspeedResult& s = *r.sweep;
     g.push_back({"overspeed",
-                 {{"n_qs", kRpm, finite(r.n_qs_rpm), 1, "liftoff_rpm_quasi_static"},
+                 {{"n_qs", kRpm, FiniteOrNone(r.n_qs_rpm), 1, "liftoff_rpm_quasi_static"},
                   {"n_dyn", kRpm, s.n_dyn_rpm, 1, "liftoff_rpm_dynamic"},
                   {"overspeed", kRpm, r.overspeed_rpm, 1},
                   {"step", kRpm, s.step_rpm, 2},
@@ -282,18 +279,15 @@ std::vector<FieldGroup> CheckFields(const CheckResult& r) {
 }
 
 std::vector<Field> LimitRowFields(const LimitRow& x) {
-  const auto finite = [](double v) {
-    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;  // not judged: none
-  };
   return {TextField("name", x.key),
           TextField("unit", x.unit),
           FlagField("at_most", x.at_most),
           TextField("verdict", x.verdict),
           TextField("note", x.note),
           TextField("source", x.source),
-          {"value", display::kNone, finite(x.value), 2},
-          {"limit", display::kNone, finite(x.limit), 2},
-          {"margin", display::kNone, finite(x.margin), 2}};
+          {"value", display::kNone, FiniteOrNone(x.value), 2},
+          {"limit", display::kNone, FiniteOrNone(x.limit), 2},
+          {"margin", display::kNone, FiniteOrNone(x.margin), 2}};
 }
 
 }  // namespace needle

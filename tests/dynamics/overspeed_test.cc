@@ -389,15 +389,10 @@ TEST(OverspeedFieldsTest, RowsAndOutcomeShowTheirUnits) {
   row.max_gap_m = 1e-4;
   row.lifts_off = true;
   const std::vector<Field> f = OverspeedRowFields(row);
-  const auto at = [](const std::vector<Field>& fields, const std::string& key) -> const Field& {
-    for (const Field& x : fields)
-      if (x.Key() == key) return x;
-    throw std::logic_error("no field " + key);
-  };
-  EXPECT_NEAR(*at(f, "jump_deg").Shown(), 2.0, 1e-14);
-  EXPECT_NEAR(*at(f, "max_gap_mm").Shown(), 0.1, 1e-15);
-  EXPECT_TRUE(at(f, "lifts_off").flag);
-  EXPECT_EQ(at(f, "status").text, "complete");
+  EXPECT_NEAR(*FieldAt(f, "jump_deg").Shown(), 2.0, 1e-14);
+  EXPECT_NEAR(*FieldAt(f, "max_gap_mm").Shown(), 0.1, 1e-15);
+  EXPECT_TRUE(FieldAt(f, "lifts_off").flag);
+  EXPECT_EQ(FieldAt(f, "status").text, "complete");
   const std::vector<double> si = OverspeedRowSi(row);
   std::vector<std::string> keys;
   for (const Column& c : OverspeedColumns()) keys.push_back(c.SiKey());
@@ -411,9 +406,9 @@ TEST(OverspeedFieldsTest, RowsAndOutcomeShowTheirUnits) {
   r.bracket_low_rpm = 900.0;
   r.bracket_high_rpm = 905.0;
   const std::vector<Field> o = OverspeedFields(r);
-  EXPECT_FALSE(at(o, "liftoff_rpm_dynamic").Shown().has_value());
-  EXPECT_EQ(at(o, "bracket_rpm").list_si, (std::vector<double>{900.0, 905.0}));
-  EXPECT_EQ(at(o, "status").text, "none");
+  EXPECT_FALSE(FieldAt(o, "liftoff_rpm_dynamic").Shown().has_value());
+  EXPECT_EQ(FieldAt(o, "bracket_rpm").list_si, (std::vector<double>{900.0, 905.0}));
+  EXPECT_EQ(FieldAt(o, "status").text, "none");
 }
 
 // A start guess (OverspeedOptions::start_rpm: a tolerance sample starts at its nominal's n_dyn)

@@ -135,15 +135,10 @@ TEST(CamProfileTest, FieldsShowWhatTheFollowerAndProfileHave) {
   const CamProfile p = MakeCamProfile(s, g, 720);
   const double omega = 50.0;
   const std::vector<Field> f = CamProfileFields(p, omega);
-  const auto at = [&](const std::string& key) -> const Field& {
-    for (const Field& x : f)
-      if (x.Key() == key) return x;
-    throw std::logic_error("no field " + key);
-  };
-  EXPECT_NEAR(*at("min_profile_radius_mm").Shown(), R * 1e3, 1e-6);
-  EXPECT_EQ(*at("max_sliding_speed_m_s").Shown(), p.max_sliding_m_rad * omega);
-  EXPECT_EQ(*at("min_entrainment_speed_m_s").Shown(), p.min_entrainment_m_rad * omega);
-  EXPECT_FALSE(at("undercut").flag);
+  EXPECT_NEAR(*FieldAt(f, "min_profile_radius_mm").Shown(), R * 1e3, 1e-6);
+  EXPECT_EQ(*FieldAt(f, "max_sliding_speed_m_s").Shown(), p.max_sliding_m_rad * omega);
+  EXPECT_EQ(*FieldAt(f, "min_entrainment_speed_m_s").Shown(), p.min_entrainment_m_rad * omega);
+  EXPECT_FALSE(FieldAt(f, "undercut").flag);
   std::vector<std::string> si_keys;
   for (const Column& c : ProfileColumns()) si_keys.push_back(c.SiKey());
   EXPECT_EQ(si_keys, (std::vector<std::string>{"cam_rad", "x_m", "y_m", "pressure_angle_rad",

@@ -117,12 +117,7 @@ TEST(PaperKinematicsTest, SummaryFieldsShowTheSummaryInTheirUnits) {
   const LiftLaw law = MakeLiftLaw(c);
   const KinematicsSummary s = Kinematics(law, c.engine.speed_rpm).Summarize();
   const std::vector<Field> fields = KinematicsFields(s);
-  const auto shown = [&](const std::string& key) {
-    for (const Field& f : fields)
-      if (f.Key() == key) return f.Shown();
-    ADD_FAILURE() << "no field " << key;
-    return std::optional<double>();
-  };
+  const auto shown = [&](const std::string& key) { return FieldAt(fields, key).Shown(); };
   EXPECT_EQ(*shown("max_lift_mm"), s.max_lift_m * 1e3);
   EXPECT_EQ(*shown("max_lift_deg"), s.max_lift_rad / kDeg);
   EXPECT_EQ(*shown("injection_period_s"), s.injection_period_s);

@@ -102,5 +102,21 @@ TEST(ResultFieldsTest, KinematicsColumnsAreKeyedByTheirUnits) {
   EXPECT_TRUE(std::isnan(row[5]));
 }
 
+// A table's field by key, and a non-finite value as none: the lookup names the key it misses.
+TEST(ResultFieldsTest, FieldAtFindsByKeyAndFiniteOrNoneDropsTheUnbounded) {
+  const std::vector<Field> fields = {{"max_lift", display::kMm, 1e-3}, CountField("steps", 7)};
+  EXPECT_EQ(*FieldAt(fields, "max_lift_mm").Shown(), 1.0);
+  EXPECT_TRUE(FieldAt(fields, "steps").count);
+  try {
+    FieldAt(fields, "max_lift_m");
+    FAIL() << "no throw";
+  } catch (const std::logic_error& e) {
+    EXPECT_STREQ(e.what(), "no result field max_lift_m");
+  }
+  EXPECT_EQ(*FiniteOrNone(2.5), 2.5);
+  EXPECT_FALSE(FiniteOrNone(INFINITY).has_value());
+  EXPECT_FALSE(FiniteOrNone(std::nan("")).has_value());
+}
+
 }  // namespace
 }  // namespace needle

@@ -170,22 +170,17 @@ TEST(DesignChainTest, FieldsShowTheChainInBasusUnits) {
   DesignInputs in = LoadDesignInputs(kCases + "basu-example1-engine.toml");
   const DesignResult r = RunDesignChain(in);
   const std::vector<Field> f = DesignFields(r);
-  const auto at = [&](const std::vector<Field>& fields, const std::string& key) -> const Field& {
-    for (const Field& x : fields)
-      if (x.Key() == key) return x;
-    throw std::logic_error("no field " + key);
-  };
-  EXPECT_EQ(*at(f, "max_lift_mm").Shown(), r.max_lift_m * 1e3);
-  EXPECT_EQ(*at(f, "mean_cross_section_mm2").Shown(), r.mean_cross_section_m2 * 1e6);
-  EXPECT_NEAR(*at(f, "spring_preload_kgf").Shown(), 812.2, 0.05);
-  EXPECT_TRUE(at(f, "nozzle_holes").count);
-  EXPECT_EQ(*at(f, "nozzle_holes").Shown(), r.nozzle_holes);
+  EXPECT_EQ(*FieldAt(f, "max_lift_mm").Shown(), r.max_lift_m * 1e3);
+  EXPECT_EQ(*FieldAt(f, "mean_cross_section_mm2").Shown(), r.mean_cross_section_m2 * 1e6);
+  EXPECT_NEAR(*FieldAt(f, "spring_preload_kgf").Shown(), 812.2, 0.05);
+  EXPECT_TRUE(FieldAt(f, "nozzle_holes").count);
+  EXPECT_EQ(*FieldAt(f, "nozzle_holes").Shown(), r.nozzle_holes);
   ASSERT_EQ(r.trials.size(), 3u);
-  EXPECT_FALSE(at(PassageTrialFields(r.trials[0]), "mean_lift_mm").Shown().has_value());
-  EXPECT_EQ(*at(PassageTrialFields(r.trials[1]), "max_lift_mm").Shown(),
+  EXPECT_FALSE(FieldAt(PassageTrialFields(r.trials[0]), "mean_lift_mm").Shown().has_value());
+  EXPECT_EQ(*FieldAt(PassageTrialFields(r.trials[1]), "max_lift_mm").Shown(),
             r.trials[1].max_lift_m * 1e3);
-  EXPECT_FALSE(at(PassageTrialFields(r.trials[1]), "accepted").flag);
-  EXPECT_TRUE(at(PassageTrialFields(r.trials[2]), "accepted").flag);
+  EXPECT_FALSE(FieldAt(PassageTrialFields(r.trials[1]), "accepted").flag);
+  EXPECT_TRUE(FieldAt(PassageTrialFields(r.trials[2]), "accepted").flag);
 }
 
 }  // namespace

@@ -111,19 +111,14 @@ TEST(HelicalSpringTest, FieldsShowTheCheckInItsUnits) {
   const HelicalSpringCheck c =
       CheckHelicalSpring(Bhandari101(), 1250.0, 0.0, 600, EngineCycle::kFourStroke);
   const std::vector<Field> f = HelicalFields(c);
-  const auto at = [&](const std::string& key) -> const Field& {
-    for (const Field& x : f)
-      if (x.Key() == key) return x;
-    throw std::logic_error("no field " + key);
-  };
-  EXPECT_NEAR(*at("rate_N_mm").Shown(), 81370.0 * 2401.0 / (8.0 * 74088.0 * 8.0), 1e-9);
-  EXPECT_NEAR(*at("solid_length_mm").Shown(), 70.0, 1e-9);
-  EXPECT_NEAR(*at("clearance_full_lift_mm").Shown(), 9.0, 1e-6);
-  EXPECT_EQ(*at("stress_preload_MPa").Shown(), c.stress_preload_Pa * 1e-6);
-  EXPECT_EQ(at("stress_correction").text, c.wahl ? "wahl" : "bergstrasser");
-  EXPECT_EQ(at("stress_ok").flag, c.stress_ok);
-  EXPECT_EQ(at("pass").flag, c.pass());
-  EXPECT_EQ(*at("surge_hz").Shown(), c.surge_hz);
+  EXPECT_NEAR(*FieldAt(f, "rate_N_mm").Shown(), 81370.0 * 2401.0 / (8.0 * 74088.0 * 8.0), 1e-9);
+  EXPECT_NEAR(*FieldAt(f, "solid_length_mm").Shown(), 70.0, 1e-9);
+  EXPECT_NEAR(*FieldAt(f, "clearance_full_lift_mm").Shown(), 9.0, 1e-6);
+  EXPECT_EQ(*FieldAt(f, "stress_preload_MPa").Shown(), c.stress_preload_Pa * 1e-6);
+  EXPECT_EQ(FieldAt(f, "stress_correction").text, c.wahl ? "wahl" : "bergstrasser");
+  EXPECT_EQ(FieldAt(f, "stress_ok").flag, c.stress_ok);
+  EXPECT_EQ(FieldAt(f, "pass").flag, c.pass());
+  EXPECT_EQ(*FieldAt(f, "surge_hz").Shown(), c.surge_hz);
 }
 
 }  // namespace

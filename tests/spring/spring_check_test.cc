@@ -17,30 +17,24 @@ namespace {
 
 const std::string kCases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
 
-const Field& At(const std::vector<Field>& fields, const std::string& key) {
-  for (const Field& f : fields)
-    if (f.Key() == key) return f;
-  throw std::logic_error("no field " + key);
-}
-
 TEST(SpringCheckTest, FieldsShowTheCheckInKgfAndPercent) {
   const Case c = LoadCase(kCases + "basu-example1.toml");
   const LiftLaw law = MakeLiftLaw(c);
   SpringCheckResult r = CheckSpring(c, law, c.engine.speed_rpm);
   std::vector<Field> f = SpringCheckFields(r);
-  EXPECT_EQ(*At(f, "actual_preload_kgf").Shown(), r.train.preload_N / kKgf);
+  EXPECT_EQ(*FieldAt(f, "actual_preload_kgf").Shown(), r.train.preload_N / kKgf);
   ASSERT_TRUE(r.basu_preload_N.has_value());
-  EXPECT_EQ(*At(f, "deviation_percent").Shown(), *r.basu_deviation_percent);
-  EXPECT_EQ(*At(f, "spring_rate_N_mm").Shown(), r.train.rate_N_m * 1e-3);
-  EXPECT_EQ(*At(f, "liftoff_rpm_quasi_static").Shown(), r.liftoff_rpm_quasi_static);
-  EXPECT_EQ(At(f, "pass").flag, r.pass);
-  EXPECT_EQ(At(f, "gas_source").text, r.gas_source);
+  EXPECT_EQ(*FieldAt(f, "deviation_percent").Shown(), *r.basu_deviation_percent);
+  EXPECT_EQ(*FieldAt(f, "spring_rate_N_mm").Shown(), r.train.rate_N_m * 1e-3);
+  EXPECT_EQ(*FieldAt(f, "liftoff_rpm_quasi_static").Shown(), r.liftoff_rpm_quasi_static);
+  EXPECT_EQ(FieldAt(f, "pass").flag, r.pass);
+  EXPECT_EQ(FieldAt(f, "gas_source").text, r.gas_source);
   // Unbounded: a needle that never decelerates has no n_qs, nothing required has no margin.
   r.liftoff_rpm_quasi_static = INFINITY;
   r.preload_margin_percent = INFINITY;
   f = SpringCheckFields(r);
-  EXPECT_FALSE(At(f, "liftoff_rpm_quasi_static").Shown().has_value());
-  EXPECT_FALSE(At(f, "preload_margin_percent").Shown().has_value());
+  EXPECT_FALSE(FieldAt(f, "liftoff_rpm_quasi_static").Shown().has_value());
+  EXPECT_FALSE(FieldAt(f, "preload_margin_percent").Shown().has_value());
 }
 
 }  // namespace

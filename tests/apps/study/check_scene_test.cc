@@ -80,17 +80,12 @@ TEST(CheckSceneTest, FieldsDescribeTheNumbersOnce) {
   EXPECT_EQ(g[3].fields[1].Key(), "liftoff_rpm_dynamic");
   EXPECT_EQ(*g[3].fields[1].Shown(), *r.sweep->n_dyn_rpm);
   // The verdicts and statuses --json shows are fields too, beside the numbers.
-  const auto at = [](const FieldGroup& group, const std::string& key) -> const Field& {
-    for (const Field& f : group.fields)
-      if (f.Key() == key) return f;
-    throw std::logic_error("no field " + key);
-  };
-  EXPECT_EQ(at(g[1], "pass").flag, r.spring->pass);
-  EXPECT_EQ(at(g[2], "status").text, RunStatusName(r.run->status));
-  EXPECT_EQ(*at(g[2], "impacts").Shown(), static_cast<double>(r.run->impacts.size()));
-  EXPECT_TRUE(at(g[2], "impacts").count);
-  EXPECT_EQ(at(g[3], "status").text, r.sweep->status);
-  EXPECT_EQ(at(g[4], "undercut").flag, r.profile->undercut);
+  EXPECT_EQ(FieldAt(g[1].fields, "pass").flag, r.spring->pass);
+  EXPECT_EQ(FieldAt(g[2].fields, "status").text, RunStatusName(r.run->status));
+  EXPECT_EQ(*FieldAt(g[2].fields, "impacts").Shown(), static_cast<double>(r.run->impacts.size()));
+  EXPECT_TRUE(FieldAt(g[2].fields, "impacts").count);
+  EXPECT_EQ(FieldAt(g[3].fields, "status").text, r.sweep->status);
+  EXPECT_EQ(FieldAt(g[4].fields, "undercut").flag, r.profile->undercut);
   // A limits row: its verdict and source as text, a value not judged as none.
   ASSERT_FALSE(r.limits.empty());
   LimitRow row = r.limits[0];
