@@ -4,7 +4,7 @@
     python3 scripts/case_keys.py --write   rewrites the reference in docs/case-file.md
     python3 scripts/case_keys.py --check   exit 1 when the reference and the readers differ
 
-The keys are what each section reader asks its SectionReader for (apps/scene/*_sections.cc,
+The keys are what each section reader asks its SectionReader for (apps/case/*_sections.cc,
 lift_section.cc, section_reader.cc for the follower keys shared by [profile] and [limits]);
 the unit suffixes are lib/units.cc's table. ctest runs --check (test `case_key_reference`):
 a key added to a reader and not to the docs, or documented and no longer read, fails it.
@@ -19,9 +19,9 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "case-file.md"
 BEGIN = "<!-- case-keys: begin (scripts/case_keys.py --write) -->"
 END = "<!-- case-keys: end -->"
-READERS = ["apps/scene/spring_sections.cc", "apps/scene/run_sections.cc",
-           "apps/scene/lift_section.cc", "apps/scene/section_reader.cc",
-           "apps/scene/sizing_section.cc"]
+READERS = ["apps/case/spring_sections.cc", "apps/case/run_sections.cc",
+           "apps/case/lift_section.cc", "apps/case/section_reader.cc",
+           "apps/case/sizing_section.cc"]
 # Reader function -> the section(s) it reads.
 SECTIONS = {"ReadNeedle": ["needle"], "ReadHelical": ["spring"], "ReadSpring": ["spring"],
             "ReadLimits": ["limits"], "ReadEngine": ["engine"], "ReadTrain": ["train"],

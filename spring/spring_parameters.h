@@ -2,7 +2,7 @@
 /// @file
 /// The spring module's own parameters: the moving parts reduced to the needle, the valve
 /// spring with its sizing rule, and a helical spring's geometry and material. Every field has
-/// a default; SI throughout. The case-file layer (apps/scene/case_file.h) fills them from a
+/// a default; SI throughout. The case-file layer (apps/case/case_file.h) fills them from a
 /// case's [needle] and [spring].
 
 #include <optional>

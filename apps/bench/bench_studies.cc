@@ -11,8 +11,8 @@
 
 #include "apps/bench/bench_common.h"
 #include "apps/bench/work_precision.h"
-#include "apps/scene/case_file.h"
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_file.h"
+#include "apps/case/case_scene.h"
 #include "apps/study/check_scene.h"
 #include "apps/study/spring_sizing_scene.h"
 #include "apps/study/tolerance_study.h"

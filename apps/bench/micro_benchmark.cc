@@ -3,8 +3,8 @@
 //   ./build/needle-micro-bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
-#include "apps/scene/case_file.h"
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_file.h"
+#include "apps/case/case_scene.h"
 #include "dynamics/simulation.h"
 #include "lib/kinematics.h"
 

@@ -10,7 +10,7 @@
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "lib/output.h"

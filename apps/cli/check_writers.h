@@ -8,7 +8,7 @@
 #include <string>
 
 #include "apps/cli/report.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "apps/study/check_scene.h"
 
 namespace needle {

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "apps/scene/case_file.h"
-#include "apps/scene/plausible_ranges.h"
+#include "apps/case/case_file.h"
+#include "apps/case/plausible_ranges.h"
 
 namespace needle {
 
@@ -38,7 +38,7 @@ inline CLI::Validator NumberIn(double lo, double hi, const std::string& what) {
       what, "");
 }
 
-/// A number in a plausible range of apps/scene/plausible_ranges.h, in its shown unit.
+/// A number in a plausible range of apps/case/plausible_ranges.h, in its shown unit.
 inline CLI::Validator InRange(const PlausibleRange& r, const std::string& what) {
   return NumberIn(r.lo / r.unit_si, r.hi / r.unit_si, what);
 }

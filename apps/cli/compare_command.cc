@@ -8,7 +8,7 @@
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 
 namespace needle {
 

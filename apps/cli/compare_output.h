@@ -13,7 +13,7 @@
 
 #include "apps/cli/compare_command.h"
 #include "apps/cli/report.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "apps/study/check_scene.h"
 
 namespace needle {

@@ -13,7 +13,7 @@
 #include "apps/cli/command_output.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"

@@ -10,7 +10,7 @@
 
 #include "apps/cli/command_output.h"
 #include "apps/cli/output_format.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 
 namespace needle {
 

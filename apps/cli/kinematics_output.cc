@@ -9,7 +9,7 @@
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/result_writers.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

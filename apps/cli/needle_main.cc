@@ -17,7 +17,7 @@
 #include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/output.h"
 #include "lib/result_fields.h"
 

@@ -14,7 +14,7 @@
 
 #include "apps/cli/output_format.h"
 #include "apps/cli/report.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "apps/study/tolerance_study.h"
 
 namespace needle {

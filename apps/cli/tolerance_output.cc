@@ -11,7 +11,7 @@
 #include "apps/cli/report.h"
 #include "apps/cli/result_writers.h"
 #include "apps/cli/tolerance_command.h"
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "apps/study/tolerance_study.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "apps/cli/command_output.h"
-#include "apps/scene/case_file.h"
-#include "apps/scene/plausible_ranges.h"
+#include "apps/case/case_file.h"
+#include "apps/case/plausible_ranges.h"
 #include "apps/study/tolerance_study.h"
 #include "lib/case_error.h"
 

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/cam_profile.h"

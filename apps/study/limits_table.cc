@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "apps/scene/case_profile.h"
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_profile.h"
+#include "apps/case/case_scene.h"
 #include "lib/output.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"

@@ -3,7 +3,7 @@
 /// Internal to the study floor: the limits table of `needle check` (docs/springs.md "The limits
 /// table", docs/model.md §8), one row per limit, judged where the scene has what it needs.
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "apps/study/check_scene.h"
 #include "lib/lift_law.h"
 

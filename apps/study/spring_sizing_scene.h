@@ -5,7 +5,7 @@
 /// CheckScene, the code of `needle check` (the dynamics at the rated speed, the overspeed
 /// sweep, the spring as coil masses, the limits table); the winner is the best that passes.
 ///
-/// The space comes from [sizing] (apps/scene/sizing_section.h); what it leaves out, from the
+/// The space comes from [sizing] (apps/case/sizing_section.h); what it leaves out, from the
 /// case's own spring: its installed length L₁ = L₀ − P₀/k as the largest, its outer and inner
 /// diameters as bounds, its wire (a named grade: that grade's family, EN 10270-1 or -2; else the
 /// case's R_m and G at every diameter), its ends, stress correction and peening. The duty is the
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "apps/study/check_scene.h"
 #include "spring/spring_sizing.h"
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"
 #include "lib/result_fields.h"

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 
 namespace needle {
 

@@ -2,7 +2,7 @@
 // rated speed and prints the largest lift in mm.
 #include <cstdio>
 
-#include "needle/apps/scene/case_scene.h"
+#include "needle/apps/case/case_scene.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;

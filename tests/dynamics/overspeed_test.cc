@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 #include "spring/quasi_static.h"
 
 namespace needle {

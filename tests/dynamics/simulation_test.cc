@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 #include "dynamics/overspeed.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"

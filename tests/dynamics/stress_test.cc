@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/units.h"

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <string>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/lift_data.h"
 
 namespace {

@@ -17,7 +17,7 @@
 #include <random>
 #include <sstream>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"

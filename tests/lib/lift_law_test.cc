@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/cam_laws.h"
 #include "lib/kinematics.h"
 #include "lib/units.h"

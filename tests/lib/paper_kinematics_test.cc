@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/units.h"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/units.h"
 
 namespace needle {

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "apps/scene/case_file.h"
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_file.h"
+#include "apps/case/case_scene.h"
 #include "lib/units.h"
 
 namespace needle {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 
 namespace needle {
 namespace {

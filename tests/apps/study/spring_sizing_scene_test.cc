@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 #include "lib/input_file.h"
 #include "lib/kinematics.h"
 #include "lib/units.h"

@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 #include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/units.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 #include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/units.h"

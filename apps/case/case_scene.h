@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "dynamics/simulation.h"
 #include "spring/spring_check.h"
 

@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "apps/scene/case_file.h"
-#include "apps/scene/plausible_ranges.h"
+#include "apps/case/case_file.h"
+#include "apps/case/plausible_ranges.h"
 #include "lib/case_error.h"
 #include "lib/follower.h"
 #include "lib/units.h"
@@ -159,7 +159,7 @@ class SectionReader {
   const std::string& last_key() const { return last_key_; }
 
   // Every key must have been read, and every value read must lie in its plausible range
-  // (apps/scene/plausible_ranges.h, the one table of them). The section's own checks (a sign,
+  // (apps/case/plausible_ranges.h, the one table of them). The section's own checks (a sign,
   // a missing partner) ran as each key was read, so their messages come first.
   void Finish() const {
     if (!table_) return;

@@ -1,4 +1,4 @@
-#include "apps/scene/case_profile.h"
+#include "apps/case/case_profile.h"
 
 #include <memory>
 #include <stdexcept>

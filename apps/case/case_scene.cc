@@ -1,4 +1,4 @@
-#include "apps/scene/case_scene.h"
+#include "apps/case/case_scene.h"
 
 #include <cmath>
 #include <memory>

@@ -7,8 +7,8 @@
 #include <set>
 #include <sstream>
 
-#include "apps/scene/plausible_ranges.h"
-#include "apps/scene/section_reader.h"
+#include "apps/case/plausible_ranges.h"
+#include "apps/case/section_reader.h"
 #include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/input_file.h"

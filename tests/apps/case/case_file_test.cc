@@ -1,6 +1,6 @@
 // Case files: every bundled case loads; every kind of bad input gives its exact one-line
 // message naming the file, the key and what was expected.
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "apps/scene/plausible_ranges.h"
+#include "apps/case/plausible_ranges.h"
 #include "lib/units.h"
 #include "spring/wire_material.h"
 
@@ -555,7 +555,7 @@ TEST(CaseFileTest, TheSpringsCoilClash) {
   EXPECT_TRUE(ParseCase(spring + "[train]\ncontact = \"rigid\"\n", "t.toml").spring->coil_clash);
 }
 
-// Issue "plausible ranges": every physical key has one (apps/scene/plausible_ranges.h), and a
+// Issue "plausible ranges": every physical key has one (apps/case/plausible_ranges.h), and a
 // value outside is one line naming the file, the key as written, the value and the range.
 const std::string kEveryPhysicalKey = R"(
 [engine]

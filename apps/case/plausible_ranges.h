@@ -7,7 +7,7 @@
 /// for minutes or prints numbers 120 digits long. A value outside is one line naming the file
 /// and key (or the option), the value and the range; exit 2.
 ///
-/// This file is the one table. The case reader (apps/scene/case_file.cc, SectionReader::Finish)
+/// This file is the one table. The case reader (apps/case/case_file.cc, SectionReader::Finish)
 /// checks every key listed in kRangedKeys as it finishes a section; the command-line options
 /// check theirs with RangeValidator (apps/cli/cli_checks.h). docs/ranges.md is generated from
 /// the table (PlausibleRangesMarkdown) and a test holds the two equal.

@@ -1,5 +1,5 @@
 // The key reader's small checks, the follower keys and the TOML front (section_reader.h).
-#include "apps/scene/section_reader.h"
+#include "apps/case/section_reader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "apps/scene/plausible_ranges.h"
+#include "apps/case/plausible_ranges.h"
 #include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/input_file.h"

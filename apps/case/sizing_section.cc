@@ -1,9 +1,9 @@
 // [sizing]: what `needle size` may choose and what the spring must fit (sizing_section.h).
-#include "apps/scene/sizing_section.h"
+#include "apps/case/sizing_section.h"
 
 #include <map>
 
-#include "apps/scene/section_reader.h"
+#include "apps/case/section_reader.h"
 #include "spring/wire_material.h"
 
 namespace needle::case_internal {

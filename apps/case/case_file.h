@@ -45,7 +45,7 @@
 ///               max_acceleration_m_s2, inertia_force_kgf, mean_lift_mm
 ///
 /// Every problem is reported as one CaseError line: "FILE: [section] key: what was expected".
-/// Every physical key has a plausible range (apps/scene/plausible_ranges.h, docs/ranges.md),
+/// Every physical key has a plausible range (apps/case/plausible_ranges.h, docs/ranges.md),
 /// checked as its section is finished.
 
 #include <optional>
@@ -53,7 +53,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/scene/sizing_section.h"
+#include "apps/case/sizing_section.h"
 #include "lib/case_error.h"
 #include "lib/engine_cycle.h"
 #include "lib/follower.h"

@@ -1,6 +1,6 @@
 // The case file: its one section table and the checks across sections; the key reader and
 // the section readers are section_reader.h's.
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 
 #include <toml++/toml.h>
 
@@ -12,8 +12,8 @@
 #include <set>
 #include <sstream>
 
-#include "apps/scene/plausible_ranges.h"
-#include "apps/scene/section_reader.h"
+#include "apps/case/plausible_ranges.h"
+#include "apps/case/section_reader.h"
 #include "dynamics/simulation.h"
 #include "dynamics/solver/integrator.h"
 #include "lib/input_file.h"

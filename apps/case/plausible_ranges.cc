@@ -1,4 +1,4 @@
-#include "apps/scene/plausible_ranges.h"
+#include "apps/case/plausible_ranges.h"
 
 #include <sstream>
 

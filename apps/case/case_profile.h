@@ -5,7 +5,7 @@
 /// displacement over one cam revolution (four-stroke: cam at half crank speed), ψ = 0 at the
 /// start of the rise. Shared by `needle profile` and `needle check`.
 
-#include "apps/scene/case_file.h"
+#include "apps/case/case_file.h"
 #include "lib/cam_profile.h"
 
 namespace needle {
