@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/case_file.h"
+#include "apps/case/case_profile.h"
 #include "apps/cli/command_output.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/result_writers.h"
-#include "apps/case/case_file.h"
-#include "apps/case/case_profile.h"
 #include "apps/study/synthesis_scene.h"
 #include "dynamics/model/cam_input.h"
 #include "lib/cam_profile.h"

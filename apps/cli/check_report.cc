@@ -5,15 +5,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/case_file.h"
+#include "apps/case/case_profile.h"
+#include "apps/case/case_scene.h"
 #include "apps/cli/check_writers.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
 #include "apps/cli/result_writers.h"
-#include "apps/case/case_file.h"
-#include "apps/case/case_profile.h"
-#include "apps/case/case_scene.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "apps/cli/report.h"
 #include "apps/case/case_file.h"
+#include "apps/cli/report.h"
 #include "apps/study/check_scene.h"
 
 namespace needle {

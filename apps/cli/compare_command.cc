@@ -3,12 +3,12 @@
 #include <filesystem>
 #include <iostream>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/compare_output.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
-#include "apps/case/case_file.h"
 
 namespace needle {
 

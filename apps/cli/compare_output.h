@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/compare_command.h"
 #include "apps/cli/report.h"
-#include "apps/case/case_file.h"
 #include "apps/study/check_scene.h"
 
 namespace needle {

@@ -9,13 +9,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/case_scene.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/command_output.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/result_writers.h"
-#include "apps/case/case_scene.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"

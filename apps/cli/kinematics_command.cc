@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/command_output.h"
 #include "apps/cli/output_paths.h"
-#include "apps/case/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -4,12 +4,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/command_output.h"
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/result_writers.h"
-#include "apps/case/case_file.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/cam_command.h"
 #include "apps/cli/check_command.h"
 #include "apps/cli/compare_command.h"
@@ -17,7 +18,6 @@
 #include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
-#include "apps/case/case_file.h"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <optional>
 #include <string>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/command_output.h"
 #include "apps/cli/output_format.h"
-#include "apps/case/case_file.h"
 
 namespace needle {
 

@@ -6,12 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/cli/report.h"
 #include "apps/cli/result_writers.h"
-#include "apps/case/case_file.h"
 #include "apps/study/tolerance_study.h"
 #include "lib/output.h"
 #include "lib/units.h"

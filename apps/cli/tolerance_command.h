@@ -12,9 +12,9 @@
 #include <optional>
 #include <string>
 
+#include "apps/case/case_file.h"
 #include "apps/cli/output_format.h"
 #include "apps/cli/report.h"
-#include "apps/case/case_file.h"
 #include "apps/study/tolerance_study.h"
 
 namespace needle {

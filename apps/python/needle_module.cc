@@ -20,6 +20,8 @@
 #include <utility>
 #include <vector>
 
+#include "apps/case/case_file.h"
+#include "apps/case/plausible_ranges.h"
 #include "apps/cli/cam_command.h"
 #include "apps/cli/check_writers.h"
 #include "apps/cli/command_output.h"
@@ -30,8 +32,6 @@
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/python/python_support.h"
-#include "apps/case/case_file.h"
-#include "apps/case/plausible_ranges.h"
 #include "apps/study/check_scene.h"
 #include "apps/study/tolerance_study.h"
 #include "dynamics/solver/integrator.h"

@@ -13,9 +13,9 @@
 #include <utility>
 #include <vector>
 
-#include "apps/cli/command_output.h"
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
+#include "apps/cli/command_output.h"
 #include "apps/study/tolerance_study.h"
 #include "lib/case_error.h"
 
