@@ -7,7 +7,7 @@
 ///
 ///     shown = SI · factor   (mm, MPa, …)   or   SI / factor   (deg: rad / (π/180)).
 ///
-/// Writers that consume these tables: apps/cli/result_writers.h (JSON, CSV, text).
+/// Writers that consume these tables: apps/report/result_writers.h (JSON, CSV, text).
 
 #include <map>
 #include <optional>

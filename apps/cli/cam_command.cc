@@ -8,9 +8,9 @@
 
 #include "apps/case/case_file.h"
 #include "apps/case/case_profile.h"
-#include "apps/cli/command_output.h"
-#include "apps/cli/output_paths.h"
-#include "apps/cli/result_writers.h"
+#include "apps/report/command_output.h"
+#include "apps/report/output_paths.h"
+#include "apps/report/result_writers.h"
 #include "apps/study/synthesis_scene.h"
 #include "dynamics/model/cam_input.h"
 #include "lib/cam_profile.h"

@@ -6,11 +6,11 @@
 #include <memory>
 
 #include "apps/case/case_file.h"
-#include "apps/cli/check_writers.h"
 #include "apps/cli/cli_checks.h"
-#include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
-#include "apps/cli/report.h"
+#include "apps/report/check_writers.h"
+#include "apps/report/html_report.h"
+#include "apps/report/output_paths.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "lib/output.h"

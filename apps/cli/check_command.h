@@ -12,8 +12,8 @@
 #include <optional>
 #include <string>
 
-#include "apps/cli/check_writers.h"  // CheckJson, for the callers of the command
-#include "apps/cli/output_format.h"
+#include "apps/report/check_writers.h"  // CheckJson, for the callers of the command
+#include "apps/report/output_format.h"
 #include "apps/study/check_scene.h"
 
 namespace needle {

@@ -6,9 +6,9 @@
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/compare_output.h"
-#include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
-#include "apps/cli/report.h"
+#include "apps/report/html_report.h"
+#include "apps/report/output_paths.h"
 
 namespace needle {
 

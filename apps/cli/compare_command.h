@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/cli/output_format.h"
+#include "apps/report/output_format.h"
 
 namespace needle {
 

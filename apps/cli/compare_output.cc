@@ -6,7 +6,7 @@
 #include <functional>
 #include <sstream>
 
-#include "apps/cli/check_writers.h"
+#include "apps/report/check_writers.h"
 #include "apps/study/check_scene.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"

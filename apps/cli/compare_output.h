@@ -13,7 +13,7 @@
 
 #include "apps/case/case_file.h"
 #include "apps/cli/compare_command.h"
-#include "apps/cli/report.h"
+#include "apps/report/html_report.h"
 #include "apps/study/check_scene.h"
 
 namespace needle {

@@ -11,9 +11,9 @@
 
 #include "apps/case/case_scene.h"
 #include "apps/cli/cli_checks.h"
-#include "apps/cli/command_output.h"
-#include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
+#include "apps/report/command_output.h"
+#include "apps/report/output_paths.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"

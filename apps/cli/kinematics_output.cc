@@ -6,10 +6,10 @@
 
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
-#include "apps/cli/command_output.h"
 #include "apps/cli/kinematics_command.h"
-#include "apps/cli/output_paths.h"
-#include "apps/cli/result_writers.h"
+#include "apps/report/command_output.h"
+#include "apps/report/output_paths.h"
+#include "apps/report/result_writers.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -14,10 +14,10 @@
 #include "apps/cli/compare_command.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
-#include "apps/cli/output_format.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
+#include "apps/report/output_format.h"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/cli/output_paths.h"
-#include "apps/cli/result_writers.h"
+#include "apps/report/output_paths.h"
+#include "apps/report/result_writers.h"
 #include "apps/study/spring_sizing_scene.h"
 #include "lib/input_file.h"
 #include "lib/output.h"

@@ -13,8 +13,8 @@
 #include <string>
 
 #include "apps/case/case_file.h"
-#include "apps/cli/command_output.h"
-#include "apps/cli/output_format.h"
+#include "apps/report/command_output.h"
+#include "apps/report/output_format.h"
 
 namespace needle {
 

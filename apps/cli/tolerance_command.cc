@@ -8,10 +8,10 @@
 
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
-#include "apps/cli/output_paths.h"
 #include "apps/cli/progress_bar.h"
-#include "apps/cli/report.h"
-#include "apps/cli/result_writers.h"
+#include "apps/report/html_report.h"
+#include "apps/report/output_paths.h"
+#include "apps/report/result_writers.h"
 #include "apps/study/tolerance_study.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -13,8 +13,8 @@
 #include <string>
 
 #include "apps/case/case_file.h"
-#include "apps/cli/output_format.h"
-#include "apps/cli/report.h"
+#include "apps/report/html_report.h"
+#include "apps/report/output_format.h"
 #include "apps/study/tolerance_study.h"
 
 namespace needle {

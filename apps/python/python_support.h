@@ -15,7 +15,7 @@
 
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
-#include "apps/cli/command_output.h"
+#include "apps/report/command_output.h"
 #include "apps/study/tolerance_study.h"
 #include "lib/case_error.h"
 

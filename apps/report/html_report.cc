@@ -1,4 +1,4 @@
-#include "apps/cli/report.h"
+#include "apps/report/html_report.h"
 
 #include <unistd.h>
 

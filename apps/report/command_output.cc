@@ -1,8 +1,8 @@
-#include "apps/cli/command_output.h"
+#include "apps/report/command_output.h"
 
 #include <iostream>
 
-#include "apps/cli/output_paths.h"
+#include "apps/report/output_paths.h"
 
 namespace needle {
 

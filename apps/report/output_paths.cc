@@ -1,4 +1,4 @@
-#include "apps/cli/output_paths.h"
+#include "apps/report/output_paths.h"
 
 #include <unistd.h>
 

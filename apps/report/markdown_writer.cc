@@ -1,4 +1,4 @@
-#include "apps/cli/markdown_writer.h"
+#include "apps/report/markdown_writer.h"
 
 #include <set>
 #include <sstream>

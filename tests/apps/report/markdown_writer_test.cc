@@ -1,13 +1,13 @@
-// The Markdown writer over a command's JSON object (apps/cli/markdown_writer.h), and
+// The Markdown writer over a command's JSON object (apps/report/markdown_writer.h), and
 // `--format` as every command takes it.
-#include "apps/cli/markdown_writer.h"
+#include "apps/report/markdown_writer.h"
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "apps/cli/output_format.h"
+#include "apps/report/output_format.h"
 #include "run_command.h"
 
 namespace needle {

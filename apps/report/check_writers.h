@@ -8,7 +8,7 @@
 #include <string>
 
 #include "apps/case/case_file.h"
-#include "apps/cli/report.h"
+#include "apps/report/html_report.h"
 #include "apps/study/check_scene.h"
 
 namespace needle {

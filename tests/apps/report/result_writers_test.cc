@@ -1,6 +1,6 @@
 // The writers of a field table: a string, a yes/no and a list reach JSON as themselves, the
 // text as words; a number without a value is null and "none".
-#include "apps/cli/result_writers.h"
+#include "apps/report/result_writers.h"
 
 #include <gtest/gtest.h>
 

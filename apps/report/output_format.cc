@@ -1,9 +1,9 @@
-#include "apps/cli/output_format.h"
+#include "apps/report/output_format.h"
 
 #include <array>
 #include <utility>
 
-#include "apps/cli/markdown_writer.h"
+#include "apps/report/markdown_writer.h"
 #include "lib/name_table.h"
 
 namespace needle {
