@@ -1,6 +1,9 @@
 #include "apps/case/plausible_ranges.h"
 
+#include <cmath>
 #include <sstream>
+
+#include "apps/case/case_file.h"
 
 namespace needle {
 namespace {
@@ -58,6 +61,24 @@ std::string PlausibleRangesMarkdown() {
            " | " + k.range->reason + " |\n";
   }
   return out;
+}
+
+std::string RangeRule(double lo, double hi, const std::string& what, const std::string& v) {
+  std::ostringstream m;
+  m << "expected " << what << " in [" << lo << ", " << hi << "], got " << v;
+  return m.str();
+}
+
+void RequireIn(const std::string& option, const std::optional<double>& v, double lo, double hi,
+               const std::string& what) {
+  if (!v || (std::isfinite(*v) && *v >= lo && *v <= hi)) return;
+  std::ostringstream text;
+  text << *v;
+  throw CaseError(option + ": " + RangeRule(lo, hi, what, text.str()));
+}
+
+void RequireSpeed(const std::optional<double>& rpm, const std::string& option) {
+  RequireIn(option, rpm, kCrankSpeedRange.lo, kCrankSpeedRange.hi, "a speed in rpm");
 }
 
 }  // namespace needle

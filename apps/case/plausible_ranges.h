@@ -12,6 +12,7 @@
 /// check theirs with RangeValidator (apps/cli/cli_checks.h). docs/ranges.md is generated from
 /// the table (PlausibleRangesMarkdown) and a test holds the two equal.
 
+#include <optional>
 #include <string>
 
 #include "dynamics/simulation.h"
@@ -262,5 +263,16 @@ std::string ShownValue(const PlausibleRange& r, double si);
 
 /// The table of docs/ranges.md: one row per range, with the keys and options it applies to.
 std::string PlausibleRangesMarkdown();
+
+/// "expected WHAT in [lo, hi], got V": the rule of every option range, stated once (the command
+/// line's validators, apps/cli/cli_checks.h, and the jobs' own checks below).
+std::string RangeRule(double lo, double hi, const std::string& what, const std::string& v);
+
+/// The same rule where no parser stood in front (a job called from Python): throws CaseError
+/// "OPTION: expected WHAT in [lo, hi], got V" when `v` is given and outside [lo, hi] or not finite.
+void RequireIn(const std::string& option, const std::optional<double>& v, double lo, double hi,
+               const std::string& what);
+/// A crank speed option (`--rpm`, `--from`, `--to`): RequireIn over kCrankSpeedRange.
+void RequireSpeed(const std::optional<double>& rpm, const std::string& option = "--rpm");
 
 }  // namespace needle

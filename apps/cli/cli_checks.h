@@ -14,13 +14,6 @@
 
 namespace needle {
 
-/// "expected WHAT in [lo, hi], got V": the rule both checks below state.
-inline std::string RangeRule(double lo, double hi, const std::string& what, const std::string& v) {
-  std::ostringstream m;
-  m << "expected " << what << " in [" << lo << ", " << hi << "], got " << v;
-  return m.str();
-}
-
 /// A number in [lo, hi] (`what` names the quantity and unit, e.g. "a speed in rpm").
 inline CLI::Validator NumberIn(double lo, double hi, const std::string& what) {
   return CLI::Validator(
@@ -65,19 +58,6 @@ inline CLI::Validator Seed() {
         return "expected a whole number in " + RangeText(kSeedRange) + ", got " + s;
       },
       "SEED", "");
-}
-
-/// The same rule where no parser stood in front (the Compute functions, called from Python):
-/// throws CaseError "OPTION: expected WHAT in [lo, hi], got V".
-inline void RequireIn(const std::string& option, const std::optional<double>& v, double lo,
-                      double hi, const std::string& what) {
-  if (!v || (std::isfinite(*v) && *v >= lo && *v <= hi)) return;
-  std::ostringstream text;
-  text << *v;
-  throw CaseError(option + ": " + RangeRule(lo, hi, what, text.str()));
-}
-inline void RequireSpeed(const std::optional<double>& rpm, const std::string& option = "--rpm") {
-  RequireIn(option, rpm, kCrankSpeedRange.lo, kCrankSpeedRange.hi, "a speed in rpm");
 }
 
 }  // namespace needle

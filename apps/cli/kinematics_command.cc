@@ -8,6 +8,7 @@
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/report/command_output.h"
+#include "apps/report/kinematics_writer.h"
 #include "apps/report/output_paths.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
@@ -19,11 +20,11 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "kinematics", "Velocity and acceleration table of a lift law (like NACA TM 477's)");
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
-  AddSpeedOption(cmd, o.speed_rpm);
-  cmd->add_option("--step", o.step_deg,
+  AddSpeedOption(cmd, o.table.speed_rpm);
+  cmd->add_option("--step", o.table.step_deg,
                   "table spacing in crank degrees, 0.001 to 90 (default 5; at most 100000 rows)")
       ->check(InRange(kTableStepRange, "a spacing in crank degrees"));
-  cmd->add_option("--spline", o.spline,
+  cmd->add_option("--spline", o.table.spline,
                   "spline kind (default: [lift] spline): " + SplineKindList());
   cmd->add_option("--units", o.units,
                   "table units: paper (mm, dcm/s, m/s^2) or si (m, m/s, m/s^2, m/s^3)")
@@ -41,7 +42,7 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
 
 int RunKinematicsCommand(const KinematicsCommandOptions& o) {
   const bool bare_csv = IsCsvPath(o.case_path);
-  if (bare_csv && !o.speed_rpm) {
+  if (bare_csv && !o.table.speed_rpm) {
     throw CaseError("--rpm: " + o.case_path +
                     " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
   }
@@ -53,7 +54,9 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
       throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
     c.lift.noise_m = *o.noise_mm * 1e-3;
   }
-  return Emit(ComputeKinematics(std::move(c), o), o.format, o.csv);
+  const KinematicsTable table = MakeKinematicsTable(std::move(c), o.table);
+  return Emit(WriteKinematics(table, {o.json, o.csv.has_value(), o.units == "paper"}), o.format,
+              o.csv);
 }
 
 }  // namespace needle

@@ -9,18 +9,16 @@
 #include <string>
 
 #include "apps/case/case_file.h"
-#include "apps/report/command_output.h"
 #include "apps/report/output_format.h"
+#include "apps/study/kinematics_table.h"
 
 namespace needle {
 
 struct KinematicsCommandOptions {
-  std::string case_path;              ///< the case file
-  std::optional<double> speed_rpm;    ///< overrides [engine] speed_rpm
-  double step_deg = 5.0;              ///< table spacing, deg, > 0
-  std::optional<std::string> spline;  ///< overrides [lift] spline
-  std::string units = "paper";        ///< "paper" (mm, dcm/s, m/s²) or "si" (m, m/s, m/s², m/s³)
-  bool json = false;                  ///< print one JSON object instead of the table
+  std::string case_path;         ///< the case file
+  KinematicsTableOptions table;  ///< --rpm, --step, --spline
+  std::string units = "paper";   ///< "paper" (mm, dcm/s, m/s²) or "si" (m, m/s, m/s², m/s³)
+  bool json = false;             ///< print one JSON object instead of the table
   OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
   std::optional<std::string> csv;             ///< also write the table as CSV, atomically
   /// A bare CSV lift table as CASE: its cycle (for cam_deg columns) and its noise σ, mm.
@@ -30,10 +28,6 @@ struct KinematicsCommandOptions {
 
 /// Registers the subcommand on `app`; `options` must outlive the parse.
 CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& options);
-
-/// The table of a loaded case (its path, --csv and --noise-mm are the caller's; a bare CSV table
-/// comes through CaseFromLiftCsv). Throws CaseError on bad input.
-CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& options);
 
 /// Runs it, printing to stdout. Returns the exit status; throws CaseError on bad input.
 int RunKinematicsCommand(const KinematicsCommandOptions& options);

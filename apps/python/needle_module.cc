@@ -25,13 +25,13 @@
 #include "apps/cli/cam_command.h"
 #include "apps/cli/compare_output.h"
 #include "apps/cli/dynamics_command.h"
-#include "apps/cli/kinematics_command.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/python/python_support.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"
+#include "apps/report/kinematics_writer.h"
 #include "apps/study/check_scene.h"
 #include "apps/study/tolerance_study.h"
 #include "dynamics/solver/integrator.h"
@@ -146,7 +146,7 @@ PYBIND11_MODULE(needle, m) {
       [](const py::object& source, const py::object& rpm, const py::object& step_deg,
          const py::object& spline) {
         const auto c = CaseOf(source, "kinematics");
-        KinematicsCommandOptions o;
+        KinematicsTableOptions o;
         o.speed_rpm = Speed(rpm, "rpm");
         RequireSpeedOf(*c, o.speed_rpm, "rpm");
         o.step_deg = *Number(step_deg, "step_deg", "a spacing in crank degrees", kTableStepRange);
@@ -154,8 +154,9 @@ PYBIND11_MODULE(needle, m) {
         if (o.spline && !ParseSplineKind(*o.spline))
           throw CaseError("spline=" + Repr(spline) + ": unknown kind; expected one of " +
                           SplineKindList());
-        o.json = true;
-        return Run([&] { return ComputeKinematics(*c, o); },
+        KinematicsWriting json;
+        json.json = true;
+        return Run([&] { return WriteKinematics(MakeKinematicsTable(*c, o), json); },
                    {{"--rpm", "rpm=" + Repr(rpm)},
                     {"--step", "step_deg=" + Repr(step_deg)},
                     {"--spline", "spline=" + Repr(spline)}});

@@ -22,7 +22,6 @@
 #include "apps/cli/cam_command.h"
 #include "apps/cli/compare_output.h"
 #include "apps/cli/dynamics_command.h"
-#include "apps/cli/kinematics_command.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"

@@ -1,16 +1,12 @@
-// What kinematics computes and prints: ComputeKinematics (kinematics_command.h).
+// The kinematics table's JSON, text and CSV: WriteKinematics (kinematics_writer.h).
+#include "apps/report/kinematics_writer.h"
+
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/case/case_file.h"
-#include "apps/cli/cli_checks.h"
-#include "apps/cli/kinematics_command.h"
-#include "apps/report/command_output.h"
-#include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
-#include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"
 
@@ -18,76 +14,28 @@ namespace needle {
 
 namespace {
 
-// Row angles: θ_0, θ_N, every multiple of the step between them, and the paper's angles.
-// The table's first and last angle, the open lift's ends, every multiple of the step between,
-// and the paper's angles.
-std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const Case& c) {
-  const double lo = law.table_start_rad(), hi = law.table_end_rad();
-  std::vector<double> rows = {lo, hi, law.start_rad(), law.end_rad()};
-  const double first = std::ceil(lo / step_rad - 1e-9);
-  for (double k = first; k * step_rad <= hi + 1e-12; k += 1.0) {
-    rows.push_back(k * step_rad);
-  }
-  if (c.paper) rows.insert(rows.end(), c.paper->crank_rad.begin(), c.paper->crank_rad.end());
-  std::sort(rows.begin(), rows.end());
-  rows.erase(std::unique(rows.begin(), rows.end(),
-                         [](double a, double b) { return std::abs(a - b) < 1e-9; }),
-             rows.end());
-  return rows;
-}
-
 std::string Pad(const std::string& s, size_t width) {
   return s.size() >= width ? s : std::string(width - s.size(), ' ') + s;
 }
 
 }  // namespace
 
-CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
-  RequireSpeed(o.speed_rpm);
-  RequireIn("--step", o.step_deg, kTableStepRange.lo, kTableStepRange.hi,
-            "a spacing in crank degrees");
-  if (o.spline) {
-    const auto kind = ParseSplineKind(*o.spline);
-    if (!kind) {
-      throw CaseError("--spline: unknown kind \"" + *o.spline + "\"; expected one of " +
-                      SplineKindList());
-    }
-    CheckSplineFits(c, *kind, "--spline");
-    if (*kind == SplineKind::kClamped && c.lift.spline.kind != SplineKind::kClamped) {
-      c.lift.spline.start_slope = c.lift.spline.end_slope = 0.0;  // at rest unless the case says
-    }
-    c.lift.spline.kind = *kind;
-    c.lift.spline_given = true;
-  }
-  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
-  const LiftLawChoice choice = CaseLiftChoice(c);
-  const LiftLaw law = MakeLiftLaw(c);
-  const Kinematics kin(law, speed);
-  const KinematicsSummary sum = kin.Summarize();
-  // A row budget: a table wider than 100 000 rows is no table (--step 1e-9 asked for 4 GB).
-  const double span_deg = (law.table_end_rad() - law.table_start_rad()) / kDeg;
-  if (span_deg / o.step_deg > 1e5) {
-    throw CaseError("--step: " + Fixed(o.step_deg, 6) + " deg gives " +
-                    std::to_string(static_cast<long long>(span_deg / o.step_deg)) +
-                    " rows over the table's " + Fixed(span_deg, 1) +
-                    " deg; at most 100000 (a step of at least " + Fixed(span_deg / 1e5, 6) +
-                    " deg)");
-  }
-  const std::vector<double> angles = RowAngles(law, o.step_deg * kDeg, c);
-  std::vector<KinematicsPoint> rows;
-  rows.reserve(angles.size());
-  for (double a : angles) rows.push_back(kin.At(a));
-
-  // Everything is computed; now compose the outputs, then write them.
+CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWriting& w) {
+  const Case& c = table.c;
+  const LiftLawChoice& choice = table.choice;
+  const LiftLaw& law = table.law;
+  const KinematicsSummary& sum = table.summary;
+  const std::vector<KinematicsPoint>& rows = table.rows;
+  const double speed = table.speed_rpm;
   const std::vector<Column>& columns = KinematicsColumns();
   std::vector<std::vector<double>> rows_si;
   rows_si.reserve(rows.size());
   for (const auto& r : rows) rows_si.push_back(KinematicsRowSi(r));
   CommandOutput result;
   result.columns = SiColumns(columns, rows_si);
-  if (o.csv) result.csv = CsvTable(columns, rows_si, 10);
+  if (w.csv) result.csv = CsvTable(columns, rows_si, 10);
   std::ostringstream out;
-  if (o.json) {
+  if (w.json) {
     nlohmann::json j;
     j["case"] = c.path;
     j["speed_rpm"] = speed;
@@ -104,7 +52,7 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
     j["table"] = table;
     result.json = std::move(j);
   } else {
-    const bool paper = o.units == "paper";
+    const bool paper = w.paper_units;
     out << (c.title.empty() ? c.path : c.title) << '\n';
     out << "spline " << SplineKindName(law.kind()) << ": " << choice.reason << '\n';
     if (!choice.breaks_found.empty() && !choice.law.breaks_rad.empty()) {
@@ -149,20 +97,11 @@ CommandOutput ComputeKinematics(Case c, const KinematicsCommandOptions& o) {
           << " m/s^2; computed max |a| " << Fixed(a_abs, 2) << " m/s^2\n";
     }
     const bool has_paper_v = c.paper && !c.paper->velocity_m_s.empty();
-    if (has_paper_v) {
-      double total = 0, worst = -1, worst_deg = 0;
-      for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
-        const double dev = std::abs(std::abs(kin.At(c.paper->crank_rad[i]).velocity_m_s) -
-                                    c.paper->velocity_m_s[i]);  // | |v| − v_paper |
-        total += dev;
-        if (dev > worst) {
-          worst = dev;
-          worst_deg = c.paper->crank_rad[i] / kDeg;
-        }
-      }
-      out << "paper velocity (" << c.paper->crank_rad.size() << " points): mean |deviation| "
-          << Fixed(10.0 * total / c.paper->crank_rad.size(), 2) << " dcm/s, largest "
-          << Fixed(10.0 * worst, 2) << " dcm/s at " << Fixed(worst_deg, 1) << " deg\n";
+    if (table.paper) {
+      const PaperVelocityDeviation& d = *table.paper;
+      out << "paper velocity (" << d.points << " points): mean |deviation| "
+          << Fixed(10.0 * d.mean_abs_m_s, 2) << " dcm/s, largest " << Fixed(10.0 * d.largest_m_s, 2)
+          << " dcm/s at " << Fixed(d.largest_at_rad / kDeg, 1) << " deg\n";
     }
     out << '\n'
         << Pad("crank deg", 9) << Pad(paper ? "lift mm" : "lift m", 12)
