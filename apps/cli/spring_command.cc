@@ -1,24 +1,11 @@
 #include "apps/cli/spring_command.h"
 
-#include <cmath>
-#include <iostream>
-#include <nlohmann/json.hpp>
-#include <sstream>
-
 #include "apps/case/case_file.h"
-#include "apps/case/case_scene.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/report/command_output.h"
 #include "apps/report/output_paths.h"
-#include "apps/report/result_writers.h"
-#include "lib/kinematics.h"
-#include "lib/output.h"
-#include "lib/units.h"
-#include "spring/basu_formula.h"
-#include "spring/design_chain.h"
-#include "spring/helical_spring.h"
-#include "spring/quasi_static.h"
-#include "spring/spring_check.h"
+#include "apps/report/spring_writer.h"
+#include "apps/study/spring_job.h"
 
 namespace needle {
 
@@ -33,7 +20,8 @@ CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& o) {
 }
 
 int RunSpringCommand(const SpringCommandOptions& o) {
-  return Emit(ComputeSpring(LoadCase(o.case_path), o), o.format, std::nullopt);
+  return Emit(WriteSpring(CheckCaseSpring(LoadCase(o.case_path), o.speed_rpm), o.json), o.format,
+              std::nullopt);
 }
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& o) {
@@ -51,7 +39,7 @@ CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& o) {
 int RunDesignCommand(const DesignCommandOptions& o) {
   const DesignInputs in = LoadDesignInputs(o.engine_path);
   if (o.case_out) CheckOutputPaths({{"--case", *o.case_out}}, {in.path});
-  const CommandOutput r = ComputeDesign(in, o);
+  const CommandOutput r = WriteDesign(in, DesignFromEngine(in), o.json, o.case_out);
   if (o.case_out) WriteOutput({"--case", *o.case_out}, r.case_file);
   return Emit(r, o.format, std::nullopt);
 }

@@ -11,7 +11,6 @@
 #include <string>
 
 #include "apps/case/case_file.h"
-#include "apps/report/command_output.h"
 #include "apps/report/output_format.h"
 
 namespace needle {
@@ -24,8 +23,6 @@ struct SpringCommandOptions {
 };
 
 CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& options);
-/// The spring check of a loaded case. Throws CaseError on bad input.
-CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& options);
 int RunSpringCommand(const SpringCommandOptions& options);
 
 struct DesignCommandOptions {
@@ -36,9 +33,6 @@ struct DesignCommandOptions {
 };
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& options);
-/// Basu's design chain for a loaded engine file: the JSON object or the text, and the --case
-/// file's text when asked. Throws CaseError naming the file when the chain cannot proceed.
-CommandOutput ComputeDesign(const DesignInputs& in, const DesignCommandOptions& options);
 int RunDesignCommand(const DesignCommandOptions& options);
 
 }  // namespace needle

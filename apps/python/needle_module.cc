@@ -26,12 +26,12 @@
 #include "apps/cli/compare_output.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/size_command.h"
-#include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/python/python_support.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"
 #include "apps/report/kinematics_writer.h"
+#include "apps/report/spring_writer.h"
 #include "apps/study/check_scene.h"
 #include "apps/study/tolerance_study.h"
 #include "dynamics/solver/integrator.h"
@@ -168,11 +168,10 @@ PYBIND11_MODULE(needle, m) {
       "spring",
       [](const py::object& source, const py::object& rpm) {
         const auto c = CaseOf(source, "spring");
-        SpringCommandOptions o;
-        o.speed_rpm = Speed(rpm, "rpm");
-        RequireSpeedOf(*c, o.speed_rpm, "rpm");
-        o.json = true;
-        return Run([&] { return ComputeSpring(*c, o); }, {{"--rpm", "rpm=" + Repr(rpm)}});
+        const std::optional<double> speed = Speed(rpm, "rpm");
+        RequireSpeedOf(*c, speed, "rpm");
+        return Run([&] { return WriteSpring(CheckCaseSpring(*c, speed), true); },
+                   {{"--rpm", "rpm=" + Repr(rpm)}});
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), "needle spring: the spring check");
 
@@ -293,9 +292,7 @@ PYBIND11_MODULE(needle, m) {
                              : throw py::type_error(
                                    "design: expected a path (str or os.PathLike) or a dict, got " +
                                    AType(engine));
-        DesignCommandOptions o;
-        o.json = true;
-        return Run([&] { return ComputeDesign(in, o); });
+        return Run([&] { return WriteDesign(in, DesignFromEngine(in), true, std::nullopt); });
       },
       arg("engine"), py::kw_only(), arg("name") = py::none(),
       "needle design: Basu's design chain from an engine file or dict");

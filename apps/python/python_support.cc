@@ -23,7 +23,6 @@
 #include "apps/cli/compare_output.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/size_command.h"
-#include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"

@@ -1,24 +1,14 @@
-// What spring computes and prints: ComputeSpring (spring_command.h).
+// The spring check's and the design chain's JSON and text: spring_writer.h.
+#include "apps/report/spring_writer.h"
+
 #include <cmath>
-#include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/case/case_file.h"
-#include "apps/case/case_scene.h"
-#include "apps/cli/cli_checks.h"
-#include "apps/cli/spring_command.h"
-#include "apps/report/command_output.h"
-#include "apps/report/output_paths.h"
+#include "apps/case/design_case.h"
 #include "apps/report/result_writers.h"
-#include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"
-#include "spring/basu_formula.h"
-#include "spring/design_chain.h"
-#include "spring/helical_spring.h"
-#include "spring/quasi_static.h"
-#include "spring/spring_check.h"
 
 namespace needle {
 
@@ -28,11 +18,10 @@ std::string PassFail(bool ok) { return ok ? "pass" : "FAIL"; }
 
 }  // namespace
 
-CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
-  RequireSpeed(o.speed_rpm);
-  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
-  const LiftLaw law = MakeLiftLaw(c);
-  const SpringCheckResult check = CheckSpring(c, law, speed);
+CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
+  const Case& c = spring.c;
+  const double speed = spring.speed_rpm;
+  const SpringCheckResult& check = spring.check;
   const KinematicsSummary& sum = check.kinematics;
   const RigidTrain& train = check.train;
   const std::optional<HelicalSpringCheck>& helical = check.helical;
@@ -44,11 +33,11 @@ CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
   CommandOutput result;
   result.status = ok ? 0 : 1;
   std::ostringstream out;
-  if (o.json) {
+  if (json) {
     nlohmann::json j;
     j["case"] = c.path;
     j["speed_rpm"] = speed;
-    j["spline"] = SplineKindName(law.kind());
+    j["spline"] = SplineKindName(spring.spline);
     j["injection_period_s"] = sum.injection_period_s;
     PutFields(j, SpringCheckFields(check));
     j["safety_factor"] = c.spring->safety_factor;
@@ -63,7 +52,7 @@ CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
       return FieldAt(fields, key).si ? t(key) : std::string("unbounded");
     };
     out << (c.title.empty() ? c.path : c.title) << '\n';
-    out << "speed " << Fixed(speed, 1) << " rpm, spline " << SplineKindName(law.kind())
+    out << "speed " << Fixed(speed, 1) << " rpm, spline " << SplineKindName(spring.spline)
         << ", injection period " << Fixed(sum.injection_period_s, 4) << " s\n\n";
     if (basu_N) {
       out << "Basu's formula (d = " << Fixed(*c.needle->diameter_m * 1e3, 1)
@@ -116,61 +105,11 @@ CommandOutput ComputeSpring(const Case& c, const SpringCommandOptions& o) {
   return result;
 }
 
-namespace {
-
-// The case `design --case` writes (issue 11): what the chain computed, and what it does not
-// compute (moving mass, spring rate, contact train) as assumptions marked ASSUMED.
-std::string DesignCase(const DesignInputs& in, const DesignResult& r) {
-  std::ostringstream c;
-  c.precision(10);
-  c << "# Written by `needle design " << in.path << " --case`: Basu's design chain (NACA TM 477).\n"
-    << "# Values marked ASSUMED are not computed by the chain; replace them with your own.\n"
-    << "title = \"" << (in.title.empty() ? std::string("designed valve") : in.title)
-    << " (designed)\"\n\n[engine]\nspeed_rpm = " << in.speed_rpm << "\ncycle = \""
-    << EngineCycleName(in.cycle) << "\"\n\n# The normal curve scaled to the maximum lift "
-    << r.max_lift_m * 1e3 << " mm.\n[lift]\ncrank_deg = [";
-  for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i)
-    c << (i ? ", " : "") << r.lift_table.crank_rad[i] / kDeg;
-  c << "]\nlift_mm = [";
-  for (size_t i = 0; i < r.lift_table.lift_m.size(); ++i)
-    c << (i ? ", " : "") << r.lift_table.lift_m[i] * 1e3;
-  c << "]\n\n[needle]\n";
-  if (in.moving_mass_kg) {
-    c << "mass_kg = " << *in.moving_mass_kg << "  # [design] moving_mass_kg\n";
-  } else {
-    // Basu's Example 1: 11.5 kg of needle and disks with a 31 mm needle.
-    const double m = 11.5 * std::pow(r.needle_diameter_m / 31e-3, 3);
-    c << "mass_kg = " << m
-      << "  # ASSUMED: Basu's Example 1 (11.5 kg at a 31 mm needle) scaled by the needle "
-         "diameter cubed; weigh yours or give [design] moving_mass_kg\n";
-  }
-  c << "diameter_mm = " << r.needle_diameter_m * 1e3
-    << "  # the gas load defaults to Basu's 35 kg/cm2 on it\n\n[spring]\npreload_N = "
-    << r.spring_preload_N
-    << "  # Basu's formula\nrate_N_mm = " << 0.1 * r.spring_preload_N / r.max_lift_m * 1e-3
-    << "  # ASSUMED: 10 % more force at full lift\n\n"
-    << "# ASSUMED: a stiff steel roller-on-cam contact and seat, no roller play.\n"
-    << "[train]\ncontact_stiffness_N_m = 1e9\ncontact_damping_ratio = 0.05\n"
-       "seat_stiffness_N_m = 1e9\nseat_damping_ratio = 0.05\nplay_mm = 0\n\n"
-    << "# The cam disk and roller of the chain; a radial roller "
-       "follower.\n[profile]\nbase_radius_mm = "
-    << r.cam_disk_m * 1e3 / 2 << "\nroller_radius_mm = " << r.roller_m * 1e3 / 2
-    << "\noffset_mm = 0\n";
-  return c.str();
-}
-
-}  // namespace
-
-CommandOutput ComputeDesign(const DesignInputs& in, const DesignCommandOptions& o) {
+CommandOutput WriteDesign(const DesignInputs& in, const DesignResult& r, bool json,
+                          const std::optional<std::string>& case_out) {
   CommandOutput result;
-  DesignResult r;
-  try {
-    r = RunDesignChain(in);
-  } catch (const std::invalid_argument& e) {
-    throw CaseError(in.path + ": [design]: " + e.what());
-  }
   std::ostringstream out;
-  if (o.json) {
+  if (json) {
     nlohmann::json j;
     j["engine"] = in.path;
     PutFields(j, {{"power", display::kHp, in.power_W}});
@@ -231,9 +170,9 @@ CommandOutput ComputeDesign(const DesignInputs& in, const DesignCommandOptions& 
         << "cross-section at max lift   " << t("max_lift_cross_section_mm2") << '\n'
         << "nozzle cross-section        " << t("nozzle_cross_section_mm2") << " in "
         << v("nozzle_holes") << " holes of " << t("nozzle_hole_mm") << '\n';
-    if (o.case_out) out << "case written: " << *o.case_out << '\n';
+    if (case_out) out << "case written: " << *case_out << '\n';
   }
-  if (o.case_out) result.case_file = DesignCase(in, r);
+  if (case_out) result.case_file = DesignCaseText(in, r);
   result.text = out.str();
   return result;
 }
