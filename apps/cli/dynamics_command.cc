@@ -1,25 +1,15 @@
 #include "apps/cli/dynamics_command.h"
 
-#include <unistd.h>
-
 #include <array>
-#include <cmath>
-#include <iomanip>
-#include <iostream>
-#include <nlohmann/json.hpp>
-#include <sstream>
+#include <optional>
 
-#include "apps/case/case_scene.h"
+#include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/report/command_output.h"
+#include "apps/report/dynamics_writer.h"
 #include "apps/report/output_paths.h"
-#include "apps/study/check_scene.h"
-#include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
-#include "lib/output.h"
-#include "lib/units.h"
-#include "spring/quasi_static.h"
 
 namespace needle {
 
@@ -27,14 +17,14 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Dynamic run: lift-off episodes, impacts, forces, energy audit");
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
-  AddSpeedOption(cmd, o.speed_rpm);
-  cmd->add_option("--method", o.method, MethodList() + " (default: [solver] method or auto)");
-  cmd->add_option("--rtol", o.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");
-  cmd->add_option("--cycles", o.cycles,
+  AddSpeedOption(cmd, o.run.speed_rpm);
+  cmd->add_option("--method", o.run.method, MethodList() + " (default: [solver] method or auto)");
+  cmd->add_option("--rtol", o.run.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");
+  cmd->add_option("--cycles", o.run.cycles,
                   "cam revolutions run back to back, the state carried over, until the state "
                   "repeats (default: [solver] cycles or 1)")
       ->check(CLI::Range(1, static_cast<int>(kCyclesRange.hi)));
-  cmd->add_flag("--dynamic", o.dynamic,
+  cmd->add_flag("--dynamic", o.run.dynamic,
                 "run the dynamics even where the rigid answer would be reported");
   cmd->add_flag("--json", o.json, "print one JSON object");
   cmd->add_option("--csv", o.csv, "write the time series to this CSV file (atomically)");
@@ -43,35 +33,37 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
 
 int RunSimulateCommand(const SimulateCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
-  if (!o.csv) return Emit(ComputeSimulate(c, o), o.format, std::nullopt);
+  if (!o.csv) return Emit(WriteSimulate(SimulateCase(c, o.run), o.json), o.format, std::nullopt);
   // The series streamed to the CSV as the run makes it, put in place once the run is done.
   CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   StreamedCsv csv({"--csv", *o.csv}, SeriesColumns(), kSeriesCsvPrecision);
-  const CommandOutput r = ComputeSimulate(c, o, [&csv](const SeriesPoint& p) {
+  const CaseRun run = SimulateCase(c, o.run, [&csv](const SeriesPoint& p) {
     const std::array<double, 7> row = SeriesRow(p);
     csv.Row(row.data());
   });
+  if (run.result.skipped)
+    throw CaseError("--csv: no time series to write, " + run.result.method_reason);
   csv.Commit();
-  return Emit(r, o.format, std::nullopt);
+  return Emit(WriteSimulate(run, o.json), o.format, std::nullopt);
 }
 
 CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
   CLI::App* cmd =
       app.add_subcommand("overspeed", "Search the dynamic lift-off speed n_dyn beside n_qs");
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
-  cmd->add_option("--from", o.from_rpm,
+  cmd->add_option("--from", o.search.from_rpm,
                   "start of the sweep, rpm (default: [overspeed] from_rpm or the rated speed)")
       ->check(SpeedRpm());
   cmd->add_option(
-         "--to", o.to_rpm,
+         "--to", o.search.to_rpm,
          "end of the sweep, rpm (default: [overspeed] to_rpm, else the larger of 2 x n_qs and 2 x "
          "the rated speed)")
       ->check(SpeedRpm());
-  cmd->add_option("--method", o.method, MethodList());
-  cmd->add_option("--rtol", o.rtol, "relative tolerance");
-  cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
+  cmd->add_option("--method", o.search.method, MethodList());
+  cmd->add_option("--rtol", o.search.rtol, "relative tolerance");
+  cmd->add_option("--threads", o.search.threads, "threads (default and most: all cores)")
       ->check(CLI::Range(0, static_cast<int>(kThreadsRange.hi)));
-  cmd->add_option("--step-rpm", o.step_rpm,
+  cmd->add_option("--step-rpm", o.search.step_rpm,
                   "scan step where the contact force gives no guidance (default 2.5 % of --from, "
                   "at least 1 rpm); elsewhere the force leads the steps (docs/model.md section 6)")
       ->check(InRange(kSpeedStepRange, "a speed step in rpm"));
@@ -84,7 +76,9 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   CommandOutput r;
   {
     ProgressBar bar("overspeed", "speeds", o.json);
-    r = ComputeOverspeed(c, o, [&](int done, int total) { bar.Update(done, total); });
+    r = WriteOverspeed(
+        OverspeedOfCase(c, o.search, [&](int done, int total) { bar.Update(done, total); }),
+        o.json);
   }
   return Emit(r, o.format, std::nullopt);
 }

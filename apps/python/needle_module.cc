@@ -24,12 +24,12 @@
 #include "apps/case/plausible_ranges.h"
 #include "apps/cli/cam_command.h"
 #include "apps/cli/compare_output.h"
-#include "apps/cli/dynamics_command.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/python/python_support.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"
+#include "apps/report/dynamics_writer.h"
 #include "apps/report/kinematics_writer.h"
 #include "apps/report/spring_writer.h"
 #include "apps/study/check_scene.h"
@@ -192,17 +192,17 @@ PYBIND11_MODULE(needle, m) {
       [](const py::object& source, const py::object& rpm, const py::object& method,
          const py::object& rtol, const py::object& dynamic, const py::object& series) {
         const auto c = CaseOf(source, "simulate");
-        SimulateCommandOptions o;
+        SimulateJobOptions o;
         o.speed_rpm = Speed(rpm, "rpm");
         RequireSpeedOf(*c, o.speed_rpm, "rpm");
         o.method = MethodKeyword(method);
         o.rtol = Rtol(rtol);
         o.dynamic = Flag(dynamic, "dynamic");
         o.series = Flag(series, "series");
-        o.json = true;
-        return Run([&] { return ComputeSimulate(*c, o); }, {{"--rpm", "rpm=" + Repr(rpm)},
-                                                            {"--method", "method=" + Repr(method)},
-                                                            {"--rtol", "rtol=" + Repr(rtol)}});
+        return Run([&] { return WriteSimulate(SimulateCase(*c, o), true); },
+                   {{"--rpm", "rpm=" + Repr(rpm)},
+                    {"--method", "method=" + Repr(method)},
+                    {"--rtol", "rtol=" + Repr(rtol)}});
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(),
       arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
@@ -214,7 +214,7 @@ PYBIND11_MODULE(needle, m) {
          const py::object& step_rpm, const py::object& method, const py::object& rtol,
          const py::object& threads) {
         const auto c = CaseOf(source, "overspeed");
-        OverspeedCommandOptions o;
+        OverspeedJobOptions o;
         o.from_rpm = Speed(from_rpm, "from_rpm");
         o.to_rpm = Speed(to_rpm, "to_rpm");
         o.step_rpm = Number(step_rpm, "step_rpm", "a speed step in rpm", kSpeedStepRange);
@@ -223,8 +223,7 @@ PYBIND11_MODULE(needle, m) {
         o.threads =
             static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
         RequireSpeedOf(*c, std::nullopt, "");
-        o.json = true;
-        return Run([&] { return ComputeOverspeed(*c, o); },
+        return Run([&] { return WriteOverspeed(OverspeedOfCase(*c, o), true); },
                    {{"--from", "from_rpm=" + Repr(from_rpm)},
                     {"--to", "to_rpm=" + Repr(to_rpm)},
                     {"--step-rpm", "step_rpm=" + Repr(step_rpm)},

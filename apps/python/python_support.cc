@@ -21,7 +21,6 @@
 #include "apps/case/plausible_ranges.h"
 #include "apps/cli/cam_command.h"
 #include "apps/cli/compare_output.h"
-#include "apps/cli/dynamics_command.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/report/check_writers.h"

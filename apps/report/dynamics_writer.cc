@@ -1,50 +1,19 @@
-// What simulate and overspeed compute and print: ComputeSimulate and ComputeOverspeed
-// (dynamics_command.h), the JSON object, the text and the CSV of each.
-#include <unistd.h>
+// The JSON objects, texts and columns of a run and of the overspeed search: dynamics_writer.h.
+#include "apps/report/dynamics_writer.h"
 
-#include <array>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
-#include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/case/case_scene.h"
-#include "apps/cli/cli_checks.h"
-#include "apps/cli/dynamics_command.h"
-#include "apps/cli/progress_bar.h"
-#include "apps/report/command_output.h"
-#include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
-#include "apps/study/check_scene.h"
-#include "dynamics/overspeed.h"
-#include "dynamics/simulation.h"
 #include "lib/output.h"
 #include "lib/units.h"
-#include "spring/quasi_static.h"
 
 namespace needle {
 
 namespace {
-
-SimulationOptions Options(const Case& c, const std::optional<std::string>& method,
-                          const std::optional<double>& rtol) {
-  SimulationOptions o = OptionsFromCase(c);
-  if (method) {
-    if (*method != "auto" && !ParseMethod(*method)) {
-      throw CaseError("--method: unknown method \"" + *method + "\"; expected " + MethodList());
-    }
-
-    o.method = *method;
-  }
-  if (rtol) {
-    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
-      throw CaseError("--rtol: must be in " + RtolRangeText() + ", got " + std::to_string(*rtol));
-    o.integrator.rtol = *rtol;
-    if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = DefaultAtol(*rtol);
-  }
-  return o;
-}
 
 // The revolutions of a run of several: one row each, then whether the state repeated.
 std::string CyclesText(const SimulationResult& r) {
@@ -72,43 +41,21 @@ std::string CyclesText(const SimulationResult& r) {
 
 }  // namespace
 
-CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
-                              const std::function<void(const SeriesPoint&)>& series_sink) {
-  RequireSpeed(o.speed_rpm);
-  const Scene scene = MakeScene(c);
-  SimulationOptions sim = Options(c, o.method, o.rtol);
-  sim.force_dynamic = o.dynamic;
-  // Streamed: to the caller's sink, and as SI columns when asked; none is kept as a whole.
-  const std::vector<Column> columns = SeriesColumns();
-  std::vector<std::vector<double>> si(columns.size());
-  sim.record_series = series_sink || o.series;
-  if (sim.record_series) {
-    sim.series_sink = [&](const SeriesPoint& p) {
-      if (series_sink) series_sink(p);
-      if (!o.series) return;
-      const std::array<double, 7> row = SeriesRow(p);
-      for (size_t i = 0; i < row.size(); ++i) si[i].push_back(row[i]);
-    };
-  }
-  if (o.cycles) {
-    sim.cycles = *o.cycles;
-    const auto refusal = sim.cycles > 1 ? CyclesRefusal(scene) : std::nullopt;
-    if (refusal) throw CaseError("--cycles: " + *refusal);
-  }
-  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
-  const SimulationResult r = Simulate(scene, speed, sim);
-  if (o.csv && r.skipped) throw CaseError("--csv: no time series to write, " + r.method_reason);
-
+CommandOutput WriteSimulate(const CaseRun& run, bool json) {
+  const Case& c = run.c;
+  const SimulationResult& r = run.result;
+  const double speed = run.speed_rpm;
   CommandOutput result;
   result.status = r.liftoff() ? 1 : 0;
   const std::vector<Field> fields = SimulationFields(r);
   const auto text = [&fields](const char* key) { return ValueText(FieldAt(fields, key)); };
-  if (!si[0].empty()) {
+  if (!run.series_si.empty()) {
+    const std::vector<Column> columns = SeriesColumns();
     for (size_t i = 0; i < columns.size(); ++i)
-      result.columns[columns[i].SiKey()] = std::move(si[i]);
+      result.columns[columns[i].SiKey()] = run.series_si[i];
   }
   std::ostringstream out;
-  if (o.json) {
+  if (json) {
     nlohmann::json j;
     j["case"] = c.path;
     j["speed_rpm"] = speed;
@@ -132,10 +79,10 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
     }
     j["impacts"] = impacts;
     PutFields(j, fields);
-    j["rtol"] = sim.integrator.rtol;
+    j["rtol"] = run.rtol;
     j["status"] = RunStatusName(r.status);
     j["status_reason"] = r.status_reason;
-    j["liftoff_rpm_quasi_static"] = Finite(QuasiStaticLiftoffRpm(scene));
+    j["liftoff_rpm_quasi_static"] = Finite(run.liftoff_rpm_quasi_static);
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
@@ -143,7 +90,7 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
         << ")\n";
     if (!r.skipped) {
       out << "window " << text("window_start_deg") << " .. " << text("window_end_deg")
-          << " deg; rtol " << sim.integrator.rtol << "; " << text("steps") << " steps, "
+          << " deg; rtol " << run.rtol << "; " << text("steps") << " steps, "
           << text("rhs_evaluations") << " rhs evaluations, " << text("events")
           << " events; energy residual " << r.energy_residual << '\n';
       if (r.status != RunStatus::kComplete) {
@@ -184,41 +131,18 @@ CommandOutput ComputeSimulate(const Case& c, const SimulateCommandOptions& o,
   return result;
 }
 
-CommandOutput ComputeOverspeed(const Case& c, const OverspeedCommandOptions& o,
-                               const std::function<void(int, int)>& progress) {
-  RequireIn("--threads", o.threads, kThreadsRange.lo, kThreadsRange.hi, "a number of threads");
-  RequireIn("--step-rpm", o.step_rpm, kSpeedStepRange.lo, kSpeedStepRange.hi,
-            "a speed step in rpm");
-  RequireSpeed(o.from_rpm, "--from");
-  RequireSpeed(o.to_rpm, "--to");
-  const Scene scene = MakeScene(c);
-  const double n_qs = QuasiStaticLiftoffRpm(scene);
-  OverspeedOptions opt;
-  opt.simulation = Options(c, o.method, o.rtol);
-  opt.simulation.steady_state = c.overspeed && c.overspeed->steady_state;  // [overspeed]
-  opt.threads = o.threads;
-  opt.step_rpm = o.step_rpm.value_or(0.0);
-  const SweepRange range = DefaultSweepRange(c, c.engine.speed_rpm, n_qs);
-  opt.from_rpm = o.from_rpm.value_or(range.from_rpm);
-  opt.to_rpm = o.to_rpm.value_or(range.to_rpm);
-  if (!(opt.from_rpm > 0.0) || !std::isfinite(opt.from_rpm) || opt.from_rpm > 1e7)
-    throw CaseError("--from: expected a speed in (0, 1e7] rpm, got " +
-                    std::to_string(opt.from_rpm));
-  if (!std::isfinite(opt.to_rpm) || opt.to_rpm > 1e9)
-    throw CaseError("--to: expected a finite speed up to 1e9 rpm, got " +
-                    std::to_string(opt.to_rpm));
-  if (!(opt.to_rpm > opt.from_rpm)) {
-    throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
-                    " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
-  }
-  const OverspeedResult r = OverspeedSearch(scene, opt, progress);
+CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
+  const Case& c = search.c;
+  const OverspeedOptions& opt = search.options;
+  const OverspeedResult& r = search.result;
+  const double n_qs = search.liftoff_rpm_quasi_static;
   CommandOutput result;
   result.status = r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
   std::vector<std::vector<double>> rows_si;
   for (const OverspeedRow& row : r.rows) rows_si.push_back(OverspeedRowSi(row));
   result.columns = SiColumns(OverspeedColumns(), rows_si);
   std::ostringstream out;
-  if (o.json) {
+  if (json) {
     nlohmann::json j;
     j["case"] = c.path;
     j["from_rpm"] = opt.from_rpm;

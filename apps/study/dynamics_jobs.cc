@@ -1,0 +1,98 @@
+#include "apps/study/dynamics_jobs.h"
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "apps/case/case_scene.h"
+#include "apps/case/plausible_ranges.h"
+#include "apps/study/check_scene.h"
+#include "lib/output.h"
+#include "spring/quasi_static.h"
+
+namespace needle {
+
+namespace {
+
+SimulationOptions Options(const Case& c, const std::optional<std::string>& method,
+                          const std::optional<double>& rtol) {
+  SimulationOptions o = OptionsFromCase(c);
+  if (method) {
+    if (*method != "auto" && !ParseMethod(*method)) {
+      throw CaseError("--method: unknown method \"" + *method + "\"; expected " + MethodList());
+    }
+
+    o.method = *method;
+  }
+  if (rtol) {
+    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
+      throw CaseError("--rtol: must be in " + RtolRangeText() + ", got " + std::to_string(*rtol));
+    o.integrator.rtol = *rtol;
+    if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = DefaultAtol(*rtol);
+  }
+  return o;
+}
+
+}  // namespace
+
+CaseRun SimulateCase(const Case& c, const SimulateJobOptions& o,
+                     const std::function<void(const SeriesPoint&)>& series_sink) {
+  RequireSpeed(o.speed_rpm);
+  const Scene scene = MakeScene(c);
+  SimulationOptions sim = Options(c, o.method, o.rtol);
+  sim.force_dynamic = o.dynamic;
+  // Streamed: to the caller's sink, and as SI columns when asked; none is kept as a whole.
+  std::vector<std::vector<double>> si(SeriesColumns().size());
+  sim.record_series = series_sink || o.series;
+  if (sim.record_series) {
+    sim.series_sink = [&](const SeriesPoint& p) {
+      if (series_sink) series_sink(p);
+      if (!o.series) return;
+      const std::array<double, 7> row = SeriesRow(p);
+      for (size_t i = 0; i < row.size(); ++i) si[i].push_back(row[i]);
+    };
+  }
+  if (o.cycles) {
+    sim.cycles = *o.cycles;
+    const auto refusal = sim.cycles > 1 ? CyclesRefusal(scene) : std::nullopt;
+    if (refusal) throw CaseError("--cycles: " + *refusal);
+  }
+  const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
+  CaseRun run{
+      c, speed, sim.integrator.rtol, QuasiStaticLiftoffRpm(scene), Simulate(scene, speed, sim), {}};
+  if (!si[0].empty()) run.series_si = std::move(si);
+  return run;
+}
+
+CaseOverspeed OverspeedOfCase(const Case& c, const OverspeedJobOptions& o,
+                              const std::function<void(int, int)>& progress) {
+  RequireIn("--threads", o.threads, kThreadsRange.lo, kThreadsRange.hi, "a number of threads");
+  RequireIn("--step-rpm", o.step_rpm, kSpeedStepRange.lo, kSpeedStepRange.hi,
+            "a speed step in rpm");
+  RequireSpeed(o.from_rpm, "--from");
+  RequireSpeed(o.to_rpm, "--to");
+  const Scene scene = MakeScene(c);
+  const double n_qs = QuasiStaticLiftoffRpm(scene);
+  OverspeedOptions opt;
+  opt.simulation = Options(c, o.method, o.rtol);
+  opt.simulation.steady_state = c.overspeed && c.overspeed->steady_state;  // [overspeed]
+  opt.threads = o.threads;
+  opt.step_rpm = o.step_rpm.value_or(0.0);
+  const SweepRange range = DefaultSweepRange(c, c.engine.speed_rpm, n_qs);
+  opt.from_rpm = o.from_rpm.value_or(range.from_rpm);
+  opt.to_rpm = o.to_rpm.value_or(range.to_rpm);
+  if (!(opt.from_rpm > 0.0) || !std::isfinite(opt.from_rpm) || opt.from_rpm > 1e7)
+    throw CaseError("--from: expected a speed in (0, 1e7] rpm, got " +
+                    std::to_string(opt.from_rpm));
+  if (!std::isfinite(opt.to_rpm) || opt.to_rpm > 1e9)
+    throw CaseError("--to: expected a finite speed up to 1e9 rpm, got " +
+                    std::to_string(opt.to_rpm));
+  if (!(opt.to_rpm > opt.from_rpm)) {
+    throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
+                    " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
+  }
+  return CaseOverspeed{c, opt, n_qs, OverspeedSearch(scene, opt, progress)};
+}
+
+}  // namespace needle
