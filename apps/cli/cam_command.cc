@@ -1,22 +1,13 @@
 #include "apps/cli/cam_command.h"
 
-#include <algorithm>
-#include <cmath>
-#include <iostream>
-#include <nlohmann/json.hpp>
-#include <sstream>
+#include <vector>
 
 #include "apps/case/case_file.h"
-#include "apps/case/case_profile.h"
+#include "apps/report/cam_writer.h"
 #include "apps/report/command_output.h"
 #include "apps/report/output_paths.h"
-#include "apps/report/result_writers.h"
+#include "apps/study/profile_job.h"
 #include "apps/study/synthesis_scene.h"
-#include "dynamics/model/cam_input.h"
-#include "lib/cam_profile.h"
-#include "lib/cam_synthesis.h"
-#include "lib/output.h"
-#include "lib/units.h"
 
 namespace needle {
 
@@ -41,7 +32,8 @@ int RunSynthCommand(const SynthCommandOptions& o) {
     if (o.case_out) outputs.push_back({"--case", *o.case_out});
     CheckOutputPaths(outputs, {o.spec_path});
   }
-  const CommandOutput r = ComputeSynth(f, o);
+  const CommandOutput r =
+      WriteSynth(f, SynthesizeCam(f), {o.json, o.csv.has_value(), o.case_out.has_value()});
   if (o.case_out) WriteOutput({"--case", *o.case_out}, r.case_file);
   return Emit(r, o.format, o.csv);
 }
@@ -61,7 +53,7 @@ CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
 int RunProfileCommand(const ProfileCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
-  return Emit(ComputeProfile(c, o), o.format, o.csv);
+  return Emit(WriteProfile(ProfileOfCase(c), {o.json, o.csv.has_value(), false}), o.format, o.csv);
 }
 
 }  // namespace needle

@@ -9,7 +9,6 @@
 #include <string>
 
 #include "apps/case/case_file.h"
-#include "apps/report/command_output.h"
 #include "apps/report/output_format.h"
 
 namespace needle {
@@ -21,9 +20,6 @@ struct SynthCommandOptions {
   std::optional<std::string> csv, case_out;
 };
 CLI::App* AddSynthCommand(CLI::App& app, SynthCommandOptions& options);
-/// The law of a loaded spec (the --case file's text in `case_file` when asked). Throws
-/// CaseError on bad input.
-CommandOutput ComputeSynth(const SynthesisFile& spec, const SynthCommandOptions& options);
 /// Exit 1 when a check of [checks] fails.
 int RunSynthCommand(const SynthCommandOptions& options);
 
@@ -34,8 +30,6 @@ struct ProfileCommandOptions {
   std::optional<std::string> csv;
 };
 CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& options);
-/// The profile of a loaded case. Throws CaseError on bad input.
-CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& options);
 /// Exit 1 when the profile undercuts.
 int RunProfileCommand(const ProfileCommandOptions& options);
 

@@ -22,11 +22,11 @@
 
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
-#include "apps/cli/cam_command.h"
 #include "apps/cli/compare_output.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/python/python_support.h"
+#include "apps/report/cam_writer.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"
 #include "apps/report/dynamics_writer.h"
@@ -307,9 +307,9 @@ PYBIND11_MODULE(needle, m) {
                 ? LoadSynthesisFile(PathOf(spec))
                 : throw py::type_error(
                       "synth: expected a path (str or os.PathLike) or a dict, got " + AType(spec));
-        SynthCommandOptions o;
-        o.json = true;
-        return Run([&] { return ComputeSynth(f, o); });
+        CamWriting json;
+        json.json = true;
+        return Run([&] { return WriteSynth(f, SynthesizeCam(f), json); });
       },
       arg("spec"), py::kw_only(), arg("name") = py::none(),
       "needle synth: a rise law under derivative limits, from a spec file or dict");
@@ -416,9 +416,9 @@ PYBIND11_MODULE(needle, m) {
       [](const py::object& source) {
         const auto c = CaseOf(source, "profile");
         RequireSpeedOf(*c, std::nullopt, "");
-        ProfileCommandOptions o;
-        o.json = true;
-        return Run([&] { return ComputeProfile(*c, o); });
+        CamWriting json;
+        json.json = true;
+        return Run([&] { return WriteProfile(ProfileOfCase(*c), json); });
       },
       arg("case"), "needle profile: the cam profile and its follower checks");
 }

@@ -19,7 +19,6 @@
 
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
-#include "apps/cli/cam_command.h"
 #include "apps/cli/compare_output.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/tolerance_command.h"

@@ -1,28 +1,18 @@
-// What synth and profile compute and print: ComputeSynth and ComputeProfile
-// (cam_command.h).
-#include <algorithm>
+// The synthesized law's and the cam profile's JSON, text and CSV: cam_writer.h.
+#include "apps/report/cam_writer.h"
+
 #include <cmath>
-#include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/case/case_file.h"
-#include "apps/case/case_profile.h"
-#include "apps/cli/cam_command.h"
-#include "apps/report/command_output.h"
-#include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
-#include "apps/study/synthesis_scene.h"
-#include "dynamics/model/cam_input.h"
-#include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"
 #include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
 
-CommandOutput ComputeSynth(const SynthesisFile& f, const SynthCommandOptions& o) {
-  const SynthesisResult r = SynthesizeCam(f);
+CommandOutput WriteSynth(const SynthesisFile& f, const SynthesisResult& r, const CamWriting& w) {
   const SynthesizedLaw& rise = r.rise;
   const std::vector<Field> fields = SynthesisFields(r);
   // v: the value alone; t: the value and its unit, both from the field table.
@@ -32,10 +22,10 @@ CommandOutput ComputeSynth(const SynthesisFile& f, const SynthCommandOptions& o)
   result.status = r.pass ? 0 : 1;
   const std::vector<std::vector<double>> rows = SynthesisRows(r.law);
   result.columns = SiColumns(SynthesisColumns(), rows);
-  if (o.csv) result.csv = CsvTable(SynthesisColumns(), rows, 12);
-  if (o.case_out) result.case_file = SynthesizedCaseText(f, r.law);
+  if (w.csv) result.csv = CsvTable(SynthesisColumns(), rows, 12);
+  if (w.case_file) result.case_file = SynthesizedCaseText(f, r.law);
   std::ostringstream out;
-  if (o.json) {
+  if (w.json) {
     nlohmann::json j;
     j["spec"] = f.path;
     PutFields(j, fields);
@@ -128,16 +118,12 @@ CommandOutput ComputeSynth(const SynthesisFile& f, const SynthCommandOptions& o)
   return result;
 }
 
-CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& o) {
-  if (!c.profile)
-    throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
-  const LiftLaw law = MakeLiftLaw(c);
-  const FollowerGeometry g = CaseFollower(c);
-  const double play = c.train ? c.train->play_m : 0.0;
-  double theta0 = 0.0;
-  const CamProfile p = MakeCaseProfile(c, law, &theta0);
-  // The cam's speed at the rated engine speed (four-stroke: half the crank's).
-  const double cam_omega = OmegaFromRpm(c.engine.speed_rpm) / CrankTurnsPerCycle(c.engine.cycle);
+CommandOutput WriteProfile(const CaseCamProfile& profile, const CamWriting& w) {
+  const Case& c = profile.c;
+  const FollowerGeometry& g = profile.follower;
+  const double play = profile.play_m, theta0 = profile.cam_zero_crank_rad;
+  const CamProfile& p = profile.profile;
+  const double cam_omega = profile.cam_omega_rad_s;
   CommandOutput result;
   result.status = p.undercut || p.off_face ? 1 : 0;
   std::vector<std::vector<double>> rows_si;
@@ -148,7 +134,7 @@ CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& o) {
   const std::vector<Field> placing = {{"roller_play", display::kMm, play, 3},
                                       {"cam_angle_zero_crank", display::kDegree, theta0, 2}};
   std::ostringstream out;
-  if (o.json) {
+  if (w.json) {
     nlohmann::json j;
     j["case"] = c.path;
     PutFields(j, follower);
@@ -189,7 +175,7 @@ CommandOutput ComputeProfile(const Case& c, const ProfileCommandOptions& o) {
         << TextAt(extremes, "min_entrainment_speed_at_cam_deg") << ", sliding speed max "
         << TextAt(extremes, "max_sliding_speed_m_s") << '\n';
   }
-  if (o.csv) {  // the CAD coordinates: the first three columns
+  if (w.csv) {  // the CAD coordinates: the first three columns
     const std::vector<Column> xy(ProfileColumns().begin(), ProfileColumns().begin() + 3);
     std::vector<std::vector<double>> xy_si;
     xy_si.reserve(rows_si.size());
