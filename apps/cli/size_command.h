@@ -13,8 +13,8 @@
 #include <string>
 
 #include "apps/case/case_file.h"
-#include "apps/report/command_output.h"
 #include "apps/report/output_format.h"
+#include "apps/study/spring_sizing_scene.h"
 
 namespace needle {
 
@@ -23,13 +23,10 @@ struct SizeCommandOptions {
   bool json = false;
   OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
   std::optional<std::string> case_out;        ///< --case: write the sized case
-  int threads = 0;                            ///< the verification sweeps' threads (0: all cores)
+  SizeOptions sizing;                         ///< --threads
 };
 
 CLI::App* AddSizeCommand(CLI::App& app, SizeCommandOptions& options);
-/// The sizing of a loaded case whose file text is `case_text` (for the sized case).
-CommandOutput ComputeSize(const Case& c, const std::string& case_text,
-                          const SizeCommandOptions& options);
 int RunSizeCommand(const SizeCommandOptions& options);
 
 }  // namespace needle

@@ -23,7 +23,6 @@
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
 #include "apps/cli/compare_output.h"
-#include "apps/cli/size_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/python/python_support.h"
 #include "apps/report/cam_writer.h"
@@ -31,6 +30,7 @@
 #include "apps/report/command_output.h"
 #include "apps/report/dynamics_writer.h"
 #include "apps/report/kinematics_writer.h"
+#include "apps/report/size_writer.h"
 #include "apps/report/spring_writer.h"
 #include "apps/study/check_scene.h"
 #include "apps/study/tolerance_study.h"
@@ -179,9 +179,11 @@ PYBIND11_MODULE(needle, m) {
       "size",
       [](const py::object& source) {
         const auto c = CaseOf(source, "size");
-        SizeCommandOptions o;
-        o.json = true;
-        return Run([&] { return ComputeSize(*c, "", o); });
+        return Run([&] {
+          SizeWriting json;
+          json.json = true;
+          return WriteSize(*c, SizeCase(*c, MakeLiftLaw(*c)), json);
+        });
       },
       arg("case"),
       "needle size: the lightest spring that passes every limit, verified by the check (the "

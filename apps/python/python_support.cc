@@ -20,7 +20,6 @@
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
 #include "apps/cli/compare_output.h"
-#include "apps/cli/size_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"

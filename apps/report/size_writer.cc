@@ -1,0 +1,160 @@
+// The sizing's JSON object and text, and the sized case: size_writer.h.
+#include "apps/report/size_writer.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "apps/report/result_writers.h"
+#include "lib/output.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space) {
+  nlohmann::json j = nlohmann::json::object();
+  PutFields(j, SizedSpringFields(s, space));
+  for (const SizingRule& x : s.rules) {
+    j["rules"].push_back({{"key", x.key},
+                          {"unit", x.unit},
+                          {"value", Finite(x.value)},
+                          {"limit", x.limit},
+                          {"at_most", x.at_most},
+                          {"margin", Finite(x.margin)},
+                          {"pass", x.pass}});
+  }
+  return j;
+}
+
+std::string SpringLine(const SizedSpring& s, const SizingSpace& space) {
+  const std::vector<Field> f = SizedSpringFields(s, space);
+  return space.wires[s.wire_index].label + " d " + TextAt(f, "wire_mm") + ", D " +
+         TextAt(f, "coil_mm") + ", " + TextAt(f, "active_coils") + " active coils, " +
+         TextAt(f, "mass_kg") + ", n_f " +
+         (s.check ? Fixed(s.check->fatigue.goodman_safety_factor, 2) : std::string("-"));
+}
+
+// "  NAME: VALUE <= LIMIT, margin M, VERDICT" (an infinite value: buckling's imaginary root).
+std::string RowText(const std::string& name, double value, double limit, bool at_most,
+                    double margin, const std::string& unit, const std::string& verdict) {
+  const std::string u = unit.empty() ? "" : " " + unit;
+  if (!std::isfinite(value)) return "  " + name + ": none at any deflection, " + verdict + "\n";
+  return "  " + name + ": " + Fixed(value, 2) + u + (at_most ? " <= " : " >= ") + Fixed(limit, 2) +
+         u + ", margin " + Fixed(margin, 2) + u + ", " + verdict + "\n";
+}
+
+}  // namespace
+
+CommandOutput WriteSize(const Case& c, const SizeResult& r, const SizeWriting& w) {
+  const SizingSpace& sp = r.space;
+  const SizedSpring* chosen = r.winner ? &r.verified[*r.winner].spring
+                              : r.pass && !r.closed_form.best.empty() ? &r.closed_form.best[0]
+                              : r.closed_form.closest                 ? &*r.closed_form.closest
+                                                                      : nullptr;
+  const CheckResult* check = r.winner ? &r.verified[*r.winner].check : nullptr;
+  const std::vector<SizedSpring>& front = r.closed_form.front;
+  CommandOutput out;
+  out.status = r.pass ? 0 : 1;
+  if (r.pass && chosen && w.case_text) {
+    const Case sized = CaseWithSpring(c, *chosen, sp, r.mass_without_spring_kg);
+    out.case_file = SizedCaseText(*w.case_text, sized, *chosen, sp);
+  }
+  if (w.json) {
+    nlohmann::json& j = out.json;
+    j = {{"case", c.path},
+         {"objective", r.objective},
+         {"space", r.space_note},
+         {"mass_without_spring_kg", r.mass_without_spring_kg},
+         {"mass_without_spring_source", r.mass_note},
+         {"pass", r.pass}};
+    PutFields(j, {{"stroke", display::kMm, r.stroke_m}});
+    for (const SizeStage& s : r.stages) {
+      j["stages"].push_back({{"name", s.name},
+                             {"in", s.in},
+                             {"kept", s.kept},
+                             {"seconds", s.seconds},
+                             {"note", s.note}});
+    }
+    j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
+    j["spring"] = chosen ? SpringJson(*chosen, sp) : nullptr;
+    if (r.case_spring_mass_kg) j["case_spring_mass_kg"] = *r.case_spring_mass_kg;
+    if (check) {
+      j["check"] = {
+          {"pass", check->pass}, {"failing", check->failing}, {"warnings", check->warnings}};
+      for (const LimitRow& x : check->limits) {
+        j["check"]["limits"].push_back({{"key", x.key},
+                                        {"value", Finite(x.value)},
+                                        {"limit", Finite(x.limit)},
+                                        {"margin", Finite(x.margin)},
+                                        {"verdict", x.verdict}});
+      }
+      if (check->sweep && check->sweep->n_dyn_rpm)
+        j["check"]["n_dyn_rpm"] = *check->sweep->n_dyn_rpm;
+    }
+    for (const SizedSpring& s : r.closed_form.best) j["candidates"].push_back(SpringJson(s, sp));
+    for (const VerifiedSpring& v : r.verified) {
+      j["verified"].push_back({{"spring", SpringJson(v.spring, sp)},
+                               {"pass", v.check.pass},
+                               {"failing", v.check.failing},
+                               {"seconds", v.seconds}});
+    }
+    for (const SizedSpring& s : front) j["front"].push_back(SpringJson(s, sp));
+    return out;
+  }
+  std::ostringstream t;
+  if (!c.title.empty()) t << c.title << '\n';
+  t << "space: " << r.space_note << "; objective: least " << r.objective << '\n';
+  t << "duty: stroke " << FieldText({"stroke", display::kMm, r.stroke_m, 3})
+    << "; moving mass without the spring " << Fixed(r.mass_without_spring_kg, 4) << " kg ("
+    << r.mass_note << ")\n";
+  for (const SizeStage& s : r.stages) {
+    t << "stage " << s.name << ": " << s.in << " in, " << s.kept << " kept, "
+      << Fixed(s.seconds * 1e3, 1) << " ms (" << s.note << ")\n";
+  }
+  if (chosen) {
+    const HelicalGeometry& g = chosen->geometry;
+    const std::vector<Field> f = SizedSpringFields(*chosen, sp);
+    t << (r.pass ? "spring: " : "closest spring: ") << sp.wires[chosen->wire_index].label
+      << ", wire " << TextAt(f, "wire_mm") << ", coil " << TextAt(f, "coil_mm") << " (OD "
+      << FieldText({"outer_diameter", display::kMm, g.coil_m + g.wire_m, 1}) << "), "
+      << TextAt(f, "active_coils") << " active / " << TextAt(f, "total_coils")
+      << " total coils, free length " << TextAt(f, "free_length_mm") << ", installed "
+      << TextAt(f, "installed_length_mm") << '\n';
+    t << "  preload " << TextAt(f, "preload_N") << " ("
+      << FieldText({"preload", display::kKgForce, chosen->preload_N, 1}) << "; set by "
+      << chosen->preload_rule << "), rate " << TextAt(f, "rate_N_mm") << ", mass "
+      << TextAt(f, "mass_kg")
+      << (r.case_spring_mass_kg ? " (the case's spring " + Fixed(*r.case_spring_mass_kg, 3) + " kg)"
+                                : "")
+      << '\n';
+    t << "rules (value, limit, margin):\n";
+    for (const SizingRule& x : chosen->rules)
+      t << RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.pass ? "pass" : "FAIL");
+  }
+  if (check) {
+    t << "check of the sized case (limits, as needle check):\n";
+    for (const LimitRow& x : check->limits)
+      t << (x.verdict == "not judged"
+                ? "  " + x.name + ": not judged (" + x.note + ")\n"
+                : RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.verdict));
+  }
+  for (const VerifiedSpring& v : r.verified) {
+    if (!v.check.pass)
+      t << "rejected by the check: " << SpringLine(v.spring, sp) << ": "
+        << (v.check.failing.empty() ? "fails" : v.check.failing.front()) << '\n';
+  }
+  for (size_t i = 1; i < r.closed_form.best.size(); ++i)
+    t << "next best: " << SpringLine(r.closed_form.best[i], sp) << '\n';
+  const size_t every = front.size() / 8 + 1;  // at most 8 and the last (--json: all)
+  for (size_t i = 0; i < front.size(); ++i)
+    if (i % every == 0 || i + 1 == front.size())
+      t << "front (mass, n_f) " << i + 1 << "/" << front.size() << ": " << SpringLine(front[i], sp)
+        << '\n';
+  if (!r.pass) t << "no fit: " << r.no_fit << '\n';
+  t << "overall: " << (r.pass ? "pass" : "FAIL") << '\n';
+  out.text = t.str();
+  return out;
+}
+
+}  // namespace needle
