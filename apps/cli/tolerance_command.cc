@@ -12,6 +12,7 @@
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
+#include "apps/report/tolerance_writer.h"
 #include "apps/study/tolerance_study.h"
 #include "lib/output.h"
 #include "lib/units.h"

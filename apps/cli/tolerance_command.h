@@ -8,14 +8,10 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
-#include "apps/case/case_file.h"
-#include "apps/report/html_report.h"
 #include "apps/report/output_format.h"
-#include "apps/study/tolerance_study.h"
 
 namespace needle {
 
@@ -32,14 +28,5 @@ struct ToleranceCommandOptions {
 
 CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& options);
 int RunToleranceCommand(const ToleranceCommandOptions& options);
-
-/// What `tolerance --json` prints for a study of case `c` (without the report's path).
-nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& result);
-/// The study's HTML report: the scatter, the failure probability and its drivers, the
-/// distributions and a histogram of each headline quantity.
-Report ToleranceReport(const Case& c, const ToleranceResult& result, std::uint64_t seed);
-/// What `tolerance` prints without --json.
-std::string ToleranceText(const Case& c, const ToleranceResult& result, std::uint64_t seed,
-                          const std::optional<std::string>& report_path);
 
 }  // namespace needle

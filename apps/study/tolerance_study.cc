@@ -9,6 +9,7 @@
 #include <mutex>
 #include <numeric>
 #include <thread>
+#include <tuple>
 
 #include "apps/study/check_scene.h"
 #include "lib/units.h"
@@ -312,6 +313,13 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
   return samples;
 }
 
+std::pair<double, double> WilsonInterval95(double p, double n) {
+  const double z = 1.959963984540054, z2 = z * z;
+  const double centre = (p + z2 / (2 * n)) / (1 + z2 / n);
+  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
 ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& options,
                                      std::vector<ToleranceSample> samples) {
   if (samples.empty()) throw CaseError("a tolerance study needs at least one sample");
@@ -334,6 +342,8 @@ ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& opti
   }
   const double n = static_cast<double>(result.samples.size());
   result.failure_probability = std::accumulate(fails.begin(), fails.end(), 0.0) / n;
+  std::tie(result.failure_probability_low, result.failure_probability_high) =
+      WilsonInterval95(result.failure_probability, n);
   for (auto& [item, count] : result.failure_by_item) count /= n;
   for (const auto& [key, values] : outputs) {
     result.distributions[key] = Describe(values);

@@ -16,6 +16,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apps/case/case_file.h"
@@ -70,11 +71,18 @@ struct ToleranceResult {
   std::vector<ToleranceSample> samples;               ///< in sample order
   std::map<std::string, Distribution> distributions;  ///< every output
   double failure_probability = 0.0;                   ///< the fraction of samples whose check fails
-  std::map<std::string, double> failure_by_item;      ///< the fraction failing each item
+  /// Its 95 % Wilson interval (WilsonInterval95).
+  double failure_probability_low = 0.0, failure_probability_high = 1.0;
+  std::map<std::string, double> failure_by_item;  ///< the fraction failing each item
   Drivers fail_drivers;  ///< ρ of each input with failing (1) or passing (0)
   std::map<std::string, Drivers> output_drivers;  ///< ρ of each input with each output
   double seconds = 0.0;                           ///< wall time of the study
 };
+
+/// The 95 % Wilson score interval of a fraction `p` of `n` trials:
+///   (p + z²/2n ± z·√(p(1−p)/n + z²/4n²)) / (1 + z²/n),  z = 1.95996…,
+/// clipped to [0, 1].
+std::pair<double, double> WilsonInterval95(double p, double n);
 
 /// The study of case `c` (its [tolerance] section, or the defaults without one). Throws
 /// CaseError on a case that cannot be checked.

@@ -96,6 +96,12 @@ TEST(ToleranceStudyTest, TheFailureProbabilityIsTheNormalLaws) {
   const double se = std::sqrt(p * (1 - p) / o.samples);
   EXPECT_NEAR(r.failure_by_item.at("spring check: Basu's formula"), p, 4 * se);
   EXPECT_GE(r.failure_probability, r.failure_by_item.at("spring check: Basu's formula"));
+  // The study carries the Wilson interval of its own failure fraction.
+  const auto [p_low, p_high] = WilsonInterval95(r.failure_probability, o.samples);
+  EXPECT_EQ(r.failure_probability_low, p_low);
+  EXPECT_EQ(r.failure_probability_high, p_high);
+  EXPECT_LT(p_low, r.failure_probability);
+  EXPECT_GT(p_high, r.failure_probability);
   // The preload drives the failing, against it; nothing else moves.
   EXPECT_LT(r.fail_drivers.at("preload_deviation"), -0.3);
   EXPECT_TRUE(std::isnan(r.fail_drivers.at("mass_deviation")));
@@ -281,3 +287,18 @@ TEST(ToleranceStudyTest, AVerdictOnlyCheckJudgesEveryLimitAsTheFullCheck) {
 
 }  // namespace
 }  // namespace needle
+
+// The Wilson score interval against values worked by hand from its formula: 50 of 100 gives
+// 0.5 ± 0.0962 (centre 0.5), 0 of 10 gives [0, 0.2775] (the lower end clipped at 0), 10 of 10
+// the mirror image; a study's result carries the interval of its own failure fraction.
+TEST(WilsonInterval, MatchesTheScoreIntervalWorkedByHand) {
+  const auto [lo, hi] = needle::WilsonInterval95(0.5, 100);
+  EXPECT_NEAR(lo, 0.403832, 1e-6);
+  EXPECT_NEAR(hi, 0.596168, 1e-6);
+  const auto [lo0, hi0] = needle::WilsonInterval95(0.0, 10);
+  EXPECT_EQ(lo0, 0.0);
+  EXPECT_NEAR(hi0, 0.277533, 1e-6);
+  const auto [lo1, hi1] = needle::WilsonInterval95(1.0, 10);
+  EXPECT_NEAR(lo1, 1.0 - 0.277533, 1e-6);
+  EXPECT_NEAR(hi1, 1.0, 1e-12);
+}

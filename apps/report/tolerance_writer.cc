@@ -1,4 +1,6 @@
-// What tolerance prints: its JSON object, text and report (tolerance_command.h).
+// What tolerance prints: its JSON object, text and report (tolerance_writer.h).
+#include "apps/report/tolerance_writer.h"
+
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -6,9 +8,6 @@
 #include <sstream>
 
 #include "apps/case/case_file.h"
-#include "apps/cli/cli_checks.h"
-#include "apps/cli/progress_bar.h"
-#include "apps/cli/tolerance_command.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
@@ -29,14 +28,6 @@ const std::vector<std::pair<std::string, std::string>> kHeadline = {
     {"dynamics.max_impact_speed_m_s", "largest impact speed (m/s)"},
 };
 
-// The 95 % Wilson interval of a fraction p of n.
-std::pair<double, double> Wilson(double p, double n) {
-  const double z = 1.959963984540054, z2 = z * z;
-  const double centre = (p + z2 / (2 * n)) / (1 + z2 / n);
-  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
-}
-
 std::string Rho(double r) { return std::isfinite(r) ? Fixed(r, 3) : std::string("-"); }
 
 // The inputs by |ρ|, largest first, as "name ρ" pairs.
@@ -54,7 +45,7 @@ std::vector<std::pair<std::string, double>> Ranked(const Drivers& d) {
 nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
   const ToleranceSection& t = r.tolerance;
   const double n = static_cast<double>(r.samples.size());
-  const auto [p_low, p_high] = Wilson(r.failure_probability, n);
+  const double p_low = r.failure_probability_low, p_high = r.failure_probability_high;
   nlohmann::json j;
   j["case"] = c.path;
   j["samples"] = r.samples.size();
@@ -104,7 +95,7 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
 Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t seed) {
   const ToleranceSection& t = r.tolerance;
   const double n = static_cast<double>(r.samples.size());
-  const auto [p_low, p_high] = Wilson(r.failure_probability, n);
+  const double p_low = r.failure_probability_low, p_high = r.failure_probability_high;
   Report report("needle tolerance: " + Escape(c.title.empty() ? c.path : c.title));
   std::ostringstream head;
   head << "<p>" << r.samples.size() << " samples, seed " << seed << ", " << r.options.threads
@@ -160,7 +151,7 @@ std::string ToleranceText(const Case& c, const ToleranceResult& r, std::uint64_t
                           const std::optional<std::string>& report_path) {
   const ToleranceSection& t = r.tolerance;
   const double n = static_cast<double>(r.samples.size());
-  const auto [p_low, p_high] = Wilson(r.failure_probability, n);
+  const double p_low = r.failure_probability_low, p_high = r.failure_probability_high;
   std::ostringstream out;
   out << (c.title.empty() ? c.path : c.title) << '\n'
       << r.samples.size() << " samples, seed " << seed << ", " << r.options.threads
