@@ -5,10 +5,11 @@
 
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
-#include "apps/cli/compare_output.h"
 #include "apps/cli/progress_bar.h"
+#include "apps/report/compare_writer.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
+#include "apps/study/compare_checks.h"
 
 namespace needle {
 
@@ -36,7 +37,7 @@ int RunCompareCommand(const CompareCommandOptions& o) {
   Comparison cmp;
   {
     ProgressBar bar("compare", "runs", o.json);
-    cmp = CompareCases(std::move(a), std::move(b), o.speed_rpm, path,
+    cmp = CompareCases(std::move(a), std::move(b), o.speed_rpm,
                        [&](int done, int total) { bar.Update(done, total); });
   }
   WriteOutput({"--out", path}, CompareReport(cmp).Html());

@@ -22,11 +22,11 @@
 
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
-#include "apps/cli/compare_output.h"
 #include "apps/python/python_support.h"
 #include "apps/report/cam_writer.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"
+#include "apps/report/compare_writer.h"
 #include "apps/report/dynamics_writer.h"
 #include "apps/report/kinematics_writer.h"
 #include "apps/report/size_writer.h"
@@ -269,7 +269,7 @@ PYBIND11_MODULE(needle, m) {
         RequireSpeedOf(*cb, speed, "rpm");
         return Run(
             [&] {
-              const Comparison cmp = CompareCases(*ca, *cb, speed, "");
+              const Comparison cmp = CompareCases(*ca, *cb, speed);
               CommandOutput out;
               out.json = CompareJson(cmp, "");
               for (nlohmann::json* j : {&out.json, &out.json["a"], &out.json["b"]})

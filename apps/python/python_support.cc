@@ -19,9 +19,9 @@
 
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
-#include "apps/cli/compare_output.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/command_output.h"
+#include "apps/report/compare_writer.h"
 #include "apps/report/tolerance_writer.h"
 #include "apps/study/check_scene.h"
 #include "apps/study/tolerance_study.h"

@@ -185,49 +185,5 @@ TEST(CompareCommandTest, BadInputIsOneLineAndWritesNothing) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(CompareCommandTest, ItemsMatchByPath) {
-  const nlohmann::json a = {
-      {"overall", "pass"}, {"x_mm", 1.0}, {"g", {{"ok", true}, {"n", 2}}}, {"failing", {"text"}}};
-  const nlohmann::json b = {
-      {"overall", "pass"}, {"x_mm", 3.5}, {"g", {{"ok", false}}}, {"h", {{"status", "budget"}}}};
-  const std::vector<ComparedItem> items = CompareChecks(a, b);
-  ASSERT_EQ(items.size(), 5u);  // failing (a list) is no item
-  EXPECT_EQ(items[0].key, "g.n");
-  EXPECT_EQ(items[0].b, nullptr);
-  EXPECT_FALSE(items[0].verdict);
-  EXPECT_EQ(items[1].key, "g.ok");
-  EXPECT_TRUE(items[1].verdict && items[1].flips);
-  EXPECT_EQ(items[2].key, "overall");
-  EXPECT_TRUE(items[2].verdict && !items[2].flips);
-  EXPECT_EQ(items[3].key, "x_mm");
-  EXPECT_EQ(items[3].b.get<double>() - items[3].a.get<double>(), 2.5);
-  EXPECT_EQ(items[4].key, "h.status");  // B's own item, after A's
-  EXPECT_EQ(items[4].a, nullptr);
-  EXPECT_TRUE(items[4].verdict && !items[4].flips && items[4].differs);  // a status: no flip
-}
-
-TEST(CompareCommandTest, OnlyPassAgainstFailFlips) {
-  const auto row = [](const std::string& name, const nlohmann::json& verdict) {
-    return nlohmann::json{{"name", name}, {"verdict", verdict}, {"value", 1.0}, {"margin", 0.5}};
-  };
-  const nlohmann::json a = {{"overall", "pass"},
-                            {"kinematics", {{"spline", "natural"}}},
-                            {"limits", {row("x", "pass"), row("y", "pass"), row("z", "fail")}}};
-  const nlohmann::json b = {{"overall", "pass"},
-                            {"kinematics", {{"spline", "pchip"}}},
-                            {"limits", {row("x", "fail"), row("y", "not judged")}}};
-  std::map<std::string, ComparedItem> by_key;
-  for (const ComparedItem& i : CompareChecks(a, b)) by_key[i.key] = i;
-  EXPECT_TRUE(by_key.at("limits.x.verdict").flips);
-  EXPECT_FALSE(by_key.at("limits.y.verdict").flips);  // pass → not judged: a difference
-  EXPECT_TRUE(by_key.at("limits.y.verdict").differs);
-  EXPECT_FALSE(by_key.at("limits.z.verdict").flips);  // fail → absent: a difference
-  EXPECT_TRUE(by_key.at("limits.z.verdict").differs);
-  EXPECT_FALSE(by_key.at("kinematics.spline").flips);
-  EXPECT_TRUE(by_key.at("kinematics.spline").differs);
-  EXPECT_FALSE(by_key.at("overall").flips || by_key.at("overall").differs);
-  EXPECT_FALSE(by_key.at("limits.x.value").verdict);  // a number
-}
-
 }  // namespace
 }  // namespace needle

@@ -1,4 +1,4 @@
-#include "apps/cli/compare_output.h"
+#include "apps/report/compare_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,74 +16,45 @@
 namespace needle {
 namespace {
 
-// The leaves of a check object, in order: "group.key" → value. Lists (failing, skipped) and
-// the texts that only explain are left out; the paths are data, not verdicts. The limits table
-// (a list of rows) gives each row's verdict, value and margin under "limits.KEY.".
-void Leaves(const nlohmann::json& j, const std::string& prefix,
-            std::vector<std::pair<std::string, nlohmann::json>>& out) {
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
-    const nlohmann::json& v = it.value();
-    if (v.is_object()) {
-      Leaves(v, key, out);
-    } else if (prefix.empty() && it.key() == "limits" && v.is_array()) {
-      for (const nlohmann::json& row : v) {
-        if (!row.is_object() || !row.contains("name")) continue;
-        const std::string name = "limits." + row["name"].get<std::string>();
-        for (const char* field : {"verdict", "value", "margin"})
-          out.emplace_back(name + "." + field, row.value(field, nlohmann::json(nullptr)));
-      }
-    } else if (v.is_number() || v.is_boolean() || v.is_null() ||
-               (v.is_string() &&
-                (it.key() == "overall" || it.key() == "status" || it.key() == "spline"))) {
-      out.emplace_back(key, v);
-    }
+// A value as check --json writes it: null, a bool, a text, a whole number or a number.
+nlohmann::json ValueJson(const CheckValue& v) {
+  switch (v.kind) {
+    case CheckValue::Kind::kNone:
+      return nullptr;
+    case CheckValue::Kind::kFlag:
+      return v.flag;
+    case CheckValue::Kind::kText:
+      return v.text;
+    case CheckValue::Kind::kCount:
+      return static_cast<long long>(v.number);
+    case CheckValue::Kind::kNumber:
+      break;
   }
+  return v.number;
 }
 
-// A bool or one of the strings Leaves keeps (overall, status, spline, a row's verdict), on
-// either side: shown in the verdict table.
-bool IsVerdict(const nlohmann::json& a, const nlohmann::json& b) {
-  const auto kind = [](const nlohmann::json& v) { return v.is_boolean() || v.is_string(); };
-  return kind(a) || kind(b);
-}
-
-// A pass/fail verdict: a sub-check's bool, or "pass" / "fail" (the overall verdict, a limits
-// row). "not judged", a status, a spline kind and null are not.
-bool IsPassFail(const nlohmann::json& v) {
-  return v.is_boolean() || (v.is_string() && (v == "pass" || v == "fail"));
-}
-
-// Why two checked designs are not like for like: a different rated speed or engine cycle.
-std::vector<std::string> Unlike(double a_rpm, EngineCycle a_cycle, double b_rpm,
-                                EngineCycle b_cycle) {
-  std::vector<std::string> why;
-  if (a_rpm != b_rpm) {
-    std::ostringstream s;
-    s << "rated speed: A " << a_rpm << " rpm, B " << b_rpm << " rpm";
-    why.push_back(s.str());
+std::string Shown(const CheckValue& v) {
+  switch (v.kind) {
+    case CheckValue::Kind::kNone:
+      return "-";
+    case CheckValue::Kind::kFlag:
+      return v.flag ? "yes" : "no";
+    case CheckValue::Kind::kText:
+      return v.text;
+    case CheckValue::Kind::kCount:
+      return std::to_string(static_cast<long long>(v.number));
+    case CheckValue::Kind::kNumber:
+      break;
   }
-  if (a_cycle != b_cycle)
-    why.push_back(std::string("cycle: A ") + EngineCycleName(a_cycle) + ", B " +
-                  EngineCycleName(b_cycle));
-  return why;
-}
-
-std::string Shown(const nlohmann::json& v) {
-  if (v.is_null()) return "-";
-  if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_number_integer() || v.is_number_unsigned()) return v.dump();
-  const double x = v.get<double>();
   std::ostringstream s;
   s.precision(6);
-  s << x;
+  s << v.number;
   return s.str();
 }
 
 std::string Difference(const ComparedItem& item) {
   if (!item.a.is_number() || !item.b.is_number()) return "";
-  const double a = item.a.get<double>(), b = item.b.get<double>();
+  const double a = item.a.number, b = item.b.number;
   std::ostringstream s;
   s.precision(4);
   s << (b - a >= 0 ? "+" : "") << b - a;
@@ -91,8 +62,6 @@ std::string Difference(const ComparedItem& item) {
     s << " (" << (b - a >= 0 ? "+" : "") << Fixed(100.0 * (b - a) / a, 1) << " %)";
   return s.str();
 }
-
-// One design checked.
 
 std::string Joined(const std::vector<std::string>& list, const std::string& sep) {
   std::string s;
@@ -102,63 +71,10 @@ std::string Joined(const std::vector<std::string>& list, const std::string& sep)
 
 }  // namespace
 
-std::vector<ComparedItem> CompareChecks(const nlohmann::json& a, const nlohmann::json& b) {
-  std::vector<std::pair<std::string, nlohmann::json>> la, lb;
-  Leaves(a, "", la);
-  Leaves(b, "", lb);
-  std::vector<ComparedItem> items;
-  const auto find = [](const auto& leaves, const std::string& key) {
-    for (const auto& [k, v] : leaves)
-      if (k == key) return v;
-    return nlohmann::json(nullptr);
-  };
-  for (const auto& [key, va] : la) items.push_back({key, va, find(lb, key)});
-  for (const auto& [key, vb] : lb) {
-    if (std::none_of(la.begin(), la.end(), [&](const auto& leaf) { return leaf.first == key; }))
-      items.push_back({key, nullptr, vb});
-  }
-  for (ComparedItem& i : items) {
-    i.verdict = IsVerdict(i.a, i.b);
-    i.flips = i.verdict && IsPassFail(i.a) && IsPassFail(i.b) && i.a != i.b;
-    i.differs = i.verdict && !i.flips && i.a != i.b;
-  }
-  return items;
-}
-
-Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rpm,
-                        const std::string& report_path,
-                        const std::function<void(int, int)>& progress) {
-  Comparison cmp;
-  cmp.a.c = std::move(a_case);
-  cmp.b.c = std::move(b_case);
-  int done_before = 0;  // the runs of A, when B is checked
-  for (CheckedDesign* d : {&cmp.a, &cmp.b}) {
-    d->law = std::make_shared<const LiftLaw>(MakeLiftLaw(d->c));
-    CheckOptions options;
-    options.speed_rpm = speed_rpm;
-    if (progress) {
-      options.progress = [&](int done, int total) {
-        progress(done_before + done, done_before + total);
-      };
-    }
-    d->result = CheckScene(d->c, d->law, options);
-    d->json = CheckJson(d->c, *d->law, d->result, report_path);
-    if (d->result.sweep) done_before += static_cast<int>(d->result.sweep->rows.size());
-  }
-  cmp.items = CompareChecks(cmp.a.json, cmp.b.json);
-  for (const ComparedItem& i : cmp.items) {
-    if (i.flips) cmp.flipped.push_back(i.key);
-    if (i.differs) cmp.differing.push_back(i.key);
-  }
-  cmp.unlike = Unlike(cmp.a.result.speed_rpm, cmp.a.c.engine.cycle, cmp.b.result.speed_rpm,
-                      cmp.b.c.engine.cycle);
-  return cmp;
-}
-
 nlohmann::json CompareJson(const Comparison& cmp, const std::string& path) {
   nlohmann::json j;
-  j["a"] = cmp.a.json;
-  j["b"] = cmp.b.json;
+  j["a"] = CheckJson(cmp.a.c, *cmp.a.law, cmp.a.result, path);
+  j["b"] = CheckJson(cmp.b.c, *cmp.b.law, cmp.b.result, path);
   j["report"] = path;
   j["flipped"] = cmp.flipped;
   j["differing"] = cmp.differing;
@@ -166,12 +82,13 @@ nlohmann::json CompareJson(const Comparison& cmp, const std::string& path) {
   j["not_like_for_like"] = cmp.unlike;
   nlohmann::json rows = nlohmann::json::array();
   for (const ComparedItem& i : cmp.items) {
-    nlohmann::json r = {{"key", i.key}, {"a", i.a}, {"b", i.b}, {"verdict", i.verdict}};
+    nlohmann::json r = {
+        {"key", i.key}, {"a", ValueJson(i.a)}, {"b", ValueJson(i.b)}, {"verdict", i.verdict}};
     if (i.verdict) {
       r["flips"] = i.flips;
       r["differs"] = i.differs;
     } else if (i.a.is_number() && i.b.is_number()) {
-      r["difference"] = i.b.get<double>() - i.a.get<double>();
+      r["difference"] = i.b.number - i.a.number;
     } else {
       r["difference"] = nullptr;
     }
