@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""The dependency rule of docs/architecture.md, checked: no #include runs up a floor.
+
+The floors, lowest first; a file may include its own floor's headers and those of any floor
+below it, never one above (nor a sibling: cli and python do not include each other, bench
+includes no writer). Inside dynamics/, model ◂ solver ◂ the top (simulation, overspeed).
+
+    python3 scripts/floors.py     lists every include that runs up, exit 1 when there is one
+"""
+import pathlib
+import re
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+# floor → the floors it may include (besides itself)
+BELOW = {
+    "lib": [],
+    "spring": ["lib"],
+    "dynamics/model": ["lib", "spring"],
+    "dynamics/solver": ["lib", "spring", "dynamics/model"],
+    "dynamics": ["lib", "spring", "dynamics/model", "dynamics/solver"],
+    "apps/case": ["lib", "spring", "dynamics/model", "dynamics/solver", "dynamics"],
+}
+BELOW["apps/study"] = BELOW["apps/case"] + ["apps/case"]
+BELOW["apps/bench"] = BELOW["apps/study"] + ["apps/study"]
+BELOW["apps/report"] = BELOW["apps/study"] + ["apps/study"]
+BELOW["apps/cli"] = BELOW["apps/report"] + ["apps/report"]
+BELOW["apps/python"] = BELOW["apps/report"] + ["apps/report"]
+
+
+def FloorOf(path: str):
+    """The floor of a repository path (the longest floor prefix), or None outside them."""
+    best = None
+    for floor in BELOW:
+        if path.startswith(floor + "/") and (best is None or len(floor) > len(best)):
+            best = floor
+    return best
+
+
+def main() -> int:
+    include = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+    bad = []
+    files = 0
+    for source in sorted(ROOT.glob("**/*")):
+        rel = source.relative_to(ROOT).as_posix()
+        if source.suffix not in (".h", ".cc") or rel.startswith(("build", "tests/", ".")):
+            continue
+        floor = FloorOf(rel)
+        if floor is None:
+            continue
+        files += 1
+        for target in include.findall(source.read_text(encoding="utf-8")):
+            to = FloorOf(target)
+            if to is not None and to != floor and to not in BELOW[floor]:
+                bad.append(f"{rel}: includes {target} ({to} is not below {floor})")
+    for line in bad:
+        print(line)
+    print(f"floors: {files} files, {len(bad)} includes running up a floor")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
