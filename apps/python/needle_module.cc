@@ -286,13 +286,7 @@ PYBIND11_MODULE(needle, m) {
       "design",
       [](const py::object& engine, std::optional<std::string> name) {
         const DesignInputs in =
-            py::isinstance<py::dict>(engine)
-                ? ParseDesignInputs(TomlText(engine.cast<py::dict>(), name.value_or("<dict>")),
-                                    name.value_or("<dict>"))
-            : IsPath(engine) ? LoadDesignInputs(PathOf(engine))
-                             : throw py::type_error(
-                                   "design: expected a path (str or os.PathLike) or a dict, got " +
-                                   AType(engine));
+            FromPathOrDict(engine, name, "design", LoadDesignInputs, ParseDesignInputs);
         return Run([&] { return WriteDesign(in, DesignFromEngine(in), true, std::nullopt); });
       },
       arg("engine"), py::kw_only(), arg("name") = py::none(),
@@ -302,13 +296,7 @@ PYBIND11_MODULE(needle, m) {
       "synth",
       [](const py::object& spec, std::optional<std::string> name) {
         const SynthesisFile f =
-            py::isinstance<py::dict>(spec)
-                ? ParseSynthesisFile(TomlText(spec.cast<py::dict>(), name.value_or("<dict>")),
-                                     name.value_or("<dict>"))
-            : IsPath(spec)
-                ? LoadSynthesisFile(PathOf(spec))
-                : throw py::type_error(
-                      "synth: expected a path (str or os.PathLike) or a dict, got " + AType(spec));
+            FromPathOrDict(spec, name, "synth", LoadSynthesisFile, ParseSynthesisFile);
         CamWriting json;
         json.json = true;
         return Run([&] { return WriteSynth(f, SynthesizeCam(f), json); });

@@ -81,6 +81,21 @@ bool IsPath(const py::handle& source);
 
 std::string PathOf(const py::handle& source);
 
+/// A file of the engine or synthesis format from a path (`load`) or a dict with its sections
+/// (`parse` of its TOML text; `name`, "<dict>" by default, is its path in messages); anything
+/// else is a TypeError naming `function`.
+template <typename Load, typename Parse>
+auto FromPathOrDict(const py::object& source, const std::optional<std::string>& name,
+                    const std::string& function, Load load, Parse parse) {
+  if (py::isinstance<py::dict>(source)) {
+    const std::string path = name.value_or("<dict>");
+    return parse(TomlText(source.cast<py::dict>(), path), path);
+  }
+  if (IsPath(source)) return load(PathOf(source));
+  throw py::type_error(function + ": expected a path (str or os.PathLike) or a dict, got " +
+                       AType(source));
+}
+
 // needle.Case: the case as the sections of its file (plain dicts, read and written like a
 // dict), with the validated Case of the text it last was. A change is validated when assigned
 // at the top level, and whenever the case is run.

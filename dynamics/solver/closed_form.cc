@@ -126,8 +126,7 @@ void ClosedFormPiece::Basis(double tau, double& ecm1, double& es) const {
   }
 }
 
-std::array<double, 3> ClosedFormPiece::Motion(double t) const {
-  const double tau = t - t0_;
+std::array<double, 2> ClosedFormPiece::PositionVelocity(double tau) const {
   double ecm1, es;
   Basis(tau, ecm1, es);
   // Written as the change from (y₀, ẏ₀), with φ₀ − 1 = (e^{−στ}C − 1) + σ e^{−στ}S and
@@ -136,16 +135,18 @@ std::array<double, 3> ClosedFormPiece::Motion(double t) const {
   const double y = x0_[0] + (Eval(p_, tau) - p_[0]) + Y0_ * (ecm1 + sigma_ * es) + V0_ * es;
   const double v =
       x0_[1] + (Eval(dp_, tau) - dp_[0]) - Y0_ * (K_ / m_) * es + V0_ * (ecm1 - sigma_ * es);
+  return {y, v};
+}
+
+std::array<double, 3> ClosedFormPiece::Motion(double t) const {
+  const double tau = t - t0_;
+  const auto [y, v] = PositionVelocity(tau);
   return {y, v, (Eval(f_, tau) - c_ * v - K_ * y) / m_};
 }
 
 double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
   const double tau = t - t0_;
-  double ecm1, es;
-  Basis(tau, ecm1, es);
-  const double y = x0_[0] + (Eval(p_, tau) - p_[0]) + Y0_ * (ecm1 + sigma_ * es) + V0_ * es;
-  const double v =
-      x0_[1] + (Eval(dp_, tau) - dp_[0]) - Y0_ * (K_ / m_) * es + V0_ * (ecm1 - sigma_ * es);
+  const auto [y, v] = PositionVelocity(tau);
   double w = form.y * y + form.v * v + form.constant;
   if (form.u != 0.0) w += form.u * Eval(u_, tau);
   if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, tau);

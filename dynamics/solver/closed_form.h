@@ -102,6 +102,8 @@ class ClosedFormPiece {
   std::array<double, 2> HomogeneousAt(double t) const;
   // e^{−στ}C − 1 and e^{−στ}S at τ ≥ 0.
   void Basis(double tau, double& ecm1, double& es) const;
+  /// (y, ẏ) at τ = t − t₀ after the piece's start: Motion's first two, FormValue's inputs.
+  std::array<double, 2> PositionVelocity(double tau) const;
 
   const NeedleTrain& train_;
   ContactMode mode_;
