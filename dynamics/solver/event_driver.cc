@@ -102,14 +102,15 @@ std::optional<double> EventDriver::Accumulate(bool cam, double t, double approac
   return t_inf;
 }
 
+// Rest asks for y and ẏ only (Motion: the closed form skips its energy integrals W and D).
 std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& phase) {
   if (!(hi > lo))
-    return recorder_.AtRest(hi, At(hi), phase) ? std::optional<double>(hi) : std::nullopt;
+    return recorder_.AtRest(hi, Motion(hi), phase) ? std::optional<double>(hi) : std::nullopt;
   constexpr int kSamples = 64;
   double moving = lo;
   for (int k = 0; k <= kSamples; ++k) {
     const double tk = lo + (hi - lo) * k / kSamples;
-    if (!recorder_.AtRest(tk, At(tk), phase)) {
+    if (!recorder_.AtRest(tk, Motion(tk), phase)) {
       moving = tk;
       continue;
     }
@@ -117,7 +118,7 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
     double a = moving, b = tk;  // moving at a, at rest at b
     for (int i = 0; i < 60 && b - a > 1e-12 * (1.0 + std::abs(b)); ++i) {
       const double m = 0.5 * (a + b);
-      (recorder_.AtRest(m, At(m), phase) ? b : a) = m;
+      (recorder_.AtRest(m, Motion(m), phase) ? b : a) = m;
     }
     return b;
   }
