@@ -48,6 +48,7 @@
 /// Every physical key has a plausible range (apps/case/plausible_ranges.h, docs/ranges.md),
 /// checked as its section is finished.
 
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -270,7 +271,18 @@ bool IsCsvPath(const std::string& path);
 /// states it), `cycle` as given, the spline chosen from the data.
 Case CaseFromLiftCsv(const std::string& path, EngineCycle cycle);
 
-/// Builds the lift law of a case, turning spline-construction failures into CaseError.
+/// A case's lift resolved once: the spline, noise and open-lift rule chosen for its data, and
+/// the law built on that choice (what a job needs of [lift]).
+struct CaseLift {
+  LiftLawChoice choice;
+  std::shared_ptr<const LiftLaw> law;
+};
+
+/// The choice (CaseLiftChoice) made once and the law built from it, turning
+/// spline-construction failures into CaseError.
+CaseLift ResolveLift(const Case& c);
+
+/// Builds the lift law of a case: ResolveLift's law.
 LiftLaw MakeLiftLaw(const Case& c);
 
 /// Checks that `kind` can be built on the case's table (enough points); throws CaseError

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -94,15 +95,18 @@ LiftLawChoice CaseLiftChoice(const Case& c) {
   return choice;
 }
 
-LiftLaw MakeLiftLaw(const Case& c) {
+CaseLift ResolveLift(const Case& c) {
   try {
-    const LiftLawChoice choice = CaseLiftChoice(c);
-    return LiftLaw(choice.table, choice.law);
+    CaseLift lift{CaseLiftChoice(c), nullptr};
+    lift.law = std::make_shared<const LiftLaw>(lift.choice.table, lift.choice.law);
+    return lift;
   } catch (const CaseError&) {
     throw;
   } catch (const std::exception& e) {
     throw CaseError(c.path + ": [lift]: " + e.what());
   }
 }
+
+LiftLaw MakeLiftLaw(const Case& c) { return *ResolveLift(c).law; }
 
 }  // namespace needle

@@ -44,13 +44,13 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   RequireGnuplot();
   CheckOptions options;
   options.speed_rpm = o.speed_rpm;
-  const auto shared_law = std::make_shared<const LiftLaw>(MakeLiftLaw(c));
-  const LiftLaw& law = *shared_law;
+  const CaseLift lift = ResolveLift(c);
+  const LiftLaw& law = *lift.law;
   CheckResult result;
   {
     ProgressBar bar("overspeed", "speeds", o.json);
     options.progress = [&](int done, int total) { bar.Update(done, total); };
-    result = CheckScene(c, shared_law, options);
+    result = CheckScene(c, lift, options);
   }
   const Report report = CheckReport(c, law, result);
   WriteOutput({"--out", path}, report.Html());

@@ -246,10 +246,10 @@ PYBIND11_MODULE(needle, m) {
         RequireSpeedOf(*c, options.speed_rpm, "rpm");
         return Run(
             [&] {
-              const auto law = std::make_shared<const LiftLaw>(MakeLiftLaw(*c));
-              const CheckResult r = CheckScene(*c, law, options);
+              const CaseLift lift = ResolveLift(*c);
+              const CheckResult r = CheckScene(*c, lift, options);
               CommandOutput out;
-              out.json = CheckJson(*c, *law, r, "");
+              out.json = CheckJson(*c, *lift.law, r, "");
               out.json.erase("report");  // no report is written from Python
               out.status = r.pass ? 0 : 1;
               return out;

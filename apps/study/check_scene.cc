@@ -105,11 +105,16 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
 
 CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
                        const CheckOptions& options) {
+  return CheckScene(c, CaseLift{CaseLiftChoice(c), std::move(shared_law)}, options);
+}
+
+CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& options) {
+  const std::shared_ptr<const LiftLaw>& shared_law = lift.law;
   const LiftLaw& law = *shared_law;
   CheckResult r;
   r.speed_rpm = options.speed_rpm.value_or(c.engine.speed_rpm);
   const double rpm = r.speed_rpm;
-  r.choice = CaseLiftChoice(c);
+  r.choice = lift.choice;
   r.kinematics = Kinematics(law, rpm).Summarize();
   r.overspeed_rpm = rpm * (c.spring ? c.spring->overspeed_factor : 1.2);
   const auto fail = [&r](const std::string& what) { r.failing.push_back(what); };

@@ -150,6 +150,8 @@ CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& op
 /// law is built once per check).
 CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> law,
                        const CheckOptions& options = {});
+/// The same on a lift resolved once (ResolveLift): its choice is the check's, not made again.
+CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& options = {});
 
 /// Whether the coils' dynamics show harm: the surge rows' contact force, jump or stress, or the
 /// coil gap, fails. A failing f_1/f_cam screen (13, the classic rule) only warns when they

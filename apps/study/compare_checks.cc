@@ -143,7 +143,8 @@ Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rp
   cmp.b.c = std::move(b_case);
   int done_before = 0;  // the runs of A, when B is checked
   for (CheckedDesign* d : {&cmp.a, &cmp.b}) {
-    d->law = std::make_shared<const LiftLaw>(MakeLiftLaw(d->c));
+    const CaseLift lift = ResolveLift(d->c);
+    d->law = lift.law;
     CheckOptions options;
     options.speed_rpm = speed_rpm;
     if (progress) {
@@ -151,7 +152,7 @@ Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rp
         progress(done_before + done, done_before + total);
       };
     }
-    d->result = CheckScene(d->c, d->law, options);
+    d->result = CheckScene(d->c, lift, options);
     if (d->result.sweep) done_before += static_cast<int>(d->result.sweep->rows.size());
   }
   cmp.items = CompareChecks(CheckItems(cmp.a.result, cmp.a.law->kind()),

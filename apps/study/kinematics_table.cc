@@ -49,8 +49,9 @@ KinematicsTable MakeKinematicsTable(Case c, const KinematicsTableOptions& o) {
     c.lift.spline_given = true;
   }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
-  LiftLawChoice choice = CaseLiftChoice(c);
-  LiftLaw law = MakeLiftLaw(c);
+  CaseLift lift = ResolveLift(c);
+  LiftLawChoice choice = std::move(lift.choice);
+  LiftLaw law = *lift.law;
   const Kinematics kin(law, speed);
   // A row budget: a table wider than 100 000 rows is no table (--step 1e-9 asked for 4 GB).
   const double span_deg = (law.table_end_rad() - law.table_start_rad()) / kDeg;

@@ -129,7 +129,7 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   // result, not the end of the study: it fails as "case refused", with the reason.
   CheckResult r;
   try {
-    r = CheckScene(c, std::make_shared<const LiftLaw>(MakeLiftLaw(c)), options);
+    r = CheckScene(c, ResolveLift(c), options);
   } catch (const CaseError& refusal) {
     s.pass = false;
     s.failing = {"case refused"};
@@ -179,7 +179,7 @@ CheckOptions SampleOptions(const Case& c, bool reuse) {
   options.verdict_only = true;
   CheckResult nominal;
   try {
-    nominal = CheckScene(c, std::make_shared<const LiftLaw>(MakeLiftLaw(c)), options);
+    nominal = CheckScene(c, ResolveLift(c), options);
   } catch (const CaseError&) {
     return options;  // nothing to take: each sample is checked in full
   }
