@@ -349,6 +349,16 @@ std::vector<SizedSpring> MassFatigueFront(const std::vector<SizedSpring>& spring
   return front;
 }
 
+std::vector<Field> SizingRuleFields(const SizingRule& x) {
+  return {TextField("key", x.key),
+          TextField("unit", x.unit),
+          {"value", display::kNone, FiniteOrNone(x.value), 2},
+          {"limit", display::kNone, x.limit, 2},
+          FlagField("at_most", x.at_most),
+          {"margin", display::kNone, FiniteOrNone(x.margin), 2},
+          FlagField("pass", x.pass)};
+}
+
 std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& space) {
   using namespace display;
   const HelicalGeometry& g = s.geometry;

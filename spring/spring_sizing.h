@@ -133,6 +133,10 @@ struct SizedSpring {
 /// mass (kg), whether it passes, and its Goodman factor n_f when checked (none if infinite).
 std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& space);
 
+/// A rule of a spring as fields: its key and unit, value, limit, direction, margin (none when
+/// not finite) and verdict.
+std::vector<Field> SizingRuleFields(const SizingRule& rule);
+
 /// Orders by objective, then mass, wire, D, n: true when a is better than b.
 bool BetterSpring(const SizedSpring& a, const SizedSpring& b);
 

@@ -15,15 +15,7 @@ namespace {
 nlohmann::json SpringJson(const SizedSpring& s, const SizingSpace& space) {
   nlohmann::json j = nlohmann::json::object();
   PutFields(j, SizedSpringFields(s, space));
-  for (const SizingRule& x : s.rules) {
-    j["rules"].push_back({{"key", x.key},
-                          {"unit", x.unit},
-                          {"value", Finite(x.value)},
-                          {"limit", x.limit},
-                          {"at_most", x.at_most},
-                          {"margin", Finite(x.margin)},
-                          {"pass", x.pass}});
-  }
+  if (!s.rules.empty()) j["rules"] = RecordList(s.rules, SizingRuleFields);
   return j;
 }
 
@@ -69,13 +61,7 @@ CommandOutput WriteSize(const Case& c, const SizeResult& r, const SizeWriting& w
          {"mass_without_spring_source", r.mass_note},
          {"pass", r.pass}};
     PutFields(j, {{"stroke", display::kMm, r.stroke_m}});
-    for (const SizeStage& s : r.stages) {
-      j["stages"].push_back({{"name", s.name},
-                             {"in", s.in},
-                             {"kept", s.kept},
-                             {"seconds", s.seconds},
-                             {"note", s.note}});
-    }
+    if (!r.stages.empty()) j["stages"] = RecordList(r.stages, SizeStageFields);
     j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
     j["spring"] = chosen ? SpringJson(*chosen, sp) : nullptr;
     if (r.case_spring_mass_kg) j["case_spring_mass_kg"] = *r.case_spring_mass_kg;

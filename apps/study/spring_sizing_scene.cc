@@ -385,4 +385,12 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
   return r;
 }
 
+std::vector<Field> SizeStageFields(const SizeStage& s) {
+  return {TextField("name", s.name),
+          CountField("in", s.in),
+          CountField("kept", s.kept),
+          {"seconds", display::kNone, s.seconds, 3},
+          TextField("note", s.note)};
+}
+
 }  // namespace needle

@@ -48,6 +48,9 @@ struct SizeStage {
   std::string note;
 };
 
+/// A stage as fields: its name, the springs it was given and kept, its time and note.
+std::vector<Field> SizeStageFields(const SizeStage& stage);
+
 struct SizeResult {
   SizingSpace space;
   std::string space_note;  ///< the space in words, with where each bound came from
