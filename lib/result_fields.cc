@@ -31,6 +31,7 @@ const DisplayUnit kCm3{"cm3", "cm3", 1.0, false, "cm3"};
 const DisplayUnit kGram{"g", "g", 1.0, false, "g"};
 const DisplayUnit kHp{"hp", "HP", 735.49875, true, "W"};
 const DisplayUnit kPercent{"percent", "%", 1.0, false, "percent"};
+const DisplayUnit kFractionPercent{"percent", "%", 100.0, false, "fraction"};
 const DisplayUnit kJoule{"J", "J", 1.0, false, "J"};
 const DisplayUnit kKg{"kg", "kg", 1.0, false, "kg"};
 }  // namespace display

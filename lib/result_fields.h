@@ -31,30 +31,31 @@ struct DisplayUnit {
 
 /// The display units results use (one table).
 namespace display {
-extern const DisplayUnit kNone;       ///< a plain number (a ratio, a count)
-extern const DisplayUnit kMm;         ///< m → mm
-extern const DisplayUnit kDegree;     ///< rad → deg
-extern const DisplayUnit kN;          ///< N
-extern const DisplayUnit kRpm;        ///< rpm (speeds are kept in rpm at the edges)
-extern const DisplayUnit kMPerS;      ///< m/s
-extern const DisplayUnit kMPerS2;     ///< m/s² (text m/s^2)
-extern const DisplayUnit kMPerS3;     ///< m/s³ (text m/s^3)
-extern const DisplayUnit kMs;         ///< s → ms
-extern const DisplayUnit kS;          ///< s
-extern const DisplayUnit kMPa;        ///< Pa → MPa
-extern const DisplayUnit kMmPerRad;   ///< m/rad → mm/rad (a cam law's S')
-extern const DisplayUnit kMmPerRad2;  ///< m/rad² → mm/rad² (S'')
-extern const DisplayUnit kMmPerRad3;  ///< m/rad³ → mm/rad³ (S''')
-extern const DisplayUnit kKgForce;    ///< N → kgf (÷ g₀)
-extern const DisplayUnit kNPerMm;     ///< N/m → N/mm
-extern const DisplayUnit kHz;         ///< Hz
-extern const DisplayUnit kMm2;        ///< m² → mm²
-extern const DisplayUnit kCm3;        ///< cm³ (the design chain's volumes, kept in cm³)
-extern const DisplayUnit kGram;       ///< g (the design chain's fuel, kept in g)
-extern const DisplayUnit kHp;         ///< W → HP (metric, ÷ 735.49875)
-extern const DisplayUnit kPercent;    ///< a percentage
-extern const DisplayUnit kJoule;      ///< J
-extern const DisplayUnit kKg;         ///< kg
+extern const DisplayUnit kNone;             ///< a plain number (a ratio, a count)
+extern const DisplayUnit kMm;               ///< m → mm
+extern const DisplayUnit kDegree;           ///< rad → deg
+extern const DisplayUnit kN;                ///< N
+extern const DisplayUnit kRpm;              ///< rpm (speeds are kept in rpm at the edges)
+extern const DisplayUnit kMPerS;            ///< m/s
+extern const DisplayUnit kMPerS2;           ///< m/s² (text m/s^2)
+extern const DisplayUnit kMPerS3;           ///< m/s³ (text m/s^3)
+extern const DisplayUnit kMs;               ///< s → ms
+extern const DisplayUnit kS;                ///< s
+extern const DisplayUnit kMPa;              ///< Pa → MPa
+extern const DisplayUnit kMmPerRad;         ///< m/rad → mm/rad (a cam law's S')
+extern const DisplayUnit kMmPerRad2;        ///< m/rad² → mm/rad² (S'')
+extern const DisplayUnit kMmPerRad3;        ///< m/rad³ → mm/rad³ (S''')
+extern const DisplayUnit kKgForce;          ///< N → kgf (÷ g₀)
+extern const DisplayUnit kNPerMm;           ///< N/m → N/mm
+extern const DisplayUnit kHz;               ///< Hz
+extern const DisplayUnit kMm2;              ///< m² → mm²
+extern const DisplayUnit kCm3;              ///< cm³ (the design chain's volumes, kept in cm³)
+extern const DisplayUnit kGram;             ///< g (the design chain's fuel, kept in g)
+extern const DisplayUnit kHp;               ///< W → HP (metric, ÷ 735.49875)
+extern const DisplayUnit kPercent;          ///< a percentage
+extern const DisplayUnit kFractionPercent;  ///< a fraction (0.05) shown in % (5)
+extern const DisplayUnit kJoule;            ///< J
+extern const DisplayUnit kKg;               ///< kg
 }  // namespace display
 
 /// One value of a result: a number (`si`; a count when `count`), or with `kind` a string, a

@@ -54,14 +54,7 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
   j["threads"] = r.options.threads;
   j["seconds"] = r.seconds;
   j["seconds_per_sample"] = r.seconds * r.options.threads / n;
-  j["tolerance"] = {{"lift_mm", t.lift_sigma_m * 1e3},
-                    {"lift_correlation_deg", t.lift_correlation_rad / kDeg},
-                    {"mass_percent", 100 * t.mass_fraction},
-                    {"preload_percent", 100 * t.preload_fraction},
-                    {"rate_percent", 100 * t.rate_fraction},
-                    {"stiffness_percent", 100 * t.stiffness_fraction},
-                    {"play_mm", t.play_sigma_m * 1e3},
-                    {"speed_percent", 100 * t.speed_fraction}};
+  PutFields(j["tolerance"], ToleranceSectionFields(t));
   j["failure_probability"] = r.failure_probability;
   j["failure_probability_95"] = {p_low, p_high};
   j["failure_by_item"] = r.failure_by_item;
@@ -73,9 +66,8 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
     nlohmann::json od;
     if (const auto it = r.output_drivers.find(key); it != r.output_drivers.end())
       for (const auto& [k, v] : it->second) od[k] = Finite(v);
-    dist[key] = {{"count", d.count},     {"mean", Finite(d.mean)}, {"std", Finite(d.std_dev)},
-                 {"min", Finite(d.min)}, {"p05", Finite(d.p05)},   {"p50", Finite(d.p50)},
-                 {"p95", Finite(d.p95)}, {"max", Finite(d.max)},   {"drivers", od}};
+    PutFields(dist[key], DistributionFields(d));
+    dist[key]["drivers"] = od;
   }
   j["distributions"] = dist;
   nlohmann::json samples = nlohmann::json::array();

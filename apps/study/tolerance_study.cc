@@ -313,6 +313,30 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
   return samples;
 }
 
+std::vector<Field> ToleranceSectionFields(const ToleranceSection& t) {
+  using namespace display;
+  return {{"lift", kMm, t.lift_sigma_m, 4},
+          {"lift_correlation", kDegree, t.lift_correlation_rad, 2},
+          {"mass", kFractionPercent, t.mass_fraction, 2},
+          {"preload", kFractionPercent, t.preload_fraction, 2},
+          {"rate", kFractionPercent, t.rate_fraction, 2},
+          {"stiffness", kFractionPercent, t.stiffness_fraction, 2},
+          {"play", kMm, t.play_sigma_m, 4},
+          {"speed", kFractionPercent, t.speed_fraction, 2}};
+}
+
+std::vector<Field> DistributionFields(const Distribution& d) {
+  using display::kNone;
+  return {CountField("count", d.count),
+          {"mean", kNone, FiniteOrNone(d.mean), 4},
+          {"std", kNone, FiniteOrNone(d.std_dev), 4},
+          {"min", kNone, FiniteOrNone(d.min), 4},
+          {"p05", kNone, FiniteOrNone(d.p05), 4},
+          {"p50", kNone, FiniteOrNone(d.p50), 4},
+          {"p95", kNone, FiniteOrNone(d.p95), 4},
+          {"max", kNone, FiniteOrNone(d.max), 4}};
+}
+
 std::pair<double, double> WilsonInterval95(double p, double n) {
   const double z = 1.959963984540054, z2 = z * z;
   const double centre = (p + z2 / (2 * n)) / (1 + z2 / n);

@@ -79,6 +79,13 @@ struct ToleranceResult {
   double seconds = 0.0;                           ///< wall time of the study
 };
 
+/// The scatter as fields: lift σ (mm) and its correlation length (deg), the fractions in %,
+/// the play σ (mm).
+std::vector<Field> ToleranceSectionFields(const ToleranceSection& t);
+
+/// A distribution as fields: its count and its moments and quantiles (none when not finite).
+std::vector<Field> DistributionFields(const Distribution& d);
+
 /// The 95 % Wilson score interval of a fraction `p` of `n` trials:
 ///   (p + z²/2n ± z·√(p(1−p)/n + z²/4n²)) / (1 + z²/n),  z = 1.95996…,
 /// clipped to [0, 1].
