@@ -121,9 +121,9 @@ Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t se
     if (it == r.distributions.end() || it->second.count < 2 || !(it->second.max > it->second.min))
       continue;
     Series values{"v", {}};
-    for (const ToleranceSample& s : r.samples) {
-      const double v = s.outputs.at(key);
-      if (std::isfinite(v)) values.rows.push_back({v});
+    for (const ToleranceSample& s : r.samples) {  // a refused sample has no outputs
+      const auto v = s.outputs.find(key);
+      if (v != s.outputs.end() && std::isfinite(v->second)) values.rows.push_back({v->second});
     }
     const double width = (it->second.max - it->second.min) / 30.0;
     report.AddFigure(

@@ -106,8 +106,9 @@ std::vector<CheckItem> CheckItems(const CheckResult& r, SplineKind spline) {
     const std::vector<Field> fields = LimitRowFields(row);
     for (const char* key : {"verdict", "value", "margin"}) {
       const Field& f = FieldAt(fields, key);
-      limits.push_back({"limits." + row.key + "." + key,
-                        f.kind == Field::Kind::kText ? Text(f.text) : *ValueOf(f)});
+      limits.push_back({"limits." + row.key + "." + key, f.kind == Field::Kind::kText
+                                                             ? Text(f.text)
+                                                             : ValueOf(f).value_or(CheckValue{})});
     }
   }
   std::vector<CheckItem> items;

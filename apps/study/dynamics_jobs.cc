@@ -59,8 +59,8 @@ CaseRun SimulateCase(const Case& c, const SimulateJobOptions& o,
     if (refusal) throw CaseError("--cycles: " + *refusal);
   }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
-  CaseRun run{
-      c, speed, sim.integrator.rtol, QuasiStaticLiftoffRpm(scene), Simulate(scene, speed, sim), {}};
+  CaseRun run{c, speed, sim.integrator.rtol, NAN, Simulate(scene, speed, sim), {}};
+  if (o.quasi_static) run.liftoff_rpm_quasi_static = QuasiStaticLiftoffRpm(scene);
   if (!si[0].empty()) run.series_si = std::move(si);
   return run;
 }

@@ -6,6 +6,7 @@
 /// `needle overspeed` and the Python module call them; the writers are in
 /// apps/report/dynamics_writer.h. Messages name the command's options (--rpm, --method, …).
 
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -25,6 +26,7 @@ struct SimulateJobOptions {
   bool dynamic = false;               ///< run the dynamics even where the rigid answer stands
   std::optional<int> cycles;          ///< cam revolutions back to back ([solver] cycles)
   bool series = false;                ///< keep the time series as SI columns (Python)
+  bool quasi_static = true;  ///< also n_qs of the scene (the JSON object has it; the text not)
 };
 
 /// A run of a case and what it was made with.
@@ -32,7 +34,7 @@ struct CaseRun {
   Case c;                                 ///< the case
   double speed_rpm = 0.0;                 ///< the speed run, rpm
   double rtol = 0.0;                      ///< the tolerance it ran with
-  double liftoff_rpm_quasi_static = 0.0;  ///< n_qs of the scene, rpm (∞ when none)
+  double liftoff_rpm_quasi_static = NAN;  ///< n_qs, rpm (∞ when none; NaN when not asked)
   SimulationResult result;                ///< the run
   /// The time series as SI columns in SeriesColumns()'s order, when `series` was asked and the
   /// dynamics ran; else empty.
