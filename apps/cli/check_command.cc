@@ -16,14 +16,6 @@
 #include "lib/output.h"
 
 namespace needle {
-namespace {
-
-std::string Num(double v, int digits) {
-  return std::isfinite(v) ? Fixed(v, digits) : std::string("none");
-}
-
-}  // namespace
-
 CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "check", "The main job: check a scene end to end and write an HTML report");
@@ -58,35 +50,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     std::cout << FormatObject(CheckJson(c, law, result, path), o.format);
     return result.pass ? 0 : 1;
   }
-  std::cout << (c.title.empty() ? c.path : c.title) << '\n';
-  for (const auto& k : result.skipped) std::cout << "skipped: " << k << '\n';
-  if (result.spring)
-    std::cout << "spring check: " << (result.spring->pass ? "pass" : "FAIL") << '\n';
-  if (result.profile)
-    std::cout << "cam profile: " << (result.profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
-  if (result.run)
-    std::cout << "lift-off at " << Fixed(result.speed_rpm, 0)
-              << " rpm: " << (result.run->liftoff() ? "YES" : "no") << '\n';
-  if (result.sweep) {
-    std::cout << "n_qs " << Num(result.n_qs_rpm, 1) << " rpm, n_dyn "
-              << OverspeedOutcome(*result.sweep) << '\n';
-  }
-  if (!result.limits.empty()) {
-    std::cout << "limits (value, limit, margin, verdict):\n";
-    for (const LimitRow& x : result.limits) {
-      const std::string u = x.UnitSuffix();
-      std::cout << "  " << x.name << ": "
-                << (x.verdict == "not judged"
-                        ? "not judged (" + x.note + ")"
-                        : Num(x.value, 2) + u + (x.at_most ? " <= " : " >= ") + Num(x.limit, 2) +
-                              u + ", margin " + Num(x.margin, 2) + u + ", " + x.verdict)
-                << '\n';
-    }
-  }
-  for (const auto& w : result.warnings) std::cout << "warns: " << w << '\n';
-  for (const auto& f : result.failing) std::cout << "fails: " << f << '\n';
-  std::cout << "report: " << path << " (" << report.figures() << " figures)\n"
-            << "overall: " << (result.pass ? "pass" : "FAIL") << '\n';
+  std::cout << CheckText(c, result, path, report.figures()) << std::flush;
   return result.pass ? 0 : 1;
 }
 

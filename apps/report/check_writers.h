@@ -18,6 +18,12 @@ namespace needle {
 nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
                          const std::string& report_path);
 
+/// What `check` prints without --json: the verdicts, n_qs and n_dyn, the limits table, what
+/// warns and fails, the report written (`report_path`, with its `figures`) and the overall
+/// verdict.
+std::string CheckText(const Case& c, const CheckResult& result, const std::string& report_path,
+                      int figures);
+
 /// The check's HTML report: the scene, the kinematics, the spring, the dynamics, the sweep, the
 /// limits table and the figures. Throws std::runtime_error naming gnuplot's failure.
 Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result);
