@@ -312,11 +312,7 @@ PYBIND11_MODULE(needle, m) {
         ToleranceOptions o;
         o.samples =
             static_cast<int>(Whole(samples, "samples", "a number of samples", kSamplesRange));
-        o.seed = Whole(seed, "seed", "a whole number", kSeedRange);
-        o.first_sample = static_cast<int>(
-            Whole(first_sample, "first_sample", "a sample number", kFirstSampleRange));
-        o.threads =
-            static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
+        SetStudyKeywords(o, seed, first_sample, threads);
         RequireSpeedOf(*c, std::nullopt, "");
         return Run([&] {
           CommandOutput out;
@@ -337,11 +333,7 @@ PYBIND11_MODULE(needle, m) {
         ToleranceOptions o;
         o.samples =
             static_cast<int>(Whole(samples, "samples", "a number of samples", kSamplesRange));
-        o.seed = Whole(seed, "seed", "a whole number", kSeedRange);
-        o.first_sample = static_cast<int>(
-            Whole(first_sample, "first_sample", "a sample number", kFirstSampleRange));
-        o.threads =
-            static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
+        SetStudyKeywords(o, seed, first_sample, threads);
         std::vector<ToleranceSample> result;
         {
           py::gil_scoped_release release;
@@ -380,11 +372,7 @@ PYBIND11_MODULE(needle, m) {
          const py::object& first_sample, const py::object& threads, double seconds) {
         const auto c = CaseOf(source, "tolerance_reduce");
         ToleranceOptions o;
-        o.seed = Whole(seed, "seed", "a whole number", kSeedRange);
-        o.first_sample = static_cast<int>(
-            Whole(first_sample, "first_sample", "a sample number", kFirstSampleRange));
-        o.threads =
-            static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
+        SetStudyKeywords(o, seed, first_sample, threads);
         std::vector<ToleranceSample> samples = ShardSamples(shards);
         o.samples = static_cast<int>(samples.size());
         return Run([&] {

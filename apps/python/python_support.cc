@@ -446,4 +446,12 @@ std::string ModuleFolder() {
   return std::filesystem::path(info.dli_fname).parent_path().string();
 }
 
+void SetStudyKeywords(ToleranceOptions& o, const py::object& seed, const py::object& first_sample,
+                      const py::object& threads) {
+  o.seed = Whole(seed, "seed", "a whole number", kSeedRange);
+  o.first_sample =
+      static_cast<int>(Whole(first_sample, "first_sample", "a sample number", kFirstSampleRange));
+  o.threads = static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
+}
+
 }  // namespace needle::python

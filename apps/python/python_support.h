@@ -81,6 +81,11 @@ bool IsPath(const py::handle& source);
 
 std::string PathOf(const py::handle& source);
 
+/// The keywords every tolerance function takes, checked in this order: the seed, the first
+/// sample and the threads.
+void SetStudyKeywords(ToleranceOptions& o, const py::object& seed, const py::object& first_sample,
+                      const py::object& threads);
+
 /// A file of the engine or synthesis format from a path (`load`) or a dict with its sections
 /// (`parse` of its TOML text; `name`, "<dict>" by default, is its path in messages); anything
 /// else is a TypeError naming `function`.
