@@ -43,13 +43,13 @@ CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWrit
     j["points"] = c.lift.table.crank_rad.size();
     PutFields(j, KinematicsFields(sum));
     PutFields(j, LiftLawFields(law));
-    nlohmann::json table = nlohmann::json::array();
+    nlohmann::json list = nlohmann::json::array();
     for (size_t i = 0; i < rows.size(); ++i) {
       nlohmann::json row = RowObject(columns, rows_si[i]);
       if (auto p = PaperVelocityAt(c, rows[i].crank_rad)) row["paper_velocity_m_s"] = *p;
-      table.push_back(row);
+      list.push_back(row);
     }
-    j["table"] = table;
+    j["table"] = list;
     result.json = std::move(j);
   } else {
     const bool paper = w.paper_units;

@@ -86,7 +86,6 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
 
 Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t seed) {
   const ToleranceSection& t = r.tolerance;
-  const double n = static_cast<double>(r.samples.size());
   const double p_low = r.failure_probability_low, p_high = r.failure_probability_high;
   Report report("needle tolerance: " + Escape(c.title.empty() ? c.path : c.title));
   std::ostringstream head;
