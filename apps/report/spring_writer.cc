@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/case/design_case.h"
+#include "apps/case/case_writer.h"
 #include "apps/report/result_writers.h"
 #include "lib/output.h"
 #include "lib/units.h"

@@ -2,7 +2,7 @@
 /// @file
 /// The writers of the spring jobs (apps/study/spring_job.h): the spring check's JSON object and
 /// text (exit status 1 when it fails), and the design chain's, with the case `design --case`
-/// writes (apps/case/design_case.h) when `case_out` names its file.
+/// writes (apps/case/case_writer.h) when `case_out` names its file.
 
 #include <optional>
 #include <string>

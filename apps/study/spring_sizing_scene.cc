@@ -25,38 +25,6 @@ std::string Mm(double m, int digits = 2) { return Fixed(m * 1e3, digits) + " mm"
 // The default range of the case's own wire: a third to twice its diameter (R40 sizes inside).
 constexpr double kCaseWireLo = 1.0 / 3.0, kCaseWireHi = 2.0;
 
-std::string EndsName(SpringEnds e) {
-  switch (e) {
-    case SpringEnds::kClosedGround:
-      return "closed-ground";
-    case SpringEnds::kClosed:
-      return "closed";
-    case SpringEnds::kOpenGround:
-      return "open-ground";
-    case SpringEnds::kOpen:
-      return "open";
-  }
-  return "closed-ground";
-}
-
-SpringEnds ParseEnds(const std::string& s) {
-  if (s == "closed") return SpringEnds::kClosed;
-  if (s == "open-ground") return SpringEnds::kOpenGround;
-  if (s == "open") return SpringEnds::kOpen;
-  return SpringEnds::kClosedGround;
-}
-
-// A number as the shortest text that reads back to the same double.
-std::string Exact(double v) {
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::ostringstream out;
-    out.precision(digits);
-    out << v;
-    if (std::stod(out.str()) == v) return out.str();
-  }
-  return std::to_string(v);
-}
-
 }  // namespace
 
 Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& space,
@@ -69,62 +37,6 @@ Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& spac
   (void)space;
   out.needle->mass_kg = mass_without_spring_kg + s.active_mass_kg / 3.0;
   return out;
-}
-
-std::string SizedCaseText(const std::string& original, const Case& sized, const SizedSpring& s,
-                          const SizingSpace& space) {
-  const HelicalGeometry& g = s.geometry;
-  const SizingWire& w = space.wires.at(s.wire_index);
-  std::ostringstream keys;
-  keys << "# sized by `needle size` (" << w.label << "): the spring's lines below replace "
-       << "the case's\n";
-  keys << "preload_N = " << Fixed(s.preload_N, 1) << '\n';
-  keys << "wire_mm = " << Exact(g.wire_m * 1e3) << '\n';
-  keys << "coil_mm = " << Exact(g.coil_m * 1e3) << '\n';
-  keys << "active_coils = " << Exact(g.active_coils) << '\n';
-  // Up to the next 1e-6 mm: the installed length never shorter than sized
-  // (less 1e-12 m of round-off: the sized L₁ has 1e-9 m to spare, kLengthSlack_m)
-  keys << "free_length_mm = " << Exact(std::ceil(g.free_length_m * 1e9 - 1e-3) / 1e6) << '\n';
-  if (w.grade) {
-    keys << "grade = \"" << WireGradeName(*w.grade) << "\"\n";  // R_m(d) and G of the grade
-  } else {
-    keys << "shear_modulus_GPa = " << Exact(g.shear_modulus_Pa * 1e-9) << '\n';
-    keys << "tensile_MPa = " << Exact(g.tensile_Pa * 1e-6) << '\n';
-  }
-  keys << "density_kg_m3 = " << Exact(g.density_kg_m3) << '\n';
-  keys << "ends = \"" << EndsName(g.ends) << "\"\n";
-  if (g.wahl) keys << "stress_correction = \"wahl\"\n";
-  if (g.shot_peened) keys << "shot_peened = true\n";
-  if (g.allowable_fraction != 0.5)
-    keys << "allowable_stress_fraction = " << Exact(g.allowable_fraction) << '\n';
-
-  static const std::regex header(R"(^\s*\[\s*([A-Za-z0-9_]+)\s*\]\s*(#.*)?$)");
-  static const std::regex key(R"(^\s*([A-Za-z0-9_]+)\s*=)");
-  static const std::regex spring_key(
-      R"(^(preload_|rate_|wire_|coil_|active_coils$|free_length_|shear_modulus_|density_|tensile_|grade$|ends$|stress_correction$|shot_peened$|allowable_stress_fraction$).*)");
-  std::istringstream in(original);
-  std::ostringstream out;
-  std::string line, section;
-  while (std::getline(in, line)) {
-    std::smatch m;
-    if (std::regex_match(line, m, header)) {
-      section = m[1];
-      out << line << '\n';
-      if (section == "spring") out << keys.str();
-      continue;
-    }
-    if (std::regex_search(line, m, key)) {
-      const std::string k = m[1];
-      if (section == "spring" && std::regex_match(k, spring_key)) continue;
-      if (section == "needle" && k.rfind("mass_", 0) == 0) {
-        out << "mass_kg = " << Exact(sized.needle->mass_kg)
-            << "  # the needle's parts and a third of the sized spring's active coils\n";
-        continue;
-      }
-    }
-    out << line << '\n';
-  }
-  return out.str();
 }
 
 SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& options) {
@@ -246,12 +158,13 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
   notes.push_back(Fixed(sp.min_active_coils, 1) + "..." + Fixed(sp.max_active_coils, 1) +
                   " active coils by " + Fixed(sp.active_coil_step, 2));
   sp.free_length_step_m = z.free_length_step_m;
-  sp.ends = z.ends ? ParseEnds(*z.ends) : (own ? own->ends : SpringEnds::kClosedGround);
+  sp.ends = z.ends ? ParseSpringEnds(*z.ends).value_or(SpringEnds::kClosedGround)
+                  : (own ? own->ends : SpringEnds::kClosedGround);
   sp.wahl = own && own->wahl;
   sp.shot_peened = own && own->shot_peened;
   sp.allowable_fraction = own ? own->allowable_fraction : 0.5;
   sp.end_fixation = z.end_fixation;
-  notes.push_back(EndsName(sp.ends) + " ends");
+  notes.push_back(std::string(SpringEndsName(sp.ends)) + " ends");
   for (size_t i = 0; i < notes.size(); ++i) r.space_note += (i ? "; " : "") + notes[i];
 
   // The duty: the moving mass without the spring, the preload rules.

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "apps/case/case_file.h"
+#include "apps/case/case_writer.h"
 #include "apps/study/check_scene.h"
 #include "spring/spring_sizing.h"
 
@@ -77,9 +78,5 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
 Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& space,
                     double mass_without_spring_kg);
 
-/// The case file's text `original` with the [spring] keys of `s` and [needle] mass_kg of
-/// `sized` in place of the old ones; every other line kept.
-std::string SizedCaseText(const std::string& original, const Case& sized, const SizedSpring& s,
-                          const SizingSpace& space);
 
 }  // namespace needle

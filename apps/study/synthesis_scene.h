@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "apps/case/case_file.h"
+#include "apps/case/case_writer.h"
 #include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"
 #include "lib/result_fields.h"
@@ -54,9 +55,5 @@ std::vector<Field> SynthesisFields(const SynthesisResult& r);
 std::vector<Column> SynthesisColumns();
 std::vector<std::vector<double>> SynthesisRows(const SynthesizedLaw& law);
 
-/// A needle case file for the synthesized law: every 10th step as crank angles, [profile]
-/// from [checks], and [needle], [spring] with an assumed, marked [train] when [checks] has
-/// a spring and a mass (so that `needle check` on it runs the spring and the dynamics).
-std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& law);
 
 }  // namespace needle

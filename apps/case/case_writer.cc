@@ -1,0 +1,176 @@
+#include "apps/case/case_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include "lib/engine_cycle.h"
+#include "lib/follower.h"
+#include "lib/output.h"
+#include "lib/units.h"
+#include "spring/wire_material.h"
+
+namespace needle {
+namespace {
+
+// The shortest decimal that reads back as `v` (6 to 17 digits).
+std::string Exact(double v) {
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::ostringstream out;
+    out.precision(digits);
+    out << v;
+    if (std::stod(out.str()) == v) return out.str();
+  }
+  return std::to_string(v);
+}
+
+}  // namespace
+
+std::string DesignCaseText(const DesignInputs& in, const DesignResult& r) {
+  std::ostringstream c;
+  c.precision(10);
+  c << "# Written by `needle design " << in.path << " --case`: Basu's design chain (NACA TM 477).\n"
+    << "# Values marked ASSUMED are not computed by the chain; replace them with your own.\n"
+    << "title = \"" << (in.title.empty() ? std::string("designed valve") : in.title)
+    << " (designed)\"\n\n[engine]\nspeed_rpm = " << in.speed_rpm << "\ncycle = \""
+    << EngineCycleName(in.cycle) << "\"\n\n# The normal curve scaled to the maximum lift "
+    << r.max_lift_m * 1e3 << " mm.\n[lift]\ncrank_deg = [";
+  for (size_t i = 0; i < r.lift_table.crank_rad.size(); ++i)
+    c << (i ? ", " : "") << r.lift_table.crank_rad[i] / kDeg;
+  c << "]\nlift_mm = [";
+  for (size_t i = 0; i < r.lift_table.lift_m.size(); ++i)
+    c << (i ? ", " : "") << r.lift_table.lift_m[i] * 1e3;
+  c << "]\n\n[needle]\n";
+  if (in.moving_mass_kg) {
+    c << "mass_kg = " << *in.moving_mass_kg << "  # [design] moving_mass_kg\n";
+  } else {
+    // Basu's Example 1: 11.5 kg of needle and disks with a 31 mm needle.
+    const double m = 11.5 * std::pow(r.needle_diameter_m / 31e-3, 3);
+    c << "mass_kg = " << m
+      << "  # ASSUMED: Basu's Example 1 (11.5 kg at a 31 mm needle) scaled by the needle "
+         "diameter cubed; weigh yours or give [design] moving_mass_kg\n";
+  }
+  c << "diameter_mm = " << r.needle_diameter_m * 1e3
+    << "  # the gas load defaults to Basu's 35 kg/cm2 on it\n\n[spring]\npreload_N = "
+    << r.spring_preload_N
+    << "  # Basu's formula\nrate_N_mm = " << 0.1 * r.spring_preload_N / r.max_lift_m * 1e-3
+    << "  # ASSUMED: 10 % more force at full lift\n\n"
+    << "# ASSUMED: a stiff steel roller-on-cam contact and seat, no roller play.\n"
+    << "[train]\ncontact_stiffness_N_m = 1e9\ncontact_damping_ratio = 0.05\n"
+       "seat_stiffness_N_m = 1e9\nseat_damping_ratio = 0.05\nplay_mm = 0\n\n"
+    << "# The cam disk and roller of the chain; a radial roller "
+       "follower.\n[profile]\nbase_radius_mm = "
+    << r.cam_disk_m * 1e3 / 2 << "\nroller_radius_mm = " << r.roller_m * 1e3 / 2
+    << "\noffset_mm = 0\n";
+  return c.str();
+}
+
+
+std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& law) {
+  const double mm = 1e3;
+  // Every 10th step (and the last), as crank angles: ×2 for a four-stroke cam.
+  const double k = CrankTurnsPerCycle(f.cycle);
+  std::ostringstream c, angles, lifts;
+  angles.precision(10);
+  lifts.precision(10);
+  for (size_t i = 0; i < law.phi.size(); i += 10) {
+    angles << (i ? ", " : "") << (f.crank_start_rad + k * law.phi[i]) / kDeg;
+    lifts << (i ? ", " : "") << std::max(0.0, law.s[i]) * mm;
+  }
+  if ((law.phi.size() - 1) % 10 != 0) {
+    angles << ", " << (f.crank_start_rad + k * law.phi.back()) / kDeg;
+    lifts << ", " << std::max(0.0, law.s.back()) * mm;
+  }
+  c << "# Written by `needle synth " << f.path << "`.\n"
+    << "title = \"" << (f.title.empty() ? "synthesized law" : f.title)
+    << "\"\n\n[engine]\nspeed_rpm = " << f.speed_rpm << "\ncycle = \"" << EngineCycleName(f.cycle)
+    << "\"\n\n[lift]\ncrank_deg = [" << angles.str() << "]\nlift_mm = [" << lifts.str()
+    << "]\nspline = \"not-a-knot\"\nresolution_mm = 0.000001\n";
+  if (f.base_radius_m) {
+    c << "\n[profile]\nfollower = \"" << FollowerKindName(f.follower)
+      << "\"\nbase_radius_mm = " << *f.base_radius_m * mm;
+    if (f.follower == FollowerKind::kRoller)
+      c << "\nroller_radius_mm = " << f.roller_radius_m.value_or(0.0) * mm;
+    if (f.face_radius_m) c << "\nface_radius_mm = " << *f.face_radius_m * mm;
+    if (f.face_half_width_m) c << "\nface_half_width_mm = " << *f.face_half_width_m * mm;
+    c << "\noffset_mm = " << f.offset_m * mm << "\n";
+  }
+  // Every [checks] input the synthesis used goes on into the case, so that `needle check` on
+  // it runs the spring check and the dynamics. What the synthesis file does not say and the
+  // dynamics needs is stated as an assumption, marked as such.
+  if (f.moving_mass_kg && f.spring_preload_N) {
+    std::ostringstream v;
+    v.precision(12);
+    v << "\n[needle]\nmass_kg = " << *f.moving_mass_kg
+      << "\ngas_force_N = 0  # ASSUMED: the synthesis file states no gas load\n"
+      << "\n[spring]\npreload_N = " << *f.spring_preload_N
+      << "\nrate_N_mm = " << f.spring_rate_N_m.value_or(0.0) * 1e-3 << "\n"
+      << "\n# ASSUMED (not in the synthesis file): a stiff steel roller-on-cam contact and "
+         "seat,\n"
+         "# no roller play. State your own train before trusting the dynamics.\n"
+      << "[train]\ncontact_stiffness_N_m = 2e8\ncontact_damping_ratio = 0.1\n"
+         "seat_stiffness_N_m = 2e8\nseat_damping_ratio = 0.1\nplay_mm = 0\n";
+    c << v.str();
+  }
+  return c.str();
+}
+
+
+std::string SizedCaseText(const std::string& original, const Case& sized, const SizedSpring& s,
+                          const SizingSpace& space) {
+  const HelicalGeometry& g = s.geometry;
+  const SizingWire& w = space.wires.at(s.wire_index);
+  std::ostringstream keys;
+  keys << "# sized by `needle size` (" << w.label << "): the spring's lines below replace "
+       << "the case's\n";
+  keys << "preload_N = " << Fixed(s.preload_N, 1) << '\n';
+  keys << "wire_mm = " << Exact(g.wire_m * 1e3) << '\n';
+  keys << "coil_mm = " << Exact(g.coil_m * 1e3) << '\n';
+  keys << "active_coils = " << Exact(g.active_coils) << '\n';
+  // Up to the next 1e-6 mm: the installed length never shorter than sized
+  // (less 1e-12 m of round-off: the sized L₁ has 1e-9 m to spare, kLengthSlack_m)
+  keys << "free_length_mm = " << Exact(std::ceil(g.free_length_m * 1e9 - 1e-3) / 1e6) << '\n';
+  if (w.grade) {
+    keys << "grade = \"" << WireGradeName(*w.grade) << "\"\n";  // R_m(d) and G of the grade
+  } else {
+    keys << "shear_modulus_GPa = " << Exact(g.shear_modulus_Pa * 1e-9) << '\n';
+    keys << "tensile_MPa = " << Exact(g.tensile_Pa * 1e-6) << '\n';
+  }
+  keys << "density_kg_m3 = " << Exact(g.density_kg_m3) << '\n';
+  keys << "ends = \"" << SpringEndsName(g.ends) << "\"\n";
+  if (g.wahl) keys << "stress_correction = \"wahl\"\n";
+  if (g.shot_peened) keys << "shot_peened = true\n";
+  if (g.allowable_fraction != 0.5)
+    keys << "allowable_stress_fraction = " << Exact(g.allowable_fraction) << '\n';
+
+  static const std::regex header(R"(^\s*\[\s*([A-Za-z0-9_]+)\s*\]\s*(#.*)?$)");
+  static const std::regex key(R"(^\s*([A-Za-z0-9_]+)\s*=)");
+  static const std::regex spring_key(
+      R"(^(preload_|rate_|wire_|coil_|active_coils$|free_length_|shear_modulus_|density_|tensile_|grade$|ends$|stress_correction$|shot_peened$|allowable_stress_fraction$).*)");
+  std::istringstream in(original);
+  std::ostringstream out;
+  std::string line, section;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, header)) {
+      section = m[1];
+      out << line << '\n';
+      if (section == "spring") out << keys.str();
+      continue;
+    }
+    if (std::regex_search(line, m, key)) {
+      const std::string k = m[1];
+      if (section == "spring" && std::regex_match(k, spring_key)) continue;
+      if (section == "needle" && k.rfind("mass_", 0) == 0) {
+        out << "mass_kg = " << Exact(sized.needle->mass_kg)
+            << "  # the needle's parts and a third of the sized spring's active coils\n";
+        continue;
+      }
+    }
+    out << line << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace needle
