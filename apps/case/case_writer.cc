@@ -66,7 +66,6 @@ std::string DesignCaseText(const DesignInputs& in, const DesignResult& r) {
   return c.str();
 }
 
-
 std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& law) {
   const double mm = 1e3;
   // Every 10th step (and the last), as crank angles: ×2 for a four-stroke cam.
@@ -115,7 +114,6 @@ std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& la
   }
   return c.str();
 }
-
 
 std::string SizedCaseText(const std::string& original, const Case& sized, const SizedSpring& s,
                           const SizingSpace& space) {

@@ -159,7 +159,7 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
                   " active coils by " + Fixed(sp.active_coil_step, 2));
   sp.free_length_step_m = z.free_length_step_m;
   sp.ends = z.ends ? ParseSpringEnds(*z.ends).value_or(SpringEnds::kClosedGround)
-                  : (own ? own->ends : SpringEnds::kClosedGround);
+                   : (own ? own->ends : SpringEnds::kClosedGround);
   sp.wahl = own && own->wahl;
   sp.shot_peened = own && own->shot_peened;
   sp.allowable_fraction = own ? own->allowable_fraction : 0.5;

@@ -78,5 +78,4 @@ SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& option
 Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& space,
                     double mass_without_spring_kg);
 
-
 }  // namespace needle

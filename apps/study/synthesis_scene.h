@@ -55,5 +55,4 @@ std::vector<Field> SynthesisFields(const SynthesisResult& r);
 std::vector<Column> SynthesisColumns();
 std::vector<std::vector<double>> SynthesisRows(const SynthesizedLaw& law);
 
-
 }  // namespace needle
