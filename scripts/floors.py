@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The dependency rule of docs/architecture.md, checked: no #include runs up a floor.
+"""The dependency rule of docs/architecture.md, checked: no #include runs up a floor; and the
+sizes issue 34 set: no source file over 500 lines, no command file (apps/cli) over 200.
 
 The floors, lowest first; a file may include its own floor's headers and those of any floor
 below it, never one above (nor a sibling: cli and python do not include each other, bench
@@ -50,13 +51,18 @@ def main() -> int:
         if floor is None:
             continue
         files += 1
-        for target in include.findall(source.read_text(encoding="utf-8")):
+        text = source.read_text(encoding="utf-8")
+        lines = text.count("\n")
+        most = 200 if floor == "apps/cli" else 500
+        if lines > most:
+            bad.append(f"{rel}: {lines} lines, more than {most}")
+        for target in include.findall(text):
             to = FloorOf(target)
             if to is not None and to != floor and to not in BELOW[floor]:
                 bad.append(f"{rel}: includes {target} ({to} is not below {floor})")
     for line in bad:
         print(line)
-    print(f"floors: {files} files, {len(bad)} includes running up a floor")
+    print(f"floors: {files} files, {len(bad)} includes running up a floor or files too long")
     return 1 if bad else 0
 
 

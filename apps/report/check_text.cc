@@ -1,0 +1,52 @@
+// What `check` prints without --json (check_writers.h).
+#include <cmath>
+#include <sstream>
+
+#include "apps/report/check_writers.h"
+#include "lib/output.h"
+
+namespace needle {
+namespace {
+
+std::string Num(double v, int digits) {
+  return std::isfinite(v) ? Fixed(v, digits) : std::string("none");
+}
+
+}  // namespace
+
+std::string CheckText(const Case& c, const CheckResult& result, const std::string& report_path,
+                      int figures) {
+  const std::string& path = report_path;
+  std::ostringstream out;
+  out << (c.title.empty() ? c.path : c.title) << '\n';
+  for (const auto& k : result.skipped) out << "skipped: " << k << '\n';
+  if (result.spring) out << "spring check: " << (result.spring->pass ? "pass" : "FAIL") << '\n';
+  if (result.profile)
+    out << "cam profile: " << (result.profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
+  if (result.run)
+    out << "lift-off at " << Fixed(result.speed_rpm, 0)
+        << " rpm: " << (result.run->liftoff() ? "YES" : "no") << '\n';
+  if (result.sweep) {
+    out << "n_qs " << Num(result.n_qs_rpm, 1) << " rpm, n_dyn " << OverspeedOutcome(*result.sweep)
+        << '\n';
+  }
+  if (!result.limits.empty()) {
+    out << "limits (value, limit, margin, verdict):\n";
+    for (const LimitRow& x : result.limits) {
+      const std::string u = x.UnitSuffix();
+      out << "  " << x.name << ": "
+          << (x.verdict == "not judged"
+                  ? "not judged (" + x.note + ")"
+                  : Num(x.value, 2) + u + (x.at_most ? " <= " : " >= ") + Num(x.limit, 2) + u +
+                        ", margin " + Num(x.margin, 2) + u + ", " + x.verdict)
+          << '\n';
+    }
+  }
+  for (const auto& w : result.warnings) out << "warns: " << w << '\n';
+  for (const auto& f : result.failing) out << "fails: " << f << '\n';
+  out << "report: " << path << " (" << figures << " figures)\n"
+      << "overall: " << (result.pass ? "pass" : "FAIL") << '\n';
+  return out.str();
+}
+
+}  // namespace needle
