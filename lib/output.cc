@@ -162,4 +162,8 @@ std::string Fixed(double value, int decimals) {
   return s;
 }
 
+std::string FixedOrNone(double value, int decimals) {
+  return std::isfinite(value) ? Fixed(value, decimals) : std::string("none");
+}
+
 }  // namespace needle

@@ -46,4 +46,7 @@ void WriteFileAtomically(const std::string& path, const std::string& content);
 /// `value` with `decimals` digits after the point ("-0.000" is printed as "0.000").
 std::string Fixed(double value, int decimals);
 
+/// Fixed(value, decimals), or "none" for a value that is not finite.
+std::string FixedOrNone(double value, int decimals);
+
 }  // namespace needle

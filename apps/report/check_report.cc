@@ -38,10 +38,6 @@ std::string Verdict(bool ok) {
   return ok ? "<span class=\"pass\">pass</span>" : "<span class=\"fail\">FAIL</span>";
 }
 
-std::string Num(double v, int digits) {
-  return std::isfinite(v) ? Fixed(v, digits) : std::string("none");
-}
-
 std::string Sci(double v) {
   std::ostringstream s;
   s.precision(3);
@@ -206,7 +202,7 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result)
       << Row("min quasi-static contact force", Fixed(s.min_quasi_static.force_N, 1) + " N at " +
                                                    Fixed(s.min_quasi_static.crank_rad / kDeg, 2) +
                                                    "°")
-      << Row("quasi-static lift-off n_qs", Num(s.liftoff_rpm_quasi_static, 1) + " rpm")
+      << Row("quasi-static lift-off n_qs", FixedOrNone(s.liftoff_rpm_quasi_static, 1) + " rpm")
       << Row("required preload (S " + Fixed(c.spring->safety_factor, 2) + " at " +
                  Fixed(c.spring->overspeed_factor, 2) + " n)",
              Fixed(s.required_preload_N, 1) + " N; margin " +
@@ -374,7 +370,8 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result)
             "axes x1y2 "
             "with linespoints title 'jump length'");
     std::ostringstream t;
-    t << "<h2>Overspeed</h2><table>" << Row("quasi-static lift-off n_qs", Num(n_qs, 1) + " rpm")
+    t << "<h2>Overspeed</h2><table>"
+      << Row("quasi-static lift-off n_qs", FixedOrNone(n_qs, 1) + " rpm")
       << Row("dynamic lift-off n_dyn", s.n_dyn_rpm ? Fixed(*s.n_dyn_rpm, 1) + " rpm (bracket " +
                                                          Fixed(s.bracket_low_rpm, 2) + "–" +
                                                          Fixed(s.bracket_high_rpm, 2) + ")"
@@ -394,9 +391,9 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result)
       const std::string u = Escape(x.UnitSuffix());
       const bool judged = x.verdict != "not judged";
       t << "<tr><td>" << Escape(x.name) << "</td><td>"
-        << (judged ? Num(x.value, 2) + u : std::string("—")) << "</td><td>"
-        << (x.at_most ? "≤ " : "≥ ") << (std::isfinite(x.limit) ? Num(x.limit, 2) + u : "—")
-        << "</td><td>" << (judged ? Num(x.margin, 2) + u : std::string("—")) << "</td><td>"
+        << (judged ? FixedOrNone(x.value, 2) + u : std::string("—")) << "</td><td>"
+        << (x.at_most ? "≤ " : "≥ ") << (std::isfinite(x.limit) ? FixedOrNone(x.limit, 2) + u : "—")
+        << "</td><td>" << (judged ? FixedOrNone(x.margin, 2) + u : std::string("—")) << "</td><td>"
         << (!judged                  ? std::string("not judged")
             : x.verdict == "warning" ? std::string("warning")
                                      : Verdict(x.verdict == "pass"))

@@ -1,22 +1,13 @@
 // What `check` prints without --json (check_writers.h).
-#include <cmath>
 #include <sstream>
 
 #include "apps/report/check_writers.h"
 #include "lib/output.h"
 
 namespace needle {
-namespace {
 
-std::string Num(double v, int digits) {
-  return std::isfinite(v) ? Fixed(v, digits) : std::string("none");
-}
-
-}  // namespace
-
-std::string CheckText(const Case& c, const CheckResult& result, const std::string& report_path,
+std::string CheckText(const Case& c, const CheckResult& result, const std::string& path,
                       int figures) {
-  const std::string& path = report_path;
   std::ostringstream out;
   out << (c.title.empty() ? c.path : c.title) << '\n';
   for (const auto& k : result.skipped) out << "skipped: " << k << '\n';
@@ -27,8 +18,8 @@ std::string CheckText(const Case& c, const CheckResult& result, const std::strin
     out << "lift-off at " << Fixed(result.speed_rpm, 0)
         << " rpm: " << (result.run->liftoff() ? "YES" : "no") << '\n';
   if (result.sweep) {
-    out << "n_qs " << Num(result.n_qs_rpm, 1) << " rpm, n_dyn " << OverspeedOutcome(*result.sweep)
-        << '\n';
+    out << "n_qs " << FixedOrNone(result.n_qs_rpm, 1) << " rpm, n_dyn "
+        << OverspeedOutcome(*result.sweep) << '\n';
   }
   if (!result.limits.empty()) {
     out << "limits (value, limit, margin, verdict):\n";
@@ -37,8 +28,9 @@ std::string CheckText(const Case& c, const CheckResult& result, const std::strin
       out << "  " << x.name << ": "
           << (x.verdict == "not judged"
                   ? "not judged (" + x.note + ")"
-                  : Num(x.value, 2) + u + (x.at_most ? " <= " : " >= ") + Num(x.limit, 2) + u +
-                        ", margin " + Num(x.margin, 2) + u + ", " + x.verdict)
+                  : FixedOrNone(x.value, 2) + u + (x.at_most ? " <= " : " >= ") +
+                        FixedOrNone(x.limit, 2) + u + ", margin " + FixedOrNone(x.margin, 2) + u +
+                        ", " + x.verdict)
           << '\n';
     }
   }

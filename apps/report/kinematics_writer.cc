@@ -96,7 +96,6 @@ CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWrit
       out << "paper: max acceleration " << Fixed(*c.paper->max_acceleration_m_s2, 1)
           << " m/s^2; computed max |a| " << Fixed(a_abs, 2) << " m/s^2\n";
     }
-    const bool has_paper_v = c.paper && !c.paper->velocity_m_s.empty();
     if (table.paper) {
       const PaperVelocityDeviation& d = *table.paper;
       out << "paper velocity (" << d.points << " points): mean |deviation| "
@@ -107,7 +106,7 @@ CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWrit
         << Pad("crank deg", 9) << Pad(paper ? "lift mm" : "lift m", 12)
         << Pad(paper ? "v dcm/s" : "v m/s", 12) << Pad("a m/s^2", 12);
     if (!paper) out << Pad("j m/s^3", 14);
-    if (has_paper_v) out << Pad("paper |v|", 11) << Pad("|v|-paper", 11);
+    if (table.paper) out << Pad("paper |v|", 11) << Pad("|v|-paper", 11);
     out << '\n';
     for (const auto& r : rows) {
       out << Pad(Fixed(r.crank_rad / kDeg, 2), 9);
@@ -118,7 +117,7 @@ CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWrit
       }
       out << Pad(r.acceleration_m_s2 ? Fixed(*r.acceleration_m_s2, 2) : "n/a", 12);
       if (!paper) out << Pad(r.jerk_m_s3 ? Fixed(*r.jerk_m_s3, 1) : "n/a", 14);
-      if (has_paper_v) {
+      if (table.paper) {
         if (auto p = PaperVelocityAt(c, r.crank_rad)) {
           const double scale = paper ? 10.0 : 1.0;  // dcm/s or m/s
           out << Pad(Fixed(*p * scale, paper ? 2 : 4), 11)
