@@ -67,6 +67,40 @@ void BM_SimulateExample1(benchmark::State& state) {
 }
 BENCHMARK(BM_SimulateExample1)->Unit(benchmark::kMicrosecond);
 
+// One dynamic run as `needle simulate --method M` makes it (forced dynamic, no series), on the
+// scenes of issue 33: Example 2 at 1100 rpm (the lash impact, a needle ringing on its seat) and
+// the bench's soft and lift-off scenes; exact against dopri5 at rtol 1e-8 in one process.
+struct RunScene {
+  const char* label;
+  const char* file;
+  double rpm;
+};
+constexpr RunScene kRunScenes[] = {{"lash-1100", "basu-example2.toml", 1100},
+                                   {"example1-125", "basu-example1.toml", 125},
+                                   {"light-spring-900", "basu-cam4-light-spring.toml", 900}};
+
+void RunOnce(benchmark::State& state, const char* method, double rtol) {
+  const RunScene& rs = kRunScenes[state.range(0)];
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + rs.file);
+  const Scene s = MakeScene(c);
+  SimulationOptions o = OptionsFromCase(c);
+  o.method = method;
+  o.force_dynamic = true;
+  o.integrator.rtol = rtol;
+  o.integrator.atol_m = DefaultAtol(rtol);
+  long steps = 0;
+  for (auto _ : state) {
+    const SimulationResult r = Simulate(s, rs.rpm, o);
+    steps = r.stats.steps;
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetLabel(std::string(rs.label) + ", " + std::to_string(steps) + " steps");
+}
+void BM_Exact(benchmark::State& state) { RunOnce(state, "exact", 1e-8); }
+void BM_Dopri5_1e8(benchmark::State& state) { RunOnce(state, "dopri5", 1e-8); }
+BENCHMARK(BM_Exact)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Dopri5_1e8)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 }  // namespace needle
 

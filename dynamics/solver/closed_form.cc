@@ -14,21 +14,31 @@ namespace {
 
 using Poly = ClosedFormPiece::Poly;
 
+// The index of the highest nonzero coefficient (0 for a constant or zero polynomial). The
+// loops below start there: Horner over leading zeros adds exact zeros, so the results are the
+// same bits as over all kMaxDegree + 1 coefficients.
+int Degree(const Poly& p) {
+  int d = ClosedFormPiece::kMaxDegree;
+  while (d > 0 && p[d] == 0.0) --d;
+  return d;
+}
+
 double Eval(const Poly& p, double x) {
-  double v = 0.0;
-  for (int k = ClosedFormPiece::kMaxDegree; k >= 0; --k) v = v * x + p[k];
+  int k = Degree(p);
+  double v = p[k];
+  while (--k >= 0) v = v * x + p[k];
   return v;
 }
 
 Poly Derivative(const Poly& p) {
   Poly d{};
-  for (int k = 1; k <= ClosedFormPiece::kMaxDegree; ++k) d[k - 1] = k * p[k];
+  for (int k = 1, n = Degree(p); k <= n; ++k) d[k - 1] = k * p[k];
   return d;
 }
 
 // The coefficients of q(s) = p(a + s) (Taylor shift, by repeated synthetic division).
 Poly Shift(Poly p, double a) {
-  const int n = ClosedFormPiece::kMaxDegree;
+  const int n = Degree(p);
   for (int i = 0; i < n; ++i) {
     for (int k = n - 1; k >= i; --k) p[k] += a * p[k + 1];
   }
@@ -37,8 +47,9 @@ Poly Shift(Poly p, double a) {
 
 // max |p(s)| over s ∈ [0, h] is at most Σ |p_k| h^k.
 double BoundOn(const Poly& p, double h) {
-  double b = 0.0;
-  for (int k = ClosedFormPiece::kMaxDegree; k >= 0; --k) b = b * h + std::abs(p[k]);
+  int k = Degree(p);
+  double b = std::abs(p[k]);
+  while (--k >= 0) b = b * h + std::abs(p[k]);
   return b;
 }
 
@@ -107,7 +118,9 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
 void ClosedFormPiece::Basis(double tau, double& ecm1, double& es) const {
   // e^{−στ}C − 1 as (e^{−στ} − 1) + e^{−στ}(C − 1), with C − 1 = −2 sin²(√β τ/2) or
   // 2 sinh²(μτ/2): no cancellation where the motion is slow against the piece.
-  const double e = std::exp(-sigma_ * tau), em1 = std::expm1(-sigma_ * tau);
+  // Undamped (σ = 0): e^{−στ} = 1 exactly, and the two calls are left out.
+  const double e = sigma_ == 0.0 ? 1.0 : std::exp(-sigma_ * tau);
+  const double em1 = sigma_ == 0.0 ? -0.0 : std::expm1(-sigma_ * tau);  // expm1(−0) = −0
   if (beta_ > 0.0) {
     const double half = std::sin(0.5 * root_ * tau);
     ecm1 = em1 - 2.0 * e * half * half;
@@ -193,7 +206,8 @@ namespace {
 double ProductIntegral(const Poly& a, const Poly& b, double T) {
   const int n = ClosedFormPiece::kMaxDegree;
   double sum = 0.0;
-  for (int d = 2 * n; d >= 0; --d) {  // Σ_d (Σ_{i+j=d} a_i b_j) T^{d+1}/(d+1), by Horner
+  for (int d = Degree(a) + Degree(b); d >= 0;
+       --d) {  // Σ_d (Σ_{i+j=d} a_i b_j) T^{d+1}/(d+1), by Horner
     double c = 0.0;
     for (int i = std::max(0, d - n); i <= std::min(d, n); ++i) c += a[i] * b[d - i];
     sum = sum * T + c / (d + 1);
@@ -320,6 +334,12 @@ double ClosedFormPiece::HomogeneousEnergy(double t) const {
 bool ClosedFormPiece::InputConstant() const {
   for (int k = 1; k <= kMaxDegree; ++k)
     if (u_[k] != 0.0) return false;
+  return true;
+}
+
+bool ClosedFormPiece::ForcingConstant() const {
+  for (int k = 1; k <= kMaxDegree; ++k)
+    if (f_[k] != 0.0) return false;
   return true;
 }
 

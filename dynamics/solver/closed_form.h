@@ -82,7 +82,11 @@ class ClosedFormPiece {
   /// Stiffness K (N/m), mass m (kg) and whether the cam input is constant on the piece.
   double stiffness() const { return K_; }
   double mass() const { return m_; }
+  double damping() const { return c_; }
   bool InputConstant() const;
+  /// Whether the forcing f(τ) is constant on the piece (then ÿ = −(K h + c h′)/m: the net force
+  /// on the needle is the homogeneous part's alone).
+  bool ForcingConstant() const;
   /// The static (particular) lift where the input is constant, m.
   double RestLift() const { return p_[0]; }
   /// The longest step in which the 10-point rule is exact to round-off: half an oscillation

@@ -126,12 +126,16 @@ bool Recorder::AtRest(double t, const TrainState& x, const Phase& phase) const {
   if (c.u_slope != 0.0) return false;  // the cam input still moves
   const double fc = train_.AppliedCamForce(c, phase), fs = train_.AppliedSeatForce(c, phase);
   if (!(fc > 0.0 || fs > 0.0)) return false;  // in flight
-  const TrainParameters& p = train_.parameters();
   const double net = train_.NetForce(c, phase);
-  const double scale = std::max(p.preload_N + std::abs(p.gas_force_N), p.mass_kg * 1.0 /* m/s² */);
   // The needle's own rest: the coils of a spring without damping may ring on (they carry
   // their state into the next revolution).
-  return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= kRestForceFraction * scale;
+  return std::abs(x[1]) <= kRestSpeed_m_s && std::abs(net) <= RestForceTolerance();
+}
+
+double Recorder::RestForceTolerance() const {
+  const TrainParameters& p = train_.parameters();
+  const double scale = std::max(p.preload_N + std::abs(p.gas_force_N), p.mass_kg * 1.0 /* m/s² */);
+  return kRestForceFraction * scale;
 }
 
 bool Recorder::MayChange(const StretchRanges& r) const {

@@ -147,6 +147,9 @@ class Recorder {
   /// below kRestForceFraction of the spring and gas loads (so a contact oscillation caught at
   /// its turning point is not taken for rest).
   bool AtRest(double t, const TrainState& x, const Phase& phase) const;
+  /// The net force on the needle below which AtRest may hold, N (kRestForceFraction of the
+  /// spring and gas loads, or of m·1 m/s² without loads).
+  double RestForceTolerance() const;
   /// Whether samples inside a stretch with these ranges could change anything recorded (a
   /// series is kept, an episode is open, or a range reaches past an extreme recorded so far);
   /// false: the stretch's interior samples may be left out (method "exact").

@@ -104,6 +104,18 @@ std::optional<double> EventDriver::Accumulate(bool cam, double t, double approac
 
 // Rest asks for y and ẏ only (Motion: the closed form skips its energy integrals W and D).
 std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& phase) {
+  if (const ClosedFormPiece* piece = stepper_->ClosedForm()) {
+    // The closed form under a constant forcing: the net force on the needle is −(K h + c h′)
+    // and its speed h′, so rest (|h′| ≤ v_r, |K h + c h′| ≤ F_r) needs the homogeneous energy
+    // H = ½ m h′² + ½ K h² ≤ ½ m v_r² + ½ (F_r + c v_r)²/K. H never grows: above four times
+    // that at hi, no time up to hi is at rest, and none is sampled.
+    const double K = piece->stiffness(), c = piece->damping(), m = piece->mass();
+    if (!phase.gated && K > 0.0 && piece->ForcingConstant()) {
+      const double f = recorder_.RestForceTolerance() + c * kRestSpeed_m_s;
+      const double rest_energy = 0.5 * m * kRestSpeed_m_s * kRestSpeed_m_s + 0.5 * f * f / K;
+      if (piece->HomogeneousEnergy(hi) > 4.0 * rest_energy) return std::nullopt;
+    }
+  }
   if (!(hi > lo))
     return recorder_.AtRest(hi, Motion(hi), phase) ? std::optional<double>(hi) : std::nullopt;
   constexpr int kSamples = 64;
