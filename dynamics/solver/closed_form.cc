@@ -36,9 +36,10 @@ Poly Derivative(const Poly& p) {
   return d;
 }
 
-// The coefficients of q(s) = p(a + s) (Taylor shift, by repeated synthetic division).
+// The coefficients of q(s) = p(a + s) (Taylor shift, by repeated synthetic division; a = 0
+// adds exact zeros, and is left out).
 Poly Shift(Poly p, double a) {
-  const int n = Degree(p);
+  const int n = a == 0.0 ? 0 : Degree(p);
   for (int i = 0; i < n; ++i) {
     for (int k = n - 1; k >= i; --k) p[k] += a * p[k + 1];
   }
@@ -75,6 +76,7 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
   for (int k = 0; k <= kMaxDegree; ++k, wk *= train.omega()) u_[k] *= wk;
 
   du_ = needle::Derivative(u_);
+  ddu_ = needle::Derivative(du_);
   f_[0] = -p.preload_N + p.gas_force_N;
   if (mode.cam) {
     const double kc = train.cam_law().ForceStiffness(), cc = train.cam_law().ForceDamping();
@@ -116,6 +118,18 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
 }
 
 void ClosedFormPiece::Basis(double tau, double& ecm1, double& es) const {
+  if (tau == basis_tau_) {
+    ecm1 = basis_ecm1_;
+    es = basis_es_;
+    return;
+  }
+  BasisUncached(tau, ecm1, es);
+  basis_tau_ = tau;
+  basis_ecm1_ = ecm1;
+  basis_es_ = es;
+}
+
+void ClosedFormPiece::BasisUncached(double tau, double& ecm1, double& es) const {
   // e^{−στ}C − 1 as (e^{−στ} − 1) + e^{−στ}(C − 1), with C − 1 = −2 sin²(√β τ/2) or
   // 2 sinh²(μτ/2): no cancellation where the motion is slow against the piece.
   // Undamped (σ = 0): e^{−στ} = 1 exactly, and the two calls are left out.
@@ -157,6 +171,10 @@ std::array<double, 3> ClosedFormPiece::Motion(double t) const {
   return {y, v, (Eval(f_, tau) - c_ * v - K_ * y) / m_};
 }
 
+std::array<double, 2> ClosedFormPiece::Input(double t) const {
+  return {Eval(u_, t - t0_), Eval(du_, t - t0_)};
+}
+
 double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
   const double tau = t - t0_;
   const auto [y, v] = PositionVelocity(tau);
@@ -164,6 +182,23 @@ double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
   if (form.u != 0.0) w += form.u * Eval(u_, tau);
   if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, tau);
   return w;
+}
+
+std::array<double, 2> ClosedFormPiece::FormValueRate(const LinearForm& form, double t) const {
+  const double tau = t - t0_;
+  const auto [y, v] = PositionVelocity(tau);
+  double w = form.y * y + form.v * v + form.constant;
+  double rate = form.y * v;
+  if (form.v != 0.0) rate += form.v * (Eval(f_, tau) - c_ * v - K_ * y) / m_;
+  if (form.u != 0.0) {
+    w += form.u * Eval(u_, tau);
+    rate += form.u * Eval(du_, tau);
+  }
+  if (form.u_rate != 0.0) {
+    w += form.u_rate * Eval(du_, tau);
+    rate += form.u_rate * Eval(ddu_, tau);
+  }
+  return {w, rate};
 }
 
 TrainState ClosedFormPiece::State(double t) const {
@@ -289,12 +324,17 @@ ClosedFormPiece::AuditTerms ClosedFormPiece::Audit(double T, double y1, double v
   return out;
 }
 
-FormBounds ClosedFormPiece::Bounds(const LinearForm& form, double t_a, double t_b) const {
-  const double tau = t_a - t0_, len = t_b - t_a;
+ClosedFormPiece::Poly ClosedFormPiece::FormPolynomial(const LinearForm& form, double t_a) const {
   Poly q{};
   for (int k = 0; k <= kMaxDegree; ++k)
     q[k] = form.y * p_[k] + form.v * dp_[k] + form.u * u_[k] + form.u_rate * du_[k];
-  const Poly q1 = needle::Derivative(Shift(q, tau));
+  return Shift(q, t_a - t0_);
+}
+
+FormBounds ClosedFormPiece::Bounds(const LinearForm& form, const Poly& q, double t_a,
+                                   double t_b) const {
+  const double len = t_b - t_a;
+  const Poly q1 = needle::Derivative(q);
   const Poly q2 = needle::Derivative(q1);
   // The homogeneous part h = y − P: its energy H = ½mh'² + ½Kh² at t_a bounds it from there on;
   // over a short interval a Taylor bound from h' and h'' at t_a is tighter.
@@ -343,15 +383,13 @@ bool ClosedFormPiece::ForcingConstant() const {
   return true;
 }
 
-FormRange ClosedFormPiece::Range(const LinearForm& form, double t_a, double t_b) const {
-  const double tau = t_a - t0_, len = t_b - t_a;
-  Poly q{};
-  for (int k = 0; k <= kMaxDegree; ++k)
-    q[k] = form.y * p_[k] + form.v * dp_[k] + form.u * u_[k] + form.u_rate * du_[k];
-  q = Shift(q, tau);
-  double spread = 0.0;  // Σ_{k ≥ 1} |q_k| len^k
-  for (int k = kMaxDegree; k >= 1; --k) {
-    if (q[k] != 0.0) spread += std::abs(q[k]) * std::pow(len, k);
+FormRange ClosedFormPiece::Range(const LinearForm& form, const Poly& q, double t_a,
+                                 double t_b) const {
+  const double len = t_b - t_a;
+  double spread = 0.0;  // Σ_{k ≥ 1} |q_k| len^k (len^1 and len^2 are pow's correctly rounded bits)
+  for (int k = Degree(q); k >= 1; --k) {
+    if (q[k] != 0.0)
+      spread += std::abs(q[k]) * (k == 1 ? len : k == 2 ? len * len : std::pow(len, k));
   }
   // |h| ≤ √(2H/K), |h'| ≤ √(2H/m) from t_a on.
   const double energy = HomogeneousEnergy(t_a);

@@ -70,13 +70,29 @@ class ClosedFormPiece {
   TrainState StateByQuadrature(double t, int parts) const;
   /// y, ẏ, ÿ at t.
   std::array<double, 3> Motion(double t) const;
+  /// The cam input u and its rate u̇ at t on the piece's own polynomials (the train's own
+  /// evaluation on the cam's spline agrees with them up to round-off).
+  std::array<double, 2> Input(double t) const;
   /// The form's value at t on the piece's own polynomials (no search of the cam's segments).
   double FormValue(const LinearForm& form, double t) const;
+  /// The polynomial part of the form, q = form·(P, P′, u, u̇) + nothing of h, in s = t − t_a
+  /// (Range and Bounds over an interval that starts at t_a share it).
+  Poly FormPolynomial(const LinearForm& form, double t_a) const;
+  /// The form's value (the same bits as FormValue) and its rate dw/dt at t, for Newton's method.
+  std::array<double, 2> FormValueRate(const LinearForm& form, double t) const;
   /// Bounds of the form over [t_a, t_b], t₀ ≤ t_a < t_b.
-  FormBounds Bounds(const LinearForm& form, double t_a, double t_b) const;
+  FormBounds Bounds(const LinearForm& form, double t_a, double t_b) const {
+    return Bounds(form, FormPolynomial(form, t_a), t_a, t_b);
+  }
+  /// The same with the form's polynomial in s = t − t_a (FormPolynomial) given.
+  FormBounds Bounds(const LinearForm& form, const Poly& q, double t_a, double t_b) const;
   /// The range of the form over [t_a, t_b], t₀ ≤ t_a ≤ t_b (t_b may be +∞ when the
   /// polynomial part is constant).
-  FormRange Range(const LinearForm& form, double t_a, double t_b) const;
+  FormRange Range(const LinearForm& form, double t_a, double t_b) const {
+    return Range(form, FormPolynomial(form, t_a), t_a, t_b);
+  }
+  /// The same with the form's polynomial in s = t − t_a (FormPolynomial) given.
+  FormRange Range(const LinearForm& form, const Poly& q, double t_a, double t_b) const;
   /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds.
   double HomogeneousEnergy(double t) const;
   /// Stiffness K (N/m), mass m (kg) and whether the cam input is constant on the piece.
@@ -106,6 +122,7 @@ class ClosedFormPiece {
   std::array<double, 2> HomogeneousAt(double t) const;
   // e^{−στ}C − 1 and e^{−στ}S at τ ≥ 0.
   void Basis(double tau, double& ecm1, double& es) const;
+  void BasisUncached(double tau, double& ecm1, double& es) const;
   /// (y, ẏ) at τ = t − t₀ after the piece's start: Motion's first two, FormValue's inputs.
   std::array<double, 2> PositionVelocity(double tau) const;
 
@@ -118,11 +135,14 @@ class ClosedFormPiece {
   double r1_ = 0.0, r2_ = 0.0;  // over-damped exponents
   Poly f_{};                    // the forcing in τ
   Poly p_{}, dp_{};             // particular solution in τ, and its derivative
-  Poly u_{}, du_{};             // the cam input in τ (cam mode or not), and its derivative
+  Poly u_{}, du_{}, ddu_{};     // the cam input in τ (cam mode or not), and its derivatives
   double Y0_, V0_;
   double longest_step_;
   mutable double cached_t_ = -1e300;
   mutable std::array<double, 2> cached_h_{};
+  // Basis's last τ and its two values (a bisection asks for the value at a midpoint, then for
+  // the bounds of the half that starts there).
+  mutable double basis_tau_ = -1e300, basis_ecm1_ = 0.0, basis_es_ = 0.0;
 };
 
 }  // namespace needle

@@ -153,7 +153,16 @@ class Recorder {
   /// Whether samples inside a stretch with these ranges could change anything recorded (a
   /// series is kept, an episode is open, or a range reaches past an extreme recorded so far);
   /// false: the stretch's interior samples may be left out (method "exact").
-  bool MayChange(const StretchRanges& r) const;
+  /// `lift_covered`: the lift's own extremes are left out (the driver knows the stretch's lift to
+  /// run between two lifts the record holds or is about to hold).
+  bool MayChange(const StretchRanges& r, bool lift_covered = false) const;
+  /// The same for one sample inside a stretch (method "exact"): lift y, the cam input below
+  /// u_hi, the applied cam force within [fc_lo, fc_hi] and the seat force fs. With `covering`,
+  /// the lift the driver records next after the stretch: a sample whose lift it passes the same
+  /// way (y below it where y sets a new largest lift, above it where a new least) leaves the
+  /// same record behind, and counts as changing nothing there.
+  bool SampleMayChange(double y, std::optional<double> covering, double u_hi, double fc_lo,
+                       double fc_hi, double fs) const;
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }

@@ -60,12 +60,13 @@ std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& 
                                                          const LinearForm& form, int i, int s,
                                                          const Bracket& in, int& budget) {
   const bool change = SignOf(in.wb) != s;
+  const ClosedFormPiece::Poly q = piece.FormPolynomial(form, in.a);
   if (!change) {
     // The values' range over the whole interval: no crossing where it keeps sign s.
-    const FormRange range = piece.Range(form, in.a, in.b);
+    const FormRange range = piece.Range(form, q, in.a, in.b);
     if (s > 0 ? range.lo > 0.0 : range.hi <= 0.0) return std::nullopt;
   }
-  const FormBounds bounds = piece.Bounds(form, in.a, in.b);
+  const FormBounds bounds = piece.Bounds(form, q, in.a, in.b);
   const double h = in.b - in.a;
   const bool monotone = std::abs(bounds.slope_at_start) > bounds.curvature_bound * h;
   if (!change && (monotone || std::abs(in.wa) + std::abs(in.wb) > bounds.slope_bound * h))
@@ -123,11 +124,33 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
   return end;
 }
 
-void EventDriver::RecordExtremes(double t0, double t1) {
+void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> covering) {
   constexpr int n = 16;
   const Phase& phase = system_.phase;
+  const ClosedFormPiece& piece = *stepper_->ClosedForm();
+  const bool screen = !phase.gated && !train_.HasConstraint();
+  if (!screen) covering.reset();
+  // A lift that rises (falls) over the whole stretch, by more than round-off between two
+  // samples, from one the record holds to the covering one: its interior samples set no
+  // extreme of the lift that the covering sample does not set after them.
+  StretchRanges ranges = Ranges(piece, t0, t1);
+  bool lift_covered = false;
+  if (covering) {
+    const double y0 = Motion(t0)[0];
+    const FormRange rate = piece.Range(LinearForm{0.0, 1.0, 0.0, 0.0, 0.0}, t0, t1);
+    const double step = (t1 - t0) / n, roundoff = 1e-12 * (std::abs(*covering) + lift_scale_);
+    if (rate.lo * step > roundoff && !(y0 < recorder_.min_lift_m())) {
+      lift_covered = true;
+      ranges.y_lo = std::max(ranges.y_lo, y0);
+      ranges.y_hi = std::min(ranges.y_hi, *covering);
+    } else if (-rate.hi * step > roundoff && !(y0 > recorder_.max_lift_m())) {
+      lift_covered = true;
+      ranges.y_lo = std::max(ranges.y_lo, *covering);
+      ranges.y_hi = std::min(ranges.y_hi, y0);
+    }
+  }
   // Nothing recorded can change inside the stretch: its interior samples are left out.
-  if (!recorder_.MayChange(Ranges(*stepper_->ClosedForm(), t0, t1))) return;
+  if (!recorder_.MayChange(ranges, lift_covered)) return;
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
   const double min_fc = recorder_.min_contact_force_during_lift_N();
   // The three forces at x, each signed so that its extreme is a minimum.
@@ -136,11 +159,38 @@ void EventDriver::RecordExtremes(double t0, double t1) {
     const double fc = train_.AppliedCamForce(c, phase);
     return std::array<double, 3>{-fc, -train_.AppliedSeatForce(c, phase), fc};
   };
+  // The sample screen: the seat force from y and ẏ alone (the train's own bits); the cam force
+  // from the piece's input, within kAllowance of the cam's scale (the two inputs differ by
+  // round-off, some 1e-16 of it).
+  constexpr double kAllowance = 1e-9;
+  const ContactLaw& cam = train_.cam_law();
+  const ContactLaw& seat = train_.seat_law();
   std::array<double, n + 1> ts;
   std::array<std::array<double, n + 1>, 3> f;
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
     const TrainState x = Motion(ts[k]);
+    if (screen && k > 0 && k < n) {
+      const std::array<double, 2> in = piece.Input(ts[k]);
+      const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;
+      double fc = 0.0, fc_allowance = 0.0;
+      if (phase.mode.cam) {
+        fc = cam.Force(in[0] - x[0], in[1] - x[1]);
+        fc_allowance =
+            kAllowance * (std::abs(cam.ForceStiffness()) * (std::abs(in[0]) + lift_scale_) +
+                          std::abs(cam.ForceDamping()) * (std::abs(in[1]) + rate_scale_));
+      }
+      const double u_hi = in[0] + kAllowance * (std::abs(in[0]) + lift_scale_);
+      const bool quiet = !recorder_.SampleMayChange(x[0], covering, u_hi, fc - fc_allowance,
+                                                    fc + fc_allowance, fs) &&
+                         (fc + fc_allowance <= 0.0 || fc - fc_allowance >= min_fc);
+      if (quiet) {  // neither a record nor the least contact force's bracket
+        f[0][k] = -fc;
+        f[1][k] = -fs;
+        f[2][k] = fc;
+        continue;
+      }
+    }
     const Contacts c = train_.Evaluate(x, ts[k], phase);
     const double fc = train_.AppliedCamForce(c, phase);
     f[0][k] = -fc;

@@ -49,6 +49,12 @@ class EventDriver {
               const IntegratorOptions& o)
       : train_(train), recorder_(recorder), o_(o), system_(train, o) {
     stepper_ = MakeStepper(method, system_, o);
+    if (method == Method::kExact) {
+      // The scales of the cam input and its rate, for RecordExtremes' round-off allowance.
+      const LiftLaw& law = train.cam().law();
+      lift_scale_ = std::abs(law.Max(0).value) + train.cam().play_m();
+      rate_scale_ = train.omega() * lift_scale_ / (law.end_rad() - law.start_rad());
+    }
     stepper_->SetLongest([this](const ClosedFormPiece& piece, double t, double cap, double limit) {
       return LongestQuiet(piece, t, cap, limit);
     });
@@ -182,7 +188,11 @@ class EventDriver {
   // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
   // sample sets a new largest contact or seat force, or a new least contact force, locates that
   // extreme by Brent's method between the samples around it and records it there.
-  void RecordExtremes(double t0, double t1);
+  // An interior sample that provably changes nothing recorded (Recorder::SampleMayChange, its
+  // cam force from the piece's own polynomials within a round-off allowance of the train's) and
+  // cannot start a located extreme is left out: the same record, one train evaluation and one
+  // record update less. `covering`: the lift the driver records right after the stretch.
+  void RecordExtremes(double t0, double t1, std::optional<double> covering);
   // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
   // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
   // moving sample and the first at rest.
@@ -199,6 +209,8 @@ class EventDriver {
   std::array<std::optional<double>, 2> last_approach_;
   size_t jump_checked_ = 0;  // episodes closed and shorter than o_.stop_jump_rad
   double t_end_ = 0.0;       // the run's window (pieces are not stretched past it)
+  double lift_scale_ = 0.0;  // the cam input's scale, m (method "exact")
+  double rate_scale_ = 0.0;  // its rate's, m/s
   // While a certified search runs: the witness as a linear form on the piece (Value).
   const LinearForm* value_form_ = nullptr;
   const ClosedFormPiece* value_piece_ = nullptr;
