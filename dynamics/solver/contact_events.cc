@@ -138,14 +138,15 @@ double Recorder::RestForceTolerance() const {
   return kRestForceFraction * scale;
 }
 
-bool Recorder::MayChange(const StretchRanges& r, bool lift_covered) const {
+bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reported) const {
   if (record_series_ || separated_) return true;
+  const bool all = !(reported && liftoff_only_);
   // The lift's extremes; the spring force P₀ + k y and (one mass) the segment compression y
   // grow with the lift, so they follow the largest lift.
   if (train_.Coils() > 0) return true;
-  if (!lift_covered && (r.y_hi > max_lift_ || r.y_lo < min_lift_)) return true;
+  if (!lift_covered && (r.y_hi > max_lift_ || (all && r.y_lo < min_lift_))) return true;
   if (lift_covered && !(train_.parameters().rate_N_m >= 0.0)) return true;
-  if (r.fc_hi > max_fc_ || r.fs_hi > max_fs_) return true;
+  if (all && (r.fc_hi > max_fc_ || r.fs_hi > max_fs_)) return true;
   // The least contact force over the lift, and its share of the holding load.
   if (r.u_hi > kSeparationLift_m && r.y_hi > kSeparationLift_m) {
     if (!lifted_) return true;
@@ -156,7 +157,7 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered) const {
     const double hold_lo = std::min(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
     const double hold_hi = std::max(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
     const double ratio_lo = hold_lo > 0.0 ? f_lo / hold_hi : 0.0;
-    if (ratio_lo < min_ratio_) return true;
+    if (all && ratio_lo < min_ratio_) return true;
   }
   return false;
 }
@@ -167,17 +168,19 @@ bool Recorder::SampleMayChange(double y, std::optional<double> covering, double 
   // The spring force P₀ + k y and the segment compression y follow the lift (k ≥ 0), so the
   // lift's record stands for theirs; the covering sample carries them past this one.
   const TrainParameters& p = train_.parameters();
-  if (!(p.rate_N_m >= 0.0)) covering.reset();
-  if (y > max_lift_ && !(covering && y < *covering)) return true;
-  if (y < min_lift_ && !(covering && y > *covering)) return true;
-  if (fc_hi > max_fc_ || fs > max_fs_) return true;
+  // NaN: no covering sample (every comparison with it is false).
+  const double cover = covering && p.rate_N_m >= 0.0 ? *covering : std::nan("");
+  const bool all = !liftoff_only_;  // else what a lift-off run reports
+  if (y > max_lift_ && !(y < cover)) return true;
+  if (all && y < min_lift_ && !(y > cover)) return true;
+  if (all && (fc_hi > max_fc_ || fs > max_fs_)) return true;
   if (u_hi > kSeparationLift_m && y > kSeparationLift_m) {  // maybe in the window
     if (!lifted_) return true;
     const double f_lo = std::max(0.0, fc_lo);
     if (f_lo < min_fc_lift_) return true;
     const double hold =
         RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(y);
-    if ((hold > 0.0 ? f_lo / hold : 0.0) < min_ratio_) return true;
+    if (all && (hold > 0.0 ? f_lo / hold : 0.0) < min_ratio_) return true;
   }
   return false;
 }

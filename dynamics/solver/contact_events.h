@@ -154,8 +154,15 @@ class Recorder {
   /// series is kept, an episode is open, or a range reaches past an extreme recorded so far);
   /// false: the stretch's interior samples may be left out (method "exact").
   /// `lift_covered`: the lift's own extremes are left out (the driver knows the stretch's lift to
-  /// run between two lifts the record holds or is about to hold).
-  bool MayChange(const StretchRanges& r, bool lift_covered = false) const;
+  /// run between two lifts the record holds or is about to hold). `reported`: only what the run
+  /// reports counts (set_liftoff_only); else everything recorded.
+  bool MayChange(const StretchRanges& r, bool lift_covered = false, bool reported = false) const;
+  /// A run that answers only "lift-off?" (SimulationOptions::stop_at_liftoff) reports its
+  /// episodes, impacts, largest lift and least contact force over the lift; samples need not
+  /// keep its other extremes (largest forces, least lift, the contact force's least share of
+  /// the holding load), which are then partial.
+  void set_liftoff_only(bool on) { liftoff_only_ = on; }
+  bool liftoff_only() const { return liftoff_only_; }
   /// The same for one sample inside a stretch (method "exact"): lift y, the cam input below
   /// u_hi, the applied cam force within [fc_lo, fc_hi] and the seat force fs. With `covering`,
   /// the lift the driver records next after the stretch: a sample whose lift it passes the same
@@ -246,6 +253,7 @@ class Recorder {
   std::vector<GridPoint> grid_;
 
   bool separated_ = false;
+  bool liftoff_only_ = false;    // set_liftoff_only
   bool end_slope_drop_ = false;  // the cam input's slope drops at θ_N
   bool cam_touched_ = false;     // any cam onset yet (lash vs recontact)
   bool seat_landed_ = false;     // any seat onset yet (seat vs seat-bounce)

@@ -150,7 +150,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     }
   }
   // Nothing recorded can change inside the stretch: its interior samples are left out.
-  if (!recorder_.MayChange(ranges, lift_covered)) return;
+  if (!recorder_.MayChange(ranges, lift_covered, true)) return;
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
   const double min_fc = recorder_.min_contact_force_during_lift_N();
   // The three forces at x, each signed so that its extreme is a minimum.
@@ -199,7 +199,8 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase, c);
   }
   const std::array<double, 3> record = {-max_fc, -max_fs, min_fc};
-  for (int which = 0; which < 3; ++which) {
+  // A lift-off run locates only the least contact force (Recorder::set_liftoff_only).
+  for (int which = recorder_.liftoff_only() ? 2 : 0; which < 3; ++which) {
     const auto& v = f[which];
     const int k = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
     // Only a new record inside the step, and for the least contact force one while pushing.

@@ -20,7 +20,7 @@ namespace {
 
 class ExactStepper final : public Stepper {
  public:
-  explicit ExactStepper(TrainSystem& system) : system_(system) {}
+  ExactStepper(TrainSystem& system, bool audit) : system_(system), audit_(audit) {}
   void Initialize(const TrainState& z, double t, double /*dt*/) override {
     x_ = system_.FromScaled(z);
     t_ = t;
@@ -40,10 +40,10 @@ class ExactStepper final : public Stepper {
     t_ = cap < stop_ && longest_ ? std::max(cap, std::min(stop_, longest_(*piece_, t_, cap, stop_)))
                                  : std::min(stop_, cap);
     step_ = t_ - start;
-    x_ = piece_->State(t_);
+    x_ = StateAt(t_);
     return {start, t_};
   }
-  void CalcState(double t, TrainState& z) override { z = system_.ToScaled(piece_->State(t)); }
+  void CalcState(double t, TrainState& z) override { z = system_.ToScaled(StateAt(t)); }
   void CalcMotion(double t, TrainState& z) override {
     const std::array<double, 3> m = piece_->Motion(t);
     z = system_.ToScaled({m[0], m[1], 0.0, 0.0});
@@ -58,7 +58,18 @@ class ExactStepper final : public Stepper {
   }
 
  private:
+  // The state at t: with the audit's W and D, or (no audit) with the piece's start values.
+  TrainState StateAt(double t) const {
+    if (audit_) return piece_->State(t);
+    const std::array<double, 3> m = piece_->Motion(t);
+    TrainState x = x_;
+    x[0] = m[0];
+    x[1] = m[1];
+    return x;
+  }
+
   TrainSystem& system_;
+  bool audit_;
   TrainState x_{};
   double t_ = 0.0, step_ = 0.0, stop_ = 0.0;
   std::optional<ClosedFormPiece> piece_;
@@ -83,10 +94,10 @@ std::optional<std::string> ExactRefusal(const NeedleTrain& train) {
   return std::nullopt;
 }
 
-std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& /*o*/) {
+std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& o) {
   if (const std::optional<std::string> why = ExactRefusal(system.train()))
     throw std::invalid_argument(*why);
-  return std::make_unique<ExactStepper>(system);
+  return std::make_unique<ExactStepper>(system, o.audit_energy);
 }
 
 }  // namespace needle

@@ -93,6 +93,11 @@ struct IntegratorOptions {
   /// force over the lift are final. For one-window runs only (a revolution that carries its end
   /// state on must run to its end).
   bool stop_after_lift = false;
+  /// Integrate the energy audit's W and D (docs/model.md §6). Method "exact" leaves them out when
+  /// false (they then keep their initial values and the run's energy residual is not computed):
+  /// a run that answers only whether the needle lifts off reports none. The time steppers always
+  /// integrate them (they are states of their error control).
+  bool audit_energy = true;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
   /// Per-state absolute tolerances (y, ẏ, W, D) with the defaults filled in.

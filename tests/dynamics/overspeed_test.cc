@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -335,6 +336,11 @@ TEST(StopAtLiftoffTest, TheEarlyStoppedRunGivesTheFullRunsVerdict) {
         EXPECT_GT(early.run_end_rad, s.law->end_rad());
         EXPECT_LT(early.run_end_rad, full.run_end_rad);
         EXPECT_EQ(early.min_contact_force_during_lift_N, full.min_contact_force_during_lift_N);
+        // What it reports besides: its largest lift (the not-following rule reads it) is the
+        // full run's; no energy residual (the closed form integrates no W and D for it).
+        EXPECT_EQ(early.max_lift_m, full.max_lift_m) << method << ' ' << n;
+        EXPECT_TRUE(std::isnan(early.energy_residual)) << method << ' ' << n;
+        EXPECT_FALSE(std::isnan(full.energy_residual)) << method << ' ' << n;
         EXPECT_TRUE(early.episodes.empty() || !early.episodes.back().open);
         continue;
       }
