@@ -176,7 +176,7 @@ void RunCycles(const Scene& scene, const NeedleTrain& train, Method method,
 
   r.window_end_rad = theta_a + revolution;
   r.cycles_asked = o.cycles;
-  const double lift_scale = std::max(scene.cam->law().Max(0).value + scene.cam->play_m(), 1e-6);
+  const double lift_scale = std::max(scene.cam->top().value + scene.cam->play_m(), 1e-6);
   std::vector<TrainState> ends{train.EquilibriumStart()};  // ends[j + 1]: the end of cycle j
   std::vector<int> impacts{0};
   for (int cycle = 0; cycle < o.cycles; ++cycle) {
@@ -226,7 +226,7 @@ void JudgeFollowing(const Scene& scene, SimulationResult& r) {
   // at its first jump, or on a budget, has not.
   const bool stopped_past_lift = r.status == RunStatus::kStopped && !r.liftoff();
   if (r.status != RunStatus::kComplete && !stopped_past_lift) return;
-  const double cam_lift = scene.law->Max(0).value;
+  const double cam_lift = scene.cam->top().value;  // the law's Max(0)
   // Where the needle rests at the end: a landing may press it deeper for an instant.
   const double rest_lift = r.stats.final_state.empty() ? 0.0 : r.stats.final_state[0];
   const auto mm = [](double m) { return Fixed(m * 1e3, 3) + " mm"; };
@@ -399,7 +399,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
                       std::to_string(static_cast<int>(kRigidMargin * 100)) +
                       " % of the preload (min " + std::to_string(fmin.force_N) +
                       " N); no roller play; use --dynamic to run it";
-    const Extremum top = scene.law->Max(0);
+    const Extremum top = scene.cam->top();  // the law's Max(0)
     r.max_lift_m = top.value;
     r.max_lift_rad = top.crank_rad;
     r.min_contact_force_during_lift_N = fmin.force_N;

@@ -11,7 +11,7 @@
 namespace needle {
 
 CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp_rad)
-    : law_(law), play_(play_m) {
+    : law_(law), top_(law.Max(0)), play_(play_m) {
   if (!(play_m >= 0.0) || !std::isfinite(play_m)) {
     throw std::invalid_argument("roller play must not be negative, got " +
                                 std::to_string(play_m * 1e3) + " mm");
@@ -26,7 +26,7 @@ CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp
   if (play_m > 0.0) {
     if (ramp == RampKind::kTangent) {
       // A slope below 1e-9 of the mean one is zero up to roundoff (clamped at-rest ends).
-      const double tiny = 1e-9 * (law.Max(0).value + play_m) / (thn - th0);
+      const double tiny = 1e-9 * (top_.value + play_m) / (thn - th0);
       if (!(slope0_ > tiny) || !(slopen_ < -tiny)) {
         throw std::invalid_argument(
             "tangent ramps need a rising start and a falling end, but the lift law's end slopes "

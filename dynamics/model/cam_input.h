@@ -62,9 +62,13 @@ class CamInput {
   }
   double play_m() const { return play_; }
   const LiftLaw& law() const { return law_; }
+  /// The lift law's largest lift and its angle (LiftLaw::Max(0)), found once with the cam: every
+  /// run reads it (the recorder's slope scale, the not-following rule).
+  const Extremum& top() const { return top_; }
 
  private:
   const LiftLaw& law_;
+  Extremum top_;
   double play_;
   double s0_, sn_, slope0_, slopen_;  // s and s' at θ_0, θ_N
   double rise_start_, fall_end_;

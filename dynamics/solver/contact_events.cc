@@ -116,7 +116,7 @@ Recorder::Recorder(const NeedleTrain& train, bool record_series,
   const CamInput& cam = train.cam();
   const LiftLaw& law = cam.law();
   const double end = law.end_rad();
-  const double mean_slope = law.Max(0).value / (end - law.start_rad());
+  const double mean_slope = cam.top().value / (end - law.start_rad());
   end_slope_drop_ = cam.Slope(end) < law.Derivative(end, 1) - 1e-3 * mean_slope;
 }
 

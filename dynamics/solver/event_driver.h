@@ -52,7 +52,7 @@ class EventDriver {
     if (method == Method::kExact) {
       // The scales of the cam input and its rate, for RecordExtremes' round-off allowance.
       const LiftLaw& law = train.cam().law();
-      lift_scale_ = std::abs(law.Max(0).value) + train.cam().play_m();
+      lift_scale_ = std::abs(train.cam().top().value) + train.cam().play_m();
       rate_scale_ = train.omega() * lift_scale_ / (law.end_rad() - law.start_rad());
     }
     stepper_->SetLongest([this](const ClosedFormPiece& piece, double t, double cap, double limit) {
