@@ -324,10 +324,14 @@ ClosedFormPiece::AuditTerms ClosedFormPiece::Audit(double T, double y1, double v
   return out;
 }
 
-ClosedFormPiece::Poly ClosedFormPiece::FormPolynomial(const LinearForm& form, double t_a) const {
+ClosedFormPiece::Poly ClosedFormPiece::FormPolynomial(const LinearForm& form) const {
   Poly q{};
   for (int k = 0; k <= kMaxDegree; ++k)
     q[k] = form.y * p_[k] + form.v * dp_[k] + form.u * u_[k] + form.u_rate * du_[k];
+  return q;
+}
+
+ClosedFormPiece::Poly ClosedFormPiece::Shifted(const Poly& q, double t_a) const {
   return Shift(q, t_a - t0_);
 }
 

@@ -70,6 +70,8 @@ class ClosedFormPiece {
   TrainState StateByQuadrature(double t, int parts) const;
   /// y, ẏ, ÿ at t.
   std::array<double, 3> Motion(double t) const;
+  /// y and ẏ at t (Motion's first two, without ÿ).
+  std::array<double, 2> LiftAndSpeed(double t) const { return PositionVelocity(t - t0_); }
   /// The cam input u and its rate u̇ at t on the piece's own polynomials (the train's own
   /// evaluation on the cam's spline agrees with them up to round-off).
   std::array<double, 2> Input(double t) const;
@@ -77,7 +79,13 @@ class ClosedFormPiece {
   double FormValue(const LinearForm& form, double t) const;
   /// The polynomial part of the form, q = form·(P, P′, u, u̇) + nothing of h, in s = t − t_a
   /// (Range and Bounds over an interval that starts at t_a share it).
-  Poly FormPolynomial(const LinearForm& form, double t_a) const;
+  Poly FormPolynomial(const LinearForm& form, double t_a) const {
+    return Shifted(FormPolynomial(form), t_a);
+  }
+  /// The same in τ = t − t₀ (a search over many intervals makes it once), and that polynomial
+  /// moved to s = t − t_a.
+  Poly FormPolynomial(const LinearForm& form) const;
+  Poly Shifted(const Poly& q, double t_a) const;
   /// The form's value (the same bits as FormValue) and its rate dw/dt at t, for Newton's method.
   std::array<double, 2> FormValueRate(const LinearForm& form, double t) const;
   /// Bounds of the form over [t_a, t_b], t₀ ≤ t_a < t_b.

@@ -35,7 +35,8 @@ std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i
     EventDriver* d;
     ~Reset() { d->value_form_ = nullptr; }
   } reset{this};
-  const std::optional<Bracket> bracket = Isolate(piece, *form, i, s, {a, wa, b, wb}, budget);
+  const ClosedFormPiece::Poly q0 = piece.FormPolynomial(*form);
+  const std::optional<Bracket> bracket = Isolate(piece, *form, q0, i, s, {a, wa, b, wb}, budget);
   if (!bracket) return std::nullopt;
   const double root = Refine(i, bracket->a, bracket->wa, bracket->b, bracket->wb);
   // The root must be past the crossing for the train's own evaluation too (the two differ by
@@ -57,10 +58,11 @@ std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i
 //   kIsolationBudget halvings, an interval without a sign change at its ends counts as none (a
 //   tangency, or a witness pinned at zero by round-off).
 std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& piece,
-                                                         const LinearForm& form, int i, int s,
-                                                         const Bracket& in, int& budget) {
+                                                         const LinearForm& form,
+                                                         const ClosedFormPiece::Poly& q0, int i,
+                                                         int s, const Bracket& in, int& budget) {
   const bool change = SignOf(in.wb) != s;
-  const ClosedFormPiece::Poly q = piece.FormPolynomial(form, in.a);
+  const ClosedFormPiece::Poly q = piece.Shifted(q0, in.a);
   if (!change) {
     // The values' range over the whole interval: no crossing where it keeps sign s.
     const FormRange range = piece.Range(form, q, in.a, in.b);
@@ -79,8 +81,8 @@ std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& 
     return change ? std::optional<Bracket>(in) : std::nullopt;
   }
   const double wm = Value(i, mid);
-  if (auto left = Isolate(piece, form, i, s, {in.a, in.wa, mid, wm}, budget)) return left;
-  return Isolate(piece, form, i, s, {mid, wm, in.b, in.wb}, budget);
+  if (auto left = Isolate(piece, form, q0, i, s, {in.a, in.wa, mid, wm}, budget)) return left;
+  return Isolate(piece, form, q0, i, s, {mid, wm, in.b, in.wb}, budget);
 }
 
 StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, double t1) const {
@@ -169,7 +171,9 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   std::array<std::array<double, n + 1>, 3> f;
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
-    const TrainState x = Motion(ts[k]);
+    // Motion(ts[k]) without ÿ and the state's copies: y and ẏ as the backend hands them over.
+    const std::array<double, 2> yv = piece.LiftAndSpeed(ts[k]);
+    const TrainState x = {system_.RoundTrip(0, yv[0]), system_.RoundTrip(1, yv[1]), 0.0, 0.0};
     if (screen && k > 0 && k < n) {
       const std::array<double, 2> in = piece.Input(ts[k]);
       const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;

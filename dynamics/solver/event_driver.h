@@ -170,8 +170,10 @@ class EventDriver {
   struct Bracket {
     double a, wa, b, wb;
   };
-  std::optional<Bracket> Isolate(const ClosedFormPiece& piece, const LinearForm& form, int i, int s,
-                                 const Bracket& in, int& budget);
+  // `q0`: the form's polynomial part in τ = t − t₀ (ClosedFormPiece::FormPolynomial).
+  std::optional<Bracket> Isolate(const ClosedFormPiece& piece, const LinearForm& form,
+                                 const ClosedFormPiece::Poly& q0, int i, int s, const Bracket& in,
+                                 int& budget);
 
   // Whether a jump episode has lasted at least o_.stop_jump_rad by t (closed ones, and the open
   // one up to t); false when that option is off. Episodes before jump_checked_ are done with.
