@@ -76,7 +76,6 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
   for (int k = 0; k <= kMaxDegree; ++k, wk *= train.omega()) u_[k] *= wk;
 
   du_ = needle::Derivative(u_);
-  ddu_ = needle::Derivative(du_);
   f_[0] = -p.preload_N + p.gas_force_N;
   if (mode.cam) {
     const double kc = train.cam_law().ForceStiffness(), cc = train.cam_law().ForceDamping();
@@ -182,23 +181,6 @@ double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
   if (form.u != 0.0) w += form.u * Eval(u_, tau);
   if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, tau);
   return w;
-}
-
-std::array<double, 2> ClosedFormPiece::FormValueRate(const LinearForm& form, double t) const {
-  const double tau = t - t0_;
-  const auto [y, v] = PositionVelocity(tau);
-  double w = form.y * y + form.v * v + form.constant;
-  double rate = form.y * v;
-  if (form.v != 0.0) rate += form.v * (Eval(f_, tau) - c_ * v - K_ * y) / m_;
-  if (form.u != 0.0) {
-    w += form.u * Eval(u_, tau);
-    rate += form.u * Eval(du_, tau);
-  }
-  if (form.u_rate != 0.0) {
-    w += form.u_rate * Eval(du_, tau);
-    rate += form.u_rate * Eval(ddu_, tau);
-  }
-  return {w, rate};
 }
 
 TrainState ClosedFormPiece::State(double t) const {

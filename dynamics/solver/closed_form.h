@@ -86,8 +86,6 @@ class ClosedFormPiece {
   /// moved to s = t − t_a.
   Poly FormPolynomial(const LinearForm& form) const;
   Poly Shifted(const Poly& q, double t_a) const;
-  /// The form's value (the same bits as FormValue) and its rate dw/dt at t, for Newton's method.
-  std::array<double, 2> FormValueRate(const LinearForm& form, double t) const;
   /// Bounds of the form over [t_a, t_b], t₀ ≤ t_a < t_b.
   FormBounds Bounds(const LinearForm& form, double t_a, double t_b) const {
     return Bounds(form, FormPolynomial(form, t_a), t_a, t_b);
@@ -143,7 +141,7 @@ class ClosedFormPiece {
   double r1_ = 0.0, r2_ = 0.0;  // over-damped exponents
   Poly f_{};                    // the forcing in τ
   Poly p_{}, dp_{};             // particular solution in τ, and its derivative
-  Poly u_{}, du_{}, ddu_{};     // the cam input in τ (cam mode or not), and its derivatives
+  Poly u_{}, du_{};             // the cam input in τ (cam mode or not), and its derivative
   double Y0_, V0_;
   double longest_step_;
   mutable double cached_t_ = -1e300;
