@@ -325,12 +325,12 @@ MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double rt
             "auto: " + *refusal + "; " + stiffness +
                 (stiff ? " (> 2000: stiff, BDF)" : " (≤ 2000: explicit Dormand–Prince)")};
   }
-  if (rtol >= kExactBelowRtol && rtol <= kExactAboveRtol) {
+  if (rtol > kExactBelowRtol && rtol <= kExactAboveRtol) {
     char asked[32];
     std::snprintf(asked, sizeof asked, "%.10g", rtol);
     return {Method::kDopri5,
             "auto: rtol " + std::string(asked) +
-                " in [1e-6, 1e-5] asks less than the closed form's roundoff, and explicit "
+                " in (1e-6, 1e-5] asks less than the closed form's roundoff, and explicit "
                 "Dormand–Prince reaches it in less time (BENCHMARKS.md, auto by tolerance)"};
   }
   return {Method::kExact,

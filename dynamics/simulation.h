@@ -207,7 +207,7 @@ double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm);
 
 /// What `auto` runs, and why (SimulationResult::method_reason): a rigid contact, dopri5; a
 /// nonlinear contact law, dopri5 or (> 2000 contact oscillations per event) CVODE BDF; a train
-/// linear in every contact mode, the closed form `exact`, unless rtol in [kExactBelowRtol,
+/// linear in every contact mode, the closed form `exact`, unless rtol in (kExactBelowRtol,
 /// kExactAboveRtol] asks so little that dopri5 is faster (BENCHMARKS.md, "auto by tolerance",
 /// measures the rule) while still close enough that its errors stay below the verdicts.
 struct MethodChoice {
@@ -215,8 +215,11 @@ struct MethodChoice {
   std::string reason;
 };
 /// The band of tolerances in which `auto` runs a linear train by dopri5 instead of the closed
-/// form. From rtol 1e-6 on, dopri5 took 0.3–0.9 of exact's time on every bench scene (at 1e-7,
-/// 0.7–1.2). Above 1e-5 its errors reach the verdicts, and the closed form, which costs the same
+/// form, rtol in (kExactBelowRtol, kExactAboveRtol]. At 1e-5 dopri5 took 0.7–0.9 of exact's time
+/// on every bench scene; at 1e-6, once the closed form left out what cannot change its result
+/// (issue 33), exact was faster on two of the three (BENCHMARKS.md, auto by tolerance), and at
+/// every error it was: so 1e-6 itself is the closed form's. Above 1e-5 its errors reach the
+/// verdicts, and the closed form, which costs the same
 /// at any tolerance, is taken again: at rtol 3e-3 the stiff train's overspeed search found
 /// false separations near 755 rpm and put n_dyn at 786 rpm instead of 1872 (a user's test of
 /// this rule), and at 1e-4 Example 1 loses a 0.01 m/s seat bounce.
