@@ -34,9 +34,12 @@ def Instructions(command, function):
     """Instructions executed inside `function` (and what it calls) by `command`."""
     with tempfile.TemporaryDirectory() as d:
         out = pathlib.Path(d) / "callgrind.out"
-        subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=%s" % out,
-                        "--toggle-collect=%s" % function] + command,
-                       check=True, capture_output=True, cwd=ROOT)
+        run = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=%s" % out,
+                              "--toggle-collect=%s" % function] + command,
+                             capture_output=True, cwd=ROOT)
+        if run.returncode not in (0, 1):  # 1: a run that lifts off (a failing verdict)
+            sys.exit("exact_cost.py: %s exited %d: %s"
+                     % (" ".join(command), run.returncode, run.stderr.decode()[-500:]))
         summary = subprocess.run(["callgrind_annotate", str(out)], check=True,
                                  capture_output=True, text=True).stdout
     m = re.search(r"^([\d,]+) .*PROGRAM TOTALS", summary, re.M)
