@@ -106,6 +106,9 @@ class ClosedFormPiece {
   double mass() const { return m_; }
   double damping() const { return c_; }
   bool InputConstant() const;
+  /// At rest for good: no homogeneous part (y₀ and ẏ₀ are the particular solution's, exactly),
+  /// a constant forcing and input, so that y and ẏ keep their starting bits at every t.
+  bool Frozen() const { return Y0_ == 0.0 && V0_ == 0.0 && ForcingConstant() && InputConstant(); }
   /// Whether the forcing f(τ) is constant on the piece (then ÿ = −(K h + c h′)/m: the net force
   /// on the needle is the homogeneous part's alone).
   bool ForcingConstant() const;

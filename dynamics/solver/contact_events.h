@@ -157,6 +157,9 @@ class Recorder {
   /// run between two lifts the record holds or is about to hold). `reported`: only what the run
   /// reports counts (set_liftoff_only); else everything recorded.
   bool MayChange(const StretchRanges& r, bool lift_covered = false, bool reported = false) const;
+  /// Whether a sample repeating one already recorded could still change anything: a series is
+  /// kept, or an episode is open.
+  bool RepeatsMatter() const { return record_series_ || separated_; }
   /// A run that answers only "lift-off?" (SimulationOptions::stop_at_liftoff) reports its
   /// episodes, impacts, largest lift and least contact force over the lift; samples need not
   /// keep its other extremes (largest forces, least lift, the contact force's least share of

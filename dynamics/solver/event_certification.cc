@@ -85,6 +85,15 @@ std::optional<EventDriver::Bracket> EventDriver::Isolate(const ClosedFormPiece& 
   return Isolate(piece, form, q0, i, s, {mid, wm, in.b, in.wb}, budget);
 }
 
+bool EventDriver::Frozen(const ClosedFormPiece& piece, double t0, double t1) const {
+  if (recorder_.RepeatsMatter() || !piece.Frozen()) return false;
+  const Phase& phase = system_.phase;
+  const TrainState x = piece.State(t0);  // its start state, which every t repeats
+  const Contacts a = train_.Evaluate(x, t0, phase), b = train_.Evaluate(x, t1, phase);
+  return a.u == b.u && a.u_slope == b.u_slope && a.f_c_raw == b.f_c_raw && a.f_s_raw == b.f_s_raw &&
+         a.spring_N == b.spring_N;
+}
+
 StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, double t1) const {
   const Phase& phase = system_.phase;
   StretchRanges r;
@@ -111,7 +120,7 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
   const double end = std::min(limit, t_end_);
   if (!(end > cap) || !piece.InputConstant()) return cap;
   const StretchRanges ranges = Ranges(piece, t, end);
-  if (recorder_.MayChange(ranges)) return cap;
+  if (!Frozen(piece, t, end) && recorder_.MayChange(ranges)) return cap;
   // Every witness's range over the whole stretch keeps the sign it has at t: the certified
   // search then ends at its first test, without halving a long interval.
   const bool lifted = ranges.y_lo > kSeparationLift_m;
@@ -130,6 +139,8 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   constexpr int n = 16;
   const Phase& phase = system_.phase;
   const ClosedFormPiece& piece = *stepper_->ClosedForm();
+  // A frozen stretch: every sample repeats its start, which the record holds.
+  if (Frozen(piece, t0, t1)) return;
   const bool screen = !phase.gated && !train_.HasConstraint();
   if (!screen) covering.reset();
   // A lift that rises (falls) over the whole stretch, by more than round-off between two

@@ -179,6 +179,12 @@ class EventDriver {
   // one up to t); false when that option is off. Episodes before jump_checked_ are done with.
   bool JumpReached(double t);
 
+  // Whether every sample of a closed-form piece over [t0, t1] repeats its start, which the record
+  // holds: the piece is frozen (its y and ẏ keep their bits) and the train's own evaluation
+  // (cam input, forces, spring) is the same at both ends, so in between (the cam input is
+  // constant there, or monotone: the base circle's ramp clipped at the play), and no series or
+  // open episode needs the repeats.
+  bool Frozen(const ClosedFormPiece& piece, double t0, double t1) const;
   // The ranges of what the record sees over [t0, t1] of a closed-form piece.
   StretchRanges Ranges(const ClosedFormPiece& piece, double t0, double t1) const;
   // The end of a closed-form piece from t past its cap, up to `limit` and the run's end t_end_:
