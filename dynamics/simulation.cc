@@ -454,6 +454,13 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     RunCycles(scene, train, method, run, r);
   }
   JudgeFollowing(scene, r);
+  if (o.stop_at_liftoff) {
+    // What a lift-off run does not keep (Recorder::set_liftoff_only) is not reported.
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    r.max_contact_force_N = r.max_seat_force_N = r.max_spring_force_N = r.min_lift_m = none;
+    r.min_contact_force_ratio = r.min_contact_force_ratio_rad = none;
+    r.min_contact_force_ratio_force_N = none;
+  }
   return r;
 }
 

@@ -67,8 +67,10 @@ struct SimulationOptions {
   /// a jump episode reaches kMinJump_rad, or (one window, cycles = 1) at the end of the first
   /// step past the lift with the needle on the cam, where the verdict and the least contact
   /// force over the lift are final (status kStopped; the record ends there, so the other
-  /// extremes and impacts cover the run up to there only; no energy residual: NaN, the closed
-  /// form integrates no W and D). The jump stop is ignored
+  /// extremes and impacts cover the run up to there only; it reports its episodes, impacts,
+  /// largest lift and least contact force over the lift, and NaN for the energy residual, the
+  /// largest contact, seat and spring forces, the least lift and the force ratio, which the
+  /// closed form does not keep for it). The jump stop is ignored
   /// with steady_state (a jump in a transient cycle does not count); baseline-dopri5 ignores
   /// both. Off: the run is unchanged.
   bool stop_at_liftoff = false;

@@ -372,13 +372,12 @@ bool ClosedFormPiece::ForcingConstant() const {
 FormRange ClosedFormPiece::Range(const LinearForm& form, const Poly& q, double t_a,
                                  double t_b) const {
   const double len = t_b - t_a;
-  // Σ_{k ≥ 1} |q_k| len^k, len^k by products (within a few units in the last place of the
-  // power; the reach below allows 1e-9).
-  double spread = 0.0, power = 1.0;
-  std::array<double, kMaxDegree + 1> powers{};
-  for (int k = 1, n = Degree(q); k <= n; ++k) powers[k] = power *= len;
+  // Σ_{k ≥ 1} |q_k| len^k (len and len·len are pow's correctly rounded bits; from len³ on a
+  // product would round twice, and the bound's decisions keep their bits only with pow's).
+  double spread = 0.0;
   for (int k = Degree(q); k >= 1; --k) {
-    if (q[k] != 0.0) spread += std::abs(q[k]) * powers[k];
+    if (q[k] != 0.0)
+      spread += std::abs(q[k]) * (k == 1 ? len : k == 2 ? len * len : std::pow(len, k));
   }
   // |h| ≤ √(2H/K), |h'| ≤ √(2H/m) from t_a on.
   const double energy = HomogeneousEnergy(t_a);

@@ -120,7 +120,9 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
   const double end = std::min(limit, t_end_);
   if (!(end > cap) || !piece.InputConstant()) return cap;
   const StretchRanges ranges = Ranges(piece, t, end);
-  if (!Frozen(piece, t, end) && recorder_.MayChange(ranges)) return cap;
+  // What the run reports (a lift-off run keeps only that: Recorder::set_liftoff_only).
+  if (!(o_.leave_out && Frozen(piece, t, end)) && recorder_.MayChange(ranges, false, true))
+    return cap;
   // Every witness's range over the whole stretch keeps the sign it has at t: the certified
   // search then ends at its first test, without halving a long interval.
   const bool lifted = ranges.y_lo > kSeparationLift_m;
@@ -140,8 +142,8 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   const Phase& phase = system_.phase;
   const ClosedFormPiece& piece = *stepper_->ClosedForm();
   // A frozen stretch: every sample repeats its start, which the record holds.
-  if (Frozen(piece, t0, t1)) return;
-  const bool screen = !phase.gated && !train_.HasConstraint();
+  if (o_.leave_out && Frozen(piece, t0, t1)) return;
+  const bool screen = o_.leave_out && !phase.gated && !train_.HasConstraint();
   if (!screen) covering.reset();
   // A lift that rises (falls) over the whole stretch, by more than round-off between two
   // samples, from one the record holds to the covering one: its interior samples set no

@@ -195,7 +195,8 @@ class EventDriver {
 
   // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
   // sample sets a new largest contact or seat force, or a new least contact force, locates that
-  // extreme by Brent's method between the samples around it and records it there.
+  // extreme by Brent's method between the samples around it and records it there (a lift-off
+  // run, Recorder::set_liftoff_only: the least contact force only).
   // An interior sample that provably changes nothing recorded (Recorder::SampleMayChange, its
   // cam force from the piece's own polynomials within a round-off allowance of the train's) and
   // cannot start a located extreme is left out: the same record, one train evaluation and one

@@ -93,11 +93,15 @@ struct IntegratorOptions {
   /// force over the lift are final. For one-window runs only (a revolution that carries its end
   /// state on must run to its end).
   bool stop_after_lift = false;
-  /// Integrate the energy audit's W and D (docs/model.md §6). Method "exact" leaves them out when
-  /// false (they then keep their initial values and the run's energy residual is not computed):
-  /// a run that answers only whether the needle lifts off reports none. The time steppers always
-  /// integrate them (they are states of their error control).
+  /// Integrate the energy audit's W and D (docs/model.md §6). Method "exact" does not integrate
+  /// them when false (only a reset map's loss is still added to D), and the run's energy
+  /// residual is not computed: a run that answers only whether the needle lifts off reports
+  /// none. The time steppers always integrate them (they are states of their error control).
   bool audit_energy = true;
+  /// Method "exact" leaves out the work that cannot change its result (docs/exact.md): samples
+  /// that cannot move a record or repeat one it holds, rest tests on a needle whose energy shows
+  /// it moving. False: all of it is done, for the tests that compare the two bit for bit.
+  bool leave_out = true;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
   /// Per-state absolute tolerances (y, ẏ, W, D) with the defaults filled in.

@@ -653,6 +653,64 @@ TEST(SimulationTest, TheClosedFormsRecordIsTheSameWithItsSeriesKept) {
   EXPECT_GE(runs, 12);
 }
 
+// What the closed form leaves out cannot change its result (issue 33): with
+// IntegratorOptions::leave_out off every sample is evaluated and recorded, every rest sample
+// tested, every frozen stretch sampled; the result is the same to the bit, on every bundled
+// one-mass scene at its speed, 1.1 n_qs and 1100 rpm, full runs and runs that ask only "lift-off?"
+// (only the number of pieces may fall: a frozen stretch runs on as one).
+TEST(SimulationTest, WhatTheClosedFormLeavesOutCannotChangeItsResult) {
+  int runs = 0;
+  for (const auto& [stem, c] : BundledTrainScenes()) {
+    if (c.train->rigid || c.spring->masses > 1) continue;
+    const Scene s = MakeScene(c);
+    for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s), 1100.0}) {
+      if (!std::isfinite(rpm)) continue;
+      for (bool liftoff_only : {false, true}) {
+        SimulationOptions o = Options("exact", 1e-8);
+        o.stop_at_liftoff = liftoff_only;
+        SimulationOptions all = o;
+        all.integrator.leave_out = false;
+        const SimulationResult a = Simulate(s, rpm, o), b = Simulate(s, rpm, all);
+        const std::string at =
+            stem + " at " + std::to_string(rpm) + " rpm" + (liftoff_only ? ", lift-off only" : "");
+        const auto same = [&](double x, double y, const char* what) {
+          if (std::isnan(x) && std::isnan(y)) return;
+          EXPECT_EQ(x, y) << what << ", " << at;
+        };
+        same(a.max_lift_m, b.max_lift_m, "max lift");
+        same(a.max_lift_rad, b.max_lift_rad, "its angle");
+        same(a.min_lift_m, b.min_lift_m, "min lift");
+        same(a.max_contact_force_N, b.max_contact_force_N, "max contact force");
+        same(a.max_seat_force_N, b.max_seat_force_N, "max seat force");
+        same(a.max_spring_force_N, b.max_spring_force_N, "max spring force");
+        same(a.min_contact_force_during_lift_N, b.min_contact_force_during_lift_N, "min force");
+        same(a.min_contact_force_ratio, b.min_contact_force_ratio, "min force ratio");
+        same(a.min_contact_force_ratio_rad, b.min_contact_force_ratio_rad, "its angle");
+        same(a.energy_residual, b.energy_residual, "energy residual");
+        same(a.run_end_rad, b.run_end_rad, "run end");
+        EXPECT_EQ(a.stats.events, b.stats.events) << at;
+        EXPECT_LE(a.stats.steps, b.stats.steps) << at;
+        EXPECT_EQ(a.status, b.status) << at;
+        ASSERT_EQ(a.impacts.size(), b.impacts.size()) << at;
+        for (size_t i = 0; i < a.impacts.size(); ++i) {
+          EXPECT_EQ(a.impacts[i].kind, b.impacts[i].kind) << at;
+          same(a.impacts[i].crank_rad, b.impacts[i].crank_rad, "impact angle");
+          same(a.impacts[i].speed_m_s, b.impacts[i].speed_m_s, "impact speed");
+        }
+        ASSERT_EQ(a.episodes.size(), b.episodes.size()) << at;
+        for (size_t i = 0; i < a.episodes.size(); ++i) {
+          EXPECT_EQ(a.episodes[i].kind, b.episodes[i].kind) << at;
+          same(a.episodes[i].start_rad, b.episodes[i].start_rad, "episode start");
+          same(a.episodes[i].end_rad, b.episodes[i].end_rad, "episode end");
+          same(a.episodes[i].max_gap_m, b.episodes[i].max_gap_m, "episode gap");
+        }
+        ++runs;
+      }
+    }
+  }
+  EXPECT_GE(runs, 24);
+}
+
 // Where the closed form's run ends (the needle's first rest after the window) is where
 // Dormand–Prince at rtol 1e-12 ends it, on the bundled scenes that ring on past their window: the
 // rest search leaves out the pieces whose energy proves the needle moving (issue 33), never a
