@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -101,12 +102,20 @@ std::vector<std::string> Report::DrawFigures() const {
     std::string script = f.script;
     for (const Series& s : f.data) {
       const std::string file = s.name + ".dat";
-      std::ofstream out(dir / file);
-      out.precision(10);
+      // Ten significant digits, %g style, as a stream with precision 10 writes them; by
+      // std::to_chars (a stream took some 3000 instructions a number: a third of a check).
+      std::string text;
+      char number[64];
       for (const auto& row : s.rows) {
-        for (size_t i = 0; i < row.size(); ++i) out << (i ? " " : "") << row[i];
-        out << '\n';
+        for (size_t i = 0; i < row.size(); ++i) {
+          if (i) text += ' ';
+          const auto end =
+              std::to_chars(number, number + sizeof number, row[i], std::chars_format::general, 10);
+          text.append(number, end.ptr);
+        }
+        text += '\n';
       }
+      std::ofstream(dir / file) << text;
       // Replace every $name with the quoted file name.
       const std::string key = "$" + s.name;
       for (size_t at = script.find(key); at != std::string::npos; at = script.find(key, at)) {
