@@ -137,7 +137,8 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
   return end;
 }
 
-void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> covering) {
+void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> covering,
+                                 const EventSigns& signs) {
   constexpr int n = 16;
   const Phase& phase = system_.phase;
   const ClosedFormPiece& piece = *stepper_->ClosedForm();
@@ -149,6 +150,17 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   // samples, from one the record holds to the covering one: its interior samples set no
   // extreme of the lift that the covering sample does not set after them.
   StretchRanges ranges = Ranges(piece, t0, t1);
+  // No witness leaves its sign inside the stretch (the certified search found none before its
+  // end): off the seat (its gap g_s = −y at or below zero) the lift is at least 0, and below
+  // (above) 1 µm where witness 4 says so; within round-off of the cam's scale.
+  if (o_.leave_out) {
+    const double roundoff = 1e-12 * lift_scale_;
+    const std::optional<LinearWitnesses> seat = train_.seat_law().Linear();
+    if (seat && seat->gap_g > 0.0 && seat->gap_rate == 0.0 && signs[kSeatGap] < 0)
+      ranges.y_lo = std::max(ranges.y_lo, -roundoff);
+    if (signs[4] < 0) ranges.y_hi = std::min(ranges.y_hi, kSeparationLift_m + roundoff);
+    if (signs[4] > 0) ranges.y_lo = std::max(ranges.y_lo, kSeparationLift_m - roundoff);
+  }
   bool lift_covered = false;
   if (covering) {
     const double y0 = Motion(t0)[0];

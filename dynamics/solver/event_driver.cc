@@ -227,7 +227,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       if (first < 0) break;
       if (++stats.events > o_.max_events) over("events", o_.max_events, first_t);
       // The closed form: the stretch before it, whose end the crossing records below.
-      if (piece) RecordExtremes(from, first_t, Motion(first_t)[0]);
+      if (piece) RecordExtremes(from, first_t, Motion(first_t)[0], signs);
       GridUpTo(first_t);
       signs[first] = -signs[first];
       xs = At(first_t);
@@ -294,7 +294,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     // A few dense samples for the extremes, then the step end; the closed form's steps are
     // long, and the largest forces inside them are located instead.
     if (piece) {
-      RecordExtremes(from, t1, x_end[0]);  // x_end is recorded at t1 below
+      RecordExtremes(from, t1, x_end[0], signs);  // x_end is recorded at t1 below
     } else {
       for (int k = 1; k <= 3; ++k) {
         const double tk = t0 + (t1 - t0) * k / 4.0;

@@ -201,7 +201,10 @@ class EventDriver {
   // cam force from the piece's own polynomials within a round-off allowance of the train's) and
   // cannot start a located extreme is left out: the same record, one train evaluation and one
   // record update less. `covering`: the lift the driver records right after the stretch.
-  void RecordExtremes(double t0, double t1, std::optional<double> covering);
+  // `signs`: the witnesses' signs, which (certified) none leaves inside the stretch: the seat's
+  // gap and witness 4 bound the lift there.
+  void RecordExtremes(double t0, double t1, std::optional<double> covering,
+                      const EventSigns& signs);
   // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
   // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
   // moving sample and the first at rest.
