@@ -23,12 +23,15 @@ int Degree(const Poly& p) {
   return d;
 }
 
-double Eval(const Poly& p, double x) {
-  int k = Degree(p);
+// Horner from the coefficient of degree `degree` (Degree(p), known) down.
+double Eval(const Poly& p, int degree, double x) {
+  int k = degree;
   double v = p[k];
   while (--k >= 0) v = v * x + p[k];
   return v;
 }
+
+double Eval(const Poly& p, double x) { return Eval(p, Degree(p), x); }
 
 Poly Derivative(const Poly& p) {
   Poly d{};
@@ -112,6 +115,10 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
   }
   longest_step_ = fastest > 0.0 ? kPi / fastest : std::numeric_limits<double>::infinity();
   dp_ = needle::Derivative(p_);
+  degree_p_ = Degree(p_);
+  degree_dp_ = Degree(dp_);
+  degree_u_ = Degree(u_);
+  degree_du_ = Degree(du_);
   Y0_ = x0[0] - p_[0];
   V0_ = x0[1] - p_[1];
 }
@@ -158,9 +165,10 @@ std::array<double, 2> ClosedFormPiece::PositionVelocity(double tau) const {
   // Written as the change from (y₀, ẏ₀), with φ₀ − 1 = (e^{−στ}C − 1) + σ e^{−στ}S and
   // φ₁' − 1 = (e^{−στ}C − 1) − σ e^{−στ}S: a large particular part (a soft spring against a
   // large load) does not cancel against a large homogeneous one.
-  const double y = x0_[0] + (Eval(p_, tau) - p_[0]) + Y0_ * (ecm1 + sigma_ * es) + V0_ * es;
-  const double v =
-      x0_[1] + (Eval(dp_, tau) - dp_[0]) - Y0_ * (K_ / m_) * es + V0_ * (ecm1 - sigma_ * es);
+  const double y =
+      x0_[0] + (Eval(p_, degree_p_, tau) - p_[0]) + Y0_ * (ecm1 + sigma_ * es) + V0_ * es;
+  const double v = x0_[1] + (Eval(dp_, degree_dp_, tau) - dp_[0]) - Y0_ * (K_ / m_) * es +
+                   V0_ * (ecm1 - sigma_ * es);
   return {y, v};
 }
 
@@ -171,15 +179,15 @@ std::array<double, 3> ClosedFormPiece::Motion(double t) const {
 }
 
 std::array<double, 2> ClosedFormPiece::Input(double t) const {
-  return {Eval(u_, t - t0_), Eval(du_, t - t0_)};
+  return {Eval(u_, degree_u_, t - t0_), Eval(du_, degree_du_, t - t0_)};
 }
 
 double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
   const double tau = t - t0_;
   const auto [y, v] = PositionVelocity(tau);
   double w = form.y * y + form.v * v + form.constant;
-  if (form.u != 0.0) w += form.u * Eval(u_, tau);
-  if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, tau);
+  if (form.u != 0.0) w += form.u * Eval(u_, degree_u_, tau);
+  if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, degree_du_, tau);
   return w;
 }
 

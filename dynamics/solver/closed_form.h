@@ -145,6 +145,7 @@ class ClosedFormPiece {
   Poly f_{};                    // the forcing in τ
   Poly p_{}, dp_{};             // particular solution in τ, and its derivative
   Poly u_{}, du_{};             // the cam input in τ (cam mode or not), and its derivative
+  int degree_p_ = 0, degree_dp_ = 0, degree_u_ = 0, degree_du_ = 0;  // Degree() of each
   double Y0_, V0_;
   double longest_step_;
   mutable double cached_t_ = -1e300;

@@ -196,9 +196,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   std::array<std::array<double, n + 1>, 3> f;
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
-    // Motion(ts[k]) without ÿ and the state's copies: y and ẏ as the backend hands them over.
-    const std::array<double, 2> yv = piece.LiftAndSpeed(ts[k]);
-    const TrainState x = {system_.RoundTrip(0, yv[0]), system_.RoundTrip(1, yv[1]), 0.0, 0.0};
+    const TrainState x = Motion(ts[k]);
     if (screen && k > 0 && k < n) {
       const std::array<double, 2> in = piece.Input(ts[k]);
       const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;

@@ -70,6 +70,12 @@ class EventDriver {
   }
   // y and ẏ at t (W and D may be left out): for witnesses and samples.
   TrainState Motion(double t) {
+    if (const ClosedFormPiece* piece = stepper_->ClosedForm()) {
+      // The closed form's y and ẏ without ÿ and the state's copies: the bits the backend's
+      // scaled state would give (one mass: y, ẏ, and W, D left at 0).
+      const std::array<double, 2> yv = piece->LiftAndSpeed(t);
+      return {system_.RoundTrip(0, yv[0]), system_.RoundTrip(1, yv[1]), 0.0, 0.0};
+    }
     stepper_->CalcMotion(t, z_);
     return system_.FromScaled(z_);
   }
