@@ -22,7 +22,9 @@ std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i
   if (!(b > a)) return std::nullopt;
   // Witnesses 5 and 6 are gated by y > 1 µm; on [a, b] (up to witness 4's crossing) the gate
   // is the one in the middle.
-  const bool lifted = (i == 5 || i == 6) && piece.Motion(0.5 * (a + b))[0] > kSeparationLift_m;
+  // (Witness 5 is +1 in cam mode whatever the gate, and needs no lift.)
+  const bool gated = i == 6 || (i == 5 && !system_.phase.mode.cam);
+  const bool lifted = gated && piece.LiftAndSpeed(0.5 * (a + b))[0] > kSeparationLift_m;
   const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
   if (!form) throw std::logic_error("exact: a witness without a linear form");
   int budget = kIsolationBudget;
