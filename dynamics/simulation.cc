@@ -312,7 +312,7 @@ std::string StiffnessText(double oscillations) {
 
 }  // namespace
 
-MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double rtol) {
+MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double /*rtol*/) {
   if (train.HasConstraint()) {
     return {Method::kDopri5,
             "auto: rigid contacts (restitution and sticking): explicit Dormand–Prince, a one-step "
@@ -325,20 +325,8 @@ MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double rt
             "auto: " + *refusal + "; " + stiffness +
                 (stiff ? " (> 2000: stiff, BDF)" : " (≤ 2000: explicit Dormand–Prince)")};
   }
-  if (rtol > kExactBelowRtol && rtol <= kExactAboveRtol) {
-    char asked[32];
-    std::snprintf(asked, sizeof asked, "%.10g", rtol);
-    return {Method::kDopri5,
-            "auto: rtol " + std::string(asked) +
-                " in (1e-6, 1e-5] asks less than the closed form's roundoff, and explicit "
-                "Dormand–Prince reaches it in less time (BENCHMARKS.md, auto by tolerance)"};
-  }
-  return {Method::kExact,
-          rtol > kExactAboveRtol
-              ? "auto: the train is linear in every contact mode, solved in closed form (at rtol "
-                "> 1e-5 the time steppers' errors reach the verdicts: false separations, lost "
-                "bounces)"
-              : "auto: the train is linear in every contact mode, solved in closed form"};
+  // The closed form at every tolerance (simulation.h).
+  return {Method::kExact, "auto: the train is linear in every contact mode, solved in closed form"};
 }
 
 MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol) {

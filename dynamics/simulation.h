@@ -209,24 +209,19 @@ double ContactOscillationsPerEvent(const Scene& scene, double speed_rpm);
 
 /// What `auto` runs, and why (SimulationResult::method_reason): a rigid contact, dopri5; a
 /// nonlinear contact law, dopri5 or (> 2000 contact oscillations per event) CVODE BDF; a train
-/// linear in every contact mode, the closed form `exact`, unless rtol in (kExactBelowRtol,
-/// kExactAboveRtol] asks so little that dopri5 is faster (BENCHMARKS.md, "auto by tolerance",
-/// measures the rule) while still close enough that its errors stay below the verdicts.
+/// linear in every contact mode, the closed form `exact`, at every tolerance: it costs the same
+/// at any rtol and is at the roundoff of its own. BENCHMARKS.md's "auto by tolerance" measures
+/// the rule on each bench scene: at equal error no method is faster. (Before issue 33's speed-up
+/// dopri5 was taken for rtol in [1e-6, 1e-5], where it reached so loose a tolerance sooner; with
+/// the closed form at the cost of what it cannot leave out, dopri5 at 1e-5 took 1.13× and 1.07×
+/// exact's time on the soft and stiff scenes at 10⁶ times its error, and 0.9× on the lift-off
+/// scene. Looser than 1e-5 the time steppers' errors reach the verdicts: at rtol 3e-3 the stiff
+/// train's overspeed search found false separations near 755 rpm and put n_dyn at 786 rpm
+/// instead of 1872, and at 1e-4 Example 1 loses a 0.01 m/s seat bounce.)
 struct MethodChoice {
   Method method;
   std::string reason;
 };
-/// The band of tolerances in which `auto` runs a linear train by dopri5 instead of the closed
-/// form, rtol in (kExactBelowRtol, kExactAboveRtol]. At 1e-5 dopri5 took 0.7–0.9 of exact's time
-/// on every bench scene; at 1e-6, once the closed form left out what cannot change its result
-/// (issue 33), exact was faster on two of the three (BENCHMARKS.md, auto by tolerance), and at
-/// every error it was: so 1e-6 itself is the closed form's. Above 1e-5 its errors reach the
-/// verdicts, and the closed form, which costs the same
-/// at any tolerance, is taken again: at rtol 3e-3 the stiff train's overspeed search found
-/// false separations near 755 rpm and put n_dyn at 786 rpm instead of 1872 (a user's test of
-/// this rule), and at 1e-4 Example 1 loses a 0.01 m/s seat bounce.
-constexpr double kExactBelowRtol = 1e-6;
-constexpr double kExactAboveRtol = 1e-5;
 MethodChoice AutoMethod(const NeedleTrain& train, double oscillations_per_event, double rtol);
 /// The same for a scene at a speed.
 MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol);
