@@ -49,14 +49,6 @@ Poly Shift(Poly p, double a) {
   return p;
 }
 
-// max |p(s)| over s ∈ [0, h] is at most Σ |p_k| h^k.
-double BoundOn(const Poly& p, double h) {
-  int k = Degree(p);
-  double b = std::abs(p[k]);
-  while (--k >= 0) b = b * h + std::abs(p[k]);
-  return b;
-}
-
 }  // namespace
 
 ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode,
@@ -328,8 +320,20 @@ ClosedFormPiece::Poly ClosedFormPiece::Shifted(const Poly& q, double t_a) const 
 FormBounds ClosedFormPiece::Bounds(const LinearForm& form, const Poly& q, double t_a,
                                    double t_b) const {
   const double len = t_b - t_a;
-  const Poly q1 = needle::Derivative(q);
-  const Poly q2 = needle::Derivative(q1);
+  // q′ and q″ (Derivative's products, k·q_k) and their bounds over [0, len] (Horner over
+  // |coefficients| from the top one: max |p(s)| over s ∈ [0, len] ≤ Σ |p_k| len^k), on the degrees
+  // known from q's.
+  const int d = Degree(q);
+  double q1[kMaxDegree + 1] = {0.0}, q2[kMaxDegree + 1] = {0.0};
+  for (int k = 1; k <= d; ++k) q1[k - 1] = k * q[k];
+  for (int k = 1; k <= d - 1; ++k) q2[k - 1] = k * q1[k];
+  const auto bound_on = [len](const double* p, int degree) {
+    double b = std::abs(p[degree]);
+    for (int k = degree - 1; k >= 0; --k) b = b * len + std::abs(p[k]);
+    return b;
+  };
+  const double q1_bound = bound_on(q1, d >= 1 ? d - 1 : 0);
+  const double q2_bound = bound_on(q2, d >= 2 ? d - 2 : 0);
   // The homogeneous part h = y − P: its energy H = ½mh'² + ½Kh² at t_a bounds it from there on;
   // over a short interval a Taylor bound from h' and h'' at t_a is tighter.
   const std::array<double, 2> hh = HomogeneousAt(t_a);
@@ -343,8 +347,8 @@ FormBounds ClosedFormPiece::Bounds(const LinearForm& form, const Poly& q, double
   const double b1 = std::min(e1, std::abs(hv) + b2 * len);
   const double safety = 1.0 + 1e-9;  // round-off of the bounds themselves
   FormBounds out;
-  out.slope_bound = safety * (BoundOn(q1, len) + std::abs(form.y) * b1 + std::abs(form.v) * b2);
-  out.curvature_bound = safety * (BoundOn(q2, len) + std::abs(form.y) * b2 + std::abs(form.v) * b3);
+  out.slope_bound = safety * (q1_bound + std::abs(form.y) * b1 + std::abs(form.v) * b2);
+  out.curvature_bound = safety * (q2_bound + std::abs(form.y) * b2 + std::abs(form.v) * b3);
   out.slope_at_start = q1[0] + form.y * hv + form.v * ha;
   return out;
 }
