@@ -336,13 +336,8 @@ FormBounds ClosedFormPiece::Bounds(const LinearForm& form, const Poly& q, double
   const double q2_bound = bound_on(q2, d >= 2 ? d - 2 : 0);
   // The homogeneous part h = y − P: its energy H = ½mh'² + ½Kh² at t_a bounds it from there on;
   // over a short interval a Taylor bound from h' and h'' at t_a is tighter.
-  const std::array<double, 2> hh = HomogeneousAt(t_a);
-  const double h = hh[0], hv = hh[1];
-  const double ha = (-c_ * hv - K_ * h) / m_;  // h''
-  const double energy = 0.5 * m_ * hv * hv + 0.5 * K_ * h * h;
-  const double e1 = std::sqrt(2.0 * energy / m_);                   // |h'|
-  const double e2 = (c_ * e1 + std::sqrt(2.0 * energy * K_)) / m_;  // |h''| = |c h' + K h| / m
-  const double b3 = (c_ * e2 + K_ * e1) / m_;                       // |h'''| = |c h'' + K h'| / m
+  const HomogeneousStart& at = StartAt(t_a);
+  const double hv = at.hv, ha = at.ha, e1 = at.e1, e2 = at.e2, b3 = at.b3;
   const double b2 = std::min(e2, std::abs(ha) + b3 * len);
   const double b1 = std::min(e1, std::abs(hv) + b2 * len);
   const double safety = 1.0 + 1e-9;  // round-off of the bounds themselves
@@ -362,6 +357,23 @@ std::array<double, 2> ClosedFormPiece::HomogeneousAt(double t) const {
     cached_t_ = t;
   }
   return cached_h_;
+}
+
+const ClosedFormPiece::HomogeneousStart& ClosedFormPiece::StartAt(double t) const {
+  if (t != start_.t) {
+    const std::array<double, 2> hh = HomogeneousAt(t);
+    HomogeneousStart& s = start_;
+    s.t = t;
+    s.h = hh[0];
+    s.hv = hh[1];
+    s.ha = (-c_ * s.hv - K_ * s.h) / m_;  // h″
+    const double energy = 0.5 * m_ * s.hv * s.hv + 0.5 * K_ * s.h * s.h;
+    s.e1 = std::sqrt(2.0 * energy / m_);                     // |h′|
+    s.e2 = (c_ * s.e1 + std::sqrt(2.0 * energy * K_)) / m_;  // |h″| = |c h′ + K h| / m
+    s.b3 = (c_ * s.e2 + K_ * s.e1) / m_;                     // |h‴| = |c h″ + K h′| / m
+    s.lift_amplitude = K_ > 0.0 ? std::sqrt(2.0 * energy / K_) : 0.0;  // |h|
+  }
+  return start_;
 }
 
 double ClosedFormPiece::HomogeneousEnergy(double t) const {
@@ -392,11 +404,11 @@ FormRange ClosedFormPiece::Range(const LinearForm& form, const Poly& q, double t
       spread += std::abs(q[k]) * (k == 1 ? len : k == 2 ? len * len : std::pow(len, k));
   }
   // |h| ≤ √(2H/K), |h'| ≤ √(2H/m) from t_a on.
-  const double energy = HomogeneousEnergy(t_a);
-  double amplitude = std::abs(form.v) * std::sqrt(2.0 * energy / m_);
+  const HomogeneousStart& at = StartAt(t_a);
+  double amplitude = std::abs(form.v) * at.e1;
   if (form.y != 0.0)
-    amplitude += K_ > 0.0 ? std::abs(form.y) * std::sqrt(2.0 * energy / K_)
-                          : std::numeric_limits<double>::infinity();
+    amplitude +=
+        K_ > 0.0 ? std::abs(form.y) * at.lift_amplitude : std::numeric_limits<double>::infinity();
   const double mid = q[0] + form.constant;
   const double reach = (1.0 + 1e-9) * (spread + amplitude) + 1e-15 * std::abs(mid);
   return {mid - reach, mid + reach};

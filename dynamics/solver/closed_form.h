@@ -129,6 +129,14 @@ class ClosedFormPiece {
   double HomogeneousIntegral(const Poly& q, double T, double h1, double hv1) const;
   // h, h' at t (one-entry cache: bounds and ranges ask at the same t_a).
   std::array<double, 2> HomogeneousAt(double t) const;
+  // What Bounds and Range read of the homogeneous part at an interval's start t_a: h, h′, h″,
+  // and from its energy H the bounds |h′| ≤ e1 = √(2H/m), |h″| ≤ e2, |h‴| ≤ b3, |h| ≤ √(2H/K)
+  // (one entry: the witnesses of a piece are bounded from the same start).
+  struct HomogeneousStart {
+    double t = -1e300, h = 0.0, hv = 0.0, ha = 0.0, e1 = 0.0, e2 = 0.0, b3 = 0.0;
+    double lift_amplitude = 0.0;
+  };
+  const HomogeneousStart& StartAt(double t_a) const;
   // e^{−στ}C − 1 and e^{−στ}S at τ ≥ 0.
   void Basis(double tau, double& ecm1, double& es) const;
   void BasisUncached(double tau, double& ecm1, double& es) const;
@@ -153,6 +161,7 @@ class ClosedFormPiece {
   // Basis's last τ and its two values (a bisection asks for the value at a midpoint, then for
   // the bounds of the half that starts there).
   mutable double basis_tau_ = -1e300, basis_ecm1_ = 0.0, basis_es_ = 0.0;
+  mutable HomogeneousStart start_;
 };
 
 }  // namespace needle
