@@ -164,25 +164,14 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
 
 bool Recorder::SampleMayChange(double y, std::optional<double> covering, double u_hi, double fc_lo,
                                double fc_hi, double fs) const {
-  if (record_series_ || separated_ || train_.Coils() > 0) return true;
-  // The spring force P₀ + k y and the segment compression y follow the lift (k ≥ 0), so the
-  // lift's record stands for theirs; the covering sample carries them past this one.
-  const TrainParameters& p = train_.parameters();
-  // NaN: no covering sample (every comparison with it is false).
-  const double cover = covering && p.rate_N_m >= 0.0 ? *covering : std::nan("");
+  // The sample as a stretch of one point; the covering sample stands for its lift where the lift
+  // passes a record the same way (and the spring force and segment compression, which follow
+  // the lift, with it: MayChange refuses the cover where k < 0).
   const bool all = !liftoff_only_;  // else what a lift-off run reports
-  if (y > max_lift_ && !(y < cover)) return true;
-  if (all && y < min_lift_ && !(y > cover)) return true;
-  if (all && (fc_hi > max_fc_ || fs > max_fs_)) return true;
-  if (u_hi > kSeparationLift_m && y > kSeparationLift_m) {  // maybe in the window
-    if (!lifted_) return true;
-    const double f_lo = std::max(0.0, fc_lo);
-    if (f_lo < min_fc_lift_) return true;
-    const double hold =
-        RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(y);
-    if (all && (hold > 0.0 ? f_lo / hold : 0.0) < min_ratio_) return true;
-  }
-  return false;
+  const bool beyond = y > max_lift_ || (all && y < min_lift_);
+  const bool covered = beyond && covering && !(y > max_lift_ && !(y < *covering)) &&
+                       !(all && y < min_lift_ && !(y > *covering));
+  return MayChange({y, y, u_hi, fc_lo, fc_hi, fs}, covered, true);
 }
 
 bool Recorder::InLift(double crank_rad) const {

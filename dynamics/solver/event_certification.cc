@@ -148,9 +148,6 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   if (o_.leave_out && Frozen(piece, t0, t1)) return;
   const bool screen = o_.leave_out && !phase.gated && !train_.HasConstraint();
   if (!screen) covering.reset();
-  // A lift that rises (falls) over the whole stretch, by more than round-off between two
-  // samples, from one the record holds to the covering one: its interior samples set no
-  // extreme of the lift that the covering sample does not set after them.
   StretchRanges ranges = Ranges(piece, t0, t1);
   // No witness leaves its sign inside the stretch (the certified search found none before its
   // end): off the seat (its gap g_s = −y at or below zero) the lift is at least 0, and below
@@ -163,6 +160,9 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     if (signs[4] < 0) ranges.y_hi = std::min(ranges.y_hi, kSeparationLift_m + roundoff);
     if (signs[4] > 0) ranges.y_lo = std::max(ranges.y_lo, kSeparationLift_m - roundoff);
   }
+  // A lift that rises (falls) over the whole stretch, by more than round-off between two
+  // samples, from one the record holds to the covering one: its interior samples set no
+  // extreme of the lift that the covering sample does not set after them.
   bool lift_covered = false;
   if (covering) {
     const double y0 = Motion(t0)[0];

@@ -226,11 +226,11 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       }
       if (first < 0) break;
       if (++stats.events > o_.max_events) over("events", o_.max_events, first_t);
-      // The closed form: the stretch before it, whose end the crossing records below.
-      if (piece) RecordExtremes(from, first_t, Motion(first_t)[0], signs);
+      xs = At(first_t);
+      // The closed form: the stretch before it, whose end (xs) the crossing records below.
+      if (piece) RecordExtremes(from, first_t, xs[0], signs);
       GridUpTo(first_t);
       signs[first] = -signs[first];
-      xs = At(first_t);
       const ContactMode was = phase.mode;
       // An impact (the gap witness of a contact crossing upward); on a rigid contact the mode
       // waits for the reset map (the approach is read in the mode before it).
