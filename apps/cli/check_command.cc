@@ -30,10 +30,10 @@ CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
 
 int RunCheckCommand(const CheckCommandOptions& o) {
   const Case c = LoadCase(o.case_path);
+  Gnuplot gnuplot;  // started now: its start-up runs beside the check
   const std::string path =
       ReportPath(o.out_dir, std::filesystem::path(c.path).stem().string() + ".html");
   CheckOutputPaths({{"--out", path}}, CaseInputs(c));
-  RequireGnuplot();
   CheckOptions options;
   options.speed_rpm = o.speed_rpm;
   const CaseLift lift = ResolveLift(c);
@@ -45,7 +45,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     result = CheckScene(c, lift, options);
   }
   const Report report = CheckReport(c, law, result);
-  WriteOutput({"--out", path}, report.Html());
+  WriteOutput({"--out", path}, report.Html(gnuplot));
   if (o.json) {
     std::cout << FormatObject(CheckJson(c, law, result, path), o.format);
     return result.pass ? 0 : 1;

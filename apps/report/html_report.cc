@@ -1,25 +1,130 @@
 #include "apps/report/html_report.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "lib/case_error.h"
+
+extern char** environ;
+
 namespace needle {
 
-bool GnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+namespace {
 
-void RequireGnuplot() {
-  if (!GnuplotAvailable()) {
-    throw std::runtime_error(
+std::string Slurp(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// Writes all of `text` to the pipe `fd`; false when the reader has gone (EPIPE: SIGPIPE is held
+// back on this thread meanwhile and a pending one taken, so that the process is not killed).
+bool WriteToPipe(int fd, const std::string& text) {
+  sigset_t pipe_signal, old_mask;
+  sigemptyset(&pipe_signal);
+  sigaddset(&pipe_signal, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &pipe_signal, &old_mask);
+  bool ok = true;
+  for (size_t done = 0; done < text.size();) {
+    const ssize_t n = write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      ok = false;
+      break;
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (!ok && errno == EPIPE) {
+    const timespec now{0, 0};
+    while (sigtimedwait(&pipe_signal, nullptr, &now) == SIGPIPE) {
+    }
+  }
+  pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+  return ok;
+}
+
+}  // namespace
+
+Gnuplot::Gnuplot() {
+  char pattern[] = "/tmp/needle-report-XXXXXX";
+  const char* dir = mkdtemp(pattern);
+  if (!dir) throw std::runtime_error("report: cannot create a temporary folder for gnuplot");
+  folder_ = dir;
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) {
+    const std::string why = std::strerror(errno);
+    std::error_code ignored;
+    std::filesystem::remove_all(folder_, ignored);
+    throw std::runtime_error("report: cannot make a pipe to gnuplot: " + why);
+  }
+  // gnuplot reads the pipe as its standard input and writes its messages to err.txt.
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
+  const std::string errors = (folder_ / "err.txt").string();
+  posix_spawn_file_actions_addopen(&actions, 2, errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  char name[] = "gnuplot";
+  char* argv[] = {name, nullptr};
+  const int spawned = posix_spawnp(&pid_, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[0]);
+  if (spawned != 0) {
+    close(fds[1]);
+    std::error_code ignored;
+    std::filesystem::remove_all(folder_, ignored);
+    throw CaseError(
         "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
         "or bash scripts/install-deps.sh)");
   }
+  input_ = fds[1];
+}
+
+Gnuplot::~Gnuplot() {
+  if (input_ >= 0) close(input_);  // gnuplot reads the end of its input and ends
+  if (pid_ > 0) {
+    int status = 0;
+    while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+  std::error_code ignored;
+  std::filesystem::remove_all(folder_, ignored);
+}
+
+int Gnuplot::Run(const std::filesystem::path& script) {
+  if (input_ < 0) throw std::logic_error("Gnuplot::Run: gnuplot has run already");
+  // `load` stops at the script's first error, as `gnuplot script` does (gnuplot reading its
+  // input would go on to the next line).
+  WriteToPipe(input_, "load '" + script.string() + "'\n");  // a gone gnuplot: its status says
+  close(input_);
+  input_ = -1;
+  int status = 0;
+  while (waitpid(pid_, &status, 0) < 0) {
+    if (errno != EINTR) throw std::runtime_error("report: lost the gnuplot process");
+  }
+  pid_ = -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string Gnuplot::ErrorText() const {
+  // Messages of a loaded script come indented: each line as `gnuplot script` writes it.
+  std::istringstream in(Slurp(folder_ / "err.txt"));
+  std::string text, line;
+  while (std::getline(in, line)) {
+    const size_t start = line.find_first_not_of(' ');
+    text += (start == std::string::npos ? std::string() : line.substr(start)) + '\n';
+  }
+  return text;
 }
 
 std::string Escape(const std::string& text) {
@@ -56,48 +161,16 @@ void Report::AddFigure(const std::string& caption, const std::vector<Series>& da
   ++figures_;
 }
 
-namespace {
-
-// A temporary folder, removed with everything in it when the owner goes.
-class TempFolder {
- public:
-  TempFolder() {
-    char pattern[] = "/tmp/needle-report-XXXXXX";
-    const char* dir = mkdtemp(pattern);
-    if (!dir) throw std::runtime_error("report: cannot create a temporary folder for gnuplot");
-    path_ = dir;
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-std::string Slurp(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-}  // namespace
-
-std::vector<std::string> Report::DrawFigures() const {
+std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
   std::vector<std::string> parts = parts_;
   if (pending_.empty()) return parts;
   // Every figure in one gnuplot process: each in its own folder (its data files named as the
   // series, so the SVG's titles name no temporary path), `reset session` between them.
-  const TempFolder folder;
+  const std::filesystem::path& folder = gnuplot.folder();
   std::ostringstream gp;
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];
-    const std::filesystem::path dir = folder.path() / ("f" + std::to_string(k));
+    const std::filesystem::path dir = folder / ("f" + std::to_string(k));
     std::filesystem::create_directory(dir);
     std::string script = f.script;
     for (const Series& s : f.data) {
@@ -129,31 +202,36 @@ std::vector<std::string> Report::DrawFigures() const {
        << script << "\nunset output\n";
   }
   {
-    std::ofstream out(folder.path() / "figures.gp");
+    std::ofstream out(folder / "figures.gp");
     out << gp.str();
   }
-  const std::string command = "gnuplot '" + (folder.path() / "figures.gp").string() + "' 2>'" +
-                              (folder.path() / "err.txt").string() + "'";
-  const int status = std::system(command.c_str());
+  const int status = gnuplot.Run(folder / "figures.gp");
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];
-    const std::string body = Slurp(folder.path() / ("f" + std::to_string(k)) / "figure.svg");
+    const std::string body = Slurp(folder / ("f" + std::to_string(k)) / "figure.svg");
     const auto start = body.find("<svg");  // drop the XML prologue for inline use
     if (start == std::string::npos || body.find("</svg>") == std::string::npos) {
       throw std::runtime_error("gnuplot failed drawing \"" + f.caption +
-                               "\": " + Slurp(folder.path() / "err.txt"));
+                               "\": " + gnuplot.ErrorText());
     }
     parts[f.part] = "<figure>" + body.substr(start) + "<figcaption>" + Escape(f.caption) +
                     "</figcaption></figure>";
   }
   if (status != 0) {
-    throw std::runtime_error("gnuplot failed drawing the report's figures: " +
-                             Slurp(folder.path() / "err.txt"));
+    throw std::runtime_error("gnuplot failed drawing the report's figures: " + gnuplot.ErrorText());
   }
   return parts;
 }
 
 std::string Report::Html() const {
+  if (pending_.empty()) return Document(parts_);
+  Gnuplot gnuplot;
+  return Html(gnuplot);
+}
+
+std::string Report::Html(Gnuplot& gnuplot) const { return Document(DrawFigures(gnuplot)); }
+
+std::string Report::Document(const std::vector<std::string>& parts) const {
   std::ostringstream out;
   out << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
       << Escape(title_)
@@ -165,7 +243,7 @@ std::string Report::Html() const {
          "0}figcaption{font-size:.9em;color:#555}svg{max-width:100%;height:auto}"
          ".skip{color:#555}</style></head>\n<body>\n<h1>"
       << Escape(title_) << "</h1>\n";
-  for (const std::string& p : DrawFigures()) out << p << '\n';
+  for (const std::string& p : parts) out << p << '\n';
   out << "</body></html>\n";
   return out.str();
 }

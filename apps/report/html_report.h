@@ -3,10 +3,38 @@
 /// A self-contained HTML report: sections of HTML and figures drawn by gnuplot (svg terminal),
 /// embedded inline, written atomically as one file.
 
+#include <sys/types.h>
+
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace needle {
+
+/// A gnuplot process, started when made, so that its start-up (some 10 ms of loading) runs
+/// beside the work before the figures, and waiting on a pipe for the script Report::Html gives
+/// it. Throws CaseError (exit 2: the machine lacks it, no bug) saying how to install gnuplot when
+/// it cannot be run; closes the pipe (gnuplot then ends) and waits for it when it goes.
+class Gnuplot {
+ public:
+  Gnuplot();
+  ~Gnuplot();
+  Gnuplot(const Gnuplot&) = delete;
+  Gnuplot& operator=(const Gnuplot&) = delete;
+
+  /// A folder of its own for the figures' files, removed with everything in it when it goes.
+  const std::filesystem::path& folder() const { return folder_; }
+  /// Runs the script file `script` (as `gnuplot script` runs it: stopping at the first error),
+  /// waits for gnuplot to end and returns its exit status; what it wrote to its standard error is
+  /// in ErrorText(). Once only.
+  int Run(const std::filesystem::path& script);
+  std::string ErrorText() const;
+
+ private:
+  std::filesystem::path folder_;
+  int input_ = -1;  // the write end of gnuplot's standard input
+  pid_t pid_ = -1;
+};
 
 /// One data series for a figure: columns of numbers written to a temporary file.
 struct Series {
@@ -29,6 +57,8 @@ class Report {
   /// The whole HTML document; its figures are drawn here, all in one gnuplot process. Throws
   /// std::runtime_error naming gnuplot's failure and the figure it failed on.
   std::string Html() const;
+  /// The same, drawn by `gnuplot` (started before the work that made the report).
+  std::string Html(Gnuplot& gnuplot) const;
 
  private:
   // A figure to draw: its caption, data and script, and its place in parts_.
@@ -39,19 +69,14 @@ class Report {
     int height_px;
     size_t part;
   };
-  std::vector<std::string> DrawFigures() const;  // parts_ with every figure drawn
+  std::vector<std::string> DrawFigures(Gnuplot& gnuplot) const;       // parts_, every figure drawn
+  std::string Document(const std::vector<std::string>& parts) const;  // the page around them
 
   std::string title_;
   std::vector<std::string> parts_;
   std::vector<PendingFigure> pending_;
   int figures_ = 0;
 };
-
-/// True when gnuplot can be run.
-bool GnuplotAvailable();
-/// Throws std::runtime_error saying how to install gnuplot when it cannot be run (before a
-/// command that draws a report computes anything).
-void RequireGnuplot();
 
 /// HTML-escapes text.
 std::string Escape(const std::string& text);

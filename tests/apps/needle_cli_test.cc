@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -843,6 +844,38 @@ TEST(NeedleCliTest, ACheckWhoseRunsStopOnABudgetFailsWithAReport) {
       << sim.out;
   std::filesystem::remove_all(out);
   std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+using testing::RunNeedle;
+
+// A machine without gnuplot: the commands that draw a report say so in one line, exit 2 (the
+// machine lacks a program; no bug: it was exit 3) and write nothing, not even the --out folder.
+TEST(NeedleCliTest, WithoutGnuplotAReportCommandSaysSoAndWritesNothing) {
+  const std::string out = testing::TempPath("no-gnuplot-report");
+  std::filesystem::remove_all(out);
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", "/nonexistent-folder", 1);  // needle is run by its full path
+  const std::string cases = std::string(NEEDLE_SOURCE_DIR) + "/cases/";
+  const auto check = RunNeedle("check " + cases + "basu-example1.toml --out " + out);
+  const auto tolerance =
+      RunNeedle("tolerance " + cases + "basu-example2.toml --samples 2 --out " + out);
+  const auto compare = RunNeedle("compare " + cases + "basu-example1.toml " + cases +
+                                 "basu-example2.toml --out " + out);
+  setenv("PATH", path.c_str(), 1);
+  for (const auto* r : {&check, &tolerance, &compare}) {
+    EXPECT_EQ(r->status, 2) << r->err;
+    EXPECT_EQ(r->err,
+              "needle: gnuplot is not installed; the report's figures need it (apt-get install "
+              "gnuplot-nox, or bash scripts/install-deps.sh)\n");
+    EXPECT_EQ(r->out, "");
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 }  // namespace

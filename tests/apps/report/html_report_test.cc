@@ -1,0 +1,68 @@
+// The HTML report's figures: drawn by one gnuplot process started before the work, its failure
+// named with the figure it failed on, its temporary folder gone either way.
+#include "apps/report/html_report.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace needle {
+namespace {
+
+Report TwoFigures(const std::string& second_script) {
+  Report report("two figures");
+  report.AddHtml("<p>before</p>");
+  report.AddFigure("a line", {{"line", {{0.0, 1.0}, {1.0, 2.0}}}}, "plot $line with lines");
+  report.AddFigure("the second", {{"points", {{0.0, 3.0}, {1.0, 4.0}}}}, second_script);
+  return report;
+}
+
+TEST(HtmlReportTest, FiguresAreDrawnInPlaceByTheGnuplotStartedBeforeTheWork) {
+  Gnuplot gnuplot;
+  const std::filesystem::path folder = gnuplot.folder();
+  EXPECT_TRUE(std::filesystem::is_directory(folder));
+  const std::string html = TwoFigures("plot $points with points").Html(gnuplot);
+  const size_t before = html.find("<p>before</p>");
+  const size_t first = html.find("<figure><svg");
+  const size_t second = html.find("<figure><svg", first + 1);
+  ASSERT_NE(second, std::string::npos) << html;
+  EXPECT_LT(before, first);
+  EXPECT_NE(html.find("</svg>\n\n<figcaption>a line</figcaption></figure>"), std::string::npos);
+  EXPECT_NE(html.find("</svg>\n\n<figcaption>the second</figcaption></figure>"), std::string::npos);
+  EXPECT_EQ(html.find(folder.string()), std::string::npos);  // no temporary path in the page
+  EXPECT_THROW(gnuplot.Run(folder / "figures.gp"), std::logic_error);  // once only
+}
+
+TEST(HtmlReportTest, AFigureGnuplotRefusesIsNamedWithGnuplotsMessageAndNothingIsLeft) {
+  std::filesystem::path folder;
+  try {
+    Gnuplot gnuplot;
+    folder = gnuplot.folder();
+    TwoFigures("plot no_such_function($points)").Html(gnuplot);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    // The first failing figure is named, with gnuplot's message as `gnuplot script` writes it
+    // (the script's path and line first, not indented).
+    EXPECT_EQ(what.rfind("gnuplot failed drawing \"the second\": \"" + folder.string() +
+                             "/figures.gp\" line ",
+                         0),
+              0u)
+        << what;
+    EXPECT_NE(what.find("undefined"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(folder.empty());
+  EXPECT_FALSE(std::filesystem::exists(folder));
+}
+
+TEST(HtmlReportTest, AReportWithoutFiguresNeedsNoGnuplot) {
+  Report report("text only");
+  report.AddHtml("<p>x</p>");
+  EXPECT_EQ(report.figures(), 0);
+  EXPECT_NE(report.Html().find("<p>x</p>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace needle
