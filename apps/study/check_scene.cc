@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
+#include <thread>
 
 #include "apps/case/case_profile.h"
 #include "apps/case/case_scene.h"
@@ -144,12 +146,30 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     if (scene.cam->play_m() == 0.0)
       r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
     r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);
+    // The surge study needs nothing of the sweep: given a second core it runs beside it (its
+    // runs and the sweep's are the same either way; the sweep keeps the other cores).
+    const int cores = options.threads > 0
+                          ? options.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const auto study_surge = [&c, &r, &scene, &options] {
+      if (!(r.spring && r.spring->helical)) {
+        r.surge_reason = "no helical spring geometry";
+        return;
+      }
+      try {
+        r.surge = StudySurge(c, r, scene, options);
+      } catch (const std::invalid_argument& e) {
+        r.surge_reason = e.what();
+      }
+    };
+    std::future<void> surge;
+    if (cores > 1) surge = std::async(std::launch::async, study_surge);
     OverspeedOptions os;
     os.simulation = r.run_options;
     os.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
     os.from_rpm = r.sweep_range.from_rpm;
     os.to_rpm = r.sweep_range.to_rpm;
-    os.threads = options.threads;
+    os.threads = surge.valid() ? cores - 1 : options.threads;
     if (options.overspeed_start_rpm) {
       // On to a nearby scene's n_dyn once the scan has passed the speeds the verdict reads
       // without lift-off (up to there every speed of the scan is run as without the guess); a
@@ -164,14 +184,10 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     } else {
       r.sweep = OverspeedSearch(scene, os, options.progress);
     }
-    if (r.spring && r.spring->helical) {
-      try {
-        r.surge = StudySurge(c, r, scene, options);
-      } catch (const std::invalid_argument& e) {
-        r.surge_reason = e.what();
-      }
+    if (surge.valid()) {
+      surge.get();  // rethrows what the study threw
     } else {
-      r.surge_reason = "no helical spring geometry";
+      study_surge();
     }
 
     if (r.run->liftoff()) {

@@ -91,7 +91,9 @@ struct CheckOptions {
   std::optional<double> speed_rpm;  ///< rated speed, rpm; default [engine] speed_rpm
   /// Called after each overspeed run with (done, total estimate); may be empty.
   std::function<void(int, int)> progress;
-  int threads = 0;            ///< the overspeed sweep's threads (0: all cores)
+  /// Threads (0: all cores): with two or more the surge study runs beside the overspeed sweep,
+  /// which has the others; the result is the same with any number.
+  int threads = 0;
   bool record_series = true;  ///< keep the rated-speed run's time series (the report's figures)
   // What a check may take from a check of a nearby scene (a tolerance study's nominal,
   // docs/commands.md, "What a sample takes from the nominal"): the verdict stays this scene's own,

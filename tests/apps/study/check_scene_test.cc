@@ -706,3 +706,48 @@ TEST(SurgeHarmTest, AnyOneFailingRowIsHarm) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// The surge study runs beside the sweep when the check has two threads or more: the same runs,
+// so the same result to the bit as on one thread, on a scene that passes, one whose surge fails
+// and one without coils to study.
+TEST(CheckSceneTest, TheSurgeStudyBesideTheSweepGivesTheSameResult) {
+  for (const std::string name :
+       {"basu-example1.toml", "basu-example1-surge.toml", "basu-cam4-light-spring.toml"}) {
+    SCOPED_TRACE(name);
+    const Case c = LoadCase(kCases + name);
+    CheckOptions one, two;
+    one.record_series = two.record_series = false;
+    one.threads = 1;
+    two.threads = 2;
+    const CheckResult a = CheckScene(c, MakeLiftLaw(c), one);
+    const CheckResult b = CheckScene(c, MakeLiftLaw(c), two);
+    EXPECT_EQ(a.pass, b.pass);
+    EXPECT_EQ(a.failing, b.failing);
+    EXPECT_EQ(a.warnings, b.warnings);
+    EXPECT_EQ(a.skipped, b.skipped);
+    EXPECT_EQ(a.surge_reason, b.surge_reason);
+    ASSERT_EQ(a.surge.has_value(), b.surge.has_value());
+    if (a.surge) {
+      EXPECT_EQ(a.surge->masses, b.surge->masses);
+      EXPECT_EQ(a.surge->rated.min_contact_force_ratio, b.surge->rated.min_contact_force_ratio);
+      EXPECT_EQ(a.surge->rated.max_spring_force_N, b.surge->rated.max_spring_force_N);
+      EXPECT_EQ(a.surge->overspeed.max_lift_m, b.surge->overspeed.max_lift_m);
+      EXPECT_EQ(a.surge->massless_overspeed.max_lift_m, b.surge->massless_overspeed.max_lift_m);
+    }
+    ASSERT_TRUE(a.sweep && b.sweep);
+    EXPECT_EQ(a.sweep->n_dyn_rpm, b.sweep->n_dyn_rpm);
+    ASSERT_EQ(a.limits.size(), b.limits.size());
+    for (size_t i = 0; i < a.limits.size(); ++i) {
+      EXPECT_EQ(a.limits[i].verdict, b.limits[i].verdict) << a.limits[i].key;
+      EXPECT_EQ(a.limits[i].note, b.limits[i].note) << a.limits[i].key;
+      const double x = a.limits[i].value, y = b.limits[i].value;
+      EXPECT_TRUE(x == y || (std::isnan(x) && std::isnan(y))) << a.limits[i].key;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace needle
