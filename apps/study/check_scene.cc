@@ -46,9 +46,10 @@ namespace {
 // EN 13906-1 gives the wire's; cases/basu-example1-surge.toml states the same 1 %).
 constexpr double kAssumedSurgeDamping = 0.01;
 
-// The scene with its helical spring as N coil masses (SurgeStudy), against the massless spring.
-// Throws std::invalid_argument when the train refuses the chain (coils of 3 needle masses or
-// more).
+// The scene with its helical spring as N coil masses (SurgeStudy), against the massless spring
+// (left to the caller when it is the rated run: the case has no coil masses). Reads of `r` the
+// spring check, the speeds and the run options only. Throws std::invalid_argument when the train
+// refuses the chain (coils of 3 needle masses or more).
 SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene,
                       const CheckOptions& options) {
   const bool series = options.record_series;
@@ -66,8 +67,9 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene,
   over.steady_state = c.overspeed && c.overspeed->steady_state;
   SimulationOptions rated = sim;
   rated.record_series = series;  // the report's surge figure
-  // The rated-speed run is the massless spring's already when the case has no coil masses.
-  s.massless = c.spring->masses == 1 && r.run ? *r.run : Simulate(scene, r.speed_rpm, rated);
+  // The rated-speed run is the massless spring's already when the case has no coil masses: the
+  // caller copies it (it may be running beside this).
+  if (c.spring->masses != 1) s.massless = Simulate(scene, r.speed_rpm, rated);
   // The massless spring at f·n is a note of the report only (not run for a verdict alone). The
   // chain's runs go to their end either way: a run that would not settle after the lift, and
   // the seat's landing that loads the spring and closes the coils, are the verdict's too.
@@ -139,15 +141,8 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
   if (c.train && c.needle && c.spring && law.HasAcceleration()) {
     const Scene scene = MakeScene(c, shared_law);  // the one scene of the check
     r.run_options = OptionsFromCase(c);
-    SimulationOptions sim = r.run_options;
-    sim.force_dynamic = true;  // the report shows the dynamic force
-    sim.record_series = options.record_series;
-    r.run = Simulate(scene, rpm, sim);
-    if (scene.cam->play_m() == 0.0)
-      r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
-    r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);
-    // The surge study needs nothing of the sweep: given a second core it runs beside it (its
-    // runs and the sweep's are the same either way; the sweep keeps the other cores).
+    // The surge study needs nothing of the rated run and the sweep: given a second core it runs
+    // beside them (its runs and theirs are the same either way; the sweep keeps the other cores).
     const int cores = options.threads > 0
                           ? options.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -164,6 +159,13 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     };
     std::future<void> surge;
     if (cores > 1) surge = std::async(std::launch::async, study_surge);
+    SimulationOptions sim = r.run_options;
+    sim.force_dynamic = true;  // the report shows the dynamic force
+    sim.record_series = options.record_series;
+    r.run = Simulate(scene, rpm, sim);
+    if (scene.cam->play_m() == 0.0)
+      r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
+    r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);
     OverspeedOptions os;
     os.simulation = r.run_options;
     os.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
@@ -189,6 +191,7 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     } else {
       study_surge();
     }
+    if (r.surge && c.spring->masses == 1) r.surge->massless = *r.run;
 
     if (r.run->liftoff()) {
       fail("dynamics: the needle lifts off the cam at the rated speed " + Fixed(rpm, 0) + " rpm");
