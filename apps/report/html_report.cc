@@ -154,10 +154,19 @@ Report::Report(std::string title) : title_(std::move(title)) {}
 
 void Report::AddHtml(const std::string& html) { parts_.push_back(html); }
 
-void Report::AddFigure(const std::string& caption, const std::vector<Series>& data,
-                       std::string script, int height_px) {
+void Rows::push_back(std::initializer_list<double> row) {
+  if (width_ == 0) width_ = row.size();
+  if (row.size() != width_) {
+    throw std::logic_error("Rows::push_back: a row of " + std::to_string(row.size()) +
+                           " numbers in rows of " + std::to_string(width_));
+  }
+  values_.insert(values_.end(), row.begin(), row.end());
+}
+
+void Report::AddFigure(const std::string& caption, std::vector<Series> data, std::string script,
+                       int height_px) {
   parts_.emplace_back();  // the figure's place, filled when the report is drawn
-  pending_.push_back({caption, data, std::move(script), height_px, parts_.size() - 1});
+  pending_.push_back({caption, std::move(data), std::move(script), height_px, parts_.size() - 1});
   ++figures_;
 }
 
@@ -179,8 +188,10 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
       // std::to_chars (a stream took some 3000 instructions a number: a third of a check).
       std::string text;
       char number[64];
-      for (const auto& row : s.rows) {
-        for (size_t i = 0; i < row.size(); ++i) {
+      text.reserve(s.rows.size() * s.rows.width() * 12);
+      for (size_t k = 0; k < s.rows.size(); ++k) {
+        const double* row = s.rows.row(k);
+        for (size_t i = 0; i < s.rows.width(); ++i) {
           if (i) text += ' ';
           const auto end =
               std::to_chars(number, number + sizeof number, row[i], std::chars_format::general, 10);

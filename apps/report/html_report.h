@@ -6,6 +6,7 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,26 @@ class Gnuplot {
   pid_t pid_ = -1;
 };
 
+/// A figure's rows of numbers, kept flat (a figure's thousands of points in one allocation):
+/// every row as wide as the first.
+class Rows {
+ public:
+  /// Appends one row; throws std::logic_error when it is not as wide as the first.
+  void push_back(std::initializer_list<double> row);
+  bool empty() const { return values_.empty(); }
+  size_t size() const { return width_ ? values_.size() / width_ : 0; }
+  size_t width() const { return width_; }
+  const double* row(size_t i) const { return values_.data() + i * width_; }
+
+ private:
+  std::vector<double> values_;
+  size_t width_ = 0;
+};
+
 /// One data series for a figure: columns of numbers written to a temporary file.
 struct Series {
   std::string name;
-  std::vector<std::vector<double>> rows;
+  Rows rows;
 };
 
 class Report {
@@ -50,7 +67,7 @@ class Report {
   /// Adds a figure, drawn with the others when the document is made (Html): `script` is gnuplot
   /// after the terminal is set; it reads the series as files named in `$name` placeholders
   /// ($lift, $force, …). `height_px`: the figure's height (860 px wide).
-  void AddFigure(const std::string& caption, const std::vector<Series>& data, std::string script,
+  void AddFigure(const std::string& caption, std::vector<Series> data, std::string script,
                  int height_px = 420);
   int figures() const { return figures_; }
 

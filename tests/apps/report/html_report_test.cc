@@ -11,11 +11,17 @@
 namespace needle {
 namespace {
 
+Series Make(const std::string& name, std::initializer_list<std::initializer_list<double>> rows) {
+  Series s{name, {}};
+  for (const auto& row : rows) s.rows.push_back(row);
+  return s;
+}
+
 Report TwoFigures(const std::string& second_script) {
   Report report("two figures");
   report.AddHtml("<p>before</p>");
-  report.AddFigure("a line", {{"line", {{0.0, 1.0}, {1.0, 2.0}}}}, "plot $line with lines");
-  report.AddFigure("the second", {{"points", {{0.0, 3.0}, {1.0, 4.0}}}}, second_script);
+  report.AddFigure("a line", {Make("line", {{0.0, 1.0}, {1.0, 2.0}})}, "plot $line with lines");
+  report.AddFigure("the second", {Make("points", {{0.0, 3.0}, {1.0, 4.0}})}, second_script);
   return report;
 }
 
@@ -62,6 +68,28 @@ TEST(HtmlReportTest, AReportWithoutFiguresNeedsNoGnuplot) {
   report.AddHtml("<p>x</p>");
   EXPECT_EQ(report.figures(), 0);
   EXPECT_NE(report.Html().find("<p>x</p>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+TEST(HtmlReportTest, RowsAreAsWideAsTheFirst) {
+  Rows rows;
+  EXPECT_TRUE(rows.empty());
+  rows.push_back({1.0, 2.0});
+  rows.push_back({3.0, 4.0});
+  EXPECT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows.width(), 2u);
+  EXPECT_EQ(rows.row(1)[0], 3.0);
+  try {
+    rows.push_back({5.0});
+    FAIL() << "no error";
+  } catch (const std::logic_error& e) {
+    EXPECT_STREQ(e.what(), "Rows::push_back: a row of 1 numbers in rows of 2");
+  }
 }
 
 }  // namespace
