@@ -11,10 +11,14 @@
 namespace needle {
 namespace {
 
-// An extreme located inside a step is recorded after the step's samples: the series in time.
+// An extreme located inside a step is recorded after the step's samples: the series in time
+// (most runs' already are: no sort, no buffer).
 void SortSeries(std::vector<SeriesPoint>& series) {
-  std::stable_sort(series.begin(), series.end(),
-                   [](const SeriesPoint& a, const SeriesPoint& b) { return a.time_s < b.time_s; });
+  const auto earlier = [](const SeriesPoint& a, const SeriesPoint& b) {
+    return a.time_s < b.time_s;
+  };
+  if (!std::is_sorted(series.begin(), series.end(), earlier))
+    std::stable_sort(series.begin(), series.end(), earlier);
 }
 
 // The same point twice (a crossing or an extreme sampled where a step ends, the run's last
