@@ -101,11 +101,15 @@ Gnuplot::~Gnuplot() {
   std::filesystem::remove_all(folder_, ignored);
 }
 
-int Gnuplot::Run(const std::filesystem::path& script) {
-  if (input_ < 0) throw std::logic_error("Gnuplot::Run: gnuplot has run already");
+void Gnuplot::Load(const std::filesystem::path& script) {
+  if (input_ < 0) throw std::logic_error("Gnuplot::Load: gnuplot has finished");
   // `load` stops at the script's first error, as `gnuplot script` does (gnuplot reading its
-  // input would go on to the next line).
+  // input would go on to the next line); the next script is read after it either way.
   WriteToPipe(input_, "load '" + script.string() + "'\n");  // a gone gnuplot: its status says
+}
+
+int Gnuplot::Finish() {
+  if (input_ < 0) throw std::logic_error("Gnuplot::Finish: gnuplot has finished");
   close(input_);
   input_ = -1;
   int status = 0;
@@ -174,9 +178,10 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
   std::vector<std::string> parts = parts_;
   if (pending_.empty()) return parts;
   // Every figure in one gnuplot process: each in its own folder (its data files named as the
-  // series, so the SVG's titles name no temporary path), `reset session` between them.
+  // series, so the SVG's titles name no temporary path) with its script, `reset session` first;
+  // each given to gnuplot as soon as it is written, so that gnuplot draws it while the next one
+  // is written.
   const std::filesystem::path& folder = gnuplot.folder();
-  std::ostringstream gp;
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];
     const std::filesystem::path dir = folder / ("f" + std::to_string(k));
@@ -189,8 +194,8 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
       std::string text;
       char number[64];
       text.reserve(s.rows.size() * s.rows.width() * 12);
-      for (size_t k = 0; k < s.rows.size(); ++k) {
-        const double* row = s.rows.row(k);
+      for (size_t n = 0; n < s.rows.size(); ++n) {
+        const double* row = s.rows.row(n);
         for (size_t i = 0; i < s.rows.width(); ++i) {
           if (i) text += ' ';
           const auto end =
@@ -207,16 +212,14 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
         at += file.size() + 2;
       }
     }
-    gp << "reset session\ncd '" << dir.string() << "'\n"
-       << "set terminal svg size 860," << f.height_px << " font 'sans,12' background rgb 'white'\n"
-       << "set output 'figure.svg'\nset grid\n"
-       << script << "\nunset output\n";
+    std::ofstream(dir / "figure.gp")
+        << "reset session\ncd '" << dir.string() << "'\n"
+        << "set terminal svg size 860," << f.height_px << " font 'sans,12' background rgb 'white'\n"
+        << "set output 'figure.svg'\nset grid\n"
+        << script << "\nunset output\n";
+    gnuplot.Load(dir / "figure.gp");
   }
-  {
-    std::ofstream out(folder / "figures.gp");
-    out << gp.str();
-  }
-  const int status = gnuplot.Run(folder / "figures.gp");
+  const int status = gnuplot.Finish();
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];
     const std::string body = Slurp(folder / ("f" + std::to_string(k)) / "figure.svg");

@@ -25,10 +25,12 @@ class Gnuplot {
 
   /// A folder of its own for the figures' files, removed with everything in it when it goes.
   const std::filesystem::path& folder() const { return folder_; }
-  /// Runs the script file `script` (as `gnuplot script` runs it: stopping at the first error),
-  /// waits for gnuplot to end and returns its exit status; what it wrote to its standard error is
-  /// in ErrorText(). Once only.
-  int Run(const std::filesystem::path& script);
+  /// Has gnuplot run the script file `script` (as `gnuplot script` runs it: stopping at the
+  /// script's first error) once it has run the ones given before.
+  void Load(const std::filesystem::path& script);
+  /// Ends gnuplot's input, waits for it to end and returns its exit status (not 0 when a script
+  /// failed); what it wrote to its standard error is in ErrorText(). Once only.
+  int Finish();
   std::string ErrorText() const;
 
  private:

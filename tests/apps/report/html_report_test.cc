@@ -38,7 +38,8 @@ TEST(HtmlReportTest, FiguresAreDrawnInPlaceByTheGnuplotStartedBeforeTheWork) {
   EXPECT_NE(html.find("</svg>\n\n<figcaption>a line</figcaption></figure>"), std::string::npos);
   EXPECT_NE(html.find("</svg>\n\n<figcaption>the second</figcaption></figure>"), std::string::npos);
   EXPECT_EQ(html.find(folder.string()), std::string::npos);  // no temporary path in the page
-  EXPECT_THROW(gnuplot.Run(folder / "figures.gp"), std::logic_error);  // once only
+  EXPECT_THROW(gnuplot.Load(folder / "f0" / "figure.gp"), std::logic_error);  // finished
+  EXPECT_THROW(gnuplot.Finish(), std::logic_error);
 }
 
 TEST(HtmlReportTest, AFigureGnuplotRefusesIsNamedWithGnuplotsMessageAndNothingIsLeft) {
@@ -53,7 +54,7 @@ TEST(HtmlReportTest, AFigureGnuplotRefusesIsNamedWithGnuplotsMessageAndNothingIs
     // The first failing figure is named, with gnuplot's message as `gnuplot script` writes it
     // (the script's path and line first, not indented).
     EXPECT_EQ(what.rfind("gnuplot failed drawing \"the second\": \"" + folder.string() +
-                             "/figures.gp\" line ",
+                             "/f1/figure.gp\" line ",
                          0),
               0u)
         << what;
