@@ -44,7 +44,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     options.progress = [&](int done, int total) { bar.Update(done, total); };
     result = CheckScene(c, lift, options);
   }
-  const Report report = CheckReport(c, law, result);
+  const Report report = CheckReport(c, law, result, &gnuplot);  // drawn as it is made
   WriteOutput({"--out", path}, report.Html(gnuplot));
   if (o.json) {
     std::cout << FormatObject(CheckJson(c, law, result, path), o.format);

@@ -47,7 +47,7 @@ std::string Sci(double v) {
 
 }  // namespace
 
-Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result) {
+Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result, Gnuplot* gnuplot) {
   const double rpm = result.speed_rpm;
   const LiftLawChoice& choice = result.choice;
   const Kinematics kin(law, rpm);
@@ -61,7 +61,7 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result)
   const std::optional<CamProfile>& profile = result.profile;
   const double n_qs = result.n_qs_rpm, overspeed_rpm = result.overspeed_rpm;
 
-  Report report("needle check: " + (c.title.empty() ? c.path : c.title));
+  Report report("needle check: " + (c.title.empty() ? c.path : c.title), gnuplot);
   std::ostringstream summary;
   summary << "<h2>Scene</h2><table>" << Row("case", Escape(c.path))
           << Row("rated speed", Fixed(rpm, 1) + " rpm")

@@ -25,7 +25,9 @@ std::string CheckText(const Case& c, const CheckResult& result, const std::strin
                       int figures);
 
 /// The check's HTML report: the scene, the kinematics, the spring, the dynamics, the sweep, the
-/// limits table and the figures. Throws std::runtime_error naming gnuplot's failure.
-Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result);
+/// limits table and the figures (given to `gnuplot`, when given, as they are made). Throws
+/// std::runtime_error naming gnuplot's failure.
+Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
+                   Gnuplot* gnuplot = nullptr);
 
 }  // namespace needle

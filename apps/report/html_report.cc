@@ -154,7 +154,7 @@ std::string Escape(const std::string& text) {
   return out;
 }
 
-Report::Report(std::string title) : title_(std::move(title)) {}
+Report::Report(std::string title, Gnuplot* gnuplot) : title_(std::move(title)), gnuplot_(gnuplot) {}
 
 void Report::AddHtml(const std::string& html) { parts_.push_back(html); }
 
@@ -172,53 +172,62 @@ void Report::AddFigure(const std::string& caption, std::vector<Series> data, std
   parts_.emplace_back();  // the figure's place, filled when the report is drawn
   pending_.push_back({caption, std::move(data), std::move(script), height_px, parts_.size() - 1});
   ++figures_;
+  if (gnuplot_) {
+    SendFigure(*gnuplot_, pending_.size() - 1);
+    pending_.back().data.clear();  // in its files now
+    ++sent_;
+  }
+}
+
+void Report::SendFigure(Gnuplot& gnuplot, size_t k) const {
+  // Each figure in its own folder (its data files named as the series, so the SVG's titles name
+  // no temporary path) with its script, `reset session` first; given to gnuplot as soon as it is
+  // written, so that gnuplot draws it while the next one is made.
+  const PendingFigure& f = pending_[k];
+  const std::filesystem::path dir = gnuplot.folder() / ("f" + std::to_string(k));
+  std::filesystem::create_directory(dir);
+  std::string script = f.script;
+  for (const Series& s : f.data) {
+    const std::string file = s.name + ".dat";
+    // Ten significant digits, %g style, as a stream with precision 10 writes them; by
+    // std::to_chars (a stream took some 3000 instructions a number: a third of a check).
+    std::string text;
+    char number[64];
+    text.reserve(s.rows.size() * s.rows.width() * 12);
+    for (size_t n = 0; n < s.rows.size(); ++n) {
+      const double* row = s.rows.row(n);
+      for (size_t i = 0; i < s.rows.width(); ++i) {
+        if (i) text += ' ';
+        const auto end =
+            std::to_chars(number, number + sizeof number, row[i], std::chars_format::general, 10);
+        text.append(number, end.ptr);
+      }
+      text += '\n';
+    }
+    std::ofstream(dir / file) << text;
+    // Replace every $name with the quoted file name.
+    const std::string key = "$" + s.name;
+    for (size_t at = script.find(key); at != std::string::npos; at = script.find(key, at)) {
+      script.replace(at, key.size(), "'" + file + "'");
+      at += file.size() + 2;
+    }
+  }
+  std::ofstream(dir / "figure.gp")
+      << "reset session\ncd '" << dir.string() << "'\n"
+      << "set terminal svg size 860," << f.height_px << " font 'sans,12' background rgb 'white'\n"
+      << "set output 'figure.svg'\nset grid\n"
+      << script << "\nunset output\n";
+  gnuplot.Load(dir / "figure.gp");
 }
 
 std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
+  if (gnuplot_ && gnuplot_ != &gnuplot)
+    throw std::logic_error("Report: its figures were given to another gnuplot");
   std::vector<std::string> parts = parts_;
   if (pending_.empty()) return parts;
-  // Every figure in one gnuplot process: each in its own folder (its data files named as the
-  // series, so the SVG's titles name no temporary path) with its script, `reset session` first;
-  // each given to gnuplot as soon as it is written, so that gnuplot draws it while the next one
-  // is written.
+  // Every figure in one gnuplot process; those not given to it yet now.
+  for (size_t k = gnuplot_ ? sent_ : 0; k < pending_.size(); ++k) SendFigure(gnuplot, k);
   const std::filesystem::path& folder = gnuplot.folder();
-  for (size_t k = 0; k < pending_.size(); ++k) {
-    const PendingFigure& f = pending_[k];
-    const std::filesystem::path dir = folder / ("f" + std::to_string(k));
-    std::filesystem::create_directory(dir);
-    std::string script = f.script;
-    for (const Series& s : f.data) {
-      const std::string file = s.name + ".dat";
-      // Ten significant digits, %g style, as a stream with precision 10 writes them; by
-      // std::to_chars (a stream took some 3000 instructions a number: a third of a check).
-      std::string text;
-      char number[64];
-      text.reserve(s.rows.size() * s.rows.width() * 12);
-      for (size_t n = 0; n < s.rows.size(); ++n) {
-        const double* row = s.rows.row(n);
-        for (size_t i = 0; i < s.rows.width(); ++i) {
-          if (i) text += ' ';
-          const auto end =
-              std::to_chars(number, number + sizeof number, row[i], std::chars_format::general, 10);
-          text.append(number, end.ptr);
-        }
-        text += '\n';
-      }
-      std::ofstream(dir / file) << text;
-      // Replace every $name with the quoted file name.
-      const std::string key = "$" + s.name;
-      for (size_t at = script.find(key); at != std::string::npos; at = script.find(key, at)) {
-        script.replace(at, key.size(), "'" + file + "'");
-        at += file.size() + 2;
-      }
-    }
-    std::ofstream(dir / "figure.gp")
-        << "reset session\ncd '" << dir.string() << "'\n"
-        << "set terminal svg size 860," << f.height_px << " font 'sans,12' background rgb 'white'\n"
-        << "set output 'figure.svg'\nset grid\n"
-        << script << "\nunset output\n";
-    gnuplot.Load(dir / "figure.gp");
-  }
   const int status = gnuplot.Finish();
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];
@@ -238,6 +247,7 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
 }
 
 std::string Report::Html() const {
+  if (gnuplot_) return Html(*gnuplot_);
   if (pending_.empty()) return Document(parts_);
   Gnuplot gnuplot;
   return Html(gnuplot);

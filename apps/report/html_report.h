@@ -63,7 +63,9 @@ struct Series {
 
 class Report {
  public:
-  explicit Report(std::string title);
+  /// With `gnuplot`, each figure is given to it as it is added, so that gnuplot draws it while
+  /// the report is built; Html() then finishes with the same gnuplot.
+  explicit Report(std::string title, Gnuplot* gnuplot = nullptr);
 
   void AddHtml(const std::string& html);
   /// Adds a figure, drawn with the others when the document is made (Html): `script` is gnuplot
@@ -76,7 +78,8 @@ class Report {
   /// The whole HTML document; its figures are drawn here, all in one gnuplot process. Throws
   /// std::runtime_error naming gnuplot's failure and the figure it failed on.
   std::string Html() const;
-  /// The same, drawn by `gnuplot` (started before the work that made the report).
+  /// The same, drawn by `gnuplot` (started before the work that made the report; the report's
+  /// own when it has one).
   std::string Html(Gnuplot& gnuplot) const;
 
  private:
@@ -88,6 +91,7 @@ class Report {
     int height_px;
     size_t part;
   };
+  void SendFigure(Gnuplot& gnuplot, size_t k) const;  // writes figure k, has gnuplot draw it
   std::vector<std::string> DrawFigures(Gnuplot& gnuplot) const;       // parts_, every figure drawn
   std::string Document(const std::vector<std::string>& parts) const;  // the page around them
 
@@ -95,6 +99,8 @@ class Report {
   std::vector<std::string> parts_;
   std::vector<PendingFigure> pending_;
   int figures_ = 0;
+  Gnuplot* gnuplot_ = nullptr;  // draws each figure as it is added
+  size_t sent_ = 0;             // figures given to gnuplot_ so far
 };
 
 /// HTML-escapes text.

@@ -95,3 +95,25 @@ TEST(HtmlReportTest, RowsAreAsWideAsTheFirst) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A report given its gnuplot when made has each figure drawn as it is added: the same page as
+// a report drawn at the end; finished with another gnuplot it is refused.
+TEST(HtmlReportTest, FiguresGivenToGnuplotAsTheyAreAddedMakeTheSamePage) {
+  const std::string at_end = TwoFigures("plot $points with points").Html();
+  Gnuplot gnuplot;
+  Report report("two figures", &gnuplot);
+  report.AddHtml("<p>before</p>");
+  report.AddFigure("a line", {Make("line", {{0.0, 1.0}, {1.0, 2.0}})}, "plot $line with lines");
+  EXPECT_TRUE(std::filesystem::exists(gnuplot.folder() / "f0" / "figure.gp"));  // given already
+  report.AddFigure("the second", {Make("points", {{0.0, 3.0}, {1.0, 4.0}})},
+                   "plot $points with points");
+  Gnuplot other;
+  EXPECT_THROW(report.Html(other), std::logic_error);
+  EXPECT_EQ(report.Html(), at_end);
+}
+
+}  // namespace
+}  // namespace needle
