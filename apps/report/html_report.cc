@@ -6,8 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -167,6 +169,40 @@ void Rows::push_back(std::initializer_list<double> row) {
   values_.insert(values_.end(), row.begin(), row.end());
 }
 
+Rows LineEnvelope(const Rows& rows, double x_from, double x_to, int columns) {
+  if (rows.width() != 2 || !(x_to > x_from) || columns < 1) return rows;
+  const double per_x = columns / (x_to - x_from);
+  const auto finite = [&rows](size_t i) {
+    return std::isfinite(rows.row(i)[0]) && std::isfinite(rows.row(i)[1]);
+  };
+  const auto column = [&](size_t i) { return std::floor((rows.row(i)[0] - x_from) * per_x); };
+  Rows out;
+  const auto keep = [&](size_t i) { out.push_back({rows.row(i)[0], rows.row(i)[1]}); };
+  for (size_t i = 0; i < rows.size();) {
+    if (!finite(i)) {
+      keep(i++);
+      continue;
+    }
+    const double c = column(i);
+    size_t end = i + 1, low = i, high = i;
+    for (; end < rows.size() && finite(end) && column(end) == c; ++end) {
+      if (rows.row(end)[1] < rows.row(low)[1]) low = end;
+      if (rows.row(end)[1] > rows.row(high)[1]) high = end;
+    }
+    keep(i);
+    const size_t last = end - 1;
+    size_t previous = i;  // each kept once, in order
+    for (size_t k : {std::min(low, high), std::max(low, high), last}) {
+      if (k > previous) {
+        keep(k);
+        previous = k;
+      }
+    }
+    i = end;
+  }
+  return out;
+}
+
 void Report::AddFigure(const std::string& caption, std::vector<Series> data, std::string script,
                        int height_px) {
   parts_.emplace_back();  // the figure's place, filled when the report is drawn
@@ -212,11 +248,11 @@ void Report::SendFigure(Gnuplot& gnuplot, size_t k) const {
       at += file.size() + 2;
     }
   }
-  std::ofstream(dir / "figure.gp")
-      << "reset session\ncd '" << dir.string() << "'\n"
-      << "set terminal svg size 860," << f.height_px << " font 'sans,12' background rgb 'white'\n"
-      << "set output 'figure.svg'\nset grid\n"
-      << script << "\nunset output\n";
+  std::ofstream(dir / "figure.gp") << "reset session\ncd '" << dir.string() << "'\n"
+                                   << "set terminal svg size " << kFigureWidthPx << ","
+                                   << f.height_px << " font 'sans,12' background rgb 'white'\n"
+                                   << "set output 'figure.svg'\nset grid\n"
+                                   << script << "\nunset output\n";
   gnuplot.Load(dir / "figure.gp");
 }
 

@@ -55,6 +55,17 @@ class Rows {
   size_t width_ = 0;
 };
 
+/// A figure's width in the report, px.
+constexpr int kFigureWidthPx = 860;
+
+/// The rows a line plot of `rows` (x in the first column, y in the second, in drawing order)
+/// needs at `columns` columns over x in [x_from, x_to]: of each run of rows in one column, the
+/// first, the lowest, the highest and the last, in their order (M4: Jugel et al., "M4: a
+/// visualization-oriented time series data aggregation", VLDB 2014). At two columns a pixel the
+/// curve is drawn to within a pixel of the whole series' (a run of rows is at most half a pixel
+/// wide). Rows not two wide, or with a number that is not finite, are kept as they are.
+Rows LineEnvelope(const Rows& rows, double x_from, double x_to, int columns);
+
 /// One data series for a figure: columns of numbers written to a temporary file.
 struct Series {
   std::string name;
@@ -70,7 +81,7 @@ class Report {
   void AddHtml(const std::string& html);
   /// Adds a figure, drawn with the others when the document is made (Html): `script` is gnuplot
   /// after the terminal is set; it reads the series as files named in `$name` placeholders
-  /// ($lift, $force, …). `height_px`: the figure's height (860 px wide).
+  /// ($lift, $force, …). `height_px`: the figure's height (kFigureWidthPx wide).
   void AddFigure(const std::string& caption, std::vector<Series> data, std::string script,
                  int height_px = 420);
   int figures() const { return figures_; }

@@ -4,9 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace needle {
 namespace {
@@ -113,6 +116,72 @@ TEST(HtmlReportTest, FiguresGivenToGnuplotAsTheyAreAddedMakeTheSamePage) {
   Gnuplot other;
   EXPECT_THROW(report.Html(other), std::logic_error);
   EXPECT_EQ(report.Html(), at_end);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// LineEnvelope keeps, of each column's run of rows, the first, lowest, highest and last, in
+// their order: every column shows the same extent and the curve enters and leaves it where the
+// whole series does.
+TEST(LineEnvelopeTest, EachColumnKeepsItsFirstLowestHighestAndLast) {
+  Rows rows;
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    const double x = 10.0 * i / (n - 1);
+    rows.push_back({x, std::sin(37.0 * x) + 0.3 * std::sin(911.0 * x)});  // a ringing curve
+  }
+  const int columns = 200;
+  const Rows out = LineEnvelope(rows, 0.0, 10.0, columns);
+  EXPECT_LE(out.size(), 4u * (columns + 1));
+  EXPECT_GT(out.size(), 2u * columns);
+  // Every kept row is a row of the series, in the series' order.
+  size_t at = 0;
+  for (size_t k = 0; k < out.size(); ++k) {
+    while (at < rows.size() && (rows.row(at)[0] != out.row(k)[0])) ++at;
+    ASSERT_LT(at, rows.size()) << k;
+    EXPECT_EQ(rows.row(at)[1], out.row(k)[1]);
+  }
+  // Each column: the same first, last, least and largest y.
+  const auto column = [&](double x) { return static_cast<int>(std::floor(x * (columns / 10.0))); };
+  const auto extents = [&](const Rows& r) {
+    std::vector<std::array<double, 4>> e(columns + 1, {NAN, NAN, INFINITY, -INFINITY});
+    for (size_t i = 0; i < r.size(); ++i) {
+      auto& c = e[column(r.row(i)[0])];
+      if (std::isnan(c[0])) c[0] = r.row(i)[1];
+      c[1] = r.row(i)[1];
+      c[2] = std::min(c[2], r.row(i)[1]);
+      c[3] = std::max(c[3], r.row(i)[1]);
+    }
+    return e;
+  };
+  const auto a = extents(rows), b = extents(out);
+  for (int c = 0; c <= columns; ++c) {
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_TRUE(a[c][j] == b[c][j] || (std::isnan(a[c][j]) && std::isnan(b[c][j])))
+          << "column " << c << " item " << j;
+    }
+  }
+}
+
+TEST(LineEnvelopeTest, RowsItCannotJudgeAreKeptAsTheyAre) {
+  Rows gap;
+  for (double x : {0.0, 0.1, 0.2}) gap.push_back({x, x});
+  gap.push_back({NAN, NAN});
+  for (double x : {0.3, 0.4, 0.5}) gap.push_back({x, -x});
+  const Rows out = LineEnvelope(gap, 0.0, 1.0, 1);  // one column: the gap splits its run
+  ASSERT_EQ(out.size(), 5u);
+  EXPECT_EQ(out.row(1)[0], 0.2);
+  EXPECT_TRUE(std::isnan(out.row(2)[0]));
+  EXPECT_EQ(out.row(3)[0], 0.3);
+  EXPECT_EQ(out.row(4)[0], 0.5);
+  Rows wide;
+  for (double x : {0.0, 0.1, 0.2, 0.3}) wide.push_back({x, x, x});
+  EXPECT_EQ(LineEnvelope(wide, 0.0, 1.0, 1).size(), 4u);  // three columns: not a line's rows
+  EXPECT_EQ(LineEnvelope(gap, 1.0, 1.0, 10).size(), gap.size());  // no x range
 }
 
 }  // namespace
