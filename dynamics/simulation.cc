@@ -94,7 +94,7 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
     e.cycle = cycle;
     r.episodes.push_back(e);
   }
-  r.series.reserve(r.series.size() + recorder.series().size());
+  if (r.series.empty()) r.series.reserve(recorder.series().size());  // later cycles: doubling
   for (SeriesPoint p : recorder.series()) {
     p.crank_rad += shift_rad;
     p.time_s += shift_s;

@@ -61,19 +61,25 @@ bool WriteToPipe(int fd, const std::string& text) {
 Gnuplot::Gnuplot() {
   char pattern[] = "/tmp/needle-report-XXXXXX";
   const char* dir = mkdtemp(pattern);
-  if (!dir) throw std::runtime_error("report: cannot create a temporary folder for gnuplot");
+  // The machine's faults, not needle's: one line, exit 2 (CaseError).
+  if (!dir) {
+    throw CaseError(std::string("report: cannot make a temporary folder for gnuplot in /tmp: ") +
+                    std::strerror(errno));
+  }
   folder_ = dir;
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) {
     const std::string why = std::strerror(errno);
     std::error_code ignored;
     std::filesystem::remove_all(folder_, ignored);
-    throw std::runtime_error("report: cannot make a pipe to gnuplot: " + why);
+    throw CaseError("report: cannot make a pipe to gnuplot: " + why);
   }
-  // gnuplot reads the pipe as its standard input and writes its messages to err.txt.
+  // gnuplot reads the pipe as its standard input and writes its messages to err.txt; nothing of
+  // it reaches needle's standard output (a --json object).
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   const std::string errors = (folder_ / "err.txt").string();
   posix_spawn_file_actions_addopen(&actions, 2, errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
   char name[] = "gnuplot";
@@ -85,9 +91,12 @@ Gnuplot::Gnuplot() {
     close(fds[1]);
     std::error_code ignored;
     std::filesystem::remove_all(folder_, ignored);
-    throw CaseError(
-        "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
-        "or bash scripts/install-deps.sh)");
+    if (spawned == ENOENT) {
+      throw CaseError(
+          "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
+          "or bash scripts/install-deps.sh)");
+    }
+    throw CaseError(std::string("report: cannot start gnuplot: ") + std::strerror(spawned));
   }
   input_ = fds[1];
 }
@@ -123,12 +132,14 @@ int Gnuplot::Finish() {
 }
 
 std::string Gnuplot::ErrorText() const {
-  // Messages of a loaded script come indented: each line as `gnuplot script` writes it.
+  // A loaded script's messages come indented by the 9 columns of gnuplot's prompt: each line as
+  // `gnuplot script` writes it.
   std::istringstream in(Slurp(folder_ / "err.txt"));
   std::string text, line;
   while (std::getline(in, line)) {
-    const size_t start = line.find_first_not_of(' ');
-    text += (start == std::string::npos ? std::string() : line.substr(start)) + '\n';
+    size_t indent = 0;
+    while (indent < 9 && indent < line.size() && line[indent] == ' ') ++indent;
+    text += line.substr(indent) + '\n';
   }
   return text;
 }
@@ -170,7 +181,9 @@ void Rows::push_back(std::initializer_list<double> row) {
 }
 
 Rows LineEnvelope(const Rows& rows, double x_from, double x_to, int columns) {
-  if (rows.width() != 2 || !(x_to > x_from) || columns < 1) return rows;
+  if (rows.width() != 2 || !std::isfinite(x_from) || !std::isfinite(x_to) || !(x_to > x_from) ||
+      columns < 1)
+    return rows;
   const double per_x = columns / (x_to - x_from);
   const auto finite = [&rows](size_t i) {
     return std::isfinite(rows.row(i)[0]) && std::isfinite(rows.row(i)[1]);
@@ -248,11 +261,15 @@ void Report::SendFigure(Gnuplot& gnuplot, size_t k) const {
       at += file.size() + 2;
     }
   }
-  std::ofstream(dir / "figure.gp") << "reset session\ncd '" << dir.string() << "'\n"
-                                   << "set terminal svg size " << kFigureWidthPx << ","
-                                   << f.height_px << " font 'sans,12' background rgb 'white'\n"
-                                   << "set output 'figure.svg'\nset grid\n"
-                                   << script << "\nunset output\n";
+  // `unset multiplot` first: a figure that failed inside a multiplot leaves gnuplot in it (and
+  // `reset session` does not end it). Its last line marks the figure drawn: a failed figure has
+  // none, whatever its SVG holds.
+  std::ofstream(dir / "figure.gp")
+      << "unset multiplot\nreset session\ncd '" << dir.string() << "'\n"
+      << "set terminal svg size " << kFigureWidthPx << "," << f.height_px
+      << " font 'sans,12' background rgb 'white'\n"
+      << "set output 'figure.svg'\nset grid\n"
+      << script << "\nunset output\nset print 'drawn'\nprint 1\nunset print\n";
   gnuplot.Load(dir / "figure.gp");
 }
 
@@ -267,9 +284,11 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
   const int status = gnuplot.Finish();
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];
-    const std::string body = Slurp(folder / ("f" + std::to_string(k)) / "figure.svg");
+    const std::filesystem::path dir = folder / ("f" + std::to_string(k));
+    const std::string body = Slurp(dir / "figure.svg");
     const auto start = body.find("<svg");  // drop the XML prologue for inline use
-    if (start == std::string::npos || body.find("</svg>") == std::string::npos) {
+    if (!std::filesystem::exists(dir / "drawn") || start == std::string::npos ||
+        body.find("</svg>") == std::string::npos) {
       throw std::runtime_error("gnuplot failed drawing \"" + f.caption +
                                "\": " + gnuplot.ErrorText());
     }

@@ -13,9 +13,10 @@
 namespace needle {
 
 /// A gnuplot process, started when made, so that its start-up (some 10 ms of loading) runs
-/// beside the work before the figures, and waiting on a pipe for the script Report::Html gives
-/// it. Throws CaseError (exit 2: the machine lacks it, no bug) saying how to install gnuplot when
-/// it cannot be run; closes the pipe (gnuplot then ends) and waits for it when it goes.
+/// beside the work before the figures, and waiting on a pipe for the figures' scripts (Load, as
+/// a Report adds or draws them). Throws CaseError (exit 2: the machine's fault, no bug) saying
+/// how to install gnuplot when it is not there, or why it cannot be started; closes the pipe
+/// (gnuplot then ends) and waits for it when it goes. Its standard output goes to /dev/null.
 class Gnuplot {
  public:
   Gnuplot();
@@ -31,6 +32,7 @@ class Gnuplot {
   /// Ends gnuplot's input, waits for it to end and returns its exit status (not 0 when a script
   /// failed); what it wrote to its standard error is in ErrorText(). Once only.
   int Finish();
+  /// What gnuplot wrote to its standard error so far, as `gnuplot script` writes it.
   std::string ErrorText() const;
 
  private:
@@ -43,7 +45,8 @@ class Gnuplot {
 /// every row as wide as the first.
 class Rows {
  public:
-  /// Appends one row; throws std::logic_error when it is not as wide as the first.
+  /// Appends one row; throws std::logic_error when it is not as wide as the first. (Named as a
+  /// std::vector's, which its callers filled before.)
   void push_back(std::initializer_list<double> row);
   bool empty() const { return values_.empty(); }
   size_t size() const { return width_ ? values_.size() / width_ : 0; }
@@ -79,15 +82,17 @@ class Report {
   explicit Report(std::string title, Gnuplot* gnuplot = nullptr);
 
   void AddHtml(const std::string& html);
-  /// Adds a figure, drawn with the others when the document is made (Html): `script` is gnuplot
-  /// after the terminal is set; it reads the series as files named in `$name` placeholders
+  /// Adds a figure, given to the report's gnuplot now when it has one, else drawn with the others
+  /// when the document is made (Html): `script` is gnuplot after the terminal is set; it reads the
+  /// series as files named in `$name` placeholders
   /// ($lift, $force, …). `height_px`: the figure's height (kFigureWidthPx wide).
   void AddFigure(const std::string& caption, std::vector<Series> data, std::string script,
                  int height_px = 420);
   int figures() const { return figures_; }
 
-  /// The whole HTML document; its figures are drawn here, all in one gnuplot process. Throws
-  /// std::runtime_error naming gnuplot's failure and the figure it failed on.
+  /// The whole HTML document, every figure drawn by one gnuplot process (the report's own, or one
+  /// started here). Throws std::runtime_error naming gnuplot's failure and the first figure it
+  /// failed on.
   std::string Html() const;
   /// The same, drawn by `gnuplot` (started before the work that made the report; the report's
   /// own when it has one).

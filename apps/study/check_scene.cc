@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
+#include <system_error>
 #include <thread>
 
 #include "apps/case/case_profile.h"
@@ -158,7 +159,13 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
       }
     };
     std::future<void> surge;
-    if (cores > 1) surge = std::async(std::launch::async, study_surge);
+    if (cores > 1) {
+      try {
+        surge = std::async(std::launch::async, study_surge);
+      } catch (const std::system_error&) {
+        // No thread to be had: the study runs after the sweep, as on one core.
+      }
+    }
     SimulationOptions sim = r.run_options;
     sim.force_dynamic = true;  // the report shows the dynamic force
     sim.record_series = options.record_series;

@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -74,12 +76,6 @@ TEST(HtmlReportTest, AReportWithoutFiguresNeedsNoGnuplot) {
   EXPECT_NE(report.Html().find("<p>x</p>"), std::string::npos);
 }
 
-}  // namespace
-}  // namespace needle
-
-namespace needle {
-namespace {
-
 TEST(HtmlReportTest, RowsAreAsWideAsTheFirst) {
   Rows rows;
   EXPECT_TRUE(rows.empty());
@@ -96,12 +92,6 @@ TEST(HtmlReportTest, RowsAreAsWideAsTheFirst) {
   }
 }
 
-}  // namespace
-}  // namespace needle
-
-namespace needle {
-namespace {
-
 // A report given its gnuplot when made has each figure drawn as it is added: the same page as
 // a report drawn at the end; finished with another gnuplot it is refused.
 TEST(HtmlReportTest, FiguresGivenToGnuplotAsTheyAreAddedMakeTheSamePage) {
@@ -117,12 +107,6 @@ TEST(HtmlReportTest, FiguresGivenToGnuplotAsTheyAreAddedMakeTheSamePage) {
   EXPECT_THROW(report.Html(other), std::logic_error);
   EXPECT_EQ(report.Html(), at_end);
 }
-
-}  // namespace
-}  // namespace needle
-
-namespace needle {
-namespace {
 
 // LineEnvelope keeps, of each column's run of rows, the first, lowest, highest and last, in
 // their order: every column shows the same extent and the curve enters and leaves it where the
@@ -144,6 +128,7 @@ TEST(LineEnvelopeTest, EachColumnKeepsItsFirstLowestHighestAndLast) {
     while (at < rows.size() && (rows.row(at)[0] != out.row(k)[0])) ++at;
     ASSERT_LT(at, rows.size()) << k;
     EXPECT_EQ(rows.row(at)[1], out.row(k)[1]);
+    ++at;  // each row of the series kept once at most
   }
   // Each column: the same first, last, least and largest y.
   const auto column = [&](double x) { return static_cast<int>(std::floor(x * (columns / 10.0))); };
@@ -182,6 +167,34 @@ TEST(LineEnvelopeTest, RowsItCannotJudgeAreKeptAsTheyAre) {
   for (double x : {0.0, 0.1, 0.2, 0.3}) wide.push_back({x, x, x});
   EXPECT_EQ(LineEnvelope(wide, 0.0, 1.0, 1).size(), 4u);  // three columns: not a line's rows
   EXPECT_EQ(LineEnvelope(gap, 1.0, 1.0, 10).size(), gap.size());  // no x range
+}
+
+// A figure stops at its first error (a later line that would draw does not make it drawn), a
+// figure that fails inside a multiplot does not fail the ones after it, and the first failing
+// figure is the one named.
+TEST(HtmlReportTest, AFigureStopsAtItsFirstErrorAndTheNextIsStillDrawn) {
+  Gnuplot gnuplot;
+  Report report("three figures", &gnuplot);
+  report.AddFigure("stops", {Make("a", {{0.0, 1.0}, {1.0, 2.0}})},
+                   "plot no_such_function($a)\nplot $a with lines");
+  report.AddFigure("multiplot", {Make("b", {{0.0, 1.0}, {1.0, 2.0}})},
+                   "set multiplot layout 2,1\nplot $b with lines\nplot no_such_function($b)\n"
+                   "unset multiplot");
+  report.AddFigure("fine", {Make("c", {{0.0, 1.0}, {1.0, 2.0}})}, "plot $c with lines");
+  try {
+    report.Html();
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("gnuplot failed drawing \"stops\": ", 0), 0u) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(gnuplot.folder() / "f0" / "drawn"));
+  EXPECT_FALSE(std::filesystem::exists(gnuplot.folder() / "f1" / "drawn"));
+  EXPECT_TRUE(std::filesystem::exists(gnuplot.folder() / "f2" / "drawn"));
+  const std::string svg = [&] {
+    std::ifstream in(gnuplot.folder() / "f2" / "figure.svg");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
 }
 
 }  // namespace

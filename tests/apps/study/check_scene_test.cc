@@ -736,6 +736,13 @@ TEST(CheckSceneTest, TheSurgeStudyBesideTheSweepGivesTheSameResult) {
       EXPECT_EQ(a.surge->rated.max_spring_force_N, b.surge->rated.max_spring_force_N);
       EXPECT_EQ(a.surge->overspeed.max_lift_m, b.surge->overspeed.max_lift_m);
       EXPECT_EQ(a.surge->massless_overspeed.max_lift_m, b.surge->massless_overspeed.max_lift_m);
+      // The massless spring's run: the rated run where the case has no coil masses.
+      EXPECT_EQ(a.surge->massless.min_contact_force_ratio,
+                b.surge->massless.min_contact_force_ratio);
+      EXPECT_EQ(a.surge->massless.max_spring_force_N, b.surge->massless.max_spring_force_N);
+      EXPECT_EQ(a.surge->massless.stats.steps, b.surge->massless.stats.steps);
+      EXPECT_GT(a.surge->massless.stats.steps, 0);
+      if (c.spring->masses == 1) EXPECT_EQ(a.surge->massless.max_lift_m, a.run->max_lift_m);
     }
     ASSERT_TRUE(a.sweep && b.sweep);
     EXPECT_EQ(a.sweep->n_dyn_rpm, b.sweep->n_dyn_rpm);
