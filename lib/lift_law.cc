@@ -183,7 +183,11 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
 }  // namespace
 
 LiftLaw::LiftLaw(LiftTable table, const SplineOptions& options)
-    : LiftLaw(std::move(table), LiftLawOptions{options}) {}
+    : LiftLaw(std::move(table), [&options] {
+        LiftLawOptions o;  // every other field its default
+        o.spline = options;
+        return o;
+      }()) {}
 
 LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
     : table_(std::move(table)),

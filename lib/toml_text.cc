@@ -57,7 +57,7 @@ class Transcoder {
   }
 
   static std::string Hex(unsigned long v, int digits) {
-    char buf[16];
+    char buf[24];  // 16 hexadecimal digits of an unsigned long at most, and the terminator
     std::snprintf(buf, sizeof buf, "%0*lX", digits, v);
     return buf;
   }

@@ -30,7 +30,9 @@ void ExpectWithinLimits(const SynthesizedLaw& law, const SynthesisSpec& s) {
     EXPECT_LE(law.s2[i], s.accel_limit * (1 + 1e-12)) << i;
     EXPECT_GE(law.s2[i], -s.decel_limit * (1 + 1e-12)) << i;
     // Every step, the junction of the two sides too (issue 11: it used to be let off).
-    if (i > 0) EXPECT_LE(std::abs(law.s3[i]), s.jerk_limit * (1 + 1e-9)) << i;
+    if (i > 0) {
+      EXPECT_LE(std::abs(law.s3[i]), s.jerk_limit * (1 + 1e-9)) << i;
+    }
     if (i > 0) {
       EXPECT_GT(law.phi[i], law.phi[i - 1]);
     }

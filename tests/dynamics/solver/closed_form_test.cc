@@ -278,8 +278,12 @@ TEST(ClosedFormTest, TheAuditIntegralsInClosedFormAreTheQuadrature) {
     const double scale = std::max({std::abs(quad[2]), std::abs(quad[3]), 1e-9});
     EXPECT_NEAR(closed[2], quad[2], 1e-11 * scale) << k.frac << " " << k.mode.cam << k.mode.seat;
     EXPECT_NEAR(closed[3], quad[3], 1e-11 * scale) << k.frac << " " << k.mode.cam << k.mode.seat;
-    if (k.mode.cam) EXPECT_GT(std::abs(quad[2]), 1e-4) << k.frac;       // the cam works
-    if (k.mode.cam || k.mode.seat) EXPECT_GT(quad[3], 1e-9) << k.frac;  // a dashpot dissipates
+    if (k.mode.cam) {
+      EXPECT_GT(std::abs(quad[2]), 1e-4) << k.frac;  // the cam works
+    }
+    if (k.mode.cam || k.mode.seat) {
+      EXPECT_GT(quad[3], 1e-9) << k.frac;  // a dashpot dissipates
+    }
   }
 }
 
