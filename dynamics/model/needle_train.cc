@@ -106,6 +106,8 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
     seat_law_ = std::make_shared<CompliantContact>(p_.seat_stiffness_N_m, p_.seat_damping_ratio,
                                                    needle_mass_kg_);
   }
+  cam_rigid_ = cam_law_->Constraint();
+  seat_rigid_ = seat_law_->Constraint();
   const std::vector<double>& lift = cam_.law().table().lift_m;
   const double top = lift.empty() ? 0.0 : *std::max_element(lift.begin(), lift.end());
   gap_tolerance_ = 1e-14 * std::max(top + cam_.play_m(), 1e-6);
@@ -122,10 +124,10 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
 
   c.y = x[0];
   c.v = x[1];
-  if (cam_law_->Constraint() && phase.mode.cam) {
+  if (cam_rigid_ && phase.mode.cam) {
     c.y = c.u;
     c.v = omega_ * c.u_slope;
-  } else if (seat_law_->Constraint() && phase.mode.seat) {
+  } else if (seat_rigid_ && phase.mode.seat) {
     c.y = c.v = 0.0;
   }
   c.g_c = c.u - c.y;                      // g_c = u − y
@@ -135,15 +137,15 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   c.g_s_rate = -c.v;
   c.f_s_raw = seat_law_->Force(c.g_s, c.g_s_rate);
   c.spring_N = SpringForce(x, c.y, c.v, phase, nullptr, nullptr);
-  if (cam_law_->Constraint() || seat_law_->Constraint()) {
+  if (cam_rigid_ || seat_rigid_) {
     // Constraint forces: what keeps the needle on a surface it sticks to, from
     // m ÿ = F_c + F_s − S + F_g with ÿ = ω² u'' on the cam and 0 on the seat.
     const double load = c.spring_N - p_.gas_force_N;
-    if (cam_law_->Constraint()) {
-      const double seat_push = !seat_law_->Constraint() && phase.mode.seat ? c.f_s_raw : 0.0;
+    if (cam_rigid_) {
+      const double seat_push = !seat_rigid_ && phase.mode.seat ? c.f_s_raw : 0.0;
       c.f_c_raw = needle_mass_kg_ * omega_ * omega_ * cam_.Curvature(th) + load - seat_push;
     }
-    if (seat_law_->Constraint()) {
+    if (seat_rigid_) {
       // A cam that sticks carries the whole load (its λ includes it): the seat lets go.
       const double cam_push = phase.mode.cam ? c.f_c_raw : 0.0;
       c.f_s_raw = load - cam_push;
@@ -160,8 +162,15 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
   const int n = coils_ + 1;
   const double k = segment_rate_N_m_, c = segment_damping_N_s_m_;
   double power = 0.0, s_prev = 0.0, s_1 = 0.0;
+  // Walking the nodes (SegmentMotion's values): node j − 1's lift and velocity carried over.
+  const double* lifts = x.data() + 4;            // x_i = x[3 + i], i = 1 … N − 1
+  const double* speeds = x.data() + 4 + coils_;  // v_i = x[3 + N − 1 + i]
+  double lift_before = y, speed_before = v;
   for (int j = 1; j <= n; ++j) {
-    const auto [s, rate] = SegmentMotion(x, y, v, j);
+    const double lift = j == n ? 0.0 : lifts[j - 1], speed = j == n ? 0.0 : speeds[j - 1];
+    const double s = lift_before - lift, rate = speed_before - speed;
+    lift_before = lift;
+    speed_before = speed;
     double s_j = k * s + c * rate;
     power += c * rate * rate;
     if (clash_law_) {  // the coils in contact: F on the mode's (or the gate's) branch
@@ -267,8 +276,8 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   at(3, 1) = c.g_c_rate * (-cc * ac) - a_c + c.g_s_rate * (-cs * as) - a_s;
   dfdt[3] = (dfc_dt - vc * w * up) * c.g_c_rate + a_c * w * w * upp;
   // A sticking rigid contact: ÿ is the surface's (ω² u'' or 0), F = λ with ∂λ/∂y = k.
-  const bool cam_stuck = cam_law_->Constraint() && phase.mode.cam;
-  const bool stuck = cam_stuck || (seat_law_->Constraint() && phase.mode.seat);
+  const bool cam_stuck = cam_rigid_ && phase.mode.cam;
+  const bool stuck = cam_stuck || (seat_rigid_ && phase.mode.seat);
   if (stuck) {
     at(0, 1) = at(1, 0) = at(1, 1) = 0.0;  // ẏ, ÿ: the surface's, not the state's
     dfdt[0] = cam_stuck ? w * w * upp : 0.0;
@@ -404,14 +413,14 @@ ContactMode NeedleTrain::StickingMode(const TrainState& x, double t, const Phase
     return std::abs(g) <= gap_tolerance_ && std::abs(g_rate) <= RateTolerance();
   };
   // The cam first: a cam that sticks carries the load, and the seat's λ depends on it.
-  if (cam_law_->Constraint()) {
+  if (cam_rigid_) {
     Phase free = phase;  // the needle's own motion: no rigid contact holding it
     free.mode.cam = false;
-    free.mode.seat = phase.mode.seat && !seat_law_->Constraint();
+    free.mode.seat = phase.mode.seat && !seat_rigid_;
     const Contacts c = Evaluate(x, t, free);
     mode.cam = sticks(c.g_c, c.g_c_rate) && c.f_c_raw > 0.0;
   }
-  if (seat_law_->Constraint()) {
+  if (seat_rigid_) {
     Phase with_cam = phase;
     with_cam.mode = {mode.cam, false};
     const Contacts c = Evaluate(x, t, with_cam);

@@ -174,7 +174,7 @@ class NeedleTrain {
   /// … and moves with its surface within this rate, m/s (1e-10 of ω times that lift).
   double RateTolerance() const { return 1e4 * omega_ * gap_tolerance_; }
   /// Any contact rigid (ContactLaw::Constraint).
-  bool HasConstraint() const { return cam_law_->Constraint() || seat_law_->Constraint(); }
+  bool HasConstraint() const { return cam_rigid_ || seat_rigid_; }
 
   /// The static-equilibrium start (docs/model.md §5): y₀ and the mode it rests in (the coils
   /// of a chain evenly compressed, at rest).
@@ -219,6 +219,7 @@ class NeedleTrain {
   TrainParameters p_;
   double omega_, theta_a_;
   std::shared_ptr<const ContactLaw> cam_law_, seat_law_;
+  bool cam_rigid_ = false, seat_rigid_ = false;  // their Constraint(), asked once
   // The spring's force on the needle at needle lift y and velocity v in `phase` (its clashing
   // segments); into `coil_rates` (when given) the coils' v̇_i, into `dissipation_W` the
   // dashpots' and clash contacts' power.
