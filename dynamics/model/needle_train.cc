@@ -208,8 +208,11 @@ double NeedleTrain::LargestCoilSpeed(const TrainState& x) const {
 double NeedleTrain::LargestSegmentCompression(const TrainState& x) const {
   if (coils_ == 0) return x[0];
   double most = -std::numeric_limits<double>::infinity();
+  double lift_before = x[0];  // node j − 1's lift (SegmentMotion's s_j, walking the nodes)
   for (int j = 1; j <= coils_ + 1; ++j) {
-    most = std::max(most, SegmentMotion(x, x[0], x[1], j)[0]);
+    const double lift = j == coils_ + 1 ? 0.0 : x[3 + j];
+    most = std::max(most, lift_before - lift);
+    lift_before = lift;
   }
   return most;
 }
