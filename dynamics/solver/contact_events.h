@@ -36,6 +36,9 @@ constexpr int kEventCount = 7;
 constexpr int kMaxEventCount = kEventCount + 2 * kMaxCoilMasses;
 /// The witnesses of the two contacts: gap and force branch of the cam (0, 1) and the seat (2, 3).
 constexpr int kCamGap = 0, kCamBranch = 1, kSeatGap = 2, kSeatBranch = 3;
+/// y − 1 µm: the gate of witnesses 5 (ġ_c off the cam) and 6 (ẏ), which observe a lifted needle
+/// only (+1 below it).
+constexpr int kLiftGate = 4;
 /// Lift above which a needle off the cam counts as separated, m (docs/model.md §6: 1 µm).
 constexpr double kSeparationLift_m = 1e-6;
 

@@ -208,6 +208,14 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
         std::optional<double> root;
         if (SignOf((*from_values)[i]) != signs[i]) {
           root = from;  // roundoff at a restart: the function is already past zero
+        } else if (piece && o_.leave_out && (i == 5 || i == 6) &&
+                   !((*from_values)[kLiftGate] > 0.0)) {
+          // 5 and 6 observe a lifted needle only: from a needle below the separation lift up
+          // to witness 4's crossing (gate_end, the end of their search) they are +1 (Events),
+          // so they cannot cross inside it. (A search would find the gate's opening itself at
+          // gate_end, which is no earlier than the earliest crossing: some 40 halvings to the
+          // time's round-off for nothing.)
+          root.reset();
         } else if (piece) {
           // The closed form's step ends at t1 itself (no snapping): its end values serve. Only
           // a crossing before the earliest found so far matters: the search ends there.
