@@ -59,29 +59,29 @@ bool WriteToPipe(int fd, const std::string& text) {
 }  // namespace
 
 Gnuplot::Gnuplot() {
-  char pattern[] = "/tmp/needle-report-XXXXXX";
-  const char* dir = mkdtemp(pattern);
-  // The machine's faults, not needle's: one line, exit 2 (CaseError).
-  if (!dir) {
-    throw CaseError(std::string("report: cannot make a temporary folder for gnuplot in /tmp: ") +
+  // The machine's faults, not needle's: one line, exit 2 (CaseError). gnuplot's messages go to
+  // a file without a name (made and unlinked at once: nothing is left in /tmp by a command
+  // interrupted while it computes); the figures' folder is made when the first figure is.
+  char pattern[] = "/tmp/needle-gnuplot-XXXXXX";
+  errors_ = mkostemp(pattern, O_CLOEXEC);
+  if (errors_ < 0) {
+    throw CaseError(std::string("report: cannot make a temporary file for gnuplot in /tmp: ") +
                     std::strerror(errno));
   }
-  folder_ = dir;
+  unlink(pattern);
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) {
     const std::string why = std::strerror(errno);
-    std::error_code ignored;
-    std::filesystem::remove_all(folder_, ignored);
+    close(errors_);
     throw CaseError("report: cannot make a pipe to gnuplot: " + why);
   }
-  // gnuplot reads the pipe as its standard input and writes its messages to err.txt; nothing of
+  // gnuplot reads the pipe as its standard input and writes its messages to the file; nothing of
   // it reaches needle's standard output (a --json object).
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  const std::string errors = (folder_ / "err.txt").string();
-  posix_spawn_file_actions_addopen(&actions, 2, errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_adddup2(&actions, errors_, 2);
   char name[] = "gnuplot";
   char* argv[] = {name, nullptr};
   const int spawned = posix_spawnp(&pid_, "gnuplot", &actions, nullptr, argv, environ);
@@ -89,8 +89,7 @@ Gnuplot::Gnuplot() {
   close(fds[0]);
   if (spawned != 0) {
     close(fds[1]);
-    std::error_code ignored;
-    std::filesystem::remove_all(folder_, ignored);
+    close(errors_);
     if (spawned == ENOENT) {
       throw CaseError(
           "gnuplot is not installed; the report's figures need it (apt-get install gnuplot-nox, "
@@ -108,8 +107,23 @@ Gnuplot::~Gnuplot() {
     while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
     }
   }
-  std::error_code ignored;
-  std::filesystem::remove_all(folder_, ignored);
+  close(errors_);
+  if (!folder_.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder_, ignored);
+  }
+}
+
+const std::filesystem::path& Gnuplot::Folder() {
+  if (folder_.empty()) {
+    char pattern[] = "/tmp/needle-report-XXXXXX";
+    if (!mkdtemp(pattern)) {
+      throw CaseError(std::string("report: cannot make a temporary folder for gnuplot in /tmp: ") +
+                      std::strerror(errno));
+    }
+    folder_ = pattern;
+  }
+  return folder_;
 }
 
 void Gnuplot::Load(const std::filesystem::path& script) {
@@ -134,7 +148,16 @@ int Gnuplot::Finish() {
 std::string Gnuplot::ErrorText() const {
   // A loaded script's messages come indented by the 9 columns of gnuplot's prompt: each line as
   // `gnuplot script` writes it.
-  std::istringstream in(Slurp(folder_ / "err.txt"));
+  std::string all;
+  char buffer[4096];
+  for (off_t at = 0;;) {
+    const ssize_t n = pread(errors_, buffer, sizeof buffer, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    all.append(buffer, static_cast<size_t>(n));
+    at += n;
+  }
+  std::istringstream in(all);
   std::string text, line;
   while (std::getline(in, line)) {
     size_t indent = 0;
@@ -233,7 +256,7 @@ void Report::SendFigure(Gnuplot& gnuplot, size_t k) const {
   // no temporary path) with its script, `reset session` first; given to gnuplot as soon as it is
   // written, so that gnuplot draws it while the next one is made.
   const PendingFigure& f = pending_[k];
-  const std::filesystem::path dir = gnuplot.folder() / ("f" + std::to_string(k));
+  const std::filesystem::path dir = gnuplot.Folder() / ("f" + std::to_string(k));
   std::filesystem::create_directory(dir);
   std::string script = f.script;
   for (const Series& s : f.data) {
@@ -280,7 +303,7 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
   if (pending_.empty()) return parts;
   // Every figure in one gnuplot process; those not given to it yet now.
   for (size_t k = gnuplot_ ? sent_ : 0; k < pending_.size(); ++k) SendFigure(gnuplot, k);
-  const std::filesystem::path& folder = gnuplot.folder();
+  const std::filesystem::path& folder = gnuplot.Folder();
   const int status = gnuplot.Finish();
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];

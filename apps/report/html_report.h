@@ -24,8 +24,9 @@ class Gnuplot {
   Gnuplot(const Gnuplot&) = delete;
   Gnuplot& operator=(const Gnuplot&) = delete;
 
-  /// A folder of its own for the figures' files, removed with everything in it when it goes.
-  const std::filesystem::path& folder() const { return folder_; }
+  /// A folder of its own for the figures' files, made when first asked (an interrupted command
+  /// leaves none before its figures), removed with everything in it when it goes.
+  const std::filesystem::path& Folder();
   /// Has gnuplot run the script file `script` (as `gnuplot script` runs it: stopping at the
   /// script's first error) once it has run the ones given before.
   void Load(const std::filesystem::path& script);
@@ -36,8 +37,9 @@ class Gnuplot {
   std::string ErrorText() const;
 
  private:
-  std::filesystem::path folder_;
-  int input_ = -1;  // the write end of gnuplot's standard input
+  std::filesystem::path folder_;  // empty until Folder() makes it
+  int input_ = -1;                // the write end of gnuplot's standard input
+  int errors_ = -1;               // gnuplot's standard error: a file without a name
   pid_t pid_ = -1;
 };
 

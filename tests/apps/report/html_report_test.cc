@@ -32,9 +32,9 @@ Report TwoFigures(const std::string& second_script) {
 
 TEST(HtmlReportTest, FiguresAreDrawnInPlaceByTheGnuplotStartedBeforeTheWork) {
   Gnuplot gnuplot;
-  const std::filesystem::path folder = gnuplot.folder();
-  EXPECT_TRUE(std::filesystem::is_directory(folder));
   const std::string html = TwoFigures("plot $points with points").Html(gnuplot);
+  const std::filesystem::path folder = gnuplot.Folder();  // made for the first figure
+  EXPECT_TRUE(std::filesystem::is_directory(folder / "f1"));
   const size_t before = html.find("<p>before</p>");
   const size_t first = html.find("<figure><svg");
   const size_t second = html.find("<figure><svg", first + 1);
@@ -51,7 +51,7 @@ TEST(HtmlReportTest, AFigureGnuplotRefusesIsNamedWithGnuplotsMessageAndNothingIs
   std::filesystem::path folder;
   try {
     Gnuplot gnuplot;
-    folder = gnuplot.folder();
+    folder = gnuplot.Folder();
     TwoFigures("plot no_such_function($points)").Html(gnuplot);
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
@@ -100,7 +100,7 @@ TEST(HtmlReportTest, FiguresGivenToGnuplotAsTheyAreAddedMakeTheSamePage) {
   Report report("two figures", &gnuplot);
   report.AddHtml("<p>before</p>");
   report.AddFigure("a line", {Make("line", {{0.0, 1.0}, {1.0, 2.0}})}, "plot $line with lines");
-  EXPECT_TRUE(std::filesystem::exists(gnuplot.folder() / "f0" / "figure.gp"));  // given already
+  EXPECT_TRUE(std::filesystem::exists(gnuplot.Folder() / "f0" / "figure.gp"));  // given already
   report.AddFigure("the second", {Make("points", {{0.0, 3.0}, {1.0, 4.0}})},
                    "plot $points with points");
   Gnuplot other;
@@ -187,11 +187,11 @@ TEST(HtmlReportTest, AFigureStopsAtItsFirstErrorAndTheNextIsStillDrawn) {
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()).rfind("gnuplot failed drawing \"stops\": ", 0), 0u) << e.what();
   }
-  EXPECT_FALSE(std::filesystem::exists(gnuplot.folder() / "f0" / "drawn"));
-  EXPECT_FALSE(std::filesystem::exists(gnuplot.folder() / "f1" / "drawn"));
-  EXPECT_TRUE(std::filesystem::exists(gnuplot.folder() / "f2" / "drawn"));
+  EXPECT_FALSE(std::filesystem::exists(gnuplot.Folder() / "f0" / "drawn"));
+  EXPECT_FALSE(std::filesystem::exists(gnuplot.Folder() / "f1" / "drawn"));
+  EXPECT_TRUE(std::filesystem::exists(gnuplot.Folder() / "f2" / "drawn"));
   const std::string svg = [&] {
-    std::ifstream in(gnuplot.folder() / "f2" / "figure.svg");
+    std::ifstream in(gnuplot.Folder() / "f2" / "figure.svg");
     return std::string(std::istreambuf_iterator<char>(in), {});
   }();
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
