@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -28,23 +29,40 @@ std::string WriteTarget(const std::string& path) {
   return error ? path : target.string();
 }
 
-// The temporary files being written, removed by the handler of an interrupting signal (SIGINT,
-// SIGTERM, SIGHUP: a run stopped from the terminal or by its scheduler leaves no temporary
-// file); unlink() is async-signal-safe. A slot is taken by storing its path, then its flag.
-constexpr int kSlots = 16;
+// The temporary files and folders, removed by the handler of an interrupting signal (SIGINT,
+// SIGTERM, SIGHUP: a run stopped from the terminal or by its scheduler leaves no temporary file):
+// the files first (unlink), then the folders, innermost first (rmdir, repeated: a folder goes
+// once it is empty); both are async-signal-safe. A slot is taken by storing its path and kind,
+// then its flag.
+constexpr int kSlots = 128;
 char g_temporary[kSlots][4096];
+bool g_folder[kSlots];
 std::atomic<bool> g_taken[kSlots];
+constexpr int kFolderDepth = 4;  // folders inside registered folders, at most
+// Child processes that write into them (gnuplot), ended first (kill and waitpid are
+// async-signal-safe too): else one still drawing would write after the removal.
+constexpr int kChildSlots = 8;
+std::atomic<pid_t> g_child[kChildSlots];
 
 extern "C" void RemoveTemporariesAndDie(int signal_number) {
+  for (int i = 0; i < kChildSlots; ++i) {
+    const pid_t pid = g_child[i].load();
+    if (pid > 0) {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+  }
   for (int i = 0; i < kSlots; ++i)
-    if (g_taken[i].load()) unlink(g_temporary[i]);
+    if (g_taken[i].load() && !g_folder[i]) unlink(g_temporary[i]);
+  for (int pass = 0; pass < kFolderDepth; ++pass)
+    for (int i = 0; i < kSlots; ++i)
+      if (g_taken[i].load() && g_folder[i]) rmdir(g_temporary[i]);
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
 }
 
-// The slot holding `path`, or -1 (no slot free, or a path too long: the file is then left as
-// before, a temporary an interrupt may leave behind).
-int Register(const std::string& path) {
+// The handler, where the program has none of its own, once.
+void InstallRemovalHandler() {
   static std::once_flag installed;
   std::call_once(installed, [] {
     for (int s : {SIGINT, SIGTERM, SIGHUP}) {
@@ -53,21 +71,52 @@ int Register(const std::string& path) {
         std::signal(s, RemoveTemporariesAndDie);
     }
   });
+}
+
+}  // namespace
+
+int RegisterTemporary(const std::string& path, bool folder) {
+  InstallRemovalHandler();
   if (path.size() >= sizeof g_temporary[0]) return -1;
   static std::mutex mutex;
   std::lock_guard<std::mutex> lock(mutex);
   for (int i = 0; i < kSlots; ++i) {
     if (g_taken[i].load()) continue;
     std::memcpy(g_temporary[i], path.c_str(), path.size() + 1);
+    g_folder[i] = folder;
     g_taken[i].store(true);
     return i;
   }
   return -1;
 }
 
-void Unregister(int slot) {
+void UnregisterTemporary(int slot) {
   if (slot >= 0) g_taken[slot].store(false);
 }
+
+int RegisterChildProcess(pid_t pid) {
+  InstallRemovalHandler();
+  for (int i = 0; i < kChildSlots; ++i) {
+    pid_t free = 0;
+    if (g_child[i].compare_exchange_strong(free, pid)) return i;
+  }
+  return -1;
+}
+
+void UnregisterChildProcess(int slot) {
+  if (slot >= 0) g_child[slot].store(0);
+}
+
+SignalsHeld::SignalsHeld() {
+  sigset_t interrupting;
+  sigemptyset(&interrupting);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupting, s);
+  pthread_sigmask(SIG_BLOCK, &interrupting, &before_);
+}
+
+SignalsHeld::~SignalsHeld() { pthread_sigmask(SIG_SETMASK, &before_, nullptr); }
+
+namespace {
 
 // A new file's permissions: 0666 less the process's umask.
 mode_t NewFileMode() {
@@ -80,12 +129,15 @@ mode_t NewFileMode() {
 
 AtomicFile::AtomicFile(const std::string& path)
     : path_(path), target_(WriteTarget(path)), tmp_(target_ + ".tmp.XXXXXX") {
+  // Made and registered with the interrupting signals held: one arriving in between would leave
+  // the file.
+  const SignalsHeld held;
   fd_ = mkstemp(tmp_.data());
   if (fd_ < 0) {
     throw std::runtime_error(path_ +
                              ": cannot create a temporary file beside it: " + std::strerror(errno));
   }
-  slot_ = Register(tmp_);
+  slot_ = RegisterTemporary(tmp_);
 }
 
 AtomicFile::~AtomicFile() {
@@ -93,7 +145,7 @@ AtomicFile::~AtomicFile() {
     close(fd_);
     std::remove(tmp_.c_str());
   }
-  Unregister(slot_);
+  UnregisterTemporary(slot_);
 }
 
 void AtomicFile::Fail(const char* call) {
@@ -101,7 +153,7 @@ void AtomicFile::Fail(const char* call) {
   if (fd_ >= 0) close(fd_);
   fd_ = -1;
   std::remove(tmp_.c_str());
-  Unregister(slot_);
+  UnregisterTemporary(slot_);
   slot_ = -1;
   throw std::runtime_error(path_ + ": " + call + " failed: " + reason);
 }
@@ -135,14 +187,14 @@ void AtomicFile::Commit() {
   if (close(fd) != 0) {
     const std::string reason = std::strerror(errno);
     std::remove(tmp_.c_str());
-    Unregister(slot_);
+    UnregisterTemporary(slot_);
     slot_ = -1;
     throw std::runtime_error(path_ + ": close failed: " + reason);
   }
   const bool renamed = std::rename(tmp_.c_str(), target_.c_str()) == 0;
   const std::string reason = renamed ? "" : std::strerror(errno);
   if (!renamed) std::remove(tmp_.c_str());
-  Unregister(slot_);
+  UnregisterTemporary(slot_);
   slot_ = -1;
   if (!renamed) throw std::runtime_error(path_ + ": rename failed: " + reason);
 }

@@ -4,10 +4,38 @@
 /// flushed, then renamed over it), so an interrupted or failed run leaves either the old
 /// file or the complete new one, never half a file.
 
+#include <signal.h>
+#include <sys/types.h>
+
 #include <string>
 #include <string_view>
 
 namespace needle {
+
+/// Registers a temporary file (or, with `folder`, a folder) to be removed if SIGINT, SIGTERM or
+/// SIGHUP ends the program (where it has no handler of its own): files first, then folders once
+/// they are empty, innermost first. Returns its slot for UnregisterTemporary, or -1 when it
+/// cannot be kept (128 at a time; paths under 4096 bytes).
+int RegisterTemporary(const std::string& path, bool folder = false);
+void UnregisterTemporary(int slot);
+/// Registers a child process that writes into registered temporaries (gnuplot): the signals
+/// above end it (SIGKILL, then waited for) before removing them. Returns its slot, or -1 (8 at a
+/// time).
+int RegisterChildProcess(pid_t pid);
+void UnregisterChildProcess(int slot);
+
+/// SIGINT, SIGTERM and SIGHUP held back on this thread while it lives (delivered when it goes):
+/// around making a temporary whose name is known only once it is made, and registering it.
+class SignalsHeld {
+ public:
+  SignalsHeld();
+  ~SignalsHeld();
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+ private:
+  sigset_t before_;
+};
 
 /// A file written as it is produced and put in place atomically: the text goes to a temporary
 /// file beside `path` (buffered), and Commit() flushes, syncs and renames it over `path`; an

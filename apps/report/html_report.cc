@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "lib/case_error.h"
+#include "lib/output.h"
 
 extern char** environ;
 
@@ -56,19 +57,39 @@ bool WriteToPipe(int fd, const std::string& text) {
   return ok;
 }
 
+// Writes `text` to the new file `path`; a full or failing disk is the machine's fault: CaseError
+// naming the file (exit 2), not a figure gnuplot cannot read.
+void WriteWhole(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) {
+    throw CaseError("report: cannot write " + path.string() + " (" + std::strerror(errno) +
+                    "): a full or read-only temporary folder? ($TMPDIR, else /tmp)");
+  }
+}
+
+// $TMPDIR, else /tmp (std::filesystem::temp_directory_path's rule).
+std::string TemporaryFolder() {
+  std::error_code error;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path(error);
+  return error ? std::string("/tmp") : folder.string();
+}
+
 }  // namespace
 
 Gnuplot::Gnuplot() {
   // The machine's faults, not needle's: one line, exit 2 (CaseError). gnuplot's messages go to
   // a file without a name (made and unlinked at once: nothing is left in /tmp by a command
   // interrupted while it computes); the figures' folder is made when the first figure is.
-  char pattern[] = "/tmp/needle-gnuplot-XXXXXX";
-  errors_ = mkostemp(pattern, O_CLOEXEC);
+  const std::string temporary = TemporaryFolder();
+  std::string pattern = temporary + "/needle-gnuplot-XXXXXX";
+  errors_ = mkostemp(pattern.data(), O_CLOEXEC);
   if (errors_ < 0) {
-    throw CaseError(std::string("report: cannot make a temporary file for gnuplot in /tmp: ") +
+    throw CaseError("report: cannot make a temporary file for gnuplot in " + temporary + ": " +
                     std::strerror(errno));
   }
-  unlink(pattern);
+  unlink(pattern.c_str());
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) {
     const std::string why = std::strerror(errno);
@@ -82,8 +103,9 @@ Gnuplot::Gnuplot() {
   posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_adddup2(&actions, errors_, 2);
-  char name[] = "gnuplot";
-  char* argv[] = {name, nullptr};
+  // -d: no init file (~/.gnuplot, gnuplotrc) changes or breaks the figures.
+  char name[] = "gnuplot", defaults[] = "-d";
+  char* argv[] = {name, defaults, nullptr};
   const int spawned = posix_spawnp(&pid_, "gnuplot", &actions, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
   close(fds[0]);
@@ -98,30 +120,35 @@ Gnuplot::Gnuplot() {
     throw CaseError(std::string("report: cannot start gnuplot: ") + std::strerror(spawned));
   }
   input_ = fds[1];
+  child_slot_ = RegisterChildProcess(pid_);
 }
 
 Gnuplot::~Gnuplot() {
   if (input_ >= 0) close(input_);  // gnuplot reads the end of its input and ends
-  if (pid_ > 0) {
-    int status = 0;
-    while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-    }
-  }
+  if (pid_ > 0) Reap();
   close(errors_);
   if (!folder_.empty()) {
     std::error_code ignored;
     std::filesystem::remove_all(folder_, ignored);
   }
+  for (int slot : slots_) UnregisterTemporary(slot);
+}
+
+void Gnuplot::Temporary(const std::filesystem::path& path, bool folder) {
+  slots_.push_back(RegisterTemporary(path.string(), folder));
 }
 
 const std::filesystem::path& Gnuplot::Folder() {
   if (folder_.empty()) {
-    char pattern[] = "/tmp/needle-report-XXXXXX";
-    if (!mkdtemp(pattern)) {
-      throw CaseError(std::string("report: cannot make a temporary folder for gnuplot in /tmp: ") +
+    const std::string temporary = TemporaryFolder();
+    std::string pattern = temporary + "/needle-report-XXXXXX";
+    const SignalsHeld held;  // made and registered for removal with no interrupt in between
+    if (!mkdtemp(pattern.data())) {
+      throw CaseError("report: cannot make a temporary folder for gnuplot in " + temporary + ": " +
                       std::strerror(errno));
     }
     folder_ = pattern;
+    slots_.push_back(RegisterTemporary(folder_.string(), true));
   }
   return folder_;
 }
@@ -137,12 +164,25 @@ int Gnuplot::Finish() {
   if (input_ < 0) throw std::logic_error("Gnuplot::Finish: gnuplot has finished");
   close(input_);
   input_ = -1;
+  const int status = Reap();
+  if (status < 0) throw std::runtime_error("report: lost the gnuplot process");
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int Gnuplot::Reap() {
+  // Waited for without reaping first, then taken off the interrupt's list, then reaped: its pid
+  // stays its own (a zombie's) until the interrupt can no longer kill it.
+  siginfo_t info;
+  while (waitid(P_PID, pid_, &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+  }
+  UnregisterChildProcess(child_slot_);
+  child_slot_ = -1;
   int status = 0;
-  while (waitpid(pid_, &status, 0) < 0) {
-    if (errno != EINTR) throw std::runtime_error("report: lost the gnuplot process");
+  pid_t reaped = -1;
+  while ((reaped = waitpid(pid_, &status, 0)) < 0 && errno == EINTR) {
   }
   pid_ = -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return reaped < 0 ? -1 : status;
 }
 
 std::string Gnuplot::ErrorText() const {
@@ -257,7 +297,13 @@ void Report::SendFigure(Gnuplot& gnuplot, size_t k) const {
   // written, so that gnuplot draws it while the next one is made.
   const PendingFigure& f = pending_[k];
   const std::filesystem::path dir = gnuplot.Folder() / ("f" + std::to_string(k));
-  std::filesystem::create_directory(dir);
+  // Each file registered before it is made (an interrupt removes it), gnuplot's own too.
+  gnuplot.Temporary(dir, true);
+  std::error_code made;
+  if (!std::filesystem::create_directory(dir, made) && made) {
+    throw CaseError("report: cannot make " + dir.string() + ": " + made.message());
+  }
+  for (const char* own : {"figure.gp", "figure.svg", "drawn"}) gnuplot.Temporary(dir / own);
   std::string script = f.script;
   for (const Series& s : f.data) {
     const std::string file = s.name + ".dat";
@@ -276,7 +322,8 @@ void Report::SendFigure(Gnuplot& gnuplot, size_t k) const {
       }
       text += '\n';
     }
-    std::ofstream(dir / file) << text;
+    gnuplot.Temporary(dir / file);
+    WriteWhole(dir / file, text);
     // Replace every $name with the quoted file name.
     const std::string key = "$" + s.name;
     for (size_t at = script.find(key); at != std::string::npos; at = script.find(key, at)) {
@@ -287,12 +334,13 @@ void Report::SendFigure(Gnuplot& gnuplot, size_t k) const {
   // `unset multiplot` first: a figure that failed inside a multiplot leaves gnuplot in it (and
   // `reset session` does not end it). Its last line marks the figure drawn: a failed figure has
   // none, whatever its SVG holds.
-  std::ofstream(dir / "figure.gp")
-      << "unset multiplot\nreset session\ncd '" << dir.string() << "'\n"
-      << "set terminal svg size " << kFigureWidthPx << "," << f.height_px
-      << " font 'sans,12' background rgb 'white'\n"
-      << "set output 'figure.svg'\nset grid\n"
-      << script << "\nunset output\nset print 'drawn'\nprint 1\nunset print\n";
+  std::ostringstream gp;
+  gp << "unset multiplot\nreset session\ncd '" << dir.string() << "'\n"
+     << "set terminal svg size " << kFigureWidthPx << "," << f.height_px
+     << " font 'sans,12' background rgb 'white'\n"
+     << "set output 'figure.svg'\nset grid\n"
+     << script << "\nunset output\nset print 'drawn'\nprint 1\nunset print\n";
+  WriteWhole(dir / "figure.gp", gp.str());
   gnuplot.Load(dir / "figure.gp");
 }
 

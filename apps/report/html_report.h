@@ -16,7 +16,8 @@ namespace needle {
 /// beside the work before the figures, and waiting on a pipe for the figures' scripts (Load, as
 /// a Report adds or draws them). Throws CaseError (exit 2: the machine's fault, no bug) saying
 /// how to install gnuplot when it is not there, or why it cannot be started; closes the pipe
-/// (gnuplot then ends) and waits for it when it goes. Its standard output goes to /dev/null.
+/// (gnuplot then ends) and waits for it when it goes. Its standard output goes to /dev/null; it
+/// reads no init file (-d). Its temporaries are in $TMPDIR, else /tmp.
 class Gnuplot {
  public:
   Gnuplot();
@@ -35,11 +36,18 @@ class Gnuplot {
   int Finish();
   /// What gnuplot wrote to its standard error so far, as `gnuplot script` writes it.
   std::string ErrorText() const;
+  /// Registers a file (or folder) of the figures to be removed if an interrupting signal ends the
+  /// program (lib/output.h RegisterTemporary); all of Folder() goes when this does.
+  void Temporary(const std::filesystem::path& path, bool folder = false);
 
  private:
+  int Reap();  // waits for gnuplot to end: its wait status, or -1
+
   std::filesystem::path folder_;  // empty until Folder() makes it
   int input_ = -1;                // the write end of gnuplot's standard input
   int errors_ = -1;               // gnuplot's standard error: a file without a name
+  std::vector<int> slots_;        // the registered temporaries (RegisterTemporary)
+  int child_slot_ = -1;           // gnuplot, ended by an interrupt first (RegisterChildProcess)
   pid_t pid_ = -1;
 };
 
