@@ -80,7 +80,15 @@ int main(int argc, char** argv) {
   }
   try {
     for (const Command& c : commands) {
-      if (c.app->parsed()) return c.run();
+      if (!c.app->parsed()) continue;
+      const int status = c.run();
+      // What was printed must have reached its place (a full disk: it was exit 0, silent).
+      std::cout.flush();
+      if (!std::cout) {
+        std::cerr << "needle: standard output: the result could not be written (a full disk?)\n";
+        return 2;
+      }
+      return status;
     }
   } catch (const needle::CaseError& e) {
     std::cerr << "needle: " << e.what() << '\n';

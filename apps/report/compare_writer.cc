@@ -143,7 +143,7 @@ std::string CompareText(const Comparison& cmp, const std::string& path) {
 Report CompareReport(const Comparison& cmp) {
   const CheckedDesign &a = cmp.a, &b = cmp.b;
   // The report: verdicts, quantities, and both designs' curves overlaid.
-  Report report("needle compare: " + Escape(a.c.path) + " against " + Escape(b.c.path));
+  Report report("needle compare: " + a.c.path + " against " + b.c.path);  // Html escapes
   {
     std::ostringstream t;
     t << "<p>A: " << Escape(a.c.title.empty() ? a.c.path : a.c.title) << " (" << Escape(a.c.path)

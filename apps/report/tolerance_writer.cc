@@ -1,6 +1,7 @@
 // What tolerance prints: its JSON object, text and report (tolerance_writer.h).
 #include "apps/report/tolerance_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -87,7 +88,7 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
 Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t seed) {
   const ToleranceSection& t = r.tolerance;
   const double p_low = r.failure_probability_low, p_high = r.failure_probability_high;
-  Report report("needle tolerance: " + Escape(c.title.empty() ? c.path : c.title));
+  Report report("needle tolerance: " + (c.title.empty() ? c.path : c.title));  // Html escapes
   std::ostringstream head;
   head << "<p>" << r.samples.size() << " samples, seed " << seed << ", " << r.options.threads
        << " threads, " << Fixed(r.seconds, 1) << " s.</p><h2>Scatter (one σ)</h2><table>"
@@ -125,6 +126,10 @@ Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t se
       if (v != s.outputs.end() && std::isfinite(v->second)) values.rows.push_back({v->second});
     }
     const double width = (it->second.max - it->second.min) / 30.0;
+    // A spread within round-off, or bins below their printed resolution (12 decimals: a width
+    // printed as 0 made gnuplot refuse the figure), is no histogram.
+    const double scale = std::max(std::abs(it->second.max), std::abs(it->second.min));
+    if (!(width >= 1e-11) || !(it->second.max - it->second.min > 1e-9 * scale)) continue;
     report.AddFigure(
         label + ": histogram of " + std::to_string(it->second.count) + " samples", {values},
         "set xlabel \"" + label +

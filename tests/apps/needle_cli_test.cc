@@ -938,3 +938,25 @@ TEST(NeedleCliTest, ACheckStoppedWhileItsFiguresAreDrawnLeavesNothing) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A result that cannot be written to standard output (a full disk) is one line and exit 2; it
+// was exit 0 and silent.
+TEST(NeedleCliTest, AResultThatCannotBeWrittenIsExitTwo) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const std::string err = testing::TempPath("full.err");
+  const std::string command = std::string(NEEDLE_BINARY) + " kinematics " +
+                              std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1.toml" +
+                              " --json >/dev/full 2>" + err;
+  const int raw = std::system(command.c_str());
+  EXPECT_TRUE(WIFEXITED(raw));
+  EXPECT_EQ(WEXITSTATUS(raw), 2);
+  EXPECT_EQ(testing::Slurp(err),
+            "needle: standard output: the result could not be written (a full disk?)\n");
+  std::filesystem::remove(err);
+}
+
+}  // namespace
+}  // namespace needle

@@ -33,5 +33,30 @@ TEST(ToleranceWriterTest, AReportLeavesRefusedSamplesOutOfItsHistograms) {
   EXPECT_NE(ToleranceJson(c, r)["sample_results"][2]["refused"], nullptr);
 }
 
+// A scatter within round-off (a user's preload_percent = 1e-13) has no histogram: its bin width
+// printed to 12 decimals was 0, gnuplot refused the figure and the study ended in exit 3. The
+// report's title is escaped once (it was twice: "&amp;amp;").
+TEST(ToleranceWriterTest, AScatterWithinRoundOffHasNoHistogramAndTheTitleIsEscapedOnce) {
+  Case c;
+  c.path = "valve.toml";
+  c.title = "Cam A & B <v2>";
+  ToleranceResult r;
+  const std::string key = "spring.liftoff_rpm_quasi_static";
+  for (double n : {600.0, 600.0 * (1 + 1e-13), 600.0 * (1 + 2e-13)}) {
+    ToleranceSample s;
+    s.outputs[key] = n;
+    s.pass = true;
+    r.samples.push_back(s);
+  }
+  r.distributions[key] = Describe({600.0, 600.0 * (1 + 1e-13), 600.0 * (1 + 2e-13)});
+  r.options.threads = 1;
+  const Report report = ToleranceReport(c, r, 1);
+  EXPECT_EQ(report.figures(), 0);
+  const std::string html = report.Html();
+  EXPECT_NE(html.find("<title>needle tolerance: Cam A &amp; B &lt;v2&gt;</title>"),
+            std::string::npos);
+  EXPECT_EQ(html.find("&amp;amp;"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace needle
