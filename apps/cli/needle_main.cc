@@ -18,6 +18,7 @@
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
 #include "apps/report/output_format.h"
+#include "apps/report/output_paths.h"
 
 namespace {
 
@@ -78,27 +79,32 @@ int main(int argc, char** argv) {
     std::cerr << "needle: " << e.what() << " (see needle --help)\n";
     return 2;
   }
-  try {
-    for (const Command& c : commands) {
-      if (!c.app->parsed()) continue;
-      const int status = c.run();
-      // What was printed must have reached its place (a full disk: it was exit 0, silent).
-      std::cout.flush();
-      if (!std::cout) {
-        std::cerr << "needle: standard output: the result could not be written (a full disk?)\n";
-        return 2;
+  const auto run = [&commands]() -> int {
+    try {
+      for (const Command& c : commands) {
+        if (!c.app->parsed()) continue;
+        const int status = c.run();
+        // What was printed must have reached its place (a full disk: it was exit 0, silent).
+        std::cout.flush();
+        if (!std::cout) {
+          std::cerr << "needle: standard output: the result could not be written (a full disk?)\n";
+          return 2;
+        }
+        return status;
       }
-      return status;
+    } catch (const needle::CaseError& e) {
+      std::cerr << "needle: " << e.what() << '\n';
+      return 2;
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "needle: " << e.what() << '\n';
+      return 2;
+    } catch (const std::exception& e) {
+      std::cerr << "needle: error: " << e.what() << '\n';
+      return 3;
     }
-  } catch (const needle::CaseError& e) {
-    std::cerr << "needle: " << e.what() << '\n';
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "needle: " << e.what() << '\n';
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "needle: error: " << e.what() << '\n';
-    return 3;
-  }
-  return 0;
+    return 0;
+  };
+  const int status = run();
+  needle::RemoveEmptyMadeFolders();  // an --out folder made for a report never written
+  return status;
 }

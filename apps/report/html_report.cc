@@ -353,6 +353,13 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
   for (size_t k = gnuplot_ ? sent_ : 0; k < pending_.size(); ++k) SendFigure(gnuplot, k);
   const std::filesystem::path& folder = gnuplot.Folder();
   const int status = gnuplot.Finish();
+  // gnuplot's messages, or what little is known without them.
+  const auto why = [&] {
+    const std::string text = gnuplot.ErrorText();
+    return text.empty()
+               ? "gnuplot wrote no message and ended with status " + std::to_string(status) + "\n"
+               : text;
+  };
   for (size_t k = 0; k < pending_.size(); ++k) {
     const PendingFigure& f = pending_[k];
     const std::filesystem::path dir = folder / ("f" + std::to_string(k));
@@ -360,14 +367,13 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
     const auto start = body.find("<svg");  // drop the XML prologue for inline use
     if (!std::filesystem::exists(dir / "drawn") || start == std::string::npos ||
         body.find("</svg>") == std::string::npos) {
-      throw std::runtime_error("gnuplot failed drawing \"" + f.caption +
-                               "\": " + gnuplot.ErrorText());
+      throw std::runtime_error("gnuplot failed drawing \"" + f.caption + "\": " + why());
     }
     parts[f.part] = "<figure>" + body.substr(start) + "<figcaption>" + Escape(f.caption) +
                     "</figcaption></figure>";
   }
   if (status != 0) {
-    throw std::runtime_error("gnuplot failed drawing the report's figures: " + gnuplot.ErrorText());
+    throw std::runtime_error("gnuplot failed drawing the report's figures: " + why());
   }
   return parts;
 }

@@ -55,9 +55,41 @@ std::vector<std::string> CaseInputs(const Case& c) {
   return in;
 }
 
+namespace {
+
+// The folders ReportPath made, deepest first: removed (when still empty) by a command that ends
+// without its report, and by an interrupting signal (lib/output.h: rmdir, which leaves a folder
+// that holds anything).
+std::vector<std::pair<std::filesystem::path, int>>& MadeFolders() {
+  static std::vector<std::pair<std::filesystem::path, int>> made;
+  return made;
+}
+
+}  // namespace
+
+void RemoveEmptyMadeFolders() {
+  for (const auto& [folder, slot] : MadeFolders()) {
+    std::error_code ignored;
+    if (std::filesystem::is_empty(folder, ignored)) std::filesystem::remove(folder, ignored);
+    UnregisterTemporary(slot);
+  }
+  MadeFolders().clear();
+}
+
 std::string ReportPath(const std::string& out_dir, const std::string& name) {
   std::error_code ec, unreachable;
-  std::filesystem::create_directories(out_dir, ec);  // a missing folder is made
+  // A missing folder is made, each missing level registered (deepest first) to go again if the
+  // command ends without writing into it.
+  std::vector<std::filesystem::path> missing;
+  for (std::filesystem::path p = std::filesystem::absolute(out_dir, ec); !ec && !p.empty();
+       p = p.parent_path()) {
+    std::error_code exists;
+    if (std::filesystem::exists(p, exists) || exists || p == p.parent_path()) break;
+    missing.push_back(p);
+  }
+  for (const auto& p : missing) MadeFolders().emplace_back(p, RegisterTemporary(p.string(), true));
+  ec.clear();
+  std::filesystem::create_directories(out_dir, ec);
   // Without an error code, is_directory throws on a path it cannot reach (a symlink loop, a
   // folder it may not search): that was exit 3 with the raw message.
   if (!std::filesystem::is_directory(out_dir, unreachable)) {

@@ -36,6 +36,9 @@ std::vector<std::string> CaseInputs(const Case& c);
 /// DIR/NAME, a report's path under the --out folder DIR, which is made when missing; throws
 /// CaseError "--out: DIR is not a folder and cannot be made one" when it cannot be.
 std::string ReportPath(const std::string& out_dir, const std::string& name);
+/// Removes the folders ReportPath made that are still empty (a command that failed before its
+/// report: nothing written, not even the folder).
+void RemoveEmptyMadeFolders();
 
 /// Writes `content` atomically (lib/output.h); a failure is a CaseError naming the option.
 void WriteOutput(const OutputPath& output, const std::string& content);

@@ -960,3 +960,32 @@ TEST(NeedleCliTest, AResultThatCannotBeWrittenIsExitTwo) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// A check refused once it computes (10 mm of play on tangent ramps: refused as the scene is
+// made, after the --out folder had to be known) writes nothing, not even the --out folder it
+// made (it was left empty); a folder that was there stays.
+TEST(NeedleCliTest, ARefusedCheckLeavesNoFolderItMade) {
+  const std::string path = testing::TempPath("play10.toml");
+  std::string text = testing::Slurp(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1.toml");
+  const size_t at = text.find("play_mm = 1.0");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 13, "play_mm = 10");
+  std::ofstream(path) << text;
+  const std::string out = testing::TempPath("refused-report");
+  std::filesystem::remove_all(out);
+  const auto r = RunNeedle("check " + path + " --out " + out + "/deeper");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("the tangent ramp"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  std::filesystem::create_directories(out);
+  EXPECT_EQ(RunNeedle("check " + path + " --out " + out).status, 2);
+  EXPECT_TRUE(std::filesystem::is_directory(out));  // the user's own folder is kept
+  std::filesystem::remove_all(out);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace needle
