@@ -43,6 +43,8 @@ constexpr int kFolderDepth = 4;  // folders inside registered folders, at most
 // async-signal-safe too): else one still drawing would write after the removal.
 constexpr int kChildSlots = 8;
 std::atomic<pid_t> g_child[kChildSlots];
+static_assert(std::atomic<pid_t>::is_always_lock_free && std::atomic<bool>::is_always_lock_free,
+              "the interrupt handler reads these: they must be lock-free");
 
 extern "C" void RemoveTemporariesAndDie(int signal_number) {
   for (int i = 0; i < kChildSlots; ++i) {
@@ -65,10 +67,15 @@ extern "C" void RemoveTemporariesAndDie(int signal_number) {
 void InstallRemovalHandler() {
   static std::once_flag installed;
   std::call_once(installed, [] {
+    // Each of the three held while the handler runs for another (one pass of removal).
+    struct sigaction removal {};
+    removal.sa_handler = RemoveTemporariesAndDie;
+    sigemptyset(&removal.sa_mask);
+    for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&removal.sa_mask, s);
     for (int s : {SIGINT, SIGTERM, SIGHUP}) {
       struct sigaction now {};
       if (sigaction(s, nullptr, &now) == 0 && now.sa_handler == SIG_DFL)
-        std::signal(s, RemoveTemporariesAndDie);
+        sigaction(s, &removal, nullptr);
     }
   });
 }

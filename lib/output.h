@@ -15,7 +15,9 @@ namespace needle {
 /// Registers a temporary file (or, with `folder`, a folder) to be removed if SIGINT, SIGTERM or
 /// SIGHUP ends the program (where it has no handler of its own): files first, then folders once
 /// they are empty, innermost first. Returns its slot for UnregisterTemporary, or -1 when it
-/// cannot be kept (128 at a time; paths under 4096 bytes).
+/// cannot be kept (128 at a time; paths under 4096 bytes). For the command-line program: its
+/// registrations, removals and reaping happen while its worker threads are joined (a handler on
+/// another thread could meet a slot being reused).
 int RegisterTemporary(const std::string& path, bool folder = false);
 void UnregisterTemporary(int slot);
 /// Registers a child process that writes into registered temporaries (gnuplot): the signals

@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -62,18 +63,25 @@ bool WriteToPipe(int fd, const std::string& text) {
 void WriteWhole(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+  int error = out ? 0 : errno;  // before close() may change it
   out.close();
   if (!out) {
-    throw CaseError("report: cannot write " + path.string() + " (" + std::strerror(errno) +
+    if (error == 0) error = errno;
+    throw CaseError("report: cannot write " + path.string() + " (" + std::strerror(error) +
                     "): a full or read-only temporary folder? ($TMPDIR, else /tmp)");
   }
 }
 
-// $TMPDIR, else /tmp (std::filesystem::temp_directory_path's rule).
+// $TMPDIR, else /tmp (std::filesystem::temp_directory_path's rule, which reads TMP, TEMP and
+// TEMPDIR too), made absolute (gnuplot's `cd` into one figure's folder stays for the next);
+// /tmp where gnuplot's quoting could not hold it (a ' or a line break in it).
 std::string TemporaryFolder() {
   std::error_code error;
-  const std::filesystem::path folder = std::filesystem::temp_directory_path(error);
-  return error ? std::string("/tmp") : folder.string();
+  const std::filesystem::path folder =
+      std::filesystem::absolute(std::filesystem::temp_directory_path(error), error);
+  const std::string text = folder.string();
+  if (error || text.find_first_of("'\n") != std::string::npos) return "/tmp";
+  return text;
 }
 
 }  // namespace
@@ -84,12 +92,22 @@ Gnuplot::Gnuplot() {
   // interrupted while it computes); the figures' folder is made when the first figure is.
   const std::string temporary = TemporaryFolder();
   std::string pattern = temporary + "/needle-gnuplot-XXXXXX";
-  errors_ = mkostemp(pattern.data(), O_CLOEXEC);
-  if (errors_ < 0) {
-    throw CaseError("report: cannot make a temporary file for gnuplot in " + temporary + ": " +
-                    std::strerror(errno));
+  {
+    const SignalsHeld held;  // no interrupt between its making and its unlinking
+    errors_ = mkostemp(pattern.data(), O_CLOEXEC);
+    if (errors_ < 0) {
+      throw CaseError("report: cannot make a temporary file for gnuplot in " + temporary + ": " +
+                      std::strerror(errno));
+    }
+    unlink(pattern.c_str());
   }
-  unlink(pattern.c_str());
+  // gnuplot stays a zombie until reaped (Reap relies on it): a SIGCHLD ignored by whoever
+  // started needle would let its pid go to another process while registered.
+  struct sigaction child {};
+  if (sigaction(SIGCHLD, nullptr, &child) == 0 &&
+      (child.sa_handler == SIG_IGN || (child.sa_flags & SA_NOCLDWAIT))) {
+    std::signal(SIGCHLD, SIG_DFL);
+  }
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) {
     const std::string why = std::strerror(errno);

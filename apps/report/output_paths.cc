@@ -57,9 +57,9 @@ std::vector<std::string> CaseInputs(const Case& c) {
 
 namespace {
 
-// The folders ReportPath made, deepest first: removed (when still empty) by a command that ends
-// without its report, and by an interrupting signal (lib/output.h: rmdir, which leaves a folder
-// that holds anything).
+// The folders ReportPath made, deepest first (each level put in front as it is made): removed (when
+// still empty) by a command that ends without its report, and by an interrupting signal
+// (lib/output.h: rmdir, which leaves a folder that holds anything).
 std::vector<std::pair<std::filesystem::path, int>>& MadeFolders() {
   static std::vector<std::pair<std::filesystem::path, int>> made;
   return made;
@@ -78,17 +78,22 @@ void RemoveEmptyMadeFolders() {
 
 std::string ReportPath(const std::string& out_dir, const std::string& name) {
   std::error_code ec, unreachable;
-  // A missing folder is made, each missing level registered (deepest first) to go again if the
-  // command ends without writing into it.
-  std::vector<std::filesystem::path> missing;
-  for (std::filesystem::path p = std::filesystem::absolute(out_dir, ec); !ec && !p.empty();
-       p = p.parent_path()) {
-    std::error_code exists;
-    if (std::filesystem::exists(p, exists) || exists || p == p.parent_path()) break;
-    missing.push_back(p);
+  // A missing folder is made level by level (lexically normal: `a/../b` is b), each level this
+  // call made registered, with the interrupting signals held, to go again if the command ends
+  // without writing into it; a level that was there is never registered.
+  std::error_code level_error;
+  const std::filesystem::path folder =
+      std::filesystem::absolute(out_dir, level_error).lexically_normal();
+  std::filesystem::path level;
+  for (const auto& part : folder) {
+    level /= part;
+    if (level_error || part.empty() || level == level.root_path()) continue;
+    const SignalsHeld held;
+    if (std::filesystem::create_directory(level, level_error))
+      MadeFolders().emplace(MadeFolders().begin(), level, RegisterTemporary(level.string(), true));
   }
-  for (const auto& p : missing) MadeFolders().emplace_back(p, RegisterTemporary(p.string(), true));
-  ec.clear();
+  // What is left to make (nothing, or where a level could not be made: its error as the message
+  // gives it).
   std::filesystem::create_directories(out_dir, ec);
   // Without an error code, is_directory throws on a path it cannot reach (a symlink loop, a
   // folder it may not search): that was exit 3 with the raw message.
@@ -101,6 +106,11 @@ std::string ReportPath(const std::string& out_dir, const std::string& name) {
 }
 
 void WriteOutput(const OutputPath& output, const std::string& content) {
+  // A folder ReportPath made may have been removed meanwhile by another needle that made it too
+  // and ended without its report (runs started together on one new --out): made again.
+  std::error_code ignored;
+  const std::filesystem::path parent = std::filesystem::path(output.path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
   try {
     WriteFileAtomically(output.path, content);
   } catch (const std::runtime_error& e) {
