@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "lib/output.h"
+#include "lib/threads.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -189,10 +190,7 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
   sim.force_dynamic = true;  // lift-off is a dynamic question
   sim.record_series = false;
   sim.stop_at_liftoff = true;  // … and the only one asked
-  const int hw = static_cast<int>(std::thread::hardware_concurrency());
-  // More threads than cores do not help: the runs are compute-bound.
-  const int cores = std::max(1, hw);
-  const int threads = o.threads > 0 ? std::min(o.threads, cores) : cores;
+  const int threads = ThreadsToUse(o.threads);
   result.threads = threads;
   const double step = o.step_rpm > 0.0 ? o.step_rpm : std::max(1.0, 0.025 * o.from_rpm);
   result.step_rpm = step;

@@ -305,7 +305,6 @@ void Report::AddFigure(const std::string& caption, std::vector<Series> data, std
   if (gnuplot_) {
     SendFigure(*gnuplot_, pending_.size() - 1);
     pending_.back().data.clear();  // in its files now
-    ++sent_;
   }
 }
 
@@ -367,8 +366,9 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
     throw std::logic_error("Report: its figures were given to another gnuplot");
   std::vector<std::string> parts = parts_;
   if (pending_.empty()) return parts;
-  // Every figure in one gnuplot process; those not given to it yet now.
-  for (size_t k = gnuplot_ ? sent_ : 0; k < pending_.size(); ++k) SendFigure(gnuplot, k);
+  // Every figure in one gnuplot process: a report with its own gave each as it was added.
+  if (!gnuplot_)
+    for (size_t k = 0; k < pending_.size(); ++k) SendFigure(gnuplot, k);
   const std::filesystem::path& folder = gnuplot.Folder();
   const int status = gnuplot.Finish();
   // gnuplot's messages, or what little is known without them.

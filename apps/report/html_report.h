@@ -126,7 +126,6 @@ class Report {
   std::vector<PendingFigure> pending_;
   int figures_ = 0;
   Gnuplot* gnuplot_ = nullptr;  // draws each figure as it is added
-  size_t sent_ = 0;             // figures given to gnuplot_ so far
 };
 
 /// HTML-escapes text.

@@ -70,7 +70,7 @@ std::vector<std::pair<std::filesystem::path, int>>& MadeFolders() {
 void RemoveEmptyMadeFolders() {
   for (const auto& [folder, slot] : MadeFolders()) {
     std::error_code ignored;
-    if (std::filesystem::is_empty(folder, ignored)) std::filesystem::remove(folder, ignored);
+    std::filesystem::remove(folder, ignored);  // rmdir: only a folder still empty goes
     UnregisterTemporary(slot);
   }
   MadeFolders().clear();

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <future>
 #include <system_error>
-#include <thread>
 
 #include "apps/case/case_profile.h"
 #include "apps/case/case_scene.h"
 #include "apps/study/limits_table.h"
 #include "lib/output.h"
+#include "lib/threads.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"
 #include "spring/resonance.h"
@@ -144,14 +144,10 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     r.run_options = OptionsFromCase(c);
     // The surge study needs nothing of the rated run and the sweep: given a second core it runs
     // beside them (its runs and theirs are the same either way; the sweep keeps the other cores).
-    const int cores = options.threads > 0
-                          ? options.threads
-                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const bool helical = r.spring && r.spring->helical;
+    if (!helical) r.surge_reason = "no helical spring geometry";
+    const int cores = ThreadsToUse(options.threads);
     const auto study_surge = [&c, &r, &scene, &options] {
-      if (!(r.spring && r.spring->helical)) {
-        r.surge_reason = "no helical spring geometry";
-        return;
-      }
       try {
         r.surge = StudySurge(c, r, scene, options);
       } catch (const std::invalid_argument& e) {
@@ -159,7 +155,7 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
       }
     };
     std::future<void> surge;
-    if (cores > 1) {
+    if (helical && cores > 1) {
       try {
         surge = std::async(std::launch::async, study_surge);
       } catch (const std::system_error&) {
@@ -195,7 +191,7 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     }
     if (surge.valid()) {
       surge.get();  // rethrows what the study threw
-    } else {
+    } else if (helical) {
       study_surge();
     }
     if (r.surge && c.spring->masses == 1) r.surge->massless = *r.run;

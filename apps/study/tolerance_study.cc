@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "apps/study/check_scene.h"
+#include "lib/threads.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -270,10 +271,7 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
                        t.rate_fraction > 0.0 || t.stiffness_fraction > 0.0 ||
                        t.play_sigma_m > 0.0 || t.speed_fraction > 0.0;
   const CheckOptions base = SampleOptions(c, options.reuse_nominal && scatter);
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const int threads = std::max(
-      1, std::min(options.samples, options.threads > 0 ? std::min<int>(options.threads, cores)
-                                                       : static_cast<int>(cores)));
+  const int threads = std::max(1, std::min(options.samples, ThreadsToUse(options.threads)));
   options.threads = threads;
   std::vector<ToleranceSample> samples(options.samples);
   std::atomic<int> next{0}, done{0};

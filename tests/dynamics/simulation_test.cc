@@ -606,6 +606,17 @@ TEST(SimulationTest, TheClosedFormsEnergyResidualIsBelow1e12OnEveryBundledScene)
   EXPECT_GE(runs, 8);
 }
 
+// Every bundled scene `exact` runs (one mass, compliant contacts) at its speed, 1.1 n_qs and
+// 1100 rpm: f(stem, scene, rpm).
+void ForEachExactRun(const std::function<void(const std::string&, const Scene&, double)>& f) {
+  for (const auto& [stem, c] : BundledTrainScenes()) {
+    if (c.train->rigid || c.spring->masses > 1) continue;
+    const Scene s = MakeScene(c);
+    for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s), 1100.0})
+      if (std::isfinite(rpm)) f(stem, s, rpm);
+  }
+}
+
 // The record of two runs, value by value: `same(a's, b's, what)` for each.
 void CompareRecords(const SimulationResult& a, const SimulationResult& b,
                     const std::function<void(double, double, const char*)>& same) {
@@ -630,23 +641,18 @@ void CompareRecords(const SimulationResult& a, const SimulationResult& b,
 // round-off.
 TEST(SimulationTest, TheClosedFormsRecordIsTheSameWithItsSeriesKept) {
   int runs = 0;
-  for (const auto& [stem, c] : BundledTrainScenes()) {
-    if (c.train->rigid || c.spring->masses > 1) continue;
-    const Scene s = MakeScene(c);
-    for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s), 1100.0}) {
-      if (!std::isfinite(rpm)) continue;
-      const SimulationResult a = Simulate(s, rpm, Options("exact", 1e-8));
-      const SimulationResult b = Simulate(s, rpm, Options("exact", 1e-8, true));
-      const std::string at = stem + " at " + std::to_string(rpm) + " rpm";
-      CompareRecords(a, b, [&](double x, double y, const char* what) {
-        if (std::isnan(x) && std::isnan(y)) return;  // a force ratio of a run never lifted
-        EXPECT_NEAR(x, y, 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-15) << what << ", " << at;
-      });
-      EXPECT_EQ(a.impacts.size(), b.impacts.size()) << at;
-      EXPECT_EQ(a.episodes.size(), b.episodes.size()) << at;
-      ++runs;
-    }
-  }
+  ForEachExactRun([&](const std::string& stem, const Scene& s, double rpm) {
+    const SimulationResult a = Simulate(s, rpm, Options("exact", 1e-8));
+    const SimulationResult b = Simulate(s, rpm, Options("exact", 1e-8, true));
+    const std::string at = stem + " at " + std::to_string(rpm) + " rpm";
+    CompareRecords(a, b, [&](double x, double y, const char* what) {
+      if (std::isnan(x) && std::isnan(y)) return;  // a force ratio of a run never lifted
+      EXPECT_NEAR(x, y, 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-15) << what << ", " << at;
+    });
+    EXPECT_EQ(a.impacts.size(), b.impacts.size()) << at;
+    EXPECT_EQ(a.episodes.size(), b.episodes.size()) << at;
+    ++runs;
+  });
   EXPECT_GE(runs, 12);
 }
 
@@ -657,45 +663,40 @@ TEST(SimulationTest, TheClosedFormsRecordIsTheSameWithItsSeriesKept) {
 // (only the number of pieces may fall: a frozen stretch runs on as one).
 TEST(SimulationTest, WhatTheClosedFormLeavesOutCannotChangeItsResult) {
   int runs = 0;
-  for (const auto& [stem, c] : BundledTrainScenes()) {
-    if (c.train->rigid || c.spring->masses > 1) continue;
-    const Scene s = MakeScene(c);
-    for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s), 1100.0}) {
-      if (!std::isfinite(rpm)) continue;
-      for (bool liftoff_only : {false, true}) {
-        SimulationOptions o = Options("exact", 1e-8);
-        o.stop_at_liftoff = liftoff_only;
-        SimulationOptions all = o;
-        all.integrator.leave_out = false;
-        const SimulationResult a = Simulate(s, rpm, o), b = Simulate(s, rpm, all);
-        const std::string at =
-            stem + " at " + std::to_string(rpm) + " rpm" + (liftoff_only ? ", lift-off only" : "");
-        const auto same = [&](double x, double y, const char* what) {
-          if (std::isnan(x) && std::isnan(y)) return;
-          EXPECT_EQ(x, y) << what << ", " << at;
-        };
-        CompareRecords(a, b, same);
-        same(a.energy_residual, b.energy_residual, "energy residual");
-        EXPECT_EQ(a.stats.events, b.stats.events) << at;
-        EXPECT_LE(a.stats.steps, b.stats.steps) << at;
-        EXPECT_EQ(a.status, b.status) << at;
-        ASSERT_EQ(a.impacts.size(), b.impacts.size()) << at;
-        for (size_t i = 0; i < a.impacts.size(); ++i) {
-          EXPECT_EQ(a.impacts[i].kind, b.impacts[i].kind) << at;
-          same(a.impacts[i].crank_rad, b.impacts[i].crank_rad, "impact angle");
-          same(a.impacts[i].speed_m_s, b.impacts[i].speed_m_s, "impact speed");
-        }
-        ASSERT_EQ(a.episodes.size(), b.episodes.size()) << at;
-        for (size_t i = 0; i < a.episodes.size(); ++i) {
-          EXPECT_EQ(a.episodes[i].kind, b.episodes[i].kind) << at;
-          same(a.episodes[i].start_rad, b.episodes[i].start_rad, "episode start");
-          same(a.episodes[i].end_rad, b.episodes[i].end_rad, "episode end");
-          same(a.episodes[i].max_gap_m, b.episodes[i].max_gap_m, "episode gap");
-        }
-        ++runs;
+  ForEachExactRun([&](const std::string& stem, const Scene& s, double rpm) {
+    for (bool liftoff_only : {false, true}) {
+      SimulationOptions o = Options("exact", 1e-8);
+      o.stop_at_liftoff = liftoff_only;
+      SimulationOptions all = o;
+      all.integrator.leave_out = false;
+      const SimulationResult a = Simulate(s, rpm, o), b = Simulate(s, rpm, all);
+      const std::string at =
+          stem + " at " + std::to_string(rpm) + " rpm" + (liftoff_only ? ", lift-off only" : "");
+      const auto same = [&](double x, double y, const char* what) {
+        if (std::isnan(x) && std::isnan(y)) return;
+        EXPECT_EQ(x, y) << what << ", " << at;
+      };
+      CompareRecords(a, b, same);
+      same(a.energy_residual, b.energy_residual, "energy residual");
+      EXPECT_EQ(a.stats.events, b.stats.events) << at;
+      EXPECT_LE(a.stats.steps, b.stats.steps) << at;
+      EXPECT_EQ(a.status, b.status) << at;
+      ASSERT_EQ(a.impacts.size(), b.impacts.size()) << at;
+      for (size_t i = 0; i < a.impacts.size(); ++i) {
+        EXPECT_EQ(a.impacts[i].kind, b.impacts[i].kind) << at;
+        same(a.impacts[i].crank_rad, b.impacts[i].crank_rad, "impact angle");
+        same(a.impacts[i].speed_m_s, b.impacts[i].speed_m_s, "impact speed");
       }
+      ASSERT_EQ(a.episodes.size(), b.episodes.size()) << at;
+      for (size_t i = 0; i < a.episodes.size(); ++i) {
+        EXPECT_EQ(a.episodes[i].kind, b.episodes[i].kind) << at;
+        same(a.episodes[i].start_rad, b.episodes[i].start_rad, "episode start");
+        same(a.episodes[i].end_rad, b.episodes[i].end_rad, "episode end");
+        same(a.episodes[i].max_gap_m, b.episodes[i].max_gap_m, "episode gap");
+      }
+      ++runs;
     }
-  }
+  });
   EXPECT_GE(runs, 24);
 }
 
