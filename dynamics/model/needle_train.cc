@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -115,6 +116,11 @@ NeedleTrain::NeedleTrain(const CamInput& cam, const TrainParameters& p, double o
 }
 
 Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase) const {
+  return EvaluateWith(x, t, phase, nullptr, nullptr);
+}
+
+Contacts NeedleTrain::EvaluateWith(const TrainState& x, double t, const Phase& phase,
+                                   double* coil_rates, double* dissipation_W) const {
   Contacts c;
   c.crank_rad = Angle(t);
   const double th = CamAngle(c.crank_rad, phase);
@@ -136,7 +142,7 @@ Contacts NeedleTrain::Evaluate(const TrainState& x, double t, const Phase& phase
   c.g_s = -c.y;  // g_s = −y
   c.g_s_rate = -c.v;
   c.f_s_raw = seat_law_->Force(c.g_s, c.g_s_rate);
-  c.spring_N = SpringForce(x, c.y, c.v, phase, nullptr, nullptr);
+  c.spring_N = SpringForce(x, c.y, c.v, phase, coil_rates, dissipation_W);
   if (cam_rigid_ || seat_rigid_) {
     // Constraint forces: what keeps the needle on a surface it sticks to, from
     // m ÿ = F_c + F_s − S + F_g with ÿ = ω² u'' on the cam and 0 on the seat.
@@ -161,36 +167,45 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
   // pushes them apart with S_j − P₀ (the preload cancels between segments).
   const int n = coils_ + 1;
   const double k = segment_rate_N_m_, c = segment_damping_N_s_m_;
-  double power = 0.0, s_prev = 0.0, s_1 = 0.0;
-  // Walking the nodes (SegmentMotion's values): node j − 1's lift and velocity carried over.
-  const double* lifts = x.data() + 4;            // x_i = x[3 + i], i = 1 … N − 1
-  const double* speeds = x.data() + 4 + coils_;  // v_i = x[3 + N − 1 + i]
-  double lift_before = y, speed_before = v;
-  for (int j = 1; j <= n; ++j) {
-    const double lift = j == n ? 0.0 : lifts[j - 1], speed = j == n ? 0.0 : speeds[j - 1];
-    const double s = lift_before - lift, rate = speed_before - speed;
-    lift_before = lift;
-    speed_before = speed;
-    double s_j = k * s + c * rate;
-    power += c * rate * rate;
-    if (clash_law_) {  // the coils in contact: F on the mode's (or the gate's) branch
-      const double g = s - segment_travel_m_;
-      const double f = phase.gated           ? clash_law_->GatedForce(g, rate)
-                       : phase.mode.Solid(j) ? clash_law_->Force(g, rate)
-                                             : 0.0;
-      s_j += f;
-      power += (f - clash_law_->ConservativeForce(g)) * rate;
+  // Walking the nodes (SegmentMotion's values): node j − 1's lift and velocity carried over;
+  // compiled twice, with the clash law and without it (this walk is most of a coil chain's
+  // right-hand side).
+  const auto walk = [&](auto clash) {
+    const double* lifts = x.data() + 4;            // x_i = x[3 + i], i = 1 … N − 1
+    const double* speeds = x.data() + 4 + coils_;  // v_i = x[3 + N − 1 + i]
+    double lift_before = y, speed_before = v, power = 0.0;
+    // Segment j between the last node and one at (lift, speed): S_j − P₀, its dashpot's and
+    // clash contact's power added.
+    const auto segment = [&](int j, double lift, double speed) {
+      const double s = lift_before - lift, rate = speed_before - speed;
+      lift_before = lift;
+      speed_before = speed;
+      double s_j = k * s + c * rate;
+      power += c * rate * rate;
+      if constexpr (decltype(clash)::value) {  // the coils in contact: F on the mode's branch
+        const double g = s - segment_travel_m_;
+        const double f = phase.gated           ? clash_law_->GatedForce(g, rate)
+                         : phase.mode.Solid(j) ? clash_law_->Force(g, rate)
+                                               : 0.0;
+        s_j += f;
+        power += (f - clash_law_->ConservativeForce(g)) * rate;
+      }
+      return s_j;
+    };
+    const double s_1 = segment(1, lifts[0], speeds[0]);
+    if (!coil_rates && !dissipation_W) return p_.preload_N + s_1;  // the force at the needle
+    double s_prev = s_1;
+    for (int j = 2; j < n; ++j) {  // the inner segments, then the last one at the fixed end
+      const double s_j = segment(j, lifts[j - 1], speeds[j - 1]);
+      if (coil_rates) coil_rates[j - 2] = (s_prev - s_j) / coil_mass_kg_;
+      s_prev = s_j;
     }
-    if (j == 1) {
-      s_1 = s_j;
-      if (!coil_rates && !dissipation_W) break;  // the force at the needle alone: segment 1's
-    } else if (coil_rates) {
-      coil_rates[j - 2] = (s_prev - s_j) / coil_mass_kg_;
-    }
-    s_prev = s_j;
-  }
-  if (dissipation_W) *dissipation_W = power;
-  return p_.preload_N + s_1;
+    const double s_n = segment(n, 0.0, 0.0);
+    if (coil_rates) coil_rates[n - 2] = (s_prev - s_n) / coil_mass_kg_;
+    if (dissipation_W) *dissipation_W = power;
+    return p_.preload_N + s_1;
+  };
+  return clash_law_ ? walk(std::true_type{}) : walk(std::false_type{});
 }
 
 std::array<double, 2> NeedleTrain::SegmentPenetration(const TrainState& x, const Contacts& c,
@@ -343,22 +358,23 @@ double NeedleTrain::NetForce(const Contacts& c, const Phase& phase) const {
   return AppliedCamForce(c, phase) + AppliedSeatForce(c, phase) - c.spring_N + p_.gas_force_N;
 }
 
-void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase,
-                             TrainState& dxdt) const {
-  const Contacts c = Evaluate(x, t, phase);
-  const double fc = AppliedCamForce(c, phase), fs = AppliedSeatForce(c, phase);
+void NeedleTrain::Derivative(const TrainState& x, double t, const Phase& phase, TrainState& dxdt,
+                             Contacts* at) const {
   dxdt.resize(x.size());
+  double dashpots_W = 0.0;
+  const Contacts c = coils_ > 0 ? EvaluateWith(x, t, phase, &dxdt[4 + coils_], &dashpots_W)  // v̇_i
+                                : Evaluate(x, t, phase);
+  const double fc = AppliedCamForce(c, phase), fs = AppliedSeatForce(c, phase);
   dxdt[0] = c.v;                                   // ẏ (the surface's while stuck to it)
   dxdt[1] = NetForce(c, phase) / needle_mass_kg_;  // ÿ
   dxdt[2] = fc * omega_ * c.u_slope;               // Ẇ
   dxdt[3] = (fc - cam_law_->ConservativeForce(c.g_c)) * c.g_c_rate +
             (fs - seat_law_->ConservativeForce(c.g_s)) * c.g_s_rate;  // Ḋ
   if (coils_ > 0) {
-    double dashpots_W = 0.0;
-    SpringForce(x, c.y, c.v, phase, &dxdt[4 + coils_], &dashpots_W);   // v̇_i
     for (int i = 0; i < coils_; ++i) dxdt[4 + i] = x[4 + coils_ + i];  // ẋ_i = v_i
     dxdt[3] += dashpots_W;
   }
+  if (at) *at = c;
 }
 
 double NeedleTrain::Energy(const TrainState& x, double t) const {

@@ -133,8 +133,10 @@ class NeedleTrain {
               std::shared_ptr<const ContactLaw> cam_law = nullptr,
               std::shared_ptr<const ContactLaw> seat_law = nullptr);
 
-  /// dx/dt in `phase` (the equation of motion and the audit integrals above).
-  void Derivative(const TrainState& x, double t, const Phase& phase, TrainState& dxdt) const;
+  /// dx/dt in `phase` (the equation of motion and the audit integrals above); into `at`, when
+  /// given, Evaluate(x, t, phase), which it computes on the way.
+  void Derivative(const TrainState& x, double t, const Phase& phase, TrainState& dxdt,
+                  Contacts* at = nullptr) const;
   /// ∂f/∂x and ∂f/∂t of the right-hand side in `phase` (not gated).
   void Jacobian(const TrainState& x, double t, const Phase& phase, TrainJacobian& dfdx,
                 TrainState& dfdt) const;
@@ -225,6 +227,10 @@ class NeedleTrain {
   // dashpots' and clash contacts' power.
   double SpringForce(const TrainState& x, double y, double v, const Phase& phase,
                      double* coil_rates, double* dissipation_W) const;
+  // Evaluate(), its spring walking the whole chain into `coil_rates` and `dissipation_W` when
+  // they are given (Derivative: one walk for the contacts and the coils).
+  Contacts EvaluateWith(const TrainState& x, double t, const Phase& phase, double* coil_rates,
+                        double* dissipation_W) const;
   // Node i's lift and velocity (0: the needle at y, v; N: the fixed end).
   double NodeLift(const TrainState& x, double y, int i) const {
     return i == 0 ? y : (i == coils_ + 1 ? 0.0 : x[3 + i]);

@@ -40,7 +40,11 @@ double AngleTolerance(double crank_rad) { return 1e-12 * std::max(1.0, std::abs(
 }  // namespace
 
 EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t) {
-  const Contacts c = train.Evaluate(x, t, phase);
+  return Events(train, phase, x, train.Evaluate(x, t, phase));
+}
+
+EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x,
+                   const Contacts& c) {
   ContactWitnesses cam = train.cam_law().Witnesses(c.g_c, c.g_c_rate);
   ContactWitnesses seat = train.seat_law().Witnesses(c.g_s, c.g_s_rate);
   // A rigid contact: its gap counts past the touch tolerance, and is pinned while it sticks

@@ -53,6 +53,9 @@ using EventSigns = boost::container::static_vector<int, kMaxEventCount>;
 
 /// The event functions at (t, x) in `phase` (its mode and its segment of the cam input).
 EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x, double t);
+/// The same from the contacts at (x, t), `c` = train.Evaluate(x, t, phase).
+EventValues Events(const NeedleTrain& train, const Phase& phase, const TrainState& x,
+                   const Contacts& c);
 
 /// A linear form of the state and the cam input, w = y·y + v·ẏ + u·u + u_rate·u̇ + constant
 /// (u̇ = du/dt = ω u'), SI: how method "exact" sees a witness to bound it.

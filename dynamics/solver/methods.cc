@@ -1,6 +1,7 @@
 // The method table (one row per integrator backend), the integrator's options, and the
 // scaled right-hand side the backends integrate.
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -145,12 +146,24 @@ TrainState TrainSystem::FromScaled(const TrainState& z) const {
 
 void TrainSystem::operator()(const TrainState& z, TrainState& dzdt, double t) const {
   ++evaluations_;
-  if (!scaled_) {
-    train_.Derivative(z, t, phase, dzdt);
-    return;
-  }
-  train_.Derivative(FromScaled(z), t, phase, dzdt);
+  last_x_.resize(z.size());  // FromScaled(z), into the memo without a temporary
+  for (size_t i = 0; i < z.size(); ++i) last_x_[i] = scaled_ ? z[i] * scale_[i] : z[i];
+  last_t_ = t;
+  last_phase_ = phase;
+  train_.Derivative(last_x_, t, phase, dzdt, &last_contacts_);
+  if (!scaled_) return;
   for (size_t i = 0; i < z.size(); ++i) dzdt[i] /= scale_[i];
+}
+
+const Contacts* TrainSystem::LastContacts(const TrainState& x, double t) const {
+  const auto bits = [](const double& a, const double& b) {
+    return std::memcmp(&a, &b, sizeof(double)) == 0;
+  };
+  const bool same =
+      bits(t, last_t_) && phase.mode == last_phase_.mode && phase.gated == last_phase_.gated &&
+      bits(phase.segment_end_rad, last_phase_.segment_end_rad) && x.size() == last_x_.size() &&
+      std::memcmp(x.data(), last_x_.data(), x.size() * sizeof(double)) == 0;
+  return same ? &last_contacts_ : nullptr;
 }
 
 void TrainSystem::Jacobian(const TrainState& z, double t, TrainJacobian& J,

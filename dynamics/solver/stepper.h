@@ -10,6 +10,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <utility>
 
@@ -34,6 +35,9 @@ class TrainSystem {
   double RoundTrip(int i, double x) const { return scaled_ ? (x / scale_[i]) * scale_[i] : x; }
   const NeedleTrain& train() const { return train_; }
   long evaluations() const { return evaluations_; }
+  /// The contacts the last right-hand side computed, when it was evaluated at (x, t) in the
+  /// current phase to the bit (an FSAL method's last stage is its step's end), else nullptr.
+  const Contacts* LastContacts(const TrainState& x, double t) const;
 
   Phase phase;
 
@@ -42,6 +46,11 @@ class TrainSystem {
   TrainState scale_;  // s_i, the coils' lifts as y's and their velocities as ẏ's
   bool scaled_;
   mutable long evaluations_ = 0;
+  // The last evaluation's state (unscaled), time, phase and contacts.
+  mutable TrainState last_x_;
+  mutable double last_t_ = std::numeric_limits<double>::quiet_NaN();
+  mutable Phase last_phase_;
+  mutable Contacts last_contacts_;
 };
 
 /// One integrator backend.

@@ -742,7 +742,9 @@ TEST(CheckSceneTest, TheSurgeStudyBesideTheSweepGivesTheSameResult) {
       EXPECT_EQ(a.surge->massless.max_spring_force_N, b.surge->massless.max_spring_force_N);
       EXPECT_EQ(a.surge->massless.stats.steps, b.surge->massless.stats.steps);
       EXPECT_GT(a.surge->massless.stats.steps, 0);
-      if (c.spring->masses == 1) EXPECT_EQ(a.surge->massless.max_lift_m, a.run->max_lift_m);
+      if (c.spring->masses == 1) {
+        EXPECT_EQ(a.surge->massless.max_lift_m, a.run->max_lift_m);
+      }
     }
     ASSERT_TRUE(a.sweep && b.sweep);
     EXPECT_EQ(a.sweep->n_dyn_rpm, b.sweep->n_dyn_rpm);

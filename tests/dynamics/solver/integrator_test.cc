@@ -7,7 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 
+#include "dynamics/solver/stepper.h"
 #include "tests/dynamics/test_laws.h"
 
 namespace needle {
@@ -132,6 +135,55 @@ TEST(IntegratorTest, OptionsAreValidatedByName) {
   EXPECT_EQ(o.AbsoluteTolerances()[1], o.atol_m);
   o.atol_J = 1e-6;
   EXPECT_EQ(o.AbsoluteTolerances()[3], 1e-6);
+}
+
+// The right-hand side keeps the contacts it computed, for the driver to reuse at the step's end
+// (an FSAL method's last stage): only for the same state, time and phase to the bit, and equal
+// to what Evaluate gives there. A chain of 5 coil masses, its states scaled (per-state atol).
+TEST(TrainSystemTest, TheLastContactsServeOnlyTheirOwnStateTimeAndPhase) {
+  const LiftLaw law = FarLaw(1e-3);
+  const CamInput cam(law, 0.0, RampKind::kLinear, 0.1);
+  TrainParameters p;
+  p.mass_kg = 0.8;
+  p.preload_N = 900.0;
+  p.rate_N_m = 5e4;
+  p.coil_masses = 5;
+  p.spring_mass_kg = 0.6;
+  p.surge_damping_ratio = 0.05;
+  const NeedleTrain train(cam, p, 60.0, 0.0);
+  IntegratorOptions o;
+  o.atol_m_s = 1e-5;  // scaled states: z ≠ x
+  TrainSystem system(train, o);
+  system.phase.mode.cam = true;
+  TrainState x(train.StateSize(), 0.0);
+  x[0] = 0.99e-3;
+  x[1] = 0.02;
+  for (int i = 0; i < train.Coils(); ++i) {
+    x[4 + i] = 0.99e-3 * (train.Coils() - i) / (train.Coils() + 1.0);
+    x[4 + train.Coils() + i] = 0.01 * i;
+  }
+  const TrainState z = system.ToScaled(x);
+  x = system.FromScaled(z);  // the state as the right-hand side sees it
+  const double t = 0.004;
+  EXPECT_EQ(system.LastContacts(x, t), nullptr);  // nothing evaluated yet
+  TrainState dzdt;
+  system(z, dzdt, t);
+  const Contacts* kept = system.LastContacts(x, t);
+  ASSERT_NE(kept, nullptr);
+  const Contacts c = train.Evaluate(x, t, system.phase);
+  EXPECT_EQ(std::memcmp(kept, &c, sizeof(Contacts)), 0);
+  EXPECT_GT(c.f_c_raw, 0.0);
+  EXPECT_EQ(system.LastContacts(x, std::nextafter(t, 1.0)), nullptr);
+  TrainState moved = x;
+  moved[4 + train.Coils()] = std::nextafter(moved[4 + train.Coils()], 1.0);  // a coil's speed
+  EXPECT_EQ(system.LastContacts(moved, t), nullptr);
+  system.phase.mode.seat = true;
+  EXPECT_EQ(system.LastContacts(x, t), nullptr);
+  system.phase.mode.seat = false;
+  system.phase.segment_end_rad = 1.0;
+  EXPECT_EQ(system.LastContacts(x, t), nullptr);
+  system.phase.segment_end_rad = std::numeric_limits<double>::infinity();
+  EXPECT_NE(system.LastContacts(x, t), nullptr);
 }
 
 }  // namespace
