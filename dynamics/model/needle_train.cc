@@ -182,7 +182,8 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
       speed_before = speed;
       double s_j = k * s + c * rate;
       power += c * rate * rate;
-      if constexpr (decltype(clash)::value) {  // the coils in contact: F on the mode's branch
+      if constexpr (decltype(clash)::value) {  // the coils in contact: F on the mode's (or the
+        // gate's) branch
         const double g = s - segment_travel_m_;
         const double f = phase.gated           ? clash_law_->GatedForce(g, rate)
                          : phase.mode.Solid(j) ? clash_law_->Force(g, rate)
@@ -195,7 +196,7 @@ double NeedleTrain::SpringForce(const TrainState& x, double y, double v, const P
     const double s_1 = segment(1, lifts[0], speeds[0]);
     if (!coil_rates && !dissipation_W) return p_.preload_N + s_1;  // the force at the needle
     double s_prev = s_1;
-    for (int j = 2; j < n; ++j) {  // the inner segments, then the last one at the fixed end
+    for (int j = 2; j < n; ++j) {  // the inner segments (the last one, at the fixed end, below)
       const double s_j = segment(j, lifts[j - 1], speeds[j - 1]);
       if (coil_rates) coil_rates[j - 2] = (s_prev - s_j) / coil_mass_kg_;
       s_prev = s_j;

@@ -36,6 +36,7 @@
 #include <array>
 #include <boost/container/static_vector.hpp>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -102,7 +103,13 @@ struct Phase {
   ContactMode mode;
   double segment_end_rad = std::numeric_limits<double>::infinity();
   bool gated = false;
+  /// Every field the same, the angle to the bit (what a memo of the right-hand side keys on).
+  bool Identical(const Phase& o) const {
+    return mode == o.mode && gated == o.gated &&
+           std::memcmp(&segment_end_rad, &o.segment_end_rad, sizeof(double)) == 0;
+  }
 };
+static_assert(sizeof(Phase) == 32, "Phase has a new field: compare it in Phase::Identical");
 
 /// The largest N of the spring's chain.
 inline constexpr int kMaxCoilMasses = 40;

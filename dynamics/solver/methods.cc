@@ -159,10 +159,9 @@ const Contacts* TrainSystem::LastContacts(const TrainState& x, double t) const {
   const auto bits = [](const double& a, const double& b) {
     return std::memcmp(&a, &b, sizeof(double)) == 0;
   };
-  const bool same =
-      bits(t, last_t_) && phase.mode == last_phase_.mode && phase.gated == last_phase_.gated &&
-      bits(phase.segment_end_rad, last_phase_.segment_end_rad) && x.size() == last_x_.size() &&
-      std::memcmp(x.data(), last_x_.data(), x.size() * sizeof(double)) == 0;
+  const bool same = bits(t, last_t_) && phase.Identical(last_phase_) &&
+                    x.size() == last_x_.size() &&
+                    std::memcmp(x.data(), last_x_.data(), x.size() * sizeof(double)) == 0;
   return same ? &last_contacts_ : nullptr;
 }
 

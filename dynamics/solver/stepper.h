@@ -37,6 +37,7 @@ class TrainSystem {
   long evaluations() const { return evaluations_; }
   /// The contacts the last right-hand side computed, when it was evaluated at (x, t) in the
   /// current phase to the bit (an FSAL method's last stage is its step's end), else nullptr.
+  /// Valid until the next right-hand side (a backend's CalcState may evaluate one).
   const Contacts* LastContacts(const TrainState& x, double t) const;
 
   Phase phase;

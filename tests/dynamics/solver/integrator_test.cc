@@ -183,6 +183,9 @@ TEST(TrainSystemTest, TheLastContactsServeOnlyTheirOwnStateTimeAndPhase) {
   system.phase.segment_end_rad = 1.0;
   EXPECT_EQ(system.LastContacts(x, t), nullptr);
   system.phase.segment_end_rad = std::numeric_limits<double>::infinity();
+  system.phase.gated = true;
+  EXPECT_EQ(system.LastContacts(x, t), nullptr);
+  system.phase.gated = false;
   EXPECT_NE(system.LastContacts(x, t), nullptr);
 }
 
