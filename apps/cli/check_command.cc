@@ -38,13 +38,19 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   options.speed_rpm = o.speed_rpm;
   const CaseLift lift = ResolveLift(c);
   const LiftLaw& law = *lift.law;
+  // The report is made as the check runs: gnuplot draws each figure beside the rest of it.
+  CheckReportWriter writer(c, law, lift.choice, o.speed_rpm.value_or(c.engine.speed_rpm), &gnuplot);
+  options.rated_run_done = [&writer](const SpringCheckResult& spring, const SimulationResult& run,
+                                     const SimulationOptions& sim) {
+    writer.RatedRun(spring, run, sim);
+  };
   CheckResult result;
   {
     ProgressBar bar("overspeed", "speeds", o.json);
     options.progress = [&](int done, int total) { bar.Update(done, total); };
     result = CheckScene(c, lift, options);
   }
-  const Report report = CheckReport(c, law, result, &gnuplot);  // drawn as it is made
+  const Report report = writer.Finish(result);
   WriteOutput({"--out", path}, report.Html(gnuplot));
   if (o.json) {
     std::cout << FormatObject(CheckJson(c, law, result, path), o.format);

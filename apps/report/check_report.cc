@@ -47,59 +47,16 @@ std::string Sci(double v) {
 
 }  // namespace
 
-Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result, Gnuplot* gnuplot) {
-  const double rpm = result.speed_rpm;
-  const LiftLawChoice& choice = result.choice;
-  const Kinematics kin(law, rpm);
-  const KinematicsSummary& sum = result.kinematics;
-  const std::vector<std::string>& skipped = result.skipped;
-  const std::vector<std::string>& failing = result.failing;
-  const bool ok = result.pass;
-  const std::optional<SpringCheckResult>& spring = result.spring;
-  const std::optional<SimulationResult>& run = result.run;
-  const std::optional<OverspeedResult>& sweep = result.sweep;
-  const std::optional<CamProfile>& profile = result.profile;
-  const double n_qs = result.n_qs_rpm, overspeed_rpm = result.overspeed_rpm;
-
-  Report report("needle check: " + (c.title.empty() ? c.path : c.title), gnuplot);
-  std::ostringstream summary;
-  summary << "<h2>Scene</h2><table>" << Row("case", Escape(c.path))
-          << Row("rated speed", Fixed(rpm, 1) + " rpm")
-          << Row("cycle", Escape(EngineCycleName(c.engine.cycle)))
-          << Row("lift law", Escape(c.lift.source) + ", " +
-                                 std::to_string(c.lift.table.crank_rad.size()) +
-                                 " points, spline " + SplineKindName(law.kind()))
-          << Row("spline chosen", Escape(choice.reason))
-          << Row("open lift", Fixed(sum.open_rad / kDeg, 2) + "° to " +
-                                  Fixed(sum.close_rad / kDeg, 2) + "°" +
-                                  (law.closed_level_m() > 0
-                                       ? " (where the lift exceeds " +
-                                             Fixed(law.closed_level_m() * 1e3, 4) + " mm, 3σ)"
-                                       : std::string(" (last zero before the rise to first zero "
-                                                     "after the fall)")))
-          << Row("injection period", Fixed(sum.injection_period_s * 1e3, 2) + " ms");
-  if (law.undershoot_m() > 0) {
-    summary << Row("WARNING", "the spline dips " + Fixed(law.undershoot_m() * 1e3, 4) +
-                                  " mm below the seat at " + Fixed(law.undershoot_rad() / kDeg, 2) +
-                                  "° inside the open lift; try another spline kind");
-  }
-  if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
-    summary << Row("WARNING", std::to_string(choice.outliers.size()) +
-                                  " outlier(s) of the lift table left out (outliers = \"drop\"; "
-                                  "the spline's reason lists them)");
-  }
-  summary << Row("max lift", Fixed(sum.max_lift_m * 1e3, 3) + " mm at " +
-                                 Fixed(sum.max_lift_rad / kDeg, 2) + "°")
-          << Row("max velocity", Fixed(sum.max_velocity_m_s, 3) + " m/s at " +
-                                     Fixed(sum.max_velocity_rad / kDeg, 2) + "°");
-  if (sum.max_acceleration_m_s2) {
-    summary << Row("acceleration", Fixed(*sum.max_acceleration_m_s2, 2) + " m/s² max at " +
-                                       Fixed(*sum.max_acceleration_rad / kDeg, 2) + "°, " +
-                                       Fixed(*sum.min_acceleration_m_s2, 2) + " m/s² min at " +
-                                       Fixed(*sum.min_acceleration_rad / kDeg, 2) + "°");
-  }
-  summary << "</table>";
-
+CheckReportWriter::CheckReportWriter(const Case& c, const LiftLaw& law, const LiftLawChoice& choice,
+                                     double rpm, Gnuplot* gnuplot)
+    : c_(c),
+      law_(law),
+      choice_(choice),
+      rpm_(rpm),
+      kin_(law, rpm),
+      report_("needle check: " + (c.title.empty() ? c.path : c.title), gnuplot) {
+  const Kinematics& kin = kin_;
+  Report& report = report_;
   // Figure 1: lift, velocity, acceleration over the spline, with the table's points (or the
   // measured readings) and the paper's velocities as markers.
   Series kinematic{"kin", {}}, paper{"paper", {}}, points{"points", {}};
@@ -120,24 +77,7 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
     }
   }
   if (paper.rows.empty()) paper.rows.push_back({NAN, NAN});
-  // ---- the report ----
-  report.AddHtml(std::string("<p>Overall: ") + Verdict(ok) + "</p>");
-  if (!failing.empty()) {
-    std::string s = "<h2>Failing</h2><ul class=\"fail-list\">";
-    for (const auto& f : failing) s += "<li>" + Escape(f) + "</li>";
-    report.AddHtml(s + "</ul>");
-  }
-  if (!result.warnings.empty()) {
-    std::string s = "<h2>Warnings</h2><ul>";
-    for (const auto& w : result.warnings) s += "<li>" + Escape(w) + "</li>";
-    report.AddHtml(s + "</ul>");
-  }
-  report.AddHtml(summary.str());
-  if (!skipped.empty()) {
-    std::string s = "<h2>Skipped</h2><ul class=\"skip\">";
-    for (const auto& k : skipped) s += "<li>" + Escape(k) + "</li>";
-    report.AddHtml(s + "</ul>");
-  }
+  top_ = report.Reserve();  // the verdict, the scene and what was skipped (Finish)
   report.AddHtml("<h2>Kinematics</h2>");
   const bool accel = law.HasAcceleration();
   const std::string points_label = choice.measured ? "readings" : "table";
@@ -185,6 +125,158 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
     report.AddHtml(t.str() + "</table>");
   }
 
+  spring_ = report.Reserve();
+}
+
+void CheckReportWriter::RatedRun(const SpringCheckResult& spring, const SimulationResult& r,
+                                 const SimulationOptions& options) {
+  if (rated_) throw std::logic_error("CheckReportWriter: the rated run given twice");
+  rated_ = true;
+  const Case& c = c_;
+  const LiftLaw& law = law_;
+  const double rpm = rpm_;
+  const Kinematics& kin = kin_;
+  Report& report = report_;
+  (void)c;
+  std::ostringstream d;
+  d << "<h2>Dynamics at " << Fixed(rpm, 0) << " rpm</h2><table>"
+    << Row("solver", Escape(r.method) + " (" + Escape(r.method_reason) + "), rtol " +
+                         Sci(options.integrator.rtol))
+    << Row("steps, right-hand sides, events", std::to_string(r.stats.steps) + ", " +
+                                                  std::to_string(r.stats.rhs_evaluations) + ", " +
+                                                  std::to_string(r.stats.events))
+    << Row("energy residual", Sci(r.energy_residual))
+    << Row("run", "to " + Fixed(r.run_end_rad / kDeg, 2) + "° (window end " +
+                      Fixed(r.window_end_rad / kDeg, 2) + "°): " + RunStatusName(r.status) +
+                      (r.status_reason.empty() ? std::string(", the needle at rest")
+                                               : ", " + Escape(r.status_reason)))
+
+    << Row("lift-off at the rated speed", r.liftoff() ? "<span class=\"fail\">yes</span>" : "no")
+    << Row("max contact force", Fixed(r.max_contact_force_N, 1) + " N; min during the lift " +
+                                    Fixed(r.min_contact_force_during_lift_N, 1) + " N");
+  for (const Impact& i : r.impacts) {
+    d << Row("impact: " + i.kind,
+             Fixed(i.crank_rad / kDeg, 3) + "°, " + Fixed(i.speed_m_s, 4) + " m/s");
+  }
+  for (const Episode& e : r.episodes) {
+    d << Row("episode: " + e.kind, Fixed(e.start_rad / kDeg, 3) + "° to " +
+                                       Fixed(e.end_rad / kDeg, 3) + "°, largest gap " +
+                                       Fixed(e.max_gap_m * 1e3, 4) + " mm");
+  }
+  d << "</table>";
+  report.AddHtml(d.str());
+  const RigidTrain& rigid = spring.train;
+  Series force{"force", {}}, motion{"motion", {}}, impacts{"impacts", {}}, shade{"shade", {}};
+  const double omega = OmegaFromRpm(rpm);
+  for (size_t k = 0; k < r.series.size(); k += std::max<size_t>(1, r.series.size() / 3000)) {
+    const SeriesPoint& p = r.series[k];
+    const bool in = p.crank_rad >= law.start_rad() && p.crank_rad <= law.end_rad();
+    force.rows.push_back({p.crank_rad / kDeg, p.contact_force_N,
+                          in ? QuasiStaticForce(law, rigid, omega, p.crank_rad) : NAN});
+    motion.rows.push_back({p.crank_rad / kDeg, p.lift_m * 1e3, p.cam_m * 1e3});
+  }
+  for (const Impact& i : r.impacts) {
+    impacts.rows.push_back(
+        {i.crank_rad / kDeg,
+         (i.kind.rfind("seat", 0) == 0 ? 0.0 : kin.At(i.crank_rad).lift_m * 1e3)});
+  }
+  if (impacts.rows.empty()) impacts.rows.push_back({NAN, NAN});
+  std::string rects;
+  for (const Episode& e : r.episodes) {
+    rects += "set object rect from " + Fixed(e.start_rad / kDeg, 4) + ", graph 0 to " +
+             Fixed(e.end_rad / kDeg, 4) + ", graph 1 fc rgb '#ffcccc' fs solid 0.6 behind\n";
+  }
+  report.AddFigure(
+      "Contact force: quasi-static F_qs (rigid train) and dynamic F_c; lift-off episodes shaded",
+      {force},
+      rects +
+          "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
+          "plot $force using 1:3 with lines lw 2 title 'quasi-static', $force using 1:2 with "
+          "lines lw 1 title 'dynamic'");
+  surge_ = report.Reserve();  // the surge figure, known with the result (Finish)
+  report.AddFigure("Needle lift against the cam input u(θ); impacts marked", {motion, impacts},
+                   "set xlabel 'crank angle (deg)'\nset ylabel 'lift (mm)'\nset key top right\n"
+                   "plot $motion using 1:3 with lines lw 2 title 'cam u', $motion using 1:2 with "
+                   "lines lw 1 title 'needle y', "
+                   "$impacts using 1:2 with points pt 7 ps 1.2 title 'impacts'");
+}
+
+Report CheckReportWriter::Finish(const CheckResult& result) {
+  if (result.run && result.spring && !rated_)
+    RatedRun(*result.spring, *result.run, result.run_options);
+  const Case& c = c_;
+  const LiftLaw& law = law_;
+  const double rpm = rpm_;
+  const LiftLawChoice& choice = choice_;
+  Report& report = report_;
+  const KinematicsSummary& sum = result.kinematics;
+  const std::vector<std::string>& skipped = result.skipped;
+  const std::vector<std::string>& failing = result.failing;
+  const bool ok = result.pass;
+  const std::optional<SpringCheckResult>& spring = result.spring;
+  const std::optional<OverspeedResult>& sweep = result.sweep;
+  const std::optional<CamProfile>& profile = result.profile;
+  const double n_qs = result.n_qs_rpm, overspeed_rpm = result.overspeed_rpm;
+
+  std::ostringstream summary;
+  summary << "<h2>Scene</h2><table>" << Row("case", Escape(c.path))
+          << Row("rated speed", Fixed(rpm, 1) + " rpm")
+          << Row("cycle", Escape(EngineCycleName(c.engine.cycle)))
+          << Row("lift law", Escape(c.lift.source) + ", " +
+                                 std::to_string(c.lift.table.crank_rad.size()) +
+                                 " points, spline " + SplineKindName(law.kind()))
+          << Row("spline chosen", Escape(choice.reason))
+          << Row("open lift", Fixed(sum.open_rad / kDeg, 2) + "° to " +
+                                  Fixed(sum.close_rad / kDeg, 2) + "°" +
+                                  (law.closed_level_m() > 0
+                                       ? " (where the lift exceeds " +
+                                             Fixed(law.closed_level_m() * 1e3, 4) + " mm, 3σ)"
+                                       : std::string(" (last zero before the rise to first zero "
+                                                     "after the fall)")))
+          << Row("injection period", Fixed(sum.injection_period_s * 1e3, 2) + " ms");
+  if (law.undershoot_m() > 0) {
+    summary << Row("WARNING", "the spline dips " + Fixed(law.undershoot_m() * 1e3, 4) +
+                                  " mm below the seat at " + Fixed(law.undershoot_rad() / kDeg, 2) +
+                                  "° inside the open lift; try another spline kind");
+  }
+  if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
+    summary << Row("WARNING", std::to_string(choice.outliers.size()) +
+                                  " outlier(s) of the lift table left out (outliers = \"drop\"; "
+                                  "the spline's reason lists them)");
+  }
+  summary << Row("max lift", Fixed(sum.max_lift_m * 1e3, 3) + " mm at " +
+                                 Fixed(sum.max_lift_rad / kDeg, 2) + "°")
+          << Row("max velocity", Fixed(sum.max_velocity_m_s, 3) + " m/s at " +
+                                     Fixed(sum.max_velocity_rad / kDeg, 2) + "°");
+  if (sum.max_acceleration_m_s2) {
+    summary << Row("acceleration", Fixed(*sum.max_acceleration_m_s2, 2) + " m/s² max at " +
+                                       Fixed(*sum.max_acceleration_rad / kDeg, 2) + "°, " +
+                                       Fixed(*sum.min_acceleration_m_s2, 2) + " m/s² min at " +
+                                       Fixed(*sum.min_acceleration_rad / kDeg, 2) + "°");
+  }
+  summary << "</table>";
+
+  std::vector<std::string> top;
+  top.push_back(std::string("<p>Overall: ") + Verdict(ok) + "</p>");
+  if (!failing.empty()) {
+    std::string s = "<h2>Failing</h2><ul class=\"fail-list\">";
+    for (const auto& f : failing) s += "<li>" + Escape(f) + "</li>";
+    top.push_back(s + "</ul>");
+  }
+  if (!result.warnings.empty()) {
+    std::string s = "<h2>Warnings</h2><ul>";
+    for (const auto& w : result.warnings) s += "<li>" + Escape(w) + "</li>";
+    top.push_back(s + "</ul>");
+  }
+  top.push_back(summary.str());
+  if (!skipped.empty()) {
+    std::string s = "<h2>Skipped</h2><ul class=\"skip\">";
+    for (const auto& k : skipped) s += "<li>" + Escape(k) + "</li>";
+    top.push_back(s + "</ul>");
+  }
+  std::string joined;  // one place: its parts a line each, as the document writes parts
+  for (size_t i = 0; i < top.size(); ++i) joined += (i ? "\n" : "") + top[i];
+  report.Fill(top_, joined);
   if (spring) {
     const SpringCheckResult& s = *spring;
     std::ostringstream t;
@@ -229,112 +321,50 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
       << Row("Basu's formula tolerance",
              Fixed(s.basu_tolerance_percent, 1) + " % " + Verdict(s.basu_ok));
     t << Row("spring check", Verdict(s.pass)) << "</table>";
-    report.AddHtml(t.str());
+    report.Fill(spring_, t.str());
   }
 
-  if (run) {
-    const SimulationResult& r = *run;
-    std::ostringstream d;
-    d << "<h2>Dynamics at " << Fixed(rpm, 0) << " rpm</h2><table>"
-      << Row("solver", Escape(r.method) + " (" + Escape(r.method_reason) + "), rtol " +
-                           Sci(result.run_options.integrator.rtol))
-      << Row("steps, right-hand sides, events", std::to_string(r.stats.steps) + ", " +
-                                                    std::to_string(r.stats.rhs_evaluations) + ", " +
-                                                    std::to_string(r.stats.events))
-      << Row("energy residual", Sci(r.energy_residual))
-      << Row("run", "to " + Fixed(r.run_end_rad / kDeg, 2) + "° (window end " +
-                        Fixed(r.window_end_rad / kDeg, 2) + "°): " + RunStatusName(r.status) +
-                        (r.status_reason.empty() ? std::string(", the needle at rest")
-                                                 : ", " + Escape(r.status_reason)))
-
-      << Row("lift-off at the rated speed", r.liftoff() ? "<span class=\"fail\">yes</span>" : "no")
-      << Row("max contact force", Fixed(r.max_contact_force_N, 1) + " N; min during the lift " +
-                                      Fixed(r.min_contact_force_during_lift_N, 1) + " N");
-    for (const Impact& i : r.impacts) {
-      d << Row("impact: " + i.kind,
-               Fixed(i.crank_rad / kDeg, 3) + "°, " + Fixed(i.speed_m_s, 4) + " m/s");
-    }
-    for (const Episode& e : r.episodes) {
-      d << Row("episode: " + e.kind, Fixed(e.start_rad / kDeg, 3) + "° to " +
-                                         Fixed(e.end_rad / kDeg, 3) + "°, largest gap " +
-                                         Fixed(e.max_gap_m * 1e3, 4) + " mm");
-    }
-    d << "</table>";
-    report.AddHtml(d.str());
-    const RigidTrain& rigid = spring->train;
-    Series force{"force", {}}, motion{"motion", {}}, impacts{"impacts", {}}, shade{"shade", {}};
-    const double omega = OmegaFromRpm(rpm);
-    for (size_t k = 0; k < r.series.size(); k += std::max<size_t>(1, r.series.size() / 3000)) {
-      const SeriesPoint& p = r.series[k];
-      const bool in = p.crank_rad >= law.start_rad() && p.crank_rad <= law.end_rad();
-      force.rows.push_back({p.crank_rad / kDeg, p.contact_force_N,
-                            in ? QuasiStaticForce(law, rigid, omega, p.crank_rad) : NAN});
-      motion.rows.push_back({p.crank_rad / kDeg, p.lift_m * 1e3, p.cam_m * 1e3});
-    }
-    for (const Impact& i : r.impacts) {
-      impacts.rows.push_back(
-          {i.crank_rad / kDeg,
-           (i.kind.rfind("seat", 0) == 0 ? 0.0 : kin.At(i.crank_rad).lift_m * 1e3)});
-    }
-    if (impacts.rows.empty()) impacts.rows.push_back({NAN, NAN});
-    std::string rects;
-    for (const Episode& e : r.episodes) {
-      rects += "set object rect from " + Fixed(e.start_rad / kDeg, 4) + ", graph 0 to " +
-               Fixed(e.end_rad / kDeg, 4) + ", graph 1 fc rgb '#ffcccc' fs solid 0.6 behind\n";
-    }
-    report.AddFigure(
-        "Contact force: quasi-static F_qs (rigid train) and dynamic F_c; lift-off episodes shaded",
-        {force},
-        rects +
-            "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
-            "plot $force using 1:3 with lines lw 2 title 'quasi-static', $force using 1:2 with "
-            "lines lw 1 title 'dynamic'");
-    if (result.surge && !result.surge->rated.series.empty()) {
-      // Surge by its effect: the contact force with the spring as N coil masses against the
-      // massless spring's, at the rated speed, over the lift of each run's last revolution
-      // (folded onto the first: the steady one where the run has several).
-      const SurgeStudy& sg = *result.surge;
-      Series chain{"chain", {}}, massless{"massless", {}};
-      const double from_rad = law.start_rad() - 5 * kDeg, to_rad = law.end_rad() + 20 * kDeg;
-      for (const auto& [one, into] : {std::pair{&sg.rated, &chain}, {&sg.massless, &massless}}) {
-        const double shift =
-            one->cycles.empty() ? 0.0 : one->cycles.back().start_rad - one->cycles[0].start_rad;
-        for (const SeriesPoint& p : one->series) {
-          const double th = p.crank_rad - shift;
-          if (th >= from_rad && th <= to_rad) into->rows.push_back({th / kDeg, p.contact_force_N});
-        }
+  if (surge_ != kNone && result.surge && !result.surge->rated.series.empty()) {
+    // Surge by its effect: the contact force with the spring as N coil masses against the
+    // massless spring's, at the rated speed, over the lift of each run's last revolution
+    // (folded onto the first: the steady one where the run has several).
+    const SurgeStudy& sg = *result.surge;
+    Series chain{"chain", {}}, massless{"massless", {}};
+    const double from_rad = law.start_rad() - 5 * kDeg, to_rad = law.end_rad() + 20 * kDeg;
+    for (const auto& [one, into] : {std::pair{&sg.rated, &chain}, {&sg.massless, &massless}}) {
+      const double shift =
+          one->cycles.empty() ? 0.0 : one->cycles.back().start_rad - one->cycles[0].start_rad;
+      for (const SeriesPoint& p : one->series) {
+        const double th = p.crank_rad - shift;
+        if (th >= from_rad && th <= to_rad) into->rows.push_back({th / kDeg, p.contact_force_N});
       }
-      // Drawn from two runs of rows a pixel column (LineEnvelope: the curves as the whole
-      // series draws them; the chain's run has some 20 000 points in the window, and gnuplot's
-      // time grows with them).
-      for (Series* s : {&chain, &massless})
-        s->rows = LineEnvelope(s->rows, from_rad / kDeg, to_rad / kDeg, 2 * kFigureWidthPx);
-      // Runs stopped on a budget before the lift have nothing to draw (the check fails them as
-      // undecided): the figure is left out, saying why.
-      const bool drawn = !chain.rows.empty() || !massless.rows.empty();
-      if (!drawn) {
-        report.AddHtml(
-            "<p>Surge figure not drawn: neither run reached the lift (the massless run is " +
-            RunStatusName(sg.massless.status) + ", the run with coil masses " +
-            RunStatusName(sg.rated.status) + ").</p>");
-      }
-      for (Series* s : {&chain, &massless})
-        if (s->rows.empty()) s->rows.push_back({NAN, NAN});
-      if (drawn)
-        report.AddFigure(
-            "Surge: the contact force with the spring as " + std::to_string(sg.masses) +
-                " coil masses against the massless spring, at " + Fixed(rpm, 0) + " rpm",
-            {chain, massless},
-            "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
-            "plot $massless using 1:2 with lines lw 2 title 'massless spring', $chain using 1:2 "
-            "with lines lw 1 title '" +
-                std::to_string(sg.masses) + " coil masses'");
     }
-    report.AddFigure("Needle lift against the cam input u(θ); impacts marked", {motion, impacts},
-                     "set xlabel 'crank angle (deg)'\nset ylabel 'lift (mm)'\nset key top right\n"
-                     "plot $motion using 1:3 with lines lw 2 title 'cam u', $motion using 1:2 with "
-                     "lines lw 1 title 'needle y', "
-                     "$impacts using 1:2 with points pt 7 ps 1.2 title 'impacts'");
+    // Drawn from two runs of rows a pixel column (LineEnvelope: the curves as the whole
+    // series draws them; the chain's run has some 20 000 points in the window, and gnuplot's
+    // time grows with them).
+    for (Series* s : {&chain, &massless})
+      s->rows = LineEnvelope(s->rows, from_rad / kDeg, to_rad / kDeg, 2 * kFigureWidthPx);
+    // Runs stopped on a budget before the lift have nothing to draw (the check fails them as
+    // undecided): the figure is left out, saying why.
+    const bool drawn = !chain.rows.empty() || !massless.rows.empty();
+    if (!drawn) {
+      report.Fill(surge_,
+                  "<p>Surge figure not drawn: neither run reached the lift (the massless run is " +
+                      RunStatusName(sg.massless.status) + ", the run with coil masses " +
+                      RunStatusName(sg.rated.status) + ").</p>");
+    }
+    for (Series* s : {&chain, &massless})
+      if (s->rows.empty()) s->rows.push_back({NAN, NAN});
+    if (drawn)
+      report.FigureAt(
+          surge_,
+          "Surge: the contact force with the spring as " + std::to_string(sg.masses) +
+              " coil masses against the massless spring, at " + Fixed(rpm, 0) + " rpm",
+          {chain, massless},
+          "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\nset key top right\n"
+          "plot $massless using 1:2 with lines lw 2 title 'massless spring', $chain using 1:2 "
+          "with lines lw 1 title '" +
+              std::to_string(sg.masses) + " coil masses'");
   }
   if (profile) {
     std::ostringstream t;
@@ -463,7 +493,12 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
             "$hits using 1:2 with points pt 6 ps 1.2 lc rgb '#000000'",
         520);
   }
-  return report;
+  return std::move(report_);
+}
+
+Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result, Gnuplot* gnuplot) {
+  CheckReportWriter writer(c, law, result.choice, result.speed_rpm, gnuplot);
+  return writer.Finish(result);
 }
 
 }  // namespace needle

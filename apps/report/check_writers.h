@@ -10,6 +10,7 @@
 #include "apps/case/case_file.h"
 #include "apps/report/html_report.h"
 #include "apps/study/check_scene.h"
+#include "lib/kinematics.h"
 
 namespace needle {
 
@@ -29,5 +30,33 @@ std::string CheckText(const Case& c, const CheckResult& result, const std::strin
 /// std::runtime_error naming gnuplot's failure.
 Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
                    Gnuplot* gnuplot = nullptr);
+
+/// The same report made as the check runs, so that its gnuplot draws each figure beside the rest
+/// of the check as soon as what it shows is known: the kinematics when made, the rated-speed
+/// run's force and motion when that run ends (RatedRun, from CheckOptions::rated_run_done), the
+/// rest with the result (Finish). The document is CheckReport's to the byte.
+class CheckReportWriter {
+ public:
+  /// `c` and `law` outlive this writer; `choice` and `rpm` are the check's (its result's).
+  CheckReportWriter(const Case& c, const LiftLaw& law, const LiftLawChoice& choice, double rpm,
+                    Gnuplot* gnuplot = nullptr);
+  /// The rated-speed run and the spring check it ran on (at most once; Finish gives them from
+  /// the result when this was not called).
+  void RatedRun(const SpringCheckResult& spring, const SimulationResult& run,
+                const SimulationOptions& options);
+  /// The whole report of `result`, the check whose rated run was given (once).
+  Report Finish(const CheckResult& result);
+
+ private:
+  static constexpr size_t kNone = static_cast<size_t>(-1);
+  const Case& c_;
+  const LiftLaw& law_;
+  LiftLawChoice choice_;
+  double rpm_;
+  Kinematics kin_;
+  Report report_;
+  size_t top_ = kNone, spring_ = kNone, surge_ = kNone;  // places filled by Finish
+  bool rated_ = false;
+};
 
 }  // namespace needle

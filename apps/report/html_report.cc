@@ -250,7 +250,10 @@ std::string Escape(const std::string& text) {
 
 Report::Report(std::string title, Gnuplot* gnuplot) : title_(std::move(title)), gnuplot_(gnuplot) {}
 
-void Report::AddHtml(const std::string& html) { parts_.push_back(html); }
+void Report::AddHtml(const std::string& html) {
+  parts_.push_back(html);
+  open_.push_back(false);
+}
 
 void Rows::push_back(std::initializer_list<double> row) {
   if (width_ == 0) width_ = row.size();
@@ -299,8 +302,26 @@ Rows LineEnvelope(const Rows& rows, double x_from, double x_to, int columns) {
 
 void Report::AddFigure(const std::string& caption, std::vector<Series> data, std::string script,
                        int height_px) {
-  parts_.emplace_back();  // the figure's place, filled when the report is drawn
-  pending_.push_back({caption, std::move(data), std::move(script), height_px, parts_.size() - 1});
+  FigureAt(Reserve(), caption, std::move(data), std::move(script), height_px);
+}
+
+size_t Report::Reserve() {
+  parts_.emplace_back();
+  open_.push_back(true);
+  return parts_.size() - 1;
+}
+
+void Report::Fill(size_t place, const std::string& html) {
+  if (!(place < parts_.size() && open_[place]))
+    throw std::logic_error("Report: place " + std::to_string(place) + " is not an open one");
+  parts_[place] = html;
+  open_[place] = false;
+}
+
+void Report::FigureAt(size_t place, const std::string& caption, std::vector<Series> data,
+                      std::string script, int height_px) {
+  Fill(place, "");  // the figure's place, filled when the report is drawn
+  pending_.push_back({caption, std::move(data), std::move(script), height_px, place});
   ++figures_;
   if (gnuplot_) {
     SendFigure(*gnuplot_, pending_.size() - 1);
@@ -378,7 +399,13 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
                ? "gnuplot wrote no message and ended with status " + std::to_string(status) + "\n"
                : text;
   };
-  for (size_t k = 0; k < pending_.size(); ++k) {
+  // In the document's order (a figure may have been given to gnuplot before one above it): the
+  // first that failed is named.
+  std::vector<size_t> order(pending_.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return pending_[a].part < pending_[b].part; });
+  for (size_t k : order) {
     const PendingFigure& f = pending_[k];
     const std::filesystem::path dir = folder / ("f" + std::to_string(k));
     const std::string body = Slurp(dir / "figure.svg");
@@ -417,7 +444,8 @@ std::string Report::Document(const std::vector<std::string>& parts) const {
          "0}figcaption{font-size:.9em;color:#555}svg{max-width:100%;height:auto}"
          ".skip{color:#555}</style></head>\n<body>\n<h1>"
       << Escape(title_) << "</h1>\n";
-  for (const std::string& p : parts) out << p << '\n';
+  for (size_t i = 0; i < parts.size(); ++i)
+    if (!open_[i]) out << parts[i] << '\n';
   out << "</body></html>\n";
   return out.str();
 }

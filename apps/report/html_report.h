@@ -98,6 +98,14 @@ class Report {
   /// ($lift, $force, …). `height_px`: the figure's height (kFigureWidthPx wide).
   void AddFigure(const std::string& caption, std::vector<Series> data, std::string script,
                  int height_px = 420);
+  /// A place in the document for what is known later (a report made as its job runs, so that
+  /// gnuplot draws the figures known first beside the rest of the job): filled once by Fill or
+  /// FigureAt, and left out of the document if never filled. (gnuplot draws the figures in the
+  /// order given; the first it draws differs from the later ones in one attribute of its SVG.)
+  size_t Reserve();
+  void Fill(size_t place, const std::string& html);
+  void FigureAt(size_t place, const std::string& caption, std::vector<Series> data,
+                std::string script, int height_px = 420);
   int figures() const { return figures_; }
 
   /// The whole HTML document, every figure drawn by one gnuplot process (the report's own, or one
@@ -123,6 +131,7 @@ class Report {
 
   std::string title_;
   std::vector<std::string> parts_;
+  std::vector<bool> open_;  // parts_[i] reserved and not filled: left out of the document
   std::vector<PendingFigure> pending_;
   int figures_ = 0;
   Gnuplot* gnuplot_ = nullptr;  // draws each figure as it is added

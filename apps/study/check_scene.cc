@@ -166,6 +166,8 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     sim.force_dynamic = true;  // the report shows the dynamic force
     sim.record_series = options.record_series;
     r.run = Simulate(scene, rpm, sim);
+    if (options.rated_run_done && r.spring)
+      options.rated_run_done(*r.spring, *r.run, r.run_options);
     if (scene.cam->play_m() == 0.0)
       r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
     r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);

@@ -110,6 +110,12 @@ struct CheckOptions {
   /// note of the report) and no lift harmonics (CheckResult::harmonics). Every limits row and
   /// verdict is the full check's.
   bool verdict_only = false;
+  /// Called on the calling thread once the spring check and the rated-speed run are done, before
+  /// the overspeed sweep, while the surge study may be running on another thread (a report draws
+  /// their figures beside the rest: CheckReportWriter::RatedRun); may be empty.
+  std::function<void(const SpringCheckResult& spring, const SimulationResult& run,
+                     const SimulationOptions& options)>
+      rated_run_done;
 };
 
 /// What `needle check` found. All SI except speeds (rpm).

@@ -13,6 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "apps/case/case_file.h"
+#include "apps/report/check_writers.h"
+#include "apps/study/check_scene.h"
+
 namespace needle {
 namespace {
 
@@ -108,6 +112,44 @@ TEST(HtmlReportTest, FiguresGivenToGnuplotAsTheyAreAddedMakeTheSamePage) {
   EXPECT_EQ(report.Html(), at_end);
 }
 
+// A report made as its job runs: a place reserved for what is known later is filled in its
+// order, left out when never filled (not even its line), filled once; a figure put in a place
+// above one given to gnuplot before it is drawn there, and the first failing figure named is the
+// first in the document, whichever gnuplot was given first. (The first figure a gnuplot draws
+// differs from the later ones in one attribute of the SVG: both pages give theirs first.)
+TEST(HtmlReportTest, PlacesReservedAreFilledInTheirOrderOrLeftOut) {
+  const Series line = Make("line", {{0.0, 1.0}, {1.0, 2.0}});
+  const Series points = Make("points", {{0.0, 3.0}, {1.0, 4.0}});
+  const std::string b_script = "plot $points with points", c_script = "plot $line with points";
+  Report in_order("three figures");
+  in_order.AddHtml("<p>before</p>");
+  in_order.AddFigure("a", {line}, "plot $line with lines");
+  in_order.AddFigure("b", {points}, b_script);
+  in_order.AddFigure("c", {line}, c_script);
+  const auto out_of_order = [&](const std::string& b, const std::string& c) {
+    Gnuplot gnuplot;
+    Report report("three figures", &gnuplot);
+    const size_t before = report.Reserve();
+    report.AddFigure("a", {line}, "plot $line with lines");
+    const size_t second = report.Reserve();
+    const size_t never = report.Reserve();
+    report.AddFigure("c", {line}, c);  // given to gnuplot before b
+    report.FigureAt(second, "b", {points}, b);
+    report.Fill(before, "<p>before</p>");
+    EXPECT_THROW(report.Fill(before, "again"), std::logic_error);
+    EXPECT_THROW(report.Fill(second, "taken"), std::logic_error);
+    EXPECT_THROW(report.Fill(never + 2, "past the end"), std::logic_error);
+    return report.Html(gnuplot);
+  };
+  EXPECT_EQ(out_of_order(b_script, c_script), in_order.Html());
+  try {  // b and c fail; c was given to gnuplot first
+    out_of_order("plot no_such_function($points)", "plot no_such_function($line)");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("gnuplot failed drawing \"b\"", 0), 0u) << e.what();
+  }
+}
+
 // LineEnvelope keeps, of each column's run of rows, the first, lowest, highest and last, in
 // their order: every column shows the same extent and the curve enters and leaves it where the
 // whole series does.
@@ -195,6 +237,31 @@ TEST(HtmlReportTest, AFigureStopsAtItsFirstErrorAndTheNextIsStillDrawn) {
     return std::string(std::istreambuf_iterator<char>(in), {});
   }();
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
+}
+
+// `check` makes its report as the check runs (the kinematics figure first, the rated run's when
+// it ends): the same page as the report made from the result, on a scene with every figure, on
+// one with its surge figure left out (no coil geometry: a rate-only spring) and on a kinematics
+// case without dynamics.
+TEST(CheckReportWriterTest, TheReportMadeAsTheCheckRunsIsTheResultsToTheByte) {
+  for (const char* name : {"basu-example1.toml", "basu-cam4-light-spring.toml", "basu-cam4.toml"}) {
+    const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + name);
+    const CaseLift lift = ResolveLift(c);
+    Gnuplot gnuplot;
+    CheckReportWriter writer(c, *lift.law, lift.choice, c.engine.speed_rpm, &gnuplot);
+    int calls = 0;
+    CheckOptions options;
+    options.rated_run_done = [&](const SpringCheckResult& spring, const SimulationResult& run,
+                                 const SimulationOptions& sim) {
+      ++calls;
+      writer.RatedRun(spring, run, sim);
+    };
+    const CheckResult result = CheckScene(c, lift, options);
+    EXPECT_EQ(calls, result.run ? 1 : 0) << name;
+    const std::string as_it_ran = writer.Finish(result).Html(gnuplot);
+    EXPECT_EQ(as_it_ran, CheckReport(c, *lift.law, result).Html()) << name;
+    EXPECT_NE(as_it_ran.find("<svg"), std::string::npos) << name;
+  }
 }
 
 }  // namespace
