@@ -1,16 +1,11 @@
 // The check's HTML report (check_writers.h).
 #include <cmath>
-#include <filesystem>
-#include <iostream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "apps/case/case_file.h"
 #include "apps/case/case_profile.h"
-#include "apps/case/case_scene.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/html_report.h"
-#include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/overspeed.h"
@@ -132,12 +127,10 @@ void CheckReportWriter::RatedRun(const SpringCheckResult& spring, const Simulati
                                  const SimulationOptions& options) {
   if (rated_) throw std::logic_error("CheckReportWriter: the rated run given twice");
   rated_ = true;
-  const Case& c = c_;
   const LiftLaw& law = law_;
   const double rpm = rpm_;
   const Kinematics& kin = kin_;
   Report& report = report_;
-  (void)c;
   std::ostringstream d;
   d << "<h2>Dynamics at " << Fixed(rpm, 0) << " rpm</h2><table>"
     << Row("solver", Escape(r.method) + " (" + Escape(r.method_reason) + "), rtol " +
