@@ -223,6 +223,19 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     if (s.n_dyn_rpm && *s.n_dyn_rpm <= r.overspeed_rpm) {
       fail("overspeed: n_dyn " + Fixed(*s.n_dyn_rpm, 1) + " rpm is at or below " +
            Fixed(r.overspeed_rpm, 1) + " rpm (the overspeed factor times the rated speed)");
+    } else {
+      // n_dyn above f·n needs the speeds from the rated one up to f·n scanned: a [overspeed]
+      // range that leaves some out leaves the rule undecided (a lift-off there is not seen).
+      if (s.status == "none" && s.scanned_to_rpm < r.overspeed_rpm) {
+        fail("overspeed: undecided: no lift-off up to " + Fixed(s.scanned_to_rpm, 1) +
+             " rpm, where the sweep ends ([overspeed] to_rpm), below f n = " +
+             Fixed(r.overspeed_rpm, 1) + " rpm");
+      }
+      if (r.sweep_range.from_rpm > rpm && !s.lifts_off_at_start) {
+        fail("overspeed: undecided between the rated speed " + Fixed(rpm, 1) + " rpm and " +
+             Fixed(r.sweep_range.from_rpm, 1) +
+             " rpm, where the sweep starts ([overspeed] from_rpm): a lift-off there is not seen");
+      }
     }
   } else {
     r.skipped.push_back(

@@ -760,3 +760,46 @@ TEST(CheckSceneTest, TheSurgeStudyBesideTheSweepGivesTheSameResult) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// n_dyn above f·n needs the speeds from the rated one to f·n scanned: an [overspeed] range that
+// ends below f·n without a lift-off, or starts above the rated speed, leaves that rule undecided
+// and fails, naming the key; a sweep that starts above the rated speed judges no separation
+// margin (its n_dyn is not the lowest lift-off speed). Found by trying the check as a user would
+// (a surging spring's lift-off window at 1260 rpm under a sweep from 1300 rpm passed).
+TEST(CheckSceneTest, ARangeThatLeavesOutSpeedsTheVerdictReadsIsUndecided) {
+  CheckOptions o;
+  o.record_series = false;
+  Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
+  const CheckResult full = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_TRUE(full.pass);  // n_dyn above f·n = 600 rpm
+  ASSERT_TRUE(full.sweep->n_dyn_rpm);
+  EXPECT_GT(*full.sweep->n_dyn_rpm, 600.0);
+  c.overspeed->to_rpm = 580;
+  const CheckResult short_range = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_EQ(short_range.sweep->status, "none");
+  ASSERT_EQ(short_range.failing.size(), 2u);  // and the margin row, on its lower bound
+  EXPECT_EQ(short_range.failing[0],
+            "overspeed: undecided: no lift-off up to 580.0 rpm, where the sweep ends ([overspeed] "
+            "to_rpm), below f n = 600.0 rpm");
+  EXPECT_EQ(short_range.failing[1].rfind("limits: separation margin n_dyn/(f n) - 1: measured "
+                                         "-3.33 %",
+                                         0),
+            0u);
+  c.overspeed->to_rpm = 2000;
+  c.overspeed->from_rpm = 700;
+  const CheckResult late = CheckScene(c, MakeLiftLaw(c), o);
+  EXPECT_FALSE(late.sweep->lifts_off_at_start);
+  ASSERT_EQ(late.failing.size(), 1u);
+  EXPECT_EQ(late.failing[0],
+            "overspeed: undecided between the rated speed 500.0 rpm and 700.0 rpm, where the sweep "
+            "starts ([overspeed] from_rpm): a lift-off there is not seen");
+  EXPECT_EQ(Row(late, "separation_margin").verdict, "not judged");
+  EXPECT_EQ(Row(late, "separation_margin").note,
+            "the sweep starts above the rated speed, at 700.0 rpm ([overspeed] from_rpm)");
+}
+
+}  // namespace
+}  // namespace needle
