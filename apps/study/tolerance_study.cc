@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 #include <numeric>
+#include <stdexcept>
 #include <thread>
 #include <tuple>
 
@@ -128,14 +129,20 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   s.inputs["speed_deviation"] = t.speed_fraction * z_speed;
   // A sample the model refuses (a lift table the spline or the ramps cannot take) is a
   // result, not the end of the study: it fails as "case refused", with the reason.
+  // (And the model's own refusal of a sampled value: a stiffness or a speed scattered to zero.)
+  const auto refused = [&s](const std::exception& why) {
+    s.pass = false;
+    s.failing = {"case refused"};
+    s.refused = why.what();
+    return s;
+  };
   CheckResult r;
   try {
     r = CheckScene(c, ResolveLift(c), options);
   } catch (const CaseError& refusal) {
-    s.pass = false;
-    s.failing = {"case refused"};
-    s.refused = refusal.what();
-    return s;
+    return refused(refusal);
+  } catch (const std::invalid_argument& refusal) {
+    return refused(refusal);
   }
   for (const FieldGroup& group : CheckFields(r)) {
     for (const Field& f : group.fields) {

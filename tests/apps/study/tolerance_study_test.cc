@@ -206,6 +206,26 @@ TEST(ToleranceStudyTest, ARefusedSampleIsAResult) {
   EXPECT_EQ(r.distributions.at("kinematics.max_lift_mm").count, 3 - refused);
 }
 
+// A sampled value the model itself refuses (a contact stiffness scattered below zero, held at
+// zero) is a refused sample with the model's reason, not the study's end (it ended the study
+// with exit 2 before: found by trying stiffness_percent = 50 as a user would).
+TEST(ToleranceStudyTest, AValueTheModelRefusesIsARefusedSample) {
+  Case c = LoadCase(kCases + "basu-example2.toml");
+  c.tolerance->stiffness_fraction = 0.5;
+  ToleranceOptions o;
+  o.samples = 3;
+  o.seed = 6;
+  const ToleranceResult r = RunToleranceStudy(c, o);
+  for (int i : {0, 1}) {  // scattered by more than −100 %
+    EXPECT_LT(r.samples[i].inputs.at("stiffness_deviation"), -1.0);
+    EXPECT_EQ(r.samples[i].refused,
+              "TrainParameters.contact_stiffness_N_m = 0.000000: must be positive");
+    EXPECT_FALSE(r.samples[i].pass);
+  }
+  EXPECT_TRUE(r.samples[2].refused.empty());
+  EXPECT_DOUBLE_EQ(r.failure_by_item.at("case refused"), 2.0 / 3.0);
+}
+
 TEST(ToleranceStudyTest, BadSampleCountsAreRefused) {
   const Case c = LoadCase(kCases + "basu-example2.toml");
   ToleranceOptions o;
