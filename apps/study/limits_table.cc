@@ -112,15 +112,8 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
                      100 * l.separation_margin_fraction,
                      from(l.separation_margin_fraction != d.separation_margin_fraction,
                           "separation_margin_percent", "model: n_dyn > f n"));
-  // A sweep that starts above the rated speed (and found no lift-off there) does not look at the
-  // speeds below its start: its n_dyn is not the lowest lift-off speed.
-  const bool starts_above =
-      r.sweep && r.sweep_range.from_rpm > r.speed_rpm && !r.sweep->lifts_off_at_start;
-  if (starts_above) {
-    sep.note = "the sweep starts above the rated speed, at " + Fixed(r.sweep_range.from_rpm, 1) +
-               " rpm ([overspeed] from_rpm)";
-  } else if (r.sweep && r.sweep->status != "run-budget" && r.sweep->status != "budget" &&
-             r.sweep->status != "floor" && r.sweep->status != "not-following") {
+  if (r.sweep && r.sweep->status != "run-budget" && r.sweep->status != "budget" &&
+      r.sweep->status != "floor" && r.sweep->status != "not-following") {
     if (r.sweep->n_dyn_rpm) {
       judge(sep, 100 * (*r.sweep->n_dyn_rpm / r.overspeed_rpm - 1),
             "n_dyn " + Fixed(*r.sweep->n_dyn_rpm, 1) + " rpm, f n " + Fixed(r.overspeed_rpm, 1) +

@@ -764,12 +764,13 @@ TEST(CheckSceneTest, TheSurgeStudyBesideTheSweepGivesTheSameResult) {
 namespace needle {
 namespace {
 
-// n_dyn above f·n needs the speeds from the rated one to f·n scanned: an [overspeed] range that
-// ends below f·n without a lift-off, or starts above the rated speed, leaves that rule undecided
-// and fails, naming the key; a sweep that starts above the rated speed judges no separation
-// margin (its n_dyn is not the lowest lift-off speed). Found by trying the check as a user would
-// (a surging spring's lift-off window at 1260 rpm under a sweep from 1300 rpm passed).
-TEST(CheckSceneTest, ARangeThatLeavesOutSpeedsTheVerdictReadsIsUndecided) {
+// The check sweeps the speeds its verdict reads, from the rated speed up to f·n (1 + the
+// separation margin), whatever [overspeed] range the case gives: a range set for another rated
+// speed (a map point's, a tolerance sample's) is widened, and the verdict is the full range's.
+// Found by trying the check as a user would: a surging spring lifting off at 1260 rpm passed
+// under from_rpm = 1300 (rated 1060), and a design passed with to_rpm below f·n that fails
+// with the default range.
+TEST(CheckSceneTest, TheSweepCoversTheSpeedsTheVerdictReads) {
   CheckOptions o;
   o.record_series = false;
   Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
@@ -779,26 +780,25 @@ TEST(CheckSceneTest, ARangeThatLeavesOutSpeedsTheVerdictReadsIsUndecided) {
   EXPECT_GT(*full.sweep->n_dyn_rpm, 600.0);
   c.overspeed->to_rpm = 580;
   const CheckResult short_range = CheckScene(c, MakeLiftLaw(c), o);
-  EXPECT_EQ(short_range.sweep->status, "none");
-  ASSERT_EQ(short_range.failing.size(), 2u);  // and the margin row, on its lower bound
-  EXPECT_EQ(short_range.failing[0],
-            "overspeed: undecided: no lift-off up to 580.0 rpm, where the sweep ends ([overspeed] "
-            "to_rpm), below f n = 600.0 rpm");
-  EXPECT_EQ(short_range.failing[1].rfind("limits: separation margin n_dyn/(f n) - 1: measured "
-                                         "-3.33 %",
-                                         0),
-            0u);
+  EXPECT_EQ(short_range.sweep_range.to_rpm, 600.0);
+  EXPECT_EQ(short_range.sweep->scanned_to_rpm, 600.0);
+  EXPECT_TRUE(short_range.pass);
+  c.limits.separation_margin_fraction = 0.1;  // the margin row reads up to 660 rpm
+  EXPECT_DOUBLE_EQ(CheckScene(c, MakeLiftLaw(c), o).sweep_range.to_rpm, 660.0);
+  c.limits.separation_margin_fraction = 0.0;
   c.overspeed->to_rpm = 2000;
   c.overspeed->from_rpm = 700;
   const CheckResult late = CheckScene(c, MakeLiftLaw(c), o);
-  EXPECT_FALSE(late.sweep->lifts_off_at_start);
-  ASSERT_EQ(late.failing.size(), 1u);
-  EXPECT_EQ(late.failing[0],
-            "overspeed: undecided between the rated speed 500.0 rpm and 700.0 rpm, where the sweep "
-            "starts ([overspeed] from_rpm): a lift-off there is not seen");
-  EXPECT_EQ(Row(late, "separation_margin").verdict, "not judged");
-  EXPECT_EQ(Row(late, "separation_margin").note,
-            "the sweep starts above the rated speed, at 700.0 rpm ([overspeed] from_rpm)");
+  EXPECT_EQ(late.sweep_range.from_rpm, 500.0);
+  EXPECT_EQ(late.sweep->n_dyn_rpm, full.sweep->n_dyn_rpm);
+  EXPECT_EQ(late.failing, full.failing);
+  // A lift-off below f·n that a range from above the rated speed would not see fails the check.
+  c.engine.speed_rpm = *full.sweep->n_dyn_rpm - 20.0;
+  c.overspeed->from_rpm = *full.sweep->n_dyn_rpm + 50.0;
+  const CheckResult below = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_TRUE(below.sweep->n_dyn_rpm);
+  EXPECT_NEAR(*below.sweep->n_dyn_rpm, *full.sweep->n_dyn_rpm, 0.5);
+  EXPECT_FALSE(below.pass);
 }
 
 }  // namespace
