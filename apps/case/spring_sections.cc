@@ -158,8 +158,9 @@ SpringSection ReadSpring(SectionReader r) {
   if (auto z = r.OptionalNumber("surge_damping_ratio")) {
     if (!(*z >= 0.0 && *z <= 1.0))
       r.Fail("surge_damping_ratio", "must be in [0, 1], got " + Number(*z));
-    if (sp.masses == 1)
-      r.Fail("surge_damping_ratio", "needs masses of at least 2 (a massless spring has no surge)");
+    if (!sp.helical)  // with masses = 1 it is the check's surge study's (apps/study/check_scene.h)
+      r.Fail("surge_damping_ratio",
+             "needs the helical geometry (wire_mm, coil_mm, active_coils …): the coils it damps");
     sp.surge_damping_ratio = *z;
   }
   if (auto clash = r.OptionalBool("clash")) {

@@ -497,9 +497,16 @@ TEST(CaseFileTest, TheSpringsCoilMasses) {
             "t.toml: [spring] masses: must be a whole number in [1, 40], got 12.5");
   EXPECT_EQ(Error(Replace(spring, "masses = 12", "masses = 41")),
             "t.toml: [spring] masses: must be a whole number in [1, 40], got 41");
-  EXPECT_EQ(Error(Replace(spring, "masses = 12", "masses = 1")),
-            "t.toml: [spring] surge_damping_ratio: needs masses of at least 2 (a massless spring "
-            "has no surge)");
+  // With a massless spring in the dynamics the ratio is the check's surge study's (its chain).
+  const Case massless = ParseCase(Replace(spring, "masses = 12", "masses = 1"), "t.toml");
+  EXPECT_EQ(massless.spring->masses, 1);
+  EXPECT_DOUBLE_EQ(massless.spring->surge_damping_ratio, 0.02);
+  EXPECT_EQ(Error(Replace(Replace(spring, "masses = 12\n", ""),
+                          "wire_mm = 4\ncoil_mm = 30\nactive_coils = 6\nfree_length_mm = 80\n"
+                          "shear_modulus_GPa = 80\ntensile_MPa = 1800",
+                          "rate_N_mm = 20")),
+            "t.toml: [spring] surge_damping_ratio: needs the helical geometry (wire_mm, coil_mm, "
+            "active_coils …): the coils it damps");
   EXPECT_EQ(Error(Replace(spring, "0.02", "1.5")),
             "t.toml: [spring] surge_damping_ratio: must be in [0, 1], got 1.5");
   EXPECT_EQ(Error(Replace(spring,
