@@ -254,6 +254,16 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     r.skipped.push_back("cam profile: the case has no [profile] section");
   }
   if (law.HasAcceleration()) JudgeLimits(c, law, cam_zero_crank_rad, r, !options.verdict_only);
+  // Undamped coils in the dynamics: every resonance of the chain with a cam harmonic is a lift-off
+  // window as narrow as the run is long, which no sweep of finite steps can be sure to meet (a
+  // 20-mass spring lifted off between 1259 and 1261 rpm only, undamped; not at all at 1 %).
+  if (r.run && c.spring->masses > 1 && !(c.spring->surge_damping_ratio > 0.0)) {
+    r.warnings.push_back("dynamics: the spring's " + std::to_string(c.spring->masses) +
+                         " coil masses are undamped ([spring] surge_damping_ratio = 0): their "
+                         "resonances with the cam's harmonics are lift-off windows narrower than "
+                         "the sweep's steps, which it can miss; state the wire's damping (1 % is "
+                         "typical)");
+  }
   // The spring check's failures first, as the surge verdict (JudgeLimits) left them.
   if (r.spring) {
     std::vector<std::string> lines;

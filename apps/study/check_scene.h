@@ -136,10 +136,11 @@ struct CheckResult {
   std::vector<double> surge_modes_hz;       ///< the spring's first three modes (helical)
   std::optional<SurgeStudy> surge;          ///< with a helical spring and the dynamics
   std::string surge_reason;                 ///< why the surge study was not run, if it was not
-  std::vector<std::string> warnings;        ///< rows that warn (verdict "warning"), one line each
-  bool pass = true;                         ///< no part failed
-  std::vector<std::string> failing;         ///< one line per failing item, named
-  std::vector<std::string> skipped;         ///< one line per part not run, and why
+  /// Rows that warn (verdict "warning"), and what the verdict cannot vouch for, one line each.
+  std::vector<std::string> warnings;
+  bool pass = true;                  ///< no part failed
+  std::vector<std::string> failing;  ///< one line per failing item, named
+  std::vector<std::string> skipped;  ///< one line per part not run, and why
 };
 
 /// The result's fields, described once, by part (kinematics, spring, dynamics, overspeed,
