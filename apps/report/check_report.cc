@@ -144,7 +144,8 @@ void CheckReportWriter::RatedRun(const SpringCheckResult& spring, const Simulati
                       (r.status_reason.empty() ? std::string(", the needle at rest")
                                                : ", " + Escape(r.status_reason)))
 
-    << Row("lift-off at the rated speed", r.liftoff() ? "<span class=\"fail\">yes</span>" : "no")
+    << Row("lift-off at the rated speed",
+           r.liftoff() ? "<span class=\"fail\">yes</span>" + Escape(ShortJumpNote(r)) : "no")
     << Row("max contact force", Fixed(r.max_contact_force_N, 1) + " N; min during the lift " +
                                     Fixed(r.min_contact_force_during_lift_N, 1) + " N");
   for (const Impact& i : r.impacts) {

@@ -16,7 +16,7 @@ std::string CheckText(const Case& c, const CheckResult& result, const std::strin
     out << "cam profile: " << (result.profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
   if (result.run)
     out << "lift-off at " << Fixed(result.speed_rpm, 0)
-        << " rpm: " << (result.run->liftoff() ? "YES" : "no") << '\n';
+        << " rpm: " << (result.run->liftoff() ? "YES" + ShortJumpNote(*result.run) : "no") << '\n';
   if (result.sweep) {
     out << "n_qs " << FixedOrNone(result.n_qs_rpm, 1) << " rpm, n_dyn "
         << OverspeedOutcome(*result.sweep) << '\n';

@@ -35,6 +35,13 @@ std::string FailureLine(const LimitRow& x) {
   return line + "; rule: " + x.source;
 }
 
+std::string ShortJumpNote(const SimulationResult& run) {
+  if (!run.liftoff() || !(run.longest_jump_rad < kMinJump_rad)) return "";
+  return " (a jump of " + Fixed(run.longest_jump_rad / kDeg, 3) + " deg, shorter than the " +
+         Fixed(kMinJump_rad / kDeg, 1) +
+         " deg that n_dyn counts: any jump fails at the rated speed)";
+}
+
 bool SurgeShowsHarm(const LimitRow& force, const LimitRow& jump, const LimitRow& stress,
                     const LimitRow& gap) {
   return force.verdict == "fail" || jump.verdict == "fail" || stress.verdict == "fail" ||
@@ -204,7 +211,8 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     if (r.surge && c.spring->masses == 1) r.surge->massless = *r.run;
 
     if (r.run->liftoff()) {
-      fail("dynamics: the needle lifts off the cam at the rated speed " + Fixed(rpm, 0) + " rpm");
+      fail("dynamics: the needle lifts off the cam at the rated speed " + Fixed(rpm, 0) + " rpm" +
+           ShortJumpNote(*r.run));
     }
     // A run that did not end with the needle at rest is no proof of anything.
     if (r.run->status == RunStatus::kNotFollowing) {

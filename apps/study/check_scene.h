@@ -162,6 +162,11 @@ CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> law,
 /// The same on a lift resolved once (ResolveLift): its choice is the check's, not made again.
 CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& options = {});
 
+/// Where the rated-speed run lifts off with jumps all shorter than the 0.1° that n_dyn counts
+/// (any jump fails at the rated speed, docs/model.md §8), the words that say so — " (a jump of
+/// 0.040°, shorter …)" — else empty: the lift-off and an n_dyn above the rated speed agree.
+std::string ShortJumpNote(const SimulationResult& run);
+
 /// Whether the coils' dynamics show harm: the surge rows' contact force, jump or stress, or the
 /// coil gap, fails. A failing f_1/f_cam screen (13, the classic rule) only warns when they
 /// show none (docs/model.md §8): the screen judges a frequency, the rows its effect.
