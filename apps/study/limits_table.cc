@@ -131,7 +131,11 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
       row("hertz_stress", "Hertz stress cam-roller", "MPa", true, l.hertz_stress_Pa * 1e-6,
           from(l.hertz_stress_Pa != d.hertz_stress_Pa, "hertz_stress_MPa",
                "ISO 6336-5 case-hardened MQ, 1500 MPa"));
-  if (r.profile && r.spring && l.contact_length_m) {
+  if (r.profile && r.spring && l.contact_length_m && r.profile->undercut) {
+    // Hertz's formula needs a convex cam: an undercut profile's radius passes through zero (the
+    // check fails on the undercut itself).
+    hertz.note = "the cam profile is undercut (no convex radius to press on)";
+  } else if (r.profile && r.spring && l.contact_length_m) {
     const FollowerGeometry& g = c.profile->follower;
     const RigidTrain& t = r.spring->train;
     const double omega = OmegaFromRpm(r.speed_rpm), k = crank_turns;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/case/case_scene.h"
+#include "lib/input_file.h"
 #include "lib/output.h"
 
 namespace needle {
@@ -415,10 +416,11 @@ TEST(CheckSceneTest, TheSeatingAndHertzRowsFailOnScenesBuiltToFailThem) {
   EXPECT_NEAR(Row(r, "seating_velocity").value, 2.5e-3 * M_PI / 20 * 4800, 0.01);
 
   const Case h = ParseCase(MediumSpeedEngine(6) +
-                               "[profile]\nbase_radius_mm = 40\nroller_radius_mm = 10\n"
+                               "[profile]\nbase_radius_mm = 80\nroller_radius_mm = 10\n"
                                "[limits]\ncontact_length_mm = 0.5\n",
                            "medium.toml");
   const CheckResult rh = CheckScene(h, MakeLiftLaw(h), o);
+  ASSERT_FALSE(rh.profile->undercut);  // (on a 40 mm base circle it undercuts: no Hertz row)
   EXPECT_EQ(Row(rh, "hertz_stress").verdict, "fail") << Row(rh, "hertz_stress").note;
 }
 
@@ -892,6 +894,31 @@ ramp = "tangent"
   SimulationResult longer = *r.run;
   longer.longest_jump_rad = kMinJump_rad;
   EXPECT_EQ(ShortJumpNote(longer), "");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Hertz's formula needs a convex cam: on an undercut profile (Example 2 on a 3 mm base circle
+// under a 10 mm roller) the row is not judged, saying why, where it passed on the profile's
+// negative radius (found by a helper); the check fails on the undercut itself.
+TEST(CheckSceneTest, AnUndercutCamJudgesNoHertzStress) {
+  CheckOptions o;
+  o.record_series = false;
+  o.verdict_only = true;
+  const Case c = ParseCase(ReadInputFile(kCases + "basu-example2.toml", "case file") +
+                               "[profile]\nroller_radius_mm = 10\nbase_radius_mm = 3\n"
+                               "[limits]\ncontact_length_mm = 8\n",
+                           "undercut.toml");
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  ASSERT_TRUE(r.profile && r.profile->undercut);
+  EXPECT_EQ(Row(r, "hertz_stress").verdict, "not judged");
+  EXPECT_EQ(Row(r, "hertz_stress").note,
+            "the cam profile is undercut (no convex radius to press on)");
+  EXPECT_FALSE(r.pass);
 }
 
 }  // namespace
