@@ -89,7 +89,9 @@ CaseOverspeed OverspeedOfCase(const Case& c, const OverspeedJobOptions& o,
     throw CaseError("--to: expected a finite speed up to 1e9 rpm, got " +
                     std::to_string(opt.to_rpm));
   if (!(opt.to_rpm > opt.from_rpm)) {
-    throw CaseError(c.path + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
+    // Named by what set it: an option given, else the case (its [overspeed] or the defaults).
+    const std::string where = o.to_rpm ? "--to" : o.from_rpm ? "--from" : c.path;
+    throw CaseError(where + ": the sweep range is empty: to " + Fixed(opt.to_rpm, 1) +
                     " rpm must exceed from " + Fixed(opt.from_rpm, 1) + " rpm");
   }
   return CaseOverspeed{c, opt, n_qs, OverspeedSearch(scene, opt, progress)};

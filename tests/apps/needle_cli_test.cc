@@ -403,6 +403,17 @@ TEST(NeedleCliDynamicsTest, BadTrainInputIsOneLineAndExitTwo) {
   EXPECT_EQ(
       empty.err,
       "[overspeed] to_rpm: the sweep range is empty: to_rpm (300) must exceed from_rpm (400)\n");
+  // An empty range the options make is named by the option, not blamed on the case.
+  const auto options =
+      RunNeedle("overspeed " + Case("basu-example2.toml") + " --from 1000 --to 1000");
+  EXPECT_EQ(options.status, 2);
+  EXPECT_EQ(options.err,
+            "needle: --to: the sweep range is empty: to 1000.0 rpm must exceed from 1000.0 rpm\n");
+  const auto from = RunNeedle("overspeed " + Case("basu-example2.toml") + " --from 2500");
+  EXPECT_EQ(from.status, 2);
+  EXPECT_EQ(
+      from.err,
+      "needle: --from: the sweep range is empty: to 2000.0 rpm must exceed from 2500.0 rpm\n");
 }
 
 }  // namespace
