@@ -53,6 +53,16 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, EngineCycle 
     } catch (const CaseError& e) {
       r.Fail("csv", e.what());  // "CASE: [lift] csv: TABLE:LINE:COLUMN: what"
     }
+    // The plausible lift of a table's entry, as lift_mm's entries are judged (docs/ranges.md).
+    const std::vector<double>& lifts = lift.table.lift_m;
+    for (size_t i = 0; i < lifts.size(); ++i) {
+      if (lifts[i] > kLiftRange.hi) {
+        r.Fail("csv", full + ":" + std::to_string(i < lift.lines.size() ? lift.lines[i] : 0) +
+                          ": " + ShownValue(kLiftRange, lifts[i]) +
+                          " is above the plausible range's end " +
+                          ShownValue(kLiftRange, kLiftRange.hi) + " (docs/ranges.md)");
+      }
+    }
     lift.source = "csv " + full;
     lift.csv_path = full;
   } else {

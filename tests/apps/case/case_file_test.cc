@@ -3,6 +3,7 @@
 #include "apps/case/case_file.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -974,6 +975,31 @@ TEST(CaseFileTest, EndSlopesAndTheSmoothingRuleBelongToTheirSplines) {
             SmoothingRule::kDiscrepancy);
   EXPECT_EQ(Error(with("spline = \"smoothing\"\nsmoothing = \"lcurve\"")),
             "t.toml: [lift] smoothing: expected \"discrepancy\" or \"gcv\", got \"lcurve\"");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A CSV table's lifts are held to the plausible range of lift_mm's entries (a 300 mm reading
+// was taken from a CSV and refused from the same table in TOML: found by a helper).
+TEST(CaseFileTest, ACsvTablesLiftsAreHeldToTheTablesPlausibleRange) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("needle_csv_range_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "big.csv") << "crank_deg,lift_mm\n0,0\n5,100\n10,300\n15,100\n20,0\n";
+  const std::string text =
+      "[engine]\nspeed_rpm = 400\n[lift]\ncsv = \"" + (dir / "big.csv").string() + "\"\n";
+  EXPECT_EQ(Error(text), "t.toml: [lift] csv: " + (dir / "big.csv").string() +
+                             ":4: 300 mm is above the plausible range's end 200 mm "
+                             "(docs/ranges.md)");
+  EXPECT_EQ(Error("[engine]\nspeed_rpm = 400\n[lift]\ncrank_deg = [0, 5, 10, 15, 20]\n"
+                  "lift_mm = [0, 100, 300, 100, 0]\n"),
+            "t.toml: [lift] lift_mm[2]: 300 mm is above the plausible range's end 200 mm "
+            "(docs/ranges.md)");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
