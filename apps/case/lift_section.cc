@@ -58,9 +58,7 @@ LiftSection ReadLift(SectionReader r, const std::string& case_path, EngineCycle 
     for (size_t i = 0; i < lifts.size(); ++i) {
       if (lifts[i] > kLiftRange.hi) {
         r.Fail("csv", full + ":" + std::to_string(i < lift.lines.size() ? lift.lines[i] : 0) +
-                          ": " + ShownValue(kLiftRange, lifts[i]) +
-                          " is above the plausible range's end " +
-                          ShownValue(kLiftRange, kLiftRange.hi) + " (docs/ranges.md)");
+                          ": " + AboveRangeEnd(kLiftRange, lifts[i]));
       }
     }
     lift.source = "csv " + full;

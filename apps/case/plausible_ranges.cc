@@ -37,6 +37,11 @@ std::string ShownValue(const PlausibleRange& r, double si) {
   return WithUnit(r, Shown(si / r.unit_si));
 }
 
+std::string AboveRangeEnd(const PlausibleRange& r, double si) {
+  return ShownValue(r, si) + " is above the plausible range's end " + ShownValue(r, r.hi) +
+         " (docs/ranges.md)";
+}
+
 std::string PlausibleRangesMarkdown() {
   std::string out =
       "| quantity | plausible range | case-file keys and options | why |\n"

@@ -261,6 +261,10 @@ std::string RangeText(const PlausibleRange& r);
 /// A value in SI shown in the range's unit ("1e-12 kg").
 std::string ShownValue(const PlausibleRange& r, double si);
 
+/// Why a value above the range is refused: "300 mm is above the plausible range's end 200 mm
+/// (docs/ranges.md)".
+std::string AboveRangeEnd(const PlausibleRange& r, double si);
+
 /// The table of docs/ranges.md: one row per range, with the keys and options it applies to.
 std::string PlausibleRangesMarkdown();
 

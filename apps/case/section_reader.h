@@ -173,9 +173,7 @@ class SectionReader {
       if (!ranged) continue;
       const PlausibleRange& range = *ranged->range;
       if (v.table_entry || ranged->upper_only) {
-        if (v.si > range.hi)
-          Fail(v.key, ShownValue(range, v.si) + " is above the plausible range's end " +
-                          ShownValue(range, range.hi) + " (docs/ranges.md)");
+        if (v.si > range.hi) Fail(v.key, AboveRangeEnd(range, v.si));
       } else if (!(v.si >= range.lo && v.si <= range.hi)) {
         Fail(v.key, ShownValue(range, v.si) + " is outside the plausible range " +
                         RangeText(range) + " (docs/ranges.md)");

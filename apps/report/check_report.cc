@@ -268,9 +268,7 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
     for (const auto& k : skipped) s += "<li>" + Escape(k) + "</li>";
     top.push_back(s + "</ul>");
   }
-  std::string joined;  // one place: its parts a line each, as the document writes parts
-  for (size_t i = 0; i < top.size(); ++i) joined += (i ? "\n" : "") + top[i];
-  report.Fill(top_, joined);
+  report.Fill(top_, top);
   if (spring) {
     const SpringCheckResult& s = *spring;
     std::ostringstream t;

@@ -13,6 +13,7 @@
 #include <csignal>
 #include <cstring>
 #include <fstream>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -318,6 +319,12 @@ void Report::Fill(size_t place, const std::string& html) {
   open_[place] = false;
 }
 
+void Report::Fill(size_t place, const std::vector<std::string>& htmls) {
+  std::string joined;  // one place: Document ends each part with a line
+  for (size_t i = 0; i < htmls.size(); ++i) joined += (i ? "\n" : "") + htmls[i];
+  Fill(place, joined);
+}
+
 void Report::FigureAt(size_t place, const std::string& caption, std::vector<Series> data,
                       std::string script, int height_px) {
   Fill(place, "");  // the figure's place, filled when the report is drawn
@@ -402,7 +409,7 @@ std::vector<std::string> Report::DrawFigures(Gnuplot& gnuplot) const {
   // In the document's order (a figure may have been given to gnuplot before one above it): the
   // first that failed is named.
   std::vector<size_t> order(pending_.size());
-  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](size_t a, size_t b) { return pending_[a].part < pending_[b].part; });
   for (size_t k : order) {

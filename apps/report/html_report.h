@@ -104,6 +104,8 @@ class Report {
   /// order given; the first it draws differs from the later ones in one attribute of its SVG.)
   size_t Reserve();
   void Fill(size_t place, const std::string& html);
+  /// The same with several parts, in the document as if each had been added (AddHtml).
+  void Fill(size_t place, const std::vector<std::string>& htmls);
   void FigureAt(size_t place, const std::string& caption, std::vector<Series> data,
                 std::string script, int height_px = 420);
   int figures() const { return figures_; }

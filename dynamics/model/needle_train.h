@@ -95,6 +95,9 @@ struct ContactMode {
   bool operator!=(const ContactMode& o) const { return !(*this == o); }
 };
 
+/// Whether two numbers are the same to the bit (−0 is not 0; a NaN is itself).
+inline bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+
 /// What the event driver integrates in: the contact mode, and the end of the cam input's
 /// segment (inside [a, b) the cam is evaluated on its own side of b: a stage that lands
 /// exactly on b sees the limit from the left; +∞: no clamp). `gated` replaces the mode by
@@ -105,8 +108,7 @@ struct Phase {
   bool gated = false;
   /// Every field the same, the angle to the bit (what a memo of the right-hand side keys on).
   bool Identical(const Phase& o) const {
-    return mode == o.mode && gated == o.gated &&
-           std::memcmp(&segment_end_rad, &o.segment_end_rad, sizeof(double)) == 0;
+    return mode == o.mode && gated == o.gated && SameBits(segment_end_rad, o.segment_end_rad);
   }
 };
 static_assert(sizeof(Phase) == 32, "Phase has a new field: compare it in Phase::Identical");

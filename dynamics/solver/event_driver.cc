@@ -198,10 +198,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     while (true) {
       int first = -1;
       double first_t = t1;
-      // The step's end as its last stage saw it, where that was this state in this phase.
-      const Contacts* end = system_.LastContacts(x_end, step.second);
-      const EventValues end_values =
-          end ? Events(train_, phase, x_end, *end) : Events(train_, phase, x_end, step.second);
+      const EventValues end_values = Events(train_, phase, x_end, EndContacts(x_end, step.second));
       // The values at `from`, taken once, and only when a witness is searched.
       std::optional<EventValues> from_values;
       double gate_end = t1;  // 5 and 6 are gated by witness 4: searched up to its crossing
@@ -314,11 +311,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     }
     t = t1;
     x = x_end;
-    if (const Contacts* end = system_.LastContacts(x, t)) {
-      recorder_.Sample(t, x, phase, *end);
-    } else {
-      recorder_.Sample(t, x, phase);
-    }
+    recorder_.Sample(t, x, phase, EndContacts(x, t));
     if (JumpReached(t)) {
       stats.stopped_at_jump = true;
       break;

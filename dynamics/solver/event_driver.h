@@ -63,6 +63,12 @@ class EventDriver {
   IntegrationStats Run(const TrainState& x0, double t_end);
 
  private:
+  // The contacts at a step's end (x, t) in the current phase: those its last stage computed
+  // there (TrainSystem::LastContacts, an FSAL method's), else evaluated.
+  Contacts EndContacts(const TrainState& x, double t) const {
+    const Contacts* kept = system_.LastContacts(x, t);
+    return kept ? *kept : train_.Evaluate(x, t, system_.phase);
+  }
   // The state at t from the backend's dense output.
   TrainState At(double t) {
     stepper_->CalcState(t, z_);

@@ -138,16 +138,23 @@ TrainState TrainSystem::ToScaled(const TrainState& x) const {
 }
 
 TrainState TrainSystem::FromScaled(const TrainState& z) const {
-  if (!scaled_) return z;
-  TrainState x(z.size());
-  for (size_t i = 0; i < z.size(); ++i) x[i] = z[i] * scale_[i];
+  TrainState x;
+  FromScaled(z, x);
   return x;
+}
+
+void TrainSystem::FromScaled(const TrainState& z, TrainState& x) const {
+  if (!scaled_) {
+    x = z;
+    return;
+  }
+  x.resize(z.size());
+  for (size_t i = 0; i < z.size(); ++i) x[i] = z[i] * scale_[i];
 }
 
 void TrainSystem::operator()(const TrainState& z, TrainState& dzdt, double t) const {
   ++evaluations_;
-  last_x_.resize(z.size());  // FromScaled(z), into the memo without a temporary
-  for (size_t i = 0; i < z.size(); ++i) last_x_[i] = scaled_ ? z[i] * scale_[i] : z[i];
+  FromScaled(z, last_x_);  // into the memo, without a temporary
   last_t_ = t;
   last_phase_ = phase;
   train_.Derivative(last_x_, t, phase, dzdt, &last_contacts_);
@@ -156,10 +163,7 @@ void TrainSystem::operator()(const TrainState& z, TrainState& dzdt, double t) co
 }
 
 const Contacts* TrainSystem::LastContacts(const TrainState& x, double t) const {
-  const auto bits = [](const double& a, const double& b) {
-    return std::memcmp(&a, &b, sizeof(double)) == 0;
-  };
-  const bool same = bits(t, last_t_) && phase.Identical(last_phase_) &&
+  const bool same = SameBits(t, last_t_) && phase.Identical(last_phase_) &&
                     x.size() == last_x_.size() &&
                     std::memcmp(x.data(), last_x_.data(), x.size() * sizeof(double)) == 0;
   return same ? &last_contacts_ : nullptr;

@@ -30,6 +30,8 @@ class TrainSystem {
   void Jacobian(const TrainState& z, double t, TrainJacobian& dfdz, TrainState& dfdt) const;
   TrainState ToScaled(const TrainState& x) const;
   TrainState FromScaled(const TrainState& z) const;
+  /// The same into `x` (a state kept between calls: no temporary).
+  void FromScaled(const TrainState& z, TrainState& x) const;
   /// State i's value as FromScaled(ToScaled(x)) gives it back (the same bits, without the
   /// states around it).
   double RoundTrip(int i, double x) const { return scaled_ ? (x / scale_[i]) * scale_[i] : x; }

@@ -205,6 +205,14 @@ std::string MediumSpeedEngine(double ramp_deg) {
          std::to_string(ramp_deg) + "\n[overspeed]\nfrom_rpm = 500\nto_rpm = 2000\n";
 }
 
+// What a tolerance sample asks of a check: its verdict, no series.
+CheckOptions VerdictOnly() {
+  CheckOptions o;
+  o.record_series = false;
+  o.verdict_only = true;
+  return o;
+}
+
 const LimitRow& Row(const CheckResult& r, const std::string& key) {
   for (const LimitRow& x : r.limits)
     if (x.key == key) return x;
@@ -814,9 +822,7 @@ namespace {
 // resonances' lift-off windows (found by a helper: 20 undamped masses lifted off between 1259
 // and 1261 rpm, between two speeds of the scan, and the check passed); stated damping does not.
 TEST(CheckSceneTest, UndampedCoilMassesWarnThatTheSweepCanMissTheirResonances) {
-  CheckOptions o;
-  o.record_series = false;
-  o.verdict_only = true;
+  const CheckOptions o = VerdictOnly();
   Case c = LoadCase(kCases + "basu-example2.toml");
   c.spring->masses = 5;
   const auto warns = [](const CheckResult& r) {
@@ -873,9 +879,7 @@ seat_restitution = 0.2
 play_mm = 0.2
 ramp = "tangent"
 )";
-  CheckOptions o;
-  o.record_series = false;
-  o.verdict_only = true;
+  const CheckOptions o = VerdictOnly();
   const Case c = ParseCase(engine, "a.toml");
   const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
   ASSERT_TRUE(r.run && r.run->liftoff());
@@ -906,9 +910,7 @@ namespace {
 // under a 10 mm roller) the row is not judged, saying why, where it passed on the profile's
 // negative radius (found by a helper); the check fails on the undercut itself.
 TEST(CheckSceneTest, AnUndercutCamJudgesNoHertzStress) {
-  CheckOptions o;
-  o.record_series = false;
-  o.verdict_only = true;
+  const CheckOptions o = VerdictOnly();
   const Case c = ParseCase(ReadInputFile(kCases + "basu-example2.toml", "case file") +
                                "[profile]\nroller_radius_mm = 10\nbase_radius_mm = 3\n"
                                "[limits]\ncontact_length_mm = 8\n",
