@@ -1,6 +1,9 @@
 #include "lib/kinematics.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -51,13 +54,28 @@ KinematicsSummary Kinematics::Summarize() const {
     s.max_acceleration_rad = amax.crank_rad;
     s.min_acceleration_m_s2 = omega_ * omega_ * amin.value;
     s.min_acceleration_rad = amin.crank_rad;
+    const double w2 = omega_ * omega_;
+    if (const auto band = law_.AccelerationBand(true)) {
+      s.max_acceleration_band_m_s2 = ExtremumBand{w2 * band->low, w2 * band->high};
+    }
+    if (const auto band = law_.AccelerationBand(false)) {
+      s.min_acceleration_band_m_s2 = ExtremumBand{w2 * band->low, w2 * band->high};
+    }
   }
   return s;
 }
 
+std::string PlusMinus(double value, const std::optional<ExtremumBand>& band, int decimals) {
+  if (!band) return "";
+  const double h = std::max(band->high - value, value - band->low);
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(decimals) << " ± " << h;
+  return out.str();
+}
+
 std::vector<Field> KinematicsFields(const KinematicsSummary& s) {
   using namespace display;
-  return {
+  std::vector<Field> fields = {
       {"open", kDegree, s.open_rad, 2},
       {"close", kDegree, s.close_rad, 2},
       {"injection_period", kS, s.injection_period_s, 5},
@@ -74,6 +92,15 @@ std::vector<Field> KinematicsFields(const KinematicsSummary& s) {
       {"min_acceleration", kMPerS2, s.min_acceleration_m_s2, 2},
       {"min_acceleration", kDegree, s.min_acceleration_rad, 2},
   };
+  const std::pair<const char*, const std::optional<ExtremumBand>*> bands[] = {
+      {"max_acceleration_band", &s.max_acceleration_band_m_s2},
+      {"min_acceleration_band", &s.min_acceleration_band_m_s2}};
+  for (const auto& [name, band] : bands) {
+    if (!*band) continue;
+    fields.push_back(ListField(name, kMPerS2, {(*band)->low, (*band)->high}));
+    fields.back().decimals = 2;
+  }
+  return fields;
 }
 
 std::vector<Field> LiftLawFields(const LiftLaw& law) {

@@ -9,6 +9,7 @@
 /// every extreme taken over the open lift [θ_open, θ_close] only (lib/lift_law.h).
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "lib/lift_law.h"
@@ -44,7 +45,13 @@ struct KinematicsSummary {
   double min_velocity_rad = 0.0;
   std::optional<double> max_acceleration_m_s2, max_acceleration_rad;
   std::optional<double> min_acceleration_m_s2, min_acceleration_rad;
+  /// 95 % bands of the two extremes from the table's accuracy (LiftLaw::AccelerationBand), m/s².
+  std::optional<ExtremumBand> max_acceleration_band_m_s2, min_acceleration_band_m_s2;
 };
+
+/// " ± h" with h the larger distance from `value` to the band's ends, `decimals` after the
+/// point; empty without a band: "a_max 535 ± 6 m/s²".
+std::string PlusMinus(double value, const std::optional<ExtremumBand>& band, int decimals);
 
 class Kinematics {
  public:
@@ -68,7 +75,8 @@ class Kinematics {
 
 /// The summary as fields (lib/result_fields.h): open and close (deg), the injection period (s),
 /// the lift's, velocity's and acceleration's extremes and where they are, ρ. Every writer's
-/// JSON keys (`max_lift_mm`, `max_lift_deg`, …) and text values come from here.
+/// JSON keys (`max_lift_mm`, `max_lift_deg`, …) and text values come from here; the bands
+/// (`max_acceleration_band_m_s2` = [low, high]) only where the law has them.
 std::vector<Field> KinematicsFields(const KinematicsSummary& s);
 
 /// The lift law's own fields beside the summary: its spline's name, its closed level (mm) and the

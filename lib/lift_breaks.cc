@@ -46,6 +46,27 @@ SideCubic FitSide(const std::vector<double>& x, const std::vector<double>& y, si
   return s;
 }
 
+// The norm of the weights, on readings [from, to), of the `order`th derivative at t of the cubic
+// FitSide fits there: its standard deviation per unit σ of the readings.
+double DerivativeNoise(const std::vector<double>& x, size_t from, size_t to, double c, double h,
+                       double t, int order) {
+  Eigen::MatrixXd v(to - from, 4);
+  for (size_t i = from; i < to; ++i) {
+    const double u = (x[i] - c) / h;
+    v.row(i - from) << 1.0, u, u * u, u * u * u;
+  }
+  const double u = (t - c) / h;
+  Eigen::Vector4d d = Eigen::Vector4d::Zero();  // the derivative's row on the coefficients
+  for (int m = order; m <= 3; ++m) {
+    double falling = 1.0;
+    for (int j = 0; j < order; ++j) falling *= (m - j);
+    d(m) = falling * std::pow(u, m - order) / std::pow(h, order);
+  }
+  const Eigen::MatrixXd vtv = v.transpose() * v;
+  const Eigen::VectorXd g = v * vtv.ldlt().solve(d);  // weights on the readings
+  return g.norm();
+}
+
 // A root of f on [lo, hi] by sampling and bisection; nullopt when f keeps its sign.
 template <class F>
 std::optional<double> RootIn(F f, double lo, double hi) {
@@ -197,8 +218,21 @@ std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vecto
             RootIn([&](double t) { return right.Value(t, 0) - left.Value(t, 0); }, lo, hi);
         b.crank_rad = lifts.value_or(c);
         b.jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
+        // A corner keeps its size when the sides' cubics take twice the readings; the slopes'
+        // disagreement across a kink of s'' (a smooth exact law's junction of s''') grows ~4×.
+        if (k - 2 * p + 1 >= 0 && k + 2 * p < n) {
+          const SideCubic wide_left = FitSide(x, y, k - 2 * p + 1, k + 1, c, h);
+          const SideCubic wide_right = FitSide(x, y, k + 1, k + 2 * p + 1, c, h);
+          const double wide = wide_right.Value(b.crank_rad, 1) - wide_left.Value(b.crank_rad, 1);
+          if (!(std::abs(wide - b.jump) <= 0.25 * std::abs(b.jump))) continue;
+        }
       }
       b.lift_m = 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
+      // The jump stands above what the readings' noise or rounding can make of it.
+      const double jump_noise =
+          sigma_m * std::hypot(DerivativeNoise(x, k - p + 1, k + 1, c, h, b.crank_rad, b.order),
+                               DerivativeNoise(x, k + 1, k + p + 1, c, h, b.crank_rad, b.order));
+      if (!(std::abs(b.jump) > tail * jump_noise)) continue;
     }
     if (k - p + 1 < 0 || k + p >= n) continue;
     // A jump, not a steep but smooth change over a few readings (a jerk-limited law's ramp of
@@ -231,6 +265,41 @@ std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vecto
     if (found.empty() || b.crank_rad > found.back().crank_rad) found.push_back(b);
   }
   return found;
+}
+
+}  // namespace needle
+
+namespace needle {
+
+LiftBreak RefineBreak(const std::vector<double>& x, const std::vector<double>& y,
+                      const LiftBreak& found, double width_rad) {
+  // Cubics fitted on each side's readings from one width to kRefineWidths widths away (clear of
+  // the readings the approximate place may have on the wrong side), met as FindBreaks meets them.
+  constexpr double kRefineWidths = 12.0;
+  const double at = found.crank_rad;
+  auto index = [&](double t) {
+    return static_cast<size_t>(std::lower_bound(x.begin(), x.end(), t) - x.begin());
+  };
+  const size_t l0 = index(at - kRefineWidths * width_rad), l1 = index(at - width_rad);
+  const size_t r0 = index(at + width_rad), r1 = index(at + kRefineWidths * width_rad);
+  if (l1 < l0 + 8 || r1 < r0 + 8) return found;
+  const double h = width_rad;
+  const SideCubic left = FitSide(x, y, l0, l1, at, h);
+  const SideCubic right = FitSide(x, y, r0, r1, at, h);
+  const double lo = at - width_rad, hi = at + width_rad;
+  LiftBreak b = found;
+  const auto root =
+      found.order == 2
+          ? RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); }, lo, hi)
+          : RootIn([&](double t) { return right.Value(t, 0) - left.Value(t, 0); }, lo, hi);
+  if (!root) return found;
+  b.crank_rad = *root;
+  b.jump = right.Value(b.crank_rad, found.order) - left.Value(b.crank_rad, found.order);
+  b.lift_m = 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
+  b.index = index(b.crank_rad);
+  b.index = b.index > 0 ? b.index - 1 : 0;
+  if (b.index + 1 < x.size() && x[b.index + 1] == b.crank_rad) ++b.index;
+  return b;
 }
 
 }  // namespace needle

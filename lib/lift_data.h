@@ -11,16 +11,18 @@
 /// e = D/√(Σ w_j²) therefore has variance σ², and σ̂ = √(mean e²) over all windows that are not
 /// exactly flat (a zero-padded zone reads the same value and says nothing about the noise).
 ///
-/// Choice. A stated spline is used as stated. Otherwise a table is measured when it is dense
-/// (at least kDenseTablePoints points) or its noise is stated (`noise_mm`); measured data gets
-/// the smoothing spline with σ (stated, else estimated), the closed level h = 3σ (open lift
-/// where the fitted curve exceeds h), and readings down to −4σ (more in a table of over 316
-/// readings: TailSigmas) are accepted as noise of a seated needle. A reading that stands far
-/// out of its neighbourhood (FindOutliers) is an outlier of measured data: listed, and left out
-/// when the case says so. A sparse table is exact (the paper's: read from a drawing, rounded to
-/// `resolution_mm`): when it starts and ends at zero lift it gets the clamped cubic at rest at
-/// both ends (the evidence is in docs/lift-data.md and docs/validation.md: Basu's velocity tables
-/// and the closed-form laws), otherwise not-a-knot.
+/// Choice. A stated spline is used as stated. A dense table (at least kDenseTablePoints
+/// readings) with neither its noise nor its breaks stated is read for what it holds
+/// (docs/lift-data.md, "Reading a table"): its breaks are sought (FindBreaks), then ReadTable
+/// tells an exact export from a rounded one and from a measurement by what the residual between
+/// the breaks is, not by its size, and each piece between the breaks and the seat is fitted from
+/// its own readings by the local fit (lib/local_fit.h) with the σ the table's kind gives: its
+/// rounding q/√12, or the measurement's noise (then the closed level h = 3σ, readings down to
+/// −4σ and more accepted as a seated needle's noise: TailSigmas, and outliers sought:
+/// FindOutliers). A table whose noise is stated is measured data, fitted whole by the local fit.
+/// A sparse table is exact (the paper's: read from a drawing, rounded to `resolution_mm`): when
+/// it starts and ends at zero lift it gets the clamped cubic at rest at both ends (the evidence
+/// is in docs/lift-data.md and docs/validation.md: Basu's velocity tables), otherwise not-a-knot.
 
 #include <optional>
 #include <string>
@@ -42,7 +44,7 @@ constexpr double kMaxLiftM = 1.0;
 /// written from −360° to 360° or from 0° to 720° (cam angles 0…360° of a four-stroke) fits.
 constexpr double kMaxCrankRad = 4.0 * 3.14159265358979323846;
 
-/// A table with at least this many points is dense: taken as measured data, smoothed.
+/// A table with at least this many points is dense: read for what it holds (ReadTable).
 constexpr int kDenseTablePoints = 30;
 /// Closed level of measured data, in σ: the needle is open where the fitted lift exceeds 3σ.
 constexpr double kClosedLevelSigmas = 3.0;
@@ -113,6 +115,13 @@ std::vector<LiftOutlier> FindOutliers(const std::vector<double>& crank_rad,
 /// the difference of their slopes) or, where their slopes never meet near the interval, with a
 /// corner (s' jumps: the root of the difference of their lifts).
 
+/// Breaks are also sought on means of bins of 2, 4, 8, … consecutive readings while there are at
+/// least this many bins (ChooseLiftLaw): the noise of neighbouring readings' s'' grows as 1/h².
+constexpr size_t kBreakLeastBins = 60;
+/// FindJunctions is run on tables of at most this many readings (a coarse table's; a dense
+/// one's junctions show among bins).
+constexpr size_t kJunctionsAtMost = 5000;
+
 /// Fewer windows of s'' on a side than this and the extrapolation is not checked.
 constexpr int kBreakSideWindows = 4;
 /// Readings of each side's cubic that locates a break: two more than a cubic needs.
@@ -143,6 +152,41 @@ constexpr double kExactDigitsFactor = 3.0;
 /// near (the finest gauges read 1e-6 of their range).
 constexpr double kExactRelativeFloor = 1e-13;
 
+/// What a table holds (ReadTable).
+enum class TableKind {
+  kExact,     ///< a law's exact values, printed to q: the residual is the law's own, smooth
+  kRounded,   ///< a law's values rounded to q: a white residual at the rounding's level
+  kMeasured,  ///< a measurement: a white residual above the rounding's level
+};
+
+/// "exact", "rounded" or "measured".
+std::string TableKindName(TableKind kind);
+
+/// Halved, a smooth law's normalised fourth differences grow 2⁴ = 16 times, white noise's not at
+/// all: a residual growing less than this is white (noise at least 4× the law's own residual).
+constexpr double kWhiteHalvingRatio = 4.0;
+/// A white residual up to this many times the rounding's σ (q/√12) is the rounding.
+constexpr double kRoundingNoiseFactor = 2.0;
+
+/// The reading of a table (ReadTable).
+struct TableReading {
+  TableKind kind = TableKind::kExact;
+  double sigma_m = 0.0;             ///< σ of a reading: the rounding's, or the measurement's, m
+  double rounding_sigma_m = 0.0;    ///< q/√12 (or 1e-13 of the largest lift, q unknown), m
+  std::optional<double> printed_m;  ///< q, the printed resolution (stated or read), m
+  double residual_m = 0.0;          ///< RMS normalised fourth difference between the cuts, m
+  double halving_ratio = 0.0;       ///< the same on every other reading, over it
+  bool staircase = false;           ///< most steps between readings are at most q
+};
+
+/// Reads readings first … last of (x, y) for what they hold, the windows across `cuts` (breaks
+/// and the seat, rad) left out: the RMS normalised fourth divided difference over the table and
+/// over its two half-density subsamples. A smooth law's grows 16× when halved, white noise's
+/// not; a white residual within kRoundingNoiseFactor of q/√12 is the rounding.
+TableReading ReadTable(const std::vector<double>& crank_rad, const std::vector<double>& lift_m,
+                       size_t first, size_t last, const std::vector<double>& cuts,
+                       std::optional<double> resolution_m);
+
 /// A place where a derivative of the lift jumps.
 struct LiftBreak {
   double crank_rad = 0.0;  ///< where, rad (between readings, or at one)
@@ -156,6 +200,22 @@ struct LiftBreak {
 /// σ̂: a few jumps do not move it), m, ≥ 0.
 std::vector<LiftBreak> FindBreaks(const std::vector<double>& crank_rad,
                                   const std::vector<double>& lift_m, double sigma_m);
+
+/// Junctions of an exact table too coarse for FindBreaks' lines of s'' (a harmonic rise over 30
+/// readings): at each reading the quintics fitted to the 7 readings ending there and the 7
+/// beginning there give s''; where they differ by kBreakOverSmooth times the median difference
+/// 8 to 13 readings away and by TailSigmas(N, kBreakSigmas) times its noise (σ ‖w_R − w_L‖),
+/// s'' jumps: at the reading when it alone stands out, between it and the next when both do
+/// (where the two sides' slopes meet). A located jump that differs from the one seen by more
+/// than a quarter (a kink of s'') is none. Order-2 breaks only, increasing.
+std::vector<LiftBreak> FindJunctions(const std::vector<double>& crank_rad,
+                                     const std::vector<double>& lift_m, double sigma_m);
+
+/// A break found among bins of width `width_rad`, located again on the readings (x, y): cubics
+/// fitted to each side's readings from one to twelve widths away meet as in FindBreaks, within a
+/// width of where it was found; unchanged when they do not.
+LiftBreak RefineBreak(const std::vector<double>& crank_rad, const std::vector<double>& lift_m,
+                      const LiftBreak& found, double width_rad);
 
 /// The rounding of the readings, m: the largest 10^-k mm (k = 0…12) of which every lift in mm is
 /// a multiple (to 1e-6 of it); nullopt when none is (lifts not written in decimal mm).
@@ -199,6 +259,11 @@ struct LiftLawChoice {
   /// Breaks found in the table (FindBreaks), s'' jumps only; empty when stated or not sought.
   /// Those strictly inside the open lift are the law's breaks when the table is judged exact.
   std::vector<LiftBreak> breaks_found;
+  /// How far a break found may lie from where it is put, rad: 0 when found among the readings,
+  /// the widest bin's width when found among bins (kBreakLeastBins).
+  double break_uncertainty_rad = 0.0;
+  /// What a dense table was read to hold (ReadTable); none for a stated reading or a sparse table.
+  std::optional<TableReading> reading;
   /// The first corner (s' jumps) found: the table cannot be differentiated there. ChooseLiftLaw
   /// leaves the refusal to the caller, who knows the file.
   std::optional<LiftBreak> corner;

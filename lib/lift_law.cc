@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -87,9 +88,18 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
 
 // The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
 // strictly inside) and joined: C⁰ at the breaks, where s'' (and s' by the pieces' error) jump.
+PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
+                               const SplineOptions& options, std::vector<LocalNode>* nodes) {
+  if (options.kind != SplineKind::kLocal) return BuildSpline(x, y, options);
+  CheckSplineInputs(x, y, options);
+  LocalFit fit = FitLocal(x, y, options.sigma, options.quantized);
+  nodes->insert(nodes->end(), fit.nodes.begin(), fit.nodes.end());
+  return std::move(fit.law);
+}
+
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
-                                const LiftLawOptions& options) {
-  if (options.breaks_rad.empty()) return BuildSpline(x, y, options.spline);
+                                const LiftLawOptions& options, std::vector<LocalNode>* nodes) {
+  if (options.breaks_rad.empty()) return BuildPiece(x, y, options.spline, nodes);
   std::vector<size_t> cuts{0};
   for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
     const double at = options.breaks_rad[b];
@@ -122,7 +132,7 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
           std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
           "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
     }
-    PiecewisePolynomial part = BuildSpline(px, py, options.spline);
+    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes);
     breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
     rows += part.coefficients().rows();
     parts.push_back(part.coefficients());
@@ -140,7 +150,8 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
 // measured data the whole table's fit and its crossings of the closed level; for an exact table
 // the fit of its open part, from the last zero before the rise to the first zero after the fall.
 PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& options,
-                                double* open_rad, double* close_rad) {
+                                double* open_rad, double* close_rad,
+                                std::vector<LocalNode>* nodes) {
   const auto& th = table.crank_rad;
   const auto& s = table.lift_m;
   if (th.size() != s.size() || th.empty()) {
@@ -148,9 +159,7 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
   }
   CheckReadings(table, options.negative_allowance_m, options.negative_sigmas);
   if (options.closed_level_m > 0.0) {
-    if (!options.breaks_rad.empty())
-      throw std::invalid_argument("breaks apply to an exact table only, not to measured data");
-    PiecewisePolynomial full = BuildSpline(th, s, options.spline);
+    PiecewisePolynomial full = BuildPieces(th, s, options, nodes);
     const auto open = FirstAbove(full, options.closed_level_m, true);
     const auto close = FirstAbove(full, options.closed_level_m, false);
     if (!open || !close || !(*close > *open)) {
@@ -177,7 +186,7 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
   }
   *open_rad = x.front();
   *close_rad = x.back();
-  return BuildPieces(x, y, options);
+  return BuildPieces(x, y, options, nodes);
 }
 
 }  // namespace
@@ -193,7 +202,7 @@ LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
     : table_(std::move(table)),
       kind_(options.spline.kind),
       closed_level_m_(options.closed_level_m),
-      spline_(FitOpenLift(table_, options, &open_rad_, &close_rad_)) {
+      spline_(FitOpenLift(table_, options, &open_rad_, &close_rad_, &nodes_)) {
   if (options.open_rad) open_rad_ = *options.open_rad;
   if (options.close_rad) close_rad_ = *options.close_rad;
   const double lo = spline_.breaks().front(), hi = spline_.breaks().back();
@@ -203,6 +212,10 @@ LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
                                 Deg(hi) + "°) and open before it closes");
   }
   spline_ = spline_.Restrict(open_rad_, close_rad_);
+  nodes_.erase(
+      std::remove_if(nodes_.begin(), nodes_.end(),
+                     [&](const LocalNode& n) { return n.x < open_rad_ || n.x > close_rad_; }),
+      nodes_.end());
   const Extremum low = Min(0);
   if (low.value < 0.0) {
     undershoot_m_ = -low.value;
@@ -218,6 +231,19 @@ double LiftLaw::Derivative(double crank_rad, int order) const {
 }
 
 double LiftLaw::MeanLift() const { return spline_.Integral() / (end_rad() - start_rad()); }
+
+std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
+  if (nodes_.empty()) return std::nullopt;
+  const double sign = largest ? 1.0 : -1.0;  // the smallest s'' is the largest −s''
+  const Extremum e = largest ? Max(2) : Min(2);
+  double lo = -std::numeric_limits<double>::infinity(), hi = sign * e.value;
+  for (const LocalNode& n : nodes_) {
+    lo = std::max(lo, sign * n.s[2] - n.band2);
+    hi = std::max(hi, sign * n.s[2] + n.band2);
+  }
+  if (!largest) return ExtremumBand{-hi, -lo};
+  return ExtremumBand{lo, hi};
+}
 
 Extremum LiftLaw::Max(int order) const { return Extrema(order).second; }
 Extremum LiftLaw::Min(int order) const { return Extrema(order).first; }

@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "lib/local_fit.h"
 #include "lib/piecewise_polynomial.h"
 #include "lib/spline.h"
 
@@ -36,6 +37,11 @@ struct Extremum {
   double value = 0.0;      ///< dᵏs/dθᵏ there, m/radᵏ
 };
 
+/// A 95 % band of an extreme, [low, high], in its units.
+struct ExtremumBand {
+  double low = 0.0, high = 0.0;
+};
+
 /// How a lift law is built from its table. Every field has a default.
 struct LiftLawOptions {
   /// The spline and its options.
@@ -52,7 +58,8 @@ struct LiftLawOptions {
   std::optional<double> open_rad, close_rad;
   /// Angles where s'' may jump (a cam of circular arcs), rad, increasing: the spline is built
   /// apart on each piece of the open lift between them, so the jumps are kept, not smeared.
-  /// Each must be an angle of the table strictly inside the open lift; exact tables only.
+  /// Each must be an angle of the table strictly inside the open lift (inside the table, for
+  /// measured data).
   std::vector<double> breaks_rad;
 };
 
@@ -91,6 +98,12 @@ class LiftLaw {
   /// Largest and smallest dᵏs/dθᵏ on [θ_open, θ_close], k = 0..2, located to ~1e-12 rad.
   Extremum Max(int order) const;
   Extremum Min(int order) const;
+  /// The 95 % band of the largest (`largest`) or smallest s'' over the open lift, m/rad²: the
+  /// extreme of the nodes' bands (lib/local_fit.h), and always holding Max(2) (Min(2)); none for
+  /// a law that is not a local fit.
+  std::optional<ExtremumBand> AccelerationBand(bool largest) const;
+  /// The local fit's nodes inside the open lift (empty for other kinds).
+  const std::vector<LocalNode>& nodes() const { return nodes_; }
 
   const LiftTable& table() const { return table_; }
   const PiecewisePolynomial& spline() const { return spline_; }
@@ -103,6 +116,7 @@ class LiftLaw {
   SplineKind kind_;
   double closed_level_m_ = 0.0;
   double open_rad_ = 0.0, close_rad_ = 0.0;  // set by spline_'s initialiser: declared before it
+  std::vector<LocalNode> nodes_;             // set by spline_'s initialiser: declared before it
   PiecewisePolynomial spline_;               // restricted to [θ_open, θ_close]
   double undershoot_m_ = 0.0, undershoot_rad_ = 0.0;
 };

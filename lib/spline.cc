@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lib/local_fit.h"
 #include "lib/name_table.h"
 
 namespace needle {
@@ -29,7 +30,7 @@ constexpr NameRow<SplineKind> kSplineNames[] = {
     {SplineKind::kNatural, "natural"},     {SplineKind::kNotAKnot, "not-a-knot"},
     {SplineKind::kClamped, "clamped"},     {SplineKind::kQuintic, "quintic"},
     {SplineKind::kPchip, "pchip"},         {SplineKind::kMakima, "makima"},
-    {SplineKind::kSmoothing, "smoothing"},
+    {SplineKind::kSmoothing, "smoothing"}, {SplineKind::kLocal, "local"},
 };
 
 }  // namespace
@@ -63,6 +64,8 @@ int MinimumPoints(SplineKind kind) {
       return 6;  // four distinct not-a-knot conditions
     case SplineKind::kSmoothing:
       return 3;  // at least one interior curvature
+    case SplineKind::kLocal:
+      return kLocalMinimumPoints;
     default:
       return 2;
   }
@@ -72,8 +75,8 @@ bool HasAcceleration(SplineKind kind) {
   return kind != SplineKind::kPchip && kind != SplineKind::kMakima;
 }
 
-PiecewisePolynomial BuildSpline(const std::vector<double>& x, const std::vector<double>& y,
-                                const SplineOptions& options) {
+void CheckSplineInputs(const std::vector<double>& x, const std::vector<double>& y,
+                       const SplineOptions& options) {
   options.Validate();
   const std::string kind = SplineKindName(options.kind);
   if (x.size() != y.size()) {
@@ -95,6 +98,11 @@ PiecewisePolynomial BuildSpline(const std::vector<double>& x, const std::vector<
                                   std::to_string(i - 1));
     }
   }
+}
+
+PiecewisePolynomial BuildSpline(const std::vector<double>& x, const std::vector<double>& y,
+                                const SplineOptions& options) {
+  CheckSplineInputs(x, y, options);
   switch (options.kind) {
     case SplineKind::kNatural:
     case SplineKind::kNotAKnot:
@@ -108,6 +116,8 @@ PiecewisePolynomial BuildSpline(const std::vector<double>& x, const std::vector<
       return BuildMakima(x, y);
     case SplineKind::kSmoothing:
       return BuildSmoothingSpline(x, y, options);
+    case SplineKind::kLocal:
+      return FitLocal(x, y, options.sigma, options.quantized).law;
   }
   throw std::logic_error("BuildSpline: unhandled kind");
 }

@@ -13,6 +13,9 @@
 ///   smoothing    cubic smoothing spline, C², minimising
 ///                Σ((y_i − f(x_i))/σ)² + λ∫f''², λ by the discrepancy principle
 ///                (weighted residual = N+1) or by generalised cross-validation.
+///   local        local quintic regression, the window at each reading by Lepski's rule for
+///                the readings' σ (lib/local_fit.h); C², ends from the data; the default
+///                reading of an exported table (lib/lift_data.h)
 ///
 /// Every kind returns a PiecewisePolynomial; its continuity() tells which derivatives
 /// are meaningful (acceleration needs continuity ≥ 2).
@@ -25,7 +28,16 @@
 
 namespace needle {
 
-enum class SplineKind { kNatural, kNotAKnot, kClamped, kQuintic, kPchip, kMakima, kSmoothing };
+enum class SplineKind {
+  kNatural,
+  kNotAKnot,
+  kClamped,
+  kQuintic,
+  kPchip,
+  kMakima,
+  kSmoothing,
+  kLocal
+};
 
 /// How the smoothing spline picks λ.
 enum class SmoothingRule {
@@ -41,9 +53,11 @@ struct SplineOptions {
   double start_slope = 0.0;
   /// `clamped` only: slope dy/dx at x_N. Default 0 (at rest).
   double end_slope = 0.0;
-  /// `smoothing` only: standard deviation σ of each y_i, in y-units, > 0.
+  /// `smoothing` and `local` only: standard deviation σ of each y_i, in y-units, > 0.
   /// Default: the paper's 0.01 mm rounding, σ = 1e-5 m / √12.
   double sigma = 1e-5 / 3.4641016151377544;
+  /// `local` only: σ is the readings' rounding (q/√12), not white noise (lib/local_fit.h).
+  bool quantized = false;
   /// `smoothing` only: how λ is chosen.
   SmoothingRule smoothing_rule = SmoothingRule::kDiscrepancy;
 
@@ -64,11 +78,15 @@ std::vector<SplineKind> AllSplineKinds();
 std::string SplineKindList();
 
 /// The least number of table points `kind` needs (2 for natural/clamped/pchip/makima,
-/// 4 for not-a-knot, 6 for quintic, 3 for smoothing).
+/// 4 for not-a-knot, 6 for quintic, 3 for smoothing, 7 for local).
 int MinimumPoints(SplineKind kind);
 
 /// True when the kind's second derivative is continuous (acceleration is available).
 bool HasAcceleration(SplineKind kind);
+
+/// Throws std::invalid_argument as BuildSpline does on inputs it cannot take.
+void CheckSplineInputs(const std::vector<double>& x, const std::vector<double>& y,
+                       const SplineOptions& options);
 
 /// Builds the spline of `options.kind` through (x, y). Throws std::invalid_argument when
 /// x is not strictly increasing, sizes differ, values are not finite or there are fewer

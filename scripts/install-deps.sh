@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages needle builds with; with --tests, also those only the tests use
-# (Chromium for the report's browser test, pytest for the Python module's). Safe to run twice:
+# (Chromium for the report's browser test, pytest for the Python module's, SciPy for the
+# lift-table benchmark bench/lift_tables.py). Safe to run twice:
 # only packages that are missing are installed; nothing is downloaded otherwise.
 set -euo pipefail
 tests=0
@@ -30,6 +31,7 @@ if ((tests)); then
   packages+=(
     chromium        # the report rendered in a real browser (check_report_test)
     python3-pytest  # the Python module's tests (tests/apps/python)
+    python3-scipy   # bench/lift_tables.py: SciPy's smoothing spline and Savitzky-Golay as peers
   )
 fi
 

@@ -98,4 +98,34 @@ double RequiredPreloadN(const LiftLaw& law, const RigidTrain& train, double omeg
   return std::max(0.0, -m.force_N);
 }
 
+std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const RigidTrain& train) {
+  if (law.nodes().empty()) return std::nullopt;
+  const double n_qs = QuasiStaticLiftoffRpm(law, train);
+  double low = kInf, high = kInf;  // min of the reserve at the band's two ends
+  for (const LocalNode& n : law.nodes()) {
+    low = std::min(low, train.SpringReserve(n.s[0], n.s[2] - n.band2));
+    high = std::min(high, train.SpringReserve(n.s[0], n.s[2] + n.band2));
+  }
+  auto rpm = [](double reserve) {
+    return reserve <= 0.0 ? 0.0 : 60.0 / (2.0 * kPi) * std::sqrt(reserve);
+  };
+  return ExtremumBand{std::min(rpm(low), n_qs), std::max(rpm(high), n_qs)};
+}
+
+std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrain& train,
+                                             double omega, double safety_factor,
+                                             double overspeed_factor) {
+  if (law.nodes().empty()) return std::nullopt;
+  const double w = overspeed_factor * omega;
+  double required = RequiredPreloadN(law, train, omega, safety_factor, overspeed_factor);
+  for (const LocalNode& n : law.nodes()) {
+    const double s2 = n.s[2] - n.band2;  // the deceleration's unsafe end
+    if (s2 < 0.0) {
+      required = std::max(required, safety_factor * train.mass_kg * w * w * -s2 -
+                                        train.rate_N_m * n.s[0] + train.gas_force_N);
+    }
+  }
+  return required;
+}
+
 }  // namespace needle

@@ -31,6 +31,16 @@ ForceMinimum MinQuasiStaticForce(const LiftLaw& law, const RigidTrain& train, do
 /// is not positive somewhere the needle decelerates.
 double QuasiStaticLiftoffRpm(const LiftLaw& law, const RigidTrain& train);
 
+/// The 95 % band of n_qs, rpm, from the law's acceleration band (LiftLaw::nodes(): s'' ± its
+/// half-width at each node), always holding QuasiStaticLiftoffRpm; none for a law without one.
+std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const RigidTrain& train);
+
+/// P₀,req (N, ≥ 0) at the acceleration band's unsafe end: RequiredPreloadN with |s''| raised by
+/// its half-width at each node; none for a law without a band.
+std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrain& train,
+                                             double omega, double safety_factor,
+                                             double overspeed_factor);
+
 /// P₀,req in N (≥ 0) at crank speed ω·overspeed_factor with safety factor S.
 double RequiredPreloadN(const LiftLaw& law, const RigidTrain& train, double omega,
                         double safety_factor, double overspeed_factor);

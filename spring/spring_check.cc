@@ -22,7 +22,13 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
                   Fixed(*r.basu_preload_N / kKgf, 1) + " kgf (tolerance " +
                   Fixed(r.basu_tolerance_percent, 1) + " %)");
   }
-  if (!r.preload_ok) {
+  if (!r.preload_ok && r.train.preload_N >= r.required_preload_N) {
+    out.push_back("inertia sizing: undecided within the table's accuracy: the preload " +
+                  Fixed(r.train.preload_N, 1) + " N meets the required " +
+                  Fixed(r.required_preload_N, 1) + " N of the fitted lift, not the " +
+                  Fixed(r.required_preload_unsafe_N.value_or(0.0), 1) +
+                  " N at its acceleration band's unsafe end");
+  } else if (!r.preload_ok) {
     out.push_back("inertia sizing: the preload " + Fixed(r.train.preload_N, 1) +
                   " N is below the required " + Fixed(r.required_preload_N, 1) + " N, margin " +
                   Fixed(r.preload_margin_percent, 1) + " %");
@@ -85,7 +91,10 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
       r.required_preload_N > 0
           ? 100.0 * (r.train.preload_N - r.required_preload_N) / r.required_preload_N
           : INFINITY;
-  r.preload_ok = r.train.preload_N >= r.required_preload_N;
+  r.liftoff_rpm_quasi_static_band = QuasiStaticLiftoffBand(law, r.train);
+  r.required_preload_unsafe_N =
+      RequiredPreloadUnsafeN(law, r.train, omega, spring.safety_factor, spring.overspeed_factor);
+  r.preload_ok = r.train.preload_N >= r.required_preload_unsafe_N.value_or(r.required_preload_N);
   const double S = spring.safety_factor;
   r.safety_factor = S;
   r.gas_force_N = r.train.gas_force_N;
@@ -115,7 +124,7 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
 
 std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {
   using namespace display;
-  return {
+  std::vector<Field> fields = {
       {"basu_preload", kKgForce, r.basu_preload_N, 1},
       {"actual_preload", kKgForce, r.train.preload_N, 1},
       {"deviation", kPercent, r.basu_deviation_percent, 1},
@@ -138,6 +147,15 @@ std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {
       FlagField("preload_ok", r.preload_ok),
       FlagField("pass", r.pass),
   };
+  // The lift table's accuracy carried to n_qs (a local fit's band; a bounded one only).
+  const auto& band = r.liftoff_rpm_quasi_static_band;
+  if (band && std::isfinite(band->high)) {
+    Field f = ListField("n_qs_band", kRpm, {band->low, band->high});
+    f.key = "liftoff_rpm_quasi_static_band";
+    f.decimals = 1;
+    fields.insert(fields.begin() + 10, f);  // after n_qs
+  }
+  return fields;
 }
 
 }  // namespace needle

@@ -32,7 +32,12 @@ struct SpringCheckResult {
   RigidTrain train;                      ///< rate from [spring] or the helical geometry
   ForceMinimum min_quasi_static;
   double liftoff_rpm_quasi_static = 0.0;  ///< +∞ when the needle never decelerates
+  /// n_qs's 95 % band from the lift table's accuracy (QuasiStaticLiftoffBand), rpm.
+  std::optional<ExtremumBand> liftoff_rpm_quasi_static_band;
   double required_preload_N = 0.0;
+  /// P₀,req at the acceleration band's unsafe end (RequiredPreloadUnsafeN), N: the inertia
+  /// sizing is judged there, and undecided where the preload lies between the two.
+  std::optional<double> required_preload_unsafe_N;
   double preload_margin_percent = 0.0;  ///< +∞ when nothing is required
   bool preload_ok = false;
   double gas_force_N = 0.0;                ///< F_g, the combustion load

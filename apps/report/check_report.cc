@@ -243,10 +243,13 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
           << Row("max velocity", Fixed(sum.max_velocity_m_s, 3) + " m/s at " +
                                      Fixed(sum.max_velocity_rad / kDeg, 2) + "°");
   if (sum.max_acceleration_m_s2) {
-    summary << Row("acceleration", Fixed(*sum.max_acceleration_m_s2, 2) + " m/s² max at " +
-                                       Fixed(*sum.max_acceleration_rad / kDeg, 2) + "°, " +
-                                       Fixed(*sum.min_acceleration_m_s2, 2) + " m/s² min at " +
-                                       Fixed(*sum.min_acceleration_rad / kDeg, 2) + "°");
+    summary << Row("acceleration",
+                   Fixed(*sum.max_acceleration_m_s2, 2) +
+                       PlusMinus(*sum.max_acceleration_m_s2, sum.max_acceleration_band_m_s2, 2) +
+                       " m/s² max at " + Fixed(*sum.max_acceleration_rad / kDeg, 2) + "°, " +
+                       Fixed(*sum.min_acceleration_m_s2, 2) +
+                       PlusMinus(*sum.min_acceleration_m_s2, sum.min_acceleration_band_m_s2, 2) +
+                       " m/s² min at " + Fixed(*sum.min_acceleration_rad / kDeg, 2) + "°");
   }
   summary << "</table>";
 

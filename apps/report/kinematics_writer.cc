@@ -81,9 +81,12 @@ CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWrit
     out << "velocity " << t("max_velocity_m_s") << " max at " << t("max_velocity_deg") << ", "
         << t("min_velocity_m_s") << " min at " << t("min_velocity_deg") << '\n';
     if (sum.max_acceleration_m_s2) {
-      out << "acceleration " << t("max_acceleration_m_s2") << " max at "
-          << t("max_acceleration_deg") << ", " << t("min_acceleration_m_s2") << " min at "
-          << t("min_acceleration_deg") << '\n';
+      out << "acceleration " << Fixed(*sum.max_acceleration_m_s2, 2)
+          << PlusMinus(*sum.max_acceleration_m_s2, sum.max_acceleration_band_m_s2, 2)
+          << " m/s^2 max at " << t("max_acceleration_deg") << ", "
+          << Fixed(*sum.min_acceleration_m_s2, 2)
+          << PlusMinus(*sum.min_acceleration_m_s2, sum.min_acceleration_band_m_s2, 2)
+          << " m/s^2 min at " << t("min_acceleration_deg") << '\n';
     } else {
       out << "acceleration unavailable: " << SplineKindName(law.kind())
           << " is C1 only (its second derivative jumps at the knots)\n";

@@ -72,7 +72,8 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
         << t("min_quasi_static_force_deg") << " (spring rate " << t("spring_rate_N_mm") << ")\n";
     out << "quasi-static lift-off speed n_qs = "
         << (std::isfinite(n_qs)
-                ? t("liftoff_rpm_quasi_static") + " (" + Fixed(n_qs / speed, 2) + " x rated)"
+                ? Fixed(n_qs, 1) + PlusMinus(n_qs, check.liftoff_rpm_quasi_static_band, 1) +
+                      " rpm (" + Fixed(n_qs / speed, 2) + " x rated)"
                 : "none (never decelerates)")
         << '\n';
     out << "required preload (S = " << Fixed(c.spring->safety_factor, 2) << " at "

@@ -145,7 +145,7 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   EXPECT_EQ(spline.status, 2);
   EXPECT_EQ(spline.err,
             "needle: --spline: unknown kind \"cubic\"; expected one of natural, not-a-knot, "
-            "clamped, quintic, pchip, makima, smoothing\n");
+            "clamped, quintic, pchip, makima, smoothing, local\n");
   // Every refusal is checked for its message too, not only its exit status.
   const auto rpm = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --rpm -3");
   EXPECT_EQ(rpm.status, 2);

@@ -179,7 +179,7 @@ TEST(CaseFileTest, SplineKindAndPointCount) {
   EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
                           "lift_mm = [0, 1, 2, 1, 0]\nspline = \"akima\"")),
             "t.toml: [lift] spline: unknown kind \"akima\"; expected one of natural, not-a-knot, "
-            "clamped, quintic, pchip, makima, smoothing");
+            "clamped, quintic, pchip, makima, smoothing, local");
   EXPECT_EQ(Error(Replace(kGood, "lift_mm = [0, 1, 2, 1, 0]",
                           "lift_mm = [0, 1, 2, 1, 0]\nspline = \"quintic\"")),
             "t.toml: [lift] spline: \"quintic\" needs at least 6 points, the lift table has 5");

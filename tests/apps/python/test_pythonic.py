@@ -67,7 +67,7 @@ def test_keyword_errors_name_the_keyword_and_print_pythons_number():
         "seed=18446744073709551616: expected a whole number in [0, 18446744073709551615]"
     assert message(lambda: needle.kinematics(case, spline="cubic")) == (
         "spline='cubic': unknown kind; expected one of natural, not-a-knot, clamped, quintic, "
-        "pchip, makima, smoothing")
+        "pchip, makima, smoothing, local")
 
 
 def test_a_commands_own_message_names_the_keyword():

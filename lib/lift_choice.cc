@@ -1,0 +1,411 @@
+// The choice of a lift table's reading (ChooseLiftLaw, lib/lift_data.h): what the table holds
+// (ReadTable), its breaks, and the law built on it.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "lib/lift_data.h"
+
+namespace needle {
+namespace {
+
+std::string Mm(double m) {
+  std::ostringstream out;
+  out.precision(3);
+  out << m * 1e3;
+  return out.str();
+}
+
+std::string DegreeList(const std::vector<double>& rad) {
+  std::string where;
+  for (size_t k = 0; k < rad.size() && k < 8; ++k) {
+    std::ostringstream deg;
+    deg.precision(6);
+    deg << rad[k] * 180.0 / 3.14159265358979323846;
+    where += (k ? ", " : "") + deg.str();
+  }
+  if (rad.size() > 8) where += ", …";
+  return where;
+}
+
+// Σe² and the count of the normalised fourth divided differences e = D/√Σw² over the windows
+// of five consecutive entries of `idx` (readings of (x, y)) that span none of `cuts`.
+void AddResiduals(const std::vector<double>& x, const std::vector<double>& y,
+                  const std::vector<size_t>& idx, const std::vector<double>& cuts, double* sum,
+                  long* count) {
+  for (size_t i = 0; i + 4 < idx.size(); ++i) {
+    const double from = x[idx[i]], to = x[idx[i + 4]];
+    if (std::any_of(cuts.begin(), cuts.end(), [&](double b) { return b > from && b < to; })) {
+      continue;
+    }
+    double d = 0.0, w2 = 0.0;
+    for (int j = 0; j <= 4; ++j) {
+      double p = 1.0;
+      for (int l = 0; l <= 4; ++l) {
+        if (l != j) p *= x[idx[i + j]] - x[idx[i + l]];
+      }
+      d += y[idx[i + j]] / p;
+      w2 += 1.0 / (p * p);
+    }
+    *sum += d * d / w2;
+    ++*count;
+  }
+}
+
+// The open lift of an exact table: from the last zero before the rise to the first after the
+// fall (LiftLaw's rule).
+std::pair<size_t, size_t> OpenReadings(const std::vector<double>& y) {
+  size_t first = 0, last = y.size() - 1;
+  while (first + 1 < y.size() && y[first] <= 0.0 && y[first + 1] <= 0.0) ++first;
+  while (last > first && y[last] <= 0.0 && y[last - 1] <= 0.0) --last;
+  return {first, last};
+}
+
+}  // namespace
+
+std::string TableKindName(TableKind kind) {
+  switch (kind) {
+    case TableKind::kExact:
+      return "exact";
+    case TableKind::kRounded:
+      return "rounded";
+    case TableKind::kMeasured:
+      return "measured";
+  }
+  return "?";
+}
+
+TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& y, size_t first,
+                       size_t last, const std::vector<double>& cuts,
+                       std::optional<double> resolution_m) {
+  TableReading r;
+  r.printed_m = resolution_m ? resolution_m : PrintedResolution(y);
+  double largest = 0.0;
+  for (double v : y) largest = std::max(largest, std::abs(v));
+  r.rounding_sigma_m =
+      r.printed_m ? *r.printed_m / std::sqrt(12.0) : kExactRelativeFloor * std::max(largest, 1e-9);
+  std::vector<size_t> all, even, odd;
+  for (size_t i = first; i <= last; ++i) {
+    all.push_back(i);
+    ((i - first) % 2 ? odd : even).push_back(i);
+  }
+  double sum = 0.0, half_sum = 0.0;
+  long count = 0, half_count = 0;
+  AddResiduals(x, y, all, cuts, &sum, &count);
+  AddResiduals(x, y, even, cuts, &half_sum, &half_count);
+  AddResiduals(x, y, odd, cuts, &half_sum, &half_count);
+  r.residual_m = count ? std::sqrt(sum / count) : 0.0;
+  const double half = half_count ? std::sqrt(half_sum / half_count) : 0.0;
+  r.halving_ratio = r.residual_m > 0.0 ? half / r.residual_m : 0.0;
+  if (r.printed_m && last > first) {
+    long flat = 0;
+    for (size_t i = first; i < last; ++i) {
+      flat += std::abs(y[i + 1] - y[i]) <= *r.printed_m * (1.0 + 1e-6);
+    }
+    r.staircase = 2 * flat > static_cast<long>(last - first);
+  }
+  // A smooth residual (the law's own, growing ~16× when the table is halved) is an exact table's;
+  // a white one at the rounding's level a rounded table's; a white one above it a measurement's.
+  const bool white = half_count >= 3 && r.residual_m > 0.0 && r.halving_ratio < kWhiteHalvingRatio;
+  r.sigma_m = r.rounding_sigma_m;
+  if (!white) {
+    r.kind = TableKind::kExact;
+  } else if (r.residual_m <= kRoundingNoiseFactor * r.rounding_sigma_m) {
+    r.kind = TableKind::kRounded;
+  } else {
+    r.kind = TableKind::kMeasured;
+    r.sigma_m = r.residual_m;
+  }
+  return r;
+}
+
+namespace {
+
+// The breaks of `given` found inside its open lift, each piece keeping the readings a `kind`
+// spline needs; the first corner clear of the seat goes to c->corner.
+std::vector<const LiftBreak*> SeekBreaks(const LiftTable& given, double sigma_m, SplineKind kind,
+                                         LiftLawChoice* c) {
+  const auto& x = given.crank_rad;
+  const auto [first, last] = OpenReadings(given.lift_m);
+  std::vector<const LiftBreak*> inside;
+  // A jump of s'' too small for the noise of neighbouring readings' s'' (which grows as 1/h²)
+  // stands out on means of bins of 2, 4, 8, … consecutive readings (σ/√count each; the noise of
+  // their s'' shrinks as the bins' width^2.5): each coarser level adds the breaks the finer ones
+  // did not find, located again on the readings and known to within its bin's width.
+  std::vector<LiftBreak> found = FindBreaks(x, given.lift_m, sigma_m);
+  if (found.empty() && x.size() <= kJunctionsAtMost) {  // a coarse table's, by quintics
+    for (const LiftBreak& b : FindJunctions(x, given.lift_m, sigma_m)) {
+      const double h = x[std::min(b.index + 1, x.size() - 1)] - x[b.index];
+      const bool known = std::any_of(found.begin(), found.end(), [&](const LiftBreak& f) {
+        return std::abs(f.crank_rad - b.crank_rad) <= 2.0 * h;
+      });
+      if (!known) found.push_back(b);
+    }
+  }
+  for (size_t per = 2; x.size() / per >= kBreakLeastBins; per *= 2) {
+    std::vector<double> bx, by;
+    for (size_t i = 0; i + per <= x.size(); i += per) {
+      double sx = 0.0, sy = 0.0;
+      for (size_t k = i; k < i + per; ++k) {
+        sx += x[k];
+        sy += given.lift_m[k];
+      }
+      bx.push_back(sx / per);
+      by.push_back(sy / per);
+    }
+    const double width = bx[1] - bx[0];
+    for (LiftBreak b : FindBreaks(bx, by, sigma_m / std::sqrt(static_cast<double>(per)))) {
+      if (b.order != 2) continue;  // a corner shows among the readings themselves
+      const LiftBreak coarse = b;
+      b = RefineBreak(x, given.lift_m, b, width);
+      // Located again on the readings, a jump keeps its size; a kink of s'' (a jump of its
+      // derivative) that the bins' lines took for one does not.
+      if (!(std::abs(b.jump) >= 0.5 * std::abs(coarse.jump) &&
+            std::abs(b.jump) <= 2.0 * std::abs(coarse.jump))) {
+        continue;
+      }
+      const bool known = std::any_of(found.begin(), found.end(), [&](const LiftBreak& f) {
+        return std::abs(f.crank_rad - b.crank_rad) <= 2.0 * width;
+      });
+      if (known) continue;
+      found.push_back(b);
+      c->break_uncertainty_rad = std::max(c->break_uncertainty_rad, width);
+    }
+  }
+  std::sort(found.begin(), found.end(),
+            [](const LiftBreak& a, const LiftBreak& b) { return a.crank_rad < b.crank_rad; });
+  for (const LiftBreak& b : found) {
+    if (b.order == 2) {
+      c->breaks_found.push_back(b);
+    } else if (!c->corner && b.crank_rad > x[std::min(first + 1, last)] &&
+               b.crank_rad < x[std::max(last - 1, first)]) {  // a step clear of the seat
+      c->corner = b;
+    }
+  }
+  if (c->corner) return inside;
+  auto readings = [&](double from, double to) {  // readings strictly between, plus both ends
+    return 2 + std::count_if(x.begin(), x.end(), [&](double t) { return t > from && t < to; });
+  };
+  for (const LiftBreak& b : c->breaks_found) {
+    const double from = inside.empty() ? x[first] : inside.back()->crank_rad;
+    if (b.crank_rad > x[first] && b.crank_rad < x[last] &&
+        readings(from, b.crank_rad) >= MinimumPoints(kind)) {
+      inside.push_back(&b);
+    }
+  }
+  while (!inside.empty() && readings(inside.back()->crank_rad, x[last]) < MinimumPoints(kind)) {
+    inside.pop_back();
+  }
+  return inside;
+}
+
+// The table with a reading at each break between readings, its lift from the sides' cubics.
+LiftTable WithBreakReadings(const LiftTable& given, const std::vector<const LiftBreak*>& inside) {
+  LiftTable t;
+  size_t next = 0;
+  for (size_t i = 0; i < given.crank_rad.size(); ++i) {
+    while (next < inside.size() && inside[next]->crank_rad < given.crank_rad[i]) {
+      t.crank_rad.push_back(inside[next]->crank_rad);
+      t.lift_m.push_back(inside[next]->lift_m);
+      ++next;
+    }
+    if (next < inside.size() && inside[next]->crank_rad == given.crank_rad[i]) ++next;
+    t.crank_rad.push_back(given.crank_rad[i]);
+    t.lift_m.push_back(given.lift_m[i]);
+  }
+  return t;
+}
+
+// Outliers of measured data (dense tables only: on a sparse one the shape itself stands out of
+// the cubic through each reading's neighbours), left out when the options say so.
+void SeekOutliers(const LiftTable& given, const LiftDataOptions& o, LiftLawChoice* c) {
+  c->robust_noise_m = EstimateNoiseRobust(given.crank_rad, given.lift_m);
+  c->outliers = FindOutliers(given.crank_rad, given.lift_m, c->robust_noise_m);
+  if (!o.drop_outliers || c->outliers.empty()) return;
+  c->table = LiftTable{};
+  size_t next = 0;
+  for (size_t i = 0; i < given.crank_rad.size(); ++i) {
+    if (next < c->outliers.size() && c->outliers[next].index == i) {
+      ++next;
+      continue;
+    }
+    c->table.crank_rad.push_back(given.crank_rad[i]);
+    c->table.lift_m.push_back(given.lift_m[i]);
+  }
+}
+
+void SetMeasured(LiftLawChoice* c) {
+  const int n = static_cast<int>(c->table.crank_rad.size());
+  c->measured = true;
+  c->law.closed_level_m = kClosedLevelSigmas * c->noise_m;
+  c->law.negative_sigmas = TailSigmas(n, kNegativeSigmas);
+  c->law.negative_allowance_m = c->law.negative_sigmas * c->noise_m;
+}
+
+// Measured data, read as before issue 50 (docs/lift-data.md, "Measured lift data"): outliers
+// sought, σ̂ the RMS pseudo-residual of all windows, the smoothing spline over the whole table
+// (natural ends on the seated needle's readings), breaks found not used.
+LiftLawChoice ReadMeasured(const LiftTable& given, const LiftDataOptions& o, LiftLawChoice c,
+                           const std::vector<double>& breaks_found) {
+  SeekOutliers(given, o, &c);
+  c.estimated_noise_m = EstimateNoise(c.table.crank_rad, c.table.lift_m);
+  c.noise_m = *c.estimated_noise_m;
+  c.noise_source = "estimated";
+  if (o.resolution_m && c.noise_m < *o.resolution_m / std::sqrt(12.0)) {
+    c.noise_m = *o.resolution_m / std::sqrt(12.0);  // rounding is noise the data cannot hide
+    c.noise_source = "rounding";
+  }
+  c.noise_m = std::max(c.noise_m, 1e-10);  // a floor that keeps the smoothing well posed
+  c.law.spline.sigma = c.noise_m;
+  SetMeasured(&c);
+  const std::string points = std::to_string(c.table.crank_rad.size()) + " points";
+  std::string noise = "noise " + Mm(c.noise_m) + " mm (" + c.noise_source + ")";
+  if (!breaks_found.empty()) {
+    noise += "; " + std::to_string(breaks_found.size()) + " breaks found (s'' jumps at " +
+             DegreeList(breaks_found) + " deg): measured data, breaks not used";
+  }
+  if (o.kind) {
+    c.law.spline.kind = *o.kind;
+    c.reason = "stated in the case; measured data, " + points + ", " + noise;
+  } else {
+    c.law.spline.kind = SplineKind::kSmoothing;
+    c.reason = "dense table (" + points + "): measured data, " + noise + "; smoothing spline";
+  }
+  return c;
+}
+
+// A dense table with nothing stated but, perhaps, its spline: read for what it holds
+// (ReadTable), its breaks found, each piece fitted from its own readings.
+LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
+  LiftLawChoice c;
+  c.law.spline = o.spline;
+  c.law.open_rad = o.open_rad;
+  c.law.close_rad = o.close_rad;
+  c.table = given;
+  const auto& x = given.crank_rad;
+  const auto& y = given.lift_m;
+  const std::string points = std::to_string(x.size()) + " points";
+  const auto [first, last] = OpenReadings(y);
+  const SplineKind kind = o.kind.value_or(SplineKind::kLocal);
+  const std::optional<double> q = o.resolution_m ? o.resolution_m : PrintedResolution(y);
+  const double rounding = q ? *q / std::sqrt(12.0) : 0.0;
+  std::vector<const LiftBreak*> inside;
+  if (o.find_breaks) {
+    inside = SeekBreaks(given, std::max(EstimateNoiseRobust(x, y), rounding), kind, &c);
+    if (c.corner) return c;  // refused by the caller
+  }
+  std::vector<double> at;
+  for (const LiftBreak* b : inside) at.push_back(b->crank_rad);
+  std::vector<double> cuts = at;  // the open lift's ends are junctions too (the seat)
+  cuts.push_back(x[first]);
+  cuts.push_back(x[last]);
+  c.reading = ReadTable(x, y, first, last, cuts, o.resolution_m);
+  const TableReading& r = *c.reading;
+  c.noise_m = std::max(r.sigma_m, 1e-18);  // positive: a spline's σ must be
+  c.law.spline.sigma = c.noise_m;
+  c.law.spline.kind = kind;
+  std::ostringstream what;
+  what.precision(3);
+  what << TableKindName(r.kind) << (r.staircase ? " (a staircase)" : "") << " table (" << points
+       << "): residual " << Mm(r.residual_m) << " mm, x" << r.halving_ratio << " when halved, "
+       << (r.printed_m ? "printed to " + Mm(*r.printed_m) + " mm" : std::string("digits unknown"));
+  const std::string stated = o.kind ? "stated in the case; " : "";
+  if (r.kind == TableKind::kMeasured) return ReadMeasured(given, o, std::move(c), at);
+  c.noise_source = "rounding";
+  c.law.spline.quantized = true;  // exact or rounded: its error is the rounding's
+  const bool pieces_fit = kind == SplineKind::kNotAKnot || kind == SplineKind::kNatural ||
+                          kind == SplineKind::kQuintic || kind == SplineKind::kLocal;
+  std::string breaks = "ends at " + DegreeList({x[first], x[last]}) + " deg (the seat)";
+  if (!at.empty()) {
+    std::string found =
+        std::to_string(at.size()) + " breaks found (s'' jumps at " + DegreeList(at) + " deg";
+    if (c.break_uncertainty_rad > 0.0) {
+      found += ", each to within " + DegreeList({c.break_uncertainty_rad}) + " deg";
+    }
+    found += ")";
+    if (pieces_fit) {
+      c.law.breaks_rad = at;
+      c.table = WithBreakReadings(c.table, inside);
+      breaks = found + ", " + breaks;
+    } else {
+      breaks =
+          found + ", not used: \"" + SplineKindName(kind) + "\" cannot be built apart; " + breaks;
+    }
+  }
+  c.reason = stated + what.str() + "; noise " + Mm(c.noise_m) + " mm (" + c.noise_source + "); " +
+             breaks + ": " + SplineKindName(kind) + " fit of each piece from its own readings";
+  return c;
+}
+
+}  // namespace
+
+LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
+  const bool dense = static_cast<int>(given.crank_rad.size()) >= kDenseTablePoints;
+  if (dense && !o.noise_m && o.breaks_rad.empty() &&
+      given.crank_rad.size() == given.lift_m.size()) {
+    return ReadDenseTable(given, o);
+  }
+  LiftLawChoice c;
+  c.law.spline = o.spline;
+  c.law.open_rad = o.open_rad;
+  c.law.close_rad = o.close_rad;
+  c.law.breaks_rad = o.breaks_rad;
+  c.measured = o.noise_m.has_value() && o.breaks_rad.empty();
+  c.table = given;
+  if (c.measured && dense && given.crank_rad.size() == given.lift_m.size()) {
+    SeekOutliers(given, o, &c);
+  }
+  const int n = static_cast<int>(c.table.crank_rad.size());
+  const std::string points = std::to_string(n) + " points";
+  if (o.noise_m) {
+    c.noise_m = *o.noise_m;
+    c.noise_source = "stated";
+  } else if (dense) {
+    c.estimated_noise_m = EstimateNoise(c.table.crank_rad, c.table.lift_m);
+    c.noise_m = *c.estimated_noise_m;
+    c.noise_source = "estimated";
+    if (o.resolution_m && c.noise_m < *o.resolution_m / std::sqrt(12.0)) {
+      c.noise_m = *o.resolution_m / std::sqrt(12.0);  // rounding is noise the data cannot hide
+      c.noise_source = "rounding";
+    }
+    // Exact data: keep a floor far below any measurement so the smoothing stays well posed.
+    c.noise_m = std::max(c.noise_m, 1e-10);
+  } else {
+    c.noise_m = o.resolution_m.value_or(1e-5) / std::sqrt(12.0);  // the paper's 0.01 mm
+    c.noise_source = "rounding";
+  }
+  c.law.spline.sigma = c.noise_m;
+  if (c.measured) SetMeasured(&c);
+  const std::string noise = "noise " + Mm(c.noise_m) + " mm (" + c.noise_source + ")";
+  if (o.kind) {
+    c.law.spline.kind = *o.kind;
+    c.reason = std::string("stated in the case; ") +
+               (c.measured ? "measured data, " : "exact table, ") + points + ", " + noise;
+    return c;
+  }
+  if (c.measured) {
+    c.law.spline.kind = SplineKind::kSmoothing;
+    c.reason = "noise stated: measured data, " + noise + "; smoothing spline";
+    return c;
+  }
+  if (!o.breaks_rad.empty()) {
+    c.law.spline.kind = SplineKind::kNotAKnot;
+    c.reason = "exact table with " + std::to_string(o.breaks_rad.size()) + " breaks (" + points +
+               "): not-a-knot cubic on each piece between them";
+    return c;
+  }
+  const bool at_rest =
+      !c.table.lift_m.empty() && c.table.lift_m.front() == 0.0 && c.table.lift_m.back() == 0.0;
+  if (at_rest) {
+    c.law.spline.kind = SplineKind::kClamped;
+    c.law.spline.start_slope = c.law.spline.end_slope = 0.0;
+    c.reason = "sparse exact table (" + points +
+               ") closed at both ends: clamped cubic at rest at the seat";
+  } else {
+    c.law.spline.kind = SplineKind::kNotAKnot;
+    c.reason = "sparse exact table (" + points + ") open at an end: not-a-knot cubic";
+  }
+  return c;
+}
+
+}  // namespace needle

@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// Local polynomial regression of a lift table, the default reading of an exported table
+/// (docs/lift-data.md, "Reading a table"). At every node t the readings near t are fitted by
+/// weighted least squares with a polynomial of degree p = kLocalDegree,
+///
+///     min Σ_i c_i K((θ_i − t)/b) (s_i − Σ_k β_k (θ_i − t)^k)²,   s⁽ᵈ⁾(t) ≈ d! β_d,
+///
+/// K the tricube kernel, b the distance to the K-th nearest reading, c_i a reading's count (a
+/// bin of a dense table holds several). Every estimate is linear in the readings,
+/// s⁽ᵈ⁾(t) = Σ g_i s_i, so its standard deviation under white noise of σ per reading is
+/// σ √(Σ g_i²/c_i). The window is chosen at each node by Lepski's rule: the widest of the
+/// windows K_j = 7, 9, 11, … (×1.25) whose s'' agrees with every narrower one's within
+/// kLepskiSigmas of the narrower one's standard deviation, so it grows while the noise shrinks
+/// faster than the law's curvature bends the fit. An exact table (σ ≈ 0) keeps the narrowest
+/// window, a quintic through 7 readings (error O(h⁴) in s''); a rounded or measured one is
+/// smoothed exactly as much as its σ asks. Windows never reach past the readings given, so a
+/// piece between two junctions is fitted from its own data, one-sided at its ends.
+///
+/// The nodes, half their window's width apart (a closer node's values would carry their noise
+/// into s'' over the square of the spacing), carry s, s', s'' and a 95 % half-width of s'' (1.96
+/// standard deviations plus the change from the next narrower window, the truncation's scale);
+/// between nodes the law is the quintic Hermite interpolant of (s, s', s''), C². A table of more
+/// than kLocalMaxNodes readings is first averaged in bins of consecutive readings (σ/√count each):
+/// the cost is O(n).
+
+#include <vector>
+
+#include "lib/piecewise_polynomial.h"
+
+namespace needle {
+
+/// Degree of the local polynomial.
+constexpr int kLocalDegree = 5;
+/// Readings in the narrowest window: two more than the degree needs.
+constexpr int kLocalMinimumPoints = kLocalDegree + 2;
+/// Lepski's agreement level, in standard deviations of the narrower window's s''.
+constexpr double kLepskiSigmas = 2.5;
+/// Above this many readings a piece is averaged in bins first (O(n) overall).
+constexpr int kLocalMaxNodes = 1500;
+
+/// One node of a local fit.
+struct LocalNode {
+  double x = 0.0;      ///< where, rad
+  double s[3] = {};    ///< s, s', s'' there (m, m/rad, m/rad²)
+  double band2 = 0.0;  ///< 95 % half-width of s'' there, m/rad², ≥ 0
+  int window = 0;      ///< readings in its window (bins counted once)
+  double width = 0.0;  ///< the window's span, rad
+};
+
+/// A local fit: the law and its nodes.
+struct LocalFit {
+  PiecewisePolynomial law;
+  std::vector<LocalNode> nodes;
+};
+
+/// Fits (x, y), x strictly increasing, at least kLocalMinimumPoints readings, with σ ≥ 0 the
+/// standard deviation of each reading, m. Nodes from the first reading to the last, half a
+/// window's width apart. Throws std::invalid_argument on too few points.
+/// `quantized`: the readings' errors are their rounding to q = √12 σ, bounded by q/2 and alike
+/// within a bin, so an estimate's error is bounded by q/2 Σ|g_i| (taken as 1.96 standard
+/// deviations) instead of σ √(Σ g_i²/c_i).
+LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, double sigma_m,
+                  bool quantized = false);
+
+/// The C² quintic Hermite interpolant of the nodes' (s, s', s'').
+PiecewisePolynomial QuinticHermite(const std::vector<LocalNode>& nodes);
+
+}  // namespace needle
