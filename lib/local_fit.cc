@@ -138,11 +138,15 @@ LocalNode NodeAt(const Points& p, double t, double sigma, bool quantized,
   for (int d = 0; d < 3; ++d) node.s[d] = e.s[d];
   node.window = static_cast<int>(sizes[from + chosen]);
   node.width = e.width;
-  // Truncation's scale: the largest step from a narrower window tried (from the next wider one
-  // when the narrowest is chosen).
-  double step = 0.0;
-  for (size_t i = 0; i < chosen; ++i) step = std::max(step, std::abs(e.s[2] - tried[i].s[2]));
-  if (chosen == 0 && tried.size() > 1) step = std::abs(e.s[2] - tried[1].s[2]);
+  // Truncation's scale: the largest step from the narrower windows of at least half its size
+  // (over which the bias grows 2⁴-fold; narrower ones are noise), from the next wider window
+  // when the narrowest is chosen.
+  double step = chosen == 0 && tried.size() > 1 ? std::abs(e.s[2] - tried[1].s[2]) : 0.0;
+  for (size_t i = 0; i < chosen; ++i) {
+    if (2 * sizes[from + i] >= sizes[from + chosen]) {
+      step = std::max(step, std::abs(e.s[2] - tried[i].s[2]));
+    }
+  }
   node.band2 = 1.96 * sigma * e.sd2 + step;
   return node;
 }

@@ -19,7 +19,8 @@
 ///
 /// The nodes, half their window's width apart (a closer node's values would carry their noise
 /// into s'' over the square of the spacing), carry s, s', s'' and a 95 % half-width of s'' (1.96
-/// standard deviations plus the change from the next narrower window, the truncation's scale);
+/// standard deviations plus the largest change from the narrower windows of at least half its
+/// size, the truncation's scale);
 /// between nodes the law is the quintic Hermite interpolant of (s, s', s''), C². A table of more
 /// than kLocalMaxNodes readings is first averaged in bins of consecutive readings (σ/√count each):
 /// the cost is O(n).

@@ -186,6 +186,10 @@ TEST(LiftReadingTest, DenseStaircaseIsSmoothedAsItsRounding) {
   EXPECT_EQ(r.choice.reading->kind, TableKind::kRounded) << r.choice.reason;
   EXPECT_NEAR(r.choice.noise_m, 1e-7 / std::sqrt(12.0), 1e-15);
   ExpectWithin(r, 0.02, "1e5 rows to 1e-4 mm");
+  // Bands that say something: a piece's end node once carried its narrowest window's noise
+  // into the extreme's band (33 times the peak).
+  EXPECT_LT(r.max_band_width, 0.1);
+  EXPECT_LT(r.min_band_width, 0.1);
   EXPECT_EQ(r.choice.law.breaks_rad.size(), 2u) << r.choice.reason;
 }
 
