@@ -161,7 +161,8 @@ std::vector<const LiftBreak*> SeekBreaks(const LiftTable& given, double sigma_m,
       // Located again on the readings, a jump keeps its size; a kink of s'' (a jump of its
       // derivative) that the bins' lines took for one does not.
       if (!(std::abs(b.jump) >= 0.5 * std::abs(coarse.jump) &&
-            std::abs(b.jump) <= 2.0 * std::abs(coarse.jump))) {
+            std::abs(b.jump) <= 2.0 * std::abs(coarse.jump)) ||
+          !JumpConfirmed(x, given.lift_m, b, sigma_m)) {
         continue;
       }
       const bool known = std::any_of(found.begin(), found.end(), [&](const LiftBreak& f) {

@@ -15,6 +15,8 @@ constexpr int kSide = 7;  // readings of each side's quintic: one more than it n
 // A neighbour whose |D| is at least this share of the largest's: the junction lies between them
 // (at a reading, its neighbours see about half of it).
 constexpr double kBetweenShare = 0.75;
+// JumpConfirmed judges only where the quintics' noise is below this share of the jump.
+constexpr double kConfirmNoiseShare = 0.1;
 
 // A quintic fitted to readings [from, to) by least squares, in u = (θ − c)/h, and the weights of
 // its s'' at c on those readings.
@@ -175,6 +177,27 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
   std::sort(found.begin(), found.end(),
             [](const LiftBreak& a, const LiftBreak& b) { return a.crank_rad < b.crank_rad; });
   return found;
+}
+
+}  // namespace needle
+
+namespace needle {
+
+bool JumpConfirmed(const std::vector<double>& x, const std::vector<double>& y, const LiftBreak& b,
+                   double sigma_m) {
+  const long n = static_cast<long>(x.size());
+  const long p = kSide;
+  // The readings at or before the break, and those after it.
+  const long last_left =
+      static_cast<long>(std::upper_bound(x.begin(), x.end(), b.crank_rad) - x.begin()) - 1;
+  const long first_right = x[std::max(0L, last_left)] == b.crank_rad ? last_left : last_left + 1;
+  if (last_left - p + 1 < 0 || first_right + p > n) return true;  // too near an end to tell
+  const SideQuintic left = FitQuintic(x, y, last_left - p + 1, last_left + 1, b.crank_rad);
+  const SideQuintic right = FitQuintic(x, y, first_right, first_right + p, b.crank_rad);
+  const double seen = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
+  const double noise = sigma_m * std::hypot(left.w2.norm(), right.w2.norm());
+  if (!(noise < kConfirmNoiseShare * std::abs(b.jump))) return true;  // the readings cannot tell
+  return std::abs(seen - b.jump) <= 0.5 * std::abs(b.jump);
 }
 
 }  // namespace needle
