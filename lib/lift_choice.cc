@@ -162,13 +162,17 @@ std::vector<const LiftBreak*> SeekBreaks(const LiftTable& given, double sigma_m,
       // derivative) that the bins' lines took for one does not.
       if (!(std::abs(b.jump) >= 0.5 * std::abs(coarse.jump) &&
             std::abs(b.jump) <= 2.0 * std::abs(coarse.jump)) ||
-          !JumpConfirmed(x, given.lift_m, b, sigma_m)) {
+          !JumpConfirmed(x, given.lift_m, b, sigma_m, 12.0 * width)) {
         continue;
       }
+      // Known already, or within two bins of the seat (a junction already: among bins of that
+      // width the two cannot be told apart).
       const bool known = std::any_of(found.begin(), found.end(), [&](const LiftBreak& f) {
         return std::abs(f.crank_rad - b.crank_rad) <= 2.0 * width;
       });
-      if (known) continue;
+      const bool at_seat =
+          b.crank_rad - x[first] <= 2.0 * width || x[last] - b.crank_rad <= 2.0 * width;
+      if (known || at_seat) continue;
       found.push_back(b);
       c->break_uncertainty_rad = std::max(c->break_uncertainty_rad, width);
     }

@@ -211,12 +211,12 @@ std::vector<LiftBreak> FindBreaks(const std::vector<double>& crank_rad,
 std::vector<LiftBreak> FindJunctions(const std::vector<double>& crank_rad,
                                      const std::vector<double>& lift_m, double sigma_m);
 
-/// Whether the quintics through the 7 readings on either side of a break found among bins see
-/// its s'' jump there (within half of it): where their noise σ‖w‖ is under a tenth of the jump
-/// they can tell, and a kink of s'' that the bins' lines took for a jump is refused; elsewhere
-/// (a rounded dense table) true.
+/// Whether the quintics through the readings on either side of a break found among bins see its
+/// s'' jump there (within half of it): 7 readings a side, doubled while their noise σ‖w‖ is
+/// not under a tenth of the jump and they reach no further than `reach_rad`. Where they can
+/// tell, a kink of s'' that the bins' lines took for a jump is refused; elsewhere true.
 bool JumpConfirmed(const std::vector<double>& crank_rad, const std::vector<double>& lift_m,
-                   const LiftBreak& b, double sigma_m);
+                   const LiftBreak& b, double sigma_m, double reach_rad);
 
 /// A break found among bins of width `width_rad`, located again on the readings (x, y): cubics
 /// fitted to each side's readings from one to twelve widths away meet as in FindBreaks, within a

@@ -184,20 +184,27 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
 namespace needle {
 
 bool JumpConfirmed(const std::vector<double>& x, const std::vector<double>& y, const LiftBreak& b,
-                   double sigma_m) {
+                   double sigma_m, double reach_rad) {
   const long n = static_cast<long>(x.size());
-  const long p = kSide;
   // The readings at or before the break, and those after it.
   const long last_left =
       static_cast<long>(std::upper_bound(x.begin(), x.end(), b.crank_rad) - x.begin()) - 1;
   const long first_right = x[std::max(0L, last_left)] == b.crank_rad ? last_left : last_left + 1;
-  if (last_left - p + 1 < 0 || first_right + p > n) return true;  // too near an end to tell
-  const SideQuintic left = FitQuintic(x, y, last_left - p + 1, last_left + 1, b.crank_rad);
-  const SideQuintic right = FitQuintic(x, y, first_right, first_right + p, b.crank_rad);
-  const double seen = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
-  const double noise = sigma_m * std::hypot(left.w2.norm(), right.w2.norm());
-  if (!(noise < kConfirmNoiseShare * std::abs(b.jump))) return true;  // the readings cannot tell
-  return std::abs(seen - b.jump) <= 0.5 * std::abs(b.jump);
+  // Quintics through p readings on either side, p doubled until their noise is under a tenth of
+  // the jump (s''s noise falls as p^2.5) while they reach no further than `reach_rad`.
+  for (long p = kSide; last_left - p + 1 >= 0 && first_right + p <= n; p *= 2) {
+    if (b.crank_rad - x[last_left - p + 1] > reach_rad ||
+        x[first_right + p - 1] - b.crank_rad > reach_rad) {
+      break;
+    }
+    const SideQuintic left = FitQuintic(x, y, last_left - p + 1, last_left + 1, b.crank_rad);
+    const SideQuintic right = FitQuintic(x, y, first_right, first_right + p, b.crank_rad);
+    const double noise = sigma_m * std::hypot(left.w2.norm(), right.w2.norm());
+    if (!(noise < kConfirmNoiseShare * std::abs(b.jump))) continue;
+    const double seen = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
+    return std::abs(seen - b.jump) <= 0.5 * std::abs(b.jump);
+  }
+  return true;  // the readings cannot tell
 }
 
 }  // namespace needle
