@@ -247,20 +247,27 @@ void SetMeasured(LiftLawChoice* c) {
   c->law.negative_allowance_m = c->law.negative_sigmas * c->noise_m;
 }
 
+// σ̂ of the table as read (EstimateNoise), at least its stated rounding's q/√12 (noise the
+// data cannot hide) and 1e-10 m (a floor far below any measurement that keeps the smoothing
+// well posed on exact data).
+void SetEstimatedNoise(const LiftDataOptions& o, LiftLawChoice* c) {
+  c->estimated_noise_m = EstimateNoise(c->table.crank_rad, c->table.lift_m);
+  c->noise_m = *c->estimated_noise_m;
+  c->noise_source = "estimated";
+  if (o.resolution_m && c->noise_m < *o.resolution_m / std::sqrt(12.0)) {
+    c->noise_m = *o.resolution_m / std::sqrt(12.0);
+    c->noise_source = "rounding";
+  }
+  c->noise_m = std::max(c->noise_m, 1e-10);
+}
+
 // Measured data, read as before issue 50 (docs/lift-data.md, "Measured lift data"): outliers
 // sought, σ̂ the RMS pseudo-residual of all windows, the smoothing spline over the whole table
 // (natural ends on the seated needle's readings), breaks found not used.
 LiftLawChoice ReadMeasured(const LiftTable& given, const LiftDataOptions& o, LiftLawChoice c,
                            const std::vector<double>& breaks_found) {
   SeekOutliers(given, o, &c);
-  c.estimated_noise_m = EstimateNoise(c.table.crank_rad, c.table.lift_m);
-  c.noise_m = *c.estimated_noise_m;
-  c.noise_source = "estimated";
-  if (o.resolution_m && c.noise_m < *o.resolution_m / std::sqrt(12.0)) {
-    c.noise_m = *o.resolution_m / std::sqrt(12.0);  // rounding is noise the data cannot hide
-    c.noise_source = "rounding";
-  }
-  c.noise_m = std::max(c.noise_m, 1e-10);  // a floor that keeps the smoothing well posed
+  SetEstimatedNoise(o, &c);
   c.law.spline.sigma = c.noise_m;
   SetMeasured(&c);
   const std::string points = std::to_string(c.table.crank_rad.size()) + " points";
@@ -366,15 +373,7 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
     c.noise_m = *o.noise_m;
     c.noise_source = "stated";
   } else if (dense) {
-    c.estimated_noise_m = EstimateNoise(c.table.crank_rad, c.table.lift_m);
-    c.noise_m = *c.estimated_noise_m;
-    c.noise_source = "estimated";
-    if (o.resolution_m && c.noise_m < *o.resolution_m / std::sqrt(12.0)) {
-      c.noise_m = *o.resolution_m / std::sqrt(12.0);  // rounding is noise the data cannot hide
-      c.noise_source = "rounding";
-    }
-    // Exact data: keep a floor far below any measurement so the smoothing stays well posed.
-    c.noise_m = std::max(c.noise_m, 1e-10);
+    SetEstimatedNoise(o, &c);
   } else {
     c.noise_m = o.resolution_m.value_or(1e-5) / std::sqrt(12.0);  // the paper's 0.01 mm
     c.noise_source = "rounding";
