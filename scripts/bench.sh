@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the benchmark evidence: bench/*.csv, bench/*.svg and BENCHMARKS.md.
 #   bash scripts/bench.sh [--quick]
-# Builds first (scripts/setup.sh). Runs on one core except the overspeed speed-up (two).
+# Builds first (scripts/setup.sh). Runs on one core except the overspeed speed-up and the lift
+# tables (bench/lift_tables.py, some 6 minutes; skipped without SciPy), which take two.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh >/dev/null
@@ -30,6 +31,17 @@ GP
   done
 done
 
+# Lift tables as users export them, against SciPy's peers (bench/lift_tables.py, a few minutes;
+# --quick passes through). Needs python3-scipy (install-deps.sh --tests); skipped without it.
+if python3 -c 'import scipy' 2>/dev/null || /usr/bin/python3 -c 'import scipy' 2>/dev/null; then
+  lift_args=()
+  for arg in "$@"; do [[ $arg == --quick ]] && lift_args+=(--quick); done
+  python3 bench/lift_tables.py "${lift_args[@]}" >/dev/null 2>>bench/log.txt ||
+    echo "bench: bench/lift_tables.py failed (bench/log.txt); BENCHMARKS.md keeps the last bench/lift-tables.md" >&2
+else
+  echo "bench: SciPy missing (apt-get install python3-scipy): lift tables not measured, bench/lift-tables.md not regenerated" >&2
+fi
+
 {
   cat <<'HEAD'
 # Benchmarks
@@ -46,5 +58,7 @@ HEAD
   cat bench/summary.md
   # The peer comparison (scripts/siconos_cam_follower.py compare; needs python3-siconos).
   if [[ -f bench/siconos-cam-follower.md ]]; then echo; cat bench/siconos-cam-follower.md; fi
+  # Lift tables as users export them against SciPy (bench/lift_tables.py; needs python3-scipy).
+  if [[ -f bench/lift-tables.md ]]; then echo; cat bench/lift-tables.md; fi
 } > BENCHMARKS.md.tmp && mv BENCHMARKS.md.tmp BENCHMARKS.md
 echo "wrote bench/ and BENCHMARKS.md"
