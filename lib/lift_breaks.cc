@@ -8,26 +8,14 @@
 #include <sstream>
 
 #include "lib/lift_data.h"
+#include "lib/side_polynomial.h"
 
 namespace needle {
 
 namespace {
 
 // A cubic fitted by least squares to readings [from, to) of (x, y), in u = (θ − c)/h.
-struct SideCubic {
-  double c = 0.0, h = 1.0;
-  Eigen::Vector4d a = Eigen::Vector4d::Zero();
-  double Value(double t, int order) const {
-    const double u = (t - c) / h;
-    double v = 0.0;
-    for (int m = 3; m >= order; --m) {
-      double falling = 1.0;
-      for (int j = 0; j < order; ++j) falling *= (m - j);
-      v = v * u + falling * a(m);
-    }
-    return v / std::pow(h, order);
-  }
-};
+using SideCubic = SidePolynomial<3>;
 
 SideCubic FitSide(const std::vector<double>& x, const std::vector<double>& y, size_t from,
                   size_t to, double c, double h, double* sum_squares = nullptr) {
@@ -65,35 +53,6 @@ double DerivativeNoise(const std::vector<double>& x, size_t from, size_t to, dou
   const Eigen::MatrixXd vtv = v.transpose() * v;
   const Eigen::VectorXd g = v * vtv.ldlt().solve(d);  // weights on the readings
   return g.norm();
-}
-
-// A root of f on [lo, hi] by sampling and bisection; nullopt when f keeps its sign.
-template <class F>
-std::optional<double> RootIn(F f, double lo, double hi) {
-  constexpr int kSamples = 64;
-  double a = lo, fa = f(lo);
-  for (int k = 1; k <= kSamples; ++k) {
-    double b = lo + (hi - lo) * k / kSamples;
-    const double fb = f(b);
-    if (fa == 0.0) return a;
-    if (fa * fb < 0.0) {
-      for (int it = 0; it < 100; ++it) {
-        const double m = 0.5 * (a + b), fm = f(m);
-        if (fm == 0.0) return m;
-        if ((fm < 0.0) == (fa < 0.0)) {
-          a = m;
-          fa = fm;
-        } else {
-          b = m;
-        }
-      }
-      return 0.5 * (a + b);
-    }
-    a = b;
-    fa = fb;
-  }
-  if (fa == 0.0) return a;
-  return std::nullopt;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "lib/lift_data.h"
+#include "lib/side_polynomial.h"
 
 namespace needle {
 namespace {
@@ -20,20 +21,8 @@ constexpr double kConfirmNoiseShare = 0.1;
 
 // A quintic fitted to readings [from, to) by least squares, in u = (θ − c)/h, and the weights of
 // its s'' at c on those readings.
-struct SideQuintic {
-  double c = 0.0, h = 1.0;
-  Eigen::Matrix<double, 6, 1> a = Eigen::Matrix<double, 6, 1>::Zero();
+struct SideQuintic : SidePolynomial<5> {
   Eigen::VectorXd w2;  // weights of s''(c) on the readings
-  double Value(double t, int order) const {
-    const double u = (t - c) / h;
-    double v = 0.0;
-    for (int m = 5; m >= order; --m) {
-      double falling = 1.0;
-      for (int j = 0; j < order; ++j) falling *= (m - j);
-      v = v * u + falling * a(m);
-    }
-    return v / std::pow(h, order);
-  }
 };
 
 SideQuintic FitQuintic(const std::vector<double>& x, const std::vector<double>& y, size_t from,
@@ -57,32 +46,6 @@ SideQuintic FitQuintic(const std::vector<double>& x, const std::vector<double>& 
   e(2) = 2.0 / (q.h * q.h);
   q.w2 = v * vtv.ldlt().solve(e);
   return q;
-}
-
-// The first root of f on [lo, hi] by sampling and bisection.
-template <class F>
-std::optional<double> Root(F f, double lo, double hi) {
-  constexpr int kSamples = 64;
-  double a = lo, fa = f(lo);
-  for (int k = 1; k <= kSamples; ++k) {
-    double b = lo + (hi - lo) * k / kSamples, fb = f(b);
-    if (fa == 0.0) return a;
-    if (fa * fb < 0.0) {
-      for (int it = 0; it < 100; ++it) {
-        const double m = 0.5 * (a + b), fm = f(m);
-        if ((fm < 0.0) == (fa < 0.0)) {
-          a = m;
-          fa = fm;
-        } else {
-          b = m;
-        }
-      }
-      return 0.5 * (a + b);
-    }
-    a = b;
-    fa = fb;
-  }
-  return std::nullopt;
 }
 
 }  // namespace
@@ -155,8 +118,8 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
     b.order = 2;
     b.index = static_cast<size_t>(k);
     if (between) {
-      const auto at = Root([&](double t) { return right.Value(t, 1) - left.Value(t, 1); },
-                           x[k] - 0.5 * h, x[k + 1] + 0.5 * h);
+      const auto at = RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); },
+                             x[k] - 0.5 * h, x[k + 1] + 0.5 * h);
       b.crank_rad = at.value_or(0.5 * (x[k] + x[k + 1]));
       if (std::abs(b.crank_rad - x[k]) <= kBreakSnapFraction * h) b.crank_rad = x[k];
       if (std::abs(b.crank_rad - x[k + 1]) <= kBreakSnapFraction * h) {

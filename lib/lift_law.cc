@@ -86,8 +86,7 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
-// The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
-// strictly inside) and joined: C⁰ at the breaks, where s'' (and s' by the pieces' error) jump.
+// The spline of one piece; a local fit's nodes are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
                                const SplineOptions& options, std::vector<LocalNode>* nodes) {
   if (options.kind != SplineKind::kLocal) return BuildSpline(x, y, options);
@@ -97,6 +96,8 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
   return std::move(fit.law);
 }
 
+// The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
+// strictly inside) and joined: C⁰ at the breaks, where s'' (and s' by the pieces' error) jump.
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
                                 const LiftLawOptions& options, std::vector<LocalNode>* nodes) {
   if (options.breaks_rad.empty()) return BuildPiece(x, y, options.spline, nodes);
