@@ -83,15 +83,6 @@ TrainSection ReadTrain(SectionReader r) {
       r.Fail("ramp_deg", "must be positive, got " + Number(*ramp_angle / kDeg));
     t.linear_ramp = true;
     t.ramp_rad = *ramp_angle;
-    // A rigid cam meets the needle at the linear ramp's end, where its slope jumps: the event
-    // driver takes the impact at the slope beyond (the lift's), not the ramp's, so the lash and
-    // seating speeds it reports are wrong (found by a user: 0.007 m/s against the compliant
-    // law's 0.075 m/s on Example 1). Refused until it takes the ramp's side.
-    if (t.rigid && t.play_m > 0.0)
-      r.Fail("ramp_deg",
-             "a rigid contact cannot take a linear ramp yet (the impact where the ramp meets the "
-             "lift, its slope jumping, is taken at the lift's slope, not the ramp's): use ramp = "
-             "\"tangent\" or the compliant contact");
   }
   r.Finish();
   return t;

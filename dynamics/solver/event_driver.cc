@@ -68,6 +68,14 @@ bool EventDriver::JumpReached(double t) {
   return false;
 }
 
+bool EventDriver::AtTouchFloor(double approach, double e, double pressing) const {
+  // A flight from the surface (g = 0) that lands where the witness fires (g = −δ, δ the touch
+  // tolerance) gains ½(ġ⁻² − (e ġ⁻)²) = a δ: its impacts settle at this speed instead of
+  // shrinking by e, and never form the geometric series below.
+  const double floor = std::sqrt(2.0 * pressing * train_.GapTolerance() / (1.0 - e * e));
+  return approach <= kTouchFloorFactor * floor;
+}
+
 std::optional<double> EventDriver::Accumulate(bool cam, double t, double approach, double limit,
                                               TrainState& xs, EventSigns& signs) {
   Phase& phase = system_.phase;
@@ -75,14 +83,15 @@ std::optional<double> EventDriver::Accumulate(bool cam, double t, double approac
   const bool stuck = cam ? phase.mode.cam : phase.mode.seat;
   const std::optional<double> before = last;
   last = stuck ? std::nullopt : std::optional<double>(approach);
-  if (stuck || !before || !(approach > 0.0)) return std::nullopt;
+  if (stuck || !(approach > 0.0)) return std::nullopt;
   const Contacts c = train_.Evaluate(xs, t, phase);
   const double departure = -(cam ? c.g_c_rate : c.g_s_rate);  // e ġ⁻
   const double lambda = cam ? c.f_c_raw : c.f_s_raw;          // λ were it to stick
   const double e = departure / approach;
   if (!(e > 0.0 && e < 1.0 && lambda > 0.0)) return std::nullopt;
-  if (std::abs(approach / *before - e) > 0.1 * e) return std::nullopt;  // not geometric
   const double m = train_.NeedleMassKg();
+  const bool geometric = before && std::abs(approach / *before - e) <= 0.1 * e;
+  if (!geometric && !AtTouchFloor(approach, e, lambda / m)) return std::nullopt;
   const double remaining = 2.0 * departure / (lambda / m * (1.0 - e));
   if (!(remaining <= kAccumulationTime * 2.0 * kPi / train_.omega())) return std::nullopt;
   const double t_inf = std::min(t + remaining, limit);
@@ -100,6 +109,20 @@ std::optional<double> EventDriver::Accumulate(bool cam, double t, double approac
   last.reset();
   recorder_.Accumulation(cam, t_inf, xs, phase, departure, lost);
   return t_inf;
+}
+
+bool EventDriver::StrikeAtCorner(double t, TrainState& x) {
+  const Phase& phase = system_.phase;  // its segment ends at t: u and u' are the near side's
+  if (!train_.cam_law().Constraint() || phase.mode.cam) return false;
+  const Contacts c = train_.Evaluate(x, t, phase);
+  if (!(std::abs(c.g_c) <= train_.GapTolerance() && c.g_c_rate > 0.0)) return false;
+  recorder_.Crossing(kCamGap, +1, t, x, phase, false);
+  const std::optional<TrainState> after = train_.Reset(true, x, t, phase);
+  if (!after) return false;
+  recorder_.ImpactLoss((*after)[3] - x[3]);
+  x = *after;
+  SettleMode(x, t);  // the seat lets go of the struck needle; a plastic impact sticks
+  return true;
 }
 
 // Rest asks for y and ẏ only (Motion: the closed form skips its energy integrals W and D).
@@ -337,7 +360,12 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       // A rigid contact sticking across a break where the cam's slope may jump: the needle on
       // the surface as it arrives (from the left), the mode settled against the surface beyond,
       // so that the jump is an impact (the surface turns into the needle) or a release (it
-      // drops away).
+      // drops away). A rigid cam that reaches the needle exactly there (a linear ramp ending
+      // at the lift's first point, u = 0 at θ_0) strikes it at the near side's speed.
+      if (StrikeAtCorner(t, x)) {
+        ++stats.events;
+        ++stats.resets;
+      }
       x = train_.Project(x, t, phase);
       while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
       phase.segment_end_rad = next_break < breaks.size() ? all_breaks.angles[next_break]

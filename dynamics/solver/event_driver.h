@@ -105,12 +105,27 @@ class EventDriver {
   // is e times the last one's, to 10 %) whose remaining flights, 2 e ġ⁻/(a (1 − e)) under the
   // pressing acceleration a = λ/m, end within kAccumulationTime of a cam revolution, the
   // accumulation point t∞ (at most `limit`) with the needle sticking there; else nullopt.
+  // A series at the touch tolerance's floor (AtTouchFloor) counts as geometric.
   std::optional<double> Accumulate(bool cam, double t, double approach, double limit,
                                    TrainState& xs, EventSigns& signs);
+
+  // At t, the end of a segment where the cam's slope may jump, a rigid cam contact that is
+  // open and closing with its gap within the touch tolerance (the surface arrives exactly at
+  // the corner; the witness, which fires at a penetration of the tolerance, would see it only
+  // beyond, at the far side's slope): the impact, recorded and reset into x with the near
+  // side's surface speed, the contacts' modes settled against it. False (x unchanged)
+  // otherwise.
+  bool StrikeAtCorner(double t, TrainState& x);
 
   // Chattering ends in sticking when its remaining flights last less than this fraction of a
   // cam revolution (2π/ω).
   static constexpr double kAccumulationTime = 1e-6;
+  // True when an impact of approach ġ⁻ m/s with restitution e under the pressing acceleration
+  // a = λ/m m/s² is within kTouchFloorFactor of the speed sqrt(2 a δ/(1 − e²)) at which the
+  // touch tolerance δ (GapTolerance) feeds the series as much as each impact takes: there the
+  // series has accumulated, whatever the ratio of its last two approaches.
+  bool AtTouchFloor(double approach, double e, double pressing) const;
+  static constexpr double kTouchFloorFactor = 2.0;
   void GridUpTo(double t) {
     const std::vector<double>& grid = recorder_.grid_times();
     while (next_grid_ < grid.size() && grid[next_grid_] <= t) {

@@ -377,13 +377,11 @@ TEST(CaseFileTest, ARigidTrainTakesRestitutionAndRefusesTheCompliantKeys) {
   EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_m = 1e9\nrestitution = 0.5\n"),
             "t.toml: [train] restitution: applies to contact = \"rigid\"; a compliant contact "
             "has a damping ratio");
-  // With play, a linear ramp meets the lift with a jump in slope, where the rigid contact's
-  // impact is taken at the lift's slope (a lash of 0.007 m/s where the ramp brings 0.075 m/s):
-  // refused; tangent ramps, and a linear ramp without play, are taken.
-  EXPECT_EQ(Error(kGood + "[train]\ncontact = \"rigid\"\nplay_mm = 0.5\nramp_deg = 10\n"),
-            "t.toml: [train] ramp_deg: a rigid contact cannot take a linear ramp yet (the impact "
-            "where the ramp meets the lift, its slope jumping, is taken at the lift's slope, not "
-            "the ramp's): use ramp = \"tangent\" or the compliant contact");
+  // With play, a linear ramp meets the lift with a jump in slope; the rigid contact takes its
+  // impact there at the ramp's slope (simulation_test: RigidLashOnALinearRampComesAtTheRampsSpeed).
+  EXPECT_TRUE(
+      ParseCase(kGood + "[train]\ncontact = \"rigid\"\nplay_mm = 0.5\nramp_deg = 10\n", "t.toml")
+          .train->linear_ramp);
   EXPECT_TRUE(ParseCase(kGood + "[train]\ncontact = \"rigid\"\nplay_mm = 0.5\nramp = \"tangent\"\n",
                         "t.toml")
                   .train->rigid);
