@@ -33,7 +33,7 @@ Scene MakeScene(const Case& c, std::shared_ptr<const LiftLaw> law) {
   if (!s.law->HasAcceleration()) {
     throw CaseError(c.path + ": [lift] spline: \"" + SplineKindName(s.law->kind()) +
                     "\" is C1 only; the dynamics needs a C2 spline (not-a-knot, natural, clamped, "
-                    "quintic, smoothing)");
+                    "quintic, smoothing, local)");
   }
   try {
     s.cam = std::make_shared<const CamInput>(

@@ -135,18 +135,40 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
                         " spline is C¹ only (its second derivative jumps at the knots)");
   }
 
+  // The spring check and the dynamics read the acceleration: a case that asks for them on a C¹
+  // spline is undecided there, not passed.
+  const std::string no_acceleration =
+      "undecided, the " + SplineKindName(law.kind()) +
+      " spline is C¹ only and gives no acceleration (inertia force, quasi-static lift-off, cam "
+      "input); state a C² spline in [lift] spline (\"local\", \"quintic\", \"not-a-knot\") or "
+      "leave it out to have it chosen from the data";
+  const auto missing = [&c](bool train) {
+    std::vector<std::string> sections;
+    if (!c.needle) sections.push_back("[needle]");
+    if (!c.spring) sections.push_back("[spring]");
+    if (train && !c.train) sections.push_back("[train]");
+    std::string out;
+    for (size_t i = 0; i < sections.size(); ++i)
+      out += (i == 0 ? "" : i + 1 == sections.size() ? " and " : ", ") + sections[i];
+    return "the case has no " + out + (sections.size() > 1 ? " sections" : " section");
+  };
+
   // The spring check.
-  if (c.needle && c.spring && law.HasAcceleration()) {
+  if (!(c.needle && c.spring)) {
+    r.skipped.push_back("spring check: " + missing(false));
+  } else if (!law.HasAcceleration()) {
+    fail("spring check: " + no_acceleration);
+  } else {
     r.spring = CheckSpring(c, law, rpm);
     r.n_qs_rpm = r.spring->liftoff_rpm_quasi_static;
-  } else {
-    r.skipped.push_back(!law.HasAcceleration()
-                            ? "spring check: the spline is C¹ only (no acceleration)"
-                            : "spring check: the case has no [needle] and [spring] sections");
   }
 
   // The dynamics: one run at the rated speed, and the overspeed sweep.
-  if (c.train && c.needle && c.spring && law.HasAcceleration()) {
+  if (!(c.train && c.needle && c.spring)) {
+    r.skipped.push_back("dynamics and overspeed: " + missing(true));
+  } else if (!law.HasAcceleration()) {
+    fail("dynamics and overspeed: " + no_acceleration);
+  } else {
     const Scene scene = MakeScene(c, shared_law);  // the one scene of the check
     r.run_options = OptionsFromCase(c);
     // The surge study needs nothing of the rated run and the sweep: given a second core it runs
@@ -237,9 +259,6 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
       fail("overspeed: n_dyn " + Fixed(*s.n_dyn_rpm, 1) + " rpm is at or below " +
            Fixed(r.overspeed_rpm, 1) + " rpm (the overspeed factor times the rated speed)");
     }
-  } else {
-    r.skipped.push_back(
-        "dynamics and overspeed: the case has no [train] section (contact stiffness, play)");
   }
 
   // The cam profile, when the case has [profile].

@@ -609,7 +609,30 @@ TEST(CheckSceneTest, ANeedleWithoutASpringSkipsTheSpringCheck) {
   const CheckResult r = CheckScene(c, MakeLiftLaw(c));
   EXPECT_TRUE(r.pass);
   EXPECT_FALSE(r.spring);
-  EXPECT_TRUE(Contains(r.skipped, "spring check: the case has no [needle] and [spring] sections"));
+  EXPECT_TRUE(Contains(r.skipped, "spring check: the case has no [spring] section"));
+}
+
+// A case that asks for the spring check and the dynamics on a C¹ spline (pchip: no acceleration)
+// is undecided there, and says what to change; it passed, with "the case has no [train] section"
+// for a case that had one (issue 51).
+TEST(CheckSceneTest, ACaseOnAC1SplineIsUndecidedWhereItNeedsTheAcceleration) {
+  const Case c = ParseCase(kSmall +
+                               "spline = \"pchip\"\n[needle]\nmass_kg = 0.5\n"
+                               "[spring]\npreload_N = 500\nrate_N_mm = 20\n"
+                               "[train]\ncontact_stiffness_N_m = 1e8\n",
+                           "t.toml");
+  ASSERT_TRUE(c.needle && c.spring && c.train);
+  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  EXPECT_FALSE(r.pass);
+  const std::string why =
+      "undecided, the pchip spline is C¹ only and gives no acceleration (inertia force, "
+      "quasi-static lift-off, cam input); state a C² spline in [lift] spline (\"local\", "
+      "\"quintic\", \"not-a-knot\") or leave it out to have it chosen from the data";
+  ASSERT_EQ(r.failing.size(), 2u);
+  EXPECT_EQ(r.failing[0], "spring check: " + why);
+  EXPECT_EQ(r.failing[1], "dynamics and overspeed: " + why);
+  for (const std::string& k : r.skipped) EXPECT_EQ(k.find("[train]"), std::string::npos) << k;
+  EXPECT_FALSE(r.spring || r.run);
 }
 
 }  // namespace
