@@ -5,7 +5,7 @@
     python3 scripts/case_keys.py --check   exit 1 when the reference and the readers differ
 
 The keys are what each section reader asks its SectionReader for (apps/case/*_sections.cc,
-lift_section.cc, section_reader.cc for the follower keys shared by [profile] and [limits]);
+lift_section.cc, section_reader.cc for the follower keys of [profile] (and the synthesis file's [checks]));
 the unit suffixes are lib/units.cc's table. ctest runs --check (test `case_key_reference`):
 a key added to a reader and not to the docs, or documented and no longer read, fails it.
 """
@@ -27,7 +27,7 @@ SECTIONS = {"ReadNeedle": ["needle"], "ReadHelical": ["spring"], "ReadSpring": [
             "ReadLimits": ["limits"], "ReadEngine": ["engine"], "ReadTrain": ["train"],
             "ReadSolver": ["solver"], "ReadOverspeed": ["overspeed"],
             "ReadTolerance": ["tolerance"], "ReadProfile": ["profile"], "ReadPaper": ["paper"],
-            "ReadLift": ["lift"], "ReadFollowerKeys": ["profile", "limits"],
+            "ReadLift": ["lift"], "ReadFollowerKeys": ["profile"],
             "ReadSizing": ["sizing"]}
 ORDER = ["engine", "lift", "needle", "spring", "train", "solver", "overspeed", "profile",
          "tolerance", "paper", "limits", "sizing"]

@@ -158,6 +158,65 @@ inline constexpr PlausibleRange kPlayRange{
 inline constexpr PlausibleRange kRampRange{
     "ramp length", 1.7453292519943295e-3, 1.5707963267948966,
     "deg",         1.7453292519943295e-2, "Basu's ramps take about 10 degrees of crank"};
+/// The cam disk and its follower ([profile], the synthesis file's [checks]): radii, a flat
+/// face's half-width, the least radius asked for, a roller's contact length, m.
+inline constexpr PlausibleRange kProfileLengthRange{
+    "cam profile length",
+    0.0,
+    2.0,
+    "mm",
+    1e-3,
+    "Basu's cam has a 230 mm base circle and a 45 mm roller, the MATEC cam a 10 mm one; a large "
+    "marine two-stroke's cam disk is under a metre across"};
+/// The follower's offset from the cam's centre line, m (either side).
+inline constexpr PlausibleRange kOffsetRange{
+    "follower offset", -2.0, 2.0, "mm", 1e-3, "within the largest cam disk's radius, either side"};
+/// [limits]: the largest seating and lash-impact speeds allowed, m/s.
+inline constexpr PlausibleRange kImpactSpeedLimitRange{
+    "impact speed limit",
+    1e-3,
+    20.0,
+    "m/s",
+    1.0,
+    "valve trains hold seating speeds to about 0.3-1 m/s (0.5 m/s is needle's default); a limit "
+    "of 20 m/s passes any impact"};
+/// [limits]: the allowed Hertz stress of the cam-roller contact, Pa.
+inline constexpr PlausibleRange kHertzStressLimitRange{
+    "Hertz stress limit",
+    2e8,
+    5e9,
+    "MPa",
+    1e6,
+    "hardened steel cams are allowed some 1000-2000 MPa of line-contact stress; no material "
+    "takes 5000"};
+/// [limits]: the cam and roller's elastic modulus, Pa.
+inline constexpr PlausibleRange kElasticModulusRange{
+    "elastic modulus",
+    1e10,
+    7e11,
+    "GPa",
+    1e9,
+    "cast iron about 100-170 GPa, steel 206, tungsten carbide about 600"};
+/// [limits]: the least gap between the spring's coils, m.
+inline constexpr PlausibleRange kCoilGapRange{
+    "coil gap", 0.0, 0.1, "mm", 1e-3, "tenths of a millimetre to a few millimetres"};
+/// [tolerance]: a length's σ (the lift table's points, the play), m.
+inline constexpr PlausibleRange kLengthSigmaRange{
+    "tolerance σ of a length",
+    0.0,
+    1e-3,
+    "mm",
+    1e-3,
+    "Basu's cam is ground to 0.01 mm; a σ of a millimetre is no tolerance"};
+/// [tolerance]: a relative σ (mass, preload, rate, stiffness, speed), a fraction.
+inline constexpr PlausibleRange kRelativeSigmaRange{
+    "tolerance σ of a quantity", 0.0, 0.5, "%", 1e-2, "a σ of half the value is no tolerance"};
+/// [tolerance]: the correlation length of the profile's error, rad.
+inline constexpr PlausibleRange kCorrelationRange{
+    "correlation length",  0.0,
+    6.283185307179586,     "deg",
+    1.7453292519943295e-2, "at most one revolution of the cam"};
+
 /// `needle tolerance --seed`: a 64-bit unsigned integer.
 inline constexpr PlausibleRange kSeedRange{
     "seed", 0.0, 18446744073709551615.0,
@@ -237,6 +296,31 @@ inline constexpr RangedKey kRangedKeys[] = {
     {"train", "seat_restitution", &kRestitutionRange},
     {"train", "play", &kPlayRange},
     {"train", "ramp", &kRampRange},
+    {"profile", "base_radius", &kProfileLengthRange},
+    {"profile", "roller_radius", &kProfileLengthRange},
+    {"profile", "face_radius", &kProfileLengthRange},
+    {"profile", "face_half_width", &kProfileLengthRange},
+    {"profile", "offset", &kOffsetRange},
+    {"checks", "base_radius", &kProfileLengthRange},
+    {"checks", "roller_radius", &kProfileLengthRange},
+    {"checks", "face_radius", &kProfileLengthRange},
+    {"checks", "face_half_width", &kProfileLengthRange},
+    {"checks", "min_profile_radius", &kProfileLengthRange},
+    {"checks", "offset", &kOffsetRange},
+    {"limits", "seating_velocity", &kImpactSpeedLimitRange},
+    {"limits", "lash_impact_velocity", &kImpactSpeedLimitRange},
+    {"limits", "hertz_stress", &kHertzStressLimitRange},
+    {"limits", "contact_length", &kProfileLengthRange},
+    {"limits", "elastic_modulus", &kElasticModulusRange},
+    {"limits", "coil_gap", &kCoilGapRange},
+    {"tolerance", "lift", &kLengthSigmaRange},
+    {"tolerance", "play", &kLengthSigmaRange},
+    {"tolerance", "lift_correlation", &kCorrelationRange},
+    {"tolerance", "mass", &kRelativeSigmaRange},
+    {"tolerance", "preload", &kRelativeSigmaRange},
+    {"tolerance", "rate", &kRelativeSigmaRange},
+    {"tolerance", "stiffness", &kRelativeSigmaRange},
+    {"tolerance", "speed", &kRelativeSigmaRange},
     {"", "--rpm", &kCrankSpeedRange},
     {"", "--from", &kCrankSpeedRange},
     {"", "--to", &kCrankSpeedRange},

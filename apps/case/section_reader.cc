@@ -58,20 +58,22 @@ std::optional<long> OptionalCount(SectionReader& r, const std::string& key, doub
   return static_cast<long>(*v);
 }
 
-// An optional length key, positive (or ≥ 0) and at most 10 m, checked as it is read so that a
-// failure names the key as written.
-std::optional<double> BoundedLength(SectionReader& r, const std::string& name, bool positive) {
-  auto v = r.OptionalQuantity(name, Dimension::kLength);
-  if (v && !((positive ? *v > 0.0 : *v >= 0.0) && *v <= 10.0))
-    r.Fail(r.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") +
-                             " and at most 10000 mm, got " + Number(*v * 1e3) + " mm");
+// A length key, positive (or ≥ 0), checked as it is read so that a failure names the key as
+// written; its plausible range is the table's (Finish).
+std::optional<double> SignedLength(SectionReader& r, const std::string& name, bool positive,
+                                   bool required) {
+  auto v = required ? std::optional<double>(r.Quantity(name, Dimension::kLength))
+                    : r.OptionalQuantity(name, Dimension::kLength);
+  if (v && !(positive ? *v > 0.0 : *v >= 0.0))
+    r.Fail(r.last_key(), std::string("must be ") + (positive ? "positive" : "≥ 0") + ", got " +
+                             Number(*v * 1e3) + " mm");
   return v;
 }
 
 FollowerKeys ReadFollowerKeys(SectionReader& r) {
   FollowerKeys k;
   auto length = [&](const std::string& name, bool positive) {
-    return BoundedLength(r, name, positive);
+    return SignedLength(r, name, positive);
   };
   if (auto name = r.OptionalString("follower")) {
     const std::optional<FollowerKind> kind = ParseFollowerKind(*name);

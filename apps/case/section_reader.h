@@ -255,9 +255,10 @@ std::optional<double> OptionalPositive(SectionReader& r, const std::string& name
 std::optional<long> OptionalCount(SectionReader& r, const std::string& key, double hi,
                                   const std::string& hi_text);
 
-// An optional length key, positive (or ≥ 0) and at most 10 m, checked as it is read so that a
-// failure names the key as written.
-std::optional<double> BoundedLength(SectionReader& r, const std::string& name, bool positive);
+// A length key (optional unless `required`), positive (or ≥ 0), checked as it is read so that a
+// failure names the key as written; its plausible range is the table's (SectionReader::Finish).
+std::optional<double> SignedLength(SectionReader& r, const std::string& name, bool positive,
+                                   bool required = false);
 
 // The follower's kind and its radius and face keys, the same in [profile] and [checks]: each
 // key belongs to the kinds that have it.

@@ -22,7 +22,6 @@
 
 namespace needle {
 
-using case_internal::BoundedLength;
 using case_internal::FollowerKeys;
 using case_internal::Number;
 using case_internal::ParseToml;
@@ -30,6 +29,7 @@ using case_internal::Positive;
 using case_internal::ReadFollowerKeys;
 using case_internal::Section;
 using case_internal::SectionReader;
+using case_internal::SignedLength;
 
 SynthesisFile LoadSynthesisFile(const std::string& path) {
   return ParseSynthesisFile(ReadInputFile(path, "synthesis file"), path);
@@ -87,7 +87,7 @@ SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& pat
     SectionReader ch(t, path, "checks");
     // Each value is checked as it is read, so a failure names the key as written.
     auto length = [&](const std::string& name, bool positive) {
-      return BoundedLength(ch, name, positive);
+      return SignedLength(ch, name, positive);
     };
     const FollowerKeys k = ReadFollowerKeys(ch);
     f.follower = k.kind;
@@ -105,8 +105,6 @@ SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& pat
       f.min_entrainment_m_s = *u;
     }
     f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
-    if (!(std::abs(f.offset_m) <= 10.0))
-      ch.Fail(ch.last_key(), "must be within ±10000 mm, got " + Number(f.offset_m * 1e3) + " mm");
     f.max_pressure_angle_rad = ch.OptionalQuantity("max_pressure_angle", Dimension::kAngle);
     if (f.max_pressure_angle_rad &&
         !(*f.max_pressure_angle_rad > 0.0 && *f.max_pressure_angle_rad < kPi / 2))

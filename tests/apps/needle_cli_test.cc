@@ -56,7 +56,8 @@ TEST(NeedleCliTest, ToleranceStudyEndToEnd) {
   const auto bad = RunNeedle("tolerance " + path + " --samples 2");
   EXPECT_EQ(bad.status, 2);
   EXPECT_EQ(bad.err, "needle: " + path +
-                         ": [tolerance] preload_percent: must be ≥ 0 and at most 50 %, got 80 %\n");
+                         ": [tolerance] preload_percent: 80 % is outside the plausible range [0, "
+                         "50] % (docs/ranges.md)\n");
   std::filesystem::remove_all(dir);
   std::filesystem::remove(path);
 }
