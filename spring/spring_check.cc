@@ -119,7 +119,42 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
   }
   r.failures = SpringFailures(r);
   r.pass = r.failures.empty();
+  if (std::optional<std::string> slip = PreloadSlip(r)) r.warnings.push_back(*slip);
   return r;
+}
+
+std::optional<std::string> PreloadSlip(const SpringCheckResult& r) {
+  std::string rule;
+  double largest = 0.0;
+  const auto consider = [&](const char* name, double v) {
+    if (v > largest) {
+      largest = v;
+      rule = name;
+    }
+  };
+  consider("Basu's formula", r.basu_preload_N.value_or(0.0));
+  consider("the combustion load S·F_g", r.safety_factor * r.gas_force_N);
+  consider("the inertia sizing", r.required_preload_N);
+  const double p0 = r.train.preload_N;
+  if (!(largest > 0.0) || !(p0 > 3.0 * largest)) return std::nullopt;
+  const std::string line = "the preload " + Fixed(p0, 0) + " N is " + Fixed(p0 / largest, 1) +
+                           "× the largest rule (" + rule + ", " + Fixed(largest, 0) + " N)";
+  std::string hint;
+  struct Slip {
+    double factor;
+    const char* shown;
+    const char* what;
+  };
+  double best = 3.0;  // the least ratio left after the slip, within 3×
+  for (const Slip& s : {Slip{9.80665, "9.81", "kgf for N"}, Slip{1000.0, "1000", "kN for N"},
+                        Slip{4.4482216, "4.45", "lbf for N"}}) {
+    const double left = std::max(p0 / s.factor / largest, largest * s.factor / p0);
+    if (left < best) {
+      best = left;
+      hint = std::string("; ") + s.shown + "×: " + s.what + "?";
+    }
+  }
+  return line + hint;
 }
 
 std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {

@@ -50,8 +50,16 @@ struct SpringCheckResult {
   bool basu_ok = true;  ///< deviation ≥ −tolerance (true without a diameter)
   std::optional<HelicalSpringCheck> helical;
   std::vector<std::string> failures;  ///< one line per failing sub-check, with its margin
+  /// Inputs that look like a slip of unit, one line each (PreloadSlip); they judge nothing.
+  std::vector<std::string> warnings;
   bool pass = false;
 };
+
+/// A preload above 3 times the largest rule that asks for one (Basu's formula, the combustion
+/// load's S·F_g, the inertia sizing's P₀,req) is most often a slip of unit: the warning names
+/// the ratio and, where dividing by it brings the preload within 3 times of that rule, the slip
+/// ("9.81×: kgf for N?", kN for N, lbf for N). nullopt below 3 times, or with no rule.
+std::optional<std::string> PreloadSlip(const SpringCheckResult& r);
 
 /// The failing sub-checks of `r`, one line each with its margin, from its sub-verdicts. With
 /// `surge_screen` false the helical check's f_e/f_cam ≥ 13 item is left out: a caller that has

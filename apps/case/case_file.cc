@@ -64,6 +64,29 @@ const SectionEntry* FindSection(const std::string& name) {
   return nullptr;
 }
 
+// The preload per needle area in its plausible range (kPreloadPressureRange): a preload typed in
+// kgf for N, or a diameter in cm for mm, holds the needle with thousands of bar, and passes every
+// rule that asks the preload to be large enough.
+void CheckPreloadPressure(const Case& c, const toml::table& root) {
+  if (!c.needle || !c.needle->diameter_m || !c.spring) return;
+  const double d = *c.needle->diameter_m, area = kPi / 4.0 * d * d;
+  const double p = c.spring->preload_N / area;
+  const PlausibleRange& r = kPreloadPressureRange;
+  if (p <= r.hi) return;
+  std::string key = "preload";  // as written
+  if (const toml::table* spring = root["spring"].as_table()) {
+    for (const auto& [k, node] : *spring) {
+      (void)node;
+      if (std::string(k.str()).rfind("preload_", 0) == 0) key = std::string(k.str());
+    }
+  }
+  throw CaseError(c.path + ": [spring] " + key + ": " + Number(c.spring->preload_N) + " N on the " +
+                  Number(d * 1e3) + " mm needle ([needle] diameter) is " + ShownValue(r, p) +
+                  " on its area, above the plausible range's end " + ShownValue(r, r.hi) +
+                  " (docs/ranges.md): a preload in kgf typed for N, or a diameter in cm typed "
+                  "for mm?");
+}
+
 }  // namespace
 
 Case ParseCase(const std::string& text, const std::string& path) {
@@ -101,6 +124,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
                       Number(third) + " kg");
     }
   }
+  CheckPreloadPressure(c, root);
   if (c.spring && c.spring->coil_clash && !c.spring->clash_stiffness_N_m && c.train &&
       c.train->rigid) {
     throw CaseError(path +

@@ -65,6 +65,10 @@ std::string PlausibleRangesMarkdown() {
     out += std::string("| ") + k.range->quantity + " | " + RangeText(*k.range) + " | " + where +
            " | " + k.range->reason + " |\n";
   }
+  for (const DerivedRange& d : kDerivedRanges) {
+    out += std::string("| ") + d.range->quantity + " | " + RangeText(*d.range) + " | " + d.keys +
+           " | " + d.range->reason + " |\n";
+  }
   return out;
 }
 

@@ -217,6 +217,18 @@ inline constexpr PlausibleRange kCorrelationRange{
     6.283185307179586,     "deg",
     1.7453292519943295e-2, "at most one revolution of the cam"};
 
+/// The preload per needle area, P₀/(π d²/4), Pa: the pressure the spring holds the needle shut
+/// with, an injector's opening pressure (checked where [needle] gives the diameter).
+inline constexpr PlausibleRange kPreloadPressureRange{
+    "preload per needle area",
+    0.0,
+    1e8,
+    "bar",
+    1e5,
+    "injectors open at about 100-400 bar (Bosch, Diesel-Engine Management, 2005: 110-300 bar; "
+    "Basu's needle 103 bar); 1000 bar is a preload in kgf typed for N, or a diameter in cm "
+    "typed for mm"};
+
 /// `needle tolerance --seed`: a 64-bit unsigned integer.
 inline constexpr PlausibleRange kSeedRange{
     "seed", 0.0, 18446744073709551615.0,
@@ -333,6 +345,16 @@ inline constexpr RangedKey kRangedKeys[] = {
     {"", "--samples", &kSamplesRange},
     {"", "--first-sample", &kFirstSampleRange},
     {"", "--threads", &kThreadsRange},
+};
+
+/// A range of a quantity formed from several keys, checked once they are all read.
+struct DerivedRange {
+  const char* keys;  ///< how it is formed, for the docs
+  const PlausibleRange* range;
+};
+
+inline constexpr DerivedRange kDerivedRanges[] = {
+    {"`[spring] preload` / (π/4 · `[needle] diameter`²)", &kPreloadPressureRange},
 };
 
 /// The range of case-file key `name` (without its unit suffix) in `section`, or of option

@@ -43,6 +43,7 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
     j["safety_factor"] = c.spring->safety_factor;
     j["overspeed_factor"] = c.spring->overspeed_factor;
     j["failures"] = check.failures;
+    j["warnings"] = check.warnings;
     if (helical) PutFields(j["helical"], HelicalFields(*helical));
     result.json = std::move(j);
   } else {
@@ -101,6 +102,7 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
     }
     out << "\nspring check: " << (ok ? "pass" : "FAIL") << '\n';
     for (const std::string& f : check.failures) out << "  fails: " << f << '\n';
+    for (const std::string& w : check.warnings) out << "  warns: " << w << '\n';
   }
   result.text = out.str();
   return result;

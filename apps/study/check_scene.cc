@@ -297,6 +297,7 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
     for (const std::string& f : r.spring->failures) lines.push_back("spring check: " + f);
     if (!r.spring->pass && r.spring->failures.empty()) lines.push_back("spring check: fails");
     r.failing.insert(r.failing.begin(), lines.begin(), lines.end());
+    for (const std::string& w : r.spring->warnings) r.warnings.push_back("spring check: " + w);
   }
   r.pass = r.failing.empty();  // one rule: a scene passes when nothing fails
   return r;

@@ -39,3 +39,67 @@ TEST(SpringCheckTest, FieldsShowTheCheckInKgfAndPercent) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 51: a preload typed in kgf for N (900 "kgf" where 900 N was meant) passes every rule
+// that asks for a large enough preload. Above 3 times the largest rule it is a warning that
+// names the ratio and the slip that brings it back within 3 times of the rule.
+TEST(SpringCheckTest, APreloadFarAboveEveryRuleIsAWarningNamingTheLikelySlip) {
+  SpringCheckResult r;
+  r.basu_preload_N = 770.0;
+  r.safety_factor = 1.5;
+  r.gas_force_N = 100.0;  // S·F_g = 150 N
+  r.required_preload_N = 300.0;
+  r.train.preload_N = 900.0 * 9.80665;
+  ASSERT_TRUE(PreloadSlip(r));
+  EXPECT_EQ(*PreloadSlip(r),
+            "the preload 8826 N is 11.5× the largest rule (Basu's formula, 770 N); 9.81×: kgf for "
+            "N?");
+  r.train.preload_N = 2000.0;  // 2.6×: a stiff design, no warning
+  EXPECT_FALSE(PreloadSlip(r));
+  r.train.preload_N = 2400.0;  // 3.1×: lbf for N brings it to 1.4×, kgf to 0.32 (3.1 off)
+  EXPECT_EQ(*PreloadSlip(r),
+            "the preload 2400 N is 3.1× the largest rule (Basu's formula, 770 N); 4.45×: lbf for "
+            "N?");
+  r.train.preload_N = 9e5;  // 1169×: kN for N
+  EXPECT_EQ(*PreloadSlip(r),
+            "the preload 900000 N is 1168.8× the largest rule (Basu's formula, 770 N); 1000×: kN "
+            "for N?");
+  r.basu_preload_N.reset();  // the inertia sizing is then the largest rule
+  r.train.preload_N = 1e5;   // 333×: no slip brings it within 3×
+  EXPECT_EQ(*PreloadSlip(r),
+            "the preload 100000 N is 333.3× the largest rule (the inertia sizing, "
+            "300 N)");
+  r.required_preload_N = r.gas_force_N = 0.0;  // no rule asks for a preload
+  EXPECT_FALSE(PreloadSlip(r));
+}
+
+// The same on a case: an 8 mm needle at 1500 rpm (Basu's formula asks 987 N) with 3500 N, which
+// is 688 bar on the needle's area (within the plausible range): the check warns, and judges.
+TEST(SpringCheckTest, TheCheckCarriesThePreloadSlipWarning) {
+  const Case c = ParseCase(R"(
+[engine]
+speed_rpm = 1500
+[lift]
+crank_deg = [-15, -10, -5, 0, 5, 10, 15, 20, 25, 30, 35, 40]
+lift_mm = [0, 0.073, 0.29, 0.77, 1.54, 2.49, 3.38, 3.67, 3.22, 2.12, 0.954, 0]
+[needle]
+mass_kg = 0.05
+diameter_mm = 8
+[spring]
+preload_N = 3500
+rate_N_mm = 50
+)",
+                           "t.toml");
+  const SpringCheckResult r = CheckSpring(c, MakeLiftLaw(c), c.engine.speed_rpm);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0],
+            "the preload 3500 N is 3.5× the largest rule (Basu's formula, 987 N); 4.45×: lbf for "
+            "N?");
+  EXPECT_TRUE(r.pass);
+}
+
+}  // namespace
+}  // namespace needle

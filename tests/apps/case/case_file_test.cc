@@ -1021,7 +1021,7 @@ std::string WrittenKey(const RangedKey& k) {
 // section, the key's own line (if any) replaced.
 std::string WithKey(const RangedKey& k, const std::string& line) {
   const std::string section = k.section, name = k.name;
-  const std::string needle = "[needle]\nmass_kg = 2.0\ndiameter_mm = 8\n";
+  const std::string needle = "[needle]\nmass_kg = 2.0\n";
   const std::string simple = needle + "[spring]\npreload_N = 500\nrate_N_mm = 20\n";
   const std::string helical =
       needle +
@@ -1048,7 +1048,7 @@ std::string WithKey(const RangedKey& k, const std::string& line) {
             std::string(face ? "follower = \"curved\"\nface_radius_mm = 8\n"
                              : "roller_radius_mm = 5\n");
   } else if (section == "needle") {
-    text += needle;
+    text += needle + "diameter_mm = 8\n";
   } else if (section != "engine" && section != "lift") {
     const bool has = section == "train" || section == "spring";
     text += simple + compliant + (has ? "" : "[" + section + "]\n");
@@ -1124,6 +1124,34 @@ TEST(CaseFileTest, EveryRangeOfTheTableIsEnforcedOnItsKey) {
   EXPECT_EQ(Error(WithKey(*FindRangedKey("limits", "hertz_stress"), "hertz_stress_MPa = 1e6")),
             "t.toml: [limits] hertz_stress_MPa: 1e+06 MPa is outside the plausible range [200, "
             "5000] MPa (docs/ranges.md)");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 51: a preload in kgf typed for N (900 kgf, 8.8 kN, on an 8 mm needle) and a diameter in
+// cm typed for mm (0.8) passed. The preload per needle area, the pressure that holds the needle
+// shut, is held to its plausible range (kPreloadPressureRange); the message names the preload
+// as written and both likely slips.
+TEST(CaseFileTest, APreloadPerNeedleAreaAboveAnyInjectorsIsRefused) {
+  const std::string needle = kGood + "[needle]\nmass_kg = 0.05\ndiameter_mm = 8\n";
+  EXPECT_EQ(Error(needle + "[spring]\npreload_kgf = 900\nrate_N_mm = 50\n"),
+            "t.toml: [spring] preload_kgf: 8825.98 N on the 8 mm needle ([needle] diameter) is "
+            "1755.87 bar on its area, above the plausible range's end 1000 bar (docs/ranges.md): a "
+            "preload in kgf typed for N, or a diameter in cm typed for mm?");
+  EXPECT_EQ(Error(Replace(needle, "diameter_mm = 8", "diameter_mm = 0.8") +
+                  "[spring]\npreload_N = 300\nrate_N_mm = 50\n"),
+            "t.toml: [spring] preload_N: 300 N on the 0.8 mm needle ([needle] diameter) is 5968.31 "
+            "bar on its area, above the plausible range's end 1000 bar (docs/ranges.md): a "
+            "preload in kgf typed for N, or a diameter in cm typed for mm?");
+  // 900 N on the same needle is 179 bar: taken; so is any preload without a diameter.
+  EXPECT_EQ(Error(needle + "[spring]\npreload_N = 900\nrate_N_mm = 50\n"), "(no error)");
+  EXPECT_EQ(
+      Error(kGood + "[needle]\nmass_kg = 0.05\n[spring]\npreload_kgf = 900\nrate_N_mm = 50\n"),
+      "(no error)");
 }
 
 }  // namespace

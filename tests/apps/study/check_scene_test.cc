@@ -412,7 +412,7 @@ TEST(CheckSceneTest, TheSeatingAndHertzRowsFailOnScenesBuiltToFailThem) {
   }
   const std::string sine =
       "[engine]\nspeed_rpm = 800\ncycle = \"four-stroke\"\n[lift]\n" + crank + "]\n" + lift +
-      "]\nspline = \"quintic\"\n[needle]\nmass_kg = 0.8\ndiameter_mm = 8\n[spring]\n"
+      "]\nspline = \"quintic\"\n[needle]\nmass_kg = 0.8\n[spring]\n"
       "preload_kgf = 1500\nrate_N_mm = 40\n[train]\ncontact_stiffness_N_m = 3e8\nplay_mm = 0.2\n";
   CheckOptions o;
   o.record_series = false;
