@@ -31,6 +31,7 @@ nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& r
   j["failing"] = result.failing;
   j["warnings"] = result.warnings;
   j["skipped"] = result.skipped;
+  j["not_judged"] = result.not_judged;
   j["report"] = report_path;
   for (const FieldGroup& group : CheckFields(result)) PutFields(j[group.name], group.fields);
   j["kinematics"]["spline"] = SplineKindName(law.kind());

@@ -206,7 +206,6 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
   const KinematicsSummary& sum = result.kinematics;
   const std::vector<std::string>& skipped = result.skipped;
   const std::vector<std::string>& failing = result.failing;
-  const bool ok = result.pass;
   const std::optional<SpringCheckResult>& spring = result.spring;
   const std::optional<OverspeedResult>& sweep = result.sweep;
   const std::optional<CamProfile>& profile = result.profile;
@@ -254,7 +253,9 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
   summary << "</table>";
 
   std::vector<std::string> top;
-  top.push_back(std::string("<p>Overall: ") + Verdict(ok) + "</p>");
+  top.push_back(std::string("<p>Overall: ") + Verdict(result.pass) +
+                (result.not_judged.empty() ? "" : "; not judged: ") + Escape(result.not_judged) +
+                "</p>");
   if (!failing.empty()) {
     std::string s = "<h2>Failing</h2><ul class=\"fail-list\">";
     for (const auto& f : failing) s += "<li>" + Escape(f) + "</li>";

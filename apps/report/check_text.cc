@@ -37,7 +37,8 @@ std::string CheckText(const Case& c, const CheckResult& result, const std::strin
   for (const auto& w : result.warnings) out << "warns: " << w << '\n';
   for (const auto& f : result.failing) out << "fails: " << f << '\n';
   out << "report: " << path << " (" << figures << " figures)\n"
-      << "overall: " << (result.pass ? "pass" : "FAIL") << '\n';
+      << "overall: " << (result.pass ? "pass" : "FAIL")
+      << (result.not_judged.empty() ? "" : "; not judged: " + result.not_judged) << '\n';
   return out.str();
 }
 

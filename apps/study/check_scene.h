@@ -141,6 +141,9 @@ struct CheckResult {
   bool pass = true;                  ///< no part failed
   std::vector<std::string> failing;  ///< one line per failing item, named
   std::vector<std::string> skipped;  ///< one line per part not run, and why
+  /// The limit rows not judged, grouped by reason ("Hertz stress cam-roller (no [profile] …)");
+  /// empty when every row was judged. Shown beside the overall verdict.
+  std::string not_judged;
 };
 
 /// The result's fields, described once, by part (kinematics, spring, dynamics, overspeed,

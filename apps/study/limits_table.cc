@@ -299,13 +299,11 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
       it->second += ", " + x.name;
     }
   }
-  if (!by_reason.empty()) {
-    std::string line = "limits not judged: ";
-    for (size_t i = 0; i < by_reason.size(); ++i) {
-      line += (i ? "; " : "") + by_reason[i].second + " (" + by_reason[i].first + ")";
-    }
-    r.skipped.push_back(line);
+  r.not_judged.clear();
+  for (size_t i = 0; i < by_reason.size(); ++i) {
+    r.not_judged += (i ? "; " : "") + by_reason[i].second + " (" + by_reason[i].first + ")";
   }
+  if (!r.not_judged.empty()) r.skipped.push_back("limits not judged: " + r.not_judged);
 }
 
 }  // namespace needle

@@ -355,3 +355,26 @@ TEST(CheckReportTest, ReportRendersInHeadlessChromium) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 51: beside "pass", the check says which rows it could not judge and why (Example 1:
+// no roller width for the Hertz row, a 16 mm wire beyond Zimmerli's data for fatigue).
+TEST(CheckReportTest, BesideItsVerdictTheCheckNamesTheRowsItCouldNotJudge) {
+  const std::string dir = TempDir("ex1-judged");
+  const auto r = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string why =
+      "Hertz stress cam-roller (no [limits] contact_length_mm (the roller's width)); spring "
+      "fatigue safety factor (Goodman) (wire 16.0 mm: Zimmerli's data cover wire below 10 mm)";
+  EXPECT_NE(r.out.find("overall: pass; not judged: " + why + "\n"), std::string::npos) << r.out;
+  const std::string html = testing::Slurp(dir + "/basu-example1.html");
+  EXPECT_NE(html.find("; not judged: Hertz stress cam-roller"), std::string::npos);
+  const auto j = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir + " --json");
+  EXPECT_EQ(nlohmann::json::parse(j.out)["not_judged"], why);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace needle
