@@ -112,6 +112,11 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
   r.max_seat_force_N = std::max(r.max_seat_force_N, recorder.max_seat_force_N());
   r.min_lift_m = cycle == 0 ? recorder.min_lift_m() : std::min(r.min_lift_m, recorder.min_lift_m());
   r.max_spring_force_N = std::max(r.max_spring_force_N, recorder.max_spring_force_N());
+  if (recorder.secondary_lift_m() > r.secondary_lift_m) {
+    r.secondary_lift_m = recorder.secondary_lift_m();
+    r.secondary_lift_rad = recorder.secondary_lift_rad() + shift_rad;
+    r.secondary_open_rad = recorder.secondary_open_rad();
+  }
   if (recorder.lifted() && !(recorder.min_contact_force_ratio() >= r.min_contact_force_ratio)) {
     r.min_contact_force_ratio = recorder.min_contact_force_ratio();
     r.min_contact_force_ratio_rad = recorder.min_contact_force_ratio_rad() + shift_rad;
@@ -449,6 +454,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
     r.max_contact_force_N = r.max_seat_force_N = r.max_spring_force_N = r.min_lift_m = none;
     r.min_contact_force_ratio = r.min_contact_force_ratio_rad = none;
     r.min_contact_force_ratio_force_N = none;
+    r.secondary_lift_m = r.secondary_lift_rad = r.secondary_open_rad = none;
   }
   return r;
 }

@@ -130,7 +130,8 @@ struct SimulationResult {
   /// needle off its seat, docs/model.md §6), N; 0 when the needle was never lifted.
   double min_contact_force_during_lift_N = 0.0;
   /// The least ratio of the contact force to the static load holding the needle on the cam
-  /// there, F_c / (P₀ + k y − F_g), in the same window, and its crank angle (rad) and force (N);
+  /// there, F_c / (P₀ + k y − F_g), in the same window until the needle first seats past the
+  /// cam's top (a rebound is a secondary opening), and its crank angle (rad) and force (N);
   /// NaN when the needle was never lifted.
   double min_contact_force_ratio = NAN;
   double min_contact_force_ratio_rad = 0.0;
@@ -138,6 +139,10 @@ struct SimulationResult {
   /// The largest force of the spring on the needle, N: P₀ + k y, or with coil masses the first
   /// segment's S₁ (surge shows here).
   double max_spring_force_N = 0.0;
+  /// A secondary opening: after the needle first seats following the lift, the largest lift it
+  /// reopens to, m (0: none above 1 µm), its crank angle, rad, and the crank angle it stays
+  /// above 1 µm, rad (of the revolution with the largest; docs/model.md §6).
+  double secondary_lift_m = 0.0, secondary_lift_rad = 0.0, secondary_open_rad = 0.0;
   /// The least lift of the needle, m (< 0: pressed into its seat).
   double min_lift_m = 0.0;
   double max_seat_force_N = 0.0;

@@ -18,6 +18,9 @@ std::vector<Field> SimulationFields(const SimulationResult& r) {
       {"max_contact_force", kN, r.max_contact_force_N, 1},
       {"min_contact_force_during_lift", kN, r.min_contact_force_during_lift_N, 1},
       {"max_seat_force", kN, r.max_seat_force_N, 1},
+      {"secondary_lift", kMm, r.secondary_lift_m, 4},
+      {"secondary_lift", kDegree, r.secondary_lift_rad, 2},
+      {"secondary_open", kDegree, r.secondary_open_rad, 2},
   };
   if (r.min_coil_gap_m) {  // a chain of coil masses with a travel to solid
     f.push_back({"min_coil_gap", kMm, *r.min_coil_gap_m, 3});

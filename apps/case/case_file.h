@@ -169,6 +169,9 @@ struct LimitsSection {
   /// Largest speed at which the cam strikes the roller as it takes up the play (the lash
   /// impact), m/s: the opening ramp's velocity, the same Blair range as the seating velocity.
   double lash_impact_velocity_m_s = 1.5;
+  /// Largest secondary opening after closing (the needle seats, rebounds and reopens: a
+  /// secondary injection), as a fraction of the largest lift.
+  double secondary_opening_fraction = 0.01;
   /// Least cam contact force while the cam lifts the needle, as a fraction of the static load
   /// holding it on the cam there (P₀ + k y − F_g); absent: 1 − 1/f², f = [spring]
   /// overspeed_factor (the share the inertia of f·n would take, so at least 30.6 % at f = 1.2).

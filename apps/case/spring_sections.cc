@@ -200,6 +200,7 @@ LimitsSection ReadLimits(SectionReader r) {
   if (auto v = OptionalPositive(r, "lash_impact_velocity", Dimension::kVelocity, 1.0,
                                 "lash_impact_velocity_m_s", "m/s"))
     l.lash_impact_velocity_m_s = *v;
+  fraction("secondary_opening", 0.0, l.secondary_opening_fraction);
   l.min_contact_force_fraction = optional_fraction("min_contact_force", 0.0);
   fraction("separation_margin", -1.0, l.separation_margin_fraction);
   if (auto v = OptionalPositive(r, "hertz_stress", Dimension::kPressure, 1e-6, "hertz_stress_MPa",

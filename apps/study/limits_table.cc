@@ -59,6 +59,11 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
           l.lash_impact_velocity_m_s,
           from(l.lash_impact_velocity_m_s != d.lash_impact_velocity_m_s, "lash_impact_velocity",
                "Blair: optimum ramp velocity 1.0-1.5 m/s (the opening ramp)"));
+  LimitRow reopen = row("secondary_opening", "secondary opening after closing", "um", true,
+                        1e6 * l.secondary_opening_fraction * r.kinematics.max_lift_m,
+                        from(l.secondary_opening_fraction != d.secondary_opening_fraction,
+                             "secondary_opening_percent",
+                             "1 % of the largest lift: a reopening is a secondary injection"));
   // Least contact force while the cam lifts the needle, against the static load holding it
   // there: at f·n the inertia grows by f², so a share 1 − 1/f² of that load must remain.
   const double f_over = c.spring ? c.spring->overspeed_factor : 1.2;
@@ -81,6 +86,20 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
       }
     }
     judge(seat, landing, where);
+    const auto seated = std::find_if(run.impacts.begin(), run.impacts.end(), [&](const Impact& i) {
+      return i.kind.rfind("seat", 0) == 0 && i.crank_rad > r.kinematics.max_lift_rad;
+    });
+    if (run.secondary_lift_m > 0.0) {
+      judge(reopen, 1e6 * run.secondary_lift_m,
+            Fixed(1e3 * run.secondary_lift_m, 4) + " mm at " +
+                Fixed(run.secondary_lift_rad / kDeg, 2) + " deg, open " +
+                Fixed(run.secondary_open_rad / kDeg, 2) + " deg");
+    } else {
+      judge(reopen, 0.0,
+            seated == run.impacts.end()
+                ? "the needle did not seat in the run"
+                : "no reopening after it seated at " + Fixed(seated->crank_rad / kDeg, 2) + " deg");
+    }
     if (c.train && c.train->play_m > 0.0) {
       // Every strike of the cam on the roller: the lash, and a recontact after a bounce or a
       // jump (where the cam already touched when the run began, the first strike is one).
@@ -105,7 +124,7 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
       judge_force(force, 0.0, "the cam never lifted the needle off its seat");
     }
   } else {
-    seat.note = lash.note = force.note = "no dynamics ([train] missing)";
+    seat.note = reopen.note = lash.note = force.note = "no dynamics ([train] missing)";
   }
 
   LimitRow sep = row("separation_margin", "separation margin n_dyn/(f n) - 1", "%", false,
@@ -279,8 +298,8 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
     fatigue.note = gap.note = ratio.note = no_helical;
     surge_force.note = surge_jump.note = surge_stress.note = no_helical;
   }
-  r.limits = {seat, lash,        force,      sep,          hertz, fatigue,
-              gap,  surge_force, surge_jump, surge_stress, ratio};
+  r.limits = {seat,    reopen, lash,        force,      sep,          hertz,
+              fatigue, gap,    surge_force, surge_jump, surge_stress, ratio};
   for (const LimitRow& x : r.limits) {
     if (x.verdict == "warning") r.warnings.push_back(FailureLine(x));
     if (x.verdict == "fail") {

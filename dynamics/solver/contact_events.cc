@@ -152,6 +152,7 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
   // The lift's extremes; the spring force P₀ + k y and (one mass) the segment compression y
   // grow with the lift, so they follow the largest lift.
   if (train_.Coils() > 0) return true;
+  if (seated_ && r.y_hi > std::max(secondary_lift_, kSeparationLift_m)) return true;
   if (!lift_covered && (r.y_hi > max_lift_ || (all && r.y_lo < min_lift_))) return true;
   if (lift_covered && !(train_.parameters().rate_N_m >= 0.0)) return true;
   if (all && (r.fc_hi > max_fc_ || r.fs_hi > max_fs_)) return true;
@@ -165,7 +166,7 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
     const double hold_lo = std::min(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
     const double hold_hi = std::max(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
     const double ratio_lo = hold_lo > 0.0 ? f_lo / hold_hi : 0.0;
-    if (all && ratio_lo < min_ratio_) return true;
+    if (all && !seated_ && ratio_lo < min_ratio_) return true;
   }
   return false;
 }
@@ -224,6 +225,10 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
       std::max(max_segment_compression_m_, train_.LargestSegmentCompression(x));
   min_lift_ = std::min(min_lift_, x[0]);
   max_spring_ = std::max(max_spring_, c.spring_N);
+  if (seated_ && x[0] > kSeparationLift_m && x[0] > secondary_lift_) {
+    secondary_lift_ = x[0];
+    secondary_lift_rad_ = th;
+  }
   // At a break the raw branch may be negative for an instant before its sign flips: a contact
   // never pulls.
   if (OnCamWindow(c, x)) {
@@ -234,7 +239,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
     const double hold =
         RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(x[0]);
     const double ratio = hold > 0.0 ? f / hold : 0.0;
-    if (ratio < min_ratio_) {
+    if (!seated_ && ratio < min_ratio_) {
       min_ratio_ = ratio;
       min_ratio_rad_ = th;
       min_ratio_force_ = f;
@@ -300,6 +305,13 @@ void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
     impacts_.push_back(
         {seat_landed_ ? "seat-bounce" : "seat", c.crank_rad, std::max(0.0, c.g_s_rate)});
     seat_landed_ = true;
+    // Seated: the first landing past the cam's top once lifted (a bounce on the seat while the
+    // cam opens is an episode of the lift, not its end).
+    seated_ = seated_ || (lifted_ && c.crank_rad > train_.cam().top().crank_rad);
+  } else if (index == kLiftGate && seated_) {  // a secondary opening begins or ends
+    if (direction > 0 && !reopened_) reopen_rad_ = c.crank_rad;
+    if (direction < 0 && reopened_) secondary_open_rad_ += c.crank_rad - reopen_rad_;
+    reopened_ = direction > 0;
   } else if (index >= kEventCount && (index - kEventCount) % 2 == 0 && direction > 0) {
     ++coil_clashes_;  // a segment's coils meet
   }
@@ -365,6 +377,8 @@ void Recorder::Finish(double t, const TrainState& x, const Phase& phase) {
     episodes_.back().end_rad = train_.Angle(t);
     episodes_.back().open = true;  // still off cam and seat when the run ends: reported
   }
+  if (reopened_) secondary_open_rad_ += train_.Angle(t) - reopen_rad_;
+  reopened_ = false;
 }
 
 void Recorder::Stopped(double crank_rad) {
@@ -375,6 +389,8 @@ void Recorder::Stopped(double crank_rad) {
     episodes_.back().end_rad = crank_rad;
     episodes_.back().open = true;
   }
+  if (reopened_) secondary_open_rad_ += crank_rad - reopen_rad_;
+  reopened_ = false;
 }
 
 std::optional<double> Recorder::min_coil_gap_m() const {

@@ -205,8 +205,9 @@ class Recorder {
   /// needle was never lifted.
   double min_contact_force_during_lift_N() const { return lifted_ ? min_fc_lift_ : 0.0; }
   /// The least contact force over the static load that holds the needle on the cam there,
-  /// F_c / (P₀ + k y − F_g), in the same window (0 where that load is not positive); NaN when
-  /// the needle was never lifted. Its crank angle, rad, and the force there, N.
+  /// F_c / (P₀ + k y − F_g), in the same window until the needle first seats past the cam's top
+  /// (0 where that load is not positive); NaN when the needle was never lifted. Its crank
+  /// angle, rad, and the force there, N.
   double min_contact_force_ratio() const { return lifted_ ? min_ratio_ : NAN; }
   double min_contact_force_ratio_rad() const { return min_ratio_rad_; }
   double min_contact_force_ratio_force_N() const { return min_ratio_force_; }
@@ -214,6 +215,12 @@ class Recorder {
   double max_spring_force_N() const { return max_spring_; }
   /// Whether the cam ever lifted the needle off its seat (the window was entered).
   bool lifted() const { return lifted_; }
+  /// After the needle first seats following the lift (its seat gap's first onset once lifted):
+  /// the largest lift it reopens to, m (0: none above 1 µm), its crank angle, rad, and the
+  /// crank angle it spends above 1 µm, rad (witness kLiftGate's crossings: located).
+  double secondary_lift_m() const { return secondary_lift_; }
+  double secondary_lift_rad() const { return secondary_lift_rad_; }
+  double secondary_open_rad() const { return secondary_open_rad_; }
   /// The least lift of the needle in the run, m (< 0: into its seat).
   double min_lift_m() const { return min_lift_; }
   double max_seat_force_N() const { return max_fs_; }
@@ -244,6 +251,10 @@ class Recorder {
   /// The window the least contact force is taken over (docs/model.md §6): the cam above the
   /// play (u > 1 µm) and the needle off its seat (y > 1 µm), so the cam is lifting it — the same
   /// for an exact and a measured table of one cam, whatever its detected open lift.
+  /// The least ratio's window (min_contact_force_ratio, the limits' rows) also closes when the
+  /// needle first seats past the cam's top: a rebound off the seat is a secondary opening
+  /// (secondary_lift_m), not a cam losing the needle it lifts. The least force in N keeps the
+  /// whole window, every separation episode's: the overspeed scan's margin.
   static bool OnCamWindow(const Contacts& c, const TrainState& x);
   /// Inside the deceleration zone at this angle (docs/model.md §6).
   bool Decelerating(double crank_rad) const;
@@ -269,6 +280,10 @@ class Recorder {
   double max_lift_ = -1e300, max_lift_rad_ = 0.0;
   double max_fc_ = 0.0, min_fc_lift_ = 1e300, max_fs_ = 0.0;
   bool lifted_ = false;
+  bool seated_ = false;    // seated after the lift (OnCamWindow closed)
+  bool reopened_ = false;  // above 1 µm after seating, since reopen_rad_
+  double reopen_rad_ = 0.0;
+  double secondary_lift_ = 0.0, secondary_lift_rad_ = 0.0, secondary_open_rad_ = 0.0;
   double last_t_ = -1e300;  // the latest time the episodes have seen
   double min_ratio_ = 1e300, min_ratio_rad_ = 0.0, min_ratio_force_ = 0.0;
   double min_lift_ = 1e300;
