@@ -127,4 +127,9 @@ double CamInput::Curvature(double th) const {
   return 0.0;
 }
 
+double CamInput::Jerk(double th) const {
+  if (th >= law_.start_rad() && th < law_.end_rad()) return law_.spline().Evaluate(th, 3);
+  return 0.0;
+}
+
 }  // namespace needle

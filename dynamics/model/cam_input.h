@@ -42,6 +42,8 @@ class CamInput {
   double Slope(double crank_rad) const;
   /// d²u/dθ², m/rad² (0 on ramps and the base circle).
   double Curvature(double crank_rad) const;
+  /// d³u/dθ³, m/rad³ (0 on ramps and the base circle).
+  double Jerk(double crank_rad) const;
   /// {U, Slope} at once (one search for the spline's piece), the same numbers bit for bit.
   std::array<double, 2> USlope(double crank_rad) const;
 

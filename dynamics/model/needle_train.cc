@@ -298,13 +298,17 @@ void NeedleTrain::Jacobian(const TrainState& x, double t, const Phase& phase, Tr
   const bool cam_stuck = cam_rigid_ && phase.mode.cam;
   const bool stuck = cam_stuck || (seat_rigid_ && phase.mode.seat);
   if (stuck) {
+    // ẏ = ω u', ÿ = ω² u'' on the cam (0 on the seat): functions of t alone.
+    const double uppp = cam_stuck ? cam_.Jerk(CamAngle(c.crank_rad, phase)) : 0.0;
     at(0, 1) = at(1, 0) = at(1, 1) = 0.0;  // ẏ, ÿ: the surface's, not the state's
     dfdt[0] = cam_stuck ? w * w * upp : 0.0;
-    dfdt[1] = 0.0;
-    if (cam_stuck) {  // Ẇ = λ ω u'
-      at(2, 0) = p_.rate_N_m * w * up;
-      at(2, 1) = 0.0;
+    dfdt[1] = cam_stuck ? w * w * w * uppp : 0.0;
+    if (cam_stuck) {  // Ẇ = λ ω u', λ = m ω² u'' + P₀ + k u − F_g: y is the surface's, u
+      at(2, 0) = at(2, 1) = 0.0;
+      dfdt[2] = (m * w * w * w * uppp + p_.rate_N_m * w * up) * w * up + fc * w * w * upp;
     }
+    // Ḋ: the stuck contact's gap rate is zero, and the other's follows the surface, not y, ẏ.
+    at(3, 0) = at(3, 1) = dfdt[3] = 0.0;
   }
   if (coils_ == 0) return;
   // The chain. Node 0 is the needle (columns 0 and 1, or the surface's motion while it sticks:

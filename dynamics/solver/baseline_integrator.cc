@@ -44,7 +44,8 @@ IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x
   stats.steps = static_cast<long>(
       odeint::integrate_times(dense, std::ref(system), z, times.begin(), times.end(),
                               std::min(t_end, 0.01 / train.FastestAngularFrequency()), observer));
-  if (stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, t_end, stats);
+  if (stats.steps > o.max_steps)
+    ThrowOverBudget("steps", o.max_steps, train, t_end, stats, Method::kBaselineDopri5);
   recorder.Finish(last_t, last, phase);
   stats.rhs_evaluations = system.evaluations();
   stats.final_state = last;

@@ -185,7 +185,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   // A budget stops the run with the work done so far (its statistics go with the message).
   const auto over = [&](const char* what, double budget, double at) {
     stats.rhs_evaluations = system_.evaluations();
-    ThrowOverBudget(what, budget, train_, at, stats);
+    ThrowOverBudget(what, budget, train_, at, stats, method_);
   };
   while (t < horizon) {
     while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;

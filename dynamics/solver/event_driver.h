@@ -47,7 +47,7 @@ class EventDriver {
  public:
   EventDriver(Method method, const NeedleTrain& train, Recorder& recorder,
               const IntegratorOptions& o)
-      : train_(train), recorder_(recorder), o_(o), system_(train, o) {
+      : train_(train), recorder_(recorder), o_(o), system_(train, o), method_(method) {
     stepper_ = MakeStepper(method, system_, o);
     if (method == Method::kExact) {
       // The scales of the cam input and its rate, for RecordExtremes' round-off allowance.
@@ -241,6 +241,7 @@ class EventDriver {
   Recorder& recorder_;
   const IntegratorOptions& o_;
   TrainSystem system_;
+  Method method_;  // for the budget's advice
   std::unique_ptr<Stepper> stepper_;
   TrainState z_{};
   size_t next_grid_ = 0;

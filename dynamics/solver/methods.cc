@@ -191,14 +191,18 @@ std::string Shortest(double v) {
 }  // namespace
 
 void ThrowOverBudget(const std::string& what, double budget, const NeedleTrain& train, double t,
-                     const IntegrationStats& done) {
-  throw BudgetExceeded("simulation stopped at " + std::to_string(train.Angle(t) / kDeg) +
-                           " deg after " + Shortest(budget) + " " + what +
-                           " (the budget [solver] max_" + what +
-                           "): the scene may chatter or be too stiff for this method; try "
-                           "method = \"cvode-bdf\", a looser rtol, or raise max_" +
-                           what,
-                       train.Angle(t), done);
+                     const IntegrationStats& done, Method method) {
+  // A stiff scene wants the implicit method; one that ran it already, the explicit one.
+  const bool implicit = method == Method::kCvodeBdf || method == Method::kRosenbrock4;
+  const std::string other = train.HasConstraint() ? (method == Method::kDopri5 ? "rkf78" : "dopri5")
+                            : implicit            ? "dopri5"
+                                                  : "cvode-bdf";
+  throw BudgetExceeded(
+      "simulation stopped at " + std::to_string(train.Angle(t) / kDeg) + " deg after " +
+          Shortest(budget) + " " + what + " (the budget [solver] max_" + what +
+          "): the scene may chatter or be too stiff for method \"" + MethodName(method) +
+          "\"; try method = \"" + other + "\", a looser rtol, or raise max_" + what,
+      train.Angle(t), done);
 }
 
 }  // namespace needle

@@ -100,8 +100,9 @@ std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const Integr
 IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x0, double t_end,
                                    Recorder& recorder, const IntegratorOptions& options);
 
-/// Throws the budget message, with the work done up to t.
+/// Throws the budget message, with the work done up to t; its advice names another method
+/// than `method`, the one that ran.
 [[noreturn]] void ThrowOverBudget(const std::string& what, double budget, const NeedleTrain& train,
-                                  double t, const IntegrationStats& done);
+                                  double t, const IntegrationStats& done, Method method);
 
 }  // namespace needle

@@ -276,6 +276,18 @@ TEST(SimulationTest, StepBudgetStopsWithAMessage) {
   EXPECT_LT(r.run_end_rad, r.window_end_rad);
   EXPECT_GT(r.run_end_rad, r.window_start_rad);
   EXPECT_TRUE(std::isnan(r.energy_residual));
+  // The advice names another method than the one that ran (cvode-bdf out of its budget was told
+  // to try cvode-bdf: issue 51).
+  EXPECT_NE(r.status_reason.find("too stiff for method \"dopri5\"; try method = \"cvode-bdf\""),
+            std::string::npos)
+      << r.status_reason;
+  SimulationOptions ob = Options("cvode-bdf", 1e-8);
+  ob.integrator.max_steps = 20;
+  const SimulationResult rb = Simulate(s, 400, ob);
+  ASSERT_EQ(RunStatusName(rb.status), "budget");
+  EXPECT_NE(rb.status_reason.find("too stiff for method \"cvode-bdf\"; try method = \"dopri5\""),
+            std::string::npos)
+      << rb.status_reason;
 }
 
 // No silent minutes (issue 40): a wall-time budget stops a run with the status `budget` and
@@ -507,6 +519,28 @@ TEST(SimulationTest, RigidLashOnALinearRampComesAtTheRampsSpeed) {
     EXPECT_EQ(r.impacts[1].kind, "recontact");
     EXPECT_GT(r.impacts[1].crank_rad / kDeg, -14.9);
     EXPECT_LT(r.energy_residual, 1e-8);
+  }
+}
+
+// rosenbrock4 on a rigid contact (issue 51): while the needle sticks to the cam its Jacobian
+// was the free needle's (ÿ's ∂/∂t taken as 0, the audit's rows kept), and it crawled: 43,517
+// steps on Example 1's rigid scene at rtol 1e-8 (dopri5: 49), the step budget at 1e-12 with a
+// NaN residual. With the sticking Jacobian it takes 183 and 1,367, the impacts of dopri5.
+TEST(SimulationTest, Rosenbrock4OnARigidContactStepsLikeAOneStepMethod) {
+  const Case c = LoadCase(kCases + "basu-example1-rigid.toml");
+  const Scene s = MakeScene(c);
+  for (const double rtol : {1e-8, 1e-12}) {
+    const SimulationResult d = Simulate(s, 125, Options("dopri5", rtol));
+    const SimulationResult r = Simulate(s, 125, Options("rosenbrock4", rtol));
+    ASSERT_EQ(r.status, RunStatus::kComplete) << rtol;
+    EXPECT_LT(r.stats.steps, 20 * d.stats.steps) << rtol;
+    EXPECT_LT(r.energy_residual, 100 * rtol) << rtol;
+    ASSERT_EQ(r.impacts.size(), d.impacts.size()) << rtol;
+    for (size_t i = 0; i < r.impacts.size(); ++i) {
+      EXPECT_EQ(r.impacts[i].kind, d.impacts[i].kind) << rtol << " " << i;
+      EXPECT_NEAR(r.impacts[i].crank_rad / kDeg, d.impacts[i].crank_rad / kDeg, 1e-4)
+          << rtol << " " << i;
+    }
   }
 }
 

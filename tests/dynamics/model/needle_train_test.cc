@@ -109,6 +109,55 @@ TEST(NeedleTrainTest, JacobianMatchesCentralDifferencesInEveryMode) {
   EXPECT_EQ(checked, 3 * 3 * 4 * 16);
 }
 
+// The same for a rigid train while a contact sticks: ẏ and ÿ are the surface's (ω u', ω² u''
+// on the cam), functions of t alone, and the audit's Ḋ is zero. The Jacobian took ÿ's ∂/∂t as 0
+// and kept the free needle's Ḋ row: rosenbrock4, which steps with it, took 43,517 steps on
+// Example 1's rigid scene (dopri5: 49) and ran out of its budget at rtol 1e-12 (issue 51).
+TEST(NeedleTrainTest, JacobianMatchesCentralDifferencesWhileARigidContactSticks) {
+  const LiftLaw law = Bump();
+  const CamInput cam(law, 0.0, RampKind::kLinear, 0.1);
+  TrainParameters p = BumpTrain();
+  p.contact = ContactKind::kRigid;
+  p.contact_stiffness_N_m = p.seat_stiffness_N_m = 0.0;
+  p.restitution = p.seat_restitution = 0.5;
+  const NeedleTrain train(cam, p, 60.0, 0.0);
+  int checked = 0;
+  for (double t : {0.0071, 0.0123, 0.0168}) {
+    for (const ContactMode mode : {ContactMode{true, false}, ContactMode{false, true}}) {
+      Phase phase;
+      phase.mode = mode;
+      const TrainState x = {mode.cam ? cam.U(train.Angle(t)) : 0.0, 0.05, 0.3, 0.1};
+      TrainJacobian J;
+      TrainState ft;
+      train.Jacobian(x, t, phase, J, ft);
+      const std::array<double, 4> h = {1e-9, 1e-5, 1e-3, 1e-3};
+      for (int c = 0; c < 4; ++c) {
+        TrainState xp = x, xm = x, fp, fm;
+        xp[c] += h[c];
+        xm[c] -= h[c];
+        train.Derivative(xp, t, phase, fp);
+        train.Derivative(xm, t, phase, fm);
+        for (int r = 0; r < 4; ++r) {
+          const double fd = (fp[r] - fm[r]) / (2.0 * h[c]);
+          EXPECT_NEAR(J[r * 4 + c], fd, 1e-6 * std::abs(fd) + 1e-6)
+              << "row " << r << " col " << c << " t " << t << " cam " << mode.cam;
+          ++checked;
+        }
+      }
+      const double ht = 1e-8;
+      TrainState fp, fm;
+      train.Derivative(x, t + ht, phase, fp);
+      train.Derivative(x, t - ht, phase, fm);
+      for (int r = 0; r < 4; ++r) {
+        const double fd = (fp[r] - fm[r]) / (2.0 * ht);
+        EXPECT_NEAR(ft[r], fd, 1e-5 * std::abs(fd) + 1e-4)
+            << "df/dt row " << r << " t " << t << " cam " << mode.cam;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 3 * 2 * 16);
+}
+
 TEST(NeedleTrainTest, ParametersAreValidatedByName) {
   TrainParameters p;
   p.mass_kg = 0.0;
