@@ -231,7 +231,10 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
   }
   // At a break the raw branch may be negative for an instant before its sign flips: a contact
   // never pulls.
-  if (OnCamWindow(c, x)) {
+  // The window's edge, where the lift crosses 1 µm (a located event) while the cam lifts the
+  // needle (before it first seats), belongs to it: the least force may lie there, between the
+  // samples inside. (After the seating a rebound's crossings are the secondary opening's.)
+  if (OnCamWindow(c, x) || (at_lift_edge_ && !seated_ && c.u > kSeparationLift_m)) {
     lifted_ = true;
     const double f = std::max(0.0, fc);
     min_fc_lift_ = std::min(min_fc_lift_, f);
@@ -268,7 +271,10 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
     e.max_gap_m = x[0] - c.u;
     episodes_.push_back(e);
   } else if (!separated && separated_) {
+    // The end point counts for the largest gap: a needle landing on its seat while the cam
+    // still falls away below stands farthest off it there.
     episodes_.back().end_rad = th;
+    episodes_.back().max_gap_m = std::max(episodes_.back().max_gap_m, x[0] - c.u);
   }
   if (separated) {
     Episode& e = episodes_.back();
@@ -315,7 +321,10 @@ void Recorder::Crossing(int index, int direction, double t, const TrainState& x,
   } else if (index >= kEventCount && (index - kEventCount) % 2 == 0 && direction > 0) {
     ++coil_clashes_;  // a segment's coils meet
   }
-  if (sample) Update(t, x, phase);
+  if (!sample) return;
+  at_lift_edge_ = index == kLiftGate;
+  Update(t, x, phase);
+  at_lift_edge_ = false;
 }
 
 void Recorder::ImpactLoss(double energy_J) {

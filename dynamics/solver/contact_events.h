@@ -280,8 +280,9 @@ class Recorder {
   double max_lift_ = -1e300, max_lift_rad_ = 0.0;
   double max_fc_ = 0.0, min_fc_lift_ = 1e300, max_fs_ = 0.0;
   bool lifted_ = false;
-  bool seated_ = false;    // seated after the lift (OnCamWindow closed)
-  bool reopened_ = false;  // above 1 µm after seating, since reopen_rad_
+  bool at_lift_edge_ = false;  // Update of a crossing of the lift's 1 µm level
+  bool seated_ = false;        // seated after the lift (the least ratio's window closed)
+  bool reopened_ = false;      // above 1 µm after seating, since reopen_rad_
   double reopen_rad_ = 0.0;
   double secondary_lift_ = 0.0, secondary_lift_rad_ = 0.0, secondary_open_rad_ = 0.0;
   double last_t_ = -1e300;  // the latest time the episodes have seen

@@ -164,5 +164,44 @@ TEST(EventDriverTest, AStretchMayChangeTheRecordOnlyPastItsExtremes) {
   EXPECT_TRUE(series.MayChange(inside));
 }
 
+// Extremes include the event points and the window's edges (issue 51: the least contact force
+// missed its value at the 1 µm lift edge, 531.9 N reported against 501.37 N there; an episode's
+// largest gap missed its value at the end event, 0.0017110 mm true, 0.00011 reported).
+TEST(EventDriverTest, TheLeastForceAndTheLargestGapIncludeTheEdgeAndTheEndEvent) {
+  const LiftLaw law = FarLaw();  // 1 mm over 1.0 … 1.4 rad
+  TrainParameters p;
+  p.mass_kg = 1.0;
+  p.preload_N = 10.0;
+  p.contact_stiffness_N_m = p.seat_stiffness_N_m = 1e6;
+  p.contact_damping_ratio = p.seat_damping_ratio = 0.0;
+  {
+    const CamInput cam(law, 0.0, RampKind::kTangent, 0.0);
+    const NeedleTrain train(cam, p, 1.0, 0.0);  // t = θ
+    Recorder r(train, false);
+    const Phase on{ContactMode{true, false}};
+    r.Start(1.15, {cam.U(1.15) - 2e-6, 0.0, 0.0, 0.0}, on);  // 2 µm into the cam: 2 N
+    ASSERT_NEAR(r.min_contact_force_during_lift_N(), 2.0, 1e-9);
+    // Where the cam is 1.5 µm up the lift crosses 1 µm on it (witness kLiftGate): 0.5 N.
+    double lo = 1.3, hi = 1.4;
+    for (int i = 0; i < 100; ++i) ((cam.U(0.5 * (lo + hi)) > 1.5e-6) ? lo : hi) = 0.5 * (lo + hi);
+    r.Crossing(kLiftGate, -1, lo, {1e-6, 0.0, 0.0, 0.0}, on);
+    EXPECT_NEAR(r.min_contact_force_during_lift_N(), 0.5, 1e-6);
+  }
+  {
+    const CamInput cam(law, 0.5e-3, RampKind::kLinear, 0.1);  // down to −0.5 mm at 1.5 rad
+    const NeedleTrain train(cam, p, 1.0, 0.0);
+    Recorder r(train, false);
+    const Phase free{ContactMode{false, false}};
+    r.Start(1.3, {cam.U(1.3) + 10e-6, 0.0, 0.0, 0.0}, free);  // off the cam by 10 µm
+    r.Sample(1.45, {0.1e-3, 0.0, 0.0, 0.0}, free);            // 0.35 mm above the ramp
+    ASSERT_EQ(r.episodes().size(), 1u);
+    EXPECT_NEAR(r.episodes()[0].max_gap_m, 0.35e-3, 1e-12);
+    // It lands on its seat at 1.49 rad, the ramp 0.45 mm below: the largest gap, at the end.
+    r.Crossing(kSeatGap, +1, 1.49, {0.0, -0.1, 0.0, 0.0}, Phase{ContactMode{false, true}});
+    EXPECT_NEAR(r.episodes()[0].end_rad, 1.49, 1e-12);
+    EXPECT_NEAR(r.episodes()[0].max_gap_m, 0.45e-3, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace needle
