@@ -1,0 +1,65 @@
+// The command line's options and messages (issue 51, item 10): numbers are decimal as typed,
+// options that cannot apply or that conflict are refused in one line, a refused value is shown
+// as given, text output keeps control characters off the terminal, and what a command prints
+// says what it judged: a warning's number shows, the spring's fatigue factor, Basu's row, and
+// the crank angle beside a cam angle.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "run_command.h"
+
+namespace needle {
+namespace {
+
+using testing::Case;
+using testing::RunNeedle;
+
+// A refusal: exit 2, nothing on stdout, exactly `message` on stderr.
+void ExpectRefused(const std::string& args, const std::string& message) {
+  const auto r = RunNeedle(args);
+  EXPECT_EQ(r.status, 2) << args;
+  EXPECT_EQ(r.out, "") << args;
+  EXPECT_EQ(r.err, message) << args;
+}
+
+std::string OptionRule(const std::string& option, const std::string& rule) {
+  return "needle: " + option + ": " + rule + " (see needle --help)\n";
+}
+
+TEST(CliMessagesTest, NumbersAreDecimalAsTyped) {
+  const std::string cam4 = Case("basu-cam4.toml"), light = Case("basu-cam4-light-spring.toml");
+  const std::string ex2 = Case("basu-example2.toml");
+  // std::stod and CLI11 read "0x10" as 16 and a whole "010" as octal 8.
+  ExpectRefused("kinematics " + cam4 + " --rpm 0x10",
+                OptionRule("--rpm", "expected a speed in rpm in [1, 50000], got 0x10"));
+  ExpectRefused(
+      "kinematics " + cam4 + " --step 0x1",
+      OptionRule("--step", "expected a spacing in crank degrees in [0.001, 90], got 0x1"));
+  ExpectRefused("overspeed " + light + " --from 0x100",
+                OptionRule("--from", "expected a speed in rpm in [1, 50000], got 0x100"));
+  ExpectRefused(
+      "simulate " + light + " --cycles 0x2",
+      OptionRule("--cycles", "expected a number of cam revolutions in [1, 1000], got 0x2"));
+  ExpectRefused("tolerance " + ex2 + " --samples 0x10",
+                OptionRule("--samples", "expected a number of samples in [1, 1000000], got 0x10"));
+  ExpectRefused("tolerance " + ex2 + " --threads 1e1",
+                OptionRule("--threads", "expected a number of threads in [0, 4096], got 1e1"));
+  ExpectRefused(
+      "tolerance " + ex2 + " --seed 0x1",
+      OptionRule("--seed", "expected a whole number in [0, 18446744073709551615], got 0x1"));
+  // Decimal forms pass, a whole number's leading zeros included: 010 is ten.
+  EXPECT_EQ(RunNeedle("kinematics " + cam4 + " --rpm 4e2 --step 1.5").status, 0);
+  const auto zeros = RunNeedle("tolerance " + ex2 + " --samples 02 --seed 010 --threads 1 --json");
+  ASSERT_EQ(zeros.status, 0) << zeros.err;
+  const auto j = nlohmann::json::parse(zeros.out);
+  EXPECT_EQ(j["samples"], 2);
+  EXPECT_EQ(j["seed"], 10);
+}
+
+}  // namespace
+}  // namespace needle
