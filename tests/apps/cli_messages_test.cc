@@ -61,5 +61,12 @@ TEST(CliMessagesTest, NumbersAreDecimalAsTyped) {
   EXPECT_EQ(j["seed"], 10);
 }
 
+TEST(CliMessagesTest, ARefusedToleranceIsShownAsTyped) {
+  const std::string light = Case("basu-cam4-light-spring.toml");
+  const std::string rule = "expected a relative tolerance in [1e-14, 0.01], got 1e-15";
+  ExpectRefused("simulate " + light + " --rtol 1e-15", OptionRule("--rtol", rule));
+  ExpectRefused("overspeed " + light + " --rtol 1e-15", OptionRule("--rtol", rule));
+}
+
 }  // namespace
 }  // namespace needle

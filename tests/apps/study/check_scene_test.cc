@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/case/case_scene.h"
+#include "apps/study/dynamics_jobs.h"
 #include "lib/input_file.h"
 #include "lib/output.h"
 
@@ -944,6 +945,26 @@ TEST(CheckSceneTest, AnUndercutCamJudgesNoHertzStress) {
   EXPECT_EQ(Row(r, "hertz_stress").note,
             "the cam profile is undercut (no convex radius to press on)");
   EXPECT_FALSE(r.pass);
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A job called without the command line's parser (the Python module's path) refuses an rtol
+// outside its range showing the value, not std::to_string's "0.000000".
+TEST(DynamicsJobsTest, ARefusedToleranceShowsItsValue) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-cam4-light-spring.toml");
+  SimulateJobOptions o;
+  o.rtol = 1e-15;
+  try {
+    SimulateCase(c, o);
+    FAIL() << "accepted";
+  } catch (const CaseError& e) {
+    EXPECT_STREQ(e.what(), "--rtol: expected a relative tolerance in [1e-14, 0.01], got 1e-15");
+  }
 }
 
 }  // namespace
