@@ -68,5 +68,21 @@ TEST(CliMessagesTest, ARefusedToleranceIsShownAsTyped) {
   ExpectRefused("overspeed " + light + " --rtol 1e-15", OptionRule("--rtol", rule));
 }
 
+TEST(CliMessagesTest, ConflictingOutputFormatsAreRefused) {
+  const std::string cam4 = Case("basu-cam4.toml");
+  const std::string one = "; expected one output format";
+  ExpectRefused("kinematics " + cam4 + " --json --format markdown",
+                OptionRule("--format", "markdown conflicts with --json" + one));
+  ExpectRefused("spring " + Case("basu-example1.toml") + " --format text --json",
+                OptionRule("--format", "text conflicts with --json" + one));
+  ExpectRefused("kinematics " + cam4 + " --format json --format markdown",
+                OptionRule("--format", "markdown conflicts with --format json" + one));
+  // The same format twice is one format.
+  const auto same = RunNeedle("kinematics " + cam4 + " --json --format json");
+  EXPECT_EQ(same.status, 0) << same.err;
+  EXPECT_EQ(same.out.rfind("{\n", 0), 0u);
+  EXPECT_EQ(RunNeedle("kinematics " + cam4 + " --format markdown").out.rfind("| key |", 0), 0u);
+}
+
 }  // namespace
 }  // namespace needle
