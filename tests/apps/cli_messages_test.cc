@@ -84,5 +84,22 @@ TEST(CliMessagesTest, ConflictingOutputFormatsAreRefused) {
   EXPECT_EQ(RunNeedle("kinematics " + cam4 + " --format markdown").out.rfind("| key |", 0), 0u);
 }
 
+TEST(CliMessagesTest, CycleAppliesToABareCsvTableOnly) {
+  ExpectRefused("kinematics " + Case("basu-cam4.toml") + " --cycle two-stroke",
+                "needle: --cycle: applies to a bare CSV table; a case file states [engine] "
+                "cycle\n");
+  // On a bare table it is taken: its cam_deg column turns twice as far on the crank.
+  const std::string csv = testing::TempPath("cam.csv");
+  std::ofstream(csv) << "cam_deg,lift_mm\n0,0\n5,0.5\n10,1.5\n15,2\n20,1.5\n25,0.5\n30,0\n";
+  const auto four = RunNeedle("kinematics " + csv + " --rpm 400 --json");
+  const auto two = RunNeedle("kinematics " + csv + " --rpm 400 --json --cycle two-stroke");
+  ASSERT_EQ(four.status, 0) << four.err;
+  ASSERT_EQ(two.status, 0) << two.err;
+  const double close4 = nlohmann::json::parse(four.out)["close_deg"].get<double>();
+  const double close2 = nlohmann::json::parse(two.out)["close_deg"].get<double>();
+  EXPECT_DOUBLE_EQ(close4, 2 * close2);
+  std::filesystem::remove(csv);
+}
+
 }  // namespace
 }  // namespace needle
