@@ -9,6 +9,7 @@
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
+#include "apps/report/command_output.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
@@ -68,7 +69,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
     std::cout << FormatObject(j, o.format);
     return 0;
   }
-  std::cout << ToleranceText(c, r, o.seed, report_path) << std::flush;
+  PrintText(ToleranceText(c, r, o.seed, report_path));
   return 0;
 }
 

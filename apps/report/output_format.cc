@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "apps/report/markdown_writer.h"
+#include "lib/case_error.h"
 #include "lib/name_table.h"
 
 namespace needle {
@@ -56,7 +57,7 @@ void AddFormatOption(CLI::App* command, OutputFormat& format, bool& json) {
 }
 
 std::string FormatObject(const nlohmann::json& object, OutputFormat format) {
-  if (format == OutputFormat::kMarkdown) return MarkdownFromJson(object);
+  if (format == OutputFormat::kMarkdown) return EscapeControls(MarkdownFromJson(object), true);
   return object.dump(2) + "\n";
 }
 

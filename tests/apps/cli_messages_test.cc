@@ -101,5 +101,41 @@ TEST(CliMessagesTest, CycleAppliesToABareCsvTableOnly) {
   std::filesystem::remove(csv);
 }
 
+TEST(CliMessagesTest, ControlCharactersStayOffTheTerminal) {
+  // Typed into the title (the text's first line) and into the file's name (Markdown's "case").
+  const std::string path = testing::TempPath("ti\x1b[1mtle.toml");
+  std::string toml = testing::Slurp(Case("basu-cam4.toml"));
+  const size_t at = toml.find("title = \"");
+  ASSERT_NE(at, std::string::npos);
+  toml.insert(at + 9, "a\\u001b[31mred\\u0007\\u009b ");
+  std::ofstream(path) << toml;
+  const auto text = RunNeedle("kinematics '" + path + "'");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_EQ(text.out.find('\x1b'), std::string::npos);
+  EXPECT_EQ(text.out.find('\a'), std::string::npos);
+  EXPECT_EQ(text.out.find("\xc2\x9b"), std::string::npos);
+  EXPECT_EQ(text.out.rfind("a\\x1B[31mred\\x07\\xC2\\x9B Basu cam No. 4", 0), 0u) << text.out;
+  const auto markdown = RunNeedle("kinematics '" + path + "' --format markdown");
+  ASSERT_EQ(markdown.status, 0) << markdown.err;
+  EXPECT_EQ(markdown.out.find('\x1b'), std::string::npos);
+  EXPECT_NE(markdown.out.find("ti\\x1B[1mtle.toml |"), std::string::npos) << markdown.out;
+  // JSON escapes them itself.
+  const auto json = RunNeedle("kinematics '" + path + "' --json");
+  ASSERT_EQ(json.status, 0) << json.err;
+  EXPECT_EQ(json.out.find('\x1b'), std::string::npos);
+  // A message quoting what was typed: one line, its control characters escaped (the parser's
+  // and the command word's too).
+  ExpectRefused("kinematics " + Case("basu-cam4.toml") + " \"$(printf 'x\\033[1m\\ny')\"",
+                "needle: The following argument was not expected: x\\x1B[1m\\ny (see needle "
+                "--help)\n");
+  ExpectRefused("\"$(printf 'x\\033[1m')\"",
+                "needle: unknown command 'x\\x1B[1m'; expected one of check, compare, kinematics, "
+                "spring, size, design, simulate, overspeed, synth, profile, tolerance (see needle "
+                "--help)\n");
+  ExpectRefused("kinematics \"/no/such$(printf '\\033[1m\\nx').toml\"",
+                "needle: /no/such\\x1B[1m\\nx.toml: cannot open the case file for reading\n");
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace needle
