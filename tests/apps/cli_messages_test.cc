@@ -137,5 +137,21 @@ TEST(CliMessagesTest, ControlCharactersStayOffTheTerminal) {
   std::filesystem::remove(path);
 }
 
+TEST(CliMessagesTest, AWarningsNumberShows) {
+  const auto b = RunNeedle("kinematics " + Case("basu-cam1b.toml"));
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_EQ(b.out.find("dips"), std::string::npos) << b.out;
+  const auto a = RunNeedle("kinematics " + Case("basu-cam1a.toml"));
+  EXPECT_NE(a.out.find("WARNING: the spline dips 0.0075 mm below the seat at 34.43 deg inside the "
+                       "open lift; try another spline kind\n"),
+            std::string::npos)
+      << a.out;
+  const std::string dir = testing::TempPath("dips");
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(RunNeedle("check " + Case("basu-cam1b.toml") + " --out " + dir).status, 0);
+  EXPECT_EQ(testing::Slurp(dir + "/basu-cam1b.html").find("spline dips"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace needle
