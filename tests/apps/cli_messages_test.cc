@@ -153,5 +153,26 @@ TEST(CliMessagesTest, AWarningsNumberShows) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CliMessagesTest, TheSpringCheckPrintsItsFatigueFactor) {
+  const auto text = RunNeedle("spring " + Case("basu-example2.toml"));
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("  fatigue (Goodman, Zimmerli's data, unpeened) safety factor 1.46 "
+                          "(>= 1) -> pass\n"),
+            std::string::npos)
+      << text.out;
+  const auto json = RunNeedle("spring " + Case("basu-example2.toml") + " --json");
+  const auto h = nlohmann::json::parse(json.out)["helical"];
+  EXPECT_NEAR(h["fatigue_safety_factor"].get<double>(), 1.46, 0.005);
+  EXPECT_TRUE(h["fatigue_judged"].get<bool>());
+  EXPECT_TRUE(h["fatigue_ok"].get<bool>());
+  const auto wide = RunNeedle("spring " + Case("basu-example1.toml"));
+  EXPECT_NE(wide.out.find("  fatigue not judged: wire 16.0 mm, Zimmerli's data cover wire below "
+                          "10 mm\n"),
+            std::string::npos)
+      << wide.out;
+  const auto wide_json = RunNeedle("spring " + Case("basu-example1.toml") + " --json");
+  EXPECT_TRUE(nlohmann::json::parse(wide_json.out)["helical"]["fatigue_safety_factor"].is_null());
+}
+
 }  // namespace
 }  // namespace needle
