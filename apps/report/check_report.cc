@@ -276,12 +276,12 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
     const SpringCheckResult& s = *spring;
     std::ostringstream t;
     t << "<h2>Spring</h2><table>";
-    if (s.basu_preload_N) {
-      t << Row("Basu's formula",
-               Fixed(*s.basu_preload_N / kKgf, 1) + " kgf; the case's spring " +
-                   Fixed(s.train.preload_N / kKgf, 1) + " kgf (" +
-                   Fixed(100 * (s.train.preload_N - *s.basu_preload_N) / *s.basu_preload_N, 1) +
-                   " %)");
+    if (s.basu_preload_N) {  // the row says what fails: the preload, against the formula
+      t << Row("Basu's formula", "preload " + Fixed(s.train.preload_N / kKgf, 1) + " kgf vs " +
+                                     Fixed(*s.basu_preload_N / kKgf, 1) + " kgf (" +
+                                     Fixed(*s.basu_deviation_percent, 1) + " %), tolerance " +
+                                     Fixed(s.basu_tolerance_percent, 1) +
+                                     " % below: " + Verdict(s.basu_ok));
     }
     t << Row("inertia force m·max|a|",
              Fixed(s.inertia_force_N / kKgf, 2) + " kgf (" + Fixed(s.inertia_force_N, 1) + " N)")
@@ -312,9 +312,7 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
     }
     t << Row("combustion load F_g", Fixed(s.gas_force_N / kKgf, 1) + " kgf (" +
                                         Escape(s.gas_source) + "); preload against S·F_g " +
-                                        Verdict(s.combustion_ok))
-      << Row("Basu's formula tolerance",
-             Fixed(s.basu_tolerance_percent, 1) + " % " + Verdict(s.basu_ok));
+                                        Verdict(s.combustion_ok));
     t << Row("spring check", Verdict(s.pass)) << "</table>";
     report.Fill(spring_, t.str());
   }

@@ -174,5 +174,18 @@ TEST(CliMessagesTest, TheSpringCheckPrintsItsFatigueFactor) {
   EXPECT_TRUE(nlohmann::json::parse(wide_json.out)["helical"]["fatigue_safety_factor"].is_null());
 }
 
+TEST(CliMessagesTest, BasusRowSaysWhatFails) {
+  const std::string dir = testing::TempPath("basu-row");
+  std::filesystem::create_directories(dir);
+  const auto r = RunNeedle("check " + Case("new-engine-weak-spring.toml") + " --out " + dir);
+  EXPECT_EQ(r.status, 1) << r.err;
+  const std::string html = testing::Slurp(dir + "/new-engine-weak-spring.html");
+  EXPECT_NE(html.find("<tr><th>Basu's formula</th><td>preload 40.0 kgf vs 206.2 kgf (-80.6 %), "
+                      "tolerance 10.0 % below: <span class=\"fail\">FAIL</span></td></tr>"),
+            std::string::npos);
+  EXPECT_EQ(html.find("Basu's formula tolerance"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace needle
