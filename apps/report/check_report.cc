@@ -360,14 +360,17 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
               std::to_string(sg.masses) + " coil masses'");
   }
   if (profile) {
+    const auto at = [&](double cam_rad) {
+      return CamAndCrank(c, result.cam_zero_crank_rad, cam_rad, 1, "°");
+    };
     std::ostringstream t;
     t << "<h2>Cam profile</h2><table>"
       << Row("largest |pressure angle|",
-             Fixed(std::abs(profile->max_pressure_angle_rad) / kDeg, 2) + "° at cam " +
-                 Fixed(profile->max_pressure_angle_at_rad / kDeg, 1) + "°")
-      << Row("least profile radius (convex)",
-             Fixed(profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
-                 Fixed(profile->min_profile_radius_at_rad / kDeg, 1) + "°")
+             Fixed(std::abs(profile->max_pressure_angle_rad) / kDeg, 2) + "° at " +
+                 at(profile->max_pressure_angle_at_rad))
+      << Row("least profile radius (convex)", Fixed(profile->min_profile_radius_m * 1e3, 2) +
+                                                  " mm at " +
+                                                  at(profile->min_profile_radius_at_rad))
       << Row("undercut", profile->undercut ? "<span class=\"fail\">UNDERCUT</span>"
                                            : "<span class=\"pass\">none</span>")
       << "</table>";

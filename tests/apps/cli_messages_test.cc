@@ -137,6 +137,8 @@ TEST(CliMessagesTest, ControlCharactersStayOffTheTerminal) {
   std::filesystem::remove(path);
 }
 
+// Basu's cam 1b's not-a-knot spline reaches -1e-16 mm at its last point: a warning that would
+// print "dips 0.0000 mm" is not given; cam 1a's 0.0075 mm is.
 TEST(CliMessagesTest, AWarningsNumberShows) {
   const auto b = RunNeedle("kinematics " + Case("basu-cam1b.toml"));
   ASSERT_EQ(b.status, 0) << b.err;
@@ -153,6 +155,8 @@ TEST(CliMessagesTest, AWarningsNumberShows) {
   std::filesystem::remove_all(dir);
 }
 
+// The spring check's pass includes Goodman's fatigue factor (n_f >= 1 on Zimmerli's data):
+// `needle spring` prints it, and says where it is not judged.
 TEST(CliMessagesTest, TheSpringCheckPrintsItsFatigueFactor) {
   const auto text = RunNeedle("spring " + Case("basu-example2.toml"));
   ASSERT_EQ(text.status, 0) << text.err;
@@ -174,6 +178,7 @@ TEST(CliMessagesTest, TheSpringCheckPrintsItsFatigueFactor) {
   EXPECT_TRUE(nlohmann::json::parse(wide_json.out)["helical"]["fatigue_safety_factor"].is_null());
 }
 
+// The report's Basu row says what is judged against what: the preload against the formula.
 TEST(CliMessagesTest, BasusRowSaysWhatFails) {
   const std::string dir = testing::TempPath("basu-row");
   std::filesystem::create_directories(dir);
@@ -184,6 +189,30 @@ TEST(CliMessagesTest, BasusRowSaysWhatFails) {
                       "tolerance 10.0 % below: <span class=\"fail\">FAIL</span></td></tr>"),
             std::string::npos);
   EXPECT_EQ(html.find("Basu's formula tolerance"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// A cam angle counts from the rise's foot (the ramp's on a case with play); the crank angle of
+// the lift table there is given beside it. Basu's cam 4 on an 8 mm base circle undercuts.
+TEST(CliMessagesTest, ACamAngleComesWithItsCrankAngle) {
+  const std::string dir = testing::TempPath("crank");
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/undercut.toml";
+  std::ofstream(path) << testing::Slurp(Case("basu-cam4.toml"))
+                      << "[profile]\nbase_radius_mm = 8\nroller_radius_mm = 12\n";
+  const auto p = RunNeedle("profile " + path);
+  EXPECT_EQ(p.status, 1);
+  EXPECT_NE(p.out.find("profile radius of curvature min -10.481 mm at cam 17.50 deg (crank 20.00 "
+                       "deg); UNDERCUT\n"),
+            std::string::npos)
+      << p.out;
+  const auto c = RunNeedle("check " + path + " --out " + dir);
+  EXPECT_NE(c.out.find("fails: cam profile: the profile undercuts: least radius -10.48 mm at cam "
+                       "17.5° (crank 20.0°)\n"),
+            std::string::npos)
+      << c.out;
+  EXPECT_NE(testing::Slurp(dir + "/undercut.html").find("-10.48 mm at cam 17.5° (crank 20.0°)"),
+            std::string::npos);
   std::filesystem::remove_all(dir);
 }
 
