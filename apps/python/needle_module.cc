@@ -342,7 +342,7 @@ PYBIND11_MODULE(needle, m) {
           RequireSpeedOf(c, std::nullopt, "");
           result = RunToleranceSamples(c, o);
         }
-        return ShardArrays(result, o.first_sample);
+        return ShardArrays(result, o.seed, o.first_sample);
       },
       py::arg("text"), py::kw_only(), py::arg("path"), py::arg("seed"), py::arg("first_sample"),
       py::arg("samples"), py::arg("threads") = 1, py::arg("shown_as") = py::none(),
@@ -373,7 +373,7 @@ PYBIND11_MODULE(needle, m) {
         const auto c = CaseOf(source, "tolerance_reduce");
         ToleranceOptions o;
         SetStudyKeywords(o, seed, first_sample, threads);
-        std::vector<ToleranceSample> samples = ShardSamples(shards);
+        std::vector<ToleranceSample> samples = ShardSamples(shards, o.seed);
         o.samples = static_cast<int>(samples.size());
         return Run([&] {
           ToleranceResult r = ReduceToleranceStudy(*c, o, std::move(samples));

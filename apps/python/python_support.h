@@ -153,12 +153,15 @@ py::dict Run(Compute compute,
   return Result(r);
 }
 
-// A shard's samples as arrays: each quantity a column (its keys in order), whether the sample
-// has it (a refused sample has no outputs), pass, the failing items and the refusals.
-py::dict ShardArrays(const std::vector<ToleranceSample>& samples, int first_sample);
+// A shard's samples as arrays (python_shards.cc): each quantity a column (its keys in order),
+// whether the sample has it (a refused sample has no outputs), pass, the failing items and the
+// refusals, with the seed of its study and its first sample.
+py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed, int first_sample);
 
-// The samples of shards as ShardArrays gives them (or read back from its files), in order.
-std::vector<ToleranceSample> ShardSamples(const py::sequence& shards);
+// The samples of shards as ShardArrays gives them (or read back from its files), in order. A
+// shard with a key it does not write, without one it does, or of another seed than `seed` is
+// refused (CaseError naming the shard and the key or both seeds).
+std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed);
 
 // The folder of this module's file: needle.distributed and the package's Python files live in
 // its subfolder `needle` (the module is a package whose __init__ is compiled).
