@@ -352,6 +352,50 @@ void RequireSpeedOf(const Case& c, const std::optional<double>& rpm, const std::
                             keyword + "=");
 }
 
+void CheckCalls(py::module_& m, const char* name, const Signature& s) {
+  const py::object original = m.attr(name);
+  const auto list = [&s](size_t from, size_t to) {
+    std::string out;
+    for (size_t i = from; i < to; ++i) out += (i == from ? "" : ", ") + s.names[i];
+    return out;
+  };
+  const std::string function = std::string(name) + "()", all = list(0, s.names.size());
+  const std::string by_position = list(0, s.positional),
+                    by_keyword = list(s.positional, s.names.size());
+  const auto check = [=](const py::args& args, const py::kwargs& kwargs) {
+    if (args.size() > s.positional)
+      throw py::type_error(function + " takes " + std::to_string(s.positional) +
+                           " positional argument(s) (" + by_position + "), got " +
+                           std::to_string(args.size()) +
+                           (by_keyword.empty() ? "" : "; give " + by_keyword + " by keyword"));
+    for (const auto& [key, value] : kwargs) {
+      const std::string k = py::str(key);
+      const auto at = std::find(s.names.begin(), s.names.end(), k);
+      if (at == s.names.end())
+        throw py::type_error(function + " got an unexpected keyword argument '" + k +
+                             "'; expected one of " + all);
+      if (static_cast<size_t>(at - s.names.begin()) < args.size())
+        throw py::type_error(function + " got argument '" + k +
+                             "' by position and by keyword; it takes " + all);
+    }
+    for (size_t i = args.size(); i < s.names.size(); ++i) {
+      const std::string& n = s.names[i];
+      const bool required = std::find(s.required.begin(), s.required.end(), n) != s.required.end();
+      if (required && !kwargs.contains(py::str(n)))
+        throw py::type_error(function + " missing the argument '" + n + "'; it takes " + all);
+    }
+  };
+  py::options options;
+  options.disable_function_signatures();  // the original's doc below starts with its own
+  m.attr(name) = py::cpp_function(
+      [original, check](const py::args& args, const py::kwargs& kwargs) -> py::object {
+        check(args, kwargs);
+        return original(*args, **kwargs);
+      },
+      py::name(name), py::scope(m),
+      py::doc(py::str(original.attr("__doc__")).cast<std::string>().c_str()));
+}
+
 std::string ModuleFolder() {
   Dl_info info{};
   if (dladdr(reinterpret_cast<void*>(&ModuleFolder), &info) == 0 || info.dli_fname == nullptr)
