@@ -121,9 +121,13 @@ std::vector<Field> HelicalFields(const HelicalSpringCheck& h) {
       {"surge", kHz, h.surge_hz, 1},
       {"cam", kHz, h.cam_hz, 3},
       {"surge_ratio", kNone, h.surge_ratio, 1},
+      {"fatigue_safety_factor", kNone,
+       h.fatigue_judged ? FiniteOrNone(h.fatigue.goodman_safety_factor) : std::nullopt, 2},
       FlagField("stress_ok", h.stress_ok),
       FlagField("clearance_ok", h.clearance_ok),
       FlagField("surge_ok", h.surge_ok),
+      FlagField("fatigue_judged", h.fatigue_judged),
+      FlagField("fatigue_ok", h.fatigue_ok),
       FlagField("pass", h.pass()),
   };
 }

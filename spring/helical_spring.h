@@ -57,7 +57,8 @@ struct HelicalSpringCheck {
 
 /// The check as fields (lib/result_fields.h): rate (N/mm), index, correction and its factor,
 /// the stresses (MPa), coils, lengths and clearances (mm), surge and cam (Hz) and their ratio,
-/// each sub-verdict and the whole.
+/// the Goodman fatigue factor n_f (none where not judged, or unbounded), each sub-verdict and
+/// the whole.
 std::vector<Field> HelicalFields(const HelicalSpringCheck& h);
 
 /// The rate R = G d⁴ / (8 D³ n) of `g`, N/m.

@@ -1,9 +1,13 @@
 #include "apps/case/case_profile.h"
 
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 
 #include "dynamics/model/cam_input.h"
+#include "lib/engine_cycle.h"
+#include "lib/output.h"
+#include "lib/units.h"
 
 namespace needle {
 
@@ -11,6 +15,18 @@ FollowerGeometry CaseFollower(const Case& c) {
   if (!c.profile)
     throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
   return c.profile->follower;
+}
+
+double CrankOfCam(const Case& c, double cam_zero_crank_rad, double cam_rad) {
+  const double k = CrankTurnsPerCycle(c.engine.cycle), cycle_rad = 2 * kPi * k;
+  const double from_zero = k * cam_rad - cycle_rad * std::floor(k * cam_rad / cycle_rad);
+  return cam_zero_crank_rad + from_zero - (from_zero >= cycle_rad / 2 ? cycle_rad : 0.0);
+}
+
+std::string CamAndCrank(const Case& c, double cam_zero_crank_rad, double cam_rad, int decimals,
+                        const std::string& degree) {
+  return "cam " + Fixed(cam_rad / kDeg, decimals) + degree + " (crank " +
+         Fixed(CrankOfCam(c, cam_zero_crank_rad, cam_rad) / kDeg, decimals) + degree + ")";
 }
 
 CamProfile MakeCaseProfile(const Case& c, const LiftLaw& law, double* cam_zero_crank_rad) {

@@ -9,6 +9,7 @@
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
 #include "apps/report/check_writers.h"
+#include "apps/report/command_output.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
 #include "apps/study/check_scene.h"
@@ -56,7 +57,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
     std::cout << FormatObject(CheckJson(c, law, result, path), o.format);
     return result.pass ? 0 : 1;
   }
-  std::cout << CheckText(c, result, path, report.figures()) << std::flush;
+  PrintText(CheckText(c, result, path, report.figures()));
   return result.pass ? 0 : 1;
 }
 

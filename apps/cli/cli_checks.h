@@ -1,11 +1,15 @@
 #pragma once
 /// @file
 /// Ranges of the command-line options, in one place: a value outside gets one line naming the
-/// option, the range and the value (CLI11 prefixes the option), exit 2. NaN and ±∞ never pass.
+/// option, the range and the value (CLI11 prefixes the option), exit 2. NaN and ±∞ never pass,
+/// and a number is decimal as typed: CLI11 and std::stod alone read "0x10" as 16 and a whole
+/// "010" as octal 8.
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -14,19 +18,44 @@
 
 namespace needle {
 
+/// A decimal number as typed: digits with a sign, a point and an exponent, each optional.
+inline bool IsDecimal(const std::string& s) {
+  static const std::regex decimal(R"([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)");
+  return std::regex_match(s, decimal);
+}
+
 /// A number in [lo, hi] (`what` names the quantity and unit, e.g. "a speed in rpm").
 inline CLI::Validator NumberIn(double lo, double hi, const std::string& what) {
   return CLI::Validator(
       [lo, hi, what](std::string& s) -> std::string {
         double v = NAN;
         try {
-          size_t used = 0;
-          v = std::stod(s, &used);
-          if (used != s.size()) v = NAN;
-        } catch (const std::exception&) {
+          if (IsDecimal(s)) v = std::stod(s);
+        } catch (const std::out_of_range&) {  // beyond a double: refused below
         }
         if (std::isfinite(v) && v >= lo && v <= hi) return {};
         return RangeRule(lo, hi, what, s);
+      },
+      what, "");
+}
+
+/// Whether `s` is decimal digits only; if so, without its leading zeros ("007" → "7").
+inline bool DropLeadingZeros(std::string& s) {
+  if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) return false;
+  s.erase(0, std::min(s.find_first_not_of('0'), s.size() - 1));
+  return true;
+}
+
+/// A whole number in `r` in decimal digits, its leading zeros dropped (a transform: CLI11 reads
+/// the value after it, and would take "010" as octal).
+inline CLI::Validator WholeIn(const PlausibleRange& r, const std::string& what) {
+  return CLI::Validator(
+      [r, what](std::string& s) -> std::string {
+        const std::string given = s;
+        if (DropLeadingZeros(s) && s.size() <= 15 && std::stod(s) >= r.lo && std::stod(s) <= r.hi)
+          return {};
+        return "expected " + what + " in [" + std::to_string(std::llround(r.lo)) + ", " +
+               std::to_string(std::llround(r.hi)) + "], got " + given;
       },
       what, "");
 }
@@ -48,14 +77,15 @@ inline void AddSpeedOption(CLI::App* cmd, std::optional<double>& speed_rpm,
 }
 
 /// A 64-bit seed: digits only, at most 18446744073709551615 (CLI11 alone took a longer number
-/// without a word).
+/// without a word), its leading zeros dropped (a transform, as WholeIn).
 inline CLI::Validator Seed() {
   return CLI::Validator(
       [](std::string& s) -> std::string {
-        const bool digits =
-            !s.empty() && s.size() <= 20 && s.find_first_not_of("0123456789") == std::string::npos;
-        if (digits && (s.size() < 20 || s <= "18446744073709551615")) return {};
-        return "expected a whole number in " + RangeText(kSeedRange) + ", got " + s;
+        const std::string given = s;
+        if (DropLeadingZeros(s) &&
+            (s.size() < 20 || (s.size() == 20 && s <= "18446744073709551615")))
+          return {};
+        return "expected a whole number in " + RangeText(kSeedRange) + ", got " + given;
       },
       "SEED", "");
 }

@@ -6,6 +6,7 @@
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
+#include "apps/report/command_output.h"
 #include "apps/report/compare_writer.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
@@ -41,8 +42,11 @@ int RunCompareCommand(const CompareCommandOptions& o) {
                        [&](int done, int total) { bar.Update(done, total); });
   }
   WriteOutput({"--out", path}, CompareReport(cmp).Html(gnuplot));
-  std::cout << (o.json ? FormatObject(CompareJson(cmp, path), o.format) : CompareText(cmp, path))
-            << std::flush;
+  if (o.json) {
+    std::cout << FormatObject(CompareJson(cmp, path), o.format) << std::flush;
+  } else {
+    PrintText(CompareText(cmp, path));
+  }
   return cmp.status();
 }
 

@@ -19,11 +19,12 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
   AddSpeedOption(cmd, o.run.speed_rpm);
   cmd->add_option("--method", o.run.method, MethodList() + " (default: [solver] method or auto)");
-  cmd->add_option("--rtol", o.run.rtol, "relative tolerance (default: [solver] rtol or 1e-8)");
+  cmd->add_option("--rtol", o.run.rtol, "relative tolerance (default: [solver] rtol or 1e-8)")
+      ->check(InRange(kRtolRange, "a relative tolerance"));
   cmd->add_option("--cycles", o.run.cycles,
                   "cam revolutions run back to back, the state carried over, until the state "
                   "repeats (default: [solver] cycles or 1)")
-      ->check(CLI::Range(1, static_cast<int>(kCyclesRange.hi)));
+      ->transform(WholeIn(kCyclesRange, "a number of cam revolutions"));
   cmd->add_flag("--dynamic", o.run.dynamic,
                 "run the dynamics even where the rigid answer would be reported");
   cmd->add_flag("--json", o.json, "print one JSON object");
@@ -62,9 +63,10 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
          "the rated speed)")
       ->check(SpeedRpm());
   cmd->add_option("--method", o.search.method, MethodList());
-  cmd->add_option("--rtol", o.search.rtol, "relative tolerance");
+  cmd->add_option("--rtol", o.search.rtol, "relative tolerance")
+      ->check(InRange(kRtolRange, "a relative tolerance"));
   cmd->add_option("--threads", o.search.threads, "threads (default and most: all cores)")
-      ->check(CLI::Range(0, static_cast<int>(kThreadsRange.hi)));
+      ->transform(WholeIn(kThreadsRange, "a number of threads"));
   cmd->add_option("--step-rpm", o.search.step_rpm,
                   "scan step where the contact force gives no guidance (default 2.5 % of --from, "
                   "at least 1 rpm); elsewhere the force leads the steps (docs/model.md section 6)")

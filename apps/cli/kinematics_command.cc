@@ -46,14 +46,15 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
     throw CaseError("--rpm: " + o.case_path +
                     " is a bare CSV lift table with no [engine] speed_rpm; give --rpm");
   }
-  Case c =
-      bare_csv ? CaseFromLiftCsv(o.case_path, *ParseEngineCycle(o.cycle)) : LoadCase(o.case_path);
+  if (!bare_csv && o.cycle)
+    throw CaseError("--cycle: applies to a bare CSV table; a case file states [engine] cycle");
+  if (!bare_csv && o.noise_mm)
+    throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
+  Case c = bare_csv
+               ? CaseFromLiftCsv(o.case_path, *ParseEngineCycle(o.cycle.value_or("four-stroke")))
+               : LoadCase(o.case_path);
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
-  if (o.noise_mm) {
-    if (!bare_csv)
-      throw CaseError("--noise-mm: only for a bare CSV table; a case states [lift] noise_mm");
-    c.lift.noise_m = *o.noise_mm * 1e-3;
-  }
+  if (o.noise_mm) c.lift.noise_m = *o.noise_mm * 1e-3;
   const KinematicsTable table = MakeKinematicsTable(std::move(c), o.table);
   return Emit(WriteKinematics(table, {o.json, o.csv.has_value(), o.units == "paper"}), o.format,
               o.csv);

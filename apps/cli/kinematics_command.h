@@ -21,8 +21,9 @@ struct KinematicsCommandOptions {
   bool json = false;             ///< print one JSON object instead of the table
   OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
   std::optional<std::string> csv;             ///< also write the table as CSV, atomically
-  /// A bare CSV lift table as CASE: its cycle (for cam_deg columns) and its noise σ, mm.
-  std::string cycle = "four-stroke";
+  /// A bare CSV lift table as CASE: its cycle (for cam_deg columns; four-stroke when not given)
+  /// and its noise σ, mm. A case file states both itself: either given with one is refused.
+  std::optional<std::string> cycle;
   std::optional<double> noise_mm;
 };
 

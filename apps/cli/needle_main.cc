@@ -19,6 +19,7 @@
 #include "apps/cli/tolerance_command.h"
 #include "apps/report/output_format.h"
 #include "apps/report/output_paths.h"
+#include "lib/case_error.h"
 
 namespace {
 
@@ -64,8 +65,8 @@ int main(int argc, char** argv) {
       names += (names.empty() ? "" : ", ") + c.app->get_name();
     }
     if (!known) {
-      std::cerr << "needle: unknown command '" << argv[1] << "'; expected one of " << names
-                << " (see needle --help)\n";
+      std::cerr << "needle: unknown command '" << needle::EscapeControls(argv[1], false)
+                << "'; expected one of " << names << " (see needle --help)\n";
       return 2;
     }
   }
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "needle: " << e.what() << " (see needle --help)\n";
+    std::cerr << "needle: " << needle::EscapeControls(e.what(), false) << " (see needle --help)\n";
     return 2;
   }
   const auto run = [&commands]() -> int {
@@ -93,13 +94,13 @@ int main(int argc, char** argv) {
         return status;
       }
     } catch (const needle::CaseError& e) {
-      std::cerr << "needle: " << e.what() << '\n';
+      std::cerr << "needle: " << needle::EscapeControls(e.what(), false) << '\n';
       return 2;
     } catch (const std::invalid_argument& e) {
-      std::cerr << "needle: " << e.what() << '\n';
+      std::cerr << "needle: " << needle::EscapeControls(e.what(), false) << '\n';
       return 2;
     } catch (const std::exception& e) {
-      std::cerr << "needle: error: " << e.what() << '\n';
+      std::cerr << "needle: error: " << needle::EscapeControls(e.what(), false) << '\n';
       return 3;
     }
     return 0;

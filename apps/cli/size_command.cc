@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "apps/cli/cli_checks.h"
 #include "apps/report/output_paths.h"
 #include "apps/report/size_writer.h"
 #include "apps/study/spring_sizing_scene.h"
@@ -17,7 +18,7 @@ CLI::App* AddSizeCommand(CLI::App& app, SizeCommandOptions& o) {
   cmd->add_option("--case", o.case_out, "write the case with the sized spring");
   cmd->add_option("--threads", o.sizing.threads,
                   "threads of the verification's sweeps (0: all cores)")
-      ->check(CLI::Range(0, 256));
+      ->transform(WholeIn(kThreadsRange, "a number of threads"));
   cmd->add_flag("--json", o.json, "print one JSON object");
   return cmd;
 }

@@ -9,6 +9,7 @@
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
+#include "apps/report/command_output.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
@@ -25,14 +26,14 @@ CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& o) {
   cmd->add_option("CASE", o.case_path, "case file; its [tolerance] section gives the scatter")
       ->required();
   cmd->add_option("--samples", o.samples, "number of samples (default 1000)")
-      ->check(CLI::Range(1, static_cast<int>(kSamplesRange.hi)));
+      ->transform(WholeIn(kSamplesRange, "a number of samples"));
   cmd->add_option("--seed", o.seed, "the study's seed (default 1): the same seed, the same study")
-      ->check(Seed());
+      ->transform(Seed());
   cmd->add_option("--first-sample", o.first_sample,
                   "index of the first sample (default 0): a shard of a larger study")
-      ->check(CLI::Range(0, static_cast<int>(kFirstSampleRange.hi)));
+      ->transform(WholeIn(kFirstSampleRange, "a sample number"));
   cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
-      ->check(CLI::Range(0, static_cast<int>(kThreadsRange.hi)));
+      ->transform(WholeIn(kThreadsRange, "a number of threads"));
   cmd->add_option("--out", o.out_dir, "write the report with the histograms to this folder");
   cmd->add_flag("--json", o.json, "print one JSON object (every sample's inputs and outputs too)");
   return cmd;
@@ -68,7 +69,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o) {
     std::cout << FormatObject(j, o.format);
     return 0;
   }
-  std::cout << ToleranceText(c, r, o.seed, report_path) << std::flush;
+  PrintText(ToleranceText(c, r, o.seed, report_path));
   return 0;
 }
 

@@ -132,8 +132,8 @@ PYBIND11_MODULE(needle, m) {
           "A deep copy of the sections: a dict load_case takes back")
       .def("__repr__", [](const PyCase& c) { return "<needle.Case " + c.name + ">"; });
 
-  m.def(
-      "load_case",
+  Def(
+      m, "load_case",
       [](const py::object& source, const std::optional<std::string>& name,
          const py::object& cycle) { return LoadAnyCase(source, name, cycle, "load_case"); },
       arg("source"), py::kw_only(), arg("name") = py::none(), arg("cycle") = py::none(),
@@ -141,8 +141,8 @@ PYBIND11_MODULE(needle, m) {
       "`cycle`, 'four-stroke' by default, or 'two-stroke'), a dict with the case file's sections "
       "(`name` is its path in messages and relative paths), or a needle.Case (a copy).");
 
-  m.def(
-      "kinematics",
+  Def(
+      m, "kinematics",
       [](const py::object& source, const py::object& rpm, const py::object& step_deg,
          const py::object& spline) {
         const auto c = CaseOf(source, "kinematics");
@@ -164,8 +164,8 @@ PYBIND11_MODULE(needle, m) {
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("step_deg") = 5.0,
       arg("spline") = py::none(), "needle kinematics: the velocity and acceleration table");
 
-  m.def(
-      "spring",
+  Def(
+      m, "spring",
       [](const py::object& source, const py::object& rpm) {
         const auto c = CaseOf(source, "spring");
         const std::optional<double> speed = Speed(rpm, "rpm");
@@ -175,8 +175,8 @@ PYBIND11_MODULE(needle, m) {
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), "needle spring: the spring check");
 
-  m.def(
-      "size",
+  Def(
+      m, "size",
       [](const py::object& source) {
         const auto c = CaseOf(source, "size");
         return Run([&] {
@@ -189,8 +189,8 @@ PYBIND11_MODULE(needle, m) {
       "needle size: the lightest spring that passes every limit, verified by the check (the "
       "JSON object of `needle size --json`)");
 
-  m.def(
-      "simulate",
+  Def(
+      m, "simulate",
       [](const py::object& source, const py::object& rpm, const py::object& method,
          const py::object& rtol, const py::object& dynamic, const py::object& series) {
         const auto c = CaseOf(source, "simulate");
@@ -210,8 +210,8 @@ PYBIND11_MODULE(needle, m) {
       arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
       "needle simulate: one dynamic run (series=True: the time series under 'columns')");
 
-  m.def(
-      "overspeed",
+  Def(
+      m, "overspeed",
       [](const py::object& source, const py::object& from_rpm, const py::object& to_rpm,
          const py::object& step_rpm, const py::object& method, const py::object& rtol,
          const py::object& threads) {
@@ -237,8 +237,8 @@ PYBIND11_MODULE(needle, m) {
       arg("step_rpm") = py::none(), arg("method") = py::none(), arg("rtol") = py::none(),
       arg("threads") = 0, "needle overspeed: the dynamic lift-off speed n_dyn beside n_qs");
 
-  m.def(
-      "check",
+  Def(
+      m, "check",
       [](const py::object& source, const py::object& rpm) {
         const auto c = CaseOf(source, "check");
         CheckOptions options;
@@ -260,8 +260,8 @@ PYBIND11_MODULE(needle, m) {
       "needle check: everything the scene needs, one verdict (the dict of check --json; no "
       "report)");
 
-  m.def(
-      "compare",
+  Def(
+      m, "compare",
       [](const py::object& a, const py::object& b, const py::object& rpm) {
         const auto ca = CaseOf(a, "compare"), cb = CaseOf(b, "compare");
         const std::optional<double> speed = Speed(rpm, "rpm");
@@ -282,8 +282,8 @@ PYBIND11_MODULE(needle, m) {
       arg("a"), arg("b"), py::kw_only(), arg("rpm") = py::none(),
       "needle compare: two designs checked side by side, the verdicts that flip");
 
-  m.def(
-      "design",
+  Def(
+      m, "design",
       [](const py::object& engine, std::optional<std::string> name) {
         const DesignInputs in =
             FromPathOrDict(engine, name, "design", LoadDesignInputs, ParseDesignInputs);
@@ -292,8 +292,8 @@ PYBIND11_MODULE(needle, m) {
       arg("engine"), py::kw_only(), arg("name") = py::none(),
       "needle design: Basu's design chain from an engine file or dict");
 
-  m.def(
-      "synth",
+  Def(
+      m, "synth",
       [](const py::object& spec, std::optional<std::string> name) {
         const SynthesisFile f =
             FromPathOrDict(spec, name, "synth", LoadSynthesisFile, ParseSynthesisFile);
@@ -304,8 +304,8 @@ PYBIND11_MODULE(needle, m) {
       arg("spec"), py::kw_only(), arg("name") = py::none(),
       "needle synth: a rise law under derivative limits, from a spec file or dict");
 
-  m.def(
-      "tolerance",
+  Def(
+      m, "tolerance",
       [](const py::object& source, const py::object& samples, const py::object& seed,
          const py::object& first_sample, const py::object& threads) {
         const auto c = CaseOf(source, "tolerance");
@@ -325,8 +325,8 @@ PYBIND11_MODULE(needle, m) {
       "needle tolerance: a Monte-Carlo study (samples [first_sample, first_sample + samples) of "
       "the seed's study: shards of one study on several machines are its parts)");
 
-  m.def(
-      "tolerance_shard",
+  Def(
+      m, "tolerance_shard",
       [](const std::string& text, const std::string& path, const py::object& seed,
          const py::object& first_sample, const py::object& samples, const py::object& threads,
          const std::optional<std::string>& shown_as) {
@@ -342,7 +342,7 @@ PYBIND11_MODULE(needle, m) {
           RequireSpeedOf(c, std::nullopt, "");
           result = RunToleranceSamples(c, o);
         }
-        return ShardArrays(result, o.first_sample);
+        return ShardArrays(result, o.seed, o.first_sample);
       },
       py::arg("text"), py::kw_only(), py::arg("path"), py::arg("seed"), py::arg("first_sample"),
       py::arg("samples"), py::arg("threads") = 1, py::arg("shown_as") = py::none(),
@@ -352,8 +352,8 @@ PYBIND11_MODULE(needle, m) {
       "input_keys/inputs/input_present, output_keys/outputs/output_present (samples × keys), "
       "pass, failing (each sample's failing items), refused (the model's reason, or '')");
 
-  m.def(
-      "case_text",
+  Def(
+      m, "case_text",
       [](const py::object& source) {
         if (py::isinstance<PyCase>(source)) {
           PyCase& c = source.cast<PyCase&>();
@@ -366,14 +366,14 @@ PYBIND11_MODULE(needle, m) {
       "The TOML text of a case (a path, a needle.Case or a dict), validated: what the loader "
       "reads back as the same case (tolerance_shard's `text`)");
 
-  m.def(
-      "tolerance_reduce",
+  Def(
+      m, "tolerance_reduce",
       [](const py::object& source, const py::sequence& shards, const py::object& seed,
          const py::object& first_sample, const py::object& threads, double seconds) {
         const auto c = CaseOf(source, "tolerance_reduce");
         ToleranceOptions o;
         SetStudyKeywords(o, seed, first_sample, threads);
-        std::vector<ToleranceSample> samples = ShardSamples(shards);
+        std::vector<ToleranceSample> samples = ShardSamples(shards, o.seed);
         o.samples = static_cast<int>(samples.size());
         return Run([&] {
           ToleranceResult r = ReduceToleranceStudy(*c, o, std::move(samples));
@@ -389,8 +389,8 @@ PYBIND11_MODULE(needle, m) {
       "starting at first_sample): what needle.tolerance returns for those samples, computed by "
       "the same code (threads and seconds: what the report states of the run)");
 
-  m.def(
-      "profile",
+  Def(
+      m, "profile",
       [](const py::object& source) {
         const auto c = CaseOf(source, "profile");
         RequireSpeedOf(*c, std::nullopt, "");

@@ -352,91 +352,48 @@ void RequireSpeedOf(const Case& c, const std::optional<double>& rpm, const std::
                             keyword + "=");
 }
 
-py::dict ShardArrays(const std::vector<ToleranceSample>& samples, int first_sample) {
-  const auto table = [&](auto member, const char* keys_name, const char* values_name,
-                         const char* present_name, py::dict& out) {
-    std::vector<std::string> keys;
-    for (const ToleranceSample& s : samples)
-      for (const auto& [k, v] : s.*member)
-        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
-    std::sort(keys.begin(), keys.end());
-    const auto n = static_cast<py::ssize_t>(samples.size());
-    const auto m = static_cast<py::ssize_t>(keys.size());
-    py::array_t<double> values({n, m});
-    py::array_t<bool> present({n, m});
-    auto v = values.mutable_unchecked<2>();
-    auto p = present.mutable_unchecked<2>();
-    for (py::ssize_t i = 0; i < n; ++i) {
-      const auto& map = samples[i].*member;
-      for (py::ssize_t j = 0; j < m; ++j) {
-        const auto it = map.find(keys[j]);
-        p(i, j) = it != map.end();
-        v(i, j) = it != map.end() ? it->second : NAN;
-      }
-    }
-    out[keys_name] = keys;
-    out[values_name] = std::move(values);
-    out[present_name] = std::move(present);
+void CheckCalls(py::module_& m, const char* name, const Signature& s) {
+  const py::object original = m.attr(name);
+  const auto list = [&s](size_t from, size_t to) {
+    std::string out;
+    for (size_t i = from; i < to; ++i) out += (i == from ? "" : ", ") + s.names[i];
+    return out;
   };
-  py::dict out;
-  out["first_sample"] = first_sample;
-  out["samples"] = samples.size();
-  table(&ToleranceSample::inputs, "input_keys", "inputs", "input_present", out);
-  table(&ToleranceSample::outputs, "output_keys", "outputs", "output_present", out);
-  py::array_t<bool> pass(static_cast<py::ssize_t>(samples.size()));
-  std::vector<std::vector<std::string>> failing;
-  std::vector<std::string> refused;
-  for (size_t i = 0; i < samples.size(); ++i) {
-    pass.mutable_data()[i] = samples[i].pass;
-    failing.push_back(samples[i].failing);
-    refused.push_back(samples[i].refused);
-  }
-  out["pass"] = std::move(pass);
-  out["failing"] = failing;
-  out["refused"] = refused;
-  return out;
-}
-
-std::vector<ToleranceSample> ShardSamples(const py::sequence& shards) {
-  std::vector<ToleranceSample> samples;
-  for (const auto& handle : shards) {
-    const py::dict shard = py::reinterpret_borrow<py::object>(handle).cast<py::dict>();
-    const auto n = shard["samples"].cast<py::ssize_t>();
-    const size_t base = samples.size();
-    samples.resize(base + n);
-    const auto table = [&](auto member, const char* keys_name, const char* values_name,
-                           const char* present_name) {
-      const auto keys = shard[keys_name].cast<std::vector<std::string>>();
-      const auto values =
-          shard[values_name].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
-      const auto present =
-          shard[present_name].cast<py::array_t<bool, py::array::c_style | py::array::forcecast>>();
-      const auto m = static_cast<py::ssize_t>(keys.size());
-      if (values.ndim() != 2 || values.shape(0) != n || values.shape(1) != m ||
-          present.ndim() != 2 || present.shape(0) != n || present.shape(1) != m)
-        throw CaseError(std::string("a shard's ") + values_name + " is not samples × keys");
-      const auto v = values.unchecked<2>();
-      const auto p = present.unchecked<2>();
-      for (py::ssize_t i = 0; i < n; ++i)
-        for (py::ssize_t j = 0; j < m; ++j)
-          if (p(i, j)) (samples[base + i].*member)[keys[j]] = v(i, j);
-    };
-    table(&ToleranceSample::inputs, "input_keys", "inputs", "input_present");
-    table(&ToleranceSample::outputs, "output_keys", "outputs", "output_present");
-    const auto pass =
-        shard["pass"].cast<py::array_t<bool, py::array::c_style | py::array::forcecast>>();
-    const auto failing = shard["failing"].cast<std::vector<std::vector<std::string>>>();
-    const auto refused = shard["refused"].cast<std::vector<std::string>>();
-    if (pass.ndim() != 1 || pass.shape(0) != n || failing.size() != static_cast<size_t>(n) ||
-        refused.size() != static_cast<size_t>(n))
-      throw CaseError("a shard's pass, failing or refused is not one per sample");
-    for (py::ssize_t i = 0; i < n; ++i) {
-      samples[base + i].pass = pass.data()[i];
-      samples[base + i].failing = failing[i];
-      samples[base + i].refused = refused[i];
+  const std::string function = std::string(name) + "()", all = list(0, s.names.size());
+  const std::string by_position = list(0, s.positional),
+                    by_keyword = list(s.positional, s.names.size());
+  const auto check = [=](const py::args& args, const py::kwargs& kwargs) {
+    if (args.size() > s.positional)
+      throw py::type_error(function + " takes " + std::to_string(s.positional) +
+                           " positional argument(s) (" + by_position + "), got " +
+                           std::to_string(args.size()) +
+                           (by_keyword.empty() ? "" : "; give " + by_keyword + " by keyword"));
+    for (const auto& [key, value] : kwargs) {
+      const std::string k = py::str(key);
+      const auto at = std::find(s.names.begin(), s.names.end(), k);
+      if (at == s.names.end())
+        throw py::type_error(function + " got an unexpected keyword argument '" + k +
+                             "'; expected one of " + all);
+      if (static_cast<size_t>(at - s.names.begin()) < args.size())
+        throw py::type_error(function + " got argument '" + k +
+                             "' by position and by keyword; it takes " + all);
     }
-  }
-  return samples;
+    for (size_t i = args.size(); i < s.names.size(); ++i) {
+      const std::string& n = s.names[i];
+      const bool required = std::find(s.required.begin(), s.required.end(), n) != s.required.end();
+      if (required && !kwargs.contains(py::str(n)))
+        throw py::type_error(function + " missing the argument '" + n + "'; it takes " + all);
+    }
+  };
+  py::options options;
+  options.disable_function_signatures();  // the original's doc below starts with its own
+  m.attr(name) = py::cpp_function(
+      [original, check](const py::args& args, const py::kwargs& kwargs) -> py::object {
+        check(args, kwargs);
+        return original(*args, **kwargs);
+      },
+      py::name(name), py::scope(m),
+      py::doc(py::str(original.attr("__doc__")).cast<std::string>().c_str()));
 }
 
 std::string ModuleFolder() {

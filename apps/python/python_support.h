@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -153,12 +154,48 @@ py::dict Run(Compute compute,
   return Result(r);
 }
 
-// A shard's samples as arrays: each quantity a column (its keys in order), whether the sample
-// has it (a refused sample has no outputs), pass, the failing items and the refusals.
-py::dict ShardArrays(const std::vector<ToleranceSample>& samples, int first_sample);
+// A shard's samples as arrays (python_shards.cc): each quantity a column (its keys in order),
+// whether the sample has it (a refused sample has no outputs), pass, the failing items and the
+// refusals, with the seed of its study and its first sample.
+py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed, int first_sample);
 
-// The samples of shards as ShardArrays gives them (or read back from its files), in order.
-std::vector<ToleranceSample> ShardSamples(const py::sequence& shards);
+// The samples of shards as ShardArrays gives them (or read back from its files), in order. A
+// shard with a key it does not write, without one it does, or of another seed than `seed` is
+// refused (CaseError naming the shard and the key or both seeds).
+std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed);
+
+// The arguments a module function was defined with (its py::arg): their names in order, how
+// many may come by position (those before py::kw_only) and those without a default.
+struct Signature {
+  std::vector<std::string> names;
+  size_t positional = 0;
+  std::vector<std::string> required;
+};
+
+// Replaces the module's function `name` by one that checks a call against `s` first: an
+// unknown keyword, an argument too many by position, one given twice or one missing is a
+// TypeError of one line naming it and the arguments the function takes (pybind11's own lists
+// every signature over several lines). Then the function runs as it was.
+void CheckCalls(py::module_& m, const char* name, const Signature& s);
+
+// m.def(name, f, extra...), its calls checked (CheckCalls).
+template <typename F, typename... Extra>
+void Def(py::module_& m, const char* name, F&& f, const Extra&... extra) {
+  m.def(name, std::forward<F>(f), extra...);
+  Signature s;
+  bool keyword_only = false;
+  const auto add = [&](const auto& e) {
+    using E = std::decay_t<decltype(e)>;
+    if constexpr (std::is_same_v<E, py::kw_only>) keyword_only = true;
+    if constexpr (std::is_base_of_v<py::arg, E>) {
+      s.names.emplace_back(e.name);
+      if (!keyword_only) s.positional = s.names.size();
+      if constexpr (!std::is_same_v<E, py::arg_v>) s.required.emplace_back(e.name);
+    }
+  };
+  (add(extra), ...);
+  CheckCalls(m, name, s);
+}
 
 // The folder of this module's file: needle.distributed and the package's Python files live in
 // its subfolder `needle` (the module is a package whose __init__ is compiled).

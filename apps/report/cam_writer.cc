@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/case_profile.h"
 #include "apps/report/result_writers.h"
 #include "lib/cam_synthesis.h"
 #include "lib/output.h"
@@ -133,6 +134,8 @@ CommandOutput WriteProfile(const CaseCamProfile& profile, const CamWriting& w) {
   const std::vector<Field> follower = FollowerFields(g), extremes = CamProfileFields(p, cam_omega);
   const std::vector<Field> placing = {{"roller_play", display::kMm, play, 3},
                                       {"cam_angle_zero_crank", display::kDegree, theta0, 2}};
+  // A cam angle, counted from the rise's foot, with the lift table's crank angle there.
+  const auto at = [&](double cam_rad) { return CamAndCrank(c, theta0, cam_rad, 2, " deg"); };
   std::ostringstream out;
   if (w.json) {
     nlohmann::json j;
@@ -158,22 +161,21 @@ CommandOutput WriteProfile(const CaseCamProfile& profile, const CamWriting& w) {
         << TextAt(follower, "lever_ratio") << ", play " << TextAt(placing, "roller_play_mm")
         << "; cam 0 deg at crank " << TextAt(placing, "cam_angle_zero_crank_deg") << '\n'
         << "pressure angle largest |phi| "
-        << FieldText({"", display::kDegree, std::abs(p.max_pressure_angle_rad), 3}) << " at cam "
-        << TextAt(extremes, "max_pressure_angle_at_cam_deg") << '\n'
-        << "profile radius of curvature min " << TextAt(extremes, "min_profile_radius_mm")
-        << " at cam " << TextAt(extremes, "min_profile_radius_at_cam_deg") << "; "
+        << FieldText({"", display::kDegree, std::abs(p.max_pressure_angle_rad), 3}) << " at "
+        << at(p.max_pressure_angle_at_rad) << '\n'
+        << "profile radius of curvature min " << TextAt(extremes, "min_profile_radius_mm") << " at "
+        << at(p.min_profile_radius_at_rad) << "; "
         << (p.undercut ? (g.kind == FollowerKind::kFlat ? "CUSP" : "UNDERCUT") : "no undercut")
         << '\n';
     if (g.kind != FollowerKind::kRoller)
-      out << "contact up to " << TextAt(extremes, "max_contact_offset_mm")
-          << " off the axis at cam " << TextAt(extremes, "max_contact_offset_at_cam_deg")
+      out << "contact up to " << TextAt(extremes, "max_contact_offset_mm") << " off the axis at "
+          << at(p.max_contact_offset_at_rad)
           << (g.face_half_width_m > 0.0 ? (p.off_face ? ": OFF THE FACE" : ": on the face")
                                         : std::string())
           << '\n';
     out << "at " << Fixed(c.engine.speed_rpm, 0) << " rpm: entrainment speed min "
-        << TextAt(extremes, "min_entrainment_speed_m_s") << " at cam "
-        << TextAt(extremes, "min_entrainment_speed_at_cam_deg") << ", sliding speed max "
-        << TextAt(extremes, "max_sliding_speed_m_s") << '\n';
+        << TextAt(extremes, "min_entrainment_speed_m_s") << " at " << at(p.min_entrainment_at_rad)
+        << ", sliding speed max " << TextAt(extremes, "max_sliding_speed_m_s") << '\n';
   }
   if (w.csv) {  // the CAD coordinates: the first three columns
     const std::vector<Column> xy(ProfileColumns().begin(), ProfileColumns().begin() + 3);

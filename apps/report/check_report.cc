@@ -201,7 +201,6 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
   const Case& c = c_;
   const LiftLaw& law = law_;
   const double rpm = rpm_;
-  const LiftLawChoice& choice = choice_;
   Report& report = report_;
   const KinematicsSummary& sum = result.kinematics;
   const std::vector<std::string>& skipped = result.skipped;
@@ -218,7 +217,7 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
           << Row("lift law", Escape(c.lift.source) + ", " +
                                  std::to_string(c.lift.table.crank_rad.size()) +
                                  " points, spline " + SplineKindName(law.kind()))
-          << Row("spline chosen", Escape(choice.reason))
+          << Row("spline chosen", Escape(choice_.reason))
           << Row("open lift", Fixed(sum.open_rad / kDeg, 2) + "° to " +
                                   Fixed(sum.close_rad / kDeg, 2) + "°" +
                                   (law.closed_level_m() > 0
@@ -227,13 +226,13 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
                                        : std::string(" (last zero before the rise to first zero "
                                                      "after the fall)")))
           << Row("injection period", Fixed(sum.injection_period_s * 1e3, 2) + " ms");
-  if (law.undershoot_m() > 0) {
+  if (Shows(FieldAt(LiftLawFields(law), "undershoot_mm"))) {
     summary << Row("WARNING", "the spline dips " + Fixed(law.undershoot_m() * 1e3, 4) +
                                   " mm below the seat at " + Fixed(law.undershoot_rad() / kDeg, 2) +
                                   "° inside the open lift; try another spline kind");
   }
-  if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
-    summary << Row("WARNING", std::to_string(choice.outliers.size()) +
+  if (!choice_.outliers.empty()) {  // left out: [lift] outliers = "drop"
+    summary << Row("WARNING", std::to_string(choice_.outliers.size()) +
                                   " outlier(s) of the lift table left out (outliers = \"drop\"; "
                                   "the spline's reason lists them)");
   }
@@ -277,12 +276,12 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
     const SpringCheckResult& s = *spring;
     std::ostringstream t;
     t << "<h2>Spring</h2><table>";
-    if (s.basu_preload_N) {
-      t << Row("Basu's formula",
-               Fixed(*s.basu_preload_N / kKgf, 1) + " kgf; the case's spring " +
-                   Fixed(s.train.preload_N / kKgf, 1) + " kgf (" +
-                   Fixed(100 * (s.train.preload_N - *s.basu_preload_N) / *s.basu_preload_N, 1) +
-                   " %)");
+    if (s.basu_preload_N) {  // the row says what fails: the preload, against the formula
+      t << Row("Basu's formula", "preload " + Fixed(s.train.preload_N / kKgf, 1) + " kgf vs " +
+                                     Fixed(*s.basu_preload_N / kKgf, 1) + " kgf (" +
+                                     Fixed(*s.basu_deviation_percent, 1) + " %), tolerance " +
+                                     Fixed(s.basu_tolerance_percent, 1) +
+                                     " % below: " + Verdict(s.basu_ok));
     }
     t << Row("inertia force m·max|a|",
              Fixed(s.inertia_force_N / kKgf, 2) + " kgf (" + Fixed(s.inertia_force_N, 1) + " N)")
@@ -313,9 +312,7 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
     }
     t << Row("combustion load F_g", Fixed(s.gas_force_N / kKgf, 1) + " kgf (" +
                                         Escape(s.gas_source) + "); preload against S·F_g " +
-                                        Verdict(s.combustion_ok))
-      << Row("Basu's formula tolerance",
-             Fixed(s.basu_tolerance_percent, 1) + " % " + Verdict(s.basu_ok));
+                                        Verdict(s.combustion_ok));
     t << Row("spring check", Verdict(s.pass)) << "</table>";
     report.Fill(spring_, t.str());
   }
@@ -363,14 +360,17 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
               std::to_string(sg.masses) + " coil masses'");
   }
   if (profile) {
+    const auto at = [&](double cam_rad) {
+      return CamAndCrank(c, result.cam_zero_crank_rad, cam_rad, 1, "°");
+    };
     std::ostringstream t;
     t << "<h2>Cam profile</h2><table>"
       << Row("largest |pressure angle|",
-             Fixed(std::abs(profile->max_pressure_angle_rad) / kDeg, 2) + "° at cam " +
-                 Fixed(profile->max_pressure_angle_at_rad / kDeg, 1) + "°")
-      << Row("least profile radius (convex)",
-             Fixed(profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
-                 Fixed(profile->min_profile_radius_at_rad / kDeg, 1) + "°")
+             Fixed(std::abs(profile->max_pressure_angle_rad) / kDeg, 2) + "° at " +
+                 at(profile->max_pressure_angle_at_rad))
+      << Row("least profile radius (convex)", Fixed(profile->min_profile_radius_m * 1e3, 2) +
+                                                  " mm at " +
+                                                  at(profile->min_profile_radius_at_rad))
       << Row("undercut", profile->undercut ? "<span class=\"fail\">UNDERCUT</span>"
                                            : "<span class=\"pass\">none</span>")
       << "</table>";

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "apps/report/output_paths.h"
+#include "lib/case_error.h"
 
 namespace needle {
 
@@ -11,9 +12,11 @@ int Emit(const CommandOutput& r, OutputFormat format, const std::optional<std::s
   if (format != OutputFormat::kText) {
     std::cout << FormatObject(r.json, format) << std::flush;
   } else {
-    std::cout << r.text << std::flush;
+    PrintText(r.text);
   }
   return r.status;
 }
+
+void PrintText(const std::string& text) { std::cout << EscapeControls(text, true) << std::flush; }
 
 }  // namespace needle

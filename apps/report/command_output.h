@@ -31,4 +31,8 @@ struct CommandOutput {
 /// `r.status`.
 int Emit(const CommandOutput& r, OutputFormat format, const std::optional<std::string>& csv_path);
 
+/// Prints a text report to stdout with its control characters escaped (EscapeControls: a title
+/// or a path typed with an escape sequence does not drive the terminal), and flushes.
+void PrintText(const std::string& text);
+
 }  // namespace needle

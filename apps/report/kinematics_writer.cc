@@ -67,7 +67,7 @@ CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWrit
       out << " (where the lift exceeds " << lt("closed_level_mm") << ", 3 sigma)";
     out << ", " << Fixed(speed, 1) << " rpm, injection period "
         << FieldText({"injection_period", display::kMs, sum.injection_period_s, 2}) << '\n';
-    if (law.undershoot_m() > 0) {
+    if (Shows(FieldAt(law_fields, "undershoot_mm"))) {
       out << "WARNING: the spline dips " << lt("undershoot_mm") << " below the seat at "
           << lt("undershoot_deg") << " inside the open lift; try another spline kind\n";
     }

@@ -40,6 +40,13 @@ inline void PutFields(nlohmann::json& j, const std::vector<Field>& fields) {
   }
 }
 
+/// Whether a number field shows at its decimals: a warning about a value that prints as
+/// "0.0000" would say nothing (a spline's dip of 1e-16 mm at a table's last point).
+inline bool Shows(const Field& f) {
+  const auto v = f.Shown();
+  return v && Fixed(std::abs(*v), f.decimals) != Fixed(0.0, f.decimals);
+}
+
 /// One row of a table as a JSON object: each column's Key() to its SI value shown in its
 /// unit, or null for a NaN (a missing value).
 inline nlohmann::json RowObject(const std::vector<Column>& columns,

@@ -16,6 +16,20 @@ namespace {
 
 std::string PassFail(bool ok) { return ok ? "pass" : "FAIL"; }
 
+// The helical check's fatigue line: Goodman's n_f on Zimmerli's data, which the pass includes.
+std::string FatigueLine(const Case& c, const HelicalSpringCheck& h) {
+  const HelicalGeometry& wire = *c.spring->helical;
+  if (!h.fatigue_judged) {
+    return "  fatigue not judged: wire " + Fixed(wire.wire_m * 1e3, 1) +
+           " mm, Zimmerli's data cover wire below " + Fixed(kZimmerliMaxWire_m * 1e3, 0) + " mm\n";
+  }
+  const double n_f = h.fatigue.goodman_safety_factor;
+  return "  fatigue (Goodman, Zimmerli's data, " +
+         std::string(wire.shot_peened ? "shot-peened" : "unpeened") + ") safety factor " +
+         (std::isfinite(n_f) ? Fixed(n_f, 2) : std::string("unbounded")) + " (>= 1) -> " +
+         PassFail(h.fatigue_ok) + "\n";
+}
+
 }  // namespace
 
 CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
@@ -98,7 +112,8 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
           << ht("clearance_full_lift_mm") << " against S_a " << ht("min_clearance_mm") << " -> "
           << pf("clearance_ok") << '\n'
           << "  surge " << ht("surge_hz") << ", cam " << ht("cam_hz") << ", ratio "
-          << ht("surge_ratio") << " (>= 13) -> " << pf("surge_ok") << '\n';
+          << ht("surge_ratio") << " (>= 13) -> " << pf("surge_ok") << '\n'
+          << FatigueLine(c, *helical);
     }
     out << "\nspring check: " << (ok ? "pass" : "FAIL") << '\n';
     for (const std::string& f : check.failures) out << "  fails: " << f << '\n';

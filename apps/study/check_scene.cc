@@ -262,20 +262,23 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
   }
 
   // The cam profile, when the case has [profile].
-  double cam_zero_crank_rad = 0.0;
+  double& cam_zero_crank_rad = r.cam_zero_crank_rad;
   if (c.profile) {
     r.profile = MakeCaseProfile(c, law, &cam_zero_crank_rad);
     const bool flat = c.profile->follower.kind == FollowerKind::kFlat;
+    const auto at = [&](double cam_rad) {
+      return CamAndCrank(c, cam_zero_crank_rad, cam_rad, 1, "°");
+    };
     if (r.profile->undercut) {
       fail(std::string("cam profile: the profile ") + (flat ? "has a cusp" : "undercuts") +
-           " (least radius " + Fixed(r.profile->min_profile_radius_m * 1e3, 2) + " mm at cam " +
-           Fixed(r.profile->min_profile_radius_at_rad / kDeg, 1) + "°)");
+           ": least radius " + Fixed(r.profile->min_profile_radius_m * 1e3, 2) + " mm at " +
+           at(r.profile->min_profile_radius_at_rad));
     }
     if (r.profile->off_face) {
       fail("follower face: the contact runs " + Fixed(r.profile->max_contact_offset_m * 1e3, 2) +
-           " mm off the axis at cam " + Fixed(r.profile->max_contact_offset_at_rad / kDeg, 1) +
-           "°, beyond the face half-width " +
-           Fixed(c.profile->follower.face_half_width_m * 1e3, 2) + " mm");
+           " mm off the axis at " + at(r.profile->max_contact_offset_at_rad) +
+           ", beyond the face half-width " + Fixed(c.profile->follower.face_half_width_m * 1e3, 2) +
+           " mm");
     }
   } else {
     r.skipped.push_back("cam profile: the case has no [profile] section");

@@ -129,6 +129,7 @@ struct CheckResult {
   std::optional<OverspeedResult> sweep;     ///< the overspeed sweep
   SweepRange sweep_range;                   ///< its range
   std::optional<CamProfile> profile;        ///< with [profile]
+  double cam_zero_crank_rad = 0.0;          ///< the crank angle of its cam angle 0 (CrankOfCam)
   double n_qs_rpm = NAN;                    ///< quasi-static lift-off; NaN without a spring
   double overspeed_rpm = 0.0;               ///< f·n, the speed n_dyn must exceed
   std::vector<LimitRow> limits;             ///< the limits table, every row (judged or not)

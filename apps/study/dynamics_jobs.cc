@@ -26,8 +26,7 @@ SimulationOptions Options(const Case& c, const std::optional<std::string>& metho
     o.method = *method;
   }
   if (rtol) {
-    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
-      throw CaseError("--rtol: must be in " + RtolRangeText() + ", got " + std::to_string(*rtol));
+    RequireIn("--rtol", rtol, kMinRtol, kMaxRtol, "a relative tolerance");
     o.integrator.rtol = *rtol;
     if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = DefaultAtol(*rtol);
   }

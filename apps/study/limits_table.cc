@@ -173,8 +173,8 @@ void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, C
       }
     }
     judge(hertz, worst * 1e-6,
-          "quasi-static force at " + Fixed(r.speed_rpm, 0) + " rpm, worst at cam " +
-              Fixed(at / kDeg, 1) + " deg");
+          "quasi-static force at " + Fixed(r.speed_rpm, 0) + " rpm, worst at " +
+              CamAndCrank(c, cam_zero_crank_rad, at, 1, " deg"));
   } else {
     hertz.note = !r.profile  ? "no [profile] (the cam's radius)"
                  : !r.spring ? "no spring check (the contact force)"

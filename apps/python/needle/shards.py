@@ -141,6 +141,7 @@ def read_shard(path):
             meta = json.loads(str(z["meta"]))
             n = int(meta["samples"])
             shard = {
+                "seed": int(meta["seed"]),
                 "first_sample": int(meta["first_sample"]),
                 "samples": n,
                 "input_keys": [str(k) for k in z["input_keys"]],

@@ -260,6 +260,35 @@ def test_shards_reduce_to_the_study():
         needle.tolerance_reduce(path, [], seed=1)
 
 
+def test_shards_that_are_not_the_studys_are_refused_naming_why():
+    # Issue 51: a dict without a shard's keys was a raw KeyError; shards of seed 1 reduced
+    # with seed=2 were labelled seed 2.
+    path = EXAMPLE1
+    shard = needle.tolerance_shard(open(path).read(), path=path, seed=1, first_sample=0,
+                                   samples=2)
+    assert shard["seed"] == 1
+    keys = ("expected the keys tolerance_shard writes: failing, first_sample, input_keys, "
+            "input_present, inputs, output_keys, outputs, output_present, pass, refused, "
+            "samples, seed (and run_shard's seconds, worker)")
+
+    def refusal(shards, seed=1):
+        with pytest.raises(needle.CaseError) as e:
+            needle.tolerance_reduce(path, shards, seed=seed)
+        assert isinstance(e.value, ValueError)
+        return str(e.value)
+    assert refusal([{"bogus": 1}]) == "shards[0]: unknown key 'bogus'; " + keys
+    assert refusal([shard, {k: v for k, v in shard.items() if k != "pass"}]) == \
+        "shards[1]: no key 'pass'; " + keys
+    assert refusal([shard, 3]) == "shards[1]: expected a dict of tolerance_shard, got an int"
+    assert refusal([dict(shard, samples="2")]) == \
+        "shards[0]['samples']: expected what tolerance_shard writes there, got a str"
+    assert refusal([shard], seed=2) == \
+        "seed=2: shards[0] was made with seed=1; expected the seed its shards were made with"
+    # run_shard's additions are a shard's too.
+    assert needle.tolerance_reduce(path, [dict(shard, seconds=0.1, worker="w:1")],
+                                   seed=1)["samples"] == 2
+
+
 def test_the_documented_commands_on_the_loopback(tmp_path):
     # docs/distributed.md's set-up: dask-scheduler (here without needle on its path) and
     # dask-worker with 2 processes; a scheduler with no worker yet is one line and exit 2.

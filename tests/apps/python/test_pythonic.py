@@ -70,6 +70,33 @@ def test_keyword_errors_name_the_keyword_and_print_pythons_number():
         "pchip, makima, smoothing, local")
 
 
+def test_a_call_pybind11_cannot_match_is_one_line_naming_the_argument():
+    # Issue 51: pybind11's own TypeError lists every signature over several lines.
+    def type_error(call):
+        with pytest.raises(TypeError) as e:
+            call()
+        assert "\n" not in str(e.value)
+        return str(e.value)
+    assert type_error(lambda: needle.kinematics(EXAMPLE1, rmp=400)) == (
+        "kinematics() got an unexpected keyword argument 'rmp'; expected one of case, rpm, "
+        "step_deg, spline")
+    assert type_error(lambda: needle.tolerance_reduce(EXAMPLE1, [], sed=1)) == (
+        "tolerance_reduce() got an unexpected keyword argument 'sed'; expected one of case, "
+        "shards, seed, first_sample, threads, seconds")
+    assert type_error(lambda: needle.spring(EXAMPLE1, 400)) == (
+        "spring() takes 1 positional argument(s) (case), got 2; give rpm by keyword")
+    assert type_error(lambda: needle.size(EXAMPLE1, 400)) == (
+        "size() takes 1 positional argument(s) (case), got 2")
+    assert type_error(lambda: needle.tolerance_reduce(EXAMPLE1, [])) == (
+        "tolerance_reduce() missing the argument 'seed'; it takes case, shards, seed, "
+        "first_sample, threads, seconds")
+    assert type_error(lambda: needle.spring(EXAMPLE1, case=EXAMPLE1)) == (
+        "spring() got argument 'case' by position and by keyword; it takes case, rpm")
+    # The functions keep their signature and their doc.
+    assert needle.spring.__doc__.startswith("spring(case: object, *, rpm: object = None) -> dict")
+    assert needle.spring(case=EXAMPLE1, rpm=125)["exit_status"] == 0
+
+
 def test_a_commands_own_message_names_the_keyword():
     # The command's check after the case is read ("--spline: …" on the command line).
     small = {"engine": {"speed_rpm": 1000},

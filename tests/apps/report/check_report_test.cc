@@ -129,7 +129,7 @@ TEST(CheckReportTest, UndercutCamFailsTheCheck) {
   const auto r = RunNeedle("check " + path + " --out " + dir);
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("cam profile: UNDERCUT"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("fails: cam profile: the profile undercuts (least radius -10.48 mm"),
+  EXPECT_NE(r.out.find("fails: cam profile: the profile undercuts: least radius -10.48 mm"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("overall: FAIL"), std::string::npos);

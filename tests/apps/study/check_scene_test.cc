@@ -8,7 +8,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "apps/case/case_profile.h"
 #include "apps/case/case_scene.h"
+#include "apps/study/dynamics_jobs.h"
 #include "lib/input_file.h"
 #include "lib/output.h"
 
@@ -431,6 +433,10 @@ TEST(CheckSceneTest, TheSeatingAndHertzRowsFailOnScenesBuiltToFailThem) {
   const CheckResult rh = CheckScene(h, MakeLiftLaw(h), o);
   ASSERT_FALSE(rh.profile->undercut);  // (on a 40 mm base circle it undercuts: no Hertz row)
   EXPECT_EQ(Row(rh, "hertz_stress").verdict, "fail") << Row(rh, "hertz_stress").note;
+  // Its cam angle counts from the ramp's foot, 6° before the lift table's zero: the crank angle
+  // beside it places it on the table (issue 51).
+  EXPECT_EQ(Row(rh, "hertz_stress").note,
+            "quasi-static force at 500 rpm, worst at cam 11.0 deg (crank 16.0 deg)");
 }
 
 }  // namespace
@@ -704,14 +710,14 @@ TEST(CheckSceneTest, AFlatFollowersProfileHasACusp) {
   const CheckResult r = CheckScene(flat, MakeLiftLaw(flat));
   EXPECT_FALSE(r.pass);
   EXPECT_EQ(r.failing, std::vector<std::string>{
-                           "cam profile: the profile has a cusp (least radius -386.94 mm at cam "
-                           "10.0°)"});
+                           "cam profile: the profile has a cusp: least radius -386.94 mm at cam "
+                           "10.0° (crank 10.0°)"});
   const Case roller =
       ParseCase(kSmall + "[profile]\nbase_radius_mm = 5\nroller_radius_mm = 4\n", "t.toml");
   const CheckResult u = CheckScene(roller, MakeLiftLaw(roller));
   EXPECT_EQ(u.failing, std::vector<std::string>{
-                           "cam profile: the profile undercuts (least radius -3.70 mm at cam "
-                           "10.0°)"});
+                           "cam profile: the profile undercuts: least radius -3.70 mm at cam "
+                           "10.0° (crank 10.0°)"});
 }
 
 }  // namespace
@@ -1021,6 +1027,36 @@ seat_damping_ratio = 0.1
   const CheckResult rl = CheckScene(loose, MakeLiftLaw(loose), o);
   EXPECT_EQ(Row(rl, "secondary_opening").verdict, "pass");
   EXPECT_EQ(Row(rl, "secondary_opening").source, "[limits] secondary_opening_percent");
+}
+
+// A profile's cam angle counts from the rise's foot; its crank angle is θ₀ + kψ, within half an
+// engine cycle of θ₀ (a cam angle just short of a turn lies before the rise), issue 51.
+TEST(CamAndCrankTest, ACamAngleMapsOntoTheCrankNearTheRise) {
+  Case four = ParseCase(kSmall, "t.toml");
+  const double theta0 = -20 * kDeg;
+  EXPECT_NEAR(CrankOfCam(four, theta0, 10 * kDeg) / kDeg, 0.0, 1e-12);
+  EXPECT_NEAR(CrankOfCam(four, theta0, 179 * kDeg) / kDeg, 338.0, 1e-9);
+  EXPECT_NEAR(CrankOfCam(four, theta0, 350 * kDeg) / kDeg, -40.0, 1e-9);  // 700° on is 20° back
+  EXPECT_EQ(CamAndCrank(four, theta0, 350 * kDeg, 1, "°"), "cam 350.0° (crank -40.0°)");
+  Case two = four;
+  two.engine.cycle = EngineCycle::kTwoStroke;
+  EXPECT_NEAR(CrankOfCam(two, theta0, 10 * kDeg) / kDeg, -10.0, 1e-12);
+  EXPECT_NEAR(CrankOfCam(two, theta0, 350 * kDeg) / kDeg, -30.0, 1e-9);
+  EXPECT_EQ(CamAndCrank(two, theta0, 90 * kDeg, 2, " deg"), "cam 90.00 deg (crank 70.00 deg)");
+}
+
+// A job called without the command line's parser (the Python module's path) refuses an rtol
+// outside its range showing the value, not std::to_string's "0.000000".
+TEST(DynamicsJobsTest, ARefusedToleranceShowsItsValue) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-cam4-light-spring.toml");
+  SimulateJobOptions o;
+  o.rtol = 1e-15;
+  try {
+    SimulateCase(c, o);
+    FAIL() << "accepted";
+  } catch (const CaseError& e) {
+    EXPECT_STREQ(e.what(), "--rtol: expected a relative tolerance in [1e-14, 0.01], got 1e-15");
+  }
 }
 
 }  // namespace
