@@ -142,14 +142,18 @@ struct ToleranceSection {
   /// Basu, NACA TM 477, "the cam is made to 0.01 mm"); [0, 1 mm].
   double lift_sigma_m = 1e-5;
   /// lift_correlation_deg: correlation length of that error along the crank angle, rad (a
-  /// Gaussian kernel exp(−Δθ²/2ℓ²)); 0: independent points; [0, 360°].
+  /// Gaussian kernel exp(−Δθ²/2ℓ²), tapering to zero where the lift is zero); 0: independent
+  /// points; [0, 360°]. Not given: a quarter of the open lift (EffectiveTolerance), a smooth
+  /// grinding error.
   double lift_correlation_rad = 0.0;
-  double mass_fraction = 0.0;       ///< mass_percent: the moving mass, [0, 50 %]
-  double preload_fraction = 0.0;    ///< preload_percent: P₀, [0, 50 %]
-  double rate_fraction = 0.0;       ///< rate_percent: k (G, when k comes from the geometry)
-  double stiffness_fraction = 0.0;  ///< stiffness_percent: k_c and k_s, [0, 50 %]
-  double play_sigma_m = 0.0;        ///< play_mm: the roller play, m (a play below 0 is 0)
-  double speed_fraction = 0.0;      ///< speed_percent: the rated speed, [0, 50 %]
+  bool lift_correlation_given = false;  ///< `lift_correlation_deg` stated
+  bool given = false;                   ///< the case has the section
+  double mass_fraction = 0.0;           ///< mass_percent: the moving mass, [0, 50 %]
+  double preload_fraction = 0.0;        ///< preload_percent: P₀, [0, 50 %]
+  double rate_fraction = 0.0;           ///< rate_percent: k (G, when k comes from the geometry)
+  double stiffness_fraction = 0.0;      ///< stiffness_percent: k_c and k_s, [0, 50 %]
+  double play_sigma_m = 0.0;            ///< play_mm: the roller play, m (a play below 0 is 0)
+  double speed_fraction = 0.0;          ///< speed_percent: the rated speed, [0, 50 %]
 };
 
 /// [profile]: the cam that drives the needle, for `needle profile`.

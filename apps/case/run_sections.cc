@@ -161,7 +161,11 @@ ToleranceSection ReadTolerance(SectionReader r) {
   };
   r.Declare("lift_correlation");  // not a unit of `lift`
   sigma("lift", Dimension::kLength, t.lift_sigma_m);
-  sigma("lift_correlation", Dimension::kAngle, t.lift_correlation_rad);
+  if (auto v = r.OptionalQuantity("lift_correlation", Dimension::kAngle)) {
+    t.lift_correlation_rad = *v;
+    t.lift_correlation_given = true;
+  }
+  t.given = true;
   sigma("mass", Dimension::kPercent, t.mass_fraction);
   sigma("preload", Dimension::kPercent, t.preload_fraction);
   sigma("rate", Dimension::kPercent, t.rate_fraction);

@@ -56,6 +56,7 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
   j["seconds"] = r.seconds;
   j["seconds_per_sample"] = r.seconds * r.options.threads / n;
   PutFields(j["tolerance"], ToleranceSectionFields(t));
+  j["tolerance"]["applied"] = ScatterSources(t);
   j["failure_probability"] = r.failure_probability;
   j["failure_probability_95"] = {p_low, p_high};
   j["failure_by_item"] = r.failure_by_item;
@@ -98,7 +99,8 @@ Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t se
        << Fixed(100 * t.mass_fraction, 2) << ", " << Fixed(100 * t.preload_fraction, 2) << ", "
        << Fixed(100 * t.rate_fraction, 2) << ", " << Fixed(100 * t.stiffness_fraction, 2) << ", "
        << Fixed(100 * t.speed_fraction, 2) << " %</td></tr><tr><td>roller play</td><td>"
-       << Fixed(t.play_sigma_m * 1e3, 4) << " mm</td></tr></table>"
+       << Fixed(t.play_sigma_m * 1e3, 4) << " mm</td></tr><tr><td>applied</td><td>"
+       << Escape(ScatterSources(t)) << "</td></tr></table>"
        << "<h2>Failure</h2><p>The check fails in " << Fixed(100 * r.failure_probability, 2)
        << " % of the samples (95 % interval " << Fixed(100 * p_low, 2) << "–"
        << Fixed(100 * p_high, 2) << " %).</p><table class=\"grid\"><tr><th>failing item</th>"
@@ -158,7 +160,8 @@ std::string ToleranceText(const Case& c, const ToleranceResult& r, std::uint64_t
       << Fixed(100 * t.mass_fraction, 2) << " %, preload " << Fixed(100 * t.preload_fraction, 2)
       << " %, rate " << Fixed(100 * t.rate_fraction, 2) << " %, stiffness "
       << Fixed(100 * t.stiffness_fraction, 2) << " %, play " << Fixed(t.play_sigma_m * 1e3, 4)
-      << " mm, speed " << Fixed(100 * t.speed_fraction, 2) << " %\n\n";
+      << " mm, speed " << Fixed(100 * t.speed_fraction, 2) << " %\n"
+      << "scatter applied: " << ScatterSources(t) << "\n\n";
   char line[300];
   std::snprintf(line, sizeof line, "%-40s %11s %10s %11s %11s %11s\n", "", "mean", "sigma", "5 %",
                 "median", "95 %");

@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "apps/study/check_scene.h"
+#include "lib/output.h"
 #include "lib/threads.h"
 #include "lib/units.h"
 
@@ -41,8 +42,21 @@ LiftErrorModel::LiftErrorModel(const std::vector<double>& crank_rad,
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
   const Eigen::VectorXd roots = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   const Eigen::MatrixXd a = eig.eigenvectors() * roots.asDiagonal();
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) root_[i][j] = a(i, j);
+  // A smooth error of the cam is zero on its base circle, where the lift is zero by definition:
+  // it tapers as sin π(θ − θ_a)/(θ_b − θ_a) between the unvaried points around (θ_a, θ_b; a
+  // table's end stands one spacing beyond). Untapered, the first varied point jumped off the
+  // zero beside it, and the perturbed table was refused as one with an outlier.
+  const int m = static_cast<int>(crank_rad.size());
+  for (int i = 0; i < n; ++i) {
+    int lo = index_[i], hi = index_[i];
+    while (lo >= 0 && varied[lo]) --lo;
+    while (hi < m && varied[hi]) ++hi;
+    const double spacing = m > 1 ? crank_rad[1] - crank_rad[0] : 1.0;
+    const double ta = lo >= 0 ? crank_rad[lo] : crank_rad[0] - spacing;
+    const double tb = hi < m ? crank_rad[hi] : crank_rad[m - 1] + spacing;
+    const double w = std::sin(kPi * (crank_rad[index_[i]] - ta) / (tb - ta));
+    for (int j = 0; j < n; ++j) root_[i][j] = w * a(i, j);
+  }
 }
 
 std::vector<double> LiftErrorModel::Draw(std::mt19937_64& gen) const {
@@ -266,7 +280,7 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
   if (!(options.first_sample >= 0 && options.first_sample <= 1000000000))
     throw CaseError("--first-sample: expected an index in [0, 1000000000], got " +
                     std::to_string(options.first_sample));
-  const ToleranceSection t = c.tolerance.value_or(ToleranceSection{});
+  const ToleranceSection t = EffectiveTolerance(c);
   // The lift error moves the points inside the open lift: those above zero.
   std::vector<bool> varied;
   for (double y : c.lift.table.lift_m) varied.push_back(y > 0.0);
@@ -318,6 +332,49 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
   return samples;
 }
 
+ToleranceSection EffectiveTolerance(const Case& c) {
+  ToleranceSection t = c.tolerance.value_or(ToleranceSection{});
+  if (t.lift_correlation_given) return t;
+  const std::vector<double>& th = c.lift.table.crank_rad;
+  const std::vector<double>& y = c.lift.table.lift_m;
+  double first = 0.0, last = 0.0;
+  bool any = false;
+  for (size_t i = 0; i < th.size(); ++i) {
+    if (!(y[i] > 0.0)) continue;
+    if (!any) first = th[i];
+    last = th[i];
+    any = true;
+  }
+  t.lift_correlation_rad = kDefaultCorrelationFraction * (last - first);
+  return t;
+}
+
+std::string ScatterSources(const ToleranceSection& t) {
+  const std::string lift =
+      "lift " + Fixed(t.lift_sigma_m * 1e3, 4) + " mm" +
+      (t.lift_correlation_rad > 0.0
+           ? ", correlated over " + Fixed(t.lift_correlation_rad / kDeg, 2) + " deg"
+           : std::string(", independent points"));
+  std::string defaults;
+  if (!t.given) {
+    defaults =
+        " (default, no [tolerance] section: Basu's \"the cam is made to 0.01 mm\" as a "
+        "smooth grinding error correlated over a quarter of the open lift)";
+  } else if (!t.lift_correlation_given) {
+    defaults =
+        " (lift_correlation_deg not given: a smooth grinding error over a quarter of the "
+        "open lift)";
+  }
+  const std::pair<const char*, double> others[] = {
+      {"mass", t.mass_fraction}, {"preload", t.preload_fraction},
+      {"rate", t.rate_fraction}, {"stiffness", t.stiffness_fraction},
+      {"play", t.play_sigma_m},  {"speed", t.speed_fraction}};
+  std::string none;
+  for (const auto& [name, v] : others)
+    if (!(v > 0.0)) none += (none.empty() ? "" : ", ") + std::string(name);
+  return lift + defaults + (none.empty() ? "" : "; " + none + " not scattered");
+}
+
 std::vector<Field> ToleranceSectionFields(const ToleranceSection& t) {
   using namespace display;
   return {{"lift", kMm, t.lift_sigma_m, 4},
@@ -353,7 +410,7 @@ ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& opti
                                      std::vector<ToleranceSample> samples) {
   if (samples.empty()) throw CaseError("a tolerance study needs at least one sample");
   ToleranceResult result;
-  result.tolerance = c.tolerance.value_or(ToleranceSection{});
+  result.tolerance = EffectiveTolerance(c);
   result.options = options;
   result.samples = std::move(samples);
   // Distributions, failure, drivers; a quantity a sample lacks (a refused sample) is NaN there.

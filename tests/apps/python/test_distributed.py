@@ -9,6 +9,7 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 
 import pytest
@@ -17,9 +18,13 @@ import needle
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 BINARY = os.environ.get("NEEDLE_BINARY", os.path.join(ROOT, "build", "needle"))
-# Basu's Example 1 under its own tolerance: 0.1 s a sample, and 6 of these 40 are refused by
-# the model (counted samples, "case refused").
-EXAMPLE1 = os.path.join(ROOT, "cases", "basu-example1.toml")
+# Basu's Example 1 with its lift error on independent points (lift_correlation_deg = 0; the
+# default is a smooth error, which no sample refuses): 0.1 s a sample, and 6 of these 40 are
+# refused by the model (counted samples, "case refused").
+EXAMPLE1 = os.path.join(tempfile.mkdtemp(prefix="needle-distributed-"),
+                        "basu-example1-independent.toml")
+with open(os.path.join(ROOT, "cases", "basu-example1.toml")) as f, open(EXAMPLE1, "w") as g:
+    g.write(f.read() + "\n[tolerance]\nlift_correlation_deg = 0\n")
 SAMPLES, SEED, SHARD = 40, 1, 2
 TIMING = ("seconds", "seconds_per_sample", "threads")
 
@@ -243,7 +248,7 @@ def test_a_map_is_the_check_at_each_grid_point(cluster, tmp_path):
 def test_shards_reduce_to_the_study():
     # Without Dask: shards [0, 5) and [5, 12) of Example 1, gathered, are the 12-sample study;
     # sample 10, refused by the model, keeps its place and its reason, and has no outputs.
-    path = os.path.join(ROOT, "cases", "basu-example1.toml")
+    path = EXAMPLE1
     text = open(path).read()
     shards = [needle.tolerance_shard(text, path=path, seed=1, first_sample=a, samples=n)
               for a, n in ((0, 5), (5, 7))]
