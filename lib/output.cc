@@ -21,12 +21,18 @@ namespace needle {
 namespace {
 
 // Where a write to `path` lands: a symbolic link is written through (its target replaced, the
-// link kept), not replaced by a file.
+// link kept), not replaced by a file, also where the target does not exist yet (a dangling
+// link: weakly_canonical left it, and the link was replaced while its unwritable target went
+// unreported). Links are followed link by link, a relative one from its own folder.
 std::string WriteTarget(const std::string& path) {
   std::error_code error;
-  if (!std::filesystem::is_symlink(path, error)) return path;
-  const std::filesystem::path target = std::filesystem::weakly_canonical(path, error);
-  return error ? path : target.string();
+  std::filesystem::path p = path;
+  for (int hop = 0; hop < 40 && std::filesystem::is_symlink(p, error); ++hop) {
+    const std::filesystem::path to = std::filesystem::read_symlink(p, error);
+    if (error) break;
+    p = to.is_absolute() ? to : p.parent_path() / to;
+  }
+  return p == path ? path : p.lexically_normal().string();
 }
 
 // The temporary files and folders, removed by the handler of an interrupting signal (SIGINT,

@@ -143,6 +143,13 @@ SpringSection ReadSpring(SectionReader r) {
     sp.basu_tolerance_percent = *t;
   }
   if (r.FindQuantity("wire", Dimension::kLength)) {
+    // One rate: a stated one beside the geometry's was taken by the quasi-static check while
+    // the helical check printed the geometry's (issue 51).
+    if (sp.rate_N_m) {
+      r.Fail(r.FindQuantity("rate", Dimension::kStiffness)->first,
+             "the helical geometry (wire, coil, active_coils) sets the rate; give the rate or "
+             "the geometry, not both");
+    }
     sp.helical = ReadHelical(r);
   }
   if (!sp.rate_N_m && !sp.helical) {

@@ -154,6 +154,15 @@ TEST(OutputTest, ASymbolicLinkIsWrittenThrough) {
   EXPECT_TRUE(std::filesystem::is_symlink(dir / "via.csv"));
   EXPECT_EQ(FirstLine(dir / "other" / "real.csv"), "new");
   EXPECT_EQ(Entries(dir / "other"), 1);
+  // A dangling link is written through too: its target is made (issue 51: the link was replaced
+  // by a file), and a target that cannot be written is an error, the link left as it was.
+  std::filesystem::create_symlink(std::filesystem::path("other") / "new.csv", dir / "dangling.csv");
+  WriteFileAtomically((dir / "dangling.csv").string(), "made\n");
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "dangling.csv"));
+  EXPECT_EQ(FirstLine(dir / "other" / "new.csv"), "made");
+  std::filesystem::create_symlink("/proc/needle-no-such/out.csv", dir / "nowhere.csv");
+  EXPECT_ANY_THROW(WriteFileAtomically((dir / "nowhere.csv").string(), "lost\n"));
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "nowhere.csv"));
   std::filesystem::remove_all(dir);
 }
 

@@ -1156,3 +1156,21 @@ TEST(CaseFileTest, APreloadPerNeedleAreaAboveAnyInjectorsIsRefused) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 51 (the newcomer trial): a rate stated beside the helical geometry was taken by the
+// quasi-static check ("spring rate 0.00 N/mm", n_qs 621.6 rpm) while the helical check printed
+// the geometry's 147.02 N/mm, and the check passed. One rate: the pair is refused.
+TEST(CaseFileTest, ARateBesideTheHelicalGeometryIsRefused) {
+  EXPECT_EQ(Error(kHelicalSpring + "rate_N_mm = 0\n"),
+            "t.toml: [spring] rate_N_mm: the helical geometry (wire, coil, active_coils) sets the "
+            "rate; give the rate or the geometry, not both");
+  EXPECT_EQ(Error(Replace(kHelicalSpring, "preload_N = 500", "preload_N = 500\nrate_kgf_mm = 5")),
+            "t.toml: [spring] rate_kgf_mm: the helical geometry (wire, coil, active_coils) sets "
+            "the rate; give the rate or the geometry, not both");
+}
+
+}  // namespace
+}  // namespace needle
