@@ -373,7 +373,7 @@ PYBIND11_MODULE(needle, m) {
         const auto c = CaseOf(source, "tolerance_reduce");
         ToleranceOptions o;
         SetStudyKeywords(o, seed, first_sample, threads);
-        std::vector<ToleranceSample> samples = ShardSamples(shards, o.seed);
+        std::vector<ToleranceSample> samples = ShardSamples(shards, o.seed, o.first_sample);
         o.samples = static_cast<int>(samples.size());
         return Run([&] {
           ToleranceResult r = ReduceToleranceStudy(*c, o, std::move(samples));

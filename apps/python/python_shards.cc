@@ -147,7 +147,8 @@ py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed,
   return out;
 }
 
-std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed) {
+std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed,
+                                          int first_sample) {
   std::vector<ToleranceSample> samples;
   for (size_t i = 0; i < shards.size(); ++i) {
     const std::string where = "shards[" + std::to_string(i) + "]";
@@ -156,6 +157,17 @@ std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t s
     if (made_with != seed)
       throw CaseError("seed=" + std::to_string(seed) + ": " + where + " was made with seed=" +
                       std::to_string(made_with) + "; expected the seed its shards were made with");
+    // The shards tile the study: each starts where the last ended, the first at first_sample (a
+    // shard twice, a gap, shards out of order or another first_sample were reduced as if they
+    // did, their samples miscounted or mislabelled: issue 51's trial).
+    const long long expected = static_cast<long long>(first_sample) + samples.size();
+    const auto starts = Value<long long>(shard, where, "first_sample");
+    if (starts != expected)
+      throw CaseError(where + ": starts at sample " + std::to_string(starts) + "; expected " +
+                      std::to_string(expected) +
+                      " (the shards in sample order, each where the last ended, the first at "
+                      "first_sample=" +
+                      std::to_string(first_sample) + ")");
     AppendShard(shard, where, samples);
   }
   return samples;

@@ -160,9 +160,11 @@ py::dict Run(Compute compute,
 py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed, int first_sample);
 
 // The samples of shards as ShardArrays gives them (or read back from its files), in order. A
-// shard with a key it does not write, without one it does, or of another seed than `seed` is
-// refused (CaseError naming the shard and the key or both seeds).
-std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed);
+// shard with a key it does not write, without one it does, of another seed than `seed`, or not
+// starting where the last ended (the first at `first_sample`) is refused (CaseError naming the
+// shard and the key, both seeds or both starts).
+std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed,
+                                          int first_sample);
 
 // The arguments a module function was defined with (its py::arg): their names in order, how
 // many may come by position (those before py::kw_only) and those without a default.

@@ -259,8 +259,18 @@ def test_shards_reduce_to_the_study():
     assert whole["sample_results"][10]["refused"] == shards[1]["refused"][5]
     gathered = needle.tolerance_reduce(path, shards, seed=1, threads=1, seconds=whole["seconds"])
     assert gathered == whole
-    reordered = needle.tolerance_reduce(path, shards[::-1], seed=1)
-    assert reordered["sample_results"] != whole["sample_results"]
+    # The shards must tile the study (issue 51's trial: a shard twice, a gap, the order or
+    # another first_sample were reduced as if they did, samples miscounted or mislabelled).
+    for bad, where in ((shards[::-1], "shards\\[0\\]: starts at sample 5; expected 0"),
+                       ([shards[0], shards[0]], "shards\\[1\\]: starts at sample 0; expected 5")):
+        with pytest.raises(needle.CaseError, match=where):
+            needle.tolerance_reduce(path, bad, seed=1)
+    with pytest.raises(needle.CaseError, match="shards\\[0\\]: starts at sample 5; expected 3 "
+                       "\\(the shards in sample order, each where the last ended, the first at "
+                       "first_sample=3\\)"):
+        needle.tolerance_reduce(path, shards[1:], seed=1, first_sample=3)
+    tail = needle.tolerance_reduce(path, shards[1:], seed=1, first_sample=5)
+    assert tail["sample_results"] == whole["sample_results"][5:]
     with pytest.raises(needle.CaseError, match="needs at least one sample"):
         needle.tolerance_reduce(path, [], seed=1)
 
