@@ -86,6 +86,11 @@ struct SurgeStudy {
 /// The convergence rule of SurgeStudy::masses.
 constexpr double kSurgeConvergence = 0.01;
 
+/// A lift table whose first or last lift is above this fraction of its largest does not reach
+/// the seat there: the check is undecided (a table cut just above zero is taken, its ramps
+/// bring it down).
+inline constexpr double kOpenEndFraction = 0.05;
+
 /// Options of CheckScene; every field has a default.
 struct CheckOptions {
   std::optional<double> speed_rpm;  ///< rated speed, rpm; default [engine] speed_rpm

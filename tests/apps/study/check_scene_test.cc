@@ -1061,3 +1061,40 @@ TEST(DynamicsJobsTest, ARefusedToleranceShowsItsValue) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 51's trial: Example 1 with its table cut at half its lift on the fall (1.8 mm at 40°)
+// passed, its seating speed taken on the tangent ramp's extrapolation. A table that does not
+// come down to the seat at an end is undecided; one cut within 5 % of its lift is taken.
+TEST(CheckSceneTest, ALiftTableThatDoesNotReachTheSeatIsUndecided) {
+  const std::string text = ReadInputFile(kCases + "basu-example1.toml", "case file");
+  const std::string full =
+      "lift_mm = [0, 0.073, 0.29, 0.77, 1.54, 2.49, 3.38, 3.67, 3.22, 2.12, "
+      "0.954, 0]";
+  ASSERT_NE(text.find(full), std::string::npos);
+  CheckOptions o;
+  o.record_series = false;
+  const auto check = [&](const std::string& lift) {
+    std::string t = text;
+    t.replace(t.find(full), full.size(), lift);
+    const Case c = ParseCase(t, "cut.toml");
+    return CheckScene(c, MakeLiftLaw(c), o);
+  };
+  const CheckResult cut =
+      check("lift_mm = [0, 0.073, 0.29, 0.77, 1.54, 2.49, 3.38, 3.67, 3.22, 2.80, 2.30, 1.80]");
+  EXPECT_FALSE(cut.pass);
+  EXPECT_TRUE(Contains(cut.failing,
+                       "lift table: undecided, it ends at 1.800 mm (48.9 % of its largest lift) "
+                       "at 40.00 deg, not on the seat: the closing is not in it; extend the table "
+                       "to where the lift is zero"))
+      << (cut.failing.empty() ? "" : cut.failing[0]);
+  // Cut 0.1 mm above zero (2.7 % of the lift): taken, its ramps bring it down.
+  const CheckResult low =
+      check("lift_mm = [0, 0.073, 0.29, 0.77, 1.54, 2.49, 3.38, 3.67, 3.22, 2.12, 0.954, 0.1]");
+  for (const std::string& f : low.failing) EXPECT_EQ(f.find("lift table"), std::string::npos) << f;
+}
+
+}  // namespace
+}  // namespace needle
