@@ -24,6 +24,9 @@
 
 namespace needle::case_internal {
 
+/// Levenshtein's distance between a and b (insertions, deletions, substitutions).
+int EditDistance(const std::string& a, const std::string& b);
+
 // The largest magnitude any number in an input file may have.
 constexpr double kLargestInput = 1e15;
 
@@ -90,7 +93,7 @@ class SectionReader {
 
   double Quantity(const std::string& name, Dimension dimension) {
     const auto v = OptionalQuantity(name, dimension);
-    if (!v) Fail(name, "missing; expected " + Suggestions(name, dimension));
+    if (!v) Fail(name, "missing; expected " + Suggestions(name, dimension) + Typo(name, dimension));
     return *v;
   }
 
@@ -191,6 +194,21 @@ class SectionReader {
       }
     }
     return false;
+  }
+
+  // " (is mas_kg a typo of mass_kg?)": a key of the section within two edits of one of the
+  // suggestions (a typo that made the key unknown and the quantity missing), or "".
+  std::string Typo(const std::string& name, Dimension dimension) const {
+    if (!table_) return "";
+    for (const auto& [k, node] : *table_) {
+      (void)node;
+      const std::string key(k.str());
+      for (const std::string& u : UnitSuffixes(dimension)) {
+        if (EditDistance(key, name + "_" + u) <= 2)
+          return " (is " + key + " a typo of " + name + "_" + u + "?)";
+      }
+    }
+    return "";
   }
 
   static std::string Suggestions(const std::string& name, Dimension dimension) {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "apps/case/plausible_ranges.h"
+#include "apps/case/section_reader.h"
 #include "lib/units.h"
 #include "spring/wire_material.h"
 
@@ -1170,6 +1171,29 @@ TEST(CaseFileTest, ARateBesideTheHelicalGeometryIsRefused) {
   EXPECT_EQ(Error(Replace(kHelicalSpring, "preload_N = 500", "preload_N = 500\nrate_kgf_mm = 5")),
             "t.toml: [spring] rate_kgf_mm: the helical geometry (wire, coil, active_coils) sets "
             "the rate; give the rate or the geometry, not both");
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 51's trial: `mas_kg` typed for `mass_kg` read "[needle] mass: missing; expected mass_kg
+// or mass_g", the typed key never named (a wrong unit suffix is). A key within two edits of an
+// expected one is named as the likely typo.
+TEST(CaseFileTest, AMissingQuantityNamesTheKeyThatIsLikelyItsTypo) {
+  EXPECT_EQ(Error(kGood + "[needle]\nmas_kg = 2.0\n"),
+            "t.toml: [needle] mass: missing; expected mass_kg or mass_g (is mas_kg a typo of "
+            "mass_kg?)");
+  EXPECT_EQ(Error(kGood + "[needle]\nmsas_g = 2000\n"),
+            "t.toml: [needle] mass: missing; expected mass_kg or mass_g (is msas_g a typo of "
+            "mass_g?)");
+  // Nothing close: the message as it was.
+  EXPECT_EQ(Error(kGood + "[needle]\nweight = 2.0\n"),
+            "t.toml: [needle] mass: missing; expected mass_kg or mass_g");
+  EXPECT_EQ(case_internal::EditDistance("mas_kg", "mass_kg"), 1);
+  EXPECT_EQ(case_internal::EditDistance("kitten", "sitting"), 3);
 }
 
 }  // namespace
