@@ -103,7 +103,10 @@ CaseLift ResolveLift(const Case& c) {
   } catch (const CaseError&) {
     throw;
   } catch (const std::exception& e) {
-    throw CaseError(c.path + ": [lift]: " + e.what());
+    // A stated break the law refuses names its key (issue 51's trial: "[lift]: break 0 …").
+    const std::string what = e.what();
+    const bool breaks = c.lift.breaks_given && what.rfind("break ", 0) == 0;
+    throw CaseError(c.path + ": [lift]" + (breaks ? " breaks" : "") + ": " + what);
   }
 }
 

@@ -1198,3 +1198,20 @@ TEST(CaseFileTest, AMissingQuantityNamesTheKeyThatIsLikelyItsTypo) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// Issue 51's trial: a stated break outside the table read "[lift]: break 0 (100°) must be …",
+// naming no key.
+TEST(CaseFileTest, AStatedBreakTheLawRefusesNamesItsKey) {
+  EXPECT_EQ(LawError(kGood + "breaks_deg = [100]\n"),
+            "t.toml: [lift] breaks: break 0 (100°) must be an angle of the table strictly inside "
+            "the open lift (-10° to 30°)");
+  // Out of order, the reader names the key as written first.
+  EXPECT_EQ(LawError(kGood + "breaks_deg = [10, 0]\n"),
+            "t.toml: [lift] breaks_deg: angles must increase strictly (entry 1)");
+}
+
+}  // namespace
+}  // namespace needle
