@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The dependency rule of docs/architecture.md, checked: no #include runs up a floor; and the
-sizes issue 34 set: no source file over 500 lines, no command file (apps/cli) over 200.
+sizes issue 34 set: no source file over 500 lines, no command file (apps/cli) over 200; and
+issue 52's rule: apps/study and apps/report never include the file model (case_file.h).
 
 The floors, lowest first; a file may include its own floor's headers and those of any floor
 below it, never one above (nor a sibling: cli and python do not include each other, bench
@@ -28,6 +29,34 @@ BELOW["apps/bench"] = BELOW["apps/study"] + ["apps/study"]
 BELOW["apps/report"] = BELOW["apps/study"] + ["apps/study"]
 BELOW["apps/cli"] = BELOW["apps/report"] + ["apps/report"]
 BELOW["apps/python"] = BELOW["apps/report"] + ["apps/report"]
+
+# The file model (issue 52): the study and report floors read a bound case (apps/case/
+# bound_case.h, Bind), never these, directly or through another apps/case header.
+FILE_MODEL = {"apps/case/case_file.h", "apps/case/case_scene.h", "apps/case/section_reader.h"}
+BOUND_ONLY = ("apps/study", "apps/report")
+
+
+def Includes(rel: str):
+    """The quoted includes of a repository file ([] when it is not there)."""
+    path = ROOT / rel
+    if not path.is_file():
+        return []
+    return re.findall(r'^\s*#\s*include\s+"([^"]+)"', path.read_text(encoding="utf-8"), re.M)
+
+
+def FileModelVia(target: str, seen=None):
+    """The chain by which header `target` reaches the file model, or None."""
+    seen = set() if seen is None else seen
+    if target in FILE_MODEL:
+        return [target]
+    if target in seen or not target.startswith("apps/case/"):
+        return None
+    seen.add(target)
+    for inner in Includes(target):
+        chain = FileModelVia(inner, seen)
+        if chain:
+            return [target] + chain
+    return None
 
 
 def FloorOf(path: str):
@@ -60,6 +89,10 @@ def main() -> int:
             to = FloorOf(target)
             if to is not None and to != floor and to not in BELOW[floor]:
                 bad.append(f"{rel}: includes {target} ({to} is not below {floor})")
+            chain = FileModelVia(target) if floor in BOUND_ONLY else None
+            if chain:
+                bad.append(f"{rel}: includes the file model ({' -> '.join(chain)}); "
+                           "read the bound case (apps/case/bound_case.h)")
     for line in bad:
         print(line)
     print(f"floors: {files} files, {len(bad)} includes running up a floor or files too long")

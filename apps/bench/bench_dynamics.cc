@@ -148,15 +148,15 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
     // A second of untimed runs first: without it the first scene's first tolerances were
     // measured up to 1.5× slow in some runs on this machine (the rest of the run was not).
     const BenchScene& bs = Scenes().front();
-    const Scene scene = MakeScene(LoadCase(CaseDir() + bs.file));
+    const Scene scene = *Bind(LoadCase(CaseDir() + bs.file)).scene;
     const std::vector<double> grid = WindowGrid(scene, bs.rpm, 2000);
     const auto start = std::chrono::steady_clock::now();
     while (std::chrono::steady_clock::now() - start < std::chrono::seconds(1))
       MeasureRun(scene, bs.rpm, Method::kDopri5, 1e-6, grid, 1);
   }
   for (const BenchScene& bs : Scenes()) {
-    const Case c = LoadCase(CaseDir() + bs.file);
-    const Scene scene = MakeScene(c);
+    const BoundCase c = Bind(LoadCase(CaseDir() + bs.file));
+    const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, bs.rpm, 2000);
     const MeasuredRun ref = MeasureRun(scene, bs.rpm, Method::kExact, 1e-13, grid, 1);
     const MeasuredRun check = MeasureRun(scene, bs.rpm, Method::kDopri5, 1e-13, grid, 1);
@@ -267,9 +267,9 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
 // form takes one mass), median of 5 × repeats runs; its steps and right-hand-side evaluations
 // say whether a slower time is the machine or the method.
 std::string LongChainRow(int repeats) {
-  const Case c = LoadCase(CaseDir() + "basu-example1-surge.toml");
-  const Scene scene = MakeScene(c);
-  SimulationOptions o = OptionsFromCase(c);
+  const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example1-surge.toml"));
+  const Scene scene = *c.scene;
+  SimulationOptions o = c.run;
   o.force_dynamic = true;
   std::vector<double> times;
   SimulationResult last;
@@ -308,13 +308,13 @@ std::string RunExactComparison(int repeats) {
         "dopri5 1e-8 µs | steps | dopri5 lift error µm | exact / dopri5 |\n"
      << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ExactScene& es : scenes) {
-    const Case c = LoadCase(CaseDir() + es.file);
-    const Scene scene = MakeScene(c);
+    const BoundCase c = Bind(LoadCase(CaseDir() + es.file));
+    const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, es.rpm, 2000);
     const MeasuredRun ref = MeasureRun(scene, es.rpm, Method::kDopri5, 1e-12, grid, 1);
     const MeasuredRun ex = MeasureRun(scene, es.rpm, Method::kExact, 1e-8, grid, 1);
     const MeasuredRun dp = MeasureRun(scene, es.rpm, Method::kDopri5, 1e-8, grid, 1);
-    SimulationOptions o = OptionsFromCase(c);
+    SimulationOptions o = c.run;
     o.force_dynamic = true;
     SimulationOptions oe = o, od = o;
     oe.method = "exact";

@@ -34,8 +34,8 @@ std::string RunSizing(int repeats) {
     SizeResult r;
     for (int i = 0; i < repeats; ++i) {
       const auto t0 = std::chrono::steady_clock::now();
-      const LiftLaw law = MakeLiftLaw(c);
-      r = SizeCase(c, law, o);
+      const BoundCase b = Bind(c);  // the lift law built, as each `needle size` does
+      r = SizeCase(b, *b.lift.law, o);
       whole.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       closed.push_back(r.stages[0].seconds * 1e3);

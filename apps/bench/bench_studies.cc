@@ -127,8 +127,8 @@ std::string RunTargets(int repeats) {
   };
   // 1. Example 1 to a lift error of 0.1 µm.
   {
-    const Case c = LoadCase(CaseDir() + "basu-example1.toml");
-    const Scene scene = MakeScene(c);
+    const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example1.toml"));
+    const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, 125, 2000);
     const MeasuredRun ref = MeasureRun(scene, 125, Method::kExact, 1e-13, grid, 1);
     double best_ms = INFINITY;
@@ -155,9 +155,9 @@ std::string RunTargets(int repeats) {
   }
   // 2. A lift-off-and-lash scene at 1100 rpm in-process: Example 2 (0.5 mm play on 10° ramps).
   {
-    const Case c = LoadCase(CaseDir() + "basu-example2.toml");
-    const Scene scene = MakeScene(c);
-    SimulationOptions o = OptionsFromCase(c);
+    const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example2.toml"));
+    const Scene scene = *c.scene;
+    SimulationOptions o = c.run;
     o.force_dynamic = true;
     o.method = "exact";
     const SimulationResult r = Simulate(scene, 1100, o);
@@ -170,12 +170,12 @@ std::string RunTargets(int repeats) {
   }
   // 3. Overspeed search to 0.5 rpm, one core and two.
   {
-    const Case c = LoadCase(CaseDir() + "basu-cam4-light-spring.toml");
-    const Scene scene = MakeScene(c);
+    const BoundCase c = Bind(LoadCase(CaseDir() + "basu-cam4-light-spring.toml"));
+    const Scene scene = *c.scene;
     OverspeedOptions o;
     o.from_rpm = 400;
     o.to_rpm = 1200;
-    o.simulation = OptionsFromCase(c);
+    o.simulation = c.run;
     // Interleaved one- and two-thread runs, medians of each: background load hits both alike.
     std::vector<double> ones, twos;
     for (int r = 0; r < 3 * repeats; ++r) {
@@ -342,13 +342,13 @@ std::string RunOverspeedComparison(int repeats) {
   };
   // 1. The search alone on a lash-and-lift-off scene (Example 2, 600 to 1300 rpm).
   {
-    const Case c = LoadCase(CaseDir() + "basu-example2.toml");
-    const Scene scene = MakeScene(c);
+    const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example2.toml"));
+    const Scene scene = *c.scene;
     OverspeedOptions o;
     o.from_rpm = 600;
     o.to_rpm = 1300;
     o.threads = 1;
-    o.simulation = OptionsFromCase(c);
+    o.simulation = c.run;
     Timed t;
     int runs_before = 0;
     std::optional<double> before;
@@ -372,9 +372,9 @@ std::string RunOverspeedComparison(int repeats) {
            {"basu-example2.toml",
             "`check basu-example2` without report (a tolerance sample before it took from the "
             "nominal)"}}) {
-    const Case c = LoadCase(CaseDir() + name);
-    const LiftLaw law = MakeLiftLaw(c);
-    const Scene scene = MakeScene(c);
+    const BoundCase c = Bind(LoadCase(CaseDir() + name));
+    const LiftLaw& law = *c.lift.law;
+    const Scene scene = *c.scene;
     CheckOptions co;
     co.threads = 1;
     co.record_series = false;
@@ -383,7 +383,7 @@ std::string RunOverspeedComparison(int repeats) {
     o.from_rpm = range.from_rpm;
     o.to_rpm = range.to_rpm;
     o.threads = 1;
-    o.simulation = OptionsFromCase(c);
+    o.simulation = c.run;
     o.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
     std::vector<double> check, sweep_new, sweep_old;
     int runs_before = 0;
@@ -409,7 +409,7 @@ std::string RunOverspeedComparison(int repeats) {
   // its verdict only, its scan on from the nominal's n_dyn past f·n. The same samples both ways:
   // their verdicts compared, and n_dyn.
   {
-    const Case c = LoadCase(CaseDir() + "basu-example2.toml");
+    const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example2.toml"));
     ToleranceOptions o;
     o.samples = 20;
     o.seed = 1;
@@ -442,9 +442,10 @@ std::string RunOverspeedComparison(int repeats) {
     // Where a sample's time goes: the same samples with the spring given by its rate, the coil
     // geometry dropped, so no surge study (its three coil-chain runs; issue 39 added it after
     // issue 33 set the target) and no helical check. Both ways measured here, interleaved.
-    Case rate_only = c;
+    BoundCase rate_only = c;
     rate_only.spring->rate_N_m = HelicalRate(*rate_only.spring->helical);
     rate_only.spring->helical.reset();
+    rate_only.scene = BindScene(rate_only, rate_only.lift.law);
     std::vector<double> with, without;
     for (int r = 0; r < repeats; ++r) {
       with.push_back(ms_of([&] { reused = RunToleranceSamples(c, o); }) / o.samples);

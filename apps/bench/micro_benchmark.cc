@@ -40,8 +40,8 @@ void BM_Table1000(benchmark::State& state) {
 BENCHMARK(BM_Table1000)->DenseRange(0, 6);
 
 void BM_RightHandSide(benchmark::State& state) {
-  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml");
-  const Scene s = MakeScene(c);
+  const BoundCase c = Bind(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml"));
+  const Scene s = *c.scene;
   NeedleTrain train(*s.cam, s.train, 41.9, -0.5);
   Phase phase;
   phase.mode = {true, false};
@@ -56,8 +56,8 @@ void BM_RightHandSide(benchmark::State& state) {
 BENCHMARK(BM_RightHandSide);
 
 void BM_SimulateExample1(benchmark::State& state) {
-  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1.toml");
-  const Scene s = MakeScene(c);
+  const BoundCase c = Bind(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1.toml"));
+  const Scene s = *c.scene;
   SimulationOptions o;
   o.method = "dopri5";
   o.force_dynamic = true;
@@ -81,9 +81,9 @@ constexpr RunScene kRunScenes[] = {{"lash-1100", "basu-example2.toml", 1100},
 
 void RunOnce(benchmark::State& state, const char* method, double rtol) {
   const RunScene& rs = kRunScenes[state.range(0)];
-  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + rs.file);
-  const Scene s = MakeScene(c);
-  SimulationOptions o = OptionsFromCase(c);
+  const BoundCase c = Bind(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + rs.file));
+  const Scene s = *c.scene;
+  SimulationOptions o = c.run;
   o.method = method;
   o.force_dynamic = true;
   o.integrator.rtol = rtol;

@@ -150,14 +150,6 @@ void CheckSplineFits(const Case& c, SplineKind kind, const std::string& where) {
   }
 }
 
-std::optional<double> PaperVelocityAt(const Case& c, double crank_rad) {
-  if (!c.paper) return std::nullopt;
-  for (size_t i = 0; i < c.paper->crank_rad.size(); ++i) {
-    if (std::abs(c.paper->crank_rad[i] - crank_rad) < 1e-9) return c.paper->velocity_m_s[i];
-  }
-  return std::nullopt;
-}
-
 bool IsCsvPath(const std::string& path) {
   if (path.size() < 4) return false;
   std::string ext = path.substr(path.size() - 4);

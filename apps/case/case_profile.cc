@@ -11,25 +11,25 @@
 
 namespace needle {
 
-FollowerGeometry CaseFollower(const Case& c) {
+FollowerGeometry CaseFollower(const BoundCase& c) {
   if (!c.profile)
     throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
   return c.profile->follower;
 }
 
-double CrankOfCam(const Case& c, double cam_zero_crank_rad, double cam_rad) {
+double CrankOfCam(const BoundCase& c, double cam_zero_crank_rad, double cam_rad) {
   const double k = CrankTurnsPerCycle(c.engine.cycle), cycle_rad = 2 * kPi * k;
   const double from_zero = k * cam_rad - cycle_rad * std::floor(k * cam_rad / cycle_rad);
   return cam_zero_crank_rad + from_zero - (from_zero >= cycle_rad / 2 ? cycle_rad : 0.0);
 }
 
-std::string CamAndCrank(const Case& c, double cam_zero_crank_rad, double cam_rad, int decimals,
+std::string CamAndCrank(const BoundCase& c, double cam_zero_crank_rad, double cam_rad, int decimals,
                         const std::string& degree) {
   return "cam " + Fixed(cam_rad / kDeg, decimals) + degree + " (crank " +
          Fixed(CrankOfCam(c, cam_zero_crank_rad, cam_rad) / kDeg, decimals) + degree + ")";
 }
 
-CamProfile MakeCaseProfile(const Case& c, const LiftLaw& law, double* cam_zero_crank_rad) {
+CamProfile MakeCaseProfile(const BoundCase& c, const LiftLaw& law, double* cam_zero_crank_rad) {
   const FollowerGeometry g = CaseFollower(c);
   const double play = c.train ? c.train->play_m : 0.0;
   std::unique_ptr<CamInput> cam;

@@ -115,7 +115,7 @@ std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& la
   return c.str();
 }
 
-std::string SizedCaseText(const std::string& original, const Case& sized, const SizedSpring& s,
+std::string SizedCaseText(const std::string& original, double needle_mass_kg, const SizedSpring& s,
                           const SizingSpace& space) {
   const HelicalGeometry& g = s.geometry;
   const SizingWire& w = space.wires.at(s.wire_index);
@@ -161,7 +161,7 @@ std::string SizedCaseText(const std::string& original, const Case& sized, const 
       const std::string k = m[1];
       if (section == "spring" && std::regex_match(k, spring_key)) continue;
       if (section == "needle" && k.rfind("mass_", 0) == 0) {
-        out << "mass_kg = " << Exact(sized.needle->mass_kg)
+        out << "mass_kg = " << Exact(needle_mass_kg)
             << "  # the needle's parts and a third of the sized spring's active coils\n";
         continue;
       }

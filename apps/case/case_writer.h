@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "apps/case/case_file.h"
+#include "apps/case/synthesis_file.h"
 #include "lib/cam_synthesis.h"
 #include "spring/design_chain.h"
 #include "spring/spring_sizing.h"
@@ -24,9 +24,10 @@ std::string DesignCaseText(const DesignInputs& in, const DesignResult& r);
 /// a spring and a mass (so that `needle check` on it runs the spring and the dynamics).
 std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& law);
 
-/// The case file's text `original` with the [spring] keys of `s` and [needle] mass_kg of
-/// `sized` in place of the old ones; every other line kept.
-std::string SizedCaseText(const std::string& original, const Case& sized, const SizedSpring& s,
+/// The case file's text `original` with the [spring] keys of `s` and [needle] mass_kg =
+/// `needle_mass_kg` (the parts and a third of the sized coils) in place of the old ones; every
+/// other line kept.
+std::string SizedCaseText(const std::string& original, double needle_mass_kg, const SizedSpring& s,
                           const SizingSpace& space);
 
 }  // namespace needle

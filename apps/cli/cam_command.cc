@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
 #include "apps/report/cam_writer.h"
 #include "apps/report/command_output.h"
@@ -51,7 +52,7 @@ CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
 }
 
 int RunProfileCommand(const ProfileCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+  const BoundCase c = Bind(LoadCase(o.case_path));
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   return Emit(WriteProfile(ProfileOfCase(c), {o.json, o.csv.has_value(), false}), o.format, o.csv);
 }

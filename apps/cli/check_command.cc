@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
@@ -30,17 +31,18 @@ CLI::App* AddCheckCommand(CLI::App& app, CheckCommandOptions& o) {
 }
 
 int RunCheckCommand(const CheckCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+  const Case loaded = LoadCase(o.case_path);
   Gnuplot gnuplot;  // started now: its start-up runs beside the check
   const std::string path =
-      ReportPath(o.out_dir, std::filesystem::path(c.path).stem().string() + ".html");
-  CheckOutputPaths({{"--out", path}}, CaseInputs(c));
+      ReportPath(o.out_dir, std::filesystem::path(loaded.path).stem().string() + ".html");
+  CheckOutputPaths({{"--out", path}}, CaseInputs(loaded));
+  const BoundCase c = Bind(loaded);
   CheckOptions options;
   options.speed_rpm = o.speed_rpm;
-  const CaseLift lift = ResolveLift(c);
-  const LiftLaw& law = *lift.law;
+  const LiftLaw& law = *c.lift.law;
   // The report is made as the check runs: gnuplot draws each figure beside the rest of it.
-  CheckReportWriter writer(c, law, lift.choice, o.speed_rpm.value_or(c.engine.speed_rpm), &gnuplot);
+  CheckReportWriter writer(c, law, c.lift.choice, o.speed_rpm.value_or(c.engine.speed_rpm),
+                           &gnuplot);
   options.rated_run_done = [&writer](const SpringCheckResult& spring, const SimulationResult& run,
                                      const SimulationOptions& sim) {
     writer.RatedRun(spring, run, sim);
@@ -49,7 +51,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   {
     ProgressBar bar("overspeed", "speeds", o.json);
     options.progress = [&](int done, int total) { bar.Update(done, total); };
-    result = CheckScene(c, lift, options);
+    result = CheckScene(c, options);
   }
   const Report report = writer.Finish(result);
   WriteOutput({"--out", path}, report.Html(gnuplot));

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
@@ -38,7 +39,7 @@ int RunCompareCommand(const CompareCommandOptions& o) {
   Comparison cmp;
   {
     ProgressBar bar("compare", "runs", o.json);
-    cmp = CompareCases(std::move(a), std::move(b), o.speed_rpm,
+    cmp = CompareCases(Bind(a), Bind(b), o.speed_rpm,
                        [&](int done, int total) { bar.Update(done, total); });
   }
   WriteOutput({"--out", path}, CompareReport(cmp).Html(gnuplot));

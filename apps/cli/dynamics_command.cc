@@ -3,6 +3,7 @@
 #include <array>
 #include <optional>
 
+#include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
@@ -33,7 +34,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
 }
 
 int RunSimulateCommand(const SimulateCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+  const BoundCase c = Bind(LoadCase(o.case_path));
   SimulateJobOptions job = o.run;
   job.quasi_static = o.json;  // n_qs: the JSON object's, not the text's
   if (!o.csv) return Emit(WriteSimulate(SimulateCase(c, job), o.json), o.format, std::nullopt);
@@ -76,7 +77,7 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
 }
 
 int RunOverspeedCommand(const OverspeedCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+  const BoundCase c = Bind(LoadCase(o.case_path));
   CommandOutput r;
   {
     ProgressBar bar("overspeed", "speeds", o.json);

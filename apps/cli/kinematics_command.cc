@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "apps/case/case_file.h"
+#include "apps/case/case_scene.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/report/command_output.h"
 #include "apps/report/kinematics_writer.h"
@@ -24,7 +25,7 @@ CLI::App* AddKinematicsCommand(CLI::App& app, KinematicsCommandOptions& o) {
   cmd->add_option("--step", o.table.step_deg,
                   "table spacing in crank degrees, 0.001 to 90 (default 5; at most 100000 rows)")
       ->check(InRange(kTableStepRange, "a spacing in crank degrees"));
-  cmd->add_option("--spline", o.table.spline,
+  cmd->add_option("--spline", o.spline,
                   "spline kind (default: [lift] spline): " + SplineKindList());
   cmd->add_option("--units", o.units,
                   "table units: paper (mm, dcm/s, m/s^2) or si (m, m/s, m/s^2, m/s^3)")
@@ -55,7 +56,8 @@ int RunKinematicsCommand(const KinematicsCommandOptions& o) {
                : LoadCase(o.case_path);
   if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
   if (o.noise_mm) c.lift.noise_m = *o.noise_mm * 1e-3;
-  const KinematicsTable table = MakeKinematicsTable(std::move(c), o.table);
+  if (o.spline) c = WithSpline(std::move(c), *o.spline, "--spline");
+  const KinematicsTable table = MakeKinematicsTable(Bind(c), o.table);
   return Emit(WriteKinematics(table, {o.json, o.csv.has_value(), o.units == "paper"}), o.format,
               o.csv);
 }

@@ -15,10 +15,11 @@
 namespace needle {
 
 struct KinematicsCommandOptions {
-  std::string case_path;         ///< the case file
-  KinematicsTableOptions table;  ///< --rpm, --step, --spline
-  std::string units = "paper";   ///< "paper" (mm, dcm/s, m/s²) or "si" (m, m/s, m/s², m/s³)
-  bool json = false;             ///< print one JSON object instead of the table
+  std::string case_path;              ///< the case file
+  KinematicsTableOptions table;       ///< --rpm, --step
+  std::optional<std::string> spline;  ///< --spline: the spline kind (default: [lift] spline)
+  std::string units = "paper";        ///< "paper" (mm, dcm/s, m/s²) or "si" (m, m/s, m/s², m/s³)
+  bool json = false;                  ///< print one JSON object instead of the table
   OutputFormat format = OutputFormat::kText;  ///< --format (json set for kJson, kMarkdown)
   std::optional<std::string> csv;             ///< also write the table as CSV, atomically
   /// A bare CSV lift table as CASE: its cycle (for cam_deg columns; four-stroke when not given)

@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "apps/case/bound_case.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/report/output_paths.h"
 #include "apps/report/size_writer.h"
@@ -24,11 +25,11 @@ CLI::App* AddSizeCommand(CLI::App& app, SizeCommandOptions& o) {
 }
 
 int RunSizeCommand(const SizeCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+  const BoundCase c = Bind(LoadCase(o.case_path));
   if (o.case_out) CheckOutputPaths({{"--case", *o.case_out}}, CaseInputs(c));
   SizeWriting writing{o.json, std::nullopt};
   if (o.case_out) writing.case_text = ReadInputFile(o.case_path, "case file");
-  const CommandOutput r = WriteSize(c, SizeCase(c, MakeLiftLaw(c), o.sizing), writing);
+  const CommandOutput r = WriteSize(c, SizeCase(c, *c.lift.law, o.sizing), writing);
   if (o.case_out && !r.case_file.empty()) WriteOutput({"--case", *o.case_out}, r.case_file);
   return Emit(r, o.format, std::nullopt);
 }

@@ -1,5 +1,6 @@
 #include "apps/cli/spring_command.h"
 
+#include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/report/command_output.h"
@@ -20,8 +21,8 @@ CLI::App* AddSpringCommand(CLI::App& app, SpringCommandOptions& o) {
 }
 
 int RunSpringCommand(const SpringCommandOptions& o) {
-  return Emit(WriteSpring(CheckCaseSpring(LoadCase(o.case_path), o.speed_rpm), o.json), o.format,
-              std::nullopt);
+  return Emit(WriteSpring(CheckCaseSpring(Bind(LoadCase(o.case_path)), o.speed_rpm), o.json),
+              o.format, std::nullopt);
 }
 
 CLI::App* AddDesignCommand(CLI::App& app, DesignCommandOptions& o) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
 #include "apps/cli/cli_checks.h"
 #include "apps/cli/progress_bar.h"
@@ -40,7 +41,7 @@ CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& o) {
 }
 
 int RunToleranceCommand(const ToleranceCommandOptions& o) {
-  const Case c = LoadCase(o.case_path);
+  const BoundCase c = Bind(LoadCase(o.case_path));
   std::optional<std::string> report_path;
   std::optional<Gnuplot> gnuplot;
   if (o.out_dir) {

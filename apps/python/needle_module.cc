@@ -20,7 +20,9 @@
 #include <utility>
 #include <vector>
 
+#include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
+#include "apps/case/case_scene.h"
 #include "apps/case/plausible_ranges.h"
 #include "apps/python/python_support.h"
 #include "apps/report/cam_writer.h"
@@ -150,16 +152,21 @@ PYBIND11_MODULE(needle, m) {
         o.speed_rpm = Speed(rpm, "rpm");
         RequireSpeedOf(*c, o.speed_rpm, "rpm");
         o.step_deg = *Number(step_deg, "step_deg", "a spacing in crank degrees", kTableStepRange);
-        o.spline = Text(spline, "spline", "one of " + SplineKindList());
-        if (o.spline && !ParseSplineKind(*o.spline))
+        const auto kind = Text(spline, "spline", "one of " + SplineKindList());
+        if (kind && !ParseSplineKind(*kind))
           throw CaseError("spline=" + Repr(spline) + ": unknown kind; expected one of " +
                           SplineKindList());
         KinematicsWriting json;
         json.json = true;
-        return Run([&] { return WriteKinematics(MakeKinematicsTable(*c, o), json); },
-                   {{"--rpm", "rpm=" + Repr(rpm)},
-                    {"--step", "step_deg=" + Repr(step_deg)},
-                    {"--spline", "spline=" + Repr(spline)}});
+        return Run(
+            [&] {
+              return WriteKinematics(
+                  MakeKinematicsTable(Bind(kind ? WithSpline(*c, *kind, "--spline") : *c), o),
+                  json);
+            },
+            {{"--rpm", "rpm=" + Repr(rpm)},
+             {"--step", "step_deg=" + Repr(step_deg)},
+             {"--spline", "spline=" + Repr(spline)}});
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("step_deg") = 5.0,
       arg("spline") = py::none(), "needle kinematics: the velocity and acceleration table");
@@ -170,7 +177,7 @@ PYBIND11_MODULE(needle, m) {
         const auto c = CaseOf(source, "spring");
         const std::optional<double> speed = Speed(rpm, "rpm");
         RequireSpeedOf(*c, speed, "rpm");
-        return Run([&] { return WriteSpring(CheckCaseSpring(*c, speed), true); },
+        return Run([&] { return WriteSpring(CheckCaseSpring(Bind(*c), speed), true); },
                    {{"--rpm", "rpm=" + Repr(rpm)}});
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), "needle spring: the spring check");
@@ -182,7 +189,8 @@ PYBIND11_MODULE(needle, m) {
         return Run([&] {
           SizeWriting json;
           json.json = true;
-          return WriteSize(*c, SizeCase(*c, MakeLiftLaw(*c)), json);
+          const BoundCase b = Bind(*c);
+          return WriteSize(b, SizeCase(b, *b.lift.law), json);
         });
       },
       arg("case"),
@@ -201,7 +209,7 @@ PYBIND11_MODULE(needle, m) {
         o.rtol = Rtol(rtol);
         o.dynamic = Flag(dynamic, "dynamic");
         o.series = Flag(series, "series");
-        return Run([&] { return WriteSimulate(SimulateCase(*c, o), true); },
+        return Run([&] { return WriteSimulate(SimulateCase(Bind(*c), o), true); },
                    {{"--rpm", "rpm=" + Repr(rpm)},
                     {"--method", "method=" + Repr(method)},
                     {"--rtol", "rtol=" + Repr(rtol)}});
@@ -225,7 +233,7 @@ PYBIND11_MODULE(needle, m) {
         o.threads =
             static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
         RequireSpeedOf(*c, std::nullopt, "");
-        return Run([&] { return WriteOverspeed(OverspeedOfCase(*c, o), true); },
+        return Run([&] { return WriteOverspeed(OverspeedOfCase(Bind(*c), o), true); },
                    {{"--from", "from_rpm=" + Repr(from_rpm)},
                     {"--to", "to_rpm=" + Repr(to_rpm)},
                     {"--step-rpm", "step_rpm=" + Repr(step_rpm)},
@@ -246,10 +254,10 @@ PYBIND11_MODULE(needle, m) {
         RequireSpeedOf(*c, options.speed_rpm, "rpm");
         return Run(
             [&] {
-              const CaseLift lift = ResolveLift(*c);
-              const CheckResult r = CheckScene(*c, lift, options);
+              const BoundCase b = Bind(*c);
+              const CheckResult r = CheckScene(b, options);
               CommandOutput out;
-              out.json = CheckJson(*c, *lift.law, r, "");
+              out.json = CheckJson(b, *b.lift.law, r, "");
               out.json.erase("report");  // no report is written from Python
               out.status = r.pass ? 0 : 1;
               return out;
@@ -269,7 +277,7 @@ PYBIND11_MODULE(needle, m) {
         RequireSpeedOf(*cb, speed, "rpm");
         return Run(
             [&] {
-              const Comparison cmp = CompareCases(*ca, *cb, speed);
+              const Comparison cmp = CompareCases(Bind(*ca), Bind(*cb), speed);
               CommandOutput out;
               out.json = CompareJson(cmp, "");
               for (nlohmann::json* j : {&out.json, &out.json["a"], &out.json["b"]})
@@ -316,7 +324,8 @@ PYBIND11_MODULE(needle, m) {
         RequireSpeedOf(*c, std::nullopt, "");
         return Run([&] {
           CommandOutput out;
-          out.json = ToleranceJson(*c, RunToleranceStudy(*c, o));
+          const BoundCase b = Bind(*c);
+          out.json = ToleranceJson(b, RunToleranceStudy(b, o));
           return out;
         });
       },
@@ -340,7 +349,7 @@ PYBIND11_MODULE(needle, m) {
           Case c = ParseCase(text, path);
           if (shown_as) c.path = *shown_as;
           RequireSpeedOf(c, std::nullopt, "");
-          result = RunToleranceSamples(c, o);
+          result = RunToleranceSamples(Bind(c), o);
         }
         return ShardArrays(result, o.seed, o.first_sample);
       },
@@ -376,10 +385,11 @@ PYBIND11_MODULE(needle, m) {
         std::vector<ToleranceSample> samples = ShardSamples(shards, o.seed, o.first_sample);
         o.samples = static_cast<int>(samples.size());
         return Run([&] {
-          ToleranceResult r = ReduceToleranceStudy(*c, o, std::move(samples));
+          const BoundCase b = Bind(*c);
+          ToleranceResult r = ReduceToleranceStudy(b, o, std::move(samples));
           r.seconds = seconds;
           CommandOutput out;
-          out.json = ToleranceJson(*c, r);
+          out.json = ToleranceJson(b, r);
           return out;
         });
       },
@@ -396,7 +406,7 @@ PYBIND11_MODULE(needle, m) {
         RequireSpeedOf(*c, std::nullopt, "");
         CamWriting json;
         json.json = true;
-        return Run([&] { return WriteProfile(ProfileOfCase(*c), json); });
+        return Run([&] { return WriteProfile(ProfileOfCase(Bind(*c)), json); });
       },
       arg("case"), "needle profile: the cam profile and its follower checks");
 }

@@ -120,7 +120,7 @@ CommandOutput WriteSynth(const SynthesisFile& f, const SynthesisResult& r, const
 }
 
 CommandOutput WriteProfile(const CaseCamProfile& profile, const CamWriting& w) {
-  const Case& c = profile.c;
+  const BoundCase& c = profile.c;
   const FollowerGeometry& g = profile.follower;
   const double play = profile.play_m, theta0 = profile.cam_zero_crank_rad;
   const CamProfile& p = profile.profile;

@@ -5,7 +5,7 @@
 /// a check fails — and a case's cam profile (apps/study/profile_job.h) — its JSON object, text
 /// and the CAD coordinates as CSV; exit status 1 when it undercuts or runs off the face.
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/report/command_output.h"
 #include "apps/study/profile_job.h"
 #include "apps/study/synthesis_scene.h"

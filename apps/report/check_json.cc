@@ -5,9 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/case/case_profile.h"
-#include "apps/case/case_scene.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
@@ -22,7 +21,7 @@
 
 namespace needle {
 
-nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
+nlohmann::json CheckJson(const BoundCase& c, const LiftLaw& law, const CheckResult& result,
                          const std::string& report_path) {
   nlohmann::json j;
   j["case"] = c.path;

@@ -2,7 +2,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "apps/case/case_file.h"
 #include "apps/case/case_profile.h"
 #include "apps/report/check_writers.h"
 #include "apps/report/html_report.h"
@@ -42,8 +41,8 @@ std::string Sci(double v) {
 
 }  // namespace
 
-CheckReportWriter::CheckReportWriter(const Case& c, const LiftLaw& law, const LiftLawChoice& choice,
-                                     double rpm, Gnuplot* gnuplot)
+CheckReportWriter::CheckReportWriter(const BoundCase& c, const LiftLaw& law,
+                                     const LiftLawChoice& choice, double rpm, Gnuplot* gnuplot)
     : c_(c),
       law_(law),
       choice_(choice),
@@ -198,7 +197,7 @@ void CheckReportWriter::RatedRun(const SpringCheckResult& spring, const Simulati
 Report CheckReportWriter::Finish(const CheckResult& result) {
   if (result.run && result.spring && !rated_)
     RatedRun(*result.spring, *result.run, result.run_options);
-  const Case& c = c_;
+  const BoundCase& c = c_;
   const LiftLaw& law = law_;
   const double rpm = rpm_;
   Report& report = report_;
@@ -492,7 +491,8 @@ Report CheckReportWriter::Finish(const CheckResult& result) {
   return std::move(report_);
 }
 
-Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result, Gnuplot* gnuplot) {
+Report CheckReport(const BoundCase& c, const LiftLaw& law, const CheckResult& result,
+                   Gnuplot* gnuplot) {
   CheckReportWriter writer(c, law, result.choice, result.speed_rpm, gnuplot);
   return writer.Finish(result);
 }

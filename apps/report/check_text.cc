@@ -6,7 +6,7 @@
 
 namespace needle {
 
-std::string CheckText(const Case& c, const CheckResult& result, const std::string& path,
+std::string CheckText(const BoundCase& c, const CheckResult& result, const std::string& path,
                       int figures) {
   std::ostringstream out;
   out << (c.title.empty() ? c.path : c.title) << '\n';

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/report/html_report.h"
 #include "apps/study/check_scene.h"
 #include "lib/kinematics.h"
@@ -16,19 +16,19 @@ namespace needle {
 
 /// What `check --json` prints for case `c` (lift law `law`) and its result; `report_path` is the
 /// report the run wrote.
-nlohmann::json CheckJson(const Case& c, const LiftLaw& law, const CheckResult& result,
+nlohmann::json CheckJson(const BoundCase& c, const LiftLaw& law, const CheckResult& result,
                          const std::string& report_path);
 
 /// What `check` prints without --json: the verdicts, n_qs and n_dyn, the limits table, what
 /// warns and fails, the report written (`report_path`, with its `figures`) and the overall
 /// verdict.
-std::string CheckText(const Case& c, const CheckResult& result, const std::string& report_path,
+std::string CheckText(const BoundCase& c, const CheckResult& result, const std::string& report_path,
                       int figures);
 
 /// The check's HTML report: the scene, the kinematics, the spring, the dynamics, the sweep, the
 /// limits table and the figures (given to `gnuplot`, when given, as they are made). Throws
 /// std::runtime_error naming gnuplot's failure.
-Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
+Report CheckReport(const BoundCase& c, const LiftLaw& law, const CheckResult& result,
                    Gnuplot* gnuplot = nullptr);
 
 /// The same report made as the check runs, so that its gnuplot draws each figure beside the rest
@@ -38,7 +38,7 @@ Report CheckReport(const Case& c, const LiftLaw& law, const CheckResult& result,
 class CheckReportWriter {
  public:
   /// `c` and `law` outlive this writer; `choice` and `rpm` are the check's (its result's).
-  CheckReportWriter(const Case& c, const LiftLaw& law, const LiftLawChoice& choice, double rpm,
+  CheckReportWriter(const BoundCase& c, const LiftLaw& law, const LiftLawChoice& choice, double rpm,
                     Gnuplot* gnuplot = nullptr);
   /// The rated-speed run and the spring check it ran on (at most once; Finish gives them from
   /// the result when this was not called).
@@ -49,7 +49,7 @@ class CheckReportWriter {
 
  private:
   static constexpr size_t kNone = static_cast<size_t>(-1);
-  const Case& c_;
+  const BoundCase& c_;
   const LiftLaw& law_;
   LiftLawChoice choice_;
   double rpm_;

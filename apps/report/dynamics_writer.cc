@@ -42,7 +42,7 @@ std::string CyclesText(const SimulationResult& r) {
 }  // namespace
 
 CommandOutput WriteSimulate(const CaseRun& run, bool json) {
-  const Case& c = run.c;
+  const BoundCase& c = run.c;
   const SimulationResult& r = run.result;
   const double speed = run.speed_rpm;
   CommandOutput result;
@@ -132,7 +132,7 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
 }
 
 CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
-  const Case& c = search.c;
+  const BoundCase& c = search.c;
   const OverspeedOptions& opt = search.options;
   const OverspeedResult& r = search.result;
   const double n_qs = search.liftoff_rpm_quasi_static;

@@ -21,7 +21,7 @@ std::string Pad(const std::string& s, size_t width) {
 }  // namespace
 
 CommandOutput WriteKinematics(const KinematicsTable& table, const KinematicsWriting& w) {
-  const Case& c = table.c;
+  const BoundCase& c = table.c;
   const LiftLawChoice& choice = table.choice;
   const LiftLaw& law = table.law;
   const KinematicsSummary& sum = table.summary;

@@ -49,9 +49,9 @@ void CheckOutputPaths(const std::vector<OutputPath>& outputs,
   }
 }
 
-std::vector<std::string> CaseInputs(const Case& c) {
-  std::vector<std::string> in{c.path};
-  if (c.lift.source.rfind("csv ", 0) == 0) in.push_back(c.lift.source.substr(4));
+std::vector<std::string> CaseInputs(const std::string& path, const std::string& lift_source) {
+  std::vector<std::string> in{path};
+  if (lift_source.rfind("csv ", 0) == 0) in.push_back(lift_source.substr(4));
   return in;
 }
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "lib/output.h"
 #include "lib/result_fields.h"
 
@@ -30,8 +30,14 @@ struct OutputPath {
 void CheckOutputPaths(const std::vector<OutputPath>& outputs,
                       const std::vector<std::string>& inputs);
 
-/// The files a case reads: the case itself and its lift CSV, if any.
-std::vector<std::string> CaseInputs(const Case& c);
+/// The files a case reads: the case itself (`path`) and its lift CSV, if any (`lift_source`
+/// "csv FILE").
+std::vector<std::string> CaseInputs(const std::string& path, const std::string& lift_source);
+/// The same of a case, loaded (case_file.h) or bound: checked before it is bound.
+template <class AnyCase>
+std::vector<std::string> CaseInputs(const AnyCase& c) {
+  return CaseInputs(c.path, c.lift.source);
+}
 
 /// DIR/NAME, a report's path under the --out folder DIR, which is made when missing; throws
 /// CaseError "--out: DIR is not a folder and cannot be made one" when it cannot be.

@@ -38,7 +38,7 @@ std::string RowText(const std::string& name, double value, double limit, bool at
 
 }  // namespace
 
-CommandOutput WriteSize(const Case& c, const SizeResult& r, const SizeWriting& w) {
+CommandOutput WriteSize(const BoundCase& c, const SizeResult& r, const SizeWriting& w) {
   const SizingSpace& sp = r.space;
   const SizedSpring* chosen = r.winner ? &r.verified[*r.winner].spring
                               : r.pass && !r.closed_form.best.empty() ? &r.closed_form.best[0]
@@ -49,8 +49,8 @@ CommandOutput WriteSize(const Case& c, const SizeResult& r, const SizeWriting& w
   CommandOutput out;
   out.status = r.pass ? 0 : 1;
   if (r.pass && chosen && w.case_text) {
-    const Case sized = CaseWithSpring(c, *chosen, sp, r.mass_without_spring_kg);
-    out.case_file = SizedCaseText(*w.case_text, sized, *chosen, sp);
+    const BoundCase sized = CaseWithSpring(c, *chosen, sp, r.mass_without_spring_kg);
+    out.case_file = SizedCaseText(*w.case_text, sized.needle->mass_kg, *chosen, sp);
   }
   if (w.json) {
     nlohmann::json& j = out.json;

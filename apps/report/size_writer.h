@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/report/command_output.h"
 #include "apps/study/spring_sizing_scene.h"
 
@@ -20,6 +20,6 @@ struct SizeWriting {
   std::optional<std::string> case_text;
 };
 
-CommandOutput WriteSize(const Case& c, const SizeResult& result, const SizeWriting& writing);
+CommandOutput WriteSize(const BoundCase& c, const SizeResult& result, const SizeWriting& writing);
 
 }  // namespace needle

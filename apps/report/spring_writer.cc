@@ -17,7 +17,7 @@ namespace {
 std::string PassFail(bool ok) { return ok ? "pass" : "FAIL"; }
 
 // The helical check's fatigue line: Goodman's n_f on Zimmerli's data, which the pass includes.
-std::string FatigueLine(const Case& c, const HelicalSpringCheck& h) {
+std::string FatigueLine(const BoundCase& c, const HelicalSpringCheck& h) {
   const HelicalGeometry& wire = *c.spring->helical;
   if (!h.fatigue_judged) {
     return "  fatigue not judged: wire " + Fixed(wire.wire_m * 1e3, 1) +
@@ -33,7 +33,7 @@ std::string FatigueLine(const Case& c, const HelicalSpringCheck& h) {
 }  // namespace
 
 CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
-  const Case& c = spring.c;
+  const BoundCase& c = spring.c;
   const double speed = spring.speed_rpm;
   const SpringCheckResult& check = spring.check;
   const KinematicsSummary& sum = check.kinematics;

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/report/html_report.h"
 #include "apps/report/output_paths.h"
 #include "apps/report/result_writers.h"
@@ -43,7 +43,7 @@ std::vector<std::pair<std::string, double>> Ranked(const Drivers& d) {
 
 }  // namespace
 
-nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
+nlohmann::json ToleranceJson(const BoundCase& c, const ToleranceResult& r) {
   const ToleranceSection& t = r.tolerance;
   const double n = static_cast<double>(r.samples.size());
   const double p_low = r.failure_probability_low, p_high = r.failure_probability_high;
@@ -86,7 +86,7 @@ nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& r) {
   return j;
 }
 
-Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t seed) {
+Report ToleranceReport(const BoundCase& c, const ToleranceResult& r, std::uint64_t seed) {
   const ToleranceSection& t = r.tolerance;
   const double p_low = r.failure_probability_low, p_high = r.failure_probability_high;
   Report report("needle tolerance: " + (c.title.empty() ? c.path : c.title));  // Html escapes
@@ -145,7 +145,7 @@ Report ToleranceReport(const Case& c, const ToleranceResult& r, std::uint64_t se
   return report;
 }
 
-std::string ToleranceText(const Case& c, const ToleranceResult& r, std::uint64_t seed,
+std::string ToleranceText(const BoundCase& c, const ToleranceResult& r, std::uint64_t seed,
                           const std::optional<std::string>& report_path) {
   const ToleranceSection& t = r.tolerance;
   const double n = static_cast<double>(r.samples.size());

@@ -8,19 +8,19 @@
 #include <optional>
 #include <string>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/report/html_report.h"
 #include "apps/study/tolerance_study.h"
 
 namespace needle {
 
 /// What `tolerance --json` prints for a study of case `c` (without the report's path).
-nlohmann::json ToleranceJson(const Case& c, const ToleranceResult& result);
+nlohmann::json ToleranceJson(const BoundCase& c, const ToleranceResult& result);
 /// The study's HTML report: the scatter, the failure probability and its drivers, the
 /// distributions and a histogram of each headline quantity.
-Report ToleranceReport(const Case& c, const ToleranceResult& result, std::uint64_t seed);
+Report ToleranceReport(const BoundCase& c, const ToleranceResult& result, std::uint64_t seed);
 /// What `tolerance` prints without --json.
-std::string ToleranceText(const Case& c, const ToleranceResult& result, std::uint64_t seed,
+std::string ToleranceText(const BoundCase& c, const ToleranceResult& result, std::uint64_t seed,
                           const std::optional<std::string>& report_path);
 
 }  // namespace needle

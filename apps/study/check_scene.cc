@@ -6,7 +6,6 @@
 #include <system_error>
 
 #include "apps/case/case_profile.h"
-#include "apps/case/case_scene.h"
 #include "apps/study/limits_table.h"
 #include "lib/output.h"
 #include "lib/threads.h"
@@ -16,7 +15,7 @@
 
 namespace needle {
 
-SweepRange DefaultSweepRange(const Case& c, double rated_rpm, double n_qs_rpm) {
+SweepRange DefaultSweepRange(const BoundCase& c, double rated_rpm, double n_qs_rpm) {
   SweepRange r;
   r.from_rpm = c.overspeed && c.overspeed->from_rpm ? *c.overspeed->from_rpm : rated_rpm;
   r.to_rpm =
@@ -58,7 +57,7 @@ constexpr double kAssumedSurgeDamping = 0.01;
 // (left to the caller when it is the rated run: the case has no coil masses). Reads of `r` the
 // spring check, the speeds and the run options only. Throws std::invalid_argument when the train
 // refuses the chain (coils of 3 needle masses or more).
-SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene,
+SurgeStudy StudySurge(const BoundCase& c, const CheckResult& r, Scene scene,
                       const CheckOptions& options) {
   const bool series = options.record_series;
   SurgeStudy s;
@@ -111,22 +110,21 @@ SurgeStudy StudySurge(const Case& c, const CheckResult& r, Scene scene,
 
 }  // namespace
 
-CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options) {
+CheckResult CheckScene(const BoundCase& c, const CheckOptions& options) {
+  return CheckScene(c, c.lift.law, options);
+}
+
+CheckResult CheckScene(const BoundCase& c, const LiftLaw& law, const CheckOptions& options) {
   return CheckScene(c, std::make_shared<const LiftLaw>(law), options);
 }
 
-CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> shared_law,
+CheckResult CheckScene(const BoundCase& c, std::shared_ptr<const LiftLaw> shared_law,
                        const CheckOptions& options) {
-  return CheckScene(c, CaseLift{CaseLiftChoice(c), std::move(shared_law)}, options);
-}
-
-CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& options) {
-  const std::shared_ptr<const LiftLaw>& shared_law = lift.law;
   const LiftLaw& law = *shared_law;
   CheckResult r;
   r.speed_rpm = options.speed_rpm.value_or(c.engine.speed_rpm);
   const double rpm = r.speed_rpm;
-  r.choice = lift.choice;
+  r.choice = c.lift.choice;
   r.kinematics = Kinematics(law, rpm).Summarize();
   r.overspeed_rpm = rpm * (c.spring ? c.spring->overspeed_factor : 1.2);
   const auto fail = [&r](const std::string& what) { r.failing.push_back(what); };
@@ -183,8 +181,9 @@ CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& 
   } else if (!law.HasAcceleration()) {
     fail("dynamics and overspeed: " + no_acceleration);
   } else {
-    const Scene scene = MakeScene(c, shared_law);  // the one scene of the check
-    r.run_options = OptionsFromCase(c);
+    // The one scene of the check: the bound one, or one on the law asked for.
+    const Scene scene = c.scene && c.scene->law == shared_law ? *c.scene : BindScene(c, shared_law);
+    r.run_options = c.run;
     // The surge study needs nothing of the rated run and the sweep: given a second core it runs
     // beside them (its runs and theirs are the same either way; the sweep keeps the other cores).
     const bool helical = r.spring && r.spring->helical;

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 #include "lib/cam_profile.h"
@@ -41,7 +41,7 @@ struct SweepRange {
 /// The default sweep of a case, used by `check` and `overspeed` alike: from [overspeed]
 /// from_rpm, else the rated speed; to [overspeed] to_rpm, else max(2·n_qs, 2·rated) when n_qs
 /// is finite and 4·rated when it is not (a lift law that never decelerates).
-SweepRange DefaultSweepRange(const Case& c, double rated_rpm, double n_qs_rpm);
+SweepRange DefaultSweepRange(const BoundCase& c, double rated_rpm, double n_qs_rpm);
 
 /// One row of the limits table (case [limits]): value against limit, in display units.
 struct LimitRow {
@@ -161,15 +161,14 @@ std::vector<FieldGroup> CheckFields(const CheckResult& r);
 /// its value, limit and margin in the row's own unit (none when not judged).
 std::vector<Field> LimitRowFields(const LimitRow& row);
 
-/// Checks case `c` with lift law `law` (MakeLiftLaw(c)). Throws CaseError on a case that
-/// cannot be checked (a section that is present but invalid).
-CheckResult CheckScene(const Case& c, const LiftLaw& law, const CheckOptions& options = {});
-/// The same on a shared law: the check's scene and its surge study's scenes share it (the lift
-/// law is built once per check).
-CheckResult CheckScene(const Case& c, std::shared_ptr<const LiftLaw> law,
+/// Checks bound case `c` on its own lift law and scene. Throws CaseError on a case that cannot
+/// be checked (a section that is present but invalid).
+CheckResult CheckScene(const BoundCase& c, const CheckOptions& options = {});
+/// The same on another law of the case's table (`law`; the choice reported stays the case's).
+CheckResult CheckScene(const BoundCase& c, const LiftLaw& law, const CheckOptions& options = {});
+/// The same on a shared law: the check's scene and its surge study's scenes share it.
+CheckResult CheckScene(const BoundCase& c, std::shared_ptr<const LiftLaw> law,
                        const CheckOptions& options = {});
-/// The same on a lift resolved once (ResolveLift): its choice is the check's, not made again.
-CheckResult CheckScene(const Case& c, const CaseLift& lift, const CheckOptions& options = {});
 
 /// Where the rated-speed run lifts off with jumps all shorter than the 0.1° that n_dyn counts
 /// (any jump fails at the rated speed, docs/model.md §8), the words that say so — " (a jump of

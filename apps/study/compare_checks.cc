@@ -137,15 +137,14 @@ std::vector<ComparedItem> CompareChecks(const std::vector<CheckItem>& a,
   return items;
 }
 
-Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rpm,
+Comparison CompareCases(BoundCase a_case, BoundCase b_case, std::optional<double> speed_rpm,
                         const std::function<void(int, int)>& progress) {
   Comparison cmp;
   cmp.a.c = std::move(a_case);
   cmp.b.c = std::move(b_case);
   int done_before = 0;  // the runs of A, when B is checked
   for (CheckedDesign* d : {&cmp.a, &cmp.b}) {
-    const CaseLift lift = ResolveLift(d->c);
-    d->law = lift.law;
+    d->law = d->c.lift.law;
     CheckOptions options;
     options.speed_rpm = speed_rpm;
     if (progress) {
@@ -153,7 +152,7 @@ Comparison CompareCases(Case a_case, Case b_case, std::optional<double> speed_rp
         progress(done_before + done, done_before + total);
       };
     }
-    d->result = CheckScene(d->c, lift, options);
+    d->result = CheckScene(d->c, options);
     if (d->result.sweep) done_before += static_cast<int>(d->result.sweep->rows.size());
   }
   cmp.items = CompareChecks(CheckItems(cmp.a.result, cmp.a.law->kind()),

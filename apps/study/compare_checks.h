@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/study/check_scene.h"
 #include "lib/lift_law.h"
 #include "lib/spline.h"
@@ -65,7 +65,7 @@ std::vector<ComparedItem> CompareChecks(const std::vector<CheckItem>& a,
 
 /// One design checked: the case, its lift law and the check.
 struct CheckedDesign {
-  Case c;
+  BoundCase c;
   std::shared_ptr<const LiftLaw> law;
   CheckResult result;
 };
@@ -82,7 +82,7 @@ struct Comparison {
 
 /// Checks both cases as `check` does (at `speed_rpm` when given, else each case's own) and
 /// compares them. `progress` gets the runs done of both sweeps.
-Comparison CompareCases(Case a, Case b, std::optional<double> speed_rpm,
+Comparison CompareCases(BoundCase a, BoundCase b, std::optional<double> speed_rpm,
                         const std::function<void(int, int)>& progress = {});
 
 }  // namespace needle

@@ -5,7 +5,6 @@
 #include <string>
 #include <utility>
 
-#include "apps/case/case_scene.h"
 #include "apps/case/plausible_ranges.h"
 #include "apps/study/check_scene.h"
 #include "lib/output.h"
@@ -15,9 +14,9 @@ namespace needle {
 
 namespace {
 
-SimulationOptions Options(const Case& c, const std::optional<std::string>& method,
+SimulationOptions Options(const BoundCase& c, const std::optional<std::string>& method,
                           const std::optional<double>& rtol) {
-  SimulationOptions o = OptionsFromCase(c);
+  SimulationOptions o = c.run;
   if (method) {
     if (*method != "auto" && !ParseMethod(*method)) {
       throw CaseError("--method: unknown method \"" + *method + "\"; expected " + MethodList());
@@ -28,17 +27,17 @@ SimulationOptions Options(const Case& c, const std::optional<std::string>& metho
   if (rtol) {
     RequireIn("--rtol", rtol, kMinRtol, kMaxRtol, "a relative tolerance");
     o.integrator.rtol = *rtol;
-    if (!(c.solver && c.solver->atol_m)) o.integrator.atol_m = DefaultAtol(*rtol);
+    if (!c.atol_given) o.integrator.atol_m = DefaultAtol(*rtol);
   }
   return o;
 }
 
 }  // namespace
 
-CaseRun SimulateCase(const Case& c, const SimulateJobOptions& o,
+CaseRun SimulateCase(const BoundCase& c, const SimulateJobOptions& o,
                      const std::function<void(const SeriesPoint&)>& series_sink) {
   RequireSpeed(o.speed_rpm);
-  const Scene scene = MakeScene(c);
+  const Scene scene = c.scene ? *c.scene : BindScene(c, c.lift.law);  // throws what is missing
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
   // Streamed: to the caller's sink, and as SI columns when asked; none is kept as a whole.
@@ -64,14 +63,14 @@ CaseRun SimulateCase(const Case& c, const SimulateJobOptions& o,
   return run;
 }
 
-CaseOverspeed OverspeedOfCase(const Case& c, const OverspeedJobOptions& o,
+CaseOverspeed OverspeedOfCase(const BoundCase& c, const OverspeedJobOptions& o,
                               const std::function<void(int, int)>& progress) {
   RequireIn("--threads", o.threads, kThreadsRange.lo, kThreadsRange.hi, "a number of threads");
   RequireIn("--step-rpm", o.step_rpm, kSpeedStepRange.lo, kSpeedStepRange.hi,
             "a speed step in rpm");
   RequireSpeed(o.from_rpm, "--from");
   RequireSpeed(o.to_rpm, "--to");
-  const Scene scene = MakeScene(c);
+  const Scene scene = c.scene ? *c.scene : BindScene(c, c.lift.law);  // throws what is missing
   const double n_qs = QuasiStaticLiftoffRpm(scene);
   OverspeedOptions opt;
   opt.simulation = Options(c, o.method, o.rtol);

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "dynamics/overspeed.h"
 #include "dynamics/simulation.h"
 
@@ -31,7 +31,7 @@ struct SimulateJobOptions {
 
 /// A run of a case and what it was made with.
 struct CaseRun {
-  Case c;                                 ///< the case
+  BoundCase c;                            ///< the case
   double speed_rpm = 0.0;                 ///< the speed run, rpm
   double rtol = 0.0;                      ///< the tolerance it ran with
   double liftoff_rpm_quasi_static = NAN;  ///< n_qs, rpm (∞ when none; NaN when not asked)
@@ -43,7 +43,7 @@ struct CaseRun {
 
 /// One run of a loaded case; each series point also goes to `series_sink` (when given) as the
 /// run makes it. Throws CaseError on bad input.
-CaseRun SimulateCase(const Case& c, const SimulateJobOptions& options,
+CaseRun SimulateCase(const BoundCase& c, const SimulateJobOptions& options,
                      const std::function<void(const SeriesPoint&)>& series_sink = {});
 
 /// What the search is made with, over the case's [overspeed] and [solver].
@@ -58,7 +58,7 @@ struct OverspeedJobOptions {
 
 /// The search of a case and what it was made with.
 struct CaseOverspeed {
-  Case c;                                 ///< the case
+  BoundCase c;                            ///< the case
   OverspeedOptions options;               ///< the search's options, its range resolved
   double liftoff_rpm_quasi_static = 0.0;  ///< n_qs, rpm (∞ when none)
   OverspeedResult result;                 ///< the search
@@ -66,7 +66,7 @@ struct CaseOverspeed {
 
 /// The overspeed search of a loaded case; `progress` (may be empty) hears of every run done.
 /// Throws CaseError on bad input (an option out of range, an empty range).
-CaseOverspeed OverspeedOfCase(const Case& c, const OverspeedJobOptions& options,
+CaseOverspeed OverspeedOfCase(const BoundCase& c, const OverspeedJobOptions& options,
                               const std::function<void(int, int)>& progress = {});
 
 }  // namespace needle

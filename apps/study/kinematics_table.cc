@@ -14,7 +14,7 @@ namespace {
 
 // The table's first and last angle, the open lift's ends, every multiple of the step between,
 // and the paper's angles.
-std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const Case& c) {
+std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const BoundCase& c) {
   const double lo = law.table_start_rad(), hi = law.table_end_rad();
   std::vector<double> rows = {lo, hi, law.start_rad(), law.end_rad()};
   const double first = std::ceil(lo / step_rad - 1e-9);
@@ -31,27 +31,13 @@ std::vector<double> RowAngles(const LiftLaw& law, double step_rad, const Case& c
 
 }  // namespace
 
-KinematicsTable MakeKinematicsTable(Case c, const KinematicsTableOptions& o) {
+KinematicsTable MakeKinematicsTable(const BoundCase& c, const KinematicsTableOptions& o) {
   RequireSpeed(o.speed_rpm);
   RequireIn("--step", o.step_deg, kTableStepRange.lo, kTableStepRange.hi,
             "a spacing in crank degrees");
-  if (o.spline) {
-    const auto kind = ParseSplineKind(*o.spline);
-    if (!kind) {
-      throw CaseError("--spline: unknown kind \"" + *o.spline + "\"; expected one of " +
-                      SplineKindList());
-    }
-    CheckSplineFits(c, *kind, "--spline");
-    if (*kind == SplineKind::kClamped && c.lift.spline.kind != SplineKind::kClamped) {
-      c.lift.spline.start_slope = c.lift.spline.end_slope = 0.0;  // at rest unless the case says
-    }
-    c.lift.spline.kind = *kind;
-    c.lift.spline_given = true;
-  }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
-  CaseLift lift = ResolveLift(c);
-  LiftLawChoice choice = std::move(lift.choice);
-  LiftLaw law = *lift.law;
+  LiftLawChoice choice = c.lift.choice;
+  LiftLaw law = *c.lift.law;
   const Kinematics kin(law, speed);
   // A row budget: a table wider than 100 000 rows is no table (--step 1e-9 asked for 4 GB).
   const double span_deg = (law.table_end_rad() - law.table_start_rad()) / kDeg;
@@ -86,8 +72,7 @@ KinematicsTable MakeKinematicsTable(Case c, const KinematicsTableOptions& o) {
   }
   KinematicsSummary summary = kin.Summarize();
   return KinematicsTable{
-      std::move(c),    speed, std::move(choice), std::move(law), std::move(summary),
-      std::move(rows), paper};
+      c, speed, std::move(choice), std::move(law), std::move(summary), std::move(rows), paper};
 }
 
 }  // namespace needle

@@ -12,18 +12,18 @@
 #include <string>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "lib/kinematics.h"
 #include "lib/lift_data.h"
 #include "lib/lift_law.h"
 
 namespace needle {
 
-/// What the table is made with. Messages name the command's options (--rpm, --step, --spline).
+/// What the table is made with. Messages name the command's options (--rpm, --step); a
+/// --spline is the case's, set before it is bound (WithSpline, apps/case/case_scene.h).
 struct KinematicsTableOptions {
-  std::optional<double> speed_rpm;    ///< crank speed, rpm (default: [engine] speed_rpm)
-  double step_deg = 5.0;              ///< row spacing, crank deg, in kTableStepRange
-  std::optional<std::string> spline;  ///< spline kind (default: [lift] spline)
+  std::optional<double> speed_rpm;  ///< crank speed, rpm (default: [engine] speed_rpm)
+  double step_deg = 5.0;            ///< row spacing, crank deg, in kTableStepRange
 };
 
 /// How far the table's |v| lies from the paper's published velocities.
@@ -35,7 +35,7 @@ struct PaperVelocityDeviation {
 };
 
 struct KinematicsTable {
-  Case c;                                       ///< the case, with the spline asked for
+  BoundCase c;                                  ///< the case, with the spline asked for
   double speed_rpm = 0.0;                       ///< the speed of the table, rpm
   LiftLawChoice choice;                         ///< the spline chosen, and why
   LiftLaw law;                                  ///< the lift law
@@ -44,8 +44,8 @@ struct KinematicsTable {
   std::optional<PaperVelocityDeviation> paper;  ///< when the case gives the paper's velocities
 };
 
-/// The table of a loaded case. Throws CaseError on bad input (an option out of range, a spline
-/// that does not fit the table, more than 100 000 rows).
-KinematicsTable MakeKinematicsTable(Case c, const KinematicsTableOptions& options);
+/// The table of a bound case. Throws CaseError on bad input (an option out of range, more than
+/// 100 000 rows).
+KinematicsTable MakeKinematicsTable(const BoundCase& c, const KinematicsTableOptions& options);
 
 }  // namespace needle

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "apps/case/case_profile.h"
-#include "apps/case/case_scene.h"
 #include "lib/output.h"
 #include "lib/units.h"
 #include "spring/quasi_static.h"
@@ -15,7 +14,7 @@ namespace needle {
 
 // The limits table (docs/springs.md "The limits table"): one row per limit, judged where the scene
 // has what it needs, else "not judged" with the reason.
-void JudgeLimits(const Case& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r,
+void JudgeLimits(const BoundCase& c, const LiftLaw& law, double cam_zero_crank_rad, CheckResult& r,
                  bool report_notes) {
   const LimitsSection& l = c.limits;
   const double crank_turns = CrankTurnsPerCycle(c.engine.cycle);  // per cam turn

@@ -6,10 +6,10 @@
 
 namespace needle {
 
-CaseCamProfile ProfileOfCase(const Case& c) {
+CaseCamProfile ProfileOfCase(const BoundCase& c) {
   if (!c.profile)
     throw CaseError(c.path + ": [profile] base_radius_mm: section [profile] is missing");
-  const LiftLaw law = MakeLiftLaw(c);
+  const LiftLaw& law = *c.lift.law;
   double theta0 = 0.0;
   CamProfile p = MakeCaseProfile(c, law, &theta0);
   // The cam's speed at the rated engine speed (four-stroke: half the crank's).

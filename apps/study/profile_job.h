@@ -6,14 +6,14 @@
 /// speeds at the rated speed). `needle profile` and the Python module call it; the writer is
 /// apps/report/cam_writer.h.
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "lib/cam_profile.h"
 #include "lib/follower.h"
 
 namespace needle {
 
 struct CaseCamProfile {
-  Case c;                           ///< the case
+  BoundCase c;                      ///< the case
   FollowerGeometry follower;        ///< its follower ([profile])
   double play_m = 0.0;              ///< the roller's play ([train] play_mm), m
   double cam_zero_crank_rad = 0.0;  ///< the crank angle where the cam angle is 0, rad
@@ -21,7 +21,7 @@ struct CaseCamProfile {
   CamProfile profile;               ///< the profile and its extremes
 };
 
-/// The profile of a loaded case. Throws CaseError when it has no [profile].
-CaseCamProfile ProfileOfCase(const Case& c);
+/// The profile of a bound case. Throws CaseError when it has no [profile].
+CaseCamProfile ProfileOfCase(const BoundCase& c);
 
 }  // namespace needle

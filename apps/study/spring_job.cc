@@ -2,15 +2,14 @@
 
 #include <stdexcept>
 
-#include "apps/case/case_scene.h"
 #include "apps/case/plausible_ranges.h"
 
 namespace needle {
 
-CaseSpringCheck CheckCaseSpring(const Case& c, const std::optional<double>& speed_rpm) {
+CaseSpringCheck CheckCaseSpring(const BoundCase& c, const std::optional<double>& speed_rpm) {
   RequireSpeed(speed_rpm);
   const double speed = speed_rpm.value_or(c.engine.speed_rpm);
-  const LiftLaw law = MakeLiftLaw(c);
+  const LiftLaw& law = *c.lift.law;
   return CaseSpringCheck{c, speed, law.kind(), CheckSpring(c, law, speed)};
 }
 

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "lib/spline.h"
 #include "spring/design_chain.h"
 #include "spring/spring_check.h"
@@ -18,7 +18,7 @@ namespace needle {
 
 /// A case's spring check and what it was checked with.
 struct CaseSpringCheck {
-  Case c;                   ///< the case
+  BoundCase c;              ///< the case
   double speed_rpm = 0.0;   ///< the speed of the check, rpm
   SplineKind spline{};      ///< the lift law's spline
   SpringCheckResult check;  ///< the check
@@ -26,7 +26,7 @@ struct CaseSpringCheck {
 
 /// The spring check of a loaded case at `speed_rpm` (default: [engine] speed_rpm; messages name
 /// it --rpm). Throws CaseError on bad input.
-CaseSpringCheck CheckCaseSpring(const Case& c, const std::optional<double>& speed_rpm);
+CaseSpringCheck CheckCaseSpring(const BoundCase& c, const std::optional<double>& speed_rpm);
 
 /// Basu's design chain for a loaded engine file. Throws CaseError naming the file when the
 /// chain cannot proceed.

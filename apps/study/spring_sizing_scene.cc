@@ -27,9 +27,10 @@ constexpr double kCaseWireLo = 1.0 / 3.0, kCaseWireHi = 2.0;
 
 }  // namespace
 
-Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& space,
-                    double mass_without_spring_kg) {
-  Case out = c;
+BoundCase CaseWithSpring(const BoundCase& c, const SizedSpring& s, const SizingSpace& space,
+                         double mass_without_spring_kg) {
+  BoundCase out = c;
+  out.scene.reset();  // the check builds it on the sized spring
   SpringParameters& p = *out.spring;
   p.preload_N = s.preload_N;
   p.rate_N_m.reset();
@@ -39,7 +40,7 @@ Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& spac
   return out;
 }
 
-SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& options) {
+SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!c.needle || !c.spring)
     throw CaseError(c.path +

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/case/case_writer.h"
 #include "apps/study/check_scene.h"
 #include "spring/spring_sizing.h"
@@ -35,9 +35,9 @@ struct SizeOptions {
 /// A spring of the closed-form stage checked end to end.
 struct VerifiedSpring {
   SizedSpring spring;
-  Case sized_case;     ///< the case with this spring (and its moving mass)
-  CheckResult check;   ///< CheckScene's verdict on it
-  double seconds = 0;  ///< wall time of the check
+  BoundCase sized_case;  ///< the case with this spring (and its moving mass)
+  CheckResult check;     ///< CheckScene's verdict on it
+  double seconds = 0;    ///< wall time of the check
 };
 
 /// One stage of the sizing: how many springs it kept and what it took.
@@ -71,11 +71,11 @@ struct SizeResult {
 /// Sizes the spring of case `c` (with [needle] and [spring]) with its lift law `law`. Throws
 /// CaseError naming the section and key when the case cannot be sized (no [spring], no space to
 /// size in, a [sizing] that leaves no candidate).
-SizeResult SizeCase(const Case& c, const LiftLaw& law, const SizeOptions& options = {});
+SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& options = {});
 
 /// Case `c` with spring `s` (preload, geometry; the rate from the geometry) and the moving mass
 /// m₀ + m_s/3.
-Case CaseWithSpring(const Case& c, const SizedSpring& s, const SizingSpace& space,
-                    double mass_without_spring_kg);
+BoundCase CaseWithSpring(const BoundCase& c, const SizedSpring& s, const SizingSpace& space,
+                         double mass_without_spring_kg);
 
 }  // namespace needle

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 #include "apps/case/case_writer.h"
 #include "lib/cam_profile.h"
 #include "lib/cam_synthesis.h"

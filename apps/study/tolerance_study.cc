@@ -84,7 +84,7 @@ std::string FailingItem(const std::string& line) {
 }
 
 // One sample of the case: its inputs drawn, its case changed, its check run.
-ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
+ToleranceSample RunSample(const BoundCase& nominal, const ToleranceSection& t,
                           const LiftErrorModel& lift_error, const CheckOptions& base, uint64_t seed,
                           int index) {
   std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32),
@@ -92,13 +92,15 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   std::mt19937_64 gen(seq);
   std::normal_distribution<double> normal;
   ToleranceSample s;
-  Case c = nominal;
+  BoundCase c = nominal;
+  c.scene.reset();  // built again on the sample's inputs (CheckScene)
   // The inputs, each drawn whether or not it is varied, so that a sample's draws do not shift
   // when another input's σ changes from 0.
   const std::vector<double> e = lift_error.Draw(gen);
   const double z_mass = normal(gen), z_preload = normal(gen), z_rate = normal(gen),
                z_stiffness = normal(gen), z_play = normal(gen), z_speed = normal(gen);
-  std::vector<double>& lift = c.lift.table.lift_m;
+  LiftTable table = nominal.lift.table;
+  std::vector<double>& lift = table.lift_m;
   for (size_t i = 0; i < lift.size(); ++i) lift[i] = std::max(0.0, lift[i] + e[i]);
   double mean = 0.0, rough = 0.0;
   int varied = 0, inner = 0;
@@ -152,7 +154,8 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
   };
   CheckResult r;
   try {
-    r = CheckScene(c, ResolveLift(c), options);
+    c.lift = RebindLift(nominal.lift, std::move(table));
+    r = CheckScene(c, options);
   } catch (const CaseError& refusal) {
     return refused(refusal);
   } catch (const std::invalid_argument& refusal) {
@@ -193,7 +196,7 @@ ToleranceSample RunSample(const Case& nominal, const ToleranceSection& t,
 
 // The options of every sample's check: one thread, no series; with `reuse`, only what the verdict
 // reads (CheckOptions::verdict_only) and the nominal case's n_dyn as the overspeed scan's start.
-CheckOptions SampleOptions(const Case& c, bool reuse) {
+CheckOptions SampleOptions(const BoundCase& c, bool reuse) {
   CheckOptions options;
   options.threads = 1;
   options.record_series = false;
@@ -201,7 +204,7 @@ CheckOptions SampleOptions(const Case& c, bool reuse) {
   options.verdict_only = true;
   CheckResult nominal;
   try {
-    nominal = CheckScene(c, ResolveLift(c), options);
+    nominal = CheckScene(c, options);
   } catch (const CaseError&) {
     return options;  // nothing to take: each sample is checked in full
   }
@@ -273,7 +276,7 @@ Distribution Describe(std::vector<double> v) {
   return d;
 }
 
-std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions& options) {
+std::vector<ToleranceSample> RunToleranceSamples(const BoundCase& c, ToleranceOptions& options) {
   if (!(options.samples >= 1 && options.samples <= 1000000))
     throw CaseError("--samples: expected a number of samples in [1, 1000000], got " +
                     std::to_string(options.samples));
@@ -286,7 +289,6 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
   for (double y : c.lift.table.lift_m) varied.push_back(y > 0.0);
   const LiftErrorModel lift_error(c.lift.table.crank_rad, varied, t.lift_sigma_m,
                                   t.lift_correlation_rad);
-  MakeLiftLaw(c);  // a case that cannot be checked fails here, before any thread starts
   // Without scatter every sample is the nominal case, checked in full (a map's points).
   const bool scatter = t.lift_sigma_m > 0.0 || t.mass_fraction > 0.0 || t.preload_fraction > 0.0 ||
                        t.rate_fraction > 0.0 || t.stiffness_fraction > 0.0 ||
@@ -332,7 +334,7 @@ std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions
   return samples;
 }
 
-ToleranceSection EffectiveTolerance(const Case& c) {
+ToleranceSection EffectiveTolerance(const BoundCase& c) {
   ToleranceSection t = c.tolerance.value_or(ToleranceSection{});
   if (t.lift_correlation_given) return t;
   const std::vector<double>& th = c.lift.table.crank_rad;
@@ -406,7 +408,7 @@ std::pair<double, double> WilsonInterval95(double p, double n) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
-ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& options,
+ToleranceResult ReduceToleranceStudy(const BoundCase& c, const ToleranceOptions& options,
                                      std::vector<ToleranceSample> samples) {
   if (samples.empty()) throw CaseError("a tolerance study needs at least one sample");
   ToleranceResult result;
@@ -440,7 +442,7 @@ ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& opti
   return result;
 }
 
-ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options) {
+ToleranceResult RunToleranceStudy(const BoundCase& c, const ToleranceOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   ToleranceOptions used = options;
   std::vector<ToleranceSample> samples = RunToleranceSamples(c, used);

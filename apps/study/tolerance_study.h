@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "apps/case/case_file.h"
+#include "apps/case/bound_case.h"
 
 namespace needle {
 
@@ -89,7 +89,7 @@ std::vector<Field> ToleranceSectionFields(const ToleranceSection& t);
 /// open lift (kDefaultCorrelationFraction of the span of the table's points above zero):
 /// independent points at 0.01 mm move s'' by σ/h², which failed a passing 0.35 mm design in
 /// every sample (issue 51).
-ToleranceSection EffectiveTolerance(const Case& c);
+ToleranceSection EffectiveTolerance(const BoundCase& c);
 inline constexpr double kDefaultCorrelationFraction = 0.25;
 
 /// Which scatter each input got, and which are the defaults, in one line: "lift 0.0100 mm,
@@ -106,17 +106,17 @@ std::pair<double, double> WilsonInterval95(double p, double n);
 
 /// The study of case `c` (its [tolerance] section, or the defaults without one). Throws
 /// CaseError on a case that cannot be checked.
-ToleranceResult RunToleranceStudy(const Case& c, const ToleranceOptions& options);
+ToleranceResult RunToleranceStudy(const BoundCase& c, const ToleranceOptions& options);
 
 /// The samples alone, [first_sample, first_sample + samples) in order (a shard of a study, as a
 /// worker elsewhere computes it); `options.threads` becomes the count used. Throws CaseError
 /// as RunToleranceStudy does; a sample the model refuses is a sample ("case refused").
-std::vector<ToleranceSample> RunToleranceSamples(const Case& c, ToleranceOptions& options);
+std::vector<ToleranceSample> RunToleranceSamples(const BoundCase& c, ToleranceOptions& options);
 
 /// The study of samples already computed (gathered from shards, in sample order): what
 /// RunToleranceStudy reports of them, by the same code, bit for bit; `seconds` is left 0.
 /// Throws CaseError when `samples` is empty.
-ToleranceResult ReduceToleranceStudy(const Case& c, const ToleranceOptions& options,
+ToleranceResult ReduceToleranceStudy(const BoundCase& c, const ToleranceOptions& options,
                                      std::vector<ToleranceSample> samples);
 
 /// The lift-table error: normal, σ at each point where `varied` is true (0 elsewhere), with

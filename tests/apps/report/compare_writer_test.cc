@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "apps/case/case_file.h"
 #include "apps/report/check_writers.h"
 
 namespace needle {
@@ -47,9 +48,9 @@ class CheckItemsTest : public ::testing::TestWithParam<const char*> {};
 TEST_P(CheckItemsTest, AreTheLeavesOfCheckJson) {
   const Case c = LoadCase(kCases + GetParam());
   const auto law = std::make_shared<const LiftLaw>(MakeLiftLaw(c));
-  const CheckResult r = CheckScene(c, law);
+  const CheckResult r = CheckScene(Bind(c), law);
   std::vector<std::pair<std::string, nlohmann::json>> leaves;
-  Leaves(CheckJson(c, *law, r, "report.html"), "", leaves);
+  Leaves(CheckJson(Bind(c), *law, r, "report.html"), "", leaves);
   const std::vector<CheckItem> items = CheckItems(r, law->kind());
   ASSERT_EQ(items.size(), leaves.size());
   for (size_t i = 0; i < items.size(); ++i) {

@@ -245,10 +245,9 @@ TEST(HtmlReportTest, AFigureStopsAtItsFirstErrorAndTheNextIsStillDrawn) {
 // case without dynamics.
 TEST(CheckReportWriterTest, TheReportMadeAsTheCheckRunsIsTheResultsToTheByte) {
   for (const char* name : {"basu-example1.toml", "basu-cam4-light-spring.toml", "basu-cam4.toml"}) {
-    const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + name);
-    const CaseLift lift = ResolveLift(c);
+    const BoundCase c = Bind(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + name));
     Gnuplot gnuplot;
-    CheckReportWriter writer(c, *lift.law, lift.choice, c.engine.speed_rpm, &gnuplot);
+    CheckReportWriter writer(c, *c.lift.law, c.lift.choice, c.engine.speed_rpm, &gnuplot);
     int calls = 0;
     CheckOptions options;
     options.rated_run_done = [&](const SpringCheckResult& spring, const SimulationResult& run,
@@ -256,10 +255,10 @@ TEST(CheckReportWriterTest, TheReportMadeAsTheCheckRunsIsTheResultsToTheByte) {
       ++calls;
       writer.RatedRun(spring, run, sim);
     };
-    const CheckResult result = CheckScene(c, lift, options);
+    const CheckResult result = CheckScene(c, options);
     EXPECT_EQ(calls, result.run ? 1 : 0) << name;
     const std::string as_it_ran = writer.Finish(result).Html(gnuplot);
-    EXPECT_EQ(as_it_ran, CheckReport(c, *lift.law, result).Html()) << name;
+    EXPECT_EQ(as_it_ran, CheckReport(c, *c.lift.law, result).Html()) << name;
     EXPECT_NE(as_it_ran.find("<svg"), std::string::npos) << name;
   }
 }

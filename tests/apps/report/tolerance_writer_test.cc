@@ -11,7 +11,7 @@ namespace needle {
 namespace {
 
 TEST(ToleranceWriterTest, AReportLeavesRefusedSamplesOutOfItsHistograms) {
-  Case c;
+  BoundCase c;
   c.path = "valve.toml";
   ToleranceResult r;
   const std::string key = "spring.liftoff_rpm_quasi_static";
@@ -37,7 +37,7 @@ TEST(ToleranceWriterTest, AReportLeavesRefusedSamplesOutOfItsHistograms) {
 // printed to 12 decimals was 0, gnuplot refused the figure and the study ended in exit 3. The
 // report's title is escaped once (it was twice: "&amp;amp;").
 TEST(ToleranceWriterTest, AScatterWithinRoundOffHasNoHistogramAndTheTitleIsEscapedOnce) {
-  Case c;
+  BoundCase c;
   c.path = "valve.toml";
   c.title = "Cam A & B <v2>";
   ToleranceResult r;

@@ -36,24 +36,24 @@ lift_mm = [0, 1, 2, 1, 0]
 
 TEST(DefaultSweepRangeTest, TwiceTheLargerOfNqsAndTheRatedSpeed) {
   const Case c = ParseCase(kSmall, "t.toml");
-  EXPECT_EQ(DefaultSweepRange(c, 400, 900).from_rpm, 400);
-  EXPECT_EQ(DefaultSweepRange(c, 400, 900).to_rpm, 1800);
+  EXPECT_EQ(DefaultSweepRange(Bind(c), 400, 900).from_rpm, 400);
+  EXPECT_EQ(DefaultSweepRange(Bind(c), 400, 900).to_rpm, 1800);
   // n_qs below the rated speed: the sweep still reaches past the rated speed (the overspeed
   // command used to stop at 2·n_qs and refuse an empty range).
-  EXPECT_EQ(DefaultSweepRange(c, 400, 150).to_rpm, 800);
-  EXPECT_EQ(DefaultSweepRange(c, 400, INFINITY).to_rpm, 1600);
+  EXPECT_EQ(DefaultSweepRange(Bind(c), 400, 150).to_rpm, 800);
+  EXPECT_EQ(DefaultSweepRange(Bind(c), 400, INFINITY).to_rpm, 1600);
 }
 
 TEST(DefaultSweepRangeTest, TheCaseSectionWins) {
   const Case c = ParseCase(kSmall + "[overspeed]\nfrom_rpm = 500\nto_rpm = 700\n", "t.toml");
-  EXPECT_EQ(DefaultSweepRange(c, 400, 900).from_rpm, 500);
-  EXPECT_EQ(DefaultSweepRange(c, 400, 900).to_rpm, 700);
+  EXPECT_EQ(DefaultSweepRange(Bind(c), 400, 900).from_rpm, 500);
+  EXPECT_EQ(DefaultSweepRange(Bind(c), 400, 900).to_rpm, 700);
 }
 
 // Basu's Example 1 passes every part; the numbers are docs/springs.md's and docs/validation.md's.
 TEST(CheckSceneTest, BasuExampleOnePasses) {
   const Case c = LoadCase(kCases + "basu-example1.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   EXPECT_TRUE(r.pass);
   EXPECT_TRUE(r.failing.empty());
   ASSERT_TRUE(r.spring && r.run && r.sweep);
@@ -72,7 +72,7 @@ TEST(CheckSceneTest, BasuExampleOnePasses) {
 // the JSON has always had.
 TEST(CheckSceneTest, FieldsDescribeTheNumbersOnce) {
   const Case c = LoadCase(kCases + "basu-example1.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   const std::vector<FieldGroup> g = CheckFields(r);
   ASSERT_EQ(g.size(), 5u);  // kinematics, spring, dynamics, overspeed, profile
   EXPECT_EQ(g[0].name, "kinematics");
@@ -105,7 +105,7 @@ TEST(CheckSceneTest, FieldsDescribeTheNumbersOnce) {
 // The spring 80 % below Basu's formula fails, named as the spring check's.
 TEST(CheckSceneTest, AWeakSpringFailsAndIsNamed) {
   const Case c = LoadCase(kCases + "new-engine-weak-spring.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   EXPECT_FALSE(r.pass);
   EXPECT_TRUE(Contains(r.failing, "spring check: ")) << r.failing.size();
   EXPECT_TRUE(Contains(r.skipped, "dynamics and overspeed: the case has no [train] section"));
@@ -118,7 +118,7 @@ TEST(CheckSceneTest, LiftOffAtTheRatedSpeedFails) {
   const Case c = LoadCase(kCases + "basu-example1.toml");
   CheckOptions o;
   o.speed_rpm = 700;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   EXPECT_FALSE(r.pass);
   ASSERT_TRUE(r.run);
   EXPECT_TRUE(r.run->liftoff());
@@ -131,7 +131,7 @@ TEST(CheckSceneTest, LiftOffAtTheRatedSpeedFails) {
 // Only kinematics: nothing to fail, and every part that was not run is named.
 TEST(CheckSceneTest, AKinematicsOnlySceneSaysWhatItSkipped) {
   const Case c = ParseCase(kSmall, "t.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   EXPECT_TRUE(r.pass);
   EXPECT_EQ(r.skipped.size(), 4u);
   // The limits table names what it could not judge, in one line grouped by what is missing.
@@ -153,7 +153,7 @@ TEST(CheckSceneTest, TheLimitsTableOfExample2) {
   const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml");
   CheckOptions o;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_EQ(r.limits.size(), 12u);
   const auto row = [&](const std::string& key) {
     for (const LimitRow& x : r.limits)
@@ -245,7 +245,7 @@ double RampVelocity(const Case& c, double ramp_deg) {
 // velocity, and the least contact force is the series' own.
 TEST(CheckSceneTest, AMediumSpeedEnginePassesWithItsLashImpactJudged) {
   const Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   EXPECT_TRUE(r.pass) << (r.failing.empty() ? "" : r.failing[0]);
   const LimitRow& lash = Row(r, "lash_impact_speed");
   EXPECT_EQ(lash.verdict, "pass");
@@ -262,7 +262,7 @@ TEST(CheckSceneTest, AMediumSpeedEnginePassesWithItsLashImpactJudged) {
 // failure: the ramp ends right after, so the needle is not thrown off the cam).
 TEST(CheckSceneTest, AShortRampFailsTheLashRow) {
   const Case c = ParseCase(MediumSpeedEngine(0.5), "medium.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   EXPECT_FALSE(r.pass);
   const LimitRow& lash = Row(r, "lash_impact_speed");
   EXPECT_EQ(lash.verdict, "fail");
@@ -281,7 +281,7 @@ TEST(CheckSceneTest, ASeparationInTheLiftFailsTheContactForceRow) {
   const Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
   CheckOptions o;
   o.speed_rpm = 1300;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_TRUE(r.run && r.run->liftoff());
   const LimitRow& force = Row(r, "min_contact_force");
   EXPECT_EQ(force.verdict, "fail");
@@ -289,7 +289,7 @@ TEST(CheckSceneTest, ASeparationInTheLiftFailsTheContactForceRow) {
   EXPECT_EQ(SeriesLeastForceRatio(r), 0.0);
   ASSERT_TRUE(r.sweep->n_dyn_rpm);
   o.speed_rpm = *r.sweep->n_dyn_rpm - 5;
-  const CheckResult below = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult below = CheckScene(Bind(c), o);
   ASSERT_FALSE(below.run->liftoff());
   EXPECT_EQ(Row(below, "min_contact_force").verdict, "fail");
   EXPECT_GT(Row(below, "min_contact_force").value, 0.0);
@@ -303,7 +303,7 @@ TEST(CheckSceneTest, ARunThatDoesNotFollowItsCamFails) {
   c.train->contact_stiffness_N_m = c.train->seat_stiffness_N_m = 5e-8;
   CheckOptions o;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   EXPECT_FALSE(r.pass);
   ASSERT_EQ(r.run->status, RunStatus::kNotFollowing);
   EXPECT_TRUE(
@@ -312,7 +312,7 @@ TEST(CheckSceneTest, ARunThatDoesNotFollowItsCamFails) {
   // into it, though the cam still carries it through the lift.
   c.train->contact_stiffness_N_m = 3e8;
   c.train->seat_stiffness_N_m = 2970 / (0.2 * 1.8e-3);
-  const CheckResult sinks = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult sinks = CheckScene(Bind(c), o);
   EXPECT_EQ(sinks.run->status, RunStatus::kNotFollowing);
   EXPECT_TRUE(Contains(sinks.failing, "dynamics: the needle rests 0.3"))
       << sinks.run->status_reason;
@@ -342,7 +342,7 @@ CheckResult SurgeSceneAt520(int active_coils, double tensile_Pa = 1400e6) {
   CheckOptions o;
   o.speed_rpm = 520;
   o.record_series = false;
-  return CheckScene(c, MakeLiftLaw(c), o);
+  return CheckScene(Bind(c), o);
 }
 
 TEST(CheckSceneSurgeTest, TheCoilsSurgeFailsByItsEffectAndADetunedSpringPasses) {
@@ -389,7 +389,7 @@ TEST(CheckSceneSurgeTest, TheFrequencyScreenWarnsWhereTheDynamicsShowNoHarm) {
   c.spring->helical->free_length_m = 0.62;
   CheckOptions o;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_TRUE(r.surge) << r.surge_reason;
   const LimitRow& ratio = Row(r, "surge_frequency_ratio");
   EXPECT_NEAR(ratio.value, 12.62, 0.01);
@@ -420,7 +420,7 @@ TEST(CheckSceneTest, TheSeatingAndHertzRowsFailOnScenesBuiltToFailThem) {
   CheckOptions o;
   o.record_series = false;
   const Case c = ParseCase(sine, "sine.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_FALSE(r.run->liftoff());
   EXPECT_EQ(Row(r, "seating_velocity").verdict, "fail") << Row(r, "seating_velocity").value;
   // The closing tangent ramp's velocity, s'(θ_N)·ω = 2.5 mm·π/20 per degree at 4800 °/s.
@@ -430,7 +430,7 @@ TEST(CheckSceneTest, TheSeatingAndHertzRowsFailOnScenesBuiltToFailThem) {
                                "[profile]\nbase_radius_mm = 80\nroller_radius_mm = 10\n"
                                "[limits]\ncontact_length_mm = 0.5\n",
                            "medium.toml");
-  const CheckResult rh = CheckScene(h, MakeLiftLaw(h), o);
+  const CheckResult rh = CheckScene(Bind(h), o);
   ASSERT_FALSE(rh.profile->undercut);  // (on a 40 mm base circle it undercuts: no Hertz row)
   EXPECT_EQ(Row(rh, "hertz_stress").verdict, "fail") << Row(rh, "hertz_stress").note;
   // Its cam angle counts from the ramp's foot, 6° before the lift table's zero: the crank angle
@@ -450,7 +450,7 @@ namespace {
 // sizing; Example 2's spring on wire of 1000 MPa fails the Goodman line itself (n_f < 1).
 TEST(CheckSceneTest, TheSpringVerdictsSubChecksFailOnScenesBuiltToFailThem) {
   const Case weak = LoadCase(kCases + "new-engine-weak-spring.toml");
-  const CheckResult w = CheckScene(weak, MakeLiftLaw(weak));
+  const CheckResult w = CheckScene(Bind(weak));
   EXPECT_TRUE(Contains(w.failing, "spring check: combustion load: the preload 40.0 kgf"));
   EXPECT_TRUE(Contains(w.failing, "spring check: Basu's formula: the preload 40.0 kgf"));
   EXPECT_TRUE(Contains(w.failing, "spring check: inertia sizing: the preload 392.3 N"));
@@ -459,7 +459,7 @@ TEST(CheckSceneTest, TheSpringVerdictsSubChecksFailOnScenesBuiltToFailThem) {
   soft.spring->helical->tensile_Pa = 1000e6;
   CheckOptions o;
   o.record_series = false;
-  const CheckResult f = CheckScene(soft, MakeLiftLaw(soft), o);
+  const CheckResult f = CheckScene(Bind(soft), o);
   ASSERT_TRUE(f.spring->helical && f.spring->helical->fatigue_judged);
   EXPECT_FALSE(f.spring->helical->fatigue_ok);
   EXPECT_FALSE(f.spring->helical->stress_ok);  // τ 689 MPa above 0.5 × 1000 MPa too
@@ -475,7 +475,7 @@ TEST(CheckSceneSurgeTest, TheFrequencyScreenFailsWhereTheDynamicsShowHarm) {
   CheckOptions o;
   o.speed_rpm = 850;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   const LimitRow& ratio = Row(r, "surge_frequency_ratio");
   EXPECT_LT(ratio.value, 13.0);
   EXPECT_EQ(ratio.verdict, "fail");
@@ -495,7 +495,7 @@ TEST(CheckSceneTest, TheClashSceneFailsTheCoilGap) {
   const Case c = LoadCase(kCases + "basu-example1-clash.toml");
   CheckOptions o;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   EXPECT_EQ(Row(r, "coil_gap").verdict, "fail");
   EXPECT_NEAR(Row(r, "coil_gap").value, 1.97, 0.01);
   EXPECT_TRUE(Contains(r.failing, "spring check: helical spring: coil gaps below S_a; "));
@@ -515,7 +515,7 @@ TEST(CheckSceneSurgeTest, ASurgeRunStoppedOnItsBudgetIsUndecided) {
   c.solver->max_steps = 400;  // the closed form's run needs far fewer; the chain's, more
   CheckOptions o;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_TRUE(r.surge);
   EXPECT_EQ(r.surge->rated.status, RunStatus::kBudget);
   EXPECT_EQ(Row(r, "surge_contact_force").verdict, "not judged");
@@ -533,7 +533,7 @@ TEST(CheckSceneTest, AContactForceOfZeroFailsWhateverTheLimit) {
   CheckOptions o;
   o.speed_rpm = 1300;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   const LimitRow& force = Row(r, "min_contact_force");
   EXPECT_EQ(force.limit, 0.0);
   EXPECT_EQ(force.value, 0.0);
@@ -557,13 +557,13 @@ TEST(CheckSceneTest, ALimitTheCaseSetsNamesItsKey) {
                            "medium.toml");
   CheckOptions o;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   EXPECT_EQ(Row(r, "seating_velocity").source, "[limits] seating_velocity");
   EXPECT_EQ(Row(r, "lash_impact_speed").source, "[limits] lash_impact_velocity");
   EXPECT_EQ(Row(r, "separation_margin").source, "[limits] separation_margin_percent");
   EXPECT_EQ(Row(r, "hertz_stress").source, "[limits] hertz_stress_MPa");
   const Case d = ParseCase(MediumSpeedEngine(6), "medium.toml");
-  const CheckResult rd = CheckScene(d, MakeLiftLaw(d), o);
+  const CheckResult rd = CheckScene(Bind(d), o);
   EXPECT_EQ(Row(rd, "seating_velocity").source, "Blair: optimum ramp velocity 1.0-1.5 m/s");
   EXPECT_EQ(Row(rd, "separation_margin").source, "model: n_dyn > f n");
 }
@@ -613,7 +613,7 @@ namespace {
 TEST(CheckSceneTest, ANeedleWithoutASpringSkipsTheSpringCheck) {
   const Case c = ParseCase(kSmall + "[needle]\nmass_kg = 0.5\n", "t.toml");
   ASSERT_TRUE(c.needle && !c.spring);
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   EXPECT_TRUE(r.pass);
   EXPECT_FALSE(r.spring);
   EXPECT_TRUE(Contains(r.skipped, "spring check: the case has no [spring] section"));
@@ -629,7 +629,7 @@ TEST(CheckSceneTest, ACaseOnAC1SplineIsUndecidedWhereItNeedsTheAcceleration) {
                                "[train]\ncontact_stiffness_N_m = 1e8\n",
                            "t.toml");
   ASSERT_TRUE(c.needle && c.spring && c.train);
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c));
+  const CheckResult r = CheckScene(Bind(c));
   EXPECT_FALSE(r.pass);
   const std::string why =
       "undecided, the pchip spline is C¹ only and gives no acceleration (inertia force, "
@@ -655,14 +655,14 @@ TEST(CheckSceneTest, NoRollerPlaySkipsTheLashAnalysis) {
   CheckOptions o;
   o.record_series = false;
   const std::string skipped = "lash analysis: no roller play ([train] play_mm = 0)";
-  const CheckResult with_play = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult with_play = CheckScene(Bind(c), o);
   EXPECT_FALSE(Contains(with_play.skipped, skipped));
   // A spring given by its rate alone has no coils to study (a survivor too: the surge study ran
   // on a spring without geometry).
   EXPECT_FALSE(with_play.surge);
   EXPECT_EQ(with_play.surge_reason, "no helical spring geometry");
   c.train->play_m = 0.0;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   EXPECT_TRUE(Contains(r.skipped, skipped));
   EXPECT_EQ(Row(r, "lash_impact_speed").verdict, "not judged");
   EXPECT_EQ(Row(r, "lash_impact_speed").note,
@@ -684,7 +684,7 @@ TEST(CheckSceneTest, ASweepRunStoppedOnItsBudgetIsUndecidedAndFails) {
   c.overspeed->from_rpm = 50;
   CheckOptions o;
   o.record_series = false;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   EXPECT_EQ(r.run->status, RunStatus::kComplete) << r.run->status_reason;
   EXPECT_EQ(r.sweep->status, "run-budget");
   EXPECT_FALSE(r.pass);
@@ -707,14 +707,14 @@ namespace {
 TEST(CheckSceneTest, AFlatFollowersProfileHasACusp) {
   const Case flat =
       ParseCase(kSmall + "[profile]\nfollower = \"flat\"\nbase_radius_mm = 5\n", "t.toml");
-  const CheckResult r = CheckScene(flat, MakeLiftLaw(flat));
+  const CheckResult r = CheckScene(Bind(flat));
   EXPECT_FALSE(r.pass);
   EXPECT_EQ(r.failing, std::vector<std::string>{
                            "cam profile: the profile has a cusp: least radius -386.94 mm at cam "
                            "10.0° (crank 10.0°)"});
   const Case roller =
       ParseCase(kSmall + "[profile]\nbase_radius_mm = 5\nroller_radius_mm = 4\n", "t.toml");
-  const CheckResult u = CheckScene(roller, MakeLiftLaw(roller));
+  const CheckResult u = CheckScene(Bind(roller));
   EXPECT_EQ(u.failing, std::vector<std::string>{
                            "cam profile: the profile undercuts: least radius -3.70 mm at cam "
                            "10.0° (crank 10.0°)"});
@@ -763,8 +763,8 @@ TEST(CheckSceneTest, TheSurgeStudyBesideTheSweepGivesTheSameResult) {
     one.record_series = two.record_series = false;
     one.threads = 1;
     two.threads = 2;
-    const CheckResult a = CheckScene(c, MakeLiftLaw(c), one);
-    const CheckResult b = CheckScene(c, MakeLiftLaw(c), two);
+    const CheckResult a = CheckScene(Bind(c), one);
+    const CheckResult b = CheckScene(Bind(c), two);
     EXPECT_EQ(a.pass, b.pass);
     EXPECT_EQ(a.failing, b.failing);
     EXPECT_EQ(a.warnings, b.warnings);
@@ -815,28 +815,28 @@ TEST(CheckSceneTest, TheSweepCoversTheSpeedsTheVerdictReads) {
   CheckOptions o;
   o.record_series = false;
   Case c = ParseCase(MediumSpeedEngine(6), "medium.toml");
-  const CheckResult full = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult full = CheckScene(Bind(c), o);
   ASSERT_TRUE(full.pass);  // n_dyn above f·n = 600 rpm
   ASSERT_TRUE(full.sweep->n_dyn_rpm);
   EXPECT_GT(*full.sweep->n_dyn_rpm, 600.0);
   c.overspeed->to_rpm = 580;
-  const CheckResult short_range = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult short_range = CheckScene(Bind(c), o);
   EXPECT_EQ(short_range.sweep_range.to_rpm, 600.0);
   EXPECT_EQ(short_range.sweep->scanned_to_rpm, 600.0);
   EXPECT_TRUE(short_range.pass);
   c.limits.separation_margin_fraction = 0.1;  // the margin row reads up to 660 rpm
-  EXPECT_DOUBLE_EQ(CheckScene(c, MakeLiftLaw(c), o).sweep_range.to_rpm, 660.0);
+  EXPECT_DOUBLE_EQ(CheckScene(Bind(c), o).sweep_range.to_rpm, 660.0);
   c.limits.separation_margin_fraction = 0.0;
   c.overspeed->to_rpm = 2000;
   c.overspeed->from_rpm = 700;
-  const CheckResult late = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult late = CheckScene(Bind(c), o);
   EXPECT_EQ(late.sweep_range.from_rpm, 500.0);
   EXPECT_EQ(late.sweep->n_dyn_rpm, full.sweep->n_dyn_rpm);
   EXPECT_EQ(late.failing, full.failing);
   // A lift-off below f·n that a range from above the rated speed would not see fails the check.
   c.engine.speed_rpm = *full.sweep->n_dyn_rpm - 20.0;
   c.overspeed->from_rpm = *full.sweep->n_dyn_rpm + 50.0;
-  const CheckResult below = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult below = CheckScene(Bind(c), o);
   ASSERT_TRUE(below.sweep->n_dyn_rpm);
   EXPECT_NEAR(*below.sweep->n_dyn_rpm, *full.sweep->n_dyn_rpm, 0.5);
   EXPECT_FALSE(below.pass);
@@ -860,12 +860,12 @@ TEST(CheckSceneTest, UndampedCoilMassesWarnThatTheSweepCanMissTheirResonances) {
       return w.rfind("dynamics: the spring's 5 coil masses are undamped", 0) == 0;
     });
   };
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_TRUE(r.run && r.sweep);
   EXPECT_EQ(r.run->stats.final_state.size(), 4u + 2u * 4u);  // y, ẏ, W, D and 4 coil masses
   EXPECT_EQ(warns(r), 1);
   c.spring->surge_damping_ratio = 0.01;
-  EXPECT_EQ(warns(CheckScene(c, MakeLiftLaw(c), o)), 0);
+  EXPECT_EQ(warns(CheckScene(Bind(c), o)), 0);
 }
 
 }  // namespace
@@ -911,7 +911,7 @@ ramp = "tangent"
 )";
   const CheckOptions o = VerdictOnly();
   const Case c = ParseCase(engine, "a.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_TRUE(r.run && r.run->liftoff());
   EXPECT_LT(r.run->longest_jump_rad, kMinJump_rad);
   ASSERT_TRUE(r.sweep->n_dyn_rpm);
@@ -945,7 +945,7 @@ TEST(CheckSceneTest, AnUndercutCamJudgesNoHertzStress) {
                                "[profile]\nroller_radius_mm = 10\nbase_radius_mm = 3\n"
                                "[limits]\ncontact_length_mm = 8\n",
                            "undercut.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_TRUE(r.profile && r.profile->undercut);
   EXPECT_EQ(Row(r, "hertz_stress").verdict, "not judged");
   EXPECT_EQ(Row(r, "hertz_stress").note,
@@ -989,7 +989,7 @@ seat_damping_ratio = 0.1
   CheckOptions o;
   o.record_series = true;
   const Case c = ParseCase(text, "t.toml");
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), o);
+  const CheckResult r = CheckScene(Bind(c), o);
   ASSERT_TRUE(r.run);
   const SimulationResult& run = *r.run;
   // The first landing past the top, and the largest lift after it in the run's own series.
@@ -1024,7 +1024,7 @@ seat_damping_ratio = 0.1
   EXPECT_EQ(reopen.source, "1 % of the largest lift: a reopening is a secondary injection");
   // Settable in [limits]: 2 % passes it.
   const Case loose = ParseCase(text + "[limits]\nsecondary_opening_percent = 2\n", "t.toml");
-  const CheckResult rl = CheckScene(loose, MakeLiftLaw(loose), o);
+  const CheckResult rl = CheckScene(Bind(loose), o);
   EXPECT_EQ(Row(rl, "secondary_opening").verdict, "pass");
   EXPECT_EQ(Row(rl, "secondary_opening").source, "[limits] secondary_opening_percent");
 }
@@ -1032,13 +1032,13 @@ seat_damping_ratio = 0.1
 // A profile's cam angle counts from the rise's foot; its crank angle is θ₀ + kψ, within half an
 // engine cycle of θ₀ (a cam angle just short of a turn lies before the rise), issue 51.
 TEST(CamAndCrankTest, ACamAngleMapsOntoTheCrankNearTheRise) {
-  Case four = ParseCase(kSmall, "t.toml");
+  BoundCase four = Bind(ParseCase(kSmall, "t.toml"));
   const double theta0 = -20 * kDeg;
   EXPECT_NEAR(CrankOfCam(four, theta0, 10 * kDeg) / kDeg, 0.0, 1e-12);
   EXPECT_NEAR(CrankOfCam(four, theta0, 179 * kDeg) / kDeg, 338.0, 1e-9);
   EXPECT_NEAR(CrankOfCam(four, theta0, 350 * kDeg) / kDeg, -40.0, 1e-9);  // 700° on is 20° back
   EXPECT_EQ(CamAndCrank(four, theta0, 350 * kDeg, 1, "°"), "cam 350.0° (crank -40.0°)");
-  Case two = four;
+  BoundCase two = four;
   two.engine.cycle = EngineCycle::kTwoStroke;
   EXPECT_NEAR(CrankOfCam(two, theta0, 10 * kDeg) / kDeg, -10.0, 1e-12);
   EXPECT_NEAR(CrankOfCam(two, theta0, 350 * kDeg) / kDeg, -30.0, 1e-9);
@@ -1052,7 +1052,7 @@ TEST(DynamicsJobsTest, ARefusedToleranceShowsItsValue) {
   SimulateJobOptions o;
   o.rtol = 1e-15;
   try {
-    SimulateCase(c, o);
+    SimulateCase(Bind(c), o);
     FAIL() << "accepted";
   } catch (const CaseError& e) {
     EXPECT_STREQ(e.what(), "--rtol: expected a relative tolerance in [1e-14, 0.01], got 1e-15");
@@ -1080,7 +1080,7 @@ TEST(CheckSceneTest, ALiftTableThatDoesNotReachTheSeatIsUndecided) {
     std::string t = text;
     t.replace(t.find(full), full.size(), lift);
     const Case c = ParseCase(t, "cut.toml");
-    return CheckScene(c, MakeLiftLaw(c), o);
+    return CheckScene(Bind(c), o);
   };
   const CheckResult cut =
       check("lift_mm = [0, 0.073, 0.29, 0.77, 1.54, 2.49, 3.38, 3.67, 3.22, 2.80, 2.30, 1.80]");

@@ -30,8 +30,8 @@ SizeOptions OneThread() {
 void ExpectWrittenCasePasses(const Case& c, const std::string& text, const SizeResult& r) {
   ASSERT_TRUE(r.winner);
   const SizedSpring& s = r.verified[*r.winner].spring;
-  const Case sized = CaseWithSpring(c, s, r.space, r.mass_without_spring_kg);
-  const std::string written = SizedCaseText(text, sized, s, r.space);
+  const BoundCase sized = CaseWithSpring(Bind(c), s, r.space, r.mass_without_spring_kg);
+  const std::string written = SizedCaseText(text, sized.needle->mass_kg, s, r.space);
   const Case back = ParseCase(written, "sized.toml");
   ASSERT_TRUE(back.spring && back.spring->helical);
   EXPECT_EQ(back.spring->preload_N, s.preload_N);
@@ -43,8 +43,7 @@ void ExpectWrittenCasePasses(const Case& c, const std::string& text, const SizeR
   CheckOptions o;
   o.threads = 1;
   o.record_series = false;
-  const LiftLaw law = MakeLiftLaw(back);
-  const CheckResult check = CheckScene(back, law, o);
+  const CheckResult check = CheckScene(Bind(back), o);
   EXPECT_TRUE(check.pass) << (check.failing.empty() ? "" : check.failing.front());
   for (const LimitRow& x : check.limits) EXPECT_NE(x.verdict, "fail") << x.name;
 }
@@ -53,7 +52,7 @@ TEST(SpringSizingSceneTest, Example2InItsOwnSpaceHasNoSpringAndSaysWhichRuleBind
   // The case's spring fails the Goodman row (1.46 < 1.5); no spring of its space (OD ≤ 47 mm,
   // ID ≥ 33 mm, installed ≤ 87.49 mm, the case's 1600 MPa wire at R40 sizes) reaches 1.5.
   const Case c = LoadCase(kCases + "basu-example2.toml");
-  const SizeResult r = SizeCase(c, MakeLiftLaw(c), OneThread());
+  const SizeResult r = SizeCase(Bind(c), MakeLiftLaw(c), OneThread());
   EXPECT_FALSE(r.pass);
   EXPECT_TRUE(r.closed_form.best.empty());
   EXPECT_TRUE(r.verified.empty());
@@ -76,7 +75,7 @@ TEST(SpringSizingSceneTest, Example2SizedInAWiderSpacePassesTheCheckAndIsLighter
       CaseText("basu-example2.toml") + "\n[sizing]\nmax_outer_diameter_mm = 52\n";
   const Case c = ParseCase(text, "ex2.toml");
   const LiftLaw law = MakeLiftLaw(c);
-  const SizeResult r = SizeCase(c, law, OneThread());
+  const SizeResult r = SizeCase(Bind(c), law, OneThread());
   ASSERT_TRUE(r.pass) << r.no_fit;
   ASSERT_TRUE(r.winner);
   const SizedSpring& s = r.verified[*r.winner].spring;
@@ -104,7 +103,7 @@ TEST(SpringSizingSceneTest, Example1AndTheNewEngineSizedTheSameWay) {
   {
     const std::string text = CaseText("basu-example1.toml");
     const Case c = ParseCase(text, "ex1.toml");
-    const SizeResult r = SizeCase(c, MakeLiftLaw(c), OneThread());
+    const SizeResult r = SizeCase(Bind(c), MakeLiftLaw(c), OneThread());
     ASSERT_TRUE(r.pass) << r.no_fit;
     EXPECT_LT(r.verified[*r.winner].spring.mass_kg, *r.case_spring_mass_kg);
     ExpectWrittenCasePasses(c, text, r);
@@ -116,7 +115,7 @@ TEST(SpringSizingSceneTest, Example1AndTheNewEngineSizedTheSameWay) {
         "\n[sizing]\ngrades = [\"VDC\", \"VDCrV\", \"VDSiCr\"]\nmax_outer_diameter_mm = 55\n"
         "min_inner_diameter_mm = 30\nmax_installed_length_mm = 90\n";
     const Case c = ParseCase(text, "new.toml");
-    const SizeResult r = SizeCase(c, MakeLiftLaw(c), OneThread());
+    const SizeResult r = SizeCase(Bind(c), MakeLiftLaw(c), OneThread());
     ASSERT_TRUE(r.pass) << r.no_fit;
     EXPECT_EQ(r.mass_note, "[needle] mass_kg (the case's spring has no geometry to take out)");
     ExpectWrittenCasePasses(c, text, r);
@@ -127,7 +126,7 @@ std::string Refusal(const std::string& sizing) {
   const std::string text = CaseText("basu-example2.toml") + "\n[sizing]\n" + sizing;
   try {
     const Case c = ParseCase(text, "t.toml");
-    (void)SizeCase(c, MakeLiftLaw(c), OneThread());
+    (void)SizeCase(Bind(c), MakeLiftLaw(c), OneThread());
   } catch (const CaseError& e) {
     return e.what();
   }

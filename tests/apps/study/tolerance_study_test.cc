@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "apps/case/case_file.h"
 #include "apps/study/check_scene.h"
 #include "lib/units.h"
 
@@ -90,8 +91,8 @@ TEST(ToleranceStudyTest, TheFailureProbabilityIsTheNormalLaws) {
   ToleranceOptions o;
   o.samples = 2000;
   o.seed = 42;
-  const ToleranceResult r = RunToleranceStudy(c, o);
-  const CheckResult nominal = CheckScene(c, MakeLiftLaw(c));
+  const ToleranceResult r = RunToleranceStudy(Bind(c), o);
+  const CheckResult nominal = CheckScene(Bind(c));
   const double basu_N = *nominal.spring->basu_preload_N;
   const double z = (0.9 * basu_N / c.spring->preload_N - 1.0) / 0.05;
   const double p = 0.5 * std::erfc(-z / std::sqrt(2.0));
@@ -114,7 +115,7 @@ TEST(ToleranceStudyTest, TheFailureProbabilityIsTheNormalLaws) {
   const auto nqs_at = [&](double factor) {
     Case v = c;
     v.spring->preload_N *= factor;
-    return CheckScene(v, MakeLiftLaw(v)).n_qs_rpm;
+    return CheckScene(Bind(v)).n_qs_rpm;
   };
   const double slope = std::log(nqs_at(1.001) / nqs_at(0.999)) / std::log(1.001 / 0.999);
   EXPECT_NEAR(slope, 0.70, 0.02);
@@ -127,8 +128,8 @@ TEST(ToleranceStudyTest, WithoutScatterEverySampleIsTheNominalCase) {
   const Case c = SpringCheckOnly(0.0, 0.0);
   ToleranceOptions o;
   o.samples = 5;
-  const ToleranceResult r = RunToleranceStudy(c, o);
-  const CheckResult nominal = CheckScene(c, MakeLiftLaw(c));
+  const ToleranceResult r = RunToleranceStudy(Bind(c), o);
+  const CheckResult nominal = CheckScene(Bind(c));
   for (const ToleranceSample& s : r.samples) {
     EXPECT_EQ(s.outputs.at("spring.liftoff_rpm_quasi_static"), nominal.n_qs_rpm);
     EXPECT_EQ(s.pass, nominal.pass);
@@ -145,9 +146,9 @@ TEST(ToleranceStudyTest, ASeedGivesTheSameStudyWhateverTheThreads) {
   o.samples = 4;
   o.seed = 2026;
   o.threads = 1;
-  const ToleranceResult one = RunToleranceStudy(c, o);
+  const ToleranceResult one = RunToleranceStudy(Bind(c), o);
   o.threads = 2;
-  const ToleranceResult two = RunToleranceStudy(c, o);
+  const ToleranceResult two = RunToleranceStudy(Bind(c), o);
   ASSERT_EQ(one.samples.size(), 4u);
   for (size_t i = 0; i < one.samples.size(); ++i) {
     EXPECT_EQ(one.samples[i].inputs, two.samples[i].inputs) << i;
@@ -165,7 +166,7 @@ TEST(ToleranceStudyTest, ASeedGivesTheSameStudyWhateverTheThreads) {
   }
   o.seed = 2027;
   o.samples = 1;
-  const ToleranceResult other = RunToleranceStudy(c, o);
+  const ToleranceResult other = RunToleranceStudy(Bind(c), o);
   EXPECT_NE(other.samples[0].inputs, one.samples[0].inputs);
 }
 
@@ -176,10 +177,10 @@ TEST(ToleranceStudyTest, ShardsAreThePartsOfTheStudy) {
   ToleranceOptions o;
   o.samples = 5;
   o.seed = 9;
-  const ToleranceResult whole = RunToleranceStudy(c, o);
+  const ToleranceResult whole = RunToleranceStudy(Bind(c), o);
   o.first_sample = 3;
   o.samples = 2;
-  const ToleranceResult shard = RunToleranceStudy(c, o);
+  const ToleranceResult shard = RunToleranceStudy(Bind(c), o);
   for (int i = 0; i < 2; ++i) {
     EXPECT_EQ(shard.samples[i].inputs, whole.samples[3 + i].inputs) << i;
     EXPECT_EQ(shard.samples[i].outputs.at("spring.liftoff_rpm_quasi_static"),
@@ -196,7 +197,7 @@ TEST(ToleranceStudyTest, ARefusedSampleIsAResult) {
   c.tolerance->lift_sigma_m = 5e-4;
   ToleranceOptions o;
   o.samples = 3;
-  const ToleranceResult r = RunToleranceStudy(c, o);
+  const ToleranceResult r = RunToleranceStudy(Bind(c), o);
   ASSERT_GT(r.failure_by_item.count("case refused"), 0u);
   int refused = 0;
   for (const ToleranceSample& s : r.samples) {
@@ -218,7 +219,7 @@ TEST(ToleranceStudyTest, AValueTheModelRefusesIsARefusedSample) {
   ToleranceOptions o;
   o.samples = 3;
   o.seed = 6;
-  const ToleranceResult r = RunToleranceStudy(c, o);
+  const ToleranceResult r = RunToleranceStudy(Bind(c), o);
   for (int i : {0, 1}) {  // scattered by more than −100 %
     EXPECT_LT(r.samples[i].inputs.at("stiffness_deviation"), -1.0);
     EXPECT_EQ(r.samples[i].refused,
@@ -234,7 +235,7 @@ TEST(ToleranceStudyTest, BadSampleCountsAreRefused) {
   ToleranceOptions o;
   o.samples = 0;
   try {
-    RunToleranceStudy(c, o);
+    RunToleranceStudy(Bind(c), o);
     FAIL() << "no error";
   } catch (const CaseError& e) {
     EXPECT_STREQ(e.what(), "--samples: expected a number of samples in [1, 1000000], got 0");
@@ -251,9 +252,9 @@ TEST(ToleranceStudyTest, ASampleTakingFromTheNominalHasItsFullChecksVerdict) {
   o.samples = 6;
   o.seed = 33;
   o.threads = 2;
-  const std::vector<ToleranceSample> reused = RunToleranceSamples(c, o);
+  const std::vector<ToleranceSample> reused = RunToleranceSamples(Bind(c), o);
   o.reuse_nominal = false;
-  const std::vector<ToleranceSample> full = RunToleranceSamples(c, o);
+  const std::vector<ToleranceSample> full = RunToleranceSamples(Bind(c), o);
   ASSERT_EQ(reused.size(), full.size());
   for (size_t i = 0; i < full.size(); ++i) {
     EXPECT_EQ(reused[i].pass, full[i].pass) << i;
@@ -280,16 +281,16 @@ TEST(ToleranceStudyTest, AVerdictOnlyCheckJudgesEveryLimitAsTheFullCheck) {
   CheckOptions options;
   options.threads = 1;
   options.record_series = false;
-  const CheckResult first = CheckScene(nominal, MakeLiftLaw(nominal), options);
+  const CheckResult first = CheckScene(Bind(nominal), options);
   ASSERT_TRUE(first.surge && first.sweep && first.sweep->n_dyn_rpm);
   Case c = nominal;
   c.spring->preload_N *= 0.94;
   c.needle->mass_kg *= 1.03;
-  const CheckResult full = CheckScene(c, MakeLiftLaw(c), options);
+  const CheckResult full = CheckScene(Bind(c), options);
   CheckOptions asked = options;
   asked.overspeed_start_rpm = first.sweep->n_dyn_rpm;
   asked.verdict_only = true;
-  const CheckResult r = CheckScene(c, MakeLiftLaw(c), asked);
+  const CheckResult r = CheckScene(Bind(c), asked);
   EXPECT_EQ(r.surge->rated.status, full.surge->rated.status);
   EXPECT_EQ(r.surge->rated.run_end_rad, full.surge->rated.run_end_rad);
   EXPECT_EQ(r.surge->masses, full.surge->masses);
@@ -348,8 +349,8 @@ TEST(ToleranceStudyTest, TheDefaultLiftErrorIsASmoothGrindingErrorAndSaysSo) {
                            "preload_N = 300\nrate_N_mm = 40\n[train]\ncontact_stiffness_N_m = "
                            "5e7\n";
   const Case c = ParseCase(text, "small.toml");
-  ASSERT_TRUE(CheckScene(c, MakeLiftLaw(c)).pass);
-  const ToleranceSection t = EffectiveTolerance(c);
+  ASSERT_TRUE(CheckScene(Bind(c)).pass);
+  const ToleranceSection t = EffectiveTolerance(Bind(c));
   EXPECT_NEAR(t.lift_correlation_rad / kDeg, 0.25 * 38.0, 1e-9);  // points above zero: −19…19°
   EXPECT_EQ(ScatterSources(t),
             "lift 0.0100 mm, correlated over 9.50 deg (default, no [tolerance] section: Basu's "
@@ -358,13 +359,13 @@ TEST(ToleranceStudyTest, TheDefaultLiftErrorIsASmoothGrindingErrorAndSaysSo) {
   ToleranceOptions o;
   o.samples = 200;
   o.seed = 1;
-  EXPECT_LT(RunToleranceStudy(c, o).failure_probability, 0.02);
+  EXPECT_LT(RunToleranceStudy(Bind(c), o).failure_probability, 0.02);
   // Independent points, as stated: the old default's harshness, every sample failing.
   const Case independent = ParseCase(text + "[tolerance]\nlift_correlation_deg = 0\n", "s.toml");
-  EXPECT_EQ(ScatterSources(EffectiveTolerance(independent)),
+  EXPECT_EQ(ScatterSources(EffectiveTolerance(Bind(independent))),
             "lift 0.0100 mm, independent points; mass, preload, rate, stiffness, play, speed not "
             "scattered");
-  EXPECT_GT(RunToleranceStudy(independent, o).failure_probability, 0.95);
+  EXPECT_GT(RunToleranceStudy(Bind(independent), o).failure_probability, 0.95);
 }
 
 }  // namespace
