@@ -42,6 +42,10 @@ else
   echo "bench: SciPy missing (apt-get install python3-scipy): lift tables not measured, bench/lift-tables.md not regenerated" >&2
 fi
 
+# Python binds once and runs many (bench/python_scene.py, a few seconds; needs the module).
+/usr/bin/python3 bench/python_scene.py >/dev/null 2>>bench/log.txt ||
+  echo "bench: bench/python_scene.py failed (bench/log.txt); BENCHMARKS.md keeps the last bench/python-scene.md" >&2
+
 {
   cat <<'HEAD'
 # Benchmarks
@@ -60,5 +64,7 @@ HEAD
   if [[ -f bench/siconos-cam-follower.md ]]; then echo; cat bench/siconos-cam-follower.md; fi
   # Lift tables as users export them against SciPy (bench/lift_tables.py; needs python3-scipy).
   if [[ -f bench/lift-tables.md ]]; then echo; cat bench/lift-tables.md; fi
+  # Python: bind once, run many (bench/python_scene.py).
+  if [[ -f bench/python-scene.md ]]; then echo; cat bench/python-scene.md; fi
 } > BENCHMARKS.md.tmp && mv BENCHMARKS.md.tmp BENCHMARKS.md
 echo "wrote bench/ and BENCHMARKS.md"

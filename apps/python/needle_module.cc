@@ -24,6 +24,7 @@
 #include "apps/case/case_file.h"
 #include "apps/case/case_scene.h"
 #include "apps/case/plausible_ranges.h"
+#include "apps/python/python_scene.h"
 #include "apps/python/python_support.h"
 #include "apps/report/cam_writer.h"
 #include "apps/report/check_writers.h"
@@ -134,6 +135,8 @@ PYBIND11_MODULE(needle, m) {
           "A deep copy of the sections: a dict load_case takes back")
       .def("__repr__", [](const PyCase& c) { return "<needle.Case " + c.name + ">"; });
 
+  DefScene(m);
+
   Def(
       m, "load_case",
       [](const py::object& source, const std::optional<std::string>& name,
@@ -147,26 +150,11 @@ PYBIND11_MODULE(needle, m) {
       m, "kinematics",
       [](const py::object& source, const py::object& rpm, const py::object& step_deg,
          const py::object& spline) {
-        const auto c = CaseOf(source, "kinematics");
-        KinematicsTableOptions o;
-        o.speed_rpm = Speed(rpm, "rpm");
-        RequireSpeedOf(*c, o.speed_rpm, "rpm");
-        o.step_deg = *Number(step_deg, "step_deg", "a spacing in crank degrees", kTableStepRange);
         const auto kind = Text(spline, "spline", "one of " + SplineKindList());
         if (kind && !ParseSplineKind(*kind))
           throw CaseError("spline=" + Repr(spline) + ": unknown kind; expected one of " +
                           SplineKindList());
-        KinematicsWriting json;
-        json.json = true;
-        return Run(
-            [&] {
-              return WriteKinematics(
-                  MakeKinematicsTable(Bind(kind ? WithSpline(*c, *kind, "--spline") : *c), o),
-                  json);
-            },
-            {{"--rpm", "rpm=" + Repr(rpm)},
-             {"--step", "step_deg=" + Repr(step_deg)},
-             {"--spline", "spline=" + Repr(spline)}});
+        return SceneKinematics(SceneOf(source, "kinematics", kind, Repr(spline)), rpm, step_deg);
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("step_deg") = 5.0,
       arg("spline") = py::none(), "needle kinematics: the velocity and acceleration table");
@@ -201,45 +189,20 @@ PYBIND11_MODULE(needle, m) {
       m, "simulate",
       [](const py::object& source, const py::object& rpm, const py::object& method,
          const py::object& rtol, const py::object& dynamic, const py::object& series) {
-        const auto c = CaseOf(source, "simulate");
-        SimulateJobOptions o;
-        o.speed_rpm = Speed(rpm, "rpm");
-        RequireSpeedOf(*c, o.speed_rpm, "rpm");
-        o.method = MethodKeyword(method);
-        o.rtol = Rtol(rtol);
-        o.dynamic = Flag(dynamic, "dynamic");
-        o.series = Flag(series, "series");
-        return Run([&] { return WriteSimulate(SimulateCase(Bind(*c), o), true); },
-                   {{"--rpm", "rpm=" + Repr(rpm)},
-                    {"--method", "method=" + Repr(method)},
-                    {"--rtol", "rtol=" + Repr(rtol)}});
+        return SceneSimulate(SceneOf(source, "simulate"), rpm, method, rtol, dynamic, series);
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(),
       arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
-      "needle simulate: one dynamic run (series=True: the time series under 'columns')");
+      "needle simulate: one dynamic run (series=True: the time series under 'columns'); a loop "
+      "over speeds binds the case once with needle.Scene(case).simulate(rpm=…)");
 
   Def(
       m, "overspeed",
       [](const py::object& source, const py::object& from_rpm, const py::object& to_rpm,
          const py::object& step_rpm, const py::object& method, const py::object& rtol,
          const py::object& threads) {
-        const auto c = CaseOf(source, "overspeed");
-        OverspeedJobOptions o;
-        o.from_rpm = Speed(from_rpm, "from_rpm");
-        o.to_rpm = Speed(to_rpm, "to_rpm");
-        o.step_rpm = Number(step_rpm, "step_rpm", "a speed step in rpm", kSpeedStepRange);
-        o.method = MethodKeyword(method);
-        o.rtol = Rtol(rtol);
-        o.threads =
-            static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
-        RequireSpeedOf(*c, std::nullopt, "");
-        return Run([&] { return WriteOverspeed(OverspeedOfCase(Bind(*c), o), true); },
-                   {{"--from", "from_rpm=" + Repr(from_rpm)},
-                    {"--to", "to_rpm=" + Repr(to_rpm)},
-                    {"--step-rpm", "step_rpm=" + Repr(step_rpm)},
-                    {"--method", "method=" + Repr(method)},
-                    {"--rtol", "rtol=" + Repr(rtol)},
-                    {"--threads", "threads=" + Repr(threads)}});
+        return SceneOverspeed(SceneOf(source, "overspeed"), from_rpm, to_rpm, step_rpm, method,
+                              rtol, threads);
       },
       arg("case"), py::kw_only(), arg("from_rpm") = py::none(), arg("to_rpm") = py::none(),
       arg("step_rpm") = py::none(), arg("method") = py::none(), arg("rtol") = py::none(),
@@ -248,21 +211,7 @@ PYBIND11_MODULE(needle, m) {
   Def(
       m, "check",
       [](const py::object& source, const py::object& rpm) {
-        const auto c = CaseOf(source, "check");
-        CheckOptions options;
-        options.speed_rpm = Speed(rpm, "rpm");
-        RequireSpeedOf(*c, options.speed_rpm, "rpm");
-        return Run(
-            [&] {
-              const BoundCase b = Bind(*c);
-              const CheckResult r = CheckScene(b, options);
-              CommandOutput out;
-              out.json = CheckJson(b, *b.lift.law, r, "");
-              out.json.erase("report");  // no report is written from Python
-              out.status = r.pass ? 0 : 1;
-              return out;
-            },
-            {{"--rpm", "rpm=" + Repr(rpm)}});
+        return SceneCheck(SceneOf(source, "check"), rpm);
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(),
       "needle check: everything the scene needs, one verdict (the dict of check --json; no "

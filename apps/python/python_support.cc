@@ -342,14 +342,30 @@ std::shared_ptr<const Case> CaseOf(const py::object& source, const std::string& 
 }
 
 void RequireSpeedOf(const Case& c, const std::optional<double>& rpm, const std::string& keyword) {
-  if (c.engine.speed_rpm > 0.0 || rpm) return;
+  RequireSpeedOf(c.path, c.engine.speed_rpm, rpm, keyword);
+}
+
+void RequireSpeedOf(const std::string& path, double speed_rpm, const std::optional<double>& rpm,
+                    const std::string& keyword) {
+  if (speed_rpm > 0.0 || rpm) return;
   throw CaseError(keyword.empty()
-                      ? c.path +
+                      ? path +
                             " is a bare CSV lift table with no [engine] speed_rpm; set "
                             "case['engine']['speed_rpm']"
-                      : keyword + "=None: " + c.path +
+                      : keyword + "=None: " + path +
                             " is a bare CSV lift table with no [engine] speed_rpm; give " +
                             keyword + "=");
+}
+
+void RethrowNamingKeywords(const CaseError& e,
+                           const std::vector<std::pair<std::string, std::string>>& options) {
+  const std::string what = e.what();
+  for (const auto& [option, keyword] : options) {
+    const size_t at = what.find(option + ": ");  // first, or after the case's "PATH: "
+    if (at != std::string::npos && (at == 0 || what.compare(at - 2, 2, ": ") == 0))
+      throw CaseError(what.substr(0, at) + keyword + what.substr(at + option.size()));
+  }
+  throw e;
 }
 
 void CheckCalls(py::module_& m, const char* name, const Signature& s) {

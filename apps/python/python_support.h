@@ -131,10 +131,17 @@ std::shared_ptr<const Case> CaseOf(const py::object& source, const std::string& 
 // A bare CSV lift table has no speed: the command's `rpm=` gives it (as --rpm does), else the
 // case must state one.
 void RequireSpeedOf(const Case& c, const std::optional<double>& rpm, const std::string& keyword);
+// The same of the case `path` of rated speed `speed_rpm` (0: none).
+void RequireSpeedOf(const std::string& path, double speed_rpm, const std::optional<double>& rpm,
+                    const std::string& keyword);
 
 // Runs `compute` without the GIL and returns its result as a dict. A message the command
 // names an option in ("--spline: …", also after the case's path) names the keyword instead
 // (`options`: option, keyword=value).
+// Throws `e` again, its first option of `options` (option, keyword=value) named as the keyword.
+[[noreturn]] void RethrowNamingKeywords(
+    const CaseError& e, const std::vector<std::pair<std::string, std::string>>& options);
+
 template <typename Compute>
 py::dict Run(Compute compute,
              const std::vector<std::pair<std::string, std::string>>& options = {}) {
@@ -143,13 +150,7 @@ py::dict Run(Compute compute,
     py::gil_scoped_release release;
     r = compute();
   } catch (const CaseError& e) {
-    const std::string what = e.what();
-    for (const auto& [option, keyword] : options) {
-      const size_t at = what.find(option + ": ");  // first, or after the case's "PATH: "
-      if (at != std::string::npos && (at == 0 || what.compare(at - 2, 2, ": ") == 0))
-        throw CaseError(what.substr(0, at) + keyword + what.substr(at + option.size()));
-    }
-    throw;
+    RethrowNamingKeywords(e, options);
   }
   return Result(r);
 }

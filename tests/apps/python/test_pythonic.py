@@ -3,6 +3,7 @@ Python does; every function takes a path, an os.PathLike, a needle.Case or a dic
 needle.Case reads and writes like a dict of its sections and is validated as its file would be;
 cycle= is checked; a huge integer names its key; no NumPy, no import. Run by ctest with
 PYTHONPATH=build/python and NEEDLE_BINARY=build/needle."""
+import json
 import os
 import pathlib
 import subprocess
@@ -248,6 +249,61 @@ def test_a_bare_csv_table_needs_a_speed():
     at_1000 = needle.kinematics(case, rpm=1000)
     case["engine"]["speed_rpm"] = 1000
     assert same(needle.kinematics(case), at_1000)
+
+
+# needle.Scene: a case bound once, run many times (issue 52).
+
+def test_a_scene_runs_what_the_functions_run():
+    case = needle.load_case(EXAMPLE1)
+    scene = needle.Scene(case)
+    assert (scene.path, scene.speed_rpm) == (EXAMPLE1, 125)
+    assert scene.title.startswith("Basu Example 1")
+    for rpm in (125, 300, 700):
+        assert same(scene.simulate(rpm=rpm), needle.simulate(case, rpm=rpm)), rpm
+    # And what the command runs at that speed (the scene takes the keyword, not its own speed).
+    at_700 = scene.simulate(rpm=700)
+    cli = json.loads(subprocess.run([BINARY, "simulate", EXAMPLE1, "--rpm", "700", "--json"],
+                                    capture_output=True, text=True).stdout)
+    assert at_700["speed_rpm"] == 700
+    for key in ("max_lift_mm", "min_contact_force_during_lift_N", "liftoff", "episodes"):
+        assert at_700[key] == cli[key], key
+    assert same(scene.check(), needle.check(case))
+    assert same(scene.kinematics(step_deg=1), needle.kinematics(case, step_deg=1))
+    assert same(scene.overspeed(from_rpm=600, to_rpm=700),
+                needle.overspeed(case, from_rpm=600, to_rpm=700))
+    # A scene is a case: every function of a case takes one.
+    assert same(needle.simulate(scene, rpm=300), scene.simulate(rpm=300))
+
+
+def test_a_scene_is_a_snapshot_of_its_case():
+    case = needle.load_case(EXAMPLE1)
+    scene = needle.Scene(case)
+    before = scene.simulate(rpm=600)
+    case["spring"]["preload_kgf"] = 300
+    assert same(scene.simulate(rpm=600), before)
+    weak = needle.simulate(case, rpm=600)
+    assert not same(weak, before)
+    assert same(needle.Scene(case).simulate(rpm=600), weak)
+
+
+def test_a_scene_names_its_keywords_and_refuses_what_cannot_be_bound():
+    scene = needle.Scene(EXAMPLE1)
+    assert message(lambda: scene.simulate(rpm=-5)) == message(lambda: needle.simulate(EXAMPLE1, rpm=-5))
+    assert message(lambda: scene.simulate(method="rk4")) == \
+        message(lambda: needle.simulate(EXAMPLE1, method="rk4"))
+    assert message(lambda: needle.kinematics(scene, spline="pchip")) == \
+        "kinematics: spline= needs a case; a needle.Scene is bound with its own"
+    # A spline the table has too few points for names the keyword, as the function always did.
+    small = {"engine": {"speed_rpm": 400}, "lift": {"crank_deg": [0, 10, 20], "lift_mm": [0, 1, 0]}}
+    assert message(lambda: needle.kinematics(small, spline="quintic")).startswith(
+        "<dict>: spline='quintic': ")
+    # Binding refuses a case whose [train] ramp cannot be made, naming the key.
+    data = data_of(EXAMPLE1)
+    data["train"]["play_mm"] = 9.0
+    assert message(lambda: needle.Scene(data)).startswith("<dict>: [train] ramp: ")
+    bare = needle.Scene(CSV)
+    assert message(lambda: bare.simulate()) == \
+        "rpm=None: " + CSV + " is a bare CSV lift table with no [engine] speed_rpm; give rpm="
 
 
 # NumPy.
