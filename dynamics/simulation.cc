@@ -320,19 +320,20 @@ std::string StiffnessText(double oscillations) {
 
 MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double /*rtol*/) {
   if (train.HasConstraint()) {
-    return {Method::kDopri5,
+    return {AutoMethodFor(AutoCase::kRigid),
             "auto: rigid contacts (restitution and sticking): explicit Dormand–Prince, a one-step "
             "method that restarts at full order after every impact"};
   }
   const std::string stiffness = StiffnessText(oscillations);
   if (const std::optional<std::string> refusal = ExactRefusal(train)) {
     const bool stiff = oscillations > kStiffOscillations;
-    return {stiff ? Method::kCvodeBdf : Method::kDopri5,
+    return {AutoMethodFor(stiff ? AutoCase::kStiff : AutoCase::kNonStiff),
             "auto: " + *refusal + "; " + stiffness +
                 (stiff ? " (> 2000: stiff, BDF)" : " (≤ 2000: explicit Dormand–Prince)")};
   }
   // The closed form at every tolerance (simulation.h).
-  return {Method::kExact, "auto: the train is linear in every contact mode, solved in closed form"};
+  return {AutoMethodFor(AutoCase::kLinear),
+          "auto: the train is linear in every contact mode, solved in closed form"};
 }
 
 MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol) {

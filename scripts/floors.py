@@ -34,6 +34,8 @@ BELOW["apps/python"] = BELOW["apps/report"] + ["apps/report"]
 # bound_case.h, Bind), never these, directly or through another apps/case header.
 FILE_MODEL = {"apps/case/case_file.h", "apps/case/case_scene.h", "apps/case/section_reader.h"}
 BOUND_ONLY = ("apps/study", "apps/report")
+# Where Method's enumerators are named: its declaration and the method table.
+METHOD_TABLE = {"dynamics/solver/integrator.h", "dynamics/solver/methods.cc"}
 
 
 def Includes(rel: str):
@@ -85,6 +87,11 @@ def main() -> int:
         most = 200 if floor == "apps/cli" else 500
         if lines > most:
             bad.append(f"{rel}: {lines} lines, more than {most}")
+        # The method table carries the methods' capabilities (issue 52): no enumerator of Method
+        # is named outside it.
+        if "Method::k" in text and rel not in METHOD_TABLE:
+            bad.append(f"{rel}: names a Method enumerator; read the method table "
+                       "(dynamics/solver/integrator.h: MethodIsClosedForm, AutoMethodFor, …)")
         for target in include.findall(text):
             to = FloorOf(target)
             if to is not None and to != floor and to not in BELOW[floor]:

@@ -19,11 +19,12 @@ const std::vector<BenchScene>& Scenes() {
   return scenes;
 }
 
-const std::vector<Method>& Methods() {
-  static const std::vector<Method> m = {
-      Method::kDopri5,     Method::kRkf78, Method::kRosenbrock4,   Method::kCvodeBdf,
-      Method::kCvodeAdams, Method::kExact, Method::kBaselineDopri5};
-  return m;
+const std::vector<Method>& Methods() { return AllMethods(); }
+
+Method Named(const std::string& name) {
+  const std::optional<Method> m = ParseMethod(name);
+  if (!m) throw std::logic_error("bench: no method \"" + name + "\" in the method table");
+  return *m;
 }
 
 std::string Num(double v, int digits) {

@@ -25,6 +25,8 @@ struct BenchScene {
 const std::vector<BenchScene>& Scenes();
 /// Every method of the work-precision study.
 const std::vector<Method>& Methods();
+/// The method of the method table named `name` (the bench's reference and peer runs).
+Method Named(const std::string& name);
 
 /// The median run time of `f` over `repeats` runs, s.
 template <typename F>

@@ -152,19 +152,19 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
     const std::vector<double> grid = WindowGrid(scene, bs.rpm, 2000);
     const auto start = std::chrono::steady_clock::now();
     while (std::chrono::steady_clock::now() - start < std::chrono::seconds(1))
-      MeasureRun(scene, bs.rpm, Method::kDopri5, 1e-6, grid, 1);
+      MeasureRun(scene, bs.rpm, Named("dopri5"), 1e-6, grid, 1);
   }
   for (const BenchScene& bs : Scenes()) {
     const BoundCase c = Bind(LoadCase(CaseDir() + bs.file));
     const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, bs.rpm, 2000);
-    const MeasuredRun ref = MeasureRun(scene, bs.rpm, Method::kExact, 1e-13, grid, 1);
-    const MeasuredRun check = MeasureRun(scene, bs.rpm, Method::kDopri5, 1e-13, grid, 1);
+    const MeasuredRun ref = MeasureRun(scene, bs.rpm, Named("exact"), 1e-13, grid, 1);
+    const MeasuredRun check = MeasureRun(scene, bs.rpm, Named("dopri5"), 1e-13, grid, 1);
     const RunErrors ref_err = CompareRuns(check, ref);
     std::vector<Row> rows;
     for (Method m : Methods()) {
       for (double rtol : tolerances) {
-        if (m == Method::kExact && rtol != tolerances.front()) continue;  // no tolerance
+        if (MethodIsClosedForm(m) && rtol != tolerances.front()) continue;  // no tolerance
         const MeasuredRun run = MeasureRun(scene, bs.rpm, m, rtol, grid, repeats);
         Row r{bs.name,
               run.method,
@@ -176,7 +176,7 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
               CompareRuns(run, ref),
               run.energy_residual,
               run.failure};
-        if (m == Method::kBaselineDopri5) r.err.event_rad.reset();
+        if (!MethodIsEventDriven(m)) r.err.event_rad.reset();
         rows.push_back(r);
         std::cerr << bs.name << " " << run.method << " " << rtol << ": " << Num(r.ms)
                   << " ms, lift error " << Num(r.err.lift_m * 1e6) << " um"
@@ -311,9 +311,9 @@ std::string RunExactComparison(int repeats) {
     const BoundCase c = Bind(LoadCase(CaseDir() + es.file));
     const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, es.rpm, 2000);
-    const MeasuredRun ref = MeasureRun(scene, es.rpm, Method::kDopri5, 1e-12, grid, 1);
-    const MeasuredRun ex = MeasureRun(scene, es.rpm, Method::kExact, 1e-8, grid, 1);
-    const MeasuredRun dp = MeasureRun(scene, es.rpm, Method::kDopri5, 1e-8, grid, 1);
+    const MeasuredRun ref = MeasureRun(scene, es.rpm, Named("dopri5"), 1e-12, grid, 1);
+    const MeasuredRun ex = MeasureRun(scene, es.rpm, Named("exact"), 1e-8, grid, 1);
+    const MeasuredRun dp = MeasureRun(scene, es.rpm, Named("dopri5"), 1e-8, grid, 1);
     SimulationOptions o = c.run;
     o.force_dynamic = true;
     SimulationOptions oe = o, od = o;

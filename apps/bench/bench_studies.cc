@@ -130,11 +130,11 @@ std::string RunTargets(int repeats) {
     const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example1.toml"));
     const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, 125, 2000);
-    const MeasuredRun ref = MeasureRun(scene, 125, Method::kExact, 1e-13, grid, 1);
+    const MeasuredRun ref = MeasureRun(scene, 125, Named("exact"), 1e-13, grid, 1);
     double best_ms = INFINITY;
     std::string best;
-    for (Method m : {Method::kDopri5, Method::kRosenbrock4, Method::kCvodeBdf, Method::kCvodeAdams,
-                     Method::kExact}) {
+    for (Method m : {Named("dopri5"), Named("rosenbrock4"), Named("cvode-bdf"),
+                     Named("cvode-adams"), Named("exact")}) {
       for (int e = 4; e <= 12; ++e) {
         const double rtol = std::pow(10.0, -e);
         const MeasuredRun run = MeasureRun(scene, 125, m, rtol, grid, repeats);

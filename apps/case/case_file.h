@@ -31,7 +31,8 @@
 ///               contact_damping_ratio = 0.05, seat_stiffness_N_m (= k_c), seat_damping_ratio =
 ///               0.05; rigid: restitution = 0, seat_restitution = 0; play_mm = 0,
 ///               ramp = "tangent" | ramp_deg
-///     [solver]  method = "auto" | "dopri5" | "cvode-bdf" | "cvode-adams", rtol = 1e-8, atol_mm,
+///     [solver]  method = "auto" | a method of the method table (MethodList()), rtol = 1e-8,
+///     atol_mm,
 ///               max_steps = 2e6, max_events = 1e5, max_seconds = 60 (0: none), start_deg,
 ///               end_deg (window),
 ///               settle_deg = 3600 (past the window, the most run while the needle settles),
@@ -90,7 +91,7 @@ struct LiftSection {
 
 /// [solver]: how the dynamics is integrated.
 struct SolverSection {
-  std::string method = "auto";               ///< "auto", "dopri5", "cvode-bdf", "cvode-adams"
+  std::string method = "auto";               ///< "auto" or a name of MethodList()
   double rtol = 1e-8;                        ///< relative tolerance
   std::optional<double> atol_m;              ///< absolute tolerance (default rtol·1 mm)
   long max_steps = 2000000;                  ///< step budget

@@ -12,8 +12,8 @@ namespace needle {
 
 namespace odeint = boost::numeric::odeint;
 
-IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x0, double t_end,
-                                   Recorder& recorder, const IntegratorOptions& o) {
+IntegrationStats IntegrateBaseline(Method method, const NeedleTrain& train, const TrainState& x0,
+                                   double t_end, Recorder& recorder, const IntegratorOptions& o) {
   IntegrationStats stats;
   TrainSystem system(train, o);
   system.phase.gated = true;
@@ -44,8 +44,7 @@ IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x
   stats.steps = static_cast<long>(
       odeint::integrate_times(dense, std::ref(system), z, times.begin(), times.end(),
                               std::min(t_end, 0.01 / train.FastestAngularFrequency()), observer));
-  if (stats.steps > o.max_steps)
-    ThrowOverBudget("steps", o.max_steps, train, t_end, stats, Method::kBaselineDopri5);
+  if (stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, t_end, stats, method);
   recorder.Finish(last_t, last, phase);
   stats.rhs_evaluations = system.evaluations();
   stats.final_state = last;

@@ -397,8 +397,8 @@ IntegrationStats Integrate(Method method, const NeedleTrain& train, const TrainS
   if (const std::optional<std::string> why = RigidRefusal(method, train)) {
     throw std::invalid_argument(*why);
   }
-  if (method == Method::kBaselineDopri5) {
-    return IntegrateBaseline(train, x0, t_end, recorder, options);
+  if (!MethodIsEventDriven(method)) {
+    return IntegrateBaseline(method, train, x0, t_end, recorder, options);
   }
   internal::EventDriver driver(method, train, recorder, options);
   return driver.Run(x0, t_end);

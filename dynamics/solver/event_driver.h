@@ -49,7 +49,7 @@ class EventDriver {
               const IntegratorOptions& o)
       : train_(train), recorder_(recorder), o_(o), system_(train, o), method_(method) {
     stepper_ = MakeStepper(method, system_, o);
-    if (method == Method::kExact) {
+    if (MethodIsClosedForm(method)) {
       // The scales of the cam input and its rate, for RecordExtremes' round-off allowance.
       const LiftLaw& law = train.cam().law();
       lift_scale_ = std::abs(train.cam().top().value) + train.cam().play_m();

@@ -55,6 +55,22 @@ std::optional<Method> ParseMethod(const std::string& name);
 std::string MethodList();
 /// Why method `m` does not take a rigid contact, from the method table, or nullopt when it does.
 std::optional<std::string> MethodRigidRefusal(Method m);
+/// Whether `m` solves each contact mode in closed form (the event driver then certifies its
+/// crossings), from the method table; else it is a time stepper.
+bool MethodIsClosedForm(Method m);
+/// Whether `m` is a backend of the event driver (its witnesses, reset maps and budgets); the
+/// baseline gates compliant forces in a loop of its own.
+bool MethodIsEventDriven(Method m);
+
+/// The trains `auto` tells apart (dynamics/simulation.h AutoMethod).
+enum class AutoCase {
+  kRigid,     ///< a rigid contact: restarts at full order after every impact
+  kNonStiff,  ///< not linear in every mode, ≤ kStiffOscillations contact oscillations an event
+  kStiff,     ///< not linear in every mode, more
+  kLinear,    ///< linear in every contact mode
+};
+/// The method the method table gives `auto` for trains of kind `c`.
+Method AutoMethodFor(AutoCase c);
 
 /// Why method "exact" cannot solve `train` (a contact law not linear in the gap and its rate),
 /// or nullopt when it can. `auto` falls back to a time stepper then.

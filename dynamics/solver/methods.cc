@@ -2,6 +2,7 @@
 // scaled right-hand side the backends integrate.
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,11 @@ struct MethodRow {
   /// Why the method does not take a rigid contact (a train with a constraint), after
   /// `method "NAME" `; nullptr when it does.
   const char* rigid_refusal;
+  /// Solves each contact mode's piece in closed form (the driver certifies its crossings and
+  /// lets a quiet piece run long); false: a time stepper.
+  bool closed_form;
+  /// The trains `auto` gives it (AutoCase), none when auto never picks it.
+  std::initializer_list<AutoCase> auto_for;
 };
 
 // Measured: restarted at every impact, CVODE's low-order start misplaces the short flights of a
@@ -31,15 +37,24 @@ constexpr const char* kCvodeRigid =
 
 // A new integrator: its backend file, an enumerator and one row here.
 const MethodRow kMethodTable[] = {
-    {Method::kDopri5, "dopri5", MakeDopri5, nullptr},
-    {Method::kRkf78, "rkf78", MakeRkf78, nullptr},
-    {Method::kRosenbrock4, "rosenbrock4", MakeRosenbrock4, nullptr},
-    {Method::kCvodeBdf, "cvode-bdf", MakeCvodeBdf, kCvodeRigid},
-    {Method::kCvodeAdams, "cvode-adams", MakeCvodeAdams, kCvodeRigid},
-    {Method::kExact, "exact", MakeExact, nullptr},
-    {Method::kBaselineDopri5, "baseline-dopri5", nullptr,
+    {Method::kDopri5,
+     "dopri5",
+     MakeDopri5,
+     nullptr,
+     false,
+     {AutoCase::kRigid, AutoCase::kNonStiff}},
+    {Method::kRkf78, "rkf78", MakeRkf78, nullptr, false, {}},
+    {Method::kRosenbrock4, "rosenbrock4", MakeRosenbrock4, nullptr, false, {}},
+    {Method::kCvodeBdf, "cvode-bdf", MakeCvodeBdf, kCvodeRigid, false, {AutoCase::kStiff}},
+    {Method::kCvodeAdams, "cvode-adams", MakeCvodeAdams, kCvodeRigid, false, {}},
+    {Method::kExact, "exact", MakeExact, nullptr, true, {AutoCase::kLinear}},
+    {Method::kBaselineDopri5,
+     "baseline-dopri5",
+     nullptr,
      "gates compliant forces and has no events; a rigid contact needs dopri5, rkf78 or "
-     "rosenbrock4"},
+     "rosenbrock4",
+     false,
+     {}},
 };
 
 const MethodRow& Row(Method m) {
@@ -66,6 +81,18 @@ std::optional<std::string> MethodRigidRefusal(Method m) {
   const MethodRow& r = Row(m);
   if (r.rigid_refusal == nullptr) return std::nullopt;
   return "method \"" + std::string(r.name) + "\" " + r.rigid_refusal;
+}
+
+bool MethodIsClosedForm(Method m) { return Row(m).closed_form; }
+
+bool MethodIsEventDriven(Method m) { return Row(m).make != nullptr; }
+
+Method AutoMethodFor(AutoCase c) {
+  for (const MethodRow& r : kMethodTable) {
+    for (AutoCase x : r.auto_for)
+      if (x == c) return r.method;
+  }
+  throw std::logic_error("no method of the method table for an auto case");
 }
 
 std::optional<Method> ParseMethod(const std::string& name) {

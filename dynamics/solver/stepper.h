@@ -95,10 +95,11 @@ std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions&
 /// The backend of a method from the method table (methods.cc); nullptr for the baseline.
 std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o);
 
-/// The no-event baseline (baseline_integrator.cc): not a backend of the driver. Integrate()
-/// validates the options before calling it.
-IntegrationStats IntegrateBaseline(const NeedleTrain& train, const TrainState& x0, double t_end,
-                                   Recorder& recorder, const IntegratorOptions& options);
+/// The no-event baseline (baseline_integrator.cc) of method `method` (its name in budget
+/// messages): not a backend of the driver. Integrate() validates the options before calling it.
+IntegrationStats IntegrateBaseline(Method method, const NeedleTrain& train, const TrainState& x0,
+                                   double t_end, Recorder& recorder,
+                                   const IntegratorOptions& options);
 
 /// Throws the budget message, with the work done up to t; its advice names another method
 /// than `method`, the one that ran.
