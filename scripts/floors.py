@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The dependency rule of docs/architecture.md, checked: no #include runs up a floor; and the
 sizes issue 34 set: no source file over 500 lines, no command file (apps/cli) over 200; and
-issue 52's rule: apps/study and apps/report never include the file model (case_file.h).
+issue 52's rules: apps/study and apps/report never include the file model (case_file.h), no
+Method enumerator is named outside the method table, and no function is over 100 lines but
+those LONG_FUNCTIONS lists, each at most as long as it is listed (the target is none).
 
 The floors, lowest first; a file may include its own floor's headers and those of any floor
 below it, never one above (nor a sibling: cli and python do not include each other, bench
@@ -36,6 +38,73 @@ FILE_MODEL = {"apps/case/case_file.h", "apps/case/case_scene.h", "apps/case/sect
 BOUND_ONLY = ("apps/study", "apps/report")
 # Where Method's enumerators are named: its declaration and the method table.
 METHOD_TABLE = {"dynamics/solver/integrator.h", "dynamics/solver/methods.cc"}
+
+
+# Issue 52's target is no function over 100 lines (outside tests). These remain, each capped at
+# its length when the rule came in: one may shrink or go, none may grow, and none may join.
+MOST_LINES = 100
+LONG_FUNCTIONS = {
+    "apps/study/limits_table.cc JudgeLimits": 309,
+    "apps/report/check_report.cc CheckReportWriter::Finish": 296,
+    "apps/study/spring_sizing_scene.cc SizeCase": 258,
+    "dynamics/overspeed.cc OverspeedSearch": 227,
+    "dynamics/solver/event_driver.cc EventDriver::Run": 223,
+    "apps/study/check_scene.cc CheckScene": 200,
+    "apps/bench/bench_studies.cc RunTargets": 170,
+    "lib/lift_breaks.cc FindBreaks": 168,
+    "apps/case/lift_section.cc ReadLift": 168,
+    "lib/lift_csv.cc ParseLiftCsv": 143,
+    "apps/case/synthesis_file.cc ParseSynthesisFile": 138,
+    "apps/bench/bench_studies.cc RunOverspeedComparison": 138,
+    "apps/bench/bench_dynamics.cc RunDynamics": 129,
+    "lib/toml_text.cc Step": 127,
+    "dynamics/simulation.cc RunPass": 126,
+    "apps/report/compare_writer.cc CompareReport": 118,
+    "dynamics/simulation.cc Simulate": 117,
+    "apps/report/kinematics_writer.cc WriteKinematics": 113,
+    "lib/cam_synthesis.cc SynthesizeRise": 112,
+    "apps/study/tolerance_study.cc RunSample": 109,
+    "spring/spring_sizing.cc SizeSpring": 108,
+    "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
+    "apps/case/sizing_section.cc ReadSizing": 107,
+    "dynamics/solver/event_certification.cc EventDriver::RecordExtremes": 106,
+    "apps/report/cam_writer.cc WriteSynth": 105,
+    "apps/report/size_writer.cc WriteSize": 104,
+}
+DECLARATION = re.compile(r"(namespace|struct|class|enum|union|if|for|while|switch|do|else|return|"
+                         r"case|template|extern|using|typedef|static_assert)\b")
+
+
+def Functions(text: str):
+    """(name, first line, lines) of each function defined at namespace or class scope (Google
+    style: its signature starts in column 0 or 2, its body closes at the same indent)."""
+    lines = text.split("\n")
+    out, i = [], 0
+    while i < len(lines):
+        m = re.match(r"^( {0,2})([A-Za-z_~][\w:<>,~&*\s]*?)\(", lines[i])
+        if not m or DECLARATION.match(lines[i].strip()) or "=" in m.group(2):
+            i += 1
+            continue
+        indent, k, opened, depth = m.group(1), i, None, 0
+        while k < len(lines) and k < i + 12:  # the signature, to the brace that opens the body
+            code = lines[k].split("//")[0].rstrip()
+            depth += code.count("(") - code.count(")")
+            if depth == 0 and code.endswith("{"):
+                opened = k
+                break
+            if depth == 0 and code.endswith((";", "}")):
+                break
+            k += 1
+        if opened is None:
+            i += 1
+            continue
+        end = opened + 1
+        while end < len(lines) and not re.match("^" + indent + r"\}", lines[end]):
+            end += 1
+        name = re.findall(r"([\w:~]+)\s*\(", m.group(0))
+        out.append((name[-1] if name else "?", i + 1, end - i + 1))
+        i = end + 1
+    return out
 
 
 def Includes(rel: str):
@@ -73,6 +142,7 @@ def FloorOf(path: str):
 def main() -> int:
     include = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
     bad = []
+    long_seen = set()
     files = 0
     for source in sorted(ROOT.glob("**/*")):
         rel = source.relative_to(ROOT).as_posix()
@@ -87,6 +157,16 @@ def main() -> int:
         most = 200 if floor == "apps/cli" else 500
         if lines > most:
             bad.append(f"{rel}: {lines} lines, more than {most}")
+        if not rel.startswith("tests/"):
+            for name, first, length in Functions(text):
+                key = f"{rel} {name}"
+                most = LONG_FUNCTIONS.get(key, MOST_LINES)
+                if length > most:
+                    bad.append(f"{rel}:{first}: {name} is {length} lines, more than {most} "
+                               "(split it: a function fits a screen)")
+                    long_seen.add(key)
+                elif length > MOST_LINES:
+                    long_seen.add(key)
         # The method table carries the methods' capabilities (issue 52): no enumerator of Method
         # is named outside it.
         if "Method::k" in text and rel not in METHOD_TABLE:
@@ -100,9 +180,14 @@ def main() -> int:
             if chain:
                 bad.append(f"{rel}: includes the file model ({' -> '.join(chain)}); "
                            "read the bound case (apps/case/bound_case.h)")
+    for key in sorted(set(LONG_FUNCTIONS) - long_seen):
+        bad.append(f"{key}: no longer over {MOST_LINES} lines; take it off LONG_FUNCTIONS")
     for line in bad:
         print(line)
-    print(f"floors: {files} files, {len(bad)} includes running up a floor or files too long")
+    print(f"floors: {len(long_seen)} functions over {MOST_LINES} lines remain (issue 52's "
+          f"target: none; scripts/floors.py LONG_FUNCTIONS)")
+    print(f"floors: {files} files, {len(bad)} problems (an include running up a floor or reaching "
+          "the file model, a file or function too long, a Method enumerator named)")
     return 1 if bad else 0
 
 

@@ -40,44 +40,13 @@
 #include "dynamics/solver/integrator.h"
 #include "lib/spline.h"
 
-PYBIND11_MODULE(needle, m) {
-  using namespace needle;
-  using namespace needle::python;
-  using py::arg;
-  // The columns are NumPy arrays: without NumPy, no import (rather than a failure at the first
-  // calculation).
-  try {
-    py::module_::import("numpy");
-  } catch (const py::error_already_set& e) {
-    throw py::import_error(
-        "the needle module needs NumPy (its results hold NumPy arrays), and this Python has "
-        "none: apt-get install python3-numpy, or pip install numpy (" +
-        py::str(e.type().attr("__name__")).cast<std::string>() + ": " +
-        py::str(e.value()).cast<std::string>() + ")");
-  }
-  m.doc() =
-      "needle: cam-driven needle valves. Every function takes a case (a path, a needle.Case or a "
-      "dict) and returns what `needle COMMAND --json` prints, as a dict, with the command's table "
-      "as NumPy arrays in SI under 'columns' and its exit status (0, or 1 when a check fails) "
-      "under 'exit_status'. Bad input raises needle.CaseError (a ValueError) naming the key or "
-      "keyword.";
-  // A package: `import needle.distributed` finds the Python parts in the folder `needle` beside
-  // this file (the build's build/python/needle, the install's site-packages/needle).
-  m.attr("__version__") = NEEDLE_VERSION;
-  py::list package_path;
-  package_path.append((std::filesystem::path(ModuleFolder()) / "needle").string());
-  m.attr("__path__") = package_path;
-  static py::exception<CaseError> case_error(m, "CaseError", PyExc_ValueError);
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const CaseError& e) {
-      PyErr_SetString(case_error.ptr(), e.what());
-    } catch (const std::invalid_argument& e) {  // the CLI's exit 2 as well
-      PyErr_SetString(case_error.ptr(), e.what());
-    }
-  });
+namespace needle::python {
+namespace {
 
+using py::arg;
+
+// needle.Case, needle.Scene and load_case: the case as Python holds it.
+void DefCase(py::module_& m) {
   py::class_<PyCase>(
       m, "Case",
       "A case: its file's sections, read and written like a dict (case['needle']['mass_kg'] = "
@@ -145,7 +114,10 @@ PYBIND11_MODULE(needle, m) {
       "Loads a case: a path (str or os.PathLike) to a TOML case or a bare CSV lift table (then "
       "`cycle`, 'four-stroke' by default, or 'two-stroke'), a dict with the case file's sections "
       "(`name` is its path in messages and relative paths), or a needle.Case (a copy).");
+}
 
+// The commands of one case: kinematics, spring, size, simulate, overspeed, check, profile.
+void DefCaseCommands(py::module_& m) {
   Def(
       m, "kinematics",
       [](const py::object& source, const py::object& rpm, const py::object& step_deg,
@@ -218,6 +190,20 @@ PYBIND11_MODULE(needle, m) {
       "report)");
 
   Def(
+      m, "profile",
+      [](const py::object& source) {
+        const auto c = CaseOf(source, "profile");
+        RequireSpeedOf(*c, std::nullopt, "");
+        CamWriting json;
+        json.json = true;
+        return Run([&] { return WriteProfile(ProfileOfCase(Bind(*c)), json); });
+      },
+      arg("case"), "needle profile: the cam profile and its follower checks");
+}
+
+// compare (two cases), design (an engine file) and synth (a spec).
+void DefDesignCommands(py::module_& m) {
+  Def(
       m, "compare",
       [](const py::object& a, const py::object& b, const py::object& rpm) {
         const auto ca = CaseOf(a, "compare"), cb = CaseOf(b, "compare");
@@ -260,7 +246,10 @@ PYBIND11_MODULE(needle, m) {
       },
       arg("spec"), py::kw_only(), arg("name") = py::none(),
       "needle synth: a rise law under derivative limits, from a spec file or dict");
+}
 
+// The tolerance study, whole and in shards, and the case text a shard reads.
+void DefStudies(py::module_& m) {
   Def(
       m, "tolerance",
       [](const py::object& source, const py::object& samples, const py::object& seed,
@@ -347,15 +336,51 @@ PYBIND11_MODULE(needle, m) {
       "The study of gathered shards (tolerance_shard's dicts, in sample order, the first "
       "starting at first_sample): what needle.tolerance returns for those samples, computed by "
       "the same code (threads and seconds: what the report states of the run)");
+}
 
-  Def(
-      m, "profile",
-      [](const py::object& source) {
-        const auto c = CaseOf(source, "profile");
-        RequireSpeedOf(*c, std::nullopt, "");
-        CamWriting json;
-        json.json = true;
-        return Run([&] { return WriteProfile(ProfileOfCase(Bind(*c)), json); });
-      },
-      arg("case"), "needle profile: the cam profile and its follower checks");
+}  // namespace
+}  // namespace needle::python
+
+PYBIND11_MODULE(needle, m) {
+  using namespace needle;
+  using namespace needle::python;
+  using py::arg;
+  // The columns are NumPy arrays: without NumPy, no import (rather than a failure at the first
+  // calculation).
+  try {
+    py::module_::import("numpy");
+  } catch (const py::error_already_set& e) {
+    throw py::import_error(
+        "the needle module needs NumPy (its results hold NumPy arrays), and this Python has "
+        "none: apt-get install python3-numpy, or pip install numpy (" +
+        py::str(e.type().attr("__name__")).cast<std::string>() + ": " +
+        py::str(e.value()).cast<std::string>() + ")");
+  }
+  m.doc() =
+      "needle: cam-driven needle valves. Every function takes a case (a path, a needle.Case or a "
+      "dict) and returns what `needle COMMAND --json` prints, as a dict, with the command's table "
+      "as NumPy arrays in SI under 'columns' and its exit status (0, or 1 when a check fails) "
+      "under 'exit_status'. Bad input raises needle.CaseError (a ValueError) naming the key or "
+      "keyword.";
+  // A package: `import needle.distributed` finds the Python parts in the folder `needle` beside
+  // this file (the build's build/python/needle, the install's site-packages/needle).
+  m.attr("__version__") = NEEDLE_VERSION;
+  py::list package_path;
+  package_path.append((std::filesystem::path(ModuleFolder()) / "needle").string());
+  m.attr("__path__") = package_path;
+  static py::exception<CaseError> case_error(m, "CaseError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const CaseError& e) {
+      PyErr_SetString(case_error.ptr(), e.what());
+    } catch (const std::invalid_argument& e) {  // the CLI's exit 2 as well
+      PyErr_SetString(case_error.ptr(), e.what());
+    }
+  });
+
+  DefCase(m);
+  DefCaseCommands(m);
+  DefDesignCommands(m);
+  DefStudies(m);
 }
