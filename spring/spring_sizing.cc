@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "lib/units.h"
@@ -16,15 +17,9 @@ constexpr double kLengthSlack_m = 1e-9;
 
 SizingRule Rule(std::string key, std::string name, std::string unit, double value, double limit,
                 bool at_most) {
-  SizingRule r;
-  r.key = std::move(key);
-  r.name = std::move(name);
-  r.unit = std::move(unit);
-  r.value = value;
-  r.limit = limit;
-  r.at_most = at_most;
-  r.margin = at_most ? limit - value : value - limit;
-  r.pass = r.margin >= 0.0;
+  SizingRule r =
+      VerdictRow::Unjudged(std::move(key), std::move(name), std::move(unit), at_most, limit);
+  r.Judge(value);
   return r;
 }
 
@@ -108,11 +103,6 @@ std::string SizingObjectiveName(SizingObjective o) {
   return "?";
 }
 
-double SizingRule::Violation() const {
-  if (pass) return 0.0;
-  return -margin / std::max(std::abs(limit), 1e-300);
-}
-
 bool BetterSpring(const SizedSpring& a, const SizedSpring& b) {
   if (a.objective != b.objective) return a.objective < b.objective;
   if (a.mass_kg != b.mass_kg) return a.mass_kg < b.mass_kg;
@@ -143,7 +133,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
       duty.min_gap_m ? "coil gap at full lift (stated)" : "coil gap at full lift (S_a, EN 13906-1)";
   const double need = probe.solid_length_m + h + gap;  // the shortest L₁ that keeps the gap
   const auto done = [&](SizingRule r) {
-    const bool ok = r.pass;
+    const bool ok = r.passes();
     s.rules.push_back(std::move(r));
     return !ok && !full;
   };
@@ -218,7 +208,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
                   s.buckling_m * 1e3, deflection * 1e3, false)))
       return s;
   }
-  s.pass = std::all_of(s.rules.begin(), s.rules.end(), [](const SizingRule& r) { return r.pass; });
+  s.pass = std::all_of(s.rules.begin(), s.rules.end(), std::mem_fn(&SizingRule::passes));
   return s;
 }
 
@@ -356,7 +346,7 @@ std::vector<Field> SizingRuleFields(const SizingRule& x) {
           {"limit", display::kNone, x.limit, 2},
           FlagField("at_most", x.at_most),
           {"margin", display::kNone, FiniteOrNone(x.margin), 2},
-          FlagField("pass", x.pass)};
+          FlagField("pass", x.passes())};
 }
 
 std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& space) {

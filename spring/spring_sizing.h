@@ -31,6 +31,7 @@
 #include "lib/engine_cycle.h"
 #include "spring/helical_spring.h"
 #include "spring/spring_parameters.h"
+#include "spring/verdict_row.h"
 #include "spring/wire_material.h"
 
 namespace needle {
@@ -97,18 +98,9 @@ struct SizingDuty {
 enum class SizingObjective { kMass, kHeight, kStress };
 std::string SizingObjectiveName(SizingObjective o);  ///< "mass", "height", "stress"
 
-/// One rule judged on a candidate, in display units.
-struct SizingRule {
-  std::string key;   ///< "coil_gap", "surge_ratio", "stress", "fatigue", "buckling"
-  std::string name;  ///< "coil gap at full lift"
-  std::string unit;  ///< "mm", "MPa", ""
-  double value = 0.0, limit = 0.0;
-  bool at_most = false;
-  double margin = 0.0;  ///< limit − value (at most) or value − limit (at least)
-  bool pass = false;
-  /// How far it fails, as a fraction of the limit (0 when it passes).
-  double Violation() const;
-};
+/// One rule judged on a candidate, in display units: the check's verdict row
+/// (spring/verdict_row.h), judged pass or fail.
+using SizingRule = VerdictRow;
 
 /// A candidate spring and what the rules said.
 struct SizedSpring {

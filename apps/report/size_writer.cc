@@ -116,7 +116,7 @@ CommandOutput WriteSize(const BoundCase& c, const SizeResult& r, const SizeWriti
       << '\n';
     t << "rules (value, limit, margin):\n";
     for (const SizingRule& x : chosen->rules)
-      t << RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.pass ? "pass" : "FAIL");
+      t << RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.Shouted());
   }
   if (check) {
     t << "check of the sized case (limits, as needle check):\n";

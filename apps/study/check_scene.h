@@ -29,6 +29,7 @@
 #include "lib/result_fields.h"
 #include "spring/resonance.h"
 #include "spring/spring_check.h"
+#include "spring/verdict_row.h"
 
 namespace needle {
 
@@ -44,21 +45,7 @@ struct SweepRange {
 SweepRange DefaultSweepRange(const BoundCase& c, double rated_rpm, double n_qs_rpm);
 
 /// One row of the limits table (case [limits]): value against limit, in display units.
-struct LimitRow {
-  std::string key;     ///< JSON name, e.g. "seating_velocity"
-  std::string name;    ///< "seating velocity"
-  std::string unit;    ///< display unit, e.g. "m/s"
-  double value = NAN;  ///< NaN when not judged
-  double limit = NAN;
-  bool at_most = true;  ///< passes when value ≤ limit (else value ≥ limit)
-  double margin = NAN;  ///< limit − value (at most) or value − limit (at least), same unit
-  std::string verdict;  ///< "pass", "fail", "warning" (outside a screen, no harm shown) or
-                        ///< "not judged"
-  std::string note;     ///< where or why (not judged: what is missing)
-  std::string source;   ///< the default's source, or "[limits] KEY" when the case sets it
-  /// " unit" after a number, or nothing for a pure number.
-  std::string UnitSuffix() const { return unit.empty() ? "" : " " + unit; }
-};
+using LimitRow = VerdictRow;
 
 /// A failing row as one line, its parts apart: "limits: NAME: measured V, limit >= L, margin M
 /// (where/why); rule: SOURCE" — the finding first, the rule's source last.

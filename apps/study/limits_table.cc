@@ -18,23 +18,9 @@ void JudgeLimits(const BoundCase& c, const LiftLaw& law, double cam_zero_crank_r
                  bool report_notes) {
   const LimitsSection& l = c.limits;
   const double crank_turns = CrankTurnsPerCycle(c.engine.cycle);  // per cam turn
-  const auto row = [&](std::string key, std::string name, std::string unit, bool at_most,
-                       double limit, std::string source) {
-    LimitRow x;
-    x.key = std::move(key);
-    x.name = std::move(name);
-    x.unit = std::move(unit);
-    x.at_most = at_most;
-    x.limit = limit;
-    x.source = std::move(source);
-    x.verdict = "not judged";
-    return x;
-  };
+  const auto& row = VerdictRow::Unjudged;
   const auto judge = [](LimitRow& x, double value, std::string note) {
-    x.value = value;
-    x.margin = x.at_most ? x.limit - value : value - x.limit;
-    x.verdict = x.margin >= 0.0 ? "pass" : "fail";
-    x.note = std::move(note);
+    x.Judge(value, std::move(note));
   };
   // A contact force of zero is a loss of contact, whatever the limit (a limit of 0 %, or an
   // overspeed factor of 1, would otherwise pass it).

@@ -83,7 +83,7 @@ TEST(SpringSizingTest, ReproducesBhandariExample10_11ToThePrintedDigits) {
   bool stress_failed = false;
   for (const SizingRule& x : four.rules) {
     if (x.key != "stress") continue;
-    stress_failed = !x.pass;
+    stress_failed = !x.passes();
     EXPECT_NEAR(x.value, k_wahl * 8 * 433.0 * 20.0 / (kPi * 64.0), 1e-9);  // P₀ up to 0.1 N
     EXPECT_NEAR(x.limit, 444.0, 1e-9);
   }
@@ -236,7 +236,7 @@ TEST(SpringSizingTest, NothingFitsNamesTheBindingRuleAndTheClosestSpring) {
   ASSERT_TRUE(r.binding);
   ASSERT_TRUE(r.closest);
   EXPECT_EQ(r.binding->key, "fatigue");
-  EXPECT_FALSE(r.binding->pass);
+  EXPECT_FALSE(r.binding->passes());
   EXPECT_EQ(r.binding->limit, 5.0);
   // The closest has the highest factor of the space: no candidate beats it.
   for (int w = 0; w < static_cast<int>(space.wires.size()); w += 3) {
