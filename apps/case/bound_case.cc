@@ -234,15 +234,7 @@ Scene BindScene(const BoundCase& b, std::shared_ptr<const LiftLaw> law) {
     t.clash_stiffness_N_m = spring.clash_stiffness_N_m.value_or(train.contact_stiffness_N_m);
     t.clash_damping_ratio = spring.clash_damping_ratio.value_or(train.contact_damping_ratio);
   }
-  t.contact_stiffness_N_m = train.contact_stiffness_N_m;
-  t.contact_damping_ratio = train.contact_damping_ratio;
-  t.seat_stiffness_N_m = train.seat_stiffness_N_m;
-  t.seat_damping_ratio = train.seat_damping_ratio;
-  if (train.rigid) {
-    t.contact = ContactKind::kRigid;
-    t.restitution = train.restitution;
-    t.seat_restitution = train.seat_restitution;
-  }
+  static_cast<ContactParameters&>(t) = train;  // [train]'s contacts, as read
   s.revolution_rad = 2.0 * kPi * CrankTurnsPerCycle(b.engine.cycle);
   s.start_rad = b.start_rad;
   s.end_rad = b.end_rad;

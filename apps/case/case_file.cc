@@ -126,7 +126,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
   }
   CheckPreloadPressure(c, root);
   if (c.spring && c.spring->coil_clash && !c.spring->clash_stiffness_N_m && c.train &&
-      c.train->rigid) {
+      c.train->rigid()) {
     throw CaseError(path +
                     ": [spring] clash: a rigid [train] has no contact stiffness for the coils "
                     "to take; give clash_stiffness_N_m");

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/model/needle_train.h"
 #include "lib/engine_cycle.h"
 #include "lib/follower.h"
 
@@ -28,18 +29,13 @@ struct PaperSection {
   std::optional<double> spring_preload_N;  ///< the preload Basu's formula gave
 };
 
-/// [train]: contacts and roller play of the dynamic model (docs/model.md §3–4).
-struct TrainSection {
-  double contact_stiffness_N_m = 0.0;   ///< k_c, > 0 (required when compliant)
-  double contact_damping_ratio = 0.05;  ///< ζ_c, ≥ 0
-  double seat_stiffness_N_m = 0.0;      ///< k_s, > 0 (default: k_c)
-  double seat_damping_ratio = 0.05;     ///< ζ_s, ≥ 0
-  bool rigid = false;                   ///< contact = "rigid" (else "compliant")
-  double restitution = 0.0;             ///< e of the rigid cam contact, [0, 1]
-  double seat_restitution = 0.0;        ///< e_s of the rigid seat, [0, 1]
-  double play_m = 0.0;                  ///< roller play δ, ≥ 0
-  bool linear_ramp = false;             ///< `ramp_deg` given (else tangent ramps)
-  double ramp_rad = 0.0;                ///< ramp length when linear
+/// [train]: contacts and roller play of the dynamic model (docs/model.md §3–4): the contact
+/// laws' own parameters (dynamics/model/needle_train.h), read straight into them, and the
+/// roller's play on its ramps (the cam input's).
+struct TrainSection : ContactParameters {
+  double play_m = 0.0;       ///< roller play δ, ≥ 0
+  bool linear_ramp = false;  ///< `ramp_deg` given (else tangent ramps)
+  double ramp_rad = 0.0;     ///< ramp length when linear
 };
 
 /// [overspeed]: the lift-off sweep.

@@ -25,9 +25,10 @@ TrainSection ReadTrain(SectionReader r) {
   if (auto contact = r.OptionalString("contact")) {
     if (*contact != "compliant" && *contact != "rigid")
       r.Fail("contact", "expected \"compliant\" or \"rigid\", got \"" + *contact + "\"");
-    t.rigid = *contact == "rigid";
+    if (*contact == "rigid") t.contact = ContactKind::kRigid;
   }
-  if (t.rigid) {
+  if (t.rigid()) {
+    t.contact_stiffness_N_m = t.seat_stiffness_N_m = 0.0;  // a rigid law has none
     // Newton's restitution; the compliant law's keys do not apply.
     for (auto [key, into] : {std::pair<const char*, double*>{"restitution", &t.restitution},
                              {"seat_restitution", &t.seat_restitution}}) {

@@ -53,12 +53,9 @@ enum class ContactKind {
   kRigid,      ///< impenetrable, Newton's restitution (e, e_s), sticking while pushed
 };
 
-/// Parameters of the train, SI. Every field has a default; Validate() checks them.
-struct TrainParameters {
-  double mass_kg = 1.0;                           ///< m, > 0
-  double preload_N = 0.0;                         ///< P₀, ≥ 0
-  double rate_N_m = 0.0;                          ///< k, ≥ 0
-  double gas_force_N = 0.0;                       ///< F_g, opening positive
+/// The contact laws' parameters, SI (docs/model.md §3–4): a case's [train] is read straight
+/// into them (apps/case/run_sections.cc). Every field has a default.
+struct ContactParameters {
   double contact_stiffness_N_m = 1e8;             ///< k_c of the compliant cam contact, > 0
   double contact_damping_ratio = 0.05;            ///< ζ_c, ≥ 0
   double seat_stiffness_N_m = 1e8;                ///< k_s of the compliant seat contact, > 0
@@ -66,6 +63,16 @@ struct TrainParameters {
   ContactKind contact = ContactKind::kCompliant;  ///< the law of both contacts
   double restitution = 0.0;                       ///< e of the rigid cam contact, in [0, 1]
   double seat_restitution = 0.0;                  ///< e_s of the rigid seat, in [0, 1]
+  bool rigid() const { return contact == ContactKind::kRigid; }
+};
+
+/// Parameters of the train, SI: its contacts' and the rest. Every field has a default;
+/// Validate() checks them.
+struct TrainParameters : ContactParameters {
+  double mass_kg = 1.0;         ///< m, > 0
+  double preload_N = 0.0;       ///< P₀, ≥ 0
+  double rate_N_m = 0.0;        ///< k, ≥ 0
+  double gas_force_N = 0.0;     ///< F_g, opening positive
   int coil_masses = 1;          ///< N of the spring's chain, in [1, kMaxCoilMasses]; 1: massless k
   double spring_mass_kg = 0.0;  ///< m_s of the active coils, > 0 and < 3 mass_kg when N > 1
   double surge_damping_ratio = 0.0;  ///< ζ_s of the first surge mode, in [0, 1] (N > 1)

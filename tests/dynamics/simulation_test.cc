@@ -504,7 +504,7 @@ TEST(SimulationTest, RigidLashOnALinearRampComesAtTheRampsSpeed) {
   for (const double ramp_deg : {5.0, 10.0, 20.0}) {
     SCOPED_TRACE(ramp_deg);
     Case c = LoadCase(kCases + "basu-example1-rigid.toml");
-    ASSERT_TRUE(c.train->rigid);
+    ASSERT_TRUE(c.train->rigid());
     c.train->linear_ramp = true;
     c.train->ramp_rad = ramp_deg * kDeg;
     const double omega = 125.0 * 2.0 * kPi / 60.0;
@@ -583,8 +583,8 @@ TEST(SimulationTest, EpisodesNeverEndBeforeTheyStartForAnyMethod) {
     const double n_qs = QuasiStaticLiftoffRpm(s);
     for (const char* method :
          {"exact", "dopri5", "rkf78", "rosenbrock4", "cvode-bdf", "cvode-adams"}) {
-      if (c.train->rigid && std::string(method).rfind("cvode", 0) == 0) continue;
-      if (c.train->rigid && std::string(method) == "exact") continue;
+      if (c.train->rigid() && std::string(method).rfind("cvode", 0) == 0) continue;
+      if (c.train->rigid() && std::string(method) == "exact") continue;
       for (double rpm : {c.engine.speed_rpm, 1.1 * n_qs}) {
         if (!std::isfinite(rpm)) continue;
         SimulationOptions o = Options(method, 1e-8);
@@ -695,7 +695,7 @@ namespace {
 TEST(SimulationTest, TheClosedFormsEnergyResidualIsBelow1e12OnEveryBundledScene) {
   int runs = 0;
   for (const auto& [stem, c] : BundledTrainScenes()) {
-    if (c.train->rigid || c.spring->masses > 1) continue;
+    if (c.train->rigid() || c.spring->masses > 1) continue;
     const Scene s = MakeScene(c);
     for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s)}) {
       if (!std::isfinite(rpm)) continue;
@@ -711,7 +711,7 @@ TEST(SimulationTest, TheClosedFormsEnergyResidualIsBelow1e12OnEveryBundledScene)
 // 1100 rpm: f(stem, scene, rpm).
 void ForEachExactRun(const std::function<void(const std::string&, const Scene&, double)>& f) {
   for (const auto& [stem, c] : BundledTrainScenes()) {
-    if (c.train->rigid || c.spring->masses > 1) continue;
+    if (c.train->rigid() || c.spring->masses > 1) continue;
     const Scene s = MakeScene(c);
     for (double rpm : {c.engine.speed_rpm, 1.1 * QuasiStaticLiftoffRpm(s), 1100.0})
       if (std::isfinite(rpm)) f(stem, s, rpm);
@@ -808,7 +808,7 @@ TEST(SimulationTest, WhatTheClosedFormLeavesOutCannotChangeItsResult) {
 TEST(SimulationTest, TheClosedFormsRunEndsAtTheFirstRestAsDopri5Does) {
   int ringing = 0;
   for (const auto& [stem, c] : BundledTrainScenes()) {
-    if (c.train->rigid || c.spring->masses > 1) continue;
+    if (c.train->rigid() || c.spring->masses > 1) continue;
     const Scene s = MakeScene(c);
     for (double rpm : {400.0, 1100.0}) {
       const SimulationResult a = Simulate(s, rpm, Options("exact", 1e-8));

@@ -365,7 +365,7 @@ TEST(CaseFileTest, EchoedValuesStayOnOneLine) {
 TEST(CaseFileTest, ARigidTrainTakesRestitutionAndRefusesTheCompliantKeys) {
   const Case c = ParseCase(kGood + "[train]\ncontact = \"rigid\"\nrestitution = 0.8\n", "t.toml");
   ASSERT_TRUE(c.train);
-  EXPECT_TRUE(c.train->rigid);
+  EXPECT_TRUE(c.train->rigid());
   EXPECT_EQ(c.train->restitution, 0.8);
   EXPECT_EQ(c.train->seat_restitution, 0.0);
   EXPECT_EQ(Error(kGood + "[train]\ncontact = \"soft\"\n"),
@@ -385,7 +385,7 @@ TEST(CaseFileTest, ARigidTrainTakesRestitutionAndRefusesTheCompliantKeys) {
           .train->linear_ramp);
   EXPECT_TRUE(ParseCase(kGood + "[train]\ncontact = \"rigid\"\nplay_mm = 0.5\nramp = \"tangent\"\n",
                         "t.toml")
-                  .train->rigid);
+                  .train->rigid());
   EXPECT_TRUE(
       ParseCase(kGood + "[train]\ncontact_stiffness_N_m = 1e9\nplay_mm = 0.5\nramp_deg = 10\n",
                 "t.toml")
