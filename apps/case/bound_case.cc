@@ -178,7 +178,13 @@ BoundCase Bind(const Case& c) {
   BoundCase b = BindSections(c);
   b.lift = BindLift(c);
   if (b.needle && b.spring && b.train && b.lift.law->HasAcceleration()) {
-    b.scene = BindScene(b, b.lift.law);
+    try {
+      b.scene = BindScene(b, b.lift.law);
+    } catch (const CaseError&) {
+      // A scene the model refuses (a ramp, a spring gone solid, a cycle count) refuses the jobs
+      // that run it, when they do, with this message (BindScene again): a kinematics table or
+      // a sizing of such a case is no less valid.
+    }
   }
   return b;
 }

@@ -52,8 +52,9 @@ struct BoundCase {
   std::optional<NeedleParameters> needle;  ///< [needle]
   std::optional<SpringParameters> spring;  ///< [spring]
   std::optional<TrainSection> train;       ///< [train]
-  /// The dynamic scene, when the case has [needle], [spring] and [train] and the law gives an
-  /// acceleration (a C¹ spline leaves it out: the check calls that undecided). Built by Bind
+  /// The dynamic scene, when the case has [needle], [spring] and [train], the law gives an
+  /// acceleration (a C¹ spline leaves it out: the check calls that undecided) and the model
+  /// takes it (else left out: BindScene says why). Built by Bind
   /// from the fields around it: a caller that changes them builds it again (BindScene) or
   /// resets it (the jobs then build it on the changed inputs).
   std::optional<Scene> scene;
@@ -69,8 +70,10 @@ struct BoundCase {
 };
 
 /// Binds case `c`: its lift resolved (throws CaseError naming [lift] on a corner, an outlier or
-/// a law the table cannot take) and its scene built (throws CaseError naming [train], [spring]
-/// or [solver] on a ramp, a spring or a cycle count the model refuses).
+/// a law the table cannot take) and its scene built where the model takes it. A scene it
+/// refuses (a ramp, a spring gone solid, a cycle count) is left out: the jobs that run one
+/// build it again (BindScene) and throw its CaseError, naming [train], [spring] or [solver],
+/// where they always did; a kinematics table or a sizing of that case still runs.
 BoundCase Bind(const Case& c);
 
 /// The scene of `b` on lift law `law` (b.lift.law or another law of the same table). Throws

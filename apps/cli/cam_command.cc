@@ -52,8 +52,9 @@ CLI::App* AddProfileCommand(CLI::App& app, ProfileCommandOptions& o) {
 }
 
 int RunProfileCommand(const ProfileCommandOptions& o) {
-  const BoundCase c = Bind(LoadCase(o.case_path));
-  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+  const Case loaded = LoadCase(o.case_path);
+  if (o.csv) CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(loaded));
+  const BoundCase c = Bind(loaded);
   return Emit(WriteProfile(ProfileOfCase(c), {o.json, o.csv.has_value(), false}), o.format, o.csv);
 }
 

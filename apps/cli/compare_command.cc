@@ -39,7 +39,8 @@ int RunCompareCommand(const CompareCommandOptions& o) {
   Comparison cmp;
   {
     ProgressBar bar("compare", "runs", o.json);
-    cmp = CompareCases(Bind(a), Bind(b), o.speed_rpm,
+    BoundCase bound_a = Bind(a);  // A's problem first
+    cmp = CompareCases(std::move(bound_a), Bind(b), o.speed_rpm,
                        [&](int done, int total) { bar.Update(done, total); });
   }
   WriteOutput({"--out", path}, CompareReport(cmp).Html(gnuplot));

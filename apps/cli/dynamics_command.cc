@@ -34,14 +34,15 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
 }
 
 int RunSimulateCommand(const SimulateCommandOptions& o) {
-  const BoundCase c = Bind(LoadCase(o.case_path));
+  const Case loaded = LoadCase(o.case_path);
   SimulateJobOptions job = o.run;
   job.quasi_static = o.json;  // n_qs: the JSON object's, not the text's
-  if (!o.csv) return Emit(WriteSimulate(SimulateCase(c, job), o.json), o.format, std::nullopt);
+  if (!o.csv)
+    return Emit(WriteSimulate(SimulateCase(Bind(loaded), job), o.json), o.format, std::nullopt);
   // The series streamed to the CSV as the run makes it, put in place once the run is done.
-  CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(c));
+  CheckOutputPaths({{"--csv", *o.csv}}, CaseInputs(loaded));
   StreamedCsv csv({"--csv", *o.csv}, SeriesColumns(), kSeriesCsvPrecision);
-  const CaseRun run = SimulateCase(c, job, [&csv](const SeriesPoint& p) {
+  const CaseRun run = SimulateCase(Bind(loaded), job, [&csv](const SeriesPoint& p) {
     const std::array<double, 7> row = SeriesRow(p);
     csv.Row(row.data());
   });

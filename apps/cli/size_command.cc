@@ -25,8 +25,9 @@ CLI::App* AddSizeCommand(CLI::App& app, SizeCommandOptions& o) {
 }
 
 int RunSizeCommand(const SizeCommandOptions& o) {
-  const BoundCase c = Bind(LoadCase(o.case_path));
-  if (o.case_out) CheckOutputPaths({{"--case", *o.case_out}}, CaseInputs(c));
+  const Case loaded = LoadCase(o.case_path);
+  if (o.case_out) CheckOutputPaths({{"--case", *o.case_out}}, CaseInputs(loaded));
+  const BoundCase c = Bind(loaded);
   SizeWriting writing{o.json, std::nullopt};
   if (o.case_out) writing.case_text = ReadInputFile(o.case_path, "case file");
   const CommandOutput r = WriteSize(c, SizeCase(c, *c.lift.law, o.sizing), writing);

@@ -41,15 +41,16 @@ CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& o) {
 }
 
 int RunToleranceCommand(const ToleranceCommandOptions& o) {
-  const BoundCase c = Bind(LoadCase(o.case_path));
+  const Case loaded = LoadCase(o.case_path);
   std::optional<std::string> report_path;
   std::optional<Gnuplot> gnuplot;
   if (o.out_dir) {
     gnuplot.emplace();  // started now: its start-up runs beside the study
     report_path = ReportPath(
-        *o.out_dir, "tolerance-" + std::filesystem::path(c.path).stem().string() + ".html");
-    CheckOutputPaths({{"--out", *report_path}}, CaseInputs(c));
+        *o.out_dir, "tolerance-" + std::filesystem::path(loaded.path).stem().string() + ".html");
+    CheckOutputPaths({{"--out", *report_path}}, CaseInputs(loaded));
   }
+  const BoundCase c = Bind(loaded);
   ToleranceOptions options;
   options.samples = o.samples;
   options.seed = o.seed;

@@ -122,11 +122,7 @@ void DefCaseCommands(py::module_& m) {
       m, "kinematics",
       [](const py::object& source, const py::object& rpm, const py::object& step_deg,
          const py::object& spline) {
-        const auto kind = Text(spline, "spline", "one of " + SplineKindList());
-        if (kind && !ParseSplineKind(*kind))
-          throw CaseError("spline=" + Repr(spline) + ": unknown kind; expected one of " +
-                          SplineKindList());
-        return SceneKinematics(SceneOf(source, "kinematics", kind, Repr(spline)), rpm, step_deg);
+        return SceneKinematics(SceneSource(source, "kinematics"), rpm, step_deg, spline);
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("step_deg") = 5.0,
       arg("spline") = py::none(), "needle kinematics: the velocity and acceleration table");
@@ -161,7 +157,7 @@ void DefCaseCommands(py::module_& m) {
       m, "simulate",
       [](const py::object& source, const py::object& rpm, const py::object& method,
          const py::object& rtol, const py::object& dynamic, const py::object& series) {
-        return SceneSimulate(SceneOf(source, "simulate"), rpm, method, rtol, dynamic, series);
+        return SceneSimulate(SceneSource(source, "simulate"), rpm, method, rtol, dynamic, series);
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(),
       arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
@@ -173,7 +169,7 @@ void DefCaseCommands(py::module_& m) {
       [](const py::object& source, const py::object& from_rpm, const py::object& to_rpm,
          const py::object& step_rpm, const py::object& method, const py::object& rtol,
          const py::object& threads) {
-        return SceneOverspeed(SceneOf(source, "overspeed"), from_rpm, to_rpm, step_rpm, method,
+        return SceneOverspeed(SceneSource(source, "overspeed"), from_rpm, to_rpm, step_rpm, method,
                               rtol, threads);
       },
       arg("case"), py::kw_only(), arg("from_rpm") = py::none(), arg("to_rpm") = py::none(),
@@ -183,7 +179,7 @@ void DefCaseCommands(py::module_& m) {
   Def(
       m, "check",
       [](const py::object& source, const py::object& rpm) {
-        return SceneCheck(SceneOf(source, "check"), rpm);
+        return SceneCheck(SceneSource(source, "check"), rpm);
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(),
       "needle check: everything the scene needs, one verdict (the dict of check --json; no "
@@ -212,7 +208,8 @@ void DefDesignCommands(py::module_& m) {
         RequireSpeedOf(*cb, speed, "rpm");
         return Run(
             [&] {
-              const Comparison cmp = CompareCases(Bind(*ca), Bind(*cb), speed);
+              BoundCase a_bound = Bind(*ca);  // A's problem first
+              const Comparison cmp = CompareCases(std::move(a_bound), Bind(*cb), speed);
               CommandOutput out;
               out.json = CompareJson(cmp, "");
               for (nlohmann::json* j : {&out.json, &out.json["a"], &out.json["b"]})

@@ -19,56 +19,74 @@ namespace needle::python {
 
 using py::arg;
 
-PyScene SceneOf(const py::object& source, const std::string& function,
-                const std::optional<std::string>& spline, const std::string& spline_repr) {
-  if (py::isinstance<PyScene>(source) && !spline) return source.cast<PyScene>();
-  if (py::isinstance<PyScene>(source))
-    throw CaseError(function + ": spline= needs a case; a needle.Scene is bound with its own");
-  const std::shared_ptr<const Case> c = CaseOf(source, function);
-  PyScene s;
-  try {
-    py::gil_scoped_release release;
-    s.bound =
-        std::make_shared<const BoundCase>(Bind(spline ? WithSpline(*c, *spline, "--spline") : *c));
-  } catch (const CaseError& e) {
-    RethrowNamingKeywords(e, {{"--spline", "spline=" + spline_repr}});
+SceneSource::SceneSource(const py::object& source, const std::string& function)
+    : function_(function) {
+  if (py::isinstance<PyScene>(source)) {
+    bound_ = source.cast<PyScene>().bound;
+    return;
   }
-  return s;
+  loaded_ = CaseOf(source, function);
 }
 
-py::dict SceneKinematics(const PyScene& s, const py::object& rpm, const py::object& step_deg) {
-  const BoundCase& b = *s.bound;
+void SceneSource::SetSpline(const std::string& spline) {
+  if (!loaded_)
+    throw CaseError(function_ + ": spline= needs a case; a needle.Scene is bound with its own");
+  spline_ = spline;
+}
+
+const std::string& SceneSource::path() const { return bound_ ? bound_->path : loaded_->path; }
+
+double SceneSource::speed_rpm() const {
+  return bound_ ? bound_->engine.speed_rpm : loaded_->engine.speed_rpm;
+}
+
+std::shared_ptr<const BoundCase> SceneSource::Shared() {
+  if (!bound_) {
+    bound_ = std::make_shared<const BoundCase>(
+        Bind(spline_ ? WithSpline(*loaded_, *spline_, "--spline") : *loaded_));
+  }
+  return bound_;
+}
+
+py::dict SceneKinematics(SceneSource s, const py::object& rpm, const py::object& step_deg,
+                         const py::object& spline) {
   KinematicsTableOptions o;
   o.speed_rpm = Speed(rpm, "rpm");
-  RequireSpeedOf(b.path, b.engine.speed_rpm, o.speed_rpm, "rpm");
+  RequireSpeedOf(s.path(), s.speed_rpm(), o.speed_rpm, "rpm");
   o.step_deg = *Number(step_deg, "step_deg", "a spacing in crank degrees", kTableStepRange);
+  if (const auto kind = Text(spline, "spline", "one of " + SplineKindList())) {
+    if (!ParseSplineKind(*kind))
+      throw CaseError("spline=" + Repr(spline) + ": unknown kind; expected one of " +
+                      SplineKindList());
+    s.SetSpline(*kind);
+  }
   KinematicsWriting json;
   json.json = true;
-  return Run([&] { return WriteKinematics(MakeKinematicsTable(b, o), json); },
-             {{"--rpm", "rpm=" + Repr(rpm)}, {"--step", "step_deg=" + Repr(step_deg)}});
+  return Run([&] { return WriteKinematics(MakeKinematicsTable(s.Bound(), o), json); },
+             {{"--rpm", "rpm=" + Repr(rpm)},
+              {"--step", "step_deg=" + Repr(step_deg)},
+              {"--spline", "spline=" + Repr(spline)}});
 }
 
-py::dict SceneSimulate(const PyScene& s, const py::object& rpm, const py::object& method,
+py::dict SceneSimulate(SceneSource s, const py::object& rpm, const py::object& method,
                        const py::object& rtol, const py::object& dynamic,
                        const py::object& series) {
-  const BoundCase& b = *s.bound;
   SimulateJobOptions o;
   o.speed_rpm = Speed(rpm, "rpm");
-  RequireSpeedOf(b.path, b.engine.speed_rpm, o.speed_rpm, "rpm");
+  RequireSpeedOf(s.path(), s.speed_rpm(), o.speed_rpm, "rpm");
   o.method = MethodKeyword(method);
   o.rtol = Rtol(rtol);
   o.dynamic = Flag(dynamic, "dynamic");
   o.series = Flag(series, "series");
-  return Run([&] { return WriteSimulate(SimulateCase(b, o), true); },
+  return Run([&] { return WriteSimulate(SimulateCase(s.Bound(), o), true); },
              {{"--rpm", "rpm=" + Repr(rpm)},
               {"--method", "method=" + Repr(method)},
               {"--rtol", "rtol=" + Repr(rtol)}});
 }
 
-py::dict SceneOverspeed(const PyScene& s, const py::object& from_rpm, const py::object& to_rpm,
+py::dict SceneOverspeed(SceneSource s, const py::object& from_rpm, const py::object& to_rpm,
                         const py::object& step_rpm, const py::object& method,
                         const py::object& rtol, const py::object& threads) {
-  const BoundCase& b = *s.bound;
   OverspeedJobOptions o;
   o.from_rpm = Speed(from_rpm, "from_rpm");
   o.to_rpm = Speed(to_rpm, "to_rpm");
@@ -76,8 +94,8 @@ py::dict SceneOverspeed(const PyScene& s, const py::object& from_rpm, const py::
   o.method = MethodKeyword(method);
   o.rtol = Rtol(rtol);
   o.threads = static_cast<int>(Whole(threads, "threads", "a number of threads", kThreadsRange));
-  RequireSpeedOf(b.path, b.engine.speed_rpm, std::nullopt, "");
-  return Run([&] { return WriteOverspeed(OverspeedOfCase(b, o), true); },
+  RequireSpeedOf(s.path(), s.speed_rpm(), std::nullopt, "");
+  return Run([&] { return WriteOverspeed(OverspeedOfCase(s.Bound(), o), true); },
              {{"--from", "from_rpm=" + Repr(from_rpm)},
               {"--to", "to_rpm=" + Repr(to_rpm)},
               {"--step-rpm", "step_rpm=" + Repr(step_rpm)},
@@ -86,13 +104,13 @@ py::dict SceneOverspeed(const PyScene& s, const py::object& from_rpm, const py::
               {"--threads", "threads=" + Repr(threads)}});
 }
 
-py::dict SceneCheck(const PyScene& s, const py::object& rpm) {
-  const BoundCase& b = *s.bound;
+py::dict SceneCheck(SceneSource s, const py::object& rpm) {
   CheckOptions options;
   options.speed_rpm = Speed(rpm, "rpm");
-  RequireSpeedOf(b.path, b.engine.speed_rpm, options.speed_rpm, "rpm");
+  RequireSpeedOf(s.path(), s.speed_rpm(), options.speed_rpm, "rpm");
   return Run(
       [&] {
+        const BoundCase& b = s.Bound();
         const CheckResult r = CheckScene(b, options);
         CommandOutput out;
         out.json = CheckJson(b, *b.lift.law, r, "");
@@ -109,23 +127,48 @@ void DefScene(py::module_& m) {
       "A case bound once: its lift law chosen and built, its dynamic scene and run options made. "
       "Run it many times (scene.simulate(rpm=…) in a loop over speeds) without reading or "
       "binding the case again. A snapshot: a needle.Case changed afterwards does not change it.")
-      .def(py::init([](const py::object& source) { return SceneOf(source, "Scene"); }), arg("case"),
-           "needle.Scene(case): a path, a needle.Case or a dict, bound once")
+      .def(py::init([](const py::object& source) {
+             SceneSource s(source, "Scene");
+             py::gil_scoped_release release;
+             return PyScene{s.Shared()};
+           }),
+           arg("case"), "needle.Scene(case): a path, a needle.Case or a dict, bound once")
       .def_property_readonly("path", [](const PyScene& s) { return s.bound->path; })
       .def_property_readonly("title", [](const PyScene& s) { return s.bound->title; })
       .def_property_readonly("speed_rpm",
                              [](const PyScene& s) { return s.bound->engine.speed_rpm; })
-      .def("kinematics", &SceneKinematics, py::kw_only(), arg("rpm") = py::none(),
-           arg("step_deg") = 5.0, "needle kinematics of the scene (as needle.kinematics)")
-      .def("simulate", &SceneSimulate, py::kw_only(), arg("rpm") = py::none(),
-           arg("method") = py::none(), arg("rtol") = py::none(), arg("dynamic") = false,
-           arg("series") = false, "needle simulate of the scene (as needle.simulate)")
-      .def("overspeed", &SceneOverspeed, py::kw_only(), arg("from_rpm") = py::none(),
-           arg("to_rpm") = py::none(), arg("step_rpm") = py::none(), arg("method") = py::none(),
-           arg("rtol") = py::none(), arg("threads") = 0,
-           "needle overspeed of the scene (as needle.overspeed)")
-      .def("check", &SceneCheck, py::kw_only(), arg("rpm") = py::none(),
-           "needle check of the scene (as needle.check: the dict of check --json)")
+      .def(
+          "kinematics",
+          [](const PyScene& s, const py::object& rpm, const py::object& step_deg) {
+            return SceneKinematics(SceneSource(s), rpm, step_deg);
+          },
+          py::kw_only(), arg("rpm") = py::none(), arg("step_deg") = 5.0,
+          "needle kinematics of the scene (as needle.kinematics)")
+      .def(
+          "simulate",
+          [](const PyScene& s, const py::object& rpm, const py::object& method,
+             const py::object& rtol, const py::object& dynamic, const py::object& series) {
+            return SceneSimulate(SceneSource(s), rpm, method, rtol, dynamic, series);
+          },
+          py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(),
+          arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
+          "needle simulate of the scene (as needle.simulate)")
+      .def(
+          "overspeed",
+          [](const PyScene& s, const py::object& from_rpm, const py::object& to_rpm,
+             const py::object& step_rpm, const py::object& method, const py::object& rtol,
+             const py::object& threads) {
+            return SceneOverspeed(SceneSource(s), from_rpm, to_rpm, step_rpm, method, rtol,
+                                  threads);
+          },
+          py::kw_only(), arg("from_rpm") = py::none(), arg("to_rpm") = py::none(),
+          arg("step_rpm") = py::none(), arg("method") = py::none(), arg("rtol") = py::none(),
+          arg("threads") = 0, "needle overspeed of the scene (as needle.overspeed)")
+      .def(
+          "check",
+          [](const PyScene& s, const py::object& rpm) { return SceneCheck(SceneSource(s), rpm); },
+          py::kw_only(), arg("rpm") = py::none(),
+          "needle check of the scene (as needle.check: the dict of check --json)")
       .def("__repr__", [](const PyScene& s) { return "<needle.Scene " + s.bound->path + ">"; });
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "apps/case/bound_case.h"
+#include "apps/case/case_file.h"
 
 namespace py = pybind11;
 
@@ -23,20 +24,36 @@ struct PyScene {
   std::shared_ptr<const BoundCase> bound;
 };
 
-/// The scene of `source`: a needle.Scene's own, else the case (a path, a needle.Case or a dict)
-/// loaded and bound; with `spline` (kinematics' keyword, shown as `spline_repr` in messages) its
-/// [lift] spline set first.
-PyScene SceneOf(const py::object& source, const std::string& function,
-                const std::optional<std::string>& spline = std::nullopt,
-                const std::string& spline_repr = "");
+/// What a function of a case runs: a needle.Scene's bound case, or a case loaded (its file's
+/// problems raised first, as the functions always did) and bound when it is run, after the
+/// keywords are checked; kinematics' spline= sets its [lift] spline first (SetSpline).
+class SceneSource {
+ public:
+  explicit SceneSource(const PyScene& scene) : bound_(scene.bound) {}
+  SceneSource(const py::object& source, const std::string& function);
+  /// Sets the case's [lift] spline before it is bound; a needle.Scene has its own (CaseError).
+  void SetSpline(const std::string& spline);
+  const std::string& path() const;
+  double speed_rpm() const;  ///< [engine] speed_rpm (0: a bare CSV table's none)
+  /// The bound case, bound at the first call (its CaseError names "--spline" for the spline).
+  std::shared_ptr<const BoundCase> Shared();
+  const BoundCase& Bound() { return *Shared(); }
 
-py::dict SceneKinematics(const PyScene& s, const py::object& rpm, const py::object& step_deg);
-py::dict SceneSimulate(const PyScene& s, const py::object& rpm, const py::object& method,
+ private:
+  std::shared_ptr<const BoundCase> bound_;
+  std::shared_ptr<const Case> loaded_;
+  std::string function_;
+  std::optional<std::string> spline_;
+};
+
+py::dict SceneKinematics(SceneSource s, const py::object& rpm, const py::object& step_deg,
+                         const py::object& spline = py::none());
+py::dict SceneSimulate(SceneSource s, const py::object& rpm, const py::object& method,
                        const py::object& rtol, const py::object& dynamic, const py::object& series);
-py::dict SceneOverspeed(const PyScene& s, const py::object& from_rpm, const py::object& to_rpm,
+py::dict SceneOverspeed(SceneSource s, const py::object& from_rpm, const py::object& to_rpm,
                         const py::object& step_rpm, const py::object& method,
                         const py::object& rtol, const py::object& threads);
-py::dict SceneCheck(const PyScene& s, const py::object& rpm);
+py::dict SceneCheck(SceneSource s, const py::object& rpm);
 
 /// Defines needle.Scene in module `m`.
 void DefScene(py::module_& m);

@@ -297,10 +297,21 @@ def test_a_scene_names_its_keywords_and_refuses_what_cannot_be_bound():
     small = {"engine": {"speed_rpm": 400}, "lift": {"crank_deg": [0, 10, 20], "lift_mm": [0, 1, 0]}}
     assert message(lambda: needle.kinematics(small, spline="quintic")).startswith(
         "<dict>: spline='quintic': ")
-    # Binding refuses a case whose [train] ramp cannot be made, naming the key.
+    # A case whose ramps the model refuses is bound all the same: its kinematics run, and what
+    # runs the dynamics is refused naming [train] ramp (issue 52's review: binding once must not
+    # refuse a table the kinematics always gave).
     data = data_of(EXAMPLE1)
     data["train"]["play_mm"] = 9.0
-    assert message(lambda: needle.Scene(data)).startswith("<dict>: [train] ramp: ")
+    refused = needle.Scene(data)
+    assert refused.kinematics()["exit_status"] == 0
+    assert needle.kinematics(EXAMPLE1, spline="clamped")["exit_status"] == 0
+    for run in (lambda: refused.simulate(), lambda: refused.check(), lambda: needle.simulate(data)):
+        assert message(run).startswith("<dict>: [train] ramp: ")
+    # Keywords are checked before the case is bound, as the functions always did.
+    unbindable = data_of(EXAMPLE1)
+    unbindable["lift"]["breaks_deg"] = [100.0]  # read, but refused when the law is built
+    assert message(lambda: needle.simulate(unbindable)).startswith("<dict>: [lift] breaks: ")
+    assert message(lambda: needle.simulate(unbindable, rpm=-5)).startswith("rpm=-5: ")
     bare = needle.Scene(CSV)
     assert message(lambda: bare.simulate()) == \
         "rpm=None: " + CSV + " is a bare CSV lift table with no [engine] speed_rpm; give rpm="
