@@ -62,13 +62,11 @@ LONG_FUNCTIONS = {
     "dynamics/simulation.cc Simulate": 117,
     "apps/report/kinematics_writer.cc WriteKinematics": 113,
     "lib/cam_synthesis.cc SynthesizeRise": 112,
-    "apps/study/tolerance_study.cc RunSample": 109,
     "spring/spring_sizing.cc SizeSpring": 108,
     "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
     "apps/case/sizing_section.cc ReadSizing": 107,
     "dynamics/solver/event_certification.cc EventDriver::RecordExtremes": 106,
     "apps/report/cam_writer.cc WriteSynth": 105,
-    "apps/report/size_writer.cc WriteSize": 104,
 }
 DECLARATION = re.compile(r"(namespace|struct|class|enum|union|if|for|while|switch|do|else|return|"
                          r"case|template|extern|using|typedef|static_assert)\b")

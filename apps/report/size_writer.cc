@@ -36,58 +36,50 @@ std::string RowText(const std::string& name, double value, double limit, bool at
          u + ", margin " + Fixed(margin, 2) + u + ", " + verdict + "\n";
 }
 
-}  // namespace
-
-CommandOutput WriteSize(const BoundCase& c, const SizeResult& r, const SizeWriting& w) {
+// The JSON object of a sizing (size --json).
+nlohmann::json SizeJson(const BoundCase& c, const SizeResult& r, const SizedSpring* chosen,
+                        const CheckResult* check) {
   const SizingSpace& sp = r.space;
-  const SizedSpring* chosen = r.winner ? &r.verified[*r.winner].spring
-                              : r.pass && !r.closed_form.best.empty() ? &r.closed_form.best[0]
-                              : r.closed_form.closest                 ? &*r.closed_form.closest
-                                                                      : nullptr;
-  const CheckResult* check = r.winner ? &r.verified[*r.winner].check : nullptr;
+  nlohmann::json j;
+  j = {{"case", c.path},
+       {"objective", r.objective},
+       {"space", r.space_note},
+       {"mass_without_spring_kg", r.mass_without_spring_kg},
+       {"mass_without_spring_source", r.mass_note},
+       {"pass", r.pass}};
+  PutFields(j, {{"stroke", display::kMm, r.stroke_m}});
+  if (!r.stages.empty()) j["stages"] = RecordList(r.stages, SizeStageFields);
+  j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
+  j["spring"] = chosen ? SpringJson(*chosen, sp) : nullptr;
+  if (r.case_spring_mass_kg) j["case_spring_mass_kg"] = *r.case_spring_mass_kg;
+  if (check) {
+    j["check"] = {
+        {"pass", check->pass}, {"failing", check->failing}, {"warnings", check->warnings}};
+    for (const LimitRow& x : check->limits) {
+      j["check"]["limits"].push_back({{"key", x.key},
+                                      {"value", Finite(x.value)},
+                                      {"limit", Finite(x.limit)},
+                                      {"margin", Finite(x.margin)},
+                                      {"verdict", x.verdict}});
+    }
+    if (check->sweep && check->sweep->n_dyn_rpm) j["check"]["n_dyn_rpm"] = *check->sweep->n_dyn_rpm;
+  }
+  for (const SizedSpring& s : r.closed_form.best) j["candidates"].push_back(SpringJson(s, sp));
+  for (const VerifiedSpring& v : r.verified) {
+    j["verified"].push_back({{"spring", SpringJson(v.spring, sp)},
+                             {"pass", v.check.pass},
+                             {"failing", v.check.failing},
+                             {"seconds", v.seconds}});
+  }
+  for (const SizedSpring& s : r.closed_form.front) j["front"].push_back(SpringJson(s, sp));
+  return j;
+}
+
+// The text of a sizing.
+std::string SizeText(const BoundCase& c, const SizeResult& r, const SizedSpring* chosen,
+                     const CheckResult* check) {
+  const SizingSpace& sp = r.space;
   const std::vector<SizedSpring>& front = r.closed_form.front;
-  CommandOutput out;
-  out.status = r.pass ? 0 : 1;
-  if (r.pass && chosen && w.case_text) {
-    const BoundCase sized = CaseWithSpring(c, *chosen, sp, r.mass_without_spring_kg);
-    out.case_file = SizedCaseText(*w.case_text, sized.needle->mass_kg, *chosen, sp);
-  }
-  if (w.json) {
-    nlohmann::json& j = out.json;
-    j = {{"case", c.path},
-         {"objective", r.objective},
-         {"space", r.space_note},
-         {"mass_without_spring_kg", r.mass_without_spring_kg},
-         {"mass_without_spring_source", r.mass_note},
-         {"pass", r.pass}};
-    PutFields(j, {{"stroke", display::kMm, r.stroke_m}});
-    if (!r.stages.empty()) j["stages"] = RecordList(r.stages, SizeStageFields);
-    j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
-    j["spring"] = chosen ? SpringJson(*chosen, sp) : nullptr;
-    if (r.case_spring_mass_kg) j["case_spring_mass_kg"] = *r.case_spring_mass_kg;
-    if (check) {
-      j["check"] = {
-          {"pass", check->pass}, {"failing", check->failing}, {"warnings", check->warnings}};
-      for (const LimitRow& x : check->limits) {
-        j["check"]["limits"].push_back({{"key", x.key},
-                                        {"value", Finite(x.value)},
-                                        {"limit", Finite(x.limit)},
-                                        {"margin", Finite(x.margin)},
-                                        {"verdict", x.verdict}});
-      }
-      if (check->sweep && check->sweep->n_dyn_rpm)
-        j["check"]["n_dyn_rpm"] = *check->sweep->n_dyn_rpm;
-    }
-    for (const SizedSpring& s : r.closed_form.best) j["candidates"].push_back(SpringJson(s, sp));
-    for (const VerifiedSpring& v : r.verified) {
-      j["verified"].push_back({{"spring", SpringJson(v.spring, sp)},
-                               {"pass", v.check.pass},
-                               {"failing", v.check.failing},
-                               {"seconds", v.seconds}});
-    }
-    for (const SizedSpring& s : front) j["front"].push_back(SpringJson(s, sp));
-    return out;
-  }
   std::ostringstream t;
   if (!c.title.empty()) t << c.title << '\n';
   t << "space: " << r.space_note << "; objective: least " << r.objective << '\n';
@@ -139,7 +131,29 @@ CommandOutput WriteSize(const BoundCase& c, const SizeResult& r, const SizeWriti
         << '\n';
   if (!r.pass) t << "no fit: " << r.no_fit << '\n';
   t << "overall: " << (r.pass ? "pass" : "FAIL") << '\n';
-  out.text = t.str();
+  return t.str();
+}
+
+}  // namespace
+
+CommandOutput WriteSize(const BoundCase& c, const SizeResult& r, const SizeWriting& w) {
+  const SizingSpace& sp = r.space;
+  const SizedSpring* chosen = r.winner ? &r.verified[*r.winner].spring
+                              : r.pass && !r.closed_form.best.empty() ? &r.closed_form.best[0]
+                              : r.closed_form.closest                 ? &*r.closed_form.closest
+                                                                      : nullptr;
+  const CheckResult* check = r.winner ? &r.verified[*r.winner].check : nullptr;
+  CommandOutput out;
+  out.status = r.pass ? 0 : 1;
+  if (r.pass && chosen && w.case_text) {
+    const BoundCase sized = CaseWithSpring(c, *chosen, sp, r.mass_without_spring_kg);
+    out.case_file = SizedCaseText(*w.case_text, sized.needle->mass_kg, *chosen, sp);
+  }
+  if (w.json) {
+    out.json = SizeJson(c, r, chosen, check);
+  } else {
+    out.text = SizeText(c, r, chosen, check);
+  }
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -83,25 +84,8 @@ std::string FailingItem(const std::string& line) {
   return line.substr(0, colon);
 }
 
-// One sample of the case: its inputs drawn, its case changed, its check run.
-ToleranceSample RunSample(const BoundCase& nominal, const ToleranceSection& t,
-                          const LiftErrorModel& lift_error, const CheckOptions& base, uint64_t seed,
-                          int index) {
-  std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32),
-                    static_cast<uint32_t>(index)};
-  std::mt19937_64 gen(seq);
-  std::normal_distribution<double> normal;
-  ToleranceSample s;
-  BoundCase c = nominal;
-  c.scene.reset();  // built again on the sample's inputs (CheckScene)
-  // The inputs, each drawn whether or not it is varied, so that a sample's draws do not shift
-  // when another input's σ changes from 0.
-  const std::vector<double> e = lift_error.Draw(gen);
-  const double z_mass = normal(gen), z_preload = normal(gen), z_rate = normal(gen),
-               z_stiffness = normal(gen), z_play = normal(gen), z_speed = normal(gen);
-  LiftTable table = nominal.lift.table;
-  std::vector<double>& lift = table.lift_m;
-  for (size_t i = 0; i < lift.size(); ++i) lift[i] = std::max(0.0, lift[i] + e[i]);
+// The lift error's mean over the varied points and its roughness (the RMS second difference).
+void RecordLiftError(const std::vector<double>& e, ToleranceSample& s) {
   double mean = 0.0, rough = 0.0;
   int varied = 0, inner = 0;
   for (size_t i = 0; i < e.size(); ++i) {
@@ -117,6 +101,13 @@ ToleranceSample RunSample(const BoundCase& nominal, const ToleranceSection& t,
   }
   s.inputs["lift_error_mean_m"] = varied ? mean / varied : 0.0;
   s.inputs["lift_error_roughness_m"] = inner ? std::sqrt(rough / inner) : 0.0;
+}
+
+// The scalar inputs of `c` scattered by the draws z (mass, preload, rate, stiffness, play,
+// speed), each recorded in s.inputs; returns the sample's speed, rpm.
+double ScatterInputs(const ToleranceSection& t, const std::array<double, 6>& z, BoundCase& c,
+                     ToleranceSample& s) {
+  const auto [z_mass, z_preload, z_rate, z_stiffness, z_play, z_speed] = z;
   const auto scale = [](double fraction, double z) { return std::max(0.0, 1.0 + fraction * z); };
   if (c.needle) {
     c.needle->mass_kg *= scale(t.mass_fraction, z_mass);
@@ -140,27 +131,13 @@ ToleranceSample RunSample(const BoundCase& nominal, const ToleranceSection& t,
     s.inputs["play_deviation_m"] = play - c.train->play_m;
     c.train->play_m = play;
   }
-  CheckOptions options = base;
-  options.speed_rpm = c.engine.speed_rpm * scale(t.speed_fraction, z_speed);
   s.inputs["speed_deviation"] = t.speed_fraction * z_speed;
-  // A sample the model refuses (a lift table the spline or the ramps cannot take) is a
-  // result, not the end of the study: it fails as "case refused", with the reason.
-  // (And the model's own refusal of a sampled value: a stiffness or a speed scattered to zero.)
-  const auto refused = [&s](const std::exception& why) {
-    s.pass = false;
-    s.failing = {"case refused"};
-    s.refused = why.what();
-    return s;
-  };
-  CheckResult r;
-  try {
-    c.lift = RebindLift(nominal.lift, std::move(table));
-    r = CheckScene(c, options);
-  } catch (const CaseError& refusal) {
-    return refused(refusal);
-  } catch (const std::invalid_argument& refusal) {
-    return refused(refusal);
-  }
+  return c.engine.speed_rpm * scale(t.speed_fraction, z_speed);
+}
+
+// What a sample records of its check: every number of the check's fields and a few more, its
+// verdict and its failing items.
+void RecordCheck(const CheckResult& r, ToleranceSample& s) {
   for (const FieldGroup& group : CheckFields(r)) {
     for (const Field& f : group.fields) {
       if (f.kind != Field::Kind::kNumber || f.count) continue;  // the numbers only
@@ -190,6 +167,47 @@ ToleranceSample RunSample(const BoundCase& nominal, const ToleranceSection& t,
     const std::string item = FailingItem(line);
     if (std::find(s.failing.begin(), s.failing.end(), item) == s.failing.end())
       s.failing.push_back(item);
+  }
+}
+
+// One sample of the case: its inputs drawn, its case changed, its check run.
+ToleranceSample RunSample(const BoundCase& nominal, const ToleranceSection& t,
+                          const LiftErrorModel& lift_error, const CheckOptions& base, uint64_t seed,
+                          int index) {
+  std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32),
+                    static_cast<uint32_t>(index)};
+  std::mt19937_64 gen(seq);
+  std::normal_distribution<double> normal;
+  ToleranceSample s;
+  BoundCase c = nominal;
+  c.scene.reset();  // built again on the sample's inputs (CheckScene)
+  // The inputs, each drawn whether or not it is varied, so that a sample's draws do not shift
+  // when another input's σ changes from 0.
+  const std::vector<double> e = lift_error.Draw(gen);
+  std::array<double, 6> z;
+  for (double& zi : z) zi = normal(gen);  // mass, preload, rate, stiffness, play, speed
+  LiftTable table = nominal.lift.table;
+  std::vector<double>& lift = table.lift_m;
+  for (size_t i = 0; i < lift.size(); ++i) lift[i] = std::max(0.0, lift[i] + e[i]);
+  RecordLiftError(e, s);
+  CheckOptions options = base;
+  options.speed_rpm = ScatterInputs(t, z, c, s);
+  // A sample the model refuses (a lift table the spline or the ramps cannot take) is a
+  // result, not the end of the study: it fails as "case refused", with the reason.
+  // (And the model's own refusal of a sampled value: a stiffness or a speed scattered to zero.)
+  const auto refused = [&s](const std::exception& why) {
+    s.pass = false;
+    s.failing = {"case refused"};
+    s.refused = why.what();
+    return s;
+  };
+  try {
+    c.lift = RebindLift(nominal.lift, std::move(table));
+    RecordCheck(CheckScene(c, options), s);
+  } catch (const CaseError& refusal) {
+    return refused(refusal);
+  } catch (const std::invalid_argument& refusal) {
+    return refused(refusal);
   }
   return s;
 }
