@@ -66,7 +66,6 @@ LONG_FUNCTIONS = {
     "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
     "apps/case/sizing_section.cc ReadSizing": 107,
     "dynamics/solver/event_certification.cc EventDriver::RecordExtremes": 106,
-    "apps/report/cam_writer.cc WriteSynth": 105,
 }
 DECLARATION = re.compile(r"(namespace|struct|class|enum|union|if|for|while|switch|do|else|return|"
                          r"case|template|extern|using|typedef|static_assert)\b")

@@ -13,19 +13,94 @@
 
 namespace needle {
 
-CommandOutput WriteSynth(const SynthesisFile& f, const SynthesisResult& r, const CamWriting& w) {
+// The text of a synthesis (`needle synth` without --json), from its field table.
+std::string SynthText(const SynthesisFile& f, const SynthesisResult& r,
+                      const std::vector<Field>& fields) {
   const SynthesizedLaw& rise = r.rise;
-  const std::vector<Field> fields = SynthesisFields(r);
   // v: the value alone; t: the value and its unit, both from the field table.
   const auto v = [&](const std::string& key) { return ValueText(FieldAt(fields, key)); };
   const auto t = [&](const std::string& key) { return FieldText(FieldAt(fields, key)); };
+  std::ostringstream out;
+  out << (f.title.empty() ? f.path : f.title) << '\n'
+      << "rise " << t("lift_mm") << " in " << t("rise_deg") << " of cam, " << rise.phi.size() - 1
+      << " steps; limits used at " << Fixed(100 * rise.scale, 2) << " %\n";
+  if (rise.face_width_limited) {
+    out << "constant-speed section at S' = the flat face's half-width "
+        << Fixed(*f.face_half_width_m * 1e3, 3) << " mm/rad (S'max "
+        << (f.speed_limit < 1e299 ? Fixed(f.speed_limit * 1e3, 3) + " mm/rad" : "not given")
+        << ") from " << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg")
+        << " (" << t("constant_speed_length_deg") << ")\n";
+  } else if (rise.speed_limit_active) {
+    out << "constant-speed section at S'max = " << Fixed(f.speed_limit * 1e3, 3) << " mm/rad from "
+        << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg") << " ("
+        << t("constant_speed_length_deg") << ")\n";
+  } else if (rise.meet_speed > 0.0) {
+    out << "S' limit not active; the sides meet at S' = " << t("meet_speed_mm_rad")
+        << " with S'' = 0 (lowered from where they would meet with a step in S'', "
+           "to keep the jerk limit)\n";
+  } else {
+    out << "S' limit not active: no constant-speed section\n";
+  }
+  out << "max S' " << t("max_S1_mm_rad") << " at " << t("max_S1_deg") << "; S'' "
+      << v("max_S2_mm_rad2") << " at " << t("max_S2_deg") << " and " << t("min_S2_mm_rad2")
+      << " at " << t("min_S2_deg") << "; max |S'''| " << t("max_abs_S3_mm_rad3") << " at "
+      << t("max_abs_S3_deg") << "\n";
+  if (rise.backed_off_steps > 0)
+    out << rise.backed_off_steps
+        << " steps formed again with a lower S'' so that a later cap and the jerk limit both "
+           "hold (back-off)\n";
+  if (r.profile) {
+    out << FollowerKindName(f.follower) << " follower: ";
+    if (f.follower != FollowerKind::kRoller)
+      out << "contact up to " << t("max_contact_offset_mm") << " off the axis at "
+          << t("max_contact_offset_at_deg")
+          << (f.face_half_width_m
+                  ? " (face half-width " + Fixed(*f.face_half_width_m * 1e3, 3) + " mm)"
+                  : "")
+          << "; ";
+    out << "entrainment speed min " << t("min_entrainment_speed_m_s") << " at "
+        << t("min_entrainment_speed_at_deg")
+        << (f.min_entrainment_m_s ? " (limit " + Fixed(*f.min_entrainment_m_s, 3) + ")" : "")
+        << ", sliding max " << t("max_sliding_speed_m_s") << " at " << Fixed(f.speed_rpm, 0)
+        << " rpm\n";
+    out << "largest |pressure angle| " << t("max_abs_pressure_angle_deg") << " at "
+        << t("max_pressure_angle_at_deg")
+        << (f.max_pressure_angle_rad ? " (limit " + Fixed(*f.max_pressure_angle_rad / kDeg, 1) + ")"
+                                     : "")
+        << "; profile radius min " << t("min_profile_radius_mm") << "; "
+        << (r.profile->undercut ? (f.follower == FollowerKind::kFlat ? "CUSP" : "UNDERCUT")
+                                : "no undercut")
+        << '\n';
+  }
+  if (r.min_spring_reserve) {
+    out << "spring reserve min " << Fixed(r.min_spring_reserve->value, 3) << " at "
+        << t("min_spring_reserve_deg")
+        << (f.min_spring_reserve
+                ? " (limit " + Fixed(*f.min_spring_reserve, 2) + ", steering every step)"
+                : "")
+        << '\n';
+  }
+  if (r.max_contact_stress_Pa) {
+    out << "contact (Hertz) stress max " << t("max_contact_stress_MPa") << " at cam "
+        << t("max_contact_stress_deg")
+        << (f.max_contact_stress_Pa ? " (limit " + Fixed(*f.max_contact_stress_Pa * 1e-6, 0) + ")"
+                                    : "")
+        << '\n';
+  }
+  for (const std::string& failing : r.failing) out << "fails: " << failing << '\n';
+  out << (r.pass ? "checks pass\n" : "a check FAILS\n");
+  return out.str();
+}
+
+CommandOutput WriteSynth(const SynthesisFile& f, const SynthesisResult& r, const CamWriting& w) {
+  const SynthesizedLaw& rise = r.rise;
+  const std::vector<Field> fields = SynthesisFields(r);
   CommandOutput result;
   result.status = r.pass ? 0 : 1;
   const std::vector<std::vector<double>> rows = SynthesisRows(r.law);
   result.columns = SiColumns(SynthesisColumns(), rows);
   if (w.csv) result.csv = CsvTable(SynthesisColumns(), rows, 12);
   if (w.case_file) result.case_file = SynthesizedCaseText(f, r.law);
-  std::ostringstream out;
   if (w.json) {
     nlohmann::json j;
     j["spec"] = f.path;
@@ -45,77 +120,8 @@ CommandOutput WriteSynth(const SynthesisFile& f, const SynthesisResult& r, const
     j["failing"] = r.failing;
     result.json = std::move(j);
   } else {
-    out << (f.title.empty() ? f.path : f.title) << '\n'
-        << "rise " << t("lift_mm") << " in " << t("rise_deg") << " of cam, " << rise.phi.size() - 1
-        << " steps; limits used at " << Fixed(100 * rise.scale, 2) << " %\n";
-    if (rise.face_width_limited) {
-      out << "constant-speed section at S' = the flat face's half-width "
-          << Fixed(*f.face_half_width_m * 1e3, 3) << " mm/rad (S'max "
-          << (f.speed_limit < 1e299 ? Fixed(f.speed_limit * 1e3, 3) + " mm/rad" : "not given")
-          << ") from " << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg")
-          << " (" << t("constant_speed_length_deg") << ")\n";
-    } else if (rise.speed_limit_active) {
-      out << "constant-speed section at S'max = " << Fixed(f.speed_limit * 1e3, 3)
-          << " mm/rad from " << v("constant_speed_start_deg") << " to "
-          << t("constant_speed_end_deg") << " (" << t("constant_speed_length_deg") << ")\n";
-    } else if (rise.meet_speed > 0.0) {
-      out << "S' limit not active; the sides meet at S' = " << t("meet_speed_mm_rad")
-          << " with S'' = 0 (lowered from where they would meet with a step in S'', "
-             "to keep the jerk limit)\n";
-    } else {
-      out << "S' limit not active: no constant-speed section\n";
-    }
-    out << "max S' " << t("max_S1_mm_rad") << " at " << t("max_S1_deg") << "; S'' "
-        << v("max_S2_mm_rad2") << " at " << t("max_S2_deg") << " and " << t("min_S2_mm_rad2")
-        << " at " << t("min_S2_deg") << "; max |S'''| " << t("max_abs_S3_mm_rad3") << " at "
-        << t("max_abs_S3_deg") << "\n";
-    if (rise.backed_off_steps > 0)
-      out << rise.backed_off_steps
-          << " steps formed again with a lower S'' so that a later cap and the jerk limit both "
-             "hold (back-off)\n";
-    if (r.profile) {
-      out << FollowerKindName(f.follower) << " follower: ";
-      if (f.follower != FollowerKind::kRoller)
-        out << "contact up to " << t("max_contact_offset_mm") << " off the axis at "
-            << t("max_contact_offset_at_deg")
-            << (f.face_half_width_m
-                    ? " (face half-width " + Fixed(*f.face_half_width_m * 1e3, 3) + " mm)"
-                    : "")
-            << "; ";
-      out << "entrainment speed min " << t("min_entrainment_speed_m_s") << " at "
-          << t("min_entrainment_speed_at_deg")
-          << (f.min_entrainment_m_s ? " (limit " + Fixed(*f.min_entrainment_m_s, 3) + ")" : "")
-          << ", sliding max " << t("max_sliding_speed_m_s") << " at " << Fixed(f.speed_rpm, 0)
-          << " rpm\n";
-      out << "largest |pressure angle| " << t("max_abs_pressure_angle_deg") << " at "
-          << t("max_pressure_angle_at_deg")
-          << (f.max_pressure_angle_rad
-                  ? " (limit " + Fixed(*f.max_pressure_angle_rad / kDeg, 1) + ")"
-                  : "")
-          << "; profile radius min " << t("min_profile_radius_mm") << "; "
-          << (r.profile->undercut ? (f.follower == FollowerKind::kFlat ? "CUSP" : "UNDERCUT")
-                                  : "no undercut")
-          << '\n';
-    }
-    if (r.min_spring_reserve) {
-      out << "spring reserve min " << Fixed(r.min_spring_reserve->value, 3) << " at "
-          << t("min_spring_reserve_deg")
-          << (f.min_spring_reserve
-                  ? " (limit " + Fixed(*f.min_spring_reserve, 2) + ", steering every step)"
-                  : "")
-          << '\n';
-    }
-    if (r.max_contact_stress_Pa) {
-      out << "contact (Hertz) stress max " << t("max_contact_stress_MPa") << " at cam "
-          << t("max_contact_stress_deg")
-          << (f.max_contact_stress_Pa ? " (limit " + Fixed(*f.max_contact_stress_Pa * 1e-6, 0) + ")"
-                                      : "")
-          << '\n';
-    }
-    for (const std::string& failing : r.failing) out << "fails: " << failing << '\n';
-    out << (r.pass ? "checks pass\n" : "a check FAILS\n");
+    result.text = SynthText(f, r, fields);
   }
-  result.text = out.str();
   return result;
 }
 
