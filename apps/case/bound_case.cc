@@ -79,23 +79,6 @@ void TakeOutliers(const BoundLift& l, LiftLawChoice& choice) {
   choice.reason += ")";
 }
 
-// The choice for l.table by l.rule, and the law on it.
-void ChooseAndBuild(BoundLift& l) {
-  try {
-    l.choice = ChooseLiftLaw(l.table, l.rule);
-    if (l.choice.corner) ThrowCorner(l, *l.choice.corner);
-    if (!l.choice.outliers.empty()) TakeOutliers(l, l.choice);
-    l.law = std::make_shared<const LiftLaw>(l.choice.table, l.choice.law);
-  } catch (const CaseError&) {
-    throw;
-  } catch (const std::exception& e) {
-    // A stated break the law refuses names its key (issue 51's trial: "[lift]: break 0 …").
-    const std::string what = e.what();
-    const bool breaks = l.breaks_given && what.rfind("break ", 0) == 0;
-    throw CaseError(l.path + ": [lift]" + (breaks ? " breaks" : "") + ": " + what);
-  }
-}
-
 }  // namespace
 
 BoundLift UnchosenLift(const Case& c) {
@@ -126,6 +109,25 @@ LiftLawChoice ChooseLift(const BoundLift& l) {
   if (!choice.outliers.empty()) TakeOutliers(l, choice);
   return choice;
 }
+
+namespace {
+
+// The choice for l.table by l.rule, and the law on it.
+void ChooseAndBuild(BoundLift& l) {
+  try {
+    l.choice = ChooseLift(l);
+    l.law = std::make_shared<const LiftLaw>(l.choice.table, l.choice.law);
+  } catch (const CaseError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // A stated break the law refuses names its key (issue 51's trial: "[lift]: break 0 …").
+    const std::string what = e.what();
+    const bool breaks = l.breaks_given && what.rfind("break ", 0) == 0;
+    throw CaseError(l.path + ": [lift]" + (breaks ? " breaks" : "") + ": " + what);
+  }
+}
+
+}  // namespace
 
 BoundLift RebindLift(const BoundLift& lift, LiftTable table) {
   BoundLift l = lift;
@@ -187,6 +189,10 @@ BoundCase Bind(const Case& c) {
     }
   }
   return b;
+}
+
+Scene SceneFor(const BoundCase& b, const std::shared_ptr<const LiftLaw>& law) {
+  return b.scene && b.scene->law == law ? *b.scene : BindScene(b, law);
 }
 
 Scene BindScene(const BoundCase& b, std::shared_ptr<const LiftLaw> law) {

@@ -81,6 +81,10 @@ BoundCase Bind(const Case& c);
 /// refuses.
 Scene BindScene(const BoundCase& b, std::shared_ptr<const LiftLaw> law);
 
+/// The scene a job runs on `law`: the bound one when it is on that law, else BindScene's (which
+/// throws what is missing or what the model refuses).
+Scene SceneFor(const BoundCase& b, const std::shared_ptr<const LiftLaw>& law);
+
 /// The spring check of `b` (which must have [needle] and [spring]: throws CaseError naming the
 /// missing section) at `speed_rpm` on `law`.
 SpringCheckResult CheckSpring(const BoundCase& b, const LiftLaw& law, double speed_rpm);

@@ -29,9 +29,7 @@ Case WithSpline(Case c, const std::string& spline, const std::string& where) {
   return c;
 }
 
-Scene MakeScene(const Case& c) {
-  return MakeScene(c, std::make_shared<const LiftLaw>(MakeLiftLaw(c)));
-}
+Scene MakeScene(const Case& c) { return MakeScene(c, ResolveLift(c).law); }
 
 Scene MakeScene(const Case& c, std::shared_ptr<const LiftLaw> law) {
   return BindScene(BindSections(c), std::move(law));

@@ -182,7 +182,7 @@ CheckResult CheckScene(const BoundCase& c, std::shared_ptr<const LiftLaw> shared
     fail("dynamics and overspeed: " + no_acceleration);
   } else {
     // The one scene of the check: the bound one, or one on the law asked for.
-    const Scene scene = c.scene && c.scene->law == shared_law ? *c.scene : BindScene(c, shared_law);
+    const Scene scene = SceneFor(c, shared_law);
     r.run_options = c.run;
     // The surge study needs nothing of the rated run and the sweep: given a second core it runs
     // beside them (its runs and theirs are the same either way; the sweep keeps the other cores).

@@ -37,7 +37,7 @@ SimulationOptions Options(const BoundCase& c, const std::optional<std::string>& 
 CaseRun SimulateCase(const BoundCase& c, const SimulateJobOptions& o,
                      const std::function<void(const SeriesPoint&)>& series_sink) {
   RequireSpeed(o.speed_rpm);
-  const Scene scene = c.scene ? *c.scene : BindScene(c, c.lift.law);  // throws what is missing
+  const Scene scene = SceneFor(c, c.lift.law);  // throws what is missing
   SimulationOptions sim = Options(c, o.method, o.rtol);
   sim.force_dynamic = o.dynamic;
   // Streamed: to the caller's sink, and as SI columns when asked; none is kept as a whole.
@@ -70,7 +70,7 @@ CaseOverspeed OverspeedOfCase(const BoundCase& c, const OverspeedJobOptions& o,
             "a speed step in rpm");
   RequireSpeed(o.from_rpm, "--from");
   RequireSpeed(o.to_rpm, "--to");
-  const Scene scene = c.scene ? *c.scene : BindScene(c, c.lift.law);  // throws what is missing
+  const Scene scene = SceneFor(c, c.lift.law);  // throws what is missing
   const double n_qs = QuasiStaticLiftoffRpm(scene);
   OverspeedOptions opt;
   opt.simulation = Options(c, o.method, o.rtol);
