@@ -28,7 +28,7 @@ SECTIONS = {"ReadNeedle": ["needle"], "ReadHelical": ["spring"], "ReadSpring": [
             "ReadSolver": ["solver"], "ReadOverspeed": ["overspeed"],
             "ReadTolerance": ["tolerance"], "ReadProfile": ["profile"], "ReadPaper": ["paper"],
             "ReadLift": ["lift"], "ReadFollowerKeys": ["profile"],
-            "ReadSizing": ["sizing"]}
+            "ReadSizing": ["sizing"], "ReadDesignProblem": ["sizing"]}
 ORDER = ["engine", "lift", "needle", "spring", "train", "solver", "overspeed", "profile",
          "tolerance", "paper", "limits", "sizing"]
 PLAIN = r"(?:OptionalNumber|OptionalStringArray|OptionalString|OptionalBool|OptionalCount|Known)"

@@ -18,7 +18,43 @@ constexpr NameRow<SpringEnds> kEndsNames[] = {
     {SpringEnds::kOpen, "open"},
 };
 
+// The one name table of the stress factors, with their equations and sources.
+constexpr NameRow<StressFactor> kFactorNames[] = {
+    {StressFactor::kBergstrasser, "bergstrasser"},
+    {StressFactor::kWahl, "wahl"},
+    {StressFactor::kDirectShear, "direct-shear"},
+};
+struct FactorText {
+  StressFactor factor;
+  const char* title;
+  const char* equation;
+  const char* source;
+};
+constexpr FactorText kFactorTexts[] = {
+    {StressFactor::kBergstrasser, "Bergstrasser", "k = (w + 0.5)/(w - 0.75)",
+     "EN 13906-1 (Bergstrasser)"},
+    {StressFactor::kWahl, "Wahl", "k = (4w - 1)/(4w - 4) + 0.615/w",
+     "A. M. Wahl, Mechanical Springs (1963); Shigley 9th ed. eq. 10-4; Bhandari ch. 10"},
+    {StressFactor::kDirectShear, "direct-shear", "K_s = 1 + 1/(2w)",
+     "direct shear only: Shigley 9th ed. eq. 10-2 (static loads); Khurmi & Gupta ch. 23; "
+     "Bhandari's K_s"},
+};
+const FactorText& TextOf(StressFactor f) {
+  for (const FactorText& t : kFactorTexts)
+    if (t.factor == f) return t;
+  return kFactorTexts[0];
+}
+
 }  // namespace
+
+const char* StressFactorName(StressFactor f) { return NameOf(kFactorNames, f); }
+std::optional<StressFactor> ParseStressFactor(const std::string& name) {
+  return ValueOf(kFactorNames, name);
+}
+std::string StressFactorChoice() { return NameChoice(kFactorNames); }
+const char* StressFactorTitle(StressFactor f) { return TextOf(f).title; }
+const char* StressFactorEquation(StressFactor f) { return TextOf(f).equation; }
+const char* StressFactorSource(StressFactor f) { return TextOf(f).source; }
 
 const char* SpringEndsName(SpringEnds ends) { return NameOf(kEndsNames, ends); }
 
@@ -33,9 +69,16 @@ double HelicalRate(const HelicalGeometry& g) {
          (8.0 * std::pow(g.coil_m, 3) * g.active_coils);  // G d⁴/(8D³n)
 }
 
-double StressCorrection(double w, bool wahl) {
-  if (wahl) return (4.0 * w - 1.0) / (4.0 * w - 4.0) + 0.615 / w;  // Wahl
-  return (w + 0.5) / (w - 0.75);                                   // Bergsträsser
+double StressCorrection(double w, StressFactor f) {
+  switch (f) {
+    case StressFactor::kWahl:
+      return (4.0 * w - 1.0) / (4.0 * w - 4.0) + 0.615 / w;
+    case StressFactor::kDirectShear:
+      return 1.0 + 0.5 / w;  // K_s = 1 + 1/(2w)
+    case StressFactor::kBergstrasser:
+      break;
+  }
+  return (w + 0.5) / (w - 0.75);
 }
 
 double BucklingDeflection(const HelicalGeometry& g, double elastic_modulus_Pa,
@@ -47,14 +90,30 @@ double BucklingDeflection(const HelicalGeometry& g, double elastic_modulus_Pa,
   return g.free_length_m * 0.5 / (1.0 - q) * (1.0 - std::sqrt(radicand));
 }
 
+FatigueCheck SpringFatigue(const HelicalGeometry& g, double index, double force_min_N,
+                           double force_max_N) {
+  const bool bhandari = g.fatigue_criterion == FatigueCriterion::kBhandari;
+  // τ = k·8FD/(πd³) at both ends of the stroke, with the mean's and the amplitude's k.
+  const auto stress = [&](StressFactor f, double force_N) {
+    const double d = g.wire_m;
+    return StressCorrection(index, f) * 8.0 * g.coil_m / (kPi * d * d * d) * force_N;
+  };
+  const StressFactor k_mean = bhandari ? StressFactor::kDirectShear : g.stress_factor;
+  const StressFactor k_amplitude = bhandari ? StressFactor::kWahl : g.stress_factor;
+  const double mean = 0.5 * (stress(k_mean, force_max_N) + stress(k_mean, force_min_N));
+  const double amplitude =
+      0.5 * (stress(k_amplitude, force_max_N) - stress(k_amplitude, force_min_N));
+  return CheckFatigue(g.fatigue_criterion, mean, amplitude, g.tensile_Pa, g.shot_peened, g.grade);
+}
+
 HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N, double max_lift_m,
                                       double speed_rpm, EngineCycle cycle) {
   HelicalSpringCheck c;
   const double d = g.wire_m, D = g.coil_m, n = g.active_coils;
   c.rate_N_m = HelicalRate(g);
   c.index = D / d;
-  c.wahl = g.wahl;
-  c.correction_factor = StressCorrection(c.index, g.wahl);
+  c.stress_factor = g.stress_factor;
+  c.correction_factor = StressCorrection(c.index, g.stress_factor);
   const double tau_per_N = c.correction_factor * 8.0 * D / (kPi * d * d * d);  // k·8D/(πd³)
   c.stress_preload_Pa = tau_per_N * preload_N;
   c.stress_full_lift_Pa = tau_per_N * (preload_N + c.rate_N_m * max_lift_m);
@@ -96,9 +155,9 @@ HelicalSpringCheck CheckHelicalSpring(const HelicalGeometry& g, double preload_N
   c.stress_ok = c.stress_full_lift_Pa <= c.allowable_stress_Pa;
   c.clearance_ok = c.clearance_full_lift_m >= c.min_clearance_m;
   c.surge_ok = c.surge_ratio >= kMinSurgeRatio;
-  c.fatigue = CheckFatigue(c.stress_preload_Pa, c.stress_full_lift_Pa, g.tensile_Pa, g.shot_peened);
-  c.fatigue_judged = d < kZimmerliMaxWire_m;
-  c.fatigue_ok = !c.fatigue_judged || c.fatigue.goodman_safety_factor >= 1.0;
+  c.fatigue = SpringFatigue(g, c.index, preload_N, preload_N + c.rate_N_m * max_lift_m);
+  c.fatigue_judged = g.fatigue_criterion == FatigueCriterion::kBhandari || d < kZimmerliMaxWire_m;
+  c.fatigue_ok = !c.fatigue_judged || c.fatigue.safety_factor >= 1.0;
   return c;
 }
 
@@ -107,7 +166,7 @@ std::vector<Field> HelicalFields(const HelicalSpringCheck& h) {
   return {
       {"rate", kNPerMm, h.rate_N_m, 2},
       {"index", kNone, h.index, 2},
-      TextField("stress_correction", h.wahl ? "wahl" : "bergstrasser"),
+      TextField("stress_correction", StressFactorName(h.stress_factor)),
       {"correction_factor", kNone, h.correction_factor, 3},
       {"stress_preload", kMPa, h.stress_preload_Pa, 0},
       {"stress_full_lift", kMPa, h.stress_full_lift_Pa, 0},
@@ -121,8 +180,9 @@ std::vector<Field> HelicalFields(const HelicalSpringCheck& h) {
       {"surge", kHz, h.surge_hz, 1},
       {"cam", kHz, h.cam_hz, 3},
       {"surge_ratio", kNone, h.surge_ratio, 1},
+      TextField("fatigue_criterion", CriterionInfo(h.fatigue.criterion).name),
       {"fatigue_safety_factor", kNone,
-       h.fatigue_judged ? FiniteOrNone(h.fatigue.goodman_safety_factor) : std::nullopt, 2},
+       h.fatigue_judged ? FiniteOrNone(h.fatigue.safety_factor) : std::nullopt, 2},
       FlagField("stress_ok", h.stress_ok),
       FlagField("clearance_ok", h.clearance_ok),
       FlagField("surge_ok", h.surge_ok),

@@ -42,8 +42,9 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
                   (!r.helical->clearance_ok ? "coil gaps below S_a; " : "") +
                   (!r.helical->surge_ok && surge_screen ? "surge ratio below 13; " : "") +
                   (!r.helical->fatigue_ok
-                       ? "fatigue: the working stroke is outside the Goodman line (n_f " +
-                             Fixed(r.helical->fatigue.goodman_safety_factor, 2) + " < 1)"
+                       ? std::string("fatigue: the working stroke is outside the ") +
+                             CriterionInfo(r.helical->fatigue.criterion).title + " line (n_f " +
+                             Fixed(r.helical->fatigue.safety_factor, 2) + " < 1)"
                        : ""));
   }
   return out;

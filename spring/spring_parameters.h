@@ -31,6 +31,21 @@ std::optional<SpringEnds> ParseSpringEnds(const std::string& name);
 /// The names, quoted, for messages.
 std::string SpringEndsList();
 
+/// The stress-correction factor k of τ = k · 8 F D/(π d³) (spring/helical_spring.h):
+/// Bergsträsser, Wahl, or the direct-shear factor K_s = 1 + 1/(2w) alone.
+enum class StressFactor { kBergstrasser, kWahl, kDirectShear };
+/// The factor's name in a case file ("bergstrasser", "wahl", "direct-shear").
+const char* StressFactorName(StressFactor f);
+/// The factor of a name, or nullopt.
+std::optional<StressFactor> ParseStressFactor(const std::string& name);
+/// The names, quoted, for messages.
+std::string StressFactorChoice();
+/// The factor's title ("Bergstrasser", "Wahl", "direct-shear"), equation and source, for
+/// outputs and docs/springs.md.
+const char* StressFactorTitle(StressFactor f);
+const char* StressFactorEquation(StressFactor f);
+const char* StressFactorSource(StressFactor f);
+
 /// Helical compression spring geometry and material, all SI.
 struct HelicalGeometry {
   double wire_m = 0.0;             ///< wire diameter d
@@ -43,7 +58,9 @@ struct HelicalGeometry {
   std::optional<WireGrade> grade;  ///< the wire's EN grade, when named
   bool shot_peened = false;        ///< Zimmerli's peened strengths instead of unpeened
   SpringEnds ends = SpringEnds::kClosedGround;
-  bool wahl = false;                ///< stress correction: Wahl instead of Bergsträsser
+  StressFactor stress_factor = StressFactor::kBergstrasser;  ///< k of the shear stress
+  /// How fatigue is judged (spring/wire_material.h).
+  FatigueCriterion fatigue_criterion = FatigueCriterion::kGoodmanZimmerli;
   double allowable_fraction = 0.5;  ///< allowable shear stress as a fraction of R_m
 };
 

@@ -23,6 +23,14 @@ SizingRule Rule(std::string key, std::string name, std::string unit, double valu
   return r;
 }
 
+// The fatigue rule: the criterion's n_f at least the duty's factor (and 1).
+SizingRule FatigueRule(const FatigueCheck& f, const SizingDuty& duty, const std::string& where) {
+  return Rule("fatigue",
+              std::string("spring fatigue safety factor (") + CriterionInfo(f.criterion).title +
+                  where + ")",
+              "", f.safety_factor, std::max(1.0, duty.min_fatigue_factor), false);
+}
+
 // The check's own lengths, coil counts, S_a and surge of `g` (its free length aside): a probe
 // with a free length no preload reaches.
 HelicalSpringCheck Probe(HelicalGeometry g, double stroke_m, double speed_rpm, EngineCycle cycle) {
@@ -59,7 +67,8 @@ HelicalGeometry CandidateGeometry(const SizingSpace& space, int wire_index, doub
   g.grade = w.grade;
   g.shot_peened = space.shot_peened;
   g.ends = space.ends;
-  g.wahl = space.wahl;
+  g.stress_factor = space.stress_factor;
+  g.fatigue_criterion = space.fatigue_criterion;
   g.allowable_fraction = space.allowable_fraction;
   return g;
 }
@@ -67,8 +76,42 @@ HelicalGeometry CandidateGeometry(const SizingSpace& space, int wire_index, doub
 struct Group {
   int wire = 0;
   double coil_m = 0.0;
-  double bound = 0.0;  // a lower bound of the objective over the group's coil counts
+  double bound = 0.0;         // a lower bound of the objective over the group's coil counts
+  std::vector<double> coils;  // the counts to try: the space's, or the one a stated rate asks
 };
+
+// The coil counts of (wire, D): the space's; with a stated rate k, the fewest on the space's
+// steps whose rate G d⁴/(8 D³ n) is at most k (the textbooks round n up), none past the range.
+std::vector<double> GroupCoils(const SizingSpace& space, const SizingDuty& duty,
+                               const std::vector<double>& coils, int wire, double coil_m) {
+  if (!duty.rate_N_m) return coils;
+  HelicalGeometry one = CandidateGeometry(space, wire, coil_m, 1.0);
+  const double needed = HelicalRate(one) / *duty.rate_N_m;  // n at exactly the rate
+  for (double n : coils) {
+    if (n >= needed * (1.0 - 1e-12)) return {n};
+  }
+  return {};
+}
+
+// The objective's value of a (wire, D) group at its fewest coils: a lower bound over the group.
+double GroupBound(const SizingSpace& space, const SizingDuty& duty, SizingObjective objective,
+                  const Group& gr) {
+  const HelicalGeometry low = CandidateGeometry(space, gr.wire, gr.coil_m, gr.coils.front());
+  const HelicalSpringCheck p = Probe(low, duty.stroke_m, 0.0, duty.cycle);
+  switch (objective) {
+    case SizingObjective::kMass:
+      return CoilMassKg(low, p.total_coils);
+    case SizingObjective::kHeight: {
+      const double gap = duty.min_gap_m ? *duty.min_gap_m : p.min_clearance_m;
+      return std::max(space.min_installed_m, p.solid_length_m + duty.stroke_m + gap);
+    }
+    case SizingObjective::kDiameter:
+      return (gr.coil_m + low.wire_m) * 1e3;  // the outer diameter, exact for the group
+    case SizingObjective::kStress:
+      break;
+  }
+  return -INFINITY;
+}
 
 }  // namespace
 
@@ -99,6 +142,8 @@ std::string SizingObjectiveName(SizingObjective o) {
       return "height";
     case SizingObjective::kStress:
       return "stress";
+    case SizingObjective::kDiameter:
+      return "diameter";
   }
   return "?";
 }
@@ -157,10 +202,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
     if (done(Rule("stress", "shear stress at full lift (at the floor preload)", "MPa",
                   f.stress_full_lift_Pa * 1e-6, f.allowable_stress_Pa * 1e-6, true)))
       return s;
-    if (f.fatigue_judged &&
-        done(Rule("fatigue", "spring fatigue safety factor (Goodman, at the floor preload)", "",
-                  f.fatigue.goodman_safety_factor, std::max(1.0, duty.min_fatigue_factor), false)))
-      return s;
+    if (f.fatigue_judged && done(FatigueRule(f.fatigue, duty, ", at the floor preload"))) return s;
     s.rules.clear();
     if (duty.speed_rpm > 0.0) {  // the surge rule judged above, kept
       s.rules.push_back(Rule("surge_ratio", "first surge mode over the cam frequency f_1/f_cam", "",
@@ -181,6 +223,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
   g.free_length_m = free;
   s.installed_m = free - s.preload_N / s.rate_N_m;
   if (objective == SizingObjective::kHeight) s.objective = s.installed_m;
+  if (objective == SizingObjective::kDiameter) s.objective = (g.coil_m + g.wire_m) * 1e3;
   if (s.installed_m > space.max_installed_m && need <= space.max_installed_m) {
     if (done(Rule("installed_length", "installed length (free length rounded up)", "mm",
                   s.installed_m * 1e3, space.max_installed_m * 1e3, true)))
@@ -197,9 +240,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
                 c.allowable_stress_Pa * 1e-6, true)))
     return s;
   if (c.fatigue_judged) {
-    if (done(Rule("fatigue", "spring fatigue safety factor (Goodman)", "",
-                  c.fatigue.goodman_safety_factor, std::max(1.0, duty.min_fatigue_factor), false)))
-      return s;
+    if (done(FatigueRule(c.fatigue, duty, ""))) return s;
   }
   s.buckling_m = BucklingDeflection(g, w.elastic_modulus_Pa, space.end_fixation);
   if (duty.buckling) {
@@ -233,21 +274,14 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
       gr.wire = wi;
       gr.coil_m = std::round(k * space.coil_step_m * 1e9) / 1e9;
       if (!(gr.coil_m > d)) continue;
-      const HelicalGeometry low = CandidateGeometry(space, wi, gr.coil_m, coils.front());
-      const HelicalSpringCheck p = Probe(low, duty.stroke_m, 0.0, duty.cycle);
-      if (objective == SizingObjective::kMass) {
-        gr.bound = CoilMassKg(low, p.total_coils);
-      } else if (objective == SizingObjective::kHeight) {
-        const double gap = duty.min_gap_m ? *duty.min_gap_m : p.min_clearance_m;
-        gr.bound = std::max(space.min_installed_m, p.solid_length_m + duty.stroke_m + gap);
-      } else {
-        gr.bound = -INFINITY;
-      }
+      gr.coils = GroupCoils(space, duty, coils, wi, gr.coil_m);
+      r.candidates += static_cast<long>(gr.coils.size());
+      if (gr.coils.empty()) continue;
+      gr.bound = GroupBound(space, duty, objective, gr);
       groups.push_back(gr);
     }
   }
   r.groups = static_cast<long>(groups.size());
-  r.candidates = r.groups * static_cast<long>(coils.size());
   std::stable_sort(groups.begin(), groups.end(),
                    [](const Group& a, const Group& b) { return a.bound < b.bound; });
   const auto insert = [&](const SizedSpring& s) {
@@ -259,7 +293,7 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
     const bool full_list = static_cast<int>(r.best.size()) >= options.keep;
     if (!options.exhaustive && full_list && gr.bound > r.best.back().objective) break;
     std::optional<SizedSpring> group_best;
-    for (double n : coils) {
+    for (double n : gr.coils) {
       SizedSpring s =
           EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, options.exhaustive);
       ++r.evaluated;
@@ -283,7 +317,7 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
     // Every passing spring of the space, for the front (the same early exits as the search).
     std::vector<SizedSpring> passing;
     for (const Group& gr : groups) {
-      for (double n : coils) {
+      for (double n : gr.coils) {
         SizedSpring s = EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, false);
         ++r.front_evaluated;
         if (s.pass) {
@@ -300,7 +334,7 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
     // Nothing passes: the candidate whose worst rule fails least, every rule evaluated.
     double least = INFINITY;
     for (const Group& gr : groups) {
-      for (double n : coils) {
+      for (double n : gr.coils) {
         SizedSpring s = EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, true);
         double worst = 0.0;
         const SizingRule* rule = nullptr;
@@ -330,7 +364,7 @@ std::vector<SizedSpring> MassFatigueFront(const std::vector<SizedSpring>& spring
   double best = -INFINITY;
   for (const SizedSpring& s : sorted) {
     if (!s.check) continue;
-    const double f = s.check->fatigue.goodman_safety_factor;
+    const double f = s.check->fatigue.safety_factor;
     if (f > best) {
       front.push_back(s);
       best = f;
@@ -365,8 +399,7 @@ std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& sp
                           {"mass", kKg, s.mass_kg, 3},
                           FlagField("pass", s.pass)};
   if (s.check) {
-    f.push_back(
-        {"fatigue_safety_factor", kNone, FiniteOrNone(s.check->fatigue.goodman_safety_factor), 2});
+    f.push_back({"fatigue_safety_factor", kNone, FiniteOrNone(s.check->fatigue.safety_factor), 2});
   }
   return f;
 }

@@ -12,10 +12,13 @@
 ///     installed  L₁ = max(L₁,min, L_c + h + gap) (the shortest that keeps the gap at full lift
 ///                h); L₀ = L₁ + P₀/k rounded up to the free-length step, L₁ = L₀ − P₀/k ≤ L₁,max
 ///     rules      gap at full lift ≥ S_a (or the stated gap), f_e/f_cam ≥ the surge ratio, τ at
-///                full lift ≤ the allowable, Goodman n_f ≥ the fatigue factor (wire below
-///                10 mm), no buckling at full lift (EN 13906-1, end-fixation factor ν)
-///     objective  least mass ρ π² d² D n_t/4 (default), least installed length, or least shear
-///                stress at full lift; ties broken by mass, then wire, D, n.
+///                full lift ≤ the allowable, the criterion's n_f ≥ the fatigue factor (where
+///                judged), no buckling at full lift (EN 13906-1, end-fixation factor ν)
+///     objective  least mass ρ π² d² D n_t/4 (default), least installed length, least shear
+///                stress at full lift, or least outer diameter D + d; ties broken by mass, then
+///                wire, D, n.
+///     stated rate  (SizingDuty::rate_N_m, a textbook's load pair over its stroke) n is not
+///                searched: each (wire, D) takes the fewest coils whose rate is at most it.
 ///
 /// The search: the (wire, D) groups in the order of a lower bound of the objective (its value at
 /// the fewest coils), stopping when the bound exceeds the `keep`-th best group found; inside a
@@ -64,7 +67,8 @@ struct SizingSpace {
   double max_installed_m = 1e9;       ///< … and at most
   double free_length_step_m = 1e-4;   ///< L₀ rounded up to this (0: not rounded)
   SpringEnds ends = SpringEnds::kClosedGround;
-  bool wahl = false;
+  StressFactor stress_factor = StressFactor::kBergstrasser;
+  FatigueCriterion fatigue_criterion = FatigueCriterion::kGoodmanZimmerli;
   bool shot_peened = false;
   double allowable_fraction = 0.5;  ///< allowable shear stress / R_m
   double end_fixation = 0.5;        ///< ν of EN 13906-1's buckling (0.5: both ends fixed)
@@ -89,14 +93,18 @@ struct SizingDuty {
   /// own preload too (both only worsen as P₀ grows with τ_a fixed), so the search screens with
   /// it before asking `preload`.
   double preload_floor_N = 0.0;
-  double min_fatigue_factor = 1.0;          ///< Goodman n_f at least (where judged)
+  double min_fatigue_factor = 1.0;  ///< the criterion's n_f at least (where judged)
+  /// A stated rate, N/m: each (wire, D) takes the fewest coils on the space's steps whose rate
+  /// is at most this (a textbook design's P₁ → P₂ over the stroke); absent: every count.
+  std::optional<double> rate_N_m;
   std::optional<double> min_gap_m;          ///< gap at full lift at least; absent: S_a
   double min_surge_ratio = kMinSurgeRatio;  ///< f_e/f_cam at least
   bool buckling = true;                     ///< judge buckling
 };
 
-enum class SizingObjective { kMass, kHeight, kStress };
-std::string SizingObjectiveName(SizingObjective o);  ///< "mass", "height", "stress"
+enum class SizingObjective { kMass, kHeight, kStress, kDiameter };
+/// "mass", "height", "stress", "diameter" (least outer diameter D + d, in mm).
+std::string SizingObjectiveName(SizingObjective o);
 
 /// One rule judged on a candidate, in display units: the check's verdict row
 /// (spring/verdict_row.h), judged pass or fail.
@@ -122,7 +130,7 @@ struct SizedSpring {
 
 /// A spring as fields (lib/result_fields.h): its wire's label, d, D (mm), active and total
 /// coils, free and installed length (mm), preload (N) and the rule that set it, rate (N/mm),
-/// mass (kg), whether it passes, and its Goodman factor n_f when checked (none if infinite).
+/// mass (kg), whether it passes, and its fatigue factor n_f when checked (none if infinite).
 std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& space);
 
 /// A rule of a spring as fields: its key and unit, value, limit, direction, margin (none when
@@ -168,7 +176,7 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
 SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
                         const SizingOptions& options = {});
 
-/// Springs of `springs` on the front between mass and Goodman safety factor: none lighter has
+/// Springs of `springs` on the front between mass and fatigue safety factor: none lighter has
 /// a factor as high. Lightest first.
 std::vector<SizedSpring> MassFatigueFront(const std::vector<SizedSpring>& springs);
 

@@ -87,33 +87,125 @@ FatigueStrength ZimmerliStrength(bool shot_peened) {
                      : FatigueStrength{35.0 * kKpsi, 55.0 * kKpsi};
 }
 
-FatigueCheck CheckFatigue(double stress_min_Pa, double stress_max_Pa, double tensile_Pa,
-                          bool shot_peened) {
-  FatigueCheck f;
-  f.stress_amplitude_Pa = 0.5 * (stress_max_Pa - stress_min_Pa);
-  f.stress_mean_Pa = 0.5 * (stress_max_Pa + stress_min_Pa);
-  f.torsional_ultimate_Pa = 0.67 * tensile_Pa;  // S_su = 0.67 R_m
-  f.strength = ZimmerliStrength(shot_peened);
+namespace {
+
+// The one table of the criteria: name, title, line, source.
+const std::vector<FatigueCriterionInfo> kCriteria = {
+    {FatigueCriterion::kGoodmanZimmerli, "goodman-zimmerli", "Goodman",
+     "S_se = S_sa/(1 - S_sm/S_su); S_a = r S_se S_su/(r S_su + S_se); n_f = S_a/tau_a",
+     "Budynas & Nisbett, Shigley's MED 9th ed., sec. 10-9 and Ex. 10-4; Zimmerli (1957)"},
+    {FatigueCriterion::kGerber, "gerber", "Gerber",
+     "S_se = S_sa/(1 - (S_sm/S_su)^2); S_a = r^2 S_su^2/(2 S_se) (-1 + sqrt(1 + (2 S_se/(r "
+     "S_su))^2)); n_f = S_a/tau_a",
+     "Budynas & Nisbett, Shigley's MED 9th ed., sec. 10-9 and Ex. 10-4"},
+    {FatigueCriterion::kAsmeElliptic, "asme-elliptic", "ASME-elliptic",
+     "S_se = S_sa/sqrt(1 - (S_sm/S_sy)^2); S_a = r S_se S_sy/sqrt(S_se^2 + r^2 S_sy^2); "
+     "S_sy = 0.45 S_ut; n_f = S_a/tau_a",
+     "Budynas & Nisbett, Shigley's MED 9th ed., sec. 10-9; S_sy from Table 10-6"},
+    {FatigueCriterion::kSines, "sines", "Sines",
+     "S_a = S_sa (the mean stress has no effect); n_f = S_sa/tau_a",
+     "Budynas & Nisbett, Shigley's MED 9th ed., sec. 10-9 and Ex. 10-4"},
+    {FatigueCriterion::kBhandari, "bhandari", "Bhandari",
+     "tau_m with K_s = 1 + 1/(2C), tau_a with Wahl's K; line from (S'se/2, S'se/2) to (S_sy, "
+     "0): 1/n_f = (tau_a (S_sy - S'se/2)/(S'se/2) + tau_m)/S_sy; S'se = 0.22 S_ut, S_sy = 0.45 "
+     "S_ut (0.21, 0.42 patented cold-drawn)",
+     "V. B. Bhandari, Design of Machine Elements, ch. 10, Ex. 10.13"},
+};
+
+// S_a where the load line r = τ_a/τ_m meets a Zimmerli criterion through (S_sm, S_sa).
+void ZimmerliLine(FatigueCheck& f, double r) {
   const double ssu = f.torsional_ultimate_Pa, ssa = f.strength.amplitude_Pa,
-               ssm = f.strength.mean_Pa;
-  if (!(ssu > ssm)) {  // a wire weaker than Zimmerli's mean strength: no endurance at all
-    f.goodman_safety_factor = f.gerber_safety_factor = 0.0;
+               ssm = f.strength.mean_Pa, sy = f.yield_Pa;
+  switch (f.criterion) {
+    case FatigueCriterion::kGoodmanZimmerli:
+      f.endurance_Pa = ssa / (1.0 - ssm / ssu);
+      f.limit_Pa = r * f.endurance_Pa * ssu / (r * ssu + f.endurance_Pa);
+      break;
+    case FatigueCriterion::kGerber: {
+      f.endurance_Pa = ssa / (1.0 - (ssm / ssu) * (ssm / ssu));
+      const double q = 2.0 * f.endurance_Pa / (r * ssu);
+      f.limit_Pa = r * r * ssu * ssu / (2.0 * f.endurance_Pa) * (-1.0 + std::sqrt(1.0 + q * q));
+      break;
+    }
+    case FatigueCriterion::kAsmeElliptic:
+      f.endurance_Pa = ssa / std::sqrt(1.0 - (ssm / sy) * (ssm / sy));
+      f.limit_Pa =
+          r * f.endurance_Pa * sy / std::sqrt(f.endurance_Pa * f.endurance_Pa + r * r * sy * sy);
+      break;
+    case FatigueCriterion::kSines:
+      f.endurance_Pa = f.limit_Pa = ssa;
+      break;
+    case FatigueCriterion::kBhandari:
+      break;
+  }
+}
+
+}  // namespace
+
+const std::vector<FatigueCriterionInfo>& AllFatigueCriteria() { return kCriteria; }
+
+const FatigueCriterionInfo& CriterionInfo(FatigueCriterion c) {
+  for (const FatigueCriterionInfo& i : kCriteria)
+    if (i.criterion == c) return i;
+  throw std::logic_error("FatigueCriterion without a row");
+}
+
+std::optional<FatigueCriterion> ParseFatigueCriterion(const std::string& name) {
+  for (const FatigueCriterionInfo& i : kCriteria)
+    if (name == i.name) return i.criterion;
+  return std::nullopt;
+}
+
+std::string FatigueCriterionChoice() {
+  std::string s;
+  for (size_t i = 0; i < kCriteria.size(); ++i) {
+    if (i > 0) s += i + 1 == kCriteria.size() ? " or " : ", ";
+    s += "\"" + std::string(kCriteria[i].name) + "\"";
+  }
+  return s;
+}
+
+BhandariFractions BhandariFractionsFor(std::optional<WireGrade> grade) {
+  if (grade && GradeData(*grade).standard == "EN 10270-1") return {0.21, 0.42};
+  return {0.22, 0.45};
+}
+
+FatigueCheck CheckFatigue(FatigueCriterion criterion, double stress_mean_Pa,
+                          double stress_amplitude_Pa, double tensile_Pa, bool shot_peened,
+                          std::optional<WireGrade> grade) {
+  FatigueCheck f;
+  f.criterion = criterion;
+  f.stress_amplitude_Pa = stress_amplitude_Pa;
+  f.stress_mean_Pa = stress_mean_Pa;
+  f.torsional_ultimate_Pa = 0.67 * tensile_Pa;  // S_su = 0.67 R_m
+  if (criterion == FatigueCriterion::kBhandari) {
+    const BhandariFractions b = BhandariFractionsFor(grade);
+    const double half = 0.5 * b.endurance * tensile_Pa;  // S'se/2
+    f.yield_Pa = b.yield * tensile_Pa;
+    f.strength = {half, half};
+    f.endurance_Pa = 2.0 * half;
+    // 1/n = (τ_a (S_sy − S'se/2)/(S'se/2) + τ_m) / S_sy
+    f.safety_factor =
+        f.yield_Pa / (stress_amplitude_Pa * (f.yield_Pa - half) / half + stress_mean_Pa);
+    f.limit_Pa = f.safety_factor * stress_amplitude_Pa;
     return f;
   }
-  f.goodman_endurance_Pa = ssa / (1.0 - ssm / ssu);
-  if (!(f.stress_amplitude_Pa > 0.0)) {
-    f.goodman_limit_Pa = f.goodman_endurance_Pa;
-    f.goodman_safety_factor = f.gerber_safety_factor = INFINITY;
+  f.strength = ZimmerliStrength(shot_peened);
+  if (criterion == FatigueCriterion::kAsmeElliptic) f.yield_Pa = kAsmeYieldFraction * tensile_Pa;
+  const double ceiling =
+      criterion == FatigueCriterion::kAsmeElliptic ? f.yield_Pa : f.torsional_ultimate_Pa;
+  if (criterion != FatigueCriterion::kSines && !(ceiling > f.strength.mean_Pa)) {
+    f.safety_factor = 0.0;  // a wire weaker than Zimmerli's mean strength: no endurance at all
     return f;
   }
-  const double r = f.stress_amplitude_Pa / f.stress_mean_Pa;  // the load line τ_a/τ_m
-  const double sse = f.goodman_endurance_Pa;
-  f.goodman_limit_Pa = r * sse * ssu / (r * ssu + sse);
-  f.goodman_safety_factor = f.goodman_limit_Pa / f.stress_amplitude_Pa;
-  const double sse_g = ssa / (1.0 - (ssm / ssu) * (ssm / ssu));
-  const double q = 2.0 * sse_g / (r * ssu);
-  const double gerber = r * r * ssu * ssu / (2.0 * sse_g) * (-1.0 + std::sqrt(1.0 + q * q));
-  f.gerber_safety_factor = gerber / f.stress_amplitude_Pa;
+  if (!(stress_amplitude_Pa > 0.0)) {
+    ZimmerliLine(f, 1.0);
+    f.limit_Pa = f.endurance_Pa;
+    f.safety_factor = INFINITY;
+    return f;
+  }
+  ZimmerliLine(f, stress_amplitude_Pa / stress_mean_Pa);  // the load line r = τ_a/τ_m
+  f.safety_factor = f.limit_Pa / stress_amplitude_Pa;
   return f;
 }
 

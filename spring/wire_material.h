@@ -11,7 +11,13 @@
 ///     Goodman            S_se = S_sa / (1 − S_sm/S_su),   S_a = r S_se S_su / (r S_su + S_se)
 ///     Gerber             S_se = S_sa / (1 − (S_sm/S_su)²),
 ///                        S_a = r² S_su²/(2 S_se) · (−1 + √(1 + (2 S_se/(r S_su))²))
+///     ASME-elliptic      S_se = S_sa / √(1 − (S_sm/S_sy)²),
+///                        S_a = r S_se S_sy / √(S_se² + r² S_sy²),  S_sy = 0.45 S_ut
+///     Sines              S_a = S_sa (the mean stress has no effect)
 ///     safety factor      n_f = S_a / τ_a  on the load line r = τ_a/τ_m through the origin
+///     Bhandari           τ_m with K_s = 1 + 1/(2C), τ_a with Wahl's K; the line from
+///                        A (S'se/2, S'se/2) to B (S_sy, 0), S'se = 0.22 S_ut, S_sy = 0.45 S_ut:
+///                        1/n_f = (τ_a (S_sy − S'se/2)/(S'se/2) + τ_m) / S_sy
 ///
 /// The A, m pairs are those of the ASTM wire each EN 10270 grade corresponds to (Budynas &
 /// Nisbett, Shigley's Mechanical Engineering Design, 9th ed., Table 10-4): SH and DH (EN
@@ -66,21 +72,61 @@ FatigueStrength ZimmerliStrength(bool shot_peened);
 /// Zimmerli's data cover wire below this diameter, m.
 constexpr double kZimmerliMaxWire_m = 10e-3;
 
-/// The fatigue check of a stress cycle τ_min → τ_max (corrected shear stresses, Pa).
+/// How a helical spring's fatigue is judged: the school's line through the spring's strengths
+/// (the file comment's equations; docs/springs.md holds them in one table with their sources).
+enum class FatigueCriterion { kGoodmanZimmerli, kGerber, kAsmeElliptic, kSines, kBhandari };
+
+/// A criterion's name in a case file and outputs, its line and its source, for outputs and
+/// docs/springs.md.
+struct FatigueCriterionInfo {
+  FatigueCriterion criterion;
+  const char* name;      ///< "goodman-zimmerli", …
+  const char* title;     ///< "Goodman", "Gerber", … (in rule names and text)
+  const char* equation;  ///< the line and the factor, in the file comment's symbols
+  const char* source;    ///< the book and section it is reproduced from
+};
+/// Every criterion, in the name table's order.
+const std::vector<FatigueCriterionInfo>& AllFatigueCriteria();
+const FatigueCriterionInfo& CriterionInfo(FatigueCriterion c);
+/// The criterion of a case-file name (exact spelling), or nullopt.
+std::optional<FatigueCriterion> ParseFatigueCriterion(const std::string& name);
+/// "\"goodman-zimmerli\", … or \"bhandari\"" for messages.
+std::string FatigueCriterionChoice();
+
+/// Bhandari's pulsating endurance S'se and yield S_sy as fractions of S_ut: 0.22 and 0.45 for
+/// oil-hardened and tempered wire (his Ex. 10.13 and 10.14), 0.21 and 0.42 for patented
+/// cold-drawn wire (EN 10270-1 grades).
+struct BhandariFractions {
+  double endurance = 0.22;  ///< S'se / S_ut
+  double yield = 0.45;      ///< S_sy / S_ut
+};
+BhandariFractions BhandariFractionsFor(std::optional<WireGrade> grade);
+
+/// Shigley's torsional yield for the ASME-elliptic line, S_sy = 0.45 S_ut (Table 10-6: music
+/// wire and cold-drawn carbon steel, set not removed; the lowest of its spring steels).
+constexpr double kAsmeYieldFraction = 0.45;
+
+/// The fatigue check of a stress cycle: its mean τ_m and amplitude τ_a (corrected shear
+/// stresses, Pa), by one criterion.
 struct FatigueCheck {
-  double stress_amplitude_Pa = 0.0;    ///< τ_a = (τ_max − τ_min)/2
-  double stress_mean_Pa = 0.0;         ///< τ_m = (τ_max + τ_min)/2
+  FatigueCriterion criterion = FatigueCriterion::kGoodmanZimmerli;
+  double stress_amplitude_Pa = 0.0;    ///< τ_a
+  double stress_mean_Pa = 0.0;         ///< τ_m
   double torsional_ultimate_Pa = 0.0;  ///< S_su = 0.67 R_m
-  FatigueStrength strength;            ///< Zimmerli's pair used
-  double goodman_endurance_Pa = 0.0;   ///< S_se (Goodman)
-  double goodman_limit_Pa = 0.0;       ///< S_a on the load line (Goodman)
-  double goodman_safety_factor = 0.0;  ///< n_f = S_a/τ_a (Goodman): the verdict's number
-  double gerber_safety_factor = 0.0;   ///< n_f (Gerber), for comparison
+  double yield_Pa = 0.0;               ///< S_sy (ASME-elliptic, Bhandari); 0 where unused
+  /// Zimmerli's pair used (the Zimmerli criteria); Bhandari: his point A, (S'se/2, S'se/2).
+  FatigueStrength strength;
+  double endurance_Pa = 0.0;   ///< S_se at zero mean stress (Bhandari: S'se, pulsating)
+  double limit_Pa = 0.0;       ///< S_a where the load line meets the criterion (Bhandari: n τ_a)
+  double safety_factor = 0.0;  ///< n_f: the verdict's number
 };
 
-/// The check of τ_min → τ_max (0 ≤ τ_min < τ_max) for a wire of tensile strength `tensile_Pa`;
-/// +∞ safety factors when τ_max = τ_min (no alternating stress).
-FatigueCheck CheckFatigue(double stress_min_Pa, double stress_max_Pa, double tensile_Pa,
-                          bool shot_peened);
+/// The check of a cycle of mean τ_m ≥ τ_a ≥ 0 for a wire of tensile strength `tensile_Pa` by
+/// `criterion`; `grade` picks Bhandari's fractions. On a Zimmerli line: +∞ when τ_a = 0 (no
+/// alternating stress), 0 when the wire is weaker than Zimmerli's mean strength (no endurance
+/// at all). Bhandari's line holds at τ_a = 0 too (S_sy/τ_m).
+FatigueCheck CheckFatigue(FatigueCriterion criterion, double stress_mean_Pa,
+                          double stress_amplitude_Pa, double tensile_Pa, bool shot_peened,
+                          std::optional<WireGrade> grade = std::nullopt);
 
 }  // namespace needle

@@ -23,7 +23,9 @@
 ///               overspeed_factor = 1.2; helical geometry: wire_mm, coil_mm (mean),
 ///               active_coils, free_length_mm, shear_modulus_GPa, density_kg_m3 = 7850,
 ///               tensile_MPa, ends = "closed-ground" | "closed" | "open-ground" | "open",
-///               stress_correction = "bergstrasser" | "wahl", allowable_stress_fraction = 0.5,
+///               stress_correction = "bergstrasser" | "wahl" | "direct-shear",
+///               fatigue_criterion = "goodman-zimmerli" | "gerber" | "asme-elliptic" | "sines" |
+///               "bhandari", allowable_stress_fraction = 0.5,
 ///               grade = "SH" | "DH" | "VDC" | "VDCrV" | "VDSiCr" (R_m and G), shot_peened = false;
 ///               in the dynamics (helical only): masses = 1 (coil masses), surge_damping_ratio = 0,
 ///               clash = false, clash_stiffness_N_m (= k_c), clash_damping_ratio (= ζ_c)

@@ -137,7 +137,10 @@ std::string SizedCaseText(const std::string& original, double needle_mass_kg, co
   }
   keys << "density_kg_m3 = " << Exact(g.density_kg_m3) << '\n';
   keys << "ends = \"" << SpringEndsName(g.ends) << "\"\n";
-  if (g.wahl) keys << "stress_correction = \"wahl\"\n";
+  if (g.stress_factor != StressFactor::kBergstrasser)
+    keys << "stress_correction = \"" << StressFactorName(g.stress_factor) << "\"\n";
+  if (g.fatigue_criterion != FatigueCriterion::kGoodmanZimmerli)
+    keys << "fatigue_criterion = \"" << CriterionInfo(g.fatigue_criterion).name << "\"\n";
   if (g.shot_peened) keys << "shot_peened = true\n";
   if (g.allowable_fraction != 0.5)
     keys << "allowable_stress_fraction = " << Exact(g.allowable_fraction) << '\n';
@@ -145,7 +148,7 @@ std::string SizedCaseText(const std::string& original, double needle_mass_kg, co
   static const std::regex header(R"(^\s*\[\s*([A-Za-z0-9_]+)\s*\]\s*(#.*)?$)");
   static const std::regex key(R"(^\s*([A-Za-z0-9_]+)\s*=)");
   static const std::regex spring_key(
-      R"(^(preload_|rate_|wire_|coil_|active_coils$|free_length_|shear_modulus_|density_|tensile_|grade$|ends$|stress_correction$|shot_peened$|allowable_stress_fraction$).*)");
+      R"(^(preload_|rate_|wire_|coil_|active_coils$|free_length_|shear_modulus_|density_|tensile_|grade$|ends$|stress_correction$|fatigue_criterion$|shot_peened$|allowable_stress_fraction$).*)");
   std::istringstream in(original);
   std::ostringstream out;
   std::string line, section;

@@ -1,12 +1,72 @@
 // [sizing]: what `needle size` may choose and what the spring must fit (sizing_section.h).
 #include "apps/case/sizing_section.h"
 
+#include <cmath>
 #include <map>
 
 #include "apps/case/section_reader.h"
 #include "spring/wire_material.h"
 
 namespace needle::case_internal {
+
+namespace {
+
+// A positive quantity, named as written when refused.
+std::optional<double> PositiveQuantity(SectionReader& r, const std::string& name, Dimension dim,
+                                       double scale, const std::string& unit) {
+  const std::optional<double> v = r.OptionalQuantity(name, dim);
+  if (v && !(*v > 0.0 && std::isfinite(*v)))
+    r.Fail(r.last_key(), "must be positive, got " + Number(*v * scale) + " " + unit);
+  return v;
+}
+
+// The textbook design problem's keys (sizing_section.h): a load pair or a rate, the stroke, a
+// stated wire, the stress limit, factor and criterion.
+void ReadDesignProblem(SectionReader& r, SizingSection& s) {
+  if (auto o = r.OptionalString("objective")) {
+    if (*o != "mass" && *o != "height" && *o != "stress" && *o != "diameter")
+      r.Fail("objective",
+             "expected \"mass\", \"height\", \"stress\" or \"diameter\", got \"" + *o + "\"");
+    s.objective = *o;
+  }
+  s.closed_load_N = PositiveQuantity(r, "closed_load", Dimension::kForce, 1.0, "N");
+  const std::string closed_key = s.closed_load_N ? r.last_key() : "closed_load_N";
+  s.open_load_N = PositiveQuantity(r, "open_load", Dimension::kForce, 1.0, "N");
+  const std::string open_key = s.open_load_N ? r.last_key() : "open_load_N";
+  s.rate_N_m = PositiveQuantity(r, "rate", Dimension::kStiffness, 1e-3, "N/mm");
+  if (s.open_load_N && !s.closed_load_N)
+    r.Fail(open_key, "needs closed_load_N (P1 at the installed length)");
+  if (s.open_load_N && s.rate_N_m)
+    r.Fail(open_key, "give the open load or the rate, not both (the load pair sets the rate)");
+  if (s.open_load_N && !(*s.open_load_N > *s.closed_load_N))
+    r.Fail(open_key, "must be above " + closed_key + " (" + Number(*s.closed_load_N) +
+                         " N): the spring is compressed further when open");
+  s.stroke_m = PositiveQuantity(r, "stroke", Dimension::kLength, 1e3, "mm");
+  s.tensile_Pa = PositiveQuantity(r, "tensile", Dimension::kPressure, 1e-6, "MPa");
+  const std::string tensile_key = s.tensile_Pa ? r.last_key() : "tensile_MPa";
+  s.shear_modulus_Pa = PositiveQuantity(r, "shear_modulus", Dimension::kPressure, 1e-9, "GPa");
+  if (s.tensile_Pa.has_value() != s.shear_modulus_Pa.has_value())
+    r.Fail(s.tensile_Pa ? tensile_key : r.last_key(),
+           "a stated wire needs both tensile_MPa and shear_modulus_GPa");
+  if (auto f = r.OptionalNumber("allowable_stress_fraction")) {
+    if (!(*f > 0.0 && *f <= 1.0))
+      r.Fail("allowable_stress_fraction", "must be in (0, 1], got " + Number(*f));
+    s.allowable_fraction = *f;
+  }
+  if (auto name = r.OptionalString("stress_correction")) {
+    s.stress_factor = ParseStressFactor(*name);
+    if (!s.stress_factor)
+      r.Fail("stress_correction", "expected " + StressFactorChoice() + ", got \"" + *name + "\"");
+  }
+  if (auto name = r.OptionalString("fatigue_criterion")) {
+    s.fatigue_criterion = ParseFatigueCriterion(*name);
+    if (!s.fatigue_criterion)
+      r.Fail("fatigue_criterion",
+             "expected " + FatigueCriterionChoice() + ", got \"" + *name + "\"");
+  }
+}
+
+}  // namespace
 
 SizingSection ReadSizing(SectionReader r) {
   SizingSection s;
@@ -86,11 +146,6 @@ SizingSection ReadSizing(SectionReader r) {
       *s.ends != "open")
     r.Fail("ends", "expected \"closed-ground\", \"closed\", \"open-ground\" or \"open\", got \"" +
                        *s.ends + "\"");
-  if (auto o = r.OptionalString("objective")) {
-    if (*o != "mass" && *o != "height" && *o != "stress")
-      r.Fail("objective", "expected \"mass\", \"height\" or \"stress\", got \"" + *o + "\"");
-    s.objective = *o;
-  }
   if (auto v = length("free_length_step", 0.01, /*zero=*/true)) s.free_length_step_m = *v;
   s.mass_without_spring_kg = r.OptionalQuantity("mass_without_spring", Dimension::kMass);
   if (s.mass_without_spring_kg && !(*s.mass_without_spring_kg > 0.0))
@@ -104,6 +159,7 @@ SizingSection ReadSizing(SectionReader r) {
   if (s.verify > s.candidates)
     r.Fail("verify", "verifies " + std::to_string(s.verify) + " springs but only " +
                          std::to_string(s.candidates) + " candidates are kept");
+  ReadDesignProblem(r, s);
   const bool one_wire = s.wire_m.size() == 1 && s.grades.size() <= 1;
   const bool one_index = s.min_index && s.max_index && *s.min_index == *s.max_index;
   const bool one_count =

@@ -20,7 +20,18 @@
 ///     coil_step_mm = 0.5            mean coil diameters on multiples of this
 ///     min_active_coils = 2, max_active_coils = 30, active_coil_step = 0.5
 ///     ends = "closed-ground" | "closed" | "open-ground" | "open"
-///     objective = "mass" | "height" | "stress"
+///     objective = "mass" | "height" | "stress" | "diameter" (least outer diameter)
+///
+///   A textbook design problem (Bhandari Ex. 10.4: "150 N closed, 300 N open over 5 mm"):
+///     closed_load_N                 P₁ at the installed length: the preload, stated
+///     open_load_N                   P₂ after the stroke: the rate (P₂ − P₁)/stroke; or
+///     rate_N_mm                     the rate itself (each (wire, D) takes the fewest coils
+///                                   whose rate is at most it: the books round n up)
+///     stroke_mm                     the stroke (default: the lift's largest)
+///     tensile_MPa, shear_modulus_GPa  a stated wire: this R_m and G at every diameter
+///                                   (grades default to it)
+///     allowable_stress_fraction     τ at full lift ≤ this × R_m (default: the case's, 0.5)
+///     stress_correction, fatigue_criterion  as in [spring] (default: the case's)
 ///     free_length_step_mm = 0.1     the free length rounded up to this (0: not rounded)
 ///     mass_without_spring_kg        the moving mass less a third of the active coils
 ///     end_fixation = 0.5            ν of EN 13906-1's buckling (0.5: both ends fixed)
@@ -30,6 +41,9 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "spring/spring_parameters.h"
+#include "spring/wire_material.h"
 
 namespace needle {
 
@@ -50,6 +64,13 @@ struct SizingSection {
   double end_fixation = 0.5;
   int candidates = 5;
   int verify = 3;
+  std::optional<double> closed_load_N, open_load_N;    ///< P₁, P₂
+  std::optional<double> rate_N_m;                      ///< or the rate
+  std::optional<double> stroke_m;                      ///< default: the lift's largest
+  std::optional<double> tensile_Pa, shear_modulus_Pa;  ///< a stated wire
+  std::optional<double> allowable_fraction;
+  std::optional<StressFactor> stress_factor;
+  std::optional<FatigueCriterion> fatigue_criterion;
 };
 
 }  // namespace needle

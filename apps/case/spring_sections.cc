@@ -106,10 +106,24 @@ HelicalGeometry ReadHelical(SectionReader& r) {
     g.ends = *e;
   }
   if (auto corr = r.OptionalString("stress_correction")) {
-    if (*corr != "bergstrasser" && *corr != "wahl") {
-      r.Fail("stress_correction", "expected \"bergstrasser\" or \"wahl\", got \"" + *corr + "\"");
+    const std::optional<StressFactor> f = ParseStressFactor(*corr);
+    if (!f)
+      r.Fail("stress_correction", "expected " + StressFactorChoice() + ", got \"" + *corr + "\"");
+    g.stress_factor = *f;
+  }
+  if (auto name = r.OptionalString("fatigue_criterion")) {
+    const std::optional<FatigueCriterion> c = ParseFatigueCriterion(*name);
+    if (!c) {
+      r.Fail("fatigue_criterion",
+             "expected " + FatigueCriterionChoice() + ", got \"" + *name + "\"");
     }
-    g.wahl = *corr == "wahl";
+    g.fatigue_criterion = *c;
+    if (*c == FatigueCriterion::kBhandari && g.shot_peened) {
+      r.Fail("fatigue_criterion",
+             "\"bhandari\" takes unpeened wire's endurance (S'se = 0.22 S_ut); with "
+             "shot_peened = true use a Zimmerli criterion (\"goodman-zimmerli\", \"gerber\", "
+             "\"asme-elliptic\" or \"sines\")");
+    }
   }
   if (auto f = r.OptionalNumber("allowable_stress_fraction")) {
     if (!(*f > 0.0 && *f <= 1.0)) {

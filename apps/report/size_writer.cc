@@ -24,7 +24,7 @@ std::string SpringLine(const SizedSpring& s, const SizingSpace& space) {
   return space.wires[s.wire_index].label + " d " + TextAt(f, "wire_mm") + ", D " +
          TextAt(f, "coil_mm") + ", " + TextAt(f, "active_coils") + " active coils, " +
          TextAt(f, "mass_kg") + ", n_f " +
-         (s.check ? Fixed(s.check->fatigue.goodman_safety_factor, 2) : std::string("-"));
+         (s.check ? Fixed(s.check->fatigue.safety_factor, 2) : std::string("-"));
 }
 
 // "  NAME: VALUE <= LIMIT, margin M, VERDICT" (an infinite value: buckling's imaginary root).

@@ -16,18 +16,23 @@ namespace {
 
 std::string PassFail(bool ok) { return ok ? "pass" : "FAIL"; }
 
-// The helical check's fatigue line: Goodman's n_f on Zimmerli's data, which the pass includes.
+// The helical check's fatigue line: the criterion's n_f, which the pass includes.
 std::string FatigueLine(const BoundCase& c, const HelicalSpringCheck& h) {
   const HelicalGeometry& wire = *c.spring->helical;
   if (!h.fatigue_judged) {
     return "  fatigue not judged: wire " + Fixed(wire.wire_m * 1e3, 1) +
            " mm, Zimmerli's data cover wire below " + Fixed(kZimmerliMaxWire_m * 1e3, 0) + " mm\n";
   }
-  const double n_f = h.fatigue.goodman_safety_factor;
-  return "  fatigue (Goodman, Zimmerli's data, " +
-         std::string(wire.shot_peened ? "shot-peened" : "unpeened") + ") safety factor " +
-         (std::isfinite(n_f) ? Fixed(n_f, 2) : std::string("unbounded")) + " (>= 1) -> " +
-         PassFail(h.fatigue_ok) + "\n";
+  const FatigueCheck& f = h.fatigue;
+  const std::string basis =
+      f.criterion == FatigueCriterion::kBhandari
+          ? "S'se " + Fixed(f.endurance_Pa * 1e-6, 0) + " MPa, S_sy " +
+                Fixed(f.yield_Pa * 1e-6, 0) + " MPa"
+          : std::string("Zimmerli's data, ") + (wire.shot_peened ? "shot-peened" : "unpeened");
+  const double n_f = f.safety_factor;
+  return std::string("  fatigue (") + CriterionInfo(f.criterion).title + ", " + basis +
+         ") safety factor " + (std::isfinite(n_f) ? Fixed(n_f, 2) : std::string("unbounded")) +
+         " (>= 1) -> " + PassFail(h.fatigue_ok) + "\n";
 }
 
 }  // namespace
@@ -100,7 +105,7 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
       const std::vector<Field> hf = HelicalFields(*helical);
       const auto ht = [&](const char* key) { return FieldText(FieldAt(hf, key)); };
       const auto pf = [&](const char* key) { return PassFail(FieldAt(hf, key).flag); };
-      out << "\nhelical spring (" << (helical->wahl ? "Wahl" : "Bergstrasser") << " correction "
+      out << "\nhelical spring (" << StressFactorTitle(helical->stress_factor) << " correction "
           << ht("correction_factor") << ")\n"
           << "  rate " << ht("rate_N_mm") << ", index D/d " << ht("index") << ", total coils "
           << ht("total_coils") << '\n'

@@ -220,10 +220,15 @@ struct SpringRows {
 
 SpringRows UnjudgedSpringRows(const Judging& j, const LimitRow& force) {
   SpringRows x;
-  x.fatigue = row("fatigue_safety_factor", "spring fatigue safety factor (Goodman)", "", false,
-                  j.l.fatigue_safety_factor,
-                  from(j.l.fatigue_safety_factor != j.d.fatigue_safety_factor,
-                       "fatigue_safety_factor", "Shigley 10-12: design factor 1.5"));
+  const FatigueCriterion criterion = j.c.spring && j.c.spring->helical
+                                         ? j.c.spring->helical->fatigue_criterion
+                                         : FatigueCriterion::kGoodmanZimmerli;
+  x.fatigue =
+      row("fatigue_safety_factor",
+          std::string("spring fatigue safety factor (") + CriterionInfo(criterion).title + ")", "",
+          false, j.l.fatigue_safety_factor,
+          from(j.l.fatigue_safety_factor != j.d.fatigue_safety_factor, "fatigue_safety_factor",
+               "Shigley 10-12: design factor 1.5"));
   x.gap = row("coil_gap", "coil gap at full lift", "mm", false, NAN,
               j.l.coil_gap_m ? "[limits] coil_gap_mm" : "EN 13906-1: S_a");
   // Surge by its effect, with the spring as coil masses (SurgeStudy).
@@ -246,10 +251,17 @@ SpringRows UnjudgedSpringRows(const Judging& j, const LimitRow& force) {
 void JudgeFatigueAndGap(const Judging& j, const HelicalSpringCheck& h, SpringRows& x) {
   const HelicalGeometry& wire = *j.c.spring->helical;
   if (h.fatigue_judged) {
-    judge(x.fatigue, h.fatigue.goodman_safety_factor,
+    const FatigueCheck& f = h.fatigue;
+    const std::string basis =
+        f.criterion == FatigueCriterion::kBhandari
+            ? "tau_m " + Fixed(f.stress_mean_Pa * 1e-6, 0) + " MPa (K_s), tau_a " +
+                  Fixed(f.stress_amplitude_Pa * 1e-6, 0) + " MPa (Wahl), S'se " +
+                  Fixed(f.endurance_Pa * 1e-6, 0) + " MPa, S_sy " + Fixed(f.yield_Pa * 1e-6, 0) +
+                  " MPa"
+            : std::string(wire.shot_peened ? "shot-peened" : "unpeened") + " (Zimmerli)";
+    judge(x.fatigue, f.safety_factor,
           "tau " + Fixed(h.stress_preload_Pa * 1e-6, 0) + "-" +
-              Fixed(h.stress_full_lift_Pa * 1e-6, 0) + " MPa, " +
-              (wire.shot_peened ? "shot-peened" : "unpeened") + " (Zimmerli)");
+              Fixed(h.stress_full_lift_Pa * 1e-6, 0) + " MPa, " + basis);
   } else {
     x.fatigue.note =
         "wire " + Fixed(wire.wire_m * 1e3, 1) + " mm: Zimmerli's data cover wire below 10 mm";

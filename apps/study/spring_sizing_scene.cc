@@ -40,6 +40,161 @@ BoundCase CaseWithSpring(const BoundCase& c, const SizedSpring& s, const SizingS
   return out;
 }
 
+namespace {
+
+// The valve-spring grades a rate-only spring is sized in by default (EN 10270-2).
+const char* const kValveGrades[] = {"VDC", "VDCrV", "VDSiCr"};
+
+// The default bounds of a spring the case gives by its rate alone, from the needle's diameter
+// d_n: the coil passes over the needle (ID ≥ d_n), OD ≤ 4 d_n, installed length ≤ 10 d_n
+// (Basu's examples: ID 2.4–2.6 d_n, OD 3.4–3.7 d_n, L₁ 2.5–6.8 d_n).
+constexpr double kNeedleInner = 1.0, kNeedleOuter = 4.0, kNeedleInstalled = 10.0;
+
+// The wires of the space: [sizing]'s grades or stated wire, else the case's wire or grade
+// family, else (a rate-only spring) the valve grades.
+void AddWires(const BoundCase& c, const SizingSection& z, SizingSpace& sp,
+              std::vector<std::string>& notes, const std::string& fail_where) {
+  const std::optional<HelicalGeometry>& own = c.spring->helical;
+  std::vector<std::string> grades = z.grades;
+  if (grades.empty()) {
+    if (z.tensile_Pa) {
+      grades = {"stated"};
+    } else if (own && own->grade) {
+      const std::string family = GradeData(*own->grade).standard;
+      for (WireGrade g : AllWireGrades())
+        if (GradeData(g).standard == family) grades.push_back(WireGradeName(g));
+      notes.push_back("grades " + family + " (the case's " + WireGradeName(*own->grade) + ")");
+    } else if (own) {
+      grades = {"case"};
+    } else {
+      grades.assign(std::begin(kValveGrades), std::end(kValveGrades));
+      notes.push_back(
+          "grades VDC, VDCrV, VDSiCr (default: EN 10270-2 valve spring wire; the "
+          "case's spring has no geometry)");
+    }
+  }
+  for (const std::string& name : grades) {
+    const std::optional<WireGrade> grade = ParseWireGrade(name);
+    const bool stated = name == "stated" || (name == "case" && z.tensile_Pa);
+    if (!grade && !stated && !own)
+      throw CaseError(fail_where +
+                      "grades: \"case\" needs the case's helical spring (its wire) or [sizing] "
+                      "tensile_MPa and shear_modulus_GPa");
+    const double d_ref = own ? own->wire_m : 0.0;
+    double lo = z.min_wire_m.value_or(grade ? GradeData(*grade).min_wire_m : kCaseWireLo * d_ref);
+    double hi = z.max_wire_m.value_or(grade ? GradeData(*grade).max_wire_m : kCaseWireHi * d_ref);
+    if (grade) {
+      lo = std::max(lo, GradeData(*grade).min_wire_m);
+      hi = std::min(hi, GradeData(*grade).max_wire_m);
+    }
+    if (stated && z.wire_m.empty() && !(z.min_wire_m && z.max_wire_m))
+      throw CaseError(fail_where +
+                      "wire_mm: a stated wire needs the diameters to try (wire_mm, "
+                      "or min_wire_mm and max_wire_mm)");
+    for (double d : z.wire_m.empty() ? PreferredWireDiameters(lo, hi) : z.wire_m) {
+      if (!z.wire_m.empty() && !stated && (d < lo * (1 - 1e-12) || d > hi * (1 + 1e-12))) continue;
+      SizingWire w;
+      w.wire_m = d;
+      w.density_kg_m3 = own ? own->density_kg_m3 : 7850.0;
+      if (grade) {
+        w.label = name;
+        w.grade = grade;
+        w.tensile_Pa = TensileStrengthPa(*grade, d);
+        w.shear_modulus_Pa = GradeData(*grade).shear_modulus_Pa;
+      } else {
+        w.label = stated ? "stated wire" : "case wire";
+        w.tensile_Pa = stated ? *z.tensile_Pa : own->tensile_Pa;
+        w.shear_modulus_Pa = stated ? *z.shear_modulus_Pa : own->shear_modulus_Pa;
+      }
+      sp.wires.push_back(w);
+    }
+    if (!grade && !sp.wires.empty()) {
+      const SizingWire& w = sp.wires.back();
+      notes.push_back(std::string(stated ? "the stated wire" : "the case's wire") + " (R_m " +
+                      Fixed(w.tensile_Pa * 1e-6, 0) + " MPa, G " +
+                      Fixed(w.shear_modulus_Pa * 1e-9, 1) + " GPa) at every diameter");
+    }
+  }
+  if (sp.wires.empty())
+    throw CaseError(fail_where + (z.wire_m.empty() ? "grades" : "wire_mm") +
+                    ": no wire diameter lies in the grades' tabulated ranges");
+  notes.push_back(std::to_string(sp.wires.size()) + " wires (" +
+                  (z.wire_m.empty() ? "ISO 3 R40 preferred sizes" : "[sizing] wire_mm") + ")");
+}
+
+// The diameters and lengths the spring must fit: [sizing]'s, else the case's spring's, else
+// (a rate-only spring) the needle's defaults; and the rules' settings.
+void SetBounds(const BoundCase& c, const SizingSection& z, SizeResult& r,
+               std::vector<std::string>& notes, const std::string& fail_where) {
+  SizingSpace& sp = r.space;
+  const std::optional<HelicalGeometry>& own = c.spring->helical;
+  sp.min_index = z.min_index.value_or(4.0);
+  sp.max_index = z.max_index.value_or(20.0);
+  sp.coil_step_m = z.coil_step_m;
+  notes.push_back("D/d " + Fixed(sp.min_index, 1) + "..." + Fixed(sp.max_index, 1) + ", D by " +
+                  Mm(sp.coil_step_m, 1));
+  std::optional<double> outer, inner, installed;
+  std::string from = "the case's spring";
+  if (own) {
+    outer = own->coil_m + own->wire_m;
+    inner = own->coil_m - own->wire_m;
+    const HelicalSpringCheck check = CheckHelicalSpring(*own, c.spring->preload_N, r.stroke_m,
+                                                        c.engine.speed_rpm, c.engine.cycle);
+    installed = check.length_preload_m;
+    r.case_spring_mass_kg = own->density_kg_m3 * kPi * kPi * own->wire_m * own->wire_m *
+                            own->coil_m * check.total_coils / 4.0;
+  } else if (c.needle->diameter_m) {
+    const double dn = *c.needle->diameter_m;
+    outer = kNeedleOuter * dn;
+    inner = kNeedleInner * dn;
+    installed = kNeedleInstalled * dn;
+    from = "default from the needle's " + Fixed(dn * 1e3, 1) + " mm diameter";
+  }
+  const auto bound = [&](const std::optional<double>& stated, std::optional<double> from_case,
+                         const std::string& what) -> std::optional<double> {
+    if (stated) {
+      notes.push_back(what + Mm(*stated) + " ([sizing])");
+      return stated;
+    }
+    if (from_case) notes.push_back(what + Mm(*from_case) + " (" + from + ")");
+    return from_case;
+  };
+  sp.max_outer_m = bound(z.max_outer_m, outer, "OD <= ");
+  sp.min_inner_m = bound(z.min_inner_m, inner, "ID >= ");
+  if (z.min_installed_m) {
+    sp.min_installed_m = *z.min_installed_m;
+    notes.push_back("installed length >= " + Mm(sp.min_installed_m) + " ([sizing])");
+  }
+  if (auto v = bound(z.max_installed_m, installed, "installed length <= ")) sp.max_installed_m = *v;
+  if (!sp.max_outer_m || (!z.max_installed_m && !installed))
+    throw CaseError(fail_where +
+                    (sp.max_outer_m ? "max_installed_length_mm" : "max_outer_diameter_mm") +
+                    ": the space needs a bound (the case's spring has no helical geometry and "
+                    "[needle] no diameter_mm to derive one from)");
+  sp.min_active_coils = z.min_active_coils.value_or(2.0);
+  sp.max_active_coils = z.max_active_coils.value_or(30.0);
+  sp.active_coil_step = z.active_coil_step;
+  notes.push_back(Fixed(sp.min_active_coils, 1) + "..." + Fixed(sp.max_active_coils, 1) +
+                  " active coils by " + Fixed(sp.active_coil_step, 2));
+  sp.free_length_step_m = z.free_length_step_m;
+  sp.ends = z.ends ? ParseSpringEnds(*z.ends).value_or(SpringEnds::kClosedGround)
+                   : (own ? own->ends : SpringEnds::kClosedGround);
+  sp.stress_factor = z.stress_factor.value_or(own ? own->stress_factor : sp.stress_factor);
+  sp.fatigue_criterion =
+      z.fatigue_criterion.value_or(own ? own->fatigue_criterion : sp.fatigue_criterion);
+  sp.shot_peened = own && own->shot_peened;
+  sp.allowable_fraction = z.allowable_fraction.value_or(own ? own->allowable_fraction : 0.5);
+  sp.end_fixation = z.end_fixation;
+  notes.push_back(std::string(SpringEndsName(sp.ends)) + " ends");
+  if (z.stress_factor || z.fatigue_criterion || z.allowable_fraction) {
+    notes.push_back(std::string(StressFactorTitle(sp.stress_factor)) +
+                    " factor, tau <= " + Fixed(sp.allowable_fraction, 2) + " R_m, fatigue by " +
+                    CriterionInfo(sp.fatigue_criterion).name);
+  }
+}
+
+}  // namespace
+
 SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!c.needle || !c.spring)
@@ -55,117 +210,13 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
   const double rpm = c.engine.speed_rpm;
   const EngineCycle cycle = c.engine.cycle;
   const KinematicsSummary sum = Kinematics(law, rpm).Summarize();
-  r.stroke_m = sum.max_lift_m;
+  r.stroke_m = z.stroke_m.value_or(sum.max_lift_m);
 
   // The space.
   SizingSpace& sp = r.space;
   std::vector<std::string> notes;
-  std::vector<std::string> grades = z.grades;
-  if (grades.empty()) {
-    if (own && own->grade) {
-      const std::string family = GradeData(*own->grade).standard;
-      for (WireGrade g : AllWireGrades())
-        if (GradeData(g).standard == family) grades.push_back(WireGradeName(g));
-      notes.push_back("grades " + family + " (the case's " + WireGradeName(*own->grade) + ")");
-    } else if (own) {
-      grades = {"case"};
-    } else {
-      throw CaseError(fail_where +
-                      "grades: the case's spring has no helical geometry; give the "
-                      "space ([sizing] grades, max_outer_diameter_mm, "
-                      "max_installed_length_mm)");
-    }
-  }
-  for (const std::string& name : grades) {
-    const std::optional<WireGrade> grade = ParseWireGrade(name);
-    const double d_own = own ? own->wire_m : 0.0;
-    double lo = z.min_wire_m.value_or(grade ? GradeData(*grade).min_wire_m : kCaseWireLo * d_own);
-    double hi = z.max_wire_m.value_or(grade ? GradeData(*grade).max_wire_m : kCaseWireHi * d_own);
-    if (grade) {
-      lo = std::max(lo, GradeData(*grade).min_wire_m);
-      hi = std::min(hi, GradeData(*grade).max_wire_m);
-    }
-    std::vector<double> sizes = z.wire_m.empty() ? PreferredWireDiameters(lo, hi) : z.wire_m;
-    for (double d : sizes) {
-      if (d < lo * (1 - 1e-12) || d > hi * (1 + 1e-12)) continue;
-      SizingWire w;
-      w.wire_m = d;
-      w.density_kg_m3 = own ? own->density_kg_m3 : 7850.0;
-      if (grade) {
-        w.label = name;
-        w.grade = grade;
-        w.tensile_Pa = TensileStrengthPa(*grade, d);
-        w.shear_modulus_Pa = GradeData(*grade).shear_modulus_Pa;
-      } else {
-        if (!own)
-          throw CaseError(fail_where +
-                          "grades: \"case\" needs the case's helical spring (its wire)");
-        w.label = "case wire";
-        w.tensile_Pa = own->tensile_Pa;
-        w.shear_modulus_Pa = own->shear_modulus_Pa;
-      }
-      sp.wires.push_back(w);
-    }
-    if (name == "case" && own) {
-      notes.push_back("the case's wire (R_m " + Fixed(own->tensile_Pa * 1e-6, 0) + " MPa, G " +
-                      Fixed(own->shear_modulus_Pa * 1e-9, 1) + " GPa) at every diameter");
-    }
-  }
-  if (sp.wires.empty())
-    throw CaseError(fail_where + (z.wire_m.empty() ? "grades" : "wire_mm") +
-                    ": no wire diameter lies in the grades' tabulated ranges");
-  notes.push_back(std::to_string(sp.wires.size()) + " wires (" +
-                  (z.wire_m.empty() ? "ISO 3 R40 preferred sizes" : "[sizing] wire_mm") + ")");
-  sp.min_index = z.min_index.value_or(4.0);
-  sp.max_index = z.max_index.value_or(20.0);
-  sp.coil_step_m = z.coil_step_m;
-  notes.push_back("D/d " + Fixed(sp.min_index, 1) + "..." + Fixed(sp.max_index, 1) + ", D by " +
-                  Mm(sp.coil_step_m, 1));
-  const auto bound = [&](const std::optional<double>& stated, std::optional<double> from_case,
-                         const std::string& what) -> std::optional<double> {
-    if (stated) {
-      notes.push_back(what + Mm(*stated) + " ([sizing])");
-      return stated;
-    }
-    if (from_case) notes.push_back(what + Mm(*from_case) + " (the case's spring)");
-    return from_case;
-  };
-  std::optional<double> own_outer, own_inner, own_installed;
-  HelicalSpringCheck own_check;
-  if (own) {
-    own_outer = own->coil_m + own->wire_m;
-    own_inner = own->coil_m - own->wire_m;
-    own_check = CheckHelicalSpring(*own, c.spring->preload_N, r.stroke_m, rpm, cycle);
-    own_installed = own_check.length_preload_m;
-    r.case_spring_mass_kg = c.spring->helical->density_kg_m3 * kPi * kPi * own->wire_m *
-                            own->wire_m * own->coil_m * own_check.total_coils / 4.0;
-  }
-  sp.max_outer_m = bound(z.max_outer_m, own_outer, "OD <= ");
-  sp.min_inner_m = bound(z.min_inner_m, own_inner, "ID >= ");
-  if (z.min_installed_m) {
-    sp.min_installed_m = *z.min_installed_m;
-    notes.push_back("installed length >= " + Mm(sp.min_installed_m) + " ([sizing])");
-  }
-  if (auto v = bound(z.max_installed_m, own_installed, "installed length <= ")) {
-    sp.max_installed_m = *v;
-  }
-  if (!sp.max_outer_m || (!z.max_installed_m && !own_installed))
-    throw CaseError(fail_where +
-                    (sp.max_outer_m ? "max_installed_length_mm" : "max_outer_diameter_mm") +
-                    ": the space needs a bound (the case's spring has no helical geometry)");
-  sp.min_active_coils = z.min_active_coils.value_or(2.0);
-  sp.max_active_coils = z.max_active_coils.value_or(30.0);
-  sp.active_coil_step = z.active_coil_step;
-  notes.push_back(Fixed(sp.min_active_coils, 1) + "..." + Fixed(sp.max_active_coils, 1) +
-                  " active coils by " + Fixed(sp.active_coil_step, 2));
-  sp.free_length_step_m = z.free_length_step_m;
-  sp.ends = z.ends ? ParseSpringEnds(*z.ends).value_or(SpringEnds::kClosedGround)
-                   : (own ? own->ends : SpringEnds::kClosedGround);
-  sp.wahl = own && own->wahl;
-  sp.shot_peened = own && own->shot_peened;
-  sp.allowable_fraction = own ? own->allowable_fraction : 0.5;
-  sp.end_fixation = z.end_fixation;
-  notes.push_back(std::string(SpringEndsName(sp.ends)) + " ends");
+  AddWires(c, z, sp, notes, fail_where);
+  SetBounds(c, z, r, notes, fail_where);
   for (size_t i = 0; i < notes.size(); ++i) r.space_note += (i ? "; " : "") + notes[i];
 
   // The duty: the moving mass without the spring, the preload rules.
@@ -185,6 +236,8 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
   duty.cycle = cycle;
   duty.min_fatigue_factor = c.limits.fatigue_safety_factor;
   duty.min_gap_m = c.limits.coil_gap_m;
+  if (z.open_load_N) duty.rate_N_m = (*z.open_load_N - *z.closed_load_N) / r.stroke_m;
+  if (z.rate_N_m) duty.rate_N_m = z.rate_N_m;
   const SpringParameters& spring = *c.spring;
   const double gas = c.needle->gas_force_N, m0 = r.mass_without_spring_kg;
   const std::optional<double> basu =
@@ -210,12 +263,18 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
     if (inertia > need.preload_N) need = {inertia, "inertia sizing"};
     return need;
   };
+  if (z.closed_load_N) {  // a textbook problem: P₁ is stated, not derived from the duty
+    const double p1 = *z.closed_load_N;
+    duty.preload_floor_N = p1;
+    duty.preload = [p1](double, double) { return PreloadNeed{p1, "stated closed load P1"}; };
+  }
 
   // Stage 1: the closed form.
   SizingOptions so;
-  so.objective = z.objective == "height"   ? SizingObjective::kHeight
-                 : z.objective == "stress" ? SizingObjective::kStress
-                                           : SizingObjective::kMass;
+  so.objective = z.objective == "height"     ? SizingObjective::kHeight
+                 : z.objective == "stress"   ? SizingObjective::kStress
+                 : z.objective == "diameter" ? SizingObjective::kDiameter
+                                             : SizingObjective::kMass;
   so.keep = z.candidates;
   so.front = true;
   r.closed_form = SizeSpring(sp, duty, so);

@@ -25,7 +25,7 @@ HelicalGeometry Bhandari101() {
   g.shear_modulus_Pa = 81370e6;
   g.tensile_Pa = 1090e6;
   g.ends = SpringEnds::kClosedGround;
-  g.wahl = true;
+  g.stress_factor = StressFactor::kWahl;
   g.allowable_fraction = 0.5;
   return g;
 }
@@ -33,7 +33,7 @@ HelicalGeometry Bhandari101() {
 TEST(HelicalSpringTest, ReproducesBhandariExample10_1) {
   const HelicalGeometry g = Bhandari101();
   // Wire diameter from the permissible stress: d = √(8 K P C/(π τ)), K Wahl at C = 6.
-  const double k = StressCorrection(6.0, true);
+  const double k = StressCorrection(6.0, StressFactor::kWahl);
   EXPECT_NEAR(std::sqrt(8 * k * 1250 * 6 / (kPi * 545.0)), 6.625083, 5e-7);
   // Free length = solid (Nt·d = 70) + gaps ((Nt − 1)·1 = 9) + deflection under 1250 N:
   // with no preload the spring is solid-plus-gaps at 1250 N, so the check at "preload"
@@ -51,14 +51,15 @@ TEST(HelicalSpringTest, ReproducesBhandariExample10_1) {
 
 TEST(HelicalSpringTest, CorrectionFactors) {
   // Bergsträsser (w + 0.5)/(w − 0.75) and Wahl (4w − 1)/(4w − 4) + 0.615/w at w = 6.
-  EXPECT_NEAR(StressCorrection(6.0, false), 6.5 / 5.25, 1e-15);
-  EXPECT_NEAR(StressCorrection(6.0, true), 23.0 / 20.0 + 0.615 / 6.0, 1e-15);
+  EXPECT_NEAR(StressCorrection(6.0, StressFactor::kBergstrasser), 6.5 / 5.25, 1e-15);
+  EXPECT_NEAR(StressCorrection(6.0, StressFactor::kWahl), 23.0 / 20.0 + 0.615 / 6.0, 1e-15);
   // They agree to within 2 % over the usual range 4…20 and both tend to 1.
   for (double w = 4; w <= 20; w += 0.5) {
-    EXPECT_NEAR(StressCorrection(w, false), StressCorrection(w, true),
-                0.02 * StressCorrection(w, true));
+    EXPECT_NEAR(StressCorrection(w, StressFactor::kBergstrasser),
+                StressCorrection(w, StressFactor::kWahl),
+                0.02 * StressCorrection(w, StressFactor::kWahl));
   }
-  EXPECT_NEAR(StressCorrection(1e6, false), 1.0, 1e-5);
+  EXPECT_NEAR(StressCorrection(1e6, StressFactor::kBergstrasser), 1.0, 1e-5);
 }
 
 TEST(HelicalSpringTest, SurgeFrequencyIsHalfTheSquareRootOfRateOverSpringMass) {
@@ -115,7 +116,7 @@ TEST(HelicalSpringTest, FieldsShowTheCheckInItsUnits) {
   EXPECT_NEAR(*FieldAt(f, "solid_length_mm").Shown(), 70.0, 1e-9);
   EXPECT_NEAR(*FieldAt(f, "clearance_full_lift_mm").Shown(), 9.0, 1e-6);
   EXPECT_EQ(*FieldAt(f, "stress_preload_MPa").Shown(), c.stress_preload_Pa * 1e-6);
-  EXPECT_EQ(FieldAt(f, "stress_correction").text, c.wahl ? "wahl" : "bergstrasser");
+  EXPECT_EQ(FieldAt(f, "stress_correction").text, StressFactorName(c.stress_factor));
   EXPECT_EQ(FieldAt(f, "stress_ok").flag, c.stress_ok);
   EXPECT_EQ(FieldAt(f, "pass").flag, c.pass());
   EXPECT_EQ(*FieldAt(f, "surge_hz").Shown(), c.surge_hz);

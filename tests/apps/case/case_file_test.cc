@@ -771,13 +771,32 @@ TEST(CaseFileTest, TheHelicalSpringsCorrectionAllowableFractionAndModulus) {
       ParseCase(spring + "shear_modulus_GPa = 81\n", "t.toml").spring->helical->shear_modulus_Pa,
       81e9);
   const std::string plain = kHelicalSpring + "shear_modulus_GPa = 80\ntensile_MPa = 1800\n";
-  EXPECT_FALSE(ParseCase(plain, "t.toml").spring->helical->wahl);
-  EXPECT_TRUE(ParseCase(plain + "stress_correction = \"wahl\"\n", "t.toml").spring->helical->wahl);
-  EXPECT_FALSE(
-      ParseCase(plain + "stress_correction = \"bergstrasser\"\n", "t.toml").spring->helical->wahl);
+  const auto factor = [&](const std::string& line) {
+    return ParseCase(plain + line, "t.toml").spring->helical->stress_factor;
+  };
+  EXPECT_EQ(factor(""), StressFactor::kBergstrasser);
+  EXPECT_EQ(factor("stress_correction = \"wahl\"\n"), StressFactor::kWahl);
+  EXPECT_EQ(factor("stress_correction = \"bergstrasser\"\n"), StressFactor::kBergstrasser);
+  EXPECT_EQ(factor("stress_correction = \"direct-shear\"\n"), StressFactor::kDirectShear);
   EXPECT_EQ(Error(plain + "stress_correction = \"goehner\"\n"),
-            "t.toml: [spring] stress_correction: expected \"bergstrasser\" or \"wahl\", got "
-            "\"goehner\"");
+            "t.toml: [spring] stress_correction: expected \"bergstrasser\", \"wahl\" or "
+            "\"direct-shear\", got \"goehner\"");
+  // The fatigue criterion: each name read, a typo and Bhandari on peened wire refused.
+  const auto criterion = [&](const std::string& line) {
+    return ParseCase(plain + line, "t.toml").spring->helical->fatigue_criterion;
+  };
+  EXPECT_EQ(criterion(""), FatigueCriterion::kGoodmanZimmerli);
+  for (const FatigueCriterionInfo& info : AllFatigueCriteria()) {
+    EXPECT_EQ(criterion("fatigue_criterion = \"" + std::string(info.name) + "\"\n"),
+              info.criterion);
+  }
+  EXPECT_EQ(Error(plain + "fatigue_criterion = \"goodman\"\n"),
+            "t.toml: [spring] fatigue_criterion: expected \"goodman-zimmerli\", \"gerber\", "
+            "\"asme-elliptic\", \"sines\" or \"bhandari\", got \"goodman\"");
+  EXPECT_EQ(Error(plain + "shot_peened = true\nfatigue_criterion = \"bhandari\"\n"),
+            "t.toml: [spring] fatigue_criterion: \"bhandari\" takes unpeened wire's endurance "
+            "(S'se = 0.22 S_ut); with shot_peened = true use a Zimmerli criterion "
+            "(\"goodman-zimmerli\", \"gerber\", \"asme-elliptic\" or \"sines\")");
   const auto fraction = [&](const std::string& f) {
     return ParseCase(plain + "allowable_stress_fraction = " + f + "\n", "t.toml")
         .spring->helical->allowable_fraction;

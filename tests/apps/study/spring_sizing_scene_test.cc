@@ -167,7 +167,8 @@ TEST(SpringSizingSceneTest, SizingKeysAreValidatedNamingTheKey) {
       0u);
   EXPECT_EQ(
       Refusal("objective = \"cost\"\n"),
-      "t.toml: [sizing] objective: expected \"mass\", \"height\" or \"stress\", got \"cost\"");
+      "t.toml: [sizing] objective: expected \"mass\", \"height\", \"stress\" or \"diameter\", "
+      "got \"cost\"");
 }
 
 }  // namespace
