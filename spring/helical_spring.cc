@@ -192,4 +192,19 @@ std::vector<Field> HelicalFields(const HelicalSpringCheck& h) {
   };
 }
 
+std::string SpringConventionsMarkdown() {
+  std::string md = "| key | value | equation | source |\n|---|---|---|---|\n";
+  for (const FatigueCriterionInfo& c : AllFatigueCriteria()) {
+    md += std::string("| `fatigue_criterion` | `\"") + c.name + "\"`" +
+          (c.criterion == FatigueCriterion::kGoodmanZimmerli ? " (default)" : "") + " | " +
+          c.equation + " | " + c.source + " |\n";
+  }
+  for (const NameRow<StressFactor>& row : kFactorNames) {
+    md += std::string("| `stress_correction` | `\"") + row.name + "\"`" +
+          (row.value == StressFactor::kBergstrasser ? " (default)" : "") + " | " +
+          StressFactorEquation(row.value) + " | " + StressFactorSource(row.value) + " |\n";
+  }
+  return md;
+}
+
 }  // namespace needle

@@ -84,6 +84,11 @@ FatigueCheck SpringFatigue(const HelicalGeometry& g, double index, double force_
 /// +∞ when the root is imaginary: the spring does not buckle at any deflection.
 double BucklingDeflection(const HelicalGeometry& g, double elastic_modulus_Pa, double end_fixation);
 
+/// docs/springs.md's table of the conventions a case may choose, generated here so that it
+/// cannot drift: each fatigue criterion ([spring] fatigue_criterion) and stress factor
+/// (stress_correction) with its equation and source. A test holds the docs equal to it.
+std::string SpringConventionsMarkdown();
+
 /// Checks `g` carrying `preload_N` at the seat and preload + R·max_lift at full lift.
 /// speed_rpm and `cycle` set the cam frequency. Throws std::invalid_argument when the
 /// preload already compresses the spring beyond its free length.

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "lib/units.h"
@@ -120,6 +123,24 @@ TEST(HelicalSpringTest, FieldsShowTheCheckInItsUnits) {
   EXPECT_EQ(FieldAt(f, "stress_ok").flag, c.stress_ok);
   EXPECT_EQ(FieldAt(f, "pass").flag, c.pass());
   EXPECT_EQ(*FieldAt(f, "surge_hz").Shown(), c.surge_hz);
+}
+
+// docs/springs.md carries the code's table of criteria and factors: it cannot drift. On a
+// mismatch the code's table is written to springs-table.md in the test's directory.
+TEST(HelicalSpringTest, TheDocsConventionsTableIsTheCodes) {
+  std::ifstream in(std::string(NEEDLE_SOURCE_DIR) + "/docs/springs.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string begin = "<!-- conventions: begin -->\n", end = "<!-- conventions: end -->";
+  const size_t b = doc.str().find(begin), e = doc.str().find(end);
+  ASSERT_TRUE(b != std::string::npos && e != std::string::npos);
+  const std::string table = SpringConventionsMarkdown();
+  const bool same = doc.str().substr(b + begin.size(), e - b - begin.size()) == table;
+  if (!same) std::ofstream("springs-table.md") << table;
+  EXPECT_TRUE(same) << "regenerate docs/springs.md's table from SpringConventionsMarkdown() "
+                       "(written to springs-table.md)";
+  // Five criteria and three factors, each with a source.
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 2 + 5 + 3);
 }
 
 }  // namespace

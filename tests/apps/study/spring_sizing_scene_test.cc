@@ -122,6 +122,86 @@ TEST(SpringSizingSceneTest, Example1AndTheNewEngineSizedTheSameWay) {
   }
 }
 
+// Example 2's case with its spring given by its rate alone (and `spring`'s preload line).
+std::string RateOnlyExample2(const std::string& preload = "preload_kgf = 176") {
+  std::string text = CaseText("basu-example2.toml");
+  const size_t a = text.find("[spring]"), b = text.find("\n[", a + 1);
+  return text.replace(a, b - a, "[spring]\n" + preload + "\nrate_N_mm = 46.02\n");
+}
+
+// V. B. Bhandari, Design of Machine Elements, Example 10.4 (a valve spring), as computed by its
+// public Scilab textbook companion (FOSSEE, book 764, EX10.4): 150 N with the valve closed,
+// 300 N open, 5 mm apart; ID at least 20 mm; tau at most 30 % of S_ut = 1370 MPa with Wahl's
+// factor; G = 81 370 MPa; squared and ground ends; d from 3, 4, 5 mm with D = ID + d; N rounded
+// up. Printed: d = 4 mm, D = 24 mm, N = 6.28 -> 7, Nt = 9.
+TEST(SpringSizingSceneTest, BhandariExample10_4PosedAsADesignProblem) {
+  const std::string text = RateOnlyExample2("preload_N = 150") +
+                           "\n[sizing]\nclosed_load_N = 150\nopen_load_N = 300\nstroke_mm = 5\n"
+                           "min_inner_diameter_mm = 20\nallowable_stress_fraction = 0.3\n"
+                           "tensile_MPa = 1370\nshear_modulus_GPa = 81.37\nwire_mm = [3, 4, 5]\n"
+                           "ends = \"closed-ground\"\nstress_correction = \"wahl\"\n"
+                           "objective = \"diameter\"\ncoil_step_mm = 1\nactive_coil_step = 1\n"
+                           "verify = 0\n";
+  const Case c = ParseCase(text, "bhandari.toml");
+  const SizeResult r = SizeCase(Bind(c), MakeLiftLaw(c), OneThread());
+  ASSERT_TRUE(r.pass) << r.no_fit;
+  ASSERT_FALSE(r.closed_form.best.empty());
+  const SizedSpring& s = r.closed_form.best.front();
+  EXPECT_EQ(s.geometry.wire_m, 4e-3);
+  EXPECT_EQ(s.geometry.coil_m, 24e-3);
+  EXPECT_EQ(s.geometry.active_coils, 7.0);
+  EXPECT_EQ(s.total_coils, 9.0);
+  EXPECT_EQ(s.preload_N, 150.0);
+  EXPECT_EQ(s.preload_rule, "stated closed load P1");
+  EXPECT_EQ(s.geometry.stress_factor, StressFactor::kWahl);
+  EXPECT_EQ(s.geometry.tensile_Pa, 1370e6);
+  // The book's own numbers: N = 6.28 at 30 N/mm, rounded up: the rate at most 30 N/mm.
+  const double exact_n = 81370.0 * 256.0 * 5.0 / (8.0 * 13824.0 * 150.0);
+  EXPECT_NEAR(exact_n, 6.278549, 5e-7);
+  EXPECT_LE(s.rate_N_m, 30e3);
+  // The 3 mm wire fails the book's stress rule; 5 mm fits a larger OD only.
+  EXPECT_EQ(r.stroke_m, 5e-3);
+  EXPECT_NE(r.space_note.find("the stated wire (R_m 1370 MPa, G 81.4 GPa)"), std::string::npos)
+      << r.space_note;
+  EXPECT_NE(r.space_note.find("ID >= 20.00 mm ([sizing])"), std::string::npos) << r.space_note;
+  // Without the diameter objective the lightest spring of the same rules is another one: the
+  // book's rule D = ID + d is what "diameter" poses.
+  const Case mass = ParseCase(
+      std::string(text).replace(text.find("objective = \"diameter\""), 22, "objective = \"mass\""),
+      "bhandari.toml");
+  const SizeResult m = SizeCase(Bind(mass), MakeLiftLaw(mass), OneThread());
+  ASSERT_FALSE(m.closed_form.best.empty());
+  EXPECT_LT(m.closed_form.best.front().mass_kg, s.mass_kg);
+}
+
+TEST(SpringSizingSceneTest, ARateOnlySpringIsSizedInASpaceFromTheNeedleAndSaysSo) {
+  const Case c = ParseCase(RateOnlyExample2(), "rate.toml");
+  const SizeResult r = SizeCase(Bind(c), MakeLiftLaw(c), OneThread());
+  ASSERT_TRUE(r.space.max_outer_m && r.space.min_inner_m);
+  EXPECT_NEAR(*r.space.max_outer_m, 4 * 12.8e-3, 1e-15);
+  EXPECT_NEAR(*r.space.min_inner_m, 12.8e-3, 1e-15);
+  EXPECT_NEAR(r.space.max_installed_m, 10 * 12.8e-3, 1e-15);
+  EXPECT_NE(r.space_note.find("OD <= 51.20 mm (default from the needle's 12.8 mm diameter)"),
+            std::string::npos)
+      << r.space_note;
+  EXPECT_NE(r.space_note.find("grades VDC, VDCrV, VDSiCr (default: EN 10270-2 valve spring wire"),
+            std::string::npos)
+      << r.space_note;
+  EXPECT_TRUE(r.pass || !r.no_fit.empty());
+  // Without a needle diameter there is nothing to derive it from: the key to give is named.
+  std::string text = RateOnlyExample2();
+  text.replace(text.find("diameter_mm = 12.8"), 18, "gas_force_N = 400");
+  const Case bare = ParseCase(text, "bare.toml");
+  try {
+    (void)SizeCase(Bind(bare), MakeLiftLaw(bare), OneThread());
+    FAIL() << "expected a refusal";
+  } catch (const CaseError& e) {
+    EXPECT_STREQ(e.what(),
+                 "bare.toml: [sizing] max_outer_diameter_mm: the space needs a bound (the case's "
+                 "spring has no helical geometry and [needle] no diameter_mm to derive one from)");
+  }
+}
+
 std::string Refusal(const std::string& sizing) {
   const std::string text = CaseText("basu-example2.toml") + "\n[sizing]\n" + sizing;
   try {
@@ -165,6 +245,24 @@ TEST(SpringSizingSceneTest, SizingKeysAreValidatedNamingTheKey) {
                  "space (",
                  0),
       0u);
+  EXPECT_EQ(Refusal("open_load_N = 300\n"),
+            "t.toml: [sizing] open_load_N: needs closed_load_N (P1 at the installed length)");
+  EXPECT_EQ(Refusal("closed_load_N = 300\nopen_load_N = 200\n"),
+            "t.toml: [sizing] open_load_N: must be above closed_load_N (300 N): the spring is "
+            "compressed further when open");
+  EXPECT_EQ(Refusal("closed_load_N = 150\nopen_load_N = 300\nrate_N_mm = 30\n"),
+            "t.toml: [sizing] open_load_N: give the open load or the rate, not both (the load "
+            "pair sets the rate)");
+  EXPECT_EQ(Refusal("tensile_MPa = 1370\n"),
+            "t.toml: [sizing] tensile_MPa: a stated wire needs both tensile_MPa and "
+            "shear_modulus_GPa");
+  EXPECT_EQ(Refusal("tensile_MPa = 1370\nshear_modulus_GPa = 81\n"),
+            "t.toml: [sizing] wire_mm: a stated wire needs the diameters to try (wire_mm, or "
+            "min_wire_mm and max_wire_mm)");
+  EXPECT_EQ(Refusal("stroke_mm = -5\n"), "t.toml: [sizing] stroke_mm: must be positive, got -5 mm");
+  EXPECT_EQ(Refusal("fatigue_criterion = \"soderberg\"\n"),
+            "t.toml: [sizing] fatigue_criterion: expected \"goodman-zimmerli\", \"gerber\", "
+            "\"asme-elliptic\", \"sines\" or \"bhandari\", got \"soderberg\"");
   EXPECT_EQ(
       Refusal("objective = \"cost\"\n"),
       "t.toml: [sizing] objective: expected \"mass\", \"height\", \"stress\" or \"diameter\", "
