@@ -31,6 +31,16 @@ SizingRule FatigueRule(const FatigueCheck& f, const SizingDuty& duty, const std:
               "", f.safety_factor, std::max(1.0, duty.min_fatigue_factor), false);
 }
 
+// L₀ = L₁ + P₀/k (the preload's deflection), rounded up to the space's free-length step.
+double FreeLength(const SizingSpace& space, double installed_m, double preload_deflection_m) {
+  const double free = installed_m + preload_deflection_m;
+  if (!(space.free_length_step_m > 0.0)) return free;
+  // Whole nanometres, so that the written free length is the step's decimal.
+  return std::round(std::ceil(free / space.free_length_step_m - 1e-9) * space.free_length_step_m *
+                    1e9) /
+         1e9;
+}
+
 // The check's own lengths, coil counts, S_a and surge of `g` (its free length aside): a probe
 // with a free length no preload reaches.
 HelicalSpringCheck Probe(HelicalGeometry g, double stroke_m, double speed_rpm, EngineCycle cycle) {
@@ -81,14 +91,19 @@ struct Group {
 };
 
 // The coil counts of (wire, D): the space's; with a stated rate k, the fewest on the space's
-// steps whose rate G d⁴/(8 D³ n) is at most k (the textbooks round n up), none past the range.
+// steps whose rate G d⁴/(8 D³ n) is at most k (the textbooks round n up), within one step of
+// the exact count: none when that count lies outside the space's range (far too soft a spring
+// at its fewest coils is not the stated one).
 std::vector<double> GroupCoils(const SizingSpace& space, const SizingDuty& duty,
                                const std::vector<double>& coils, int wire, double coil_m) {
   if (!duty.rate_N_m) return coils;
   HelicalGeometry one = CandidateGeometry(space, wire, coil_m, 1.0);
   const double needed = HelicalRate(one) / *duty.rate_N_m;  // n at exactly the rate
   for (double n : coils) {
-    if (n >= needed * (1.0 - 1e-12)) return {n};
+    if (n >= needed * (1.0 - 1e-12)) {
+      if (n - space.active_coil_step >= needed * (1.0 + 1e-12)) return {};  // below the range
+      return {n};
+    }
   }
   return {};
 }
@@ -172,7 +187,9 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
   s.total_coils = probe.total_coils;
   s.mass_kg = CoilMassKg(g, s.total_coils);
   s.objective = s.mass_kg;
-  const double h = duty.stroke_m;
+  double h = duty.stroke_m;
+  if (duty.closed_load_N && duty.open_load_N)  // judged at P₂, as the books judge a design
+    h = std::max(h, (*duty.open_load_N - *duty.closed_load_N) / s.rate_N_m);
   const double gap = duty.min_gap_m ? *duty.min_gap_m : probe.min_clearance_m;
   const std::string gap_name =
       duty.min_gap_m ? "coil gap at full lift (stated)" : "coil gap at full lift (S_a, EN 13906-1)";
@@ -212,16 +229,16 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
   const PreloadNeed p = duty.preload(s.rate_N_m, s.active_mass_kg);
   s.preload_N = std::ceil(p.preload_N * 10.0 - 1e-9) / 10.0;  // up to 0.1 N, as written
   s.preload_rule = p.rule;
-  double installed = std::max(space.min_installed_m, need + kLengthSlack_m);
-  double free = installed + s.preload_N / s.rate_N_m;
-  if (space.free_length_step_m > 0.0) {
-    // Whole nanometres, so that the written free length is the step's decimal.
-    free = std::round(std::ceil(free / space.free_length_step_m - 1e-9) * space.free_length_step_m *
-                      1e9) /
-           1e9;
-  }
-  g.free_length_m = free;
-  s.installed_m = free - s.preload_N / s.rate_N_m;
+  if (p.required_N && done(Rule("preload", "stated preload against the duty's " + p.required_rule,
+                                "N", s.preload_N, *p.required_N, false)))
+    return s;
+  if (duty.closed_load_N && duty.open_load_N &&
+      done(Rule("open_load", "force after the stroke P1 + k h (judged at the stated P2)", "N",
+                s.preload_N + s.rate_N_m * duty.stroke_m, *duty.open_load_N, true)))
+    return s;
+  g.free_length_m = FreeLength(space, std::max(space.min_installed_m, need + kLengthSlack_m),
+                               s.preload_N / s.rate_N_m);
+  s.installed_m = g.free_length_m - s.preload_N / s.rate_N_m;
   if (objective == SizingObjective::kHeight) s.objective = s.installed_m;
   if (objective == SizingObjective::kDiameter) s.objective = (g.coil_m + g.wire_m) * 1e3;
   if (s.installed_m > space.max_installed_m && need <= space.max_installed_m) {
@@ -276,7 +293,10 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
       if (!(gr.coil_m > d)) continue;
       gr.coils = GroupCoils(space, duty, coils, wi, gr.coil_m);
       r.candidates += static_cast<long>(gr.coils.size());
-      if (gr.coils.empty()) continue;
+      if (gr.coils.empty()) {
+        ++r.rate_misses;
+        continue;
+      }
       gr.bound = GroupBound(space, duty, objective, gr);
       groups.push_back(gr);
     }
@@ -363,7 +383,7 @@ std::vector<SizedSpring> MassFatigueFront(const std::vector<SizedSpring>& spring
   std::vector<SizedSpring> front;
   double best = -INFINITY;
   for (const SizedSpring& s : sorted) {
-    if (!s.check) continue;
+    if (!s.check || !s.check->fatigue_judged) continue;  // no factor to trade against
     const double f = s.check->fatigue.safety_factor;
     if (f > best) {
       front.push_back(s);
@@ -399,7 +419,10 @@ std::vector<Field> SizedSpringFields(const SizedSpring& s, const SizingSpace& sp
                           {"mass", kKg, s.mass_kg, 3},
                           FlagField("pass", s.pass)};
   if (s.check) {
-    f.push_back({"fatigue_safety_factor", kNone, FiniteOrNone(s.check->fatigue.safety_factor), 2});
+    // None where the criterion does not judge the wire (Zimmerli's data: below 10 mm).
+    f.push_back(
+        {"fatigue_safety_factor", kNone,
+         s.check->fatigue_judged ? FiniteOrNone(s.check->fatigue.safety_factor) : std::nullopt, 2});
   }
   return f;
 }

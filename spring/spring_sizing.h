@@ -79,6 +79,10 @@ struct SizingSpace {
 struct PreloadNeed {
   double preload_N = 0.0;
   std::string rule;
+  /// When the preload is stated (a textbook's P₁): the least the duty's own rules ask, and that
+  /// rule; the sizing judges the stated preload against it.
+  std::optional<double> required_N;
+  std::string required_rule;
 };
 
 /// What the spring must do.
@@ -97,6 +101,10 @@ struct SizingDuty {
   /// A stated rate, N/m: each (wire, D) takes the fewest coils on the space's steps whose rate
   /// is at most this (a textbook design's P₁ → P₂ over the stroke); absent: every count.
   std::optional<double> rate_N_m;
+  /// A textbook's load pair (both or neither): the spring is judged deflected to P₂, by
+  /// max(stroke, (P₂ − P₁)/k), where its rounded rate reaches less over the stroke; P₁ is the
+  /// preload `preload` returns.
+  std::optional<double> closed_load_N, open_load_N;
   std::optional<double> min_gap_m;          ///< gap at full lift at least; absent: S_a
   double min_surge_ratio = kMinSurgeRatio;  ///< f_e/f_cam at least
   bool buckling = true;                     ///< judge buckling
@@ -153,8 +161,10 @@ struct SizingResult {
   std::vector<SizedSpring> best;  ///< passing, best first, one per (wire, D); at most keep
   long candidates = 0;            ///< springs in the space (wire × D × n)
   long groups = 0;                ///< (wire, D) groups
-  long evaluated = 0;             ///< springs the rules were evaluated on
-  long passed = 0;                ///< of those, springs that passed every rule
+  /// (wire, D) groups left out because no coil count of the space gives the stated rate.
+  long rate_misses = 0;
+  long evaluated = 0;  ///< springs the rules were evaluated on
+  long passed = 0;     ///< of those, springs that passed every rule
   /// When nothing passes: the candidate whose worst rule fails least (evaluated fully), and
   /// that rule; absent when the space is empty.
   std::optional<SizedSpring> closest;
@@ -177,7 +187,8 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
                         const SizingOptions& options = {});
 
 /// Springs of `springs` on the front between mass and fatigue safety factor: none lighter has
-/// a factor as high. Lightest first.
+/// a factor as high. Lightest first; springs whose fatigue is not judged (Zimmerli's data:
+/// wire of 10 mm or more) have no factor and are left out.
 std::vector<SizedSpring> MassFatigueFront(const std::vector<SizedSpring>& springs);
 
 }  // namespace needle

@@ -184,6 +184,11 @@ FatigueCheck CheckFatigue(FatigueCriterion criterion, double stress_mean_Pa,
     f.yield_Pa = b.yield * tensile_Pa;
     f.strength = {half, half};
     f.endurance_Pa = 2.0 * half;
+    if (!(stress_amplitude_Pa > 0.0) && !(stress_mean_Pa > 0.0)) {  // no stress at all
+      f.limit_Pa = f.endurance_Pa;
+      f.safety_factor = INFINITY;
+      return f;
+    }
     // 1/n = (τ_a (S_sy − S'se/2)/(S'se/2) + τ_m) / S_sy
     f.safety_factor =
         f.yield_Pa / (stress_amplitude_Pa * (f.yield_Pa - half) / half + stress_mean_Pa);

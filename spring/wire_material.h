@@ -103,7 +103,8 @@ struct BhandariFractions {
 BhandariFractions BhandariFractionsFor(std::optional<WireGrade> grade);
 
 /// Shigley's torsional yield for the ASME-elliptic line, S_sy = 0.45 S_ut (Table 10-6: music
-/// wire and cold-drawn carbon steel, set not removed; the lowest of its spring steels).
+/// wire and cold-drawn carbon steel, set not removed; its hardened and tempered steels, the VD
+/// grades' kind, have 50 %, so 0.45 is on the safe side for them; stainless 35 % is not covered).
 constexpr double kAsmeYieldFraction = 0.45;
 
 /// The fatigue check of a stress cycle: its mean τ_m and amplitude τ_a (corrected shear
@@ -121,10 +122,11 @@ struct FatigueCheck {
   double safety_factor = 0.0;  ///< n_f: the verdict's number
 };
 
-/// The check of a cycle of mean τ_m ≥ τ_a ≥ 0 for a wire of tensile strength `tensile_Pa` by
-/// `criterion`; `grade` picks Bhandari's fractions. On a Zimmerli line: +∞ when τ_a = 0 (no
-/// alternating stress), 0 when the wire is weaker than Zimmerli's mean strength (no endurance
-/// at all). Bhandari's line holds at τ_a = 0 too (S_sy/τ_m).
+/// The check of a cycle of mean τ_m ≥ 0 and amplitude τ_a ≥ 0 (τ_m ≥ τ_a on one stress factor;
+/// Bhandari's K_s/Wahl split may break that near zero preload) for a wire of tensile strength
+/// `tensile_Pa` by `criterion`; `grade` picks Bhandari's fractions. On a Zimmerli line: +∞ when τ_a
+/// = 0 (no alternating stress), 0 when the wire is weaker than Zimmerli's mean strength (no
+/// endurance at all). Bhandari's line holds at τ_a = 0 too (S_sy/τ_m).
 FatigueCheck CheckFatigue(FatigueCriterion criterion, double stress_mean_Pa,
                           double stress_amplitude_Pa, double tensile_Pa, bool shot_peened,
                           std::optional<WireGrade> grade = std::nullopt);

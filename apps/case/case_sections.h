@@ -96,8 +96,8 @@ struct LimitsSection {
   std::optional<double> contact_length_m;  ///< the roller's width in contact (needs [profile])
   double elastic_modulus_Pa = 210e9;       ///< E of cam and roller (steel)
   double poisson = 0.3;                    ///< ν (steel)
-  /// Least Goodman–Zimmerli fatigue safety factor of the spring: the design factor of
-  /// Shigley's fatigue-design example (§10-12), 1.5.
+  /// Least fatigue safety factor of the spring by its criterion ([spring] fatigue_criterion):
+  /// the design factor of Shigley's fatigue-design example (§10-12), 1.5.
   double fatigue_safety_factor = 1.5;
   /// Least coil gap at full lift, m; absent: EN 13906-1's S_a of the spring.
   std::optional<double> coil_gap_m;

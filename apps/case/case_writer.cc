@@ -115,6 +115,15 @@ std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& la
   return c.str();
 }
 
+// A length in mm as written: whole nanometres when that reads back to the same metres (a
+// stated 13 mm wire is 13, not 13.000000000000002), else the exact digits.
+namespace {
+std::string Millimetres(double m) {
+  const double mm = std::round(m * 1e9) / 1e6;
+  return ToSi(Dimension::kLength, "mm", mm) == m ? Exact(mm) : Exact(m * 1e3);
+}
+}  // namespace
+
 std::string SizedCaseText(const std::string& original, double needle_mass_kg, const SizedSpring& s,
                           const SizingSpace& space) {
   const HelicalGeometry& g = s.geometry;
@@ -123,8 +132,8 @@ std::string SizedCaseText(const std::string& original, double needle_mass_kg, co
   keys << "# sized by `needle size` (" << w.label << "): the spring's lines below replace "
        << "the case's\n";
   keys << "preload_N = " << Fixed(s.preload_N, 1) << '\n';
-  keys << "wire_mm = " << Exact(g.wire_m * 1e3) << '\n';
-  keys << "coil_mm = " << Exact(g.coil_m * 1e3) << '\n';
+  keys << "wire_mm = " << Millimetres(g.wire_m) << '\n';
+  keys << "coil_mm = " << Millimetres(g.coil_m) << '\n';
   keys << "active_coils = " << Exact(g.active_coils) << '\n';
   // Up to the next 1e-6 mm: the installed length never shorter than sized
   // (less 1e-12 m of round-off: the sized L₁ has 1e-9 m to spare, kLengthSlack_m)

@@ -42,6 +42,9 @@ class SectionReader {
 
   bool present() const { return table_ != nullptr; }
 
+  // Whether the section has the plain key `name` (read or not).
+  bool Has(const std::string& name) const { return table_ && table_->contains(name); }
+
   [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
     std::string where = file_ + ": ";
     if (!section_.empty()) where += "[" + section_ + "] ";

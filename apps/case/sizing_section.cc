@@ -34,6 +34,8 @@ void ReadDesignProblem(SectionReader& r, SizingSection& s) {
   s.open_load_N = PositiveQuantity(r, "open_load", Dimension::kForce, 1.0, "N");
   const std::string open_key = s.open_load_N ? r.last_key() : "open_load_N";
   s.rate_N_m = PositiveQuantity(r, "rate", Dimension::kStiffness, 1e-3, "N/mm");
+  if (s.closed_load_N && !s.open_load_N && !s.rate_N_m)
+    r.Fail(closed_key, "needs open_load_N or rate_N_mm (P1 -> P2 over the stroke sets the rate)");
   if (s.open_load_N && !s.closed_load_N)
     r.Fail(open_key, "needs closed_load_N (P1 at the installed length)");
   if (s.open_load_N && s.rate_N_m)
@@ -45,6 +47,13 @@ void ReadDesignProblem(SectionReader& r, SizingSection& s) {
   s.tensile_Pa = PositiveQuantity(r, "tensile", Dimension::kPressure, 1e-6, "MPa");
   const std::string tensile_key = s.tensile_Pa ? r.last_key() : "tensile_MPa";
   s.shear_modulus_Pa = PositiveQuantity(r, "shear_modulus", Dimension::kPressure, 1e-9, "GPa");
+  for (const std::string& g : s.grades) {
+    if (s.tensile_Pa && g != "case")
+      r.Fail(tensile_key,
+             "a stated wire is a wire of its own; leave grades out (or give "
+             "[\"case\"]) to size in it, not with grade \"" +
+                 g + "\"");
+  }
   if (s.tensile_Pa.has_value() != s.shear_modulus_Pa.has_value())
     r.Fail(s.tensile_Pa ? tensile_key : r.last_key(),
            "a stated wire needs both tensile_MPa and shear_modulus_GPa");

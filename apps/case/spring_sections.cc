@@ -166,6 +166,16 @@ SpringSection ReadSpring(SectionReader r) {
     }
     sp.helical = ReadHelical(r);
   }
+  if (!sp.helical) {
+    // The helical check's keys without its geometry: say what they need, not "unknown key".
+    for (const char* key : {"fatigue_criterion", "stress_correction", "ends", "grade",
+                            "shot_peened", "allowable_stress_fraction", "active_coils"}) {
+      if (r.Has(key))
+        r.Fail(key,
+               "needs the helical geometry (wire_mm, coil_mm, active_coils, free_length_mm "
+               "…): it is a setting of the helical spring check");
+    }
+  }
   if (!sp.rate_N_m && !sp.helical) {
     r.Fail("rate", "missing; give rate_N_mm (or rate_N_m, rate_kgf_mm …) or the helical geometry");
   }

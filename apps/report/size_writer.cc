@@ -24,7 +24,8 @@ std::string SpringLine(const SizedSpring& s, const SizingSpace& space) {
   return space.wires[s.wire_index].label + " d " + TextAt(f, "wire_mm") + ", D " +
          TextAt(f, "coil_mm") + ", " + TextAt(f, "active_coils") + " active coils, " +
          TextAt(f, "mass_kg") + ", n_f " +
-         (s.check ? Fixed(s.check->fatigue.safety_factor, 2) : std::string("-"));
+         (s.check && s.check->fatigue_judged ? Fixed(s.check->fatigue.safety_factor, 2)
+                                             : std::string("not judged"));
 }
 
 // "  NAME: VALUE <= LIMIT, margin M, VERDICT" (an infinite value: buckling's imaginary root).
@@ -48,6 +49,7 @@ nlohmann::json SizeJson(const BoundCase& c, const SizeResult& r, const SizedSpri
        {"mass_without_spring_source", r.mass_note},
        {"pass", r.pass}};
   PutFields(j, {{"stroke", display::kMm, r.stroke_m}});
+  if (!r.stroke_note.empty()) j["stroke_source"] = r.stroke_note;
   if (!r.stages.empty()) j["stages"] = RecordList(r.stages, SizeStageFields);
   j["no_fit"] = r.no_fit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.no_fit);
   j["spring"] = chosen ? SpringJson(*chosen, sp) : nullptr;
@@ -84,6 +86,7 @@ std::string SizeText(const BoundCase& c, const SizeResult& r, const SizedSpring*
   if (!c.title.empty()) t << c.title << '\n';
   t << "space: " << r.space_note << "; objective: least " << r.objective << '\n';
   t << "duty: stroke " << FieldText({"stroke", display::kMm, r.stroke_m, 3})
+    << (r.stroke_note.empty() ? "" : " (" + r.stroke_note + ")")
     << "; moving mass without the spring " << Fixed(r.mass_without_spring_kg, 4) << " kg ("
     << r.mass_note << ")\n";
   for (const SizeStage& s : r.stages) {

@@ -118,7 +118,10 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
           << pf("clearance_ok") << '\n'
           << "  surge " << ht("surge_hz") << ", cam " << ht("cam_hz") << ", ratio "
           << ht("surge_ratio") << " (>= 13) -> " << pf("surge_ok") << '\n'
-          << FatigueLine(c, *helical);
+          << FatigueLine(c, *helical) << "  sources: " << StressFactorTitle(helical->stress_factor)
+          << " correction, " << StressFactorSource(helical->stress_factor) << "; "
+          << CriterionInfo(helical->fatigue.criterion).title << " fatigue, "
+          << CriterionInfo(helical->fatigue.criterion).source << '\n';
     }
     out << "\nspring check: " << (ok ? "pass" : "FAIL") << '\n';
     for (const std::string& f : check.failures) out << "  fails: " << f << '\n';

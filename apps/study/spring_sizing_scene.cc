@@ -92,7 +92,13 @@ void AddWires(const BoundCase& c, const SizingSection& z, SizingSpace& sp,
                       "wire_mm: a stated wire needs the diameters to try (wire_mm, "
                       "or min_wire_mm and max_wire_mm)");
     for (double d : z.wire_m.empty() ? PreferredWireDiameters(lo, hi) : z.wire_m) {
-      if (!z.wire_m.empty() && !stated && (d < lo * (1 - 1e-12) || d > hi * (1 + 1e-12))) continue;
+      if (stated) {
+        if (d < z.min_wire_m.value_or(0.0) * (1 - 1e-12) ||
+            d > z.max_wire_m.value_or(INFINITY) * (1 + 1e-12))
+          continue;
+      } else if (!z.wire_m.empty() && (d < lo * (1 - 1e-12) || d > hi * (1 + 1e-12))) {
+        continue;
+      }
       SizingWire w;
       w.wire_m = d;
       w.density_kg_m3 = own ? own->density_kg_m3 : 7850.0;
@@ -108,11 +114,12 @@ void AddWires(const BoundCase& c, const SizingSection& z, SizingSpace& sp,
       }
       sp.wires.push_back(w);
     }
-    if (!grade && !sp.wires.empty()) {
-      const SizingWire& w = sp.wires.back();
+    if (!grade) {
+      const double rm = stated ? *z.tensile_Pa : own->tensile_Pa;
+      const double shear = stated ? *z.shear_modulus_Pa : own->shear_modulus_Pa;
       notes.push_back(std::string(stated ? "the stated wire" : "the case's wire") + " (R_m " +
-                      Fixed(w.tensile_Pa * 1e-6, 0) + " MPa, G " +
-                      Fixed(w.shear_modulus_Pa * 1e-9, 1) + " GPa) at every diameter");
+                      Fixed(rm * 1e-6, 0) + " MPa, G " + Fixed(shear * 1e-9, 1) +
+                      " GPa) at every diameter");
     }
   }
   if (sp.wires.empty())
@@ -143,7 +150,7 @@ void SetBounds(const BoundCase& c, const SizingSection& z, SizeResult& r,
     installed = check.length_preload_m;
     r.case_spring_mass_kg = own->density_kg_m3 * kPi * kPi * own->wire_m * own->wire_m *
                             own->coil_m * check.total_coils / 4.0;
-  } else if (c.needle->diameter_m) {
+  } else if (c.needle->diameter_m && !z.max_outer_m && !z.min_inner_m && !z.max_installed_m) {
     const double dn = *c.needle->diameter_m;
     outer = kNeedleOuter * dn;
     inner = kNeedleInner * dn;
@@ -183,12 +190,16 @@ void SetBounds(const BoundCase& c, const SizingSection& z, SizeResult& r,
   sp.fatigue_criterion =
       z.fatigue_criterion.value_or(own ? own->fatigue_criterion : sp.fatigue_criterion);
   sp.shot_peened = own && own->shot_peened;
+  if (sp.shot_peened && sp.fatigue_criterion == FatigueCriterion::kBhandari)
+    throw CaseError(fail_where +
+                    "fatigue_criterion: \"bhandari\" takes unpeened wire's endurance (S'se = "
+                    "0.22 S_ut) and the case's spring is shot-peened; use a Zimmerli criterion");
   sp.allowable_fraction = z.allowable_fraction.value_or(own ? own->allowable_fraction : 0.5);
   sp.end_fixation = z.end_fixation;
   notes.push_back(std::string(SpringEndsName(sp.ends)) + " ends");
   if (z.stress_factor || z.fatigue_criterion || z.allowable_fraction) {
-    notes.push_back(std::string(StressFactorTitle(sp.stress_factor)) +
-                    " factor, tau <= " + Fixed(sp.allowable_fraction, 2) + " R_m, fatigue by " +
+    notes.push_back(std::string("stress_correction ") + StressFactorName(sp.stress_factor) +
+                    ", tau <= " + Fixed(sp.allowable_fraction, 2) + " R_m, fatigue_criterion " +
                     CriterionInfo(sp.fatigue_criterion).name);
   }
 }
@@ -211,6 +222,15 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
   const EngineCycle cycle = c.engine.cycle;
   const KinematicsSummary sum = Kinematics(law, rpm).Summarize();
   r.stroke_m = z.stroke_m.value_or(sum.max_lift_m);
+  // 1 % below the lift passes: a table's stated peak may sit a spline's overshoot under it.
+  if (z.stroke_m && *z.stroke_m < 0.99 * sum.max_lift_m)
+    throw CaseError(fail_where + "stroke_mm: " + Fixed(*z.stroke_m * 1e3, 3) +
+                    " mm is below the lift's largest, " + Fixed(sum.max_lift_m * 1e3, 3) +
+                    " mm, which `needle check` of the sized case judges; give at least that");
+  if (z.stroke_m) {
+    r.stroke_note = "[sizing] stroke_mm; the case's lift peaks at " + Mm(sum.max_lift_m, 3) +
+                    ", which `needle check` of the sized case judges";
+  }
 
   // The space.
   SizingSpace& sp = r.space;
@@ -263,10 +283,15 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
     if (inertia > need.preload_N) need = {inertia, "inertia sizing"};
     return need;
   };
-  if (z.closed_load_N) {  // a textbook problem: P₁ is stated, not derived from the duty
+  if (z.closed_load_N) {  // a textbook problem: P₁ is stated, and judged against the duty's
     const double p1 = *z.closed_load_N;
     duty.preload_floor_N = p1;
-    duty.preload = [p1](double, double) { return PreloadNeed{p1, "stated closed load P1"}; };
+    duty.closed_load_N = p1;
+    duty.open_load_N = z.open_load_N;
+    duty.preload = [p1, need = duty.preload](double rate, double spring_mass) {
+      const PreloadNeed duty_need = need(rate, spring_mass);
+      return PreloadNeed{p1, "stated closed load P1", duty_need.preload_N, duty_need.rule};
+    };
   }
 
   // Stage 1: the closed form.
@@ -278,6 +303,13 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
   so.keep = z.candidates;
   so.front = true;
   r.closed_form = SizeSpring(sp, duty, so);
+  if (r.closed_form.groups == 0 && r.closed_form.rate_misses > 0)
+    throw CaseError(fail_where + (z.open_load_N ? "open_load_N" : "rate_N_mm") +
+                    ": no (wire, D) of the space reaches the rate " +
+                    Fixed(*duty.rate_N_m * 1e-3, 2) + " N/mm with " +
+                    Fixed(sp.min_active_coils, 1) + "..." + Fixed(sp.max_active_coils, 1) +
+                    " active coils (" + std::to_string(r.closed_form.rate_misses) +
+                    " pairs tried); widen min_/max_active_coils or the wires");
   if (r.closed_form.groups == 0)
     throw CaseError(fail_where +
                     "max_outer_diameter_mm: no coil diameter of any wire fits the "

@@ -54,9 +54,10 @@ std::vector<Field> SizeStageFields(const SizeStage& stage);
 
 struct SizeResult {
   SizingSpace space;
-  std::string space_note;  ///< the space in words, with where each bound came from
-  std::string objective;   ///< "mass", "height", "stress"
-  double stroke_m = 0.0;   ///< h
+  std::string space_note;   ///< the space in words, with where each bound came from
+  std::string objective;    ///< "mass", "height", "stress"
+  double stroke_m = 0.0;    ///< h
+  std::string stroke_note;  ///< where h came from when [sizing] states it (empty: the lift)
   double mass_without_spring_kg = 0.0;
   std::string mass_note;  ///< where m₀ came from
   SizingResult closed_form;

@@ -221,6 +221,52 @@ TEST(NeedleCliSpringTest, SpringJsonHasTheDocumentedKeys) {
   EXPECT_TRUE(j["helical"]["pass"].get<bool>());
 }
 
+// The spring's fatigue criterion and its source in every format `spring` writes, and in
+// `check`'s limits row: Example 2's spring judged by Bhandari's line.
+TEST(NeedleCliSpringTest, SpringAndCheckNameTheFatigueCriterionAndItsSource) {
+  std::ifstream in(Case("basu-example2.toml"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("ends = \"closed-ground\""), 22,
+               "ends = \"closed-ground\"\nfatigue_criterion = \"bhandari\"");
+  const std::string path = testing::TempPath("bhandari-ex2.toml");
+  std::ofstream(path) << text;
+  const auto t = RunNeedle("spring " + path);
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_NE(t.out.find("  fatigue (Bhandari, S'se 352 MPa, S_sy 720 MPa) safety factor "),
+            std::string::npos)
+      << t.out;
+  EXPECT_NE(t.out.find("Bhandari fatigue, V. B. Bhandari, Design of Machine Elements, ch. 10"),
+            std::string::npos);
+  const auto j = RunNeedle("spring " + path + " --json");
+  ASSERT_EQ(j.status, 0) << j.err;
+  const auto helical = nlohmann::json::parse(j.out)["helical"];
+  EXPECT_EQ(helical["fatigue_criterion"], "bhandari");
+  EXPECT_EQ(helical["stress_correction"], "bergstrasser");
+  EXPECT_EQ(helical["fatigue_source"],
+            "V. B. Bhandari, Design of Machine Elements, ch. 10, Ex. 10.13");
+  const double n_f = helical["fatigue_safety_factor"].get<double>();
+  EXPECT_LT(n_f, 1.46);  // below the default Goodman-Zimmerli factor of the same spring
+  const auto m = RunNeedle("spring " + path + " --format markdown");
+  ASSERT_EQ(m.status, 0) << m.err;
+  EXPECT_NE(m.out.find("| fatigue_criterion | bhandari |"), std::string::npos) << m.out;
+  const std::string out = testing::TempPath("bh-check");
+  const auto c = RunNeedle("check " + path + " --json --out " + out);
+  const auto limits = nlohmann::json::parse(c.out)["limits"];
+  bool found = false;
+  for (const auto& row : limits) {
+    if (row["name"] == "fatigue_safety_factor") {
+      EXPECT_NE(row["note"].get<std::string>().find("(Wahl), S'se 352 MPa, S_sy 720 MPa"),
+                std::string::npos)
+          << row["note"];
+      EXPECT_NEAR(row["value"].get<double>(), n_f, 1e-9);
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found) << c.out;
+  const auto ct = RunNeedle("check " + path + " --out " + out);
+  EXPECT_NE(ct.out.find("spring fatigue safety factor (Bhandari)"), std::string::npos) << ct.out;
+}
+
 TEST(NeedleCliSpringTest, AWeakSpringFailsWithExitOne) {
   // Example 2's spring at 3000 rpm: the needle would need far more preload.
   const auto r = RunNeedle("spring " + Case("basu-example2.toml") + " --rpm 3000");

@@ -139,8 +139,8 @@ std::vector<std::tuple<int, double, double>> Keys(const SizingResult& r) {
 TEST(SpringSizingTest, TheSearchFindsTheExhaustiveSearchsAnswer) {
   const SizingSpace space = SmallSpace();
   const SizingDuty duty = ValveDuty();
-  for (SizingObjective objective :
-       {SizingObjective::kMass, SizingObjective::kHeight, SizingObjective::kStress}) {
+  for (SizingObjective objective : {SizingObjective::kMass, SizingObjective::kHeight,
+                                    SizingObjective::kStress, SizingObjective::kDiameter}) {
     SizingOptions o;
     o.objective = objective;
     o.keep = 5;

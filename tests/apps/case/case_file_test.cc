@@ -781,6 +781,11 @@ TEST(CaseFileTest, TheHelicalSpringsCorrectionAllowableFractionAndModulus) {
   EXPECT_EQ(Error(plain + "stress_correction = \"goehner\"\n"),
             "t.toml: [spring] stress_correction: expected \"bergstrasser\", \"wahl\" or "
             "\"direct-shear\", got \"goehner\"");
+  // A helical setting without the helical geometry says what it needs, not "unknown key".
+  EXPECT_EQ(Error(kGood + "\n[needle]\nmass_kg = 1\n[spring]\npreload_N = 100\n"
+                          "rate_N_mm = 20\nfatigue_criterion = \"bhandari\"\n"),
+            "t.toml: [spring] fatigue_criterion: needs the helical geometry (wire_mm, coil_mm, "
+            "active_coils, free_length_mm …): it is a setting of the helical spring check");
   // The fatigue criterion: each name read, a typo and Bhandari on peened wire refused.
   const auto criterion = [&](const std::string& line) {
     return ParseCase(plain + line, "t.toml").spring->helical->fatigue_criterion;
