@@ -27,9 +27,10 @@ BELOW = {
     "apps/case": ["lib", "spring", "dynamics/model", "dynamics/solver", "dynamics"],
 }
 BELOW["apps/study"] = BELOW["apps/case"] + ["apps/case"]
-BELOW["apps/bench"] = BELOW["apps/study"] + ["apps/study"]
+BELOW["apps/bench"] = BELOW["apps/study"] + ["apps/study", "apps/report", "apps/serve"]
 BELOW["apps/report"] = BELOW["apps/study"] + ["apps/study"]
-BELOW["apps/cli"] = BELOW["apps/report"] + ["apps/report"]
+BELOW["apps/serve"] = BELOW["apps/report"] + ["apps/report"]
+BELOW["apps/cli"] = BELOW["apps/report"] + ["apps/report", "apps/serve"]
 BELOW["apps/python"] = BELOW["apps/report"] + ["apps/report"]
 
 # The file model (issue 52): the study and report floors read a bound case (apps/case/

@@ -26,10 +26,13 @@ packages=(
   clang libclang-rt-14-dev  # libFuzzer target for the case loader
   pybind11-dev python3-dev python3-numpy  # the Python module (apps/python)
   python3-distributed    # Dask: python3 -m needle.distributed (docs/distributed.md)
+  libcpp-httplib-dev     # needle serve: the design page's HTTP server (apps/serve)
+  libjs-chart.js         # needle serve: the page's charts, served from the install
 )
 if ((tests)); then
   packages+=(
-    chromium        # the report rendered in a real browser (check_report_test)
+    chromium        # the report and the design page in a real browser (check_report_test,
+                    # design_server_test)
     python3-pytest  # the Python module's tests (tests/apps/python)
     python3-scipy   # bench/lift_tables.py: SciPy's smoothing spline and Savitzky-Golay as peers
   )

@@ -55,5 +55,7 @@ std::string RunKinematics(const std::string& out_dir, int repeats);
 std::string RunTargets(int repeats);
 std::string RunOverspeedComparison(int repeats);
 std::string RunSizing(int repeats);
+/// needle serve: a change to its reply over loopback, per bundled case.
+std::string RunServe(int repeats);
 
 }  // namespace needle::bench

@@ -28,8 +28,9 @@ int main(int argc, char** argv) {
       "overspeed", "the overspeed search, check and a tolerance sample: before and after");
   auto* siz = app.add_subcommand("size", "needle size: each stage's time and springs kept");
   auto* exa = app.add_subcommand("exact", "method exact against dopri5 at rtol 1e-8, per scene");
+  auto* srv = app.add_subcommand("serve", "needle serve: a change to its reply, per bundled case");
   auto* all = app.add_subcommand("all", "everything, and OUT/summary.md");
-  for (auto* c : {dyn, kin, tgt, ovs, siz, exa, all}) {
+  for (auto* c : {dyn, kin, tgt, ovs, siz, exa, srv, all}) {
     c->add_option("--out", out, "output folder (default bench)");
     c->add_option("--repeats", repeats, "timed repeats per configuration (median)")
         ->check(CLI::PositiveNumber);
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
     if (ovs->parsed() || all->parsed()) md += needle::bench::RunOverspeedComparison(repeats);
     if (siz->parsed() || all->parsed()) md += needle::bench::RunSizing(repeats);
     if (exa->parsed() || all->parsed()) md += needle::bench::RunExactComparison(repeats);
+    if (srv->parsed() || all->parsed()) md += needle::bench::RunServe(repeats);
     needle::WriteFileAtomically(out + "/summary.md", md);
     std::cout << md;
   } catch (const std::exception& e) {

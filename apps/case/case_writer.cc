@@ -12,10 +12,7 @@
 #include "spring/wire_material.h"
 
 namespace needle {
-namespace {
-
-// The shortest decimal that reads back as `v` (6 to 17 digits).
-std::string Exact(double v) {
+std::string ExactDecimal(double v) {
   for (int digits = 6; digits <= 17; ++digits) {
     std::ostringstream out;
     out.precision(digits);
@@ -24,8 +21,6 @@ std::string Exact(double v) {
   }
   return std::to_string(v);
 }
-
-}  // namespace
 
 std::string DesignCaseText(const DesignInputs& in, const DesignResult& r) {
   std::ostringstream c;
@@ -120,7 +115,7 @@ std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& la
 namespace {
 std::string Millimetres(double m) {
   const double mm = std::round(m * 1e9) / 1e6;
-  return ToSi(Dimension::kLength, "mm", mm) == m ? Exact(mm) : Exact(m * 1e3);
+  return ToSi(Dimension::kLength, "mm", mm) == m ? ExactDecimal(mm) : ExactDecimal(m * 1e3);
 }
 }  // namespace
 
@@ -134,17 +129,18 @@ std::string SizedCaseText(const std::string& original, double needle_mass_kg, co
   keys << "preload_N = " << Fixed(s.preload_N, 1) << '\n';
   keys << "wire_mm = " << Millimetres(g.wire_m) << '\n';
   keys << "coil_mm = " << Millimetres(g.coil_m) << '\n';
-  keys << "active_coils = " << Exact(g.active_coils) << '\n';
+  keys << "active_coils = " << ExactDecimal(g.active_coils) << '\n';
   // Up to the next 1e-6 mm: the installed length never shorter than sized
   // (less 1e-12 m of round-off: the sized L₁ has 1e-9 m to spare, kLengthSlack_m)
-  keys << "free_length_mm = " << Exact(std::ceil(g.free_length_m * 1e9 - 1e-3) / 1e6) << '\n';
+  keys << "free_length_mm = " << ExactDecimal(std::ceil(g.free_length_m * 1e9 - 1e-3) / 1e6)
+       << '\n';
   if (w.grade) {
     keys << "grade = \"" << WireGradeName(*w.grade) << "\"\n";  // R_m(d) and G of the grade
   } else {
-    keys << "shear_modulus_GPa = " << Exact(g.shear_modulus_Pa * 1e-9) << '\n';
-    keys << "tensile_MPa = " << Exact(g.tensile_Pa * 1e-6) << '\n';
+    keys << "shear_modulus_GPa = " << ExactDecimal(g.shear_modulus_Pa * 1e-9) << '\n';
+    keys << "tensile_MPa = " << ExactDecimal(g.tensile_Pa * 1e-6) << '\n';
   }
-  keys << "density_kg_m3 = " << Exact(g.density_kg_m3) << '\n';
+  keys << "density_kg_m3 = " << ExactDecimal(g.density_kg_m3) << '\n';
   keys << "ends = \"" << SpringEndsName(g.ends) << "\"\n";
   if (g.stress_factor != StressFactor::kBergstrasser)
     keys << "stress_correction = \"" << StressFactorName(g.stress_factor) << "\"\n";
@@ -152,7 +148,7 @@ std::string SizedCaseText(const std::string& original, double needle_mass_kg, co
     keys << "fatigue_criterion = \"" << CriterionInfo(g.fatigue_criterion).name << "\"\n";
   if (g.shot_peened) keys << "shot_peened = true\n";
   if (g.allowable_fraction != 0.5)
-    keys << "allowable_stress_fraction = " << Exact(g.allowable_fraction) << '\n';
+    keys << "allowable_stress_fraction = " << ExactDecimal(g.allowable_fraction) << '\n';
 
   static const std::regex header(R"(^\s*\[\s*([A-Za-z0-9_]+)\s*\]\s*(#.*)?$)");
   static const std::regex key(R"(^\s*([A-Za-z0-9_]+)\s*=)");
@@ -173,7 +169,7 @@ std::string SizedCaseText(const std::string& original, double needle_mass_kg, co
       const std::string k = m[1];
       if (section == "spring" && std::regex_match(k, spring_key)) continue;
       if (section == "needle" && k.rfind("mass_", 0) == 0) {
-        out << "mass_kg = " << Exact(needle_mass_kg)
+        out << "mass_kg = " << ExactDecimal(needle_mass_kg)
             << "  # the needle's parts and a third of the sized spring's active coils\n";
         continue;
       }

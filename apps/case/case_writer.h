@@ -14,6 +14,9 @@
 
 namespace needle {
 
+/// The shortest decimal that reads back as `v` (6 to 17 digits): how the writers write numbers.
+std::string ExactDecimal(double v);
+
 /// What Basu's design chain computed (the normal-curve lift, the needle, the formula's spring,
 /// the cam disk and roller), and what it does not compute (moving mass, spring rate, contact
 /// train) as assumptions marked ASSUMED.

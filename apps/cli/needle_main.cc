@@ -14,6 +14,7 @@
 #include "apps/cli/compare_command.h"
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/kinematics_command.h"
+#include "apps/cli/serve_command.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
 #include "apps/cli/tolerance_command.h"
@@ -54,6 +55,7 @@ int main(int argc, char** argv) {
       Register(app, needle::AddSynthCommand, needle::RunSynthCommand),
       Register(app, needle::AddProfileCommand, needle::RunProfileCommand),
       Register(app, needle::AddToleranceCommand, needle::RunToleranceCommand),
+      Register(app, needle::AddServeCommand, needle::RunServeCommand),
   };
   // An unknown first word is named as such, with the commands there are (CLI11 would say only
   // "A subcommand is required").

@@ -128,10 +128,11 @@ TEST(CliMessagesTest, ControlCharactersStayOffTheTerminal) {
   ExpectRefused("kinematics " + Case("basu-cam4.toml") + " \"$(printf 'x\\033[1m\\ny')\"",
                 "needle: The following argument was not expected: x\\x1B[1m\\ny (see needle "
                 "--help)\n");
-  ExpectRefused("\"$(printf 'x\\033[1m')\"",
-                "needle: unknown command 'x\\x1B[1m'; expected one of check, compare, kinematics, "
-                "spring, size, design, simulate, overspeed, synth, profile, tolerance (see needle "
-                "--help)\n");
+  ExpectRefused(
+      "\"$(printf 'x\\033[1m')\"",
+      "needle: unknown command 'x\\x1B[1m'; expected one of check, compare, kinematics, "
+      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve (see needle "
+      "--help)\n");
   ExpectRefused("kinematics \"/no/such$(printf '\\033[1m\\nx').toml\"",
                 "needle: /no/such\\x1B[1m\\nx.toml: cannot open the case file for reading\n");
   std::filesystem::remove(path);

@@ -191,7 +191,8 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   EXPECT_EQ(
       unknown.err,
       "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
-      "spring, size, design, simulate, overspeed, synth, profile, tolerance (see needle --help)\n");
+      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve (see needle "
+      "--help)\n");
   const auto missing = RunNeedle("kinematics /no/such.toml");
   EXPECT_EQ(missing.status, 2);
   EXPECT_EQ(missing.err, "needle: /no/such.toml: cannot open the case file for reading\n");

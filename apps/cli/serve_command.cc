@@ -1,0 +1,39 @@
+#include "apps/cli/serve_command.h"
+
+#include <iostream>
+
+#include "apps/serve/design_api.h"
+#include "apps/serve/design_server.h"
+
+namespace needle {
+
+CLI::App* AddServeCommand(CLI::App& app, ServeCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "serve", "The design page: the case live in a browser, recomputed on every change");
+  cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
+  cmd->add_option("--port", o.port, "TCP port (default 8080; 0: any free port)")
+      ->check(CLI::Range(0, 65535));
+  cmd->add_option("--host", o.host,
+                  "address to bind (default 127.0.0.1: this machine only; another address is "
+                  "reachable by others, with no login)");
+  return cmd;
+}
+
+int RunServeCommand(const ServeCommandOptions& o) {
+  const DesignSession session(o.case_path);  // a bad case: one line, exit 2, before binding
+  ServeOptions so;
+  so.host = o.host;
+  so.port = o.port;
+  so.on_listening = [&o](int port) {
+    if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1") {
+      std::cerr << "needle serve: warning: bound to " << o.host
+                << ": the page has no login; anyone who reaches this address can use it\n";
+    }
+    std::cout << "needle serve: " << o.case_path << " at http://"
+              << (o.host == "0.0.0.0" ? "127.0.0.1" : o.host) << ":" << port << "/ (Ctrl-C stops)"
+              << std::endl;
+  };
+  return Serve(session, so);
+}
+
+}  // namespace needle

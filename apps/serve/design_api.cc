@@ -1,0 +1,241 @@
+// The design page's computations: design_api.h.
+#include "apps/serve/design_api.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "apps/case/bound_case.h"
+#include "apps/case/case_file.h"
+#include "apps/case/case_writer.h"
+#include "apps/report/check_writers.h"
+#include "apps/study/check_scene.h"
+#include "lib/case_error.h"
+#include "lib/input_file.h"
+#include "lib/kinematics.h"
+#include "lib/units.h"
+
+namespace needle {
+namespace {
+
+constexpr char kKeyChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_";
+
+constexpr Dimension kDimensions[] = {
+    Dimension::kAngle,       Dimension::kLength,  Dimension::kVelocity,  Dimension::kAcceleration,
+    Dimension::kMass,        Dimension::kForce,   Dimension::kStiffness, Dimension::kTime,
+    Dimension::kPressure,    Dimension::kDensity, Dimension::kSlope,     Dimension::kPercent,
+    Dimension::kTemperature, Dimension::kArea,    Dimension::kVolume,    Dimension::kPower};
+
+// The keys of `section` that state `key`'s quantity in another unit (preload_kgf beside
+// preload_N): an override replaces them.
+std::vector<std::string> SameQuantity(const toml::table& section, const std::string& key) {
+  std::vector<std::string> out;
+  for (Dimension d : kDimensions) {
+    for (const std::string& unit : UnitSuffixes(d)) {
+      const std::string tail = "_" + unit;
+      if (key.size() <= tail.size() || key.compare(key.size() - tail.size(), tail.size(), tail))
+        continue;
+      const std::string stem = key.substr(0, key.size() - tail.size());
+      for (const std::string& other : UnitSuffixes(d)) {
+        if (other != unit && section.contains(stem + "_" + other))
+          out.push_back(stem + "_" + other);
+      }
+    }
+  }
+  return out;
+}
+
+// A JSON scalar as TOML text; empty for what a case file cannot hold.
+std::string ScalarText(const nlohmann::json& v) {
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_integer()) return std::to_string(v.get<int64_t>());
+  if (v.is_number()) {
+    const double x = v.get<double>();
+    return std::isfinite(x) ? ExactDecimal(x) : "";
+  }
+  if (v.is_string()) {
+    std::ostringstream out;
+    out << toml::value<std::string>(v.get<std::string>());
+    return out.str();
+  }
+  return "";
+}
+
+nlohmann::json ParseBody(const std::string& body, const std::string& where) {
+  if (body.find_first_not_of(" \t\r\n") == std::string::npos) return nlohmann::json::object();
+  nlohmann::json j = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded())
+    throw CaseError(where +
+                    ": overrides: expected a JSON object such as "
+                    "{\"spring\": {\"preload_N\": 1700}}, got text that is not JSON");
+  return j;
+}
+
+ApiReply Error(const std::string& line) { return {400, nlohmann::json{{"error", line}}.dump()}; }
+
+// Every n-th of `v`, at most `most` values.
+std::vector<double> Thin(const std::vector<double>& v, size_t most) {
+  if (v.size() <= most) return v;
+  std::vector<double> out;
+  const double step = static_cast<double>(v.size() - 1) / (most - 1);
+  for (size_t i = 0; i < most; ++i) out.push_back(v[static_cast<size_t>(std::round(i * step))]);
+  return out;
+}
+
+nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
+  nlohmann::json s;
+  const Kinematics kin(*c.lift.law, r.speed_rpm);
+  const KinematicsSummary& sum = r.kinematics;
+  std::vector<double> deg, lift, vel, acc;
+  for (int i = 0; i <= 400; ++i) {
+    const double th = sum.open_rad + (sum.close_rad - sum.open_rad) * i / 400.0;
+    const KinematicsPoint p = kin.At(th);
+    deg.push_back(th / kDeg);
+    lift.push_back(p.lift_m * 1e3);
+    vel.push_back(p.velocity_m_s);
+    acc.push_back(p.acceleration_m_s2.value_or(NAN));
+  }
+  s["kinematics"] = {
+      {"crank_deg", deg}, {"lift_mm", lift}, {"velocity_m_s", vel}, {"acceleration_m_s2", acc}};
+  if (r.run && !r.run->series.empty()) {
+    std::vector<double> t, y, u, f;
+    for (const SeriesPoint& p : r.run->series) {
+      t.push_back(p.crank_rad / kDeg);
+      y.push_back(p.lift_m * 1e3);
+      u.push_back(p.cam_m * 1e3);
+      f.push_back(p.contact_force_N);
+    }
+    constexpr size_t kMost = 1500;
+    s["run"] = {{"crank_deg", Thin(t, kMost)},
+                {"lift_mm", Thin(y, kMost)},
+                {"cam_mm", Thin(u, kMost)},
+                {"contact_force_N", Thin(f, kMost)}};
+  }
+  if (r.sweep) {
+    std::vector<double> n, f;
+    for (const OverspeedRow& row : r.sweep->rows) {
+      n.push_back(row.speed_rpm);
+      f.push_back(row.min_contact_force_N);
+    }
+    s["overspeed"] = {{"speed_rpm", n}, {"min_contact_force_N", f}};
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json& overrides,
+                              const std::string& where) {
+  if (!overrides.is_object())
+    throw CaseError(where +
+                    ": overrides: expected a JSON object of sections, such as "
+                    "{\"spring\": {\"preload_N\": 1700}}");
+  toml::table table;
+  try {
+    table = toml::parse(case_text, where);
+  } catch (const toml::parse_error& e) {
+    throw CaseError(where + ": " + std::string(e.description()));
+  }
+  // The file's own lines, kept: a key replaced is its lines dropped (a multi-line array too, by
+  // its source region) and the new line put under its section's header; a new section at the end.
+  std::vector<std::string> lines;
+  std::istringstream in(case_text);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  std::vector<bool> dropped(lines.size(), false);
+  std::map<size_t, std::string> after;  // a header's line (0-based) → the lines put under it
+  std::string appended;
+  for (const auto& [section, keys] : overrides.items()) {
+    if (!keys.is_object())
+      throw CaseError(where + ": overrides: " + section +
+                      ": expected an object of keys, such as {\"preload_N\": 1700}");
+    const toml::table* t = table[section].as_table();
+    std::string block;
+    for (const auto& [key, value] : keys.items()) {
+      const std::string text = ScalarText(value);
+      if (text.empty())
+        throw CaseError(where + ": overrides: [" + section + "] " + key +
+                        ": expected a number, a string or true/false");
+      if (key.empty() || section.empty() ||
+          (key + section).find_first_not_of(kKeyChars) != std::string::npos)
+        throw CaseError(where + ": overrides: " + nlohmann::json(section).dump() + " " +
+                        nlohmann::json(key).dump() +
+                        ": expected section and key names of letters, digits and _");
+      block += key + " = " + text + "\n";
+      if (!t) continue;
+      std::vector<std::string> old = SameQuantity(*t, key);
+      if (t->contains(key)) old.push_back(key);
+      for (const std::string& k : old) {
+        const toml::source_region& r = t->get(k)->source();
+        for (size_t n = r.begin.line; n >= 1 && n <= r.end.line && n <= lines.size(); ++n)
+          dropped[n - 1] = true;
+      }
+    }
+    if (t && (t->is_inline() || t->source().begin.line < 1))
+      throw CaseError(where + ": overrides: [" + section +
+                      "]: the case writes this section inline; write it as a [" + section +
+                      "] block to tune it here");
+    if (t) {
+      after[t->source().begin.line - 1] += block;
+    } else {
+      appended += "\n[" + section + "]\n" + block;
+    }
+  }
+  std::string out;
+  for (size_t n = 0; n < lines.size(); ++n) {
+    if (!dropped[n]) out += lines[n] + "\n";
+    if (after.count(n)) out += after[n];
+  }
+  return out + appended;
+}
+
+DesignSession::DesignSession(std::string case_path) : path_(std::move(case_path)) {
+  text_ = ReadInputFile(path_, "case file");
+  (void)ParseCase(text_, path_);  // refused now, with the CLI's line, not at the first request
+}
+
+ApiReply DesignSession::Check(const std::string& request_body) const {
+  try {
+    const std::string text = CaseWithOverrides(text_, ParseBody(request_body, path_), path_);
+    const BoundCase c = Bind(ParseCase(text, path_));
+    const CheckResult r = CheckScene(c);  // the CLI's options: its series recorded too
+    return {200, CheckJson(c, *c.lift.law, r, "").dump(2)};
+  } catch (const CaseError& e) {
+    return Error(e.what());
+  }
+}
+
+ApiReply DesignSession::Design(const std::string& request_body) const {
+  try {
+    const std::string text = CaseWithOverrides(text_, ParseBody(request_body, path_), path_);
+    const BoundCase c = Bind(ParseCase(text, path_));
+    const CheckResult r = CheckScene(c);
+    nlohmann::json j;
+    j["check"] = CheckJson(c, *c.lift.law, r, "");
+    j["series"] = PageSeries(c, r);
+    return {200, j.dump()};
+  } catch (const CaseError& e) {
+    return Error(e.what());
+  }
+}
+
+ApiReply DesignSession::SaveCase(const std::string& request_body) const {
+  try {
+    const std::string text = CaseWithOverrides(text_, ParseBody(request_body, path_), path_);
+    (void)ParseCase(text, path_);  // what is saved reads back
+    return {200, nlohmann::json{{"toml", text}}.dump()};
+  } catch (const CaseError& e) {
+    return Error(e.what());
+  }
+}
+
+std::string DesignSession::CaseJson() const {
+  const toml::table table = toml::parse(text_, path_);
+  std::ostringstream out;
+  out << toml::json_formatter{table};
+  return out.str();
+}
+
+}  // namespace needle

@@ -1,0 +1,172 @@
+// `needle serve`'s HTTP server: design_server.h.
+#include "apps/serve/design_server.h"
+
+#include <httplib.h>
+#include <pthread.h>
+#include <signal.h>
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "lib/case_error.h"
+
+namespace needle {
+
+extern const char kDesignPageHtml[];  // apps/serve/web/index.html, built in (design_page.cc)
+
+namespace {
+
+constexpr size_t kMaxBody = 1 << 20;  // 1 MiB: a case's overrides are a few hundred bytes
+
+std::mutex g_mutex;
+httplib::Server* g_server = nullptr;  // the running server, for StopServing
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void Reply(httplib::Response& res, const ApiReply& r) {
+  res.status = r.status;
+  res.set_content(r.body, "application/json");
+}
+
+// The newest X-Needle-Seq seen; a request below it is superseded.
+class Sequence {
+ public:
+  // The request's number (0 without the header: never dropped), noted as seen.
+  long Note(const httplib::Request& req) {
+    if (!req.has_header("X-Needle-Seq")) return 0;
+    long n = 0;
+    try {
+      n = std::stol(req.get_header_value("X-Needle-Seq"));
+    } catch (...) {
+      return 0;
+    }
+    long seen = newest_.load();
+    while (n > seen && !newest_.compare_exchange_weak(seen, n)) {
+    }
+    return n;
+  }
+  bool Superseded(long n) const { return n > 0 && n < newest_.load(); }
+
+ private:
+  std::atomic<long> newest_{0};
+};
+
+void Routes(httplib::Server& server, const DesignSession& session, const ServeOptions& o,
+            Sequence& sequence) {
+  server.Get("/", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(DesignPageHtml(), "text/html; charset=utf-8");
+  });
+  const std::string chart = o.chart_js, licence = o.chart_js_licence;
+  server.Get("/chart.js", [chart](const httplib::Request&, httplib::Response& res) {
+    const std::string js = ReadFile(chart);
+    if (js.empty()) {
+      res.status = 500;
+      res.set_content("Chart.js is not installed at " + chart +
+                          " (apt-get install libjs-chart.js; scripts/install-deps.sh does)",
+                      "text/plain");
+      return;
+    }
+    res.set_content(js, "application/javascript");
+  });
+  server.Get("/chart.js/LICENSE", [licence](const httplib::Request&, httplib::Response& res) {
+    res.set_content(ReadFile(licence), "text/plain; charset=utf-8");
+  });
+  server.Get("/api/case", [&session](const httplib::Request&, httplib::Response& res) {
+    res.set_content(session.CaseJson(), "application/json");
+  });
+  server.Post("/api/check", [&session](const httplib::Request& req, httplib::Response& res) {
+    Reply(res, session.Check(req.body));
+  });
+  server.Post("/api/design",
+              [&session, &sequence](const httplib::Request& req, httplib::Response& res) {
+                const long n = sequence.Note(req);
+                const auto dropped = [&res] {
+                  Reply(res, {409, R"({"dropped": "superseded by a newer change"})"});
+                };
+                if (sequence.Superseded(n)) return dropped();
+                const ApiReply r = session.Design(req.body);
+                if (sequence.Superseded(n)) return dropped();
+                Reply(res, r);
+              });
+  server.Post("/api/case-text", [&session](const httplib::Request& req, httplib::Response& res) {
+    Reply(res, session.SaveCase(req.body));
+  });
+}
+
+}  // namespace
+
+const std::string& DesignPageHtml() {
+  static const std::string page = kDesignPageHtml;
+  return page;
+}
+
+void StopServing() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  if (g_server) g_server->stop();
+}
+
+int Serve(const DesignSession& session, const ServeOptions& o) {
+  httplib::Server server;
+  server.set_payload_max_length(kMaxBody);
+  server.set_read_timeout(5, 0);
+  server.set_write_timeout(5, 0);
+  Sequence sequence;
+  Routes(server, session, o, sequence);
+  server.set_exception_handler(
+      [](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {
+        std::string what = "unknown";
+        try {
+          std::rethrow_exception(ep);
+        } catch (const std::exception& e) {
+          what = e.what();
+        } catch (...) {
+        }
+        res.status = 500;  // a bug: said, and the server goes on
+        res.set_content(nlohmann::json{{"error", "internal error: " + what}}.dump(),
+                        "application/json");
+      });
+  const int port = o.port == 0 ? server.bind_to_any_port(o.host)
+                               : (server.bind_to_port(o.host, o.port) ? o.port : -1);
+  if (port < 0)
+    throw CaseError("--port: cannot listen on " + o.host + ":" + std::to_string(o.port) +
+                    " (in use, or not an address of this machine)");
+  // SIGINT and SIGTERM go to one thread that stops the server: the pool's threads never see them.
+  sigset_t signals, previous;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, &previous);
+  {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    g_server = &server;
+  }
+  std::atomic<bool> done{false};
+  std::thread watcher([&] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    if (!done.load()) StopServing();
+  });
+  if (o.on_listening) o.on_listening(port);
+  server.listen_after_bind();
+  done = true;
+  {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    g_server = nullptr;
+  }
+  pthread_kill(watcher.native_handle(), SIGTERM);  // ends its sigwait if no signal came
+  watcher.join();
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  return 0;
+}
+
+}  // namespace needle

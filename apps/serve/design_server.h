@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// `needle serve`'s HTTP server (cpp-httplib, Debian's libcpp-httplib-dev): the design page and
+/// its API over a DesignSession (design_api.h).
+///
+///     GET  /                the page (apps/serve/web/index.html, built in)
+///     GET  /chart.js        Chart.js from the system (Debian's libjs-chart.js), and its licence
+///     GET  /chart.js/LICENSE  at /chart.js/LICENSE: served from the install, no CDN
+///     GET  /api/case        the case file as JSON
+///     POST /api/check       overrides → `needle check --json`'s object; a bad one: 400, one line
+///     POST /api/design      overrides → {"check", "series"} for the page; a request whose
+///                           X-Needle-Seq is below the newest seen is dropped (409), before and
+///                           after its computation: superseded work is never queued or drawn
+///     POST /api/case-text   overrides → {"toml": the merged case file} (Save as case)
+///
+/// Requests run on the server's thread pool: a slow check never blocks the page's other
+/// requests. Bodies over 1 MiB are refused (413). SIGINT or SIGTERM stops the server and Serve
+/// returns 0.
+
+#include <functional>
+#include <string>
+
+#include "apps/serve/design_api.h"
+
+namespace needle {
+
+struct ServeOptions {
+  std::string host = "127.0.0.1";  ///< the address to bind; anything else prints a warning
+  int port = 8080;                 ///< 0: any free port
+  /// Called once with the port bound, before serving (tests read it; the CLI prints the URL).
+  std::function<void(int)> on_listening;
+  /// Where Chart.js and its licence are installed (Debian's libjs-chart.js).
+  std::string chart_js = "/usr/share/javascript/chart.js/chart.min.js";
+  std::string chart_js_licence = "/usr/share/doc/libjs-chart.js/copyright";
+};
+
+/// The design page built into the binary.
+const std::string& DesignPageHtml();
+
+/// Serves `session` until SIGINT/SIGTERM (or `stop` is set and polled, for tests). Returns 0 when
+/// stopped; throws CaseError naming --host/--port when the address cannot be bound.
+int Serve(const DesignSession& session, const ServeOptions& options);
+
+/// Stops a running Serve from another thread (tests; SIGINT does it for the CLI).
+void StopServing();
+
+}  // namespace needle
