@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "apps/case/bound_case.h"
 #include "apps/case/case_file.h"
@@ -113,6 +114,17 @@ nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
                 {"lift_mm", Thin(y, kMost)},
                 {"cam_mm", Thin(u, kMost)},
                 {"contact_force_N", Thin(f, kMost)}};
+    // The impacts, at the needle's lift where they happen (the series' nearest point).
+    std::vector<double> at, lift;
+    std::vector<std::string> kind;
+    for (const Impact& i : r.run->impacts) {
+      const auto near = std::lower_bound(t.begin(), t.end(), i.crank_rad / kDeg);
+      const size_t k = std::min<size_t>(near - t.begin(), t.size() - 1);
+      at.push_back(i.crank_rad / kDeg);
+      lift.push_back(y[k]);
+      kind.push_back(i.kind);
+    }
+    s["impacts"] = {{"crank_deg", at}, {"lift_mm", lift}, {"kind", kind}};
   }
   if (r.sweep) {
     std::vector<double> n, f;
@@ -163,15 +175,25 @@ std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json
         throw CaseError(where + ": overrides: " + nlohmann::json(section).dump() + " " +
                         nlohmann::json(key).dump() +
                         ": expected section and key names of letters, digits and _");
-      block += key + " = " + text + "\n";
-      if (!t) continue;
-      std::vector<std::string> old = SameQuantity(*t, key);
-      if (t->contains(key)) old.push_back(key);
+      if (key == "csv")  // a path: the page tunes numbers, it does not open files
+        throw CaseError(where + ": overrides: [" + section + "] " + key +
+                        ": names a file; the design page does not open files (edit the case)");
+      std::vector<std::string> old;  // the key and its quantity in other units, replaced
+      if (t) {
+        old = SameQuantity(*t, key);
+        if (t->contains(key)) old.push_back(key);
+      }
+      std::string comment;  // a replaced line's own comment, kept on the new line
       for (const std::string& k : old) {
         const toml::source_region& r = t->get(k)->source();
         for (size_t n = r.begin.line; n >= 1 && n <= r.end.line && n <= lines.size(); ++n)
           dropped[n - 1] = true;
+        if (!comment.empty() || r.begin.line != r.end.line || r.end.line > lines.size()) continue;
+        const std::string& l = lines[r.end.line - 1];
+        const size_t hash = l.find('#', std::min<size_t>(r.end.column, l.size()));
+        if (hash != std::string::npos) comment = "  " + l.substr(hash);
       }
+      block += key + " = " + text + comment + "\n";
     }
     if (t && (t->is_inline() || t->source().begin.line < 1))
       throw CaseError(where + ": overrides: [" + section +
@@ -204,6 +226,8 @@ ApiReply DesignSession::Check(const std::string& request_body) const {
     return {200, CheckJson(c, *c.lift.law, r, "").dump(2)};
   } catch (const CaseError& e) {
     return Error(e.what());
+  } catch (const std::invalid_argument& e) {  // bad input, as the CLI's exit 2 takes it
+    return Error(e.what());
   }
 }
 
@@ -218,6 +242,8 @@ ApiReply DesignSession::Design(const std::string& request_body) const {
     return {200, j.dump()};
   } catch (const CaseError& e) {
     return Error(e.what());
+  } catch (const std::invalid_argument& e) {  // bad input, as the CLI's exit 2 takes it
+    return Error(e.what());
   }
 }
 
@@ -227,6 +253,8 @@ ApiReply DesignSession::SaveCase(const std::string& request_body) const {
     (void)ParseCase(text, path_);  // what is saved reads back
     return {200, nlohmann::json{{"toml", text}}.dump()};
   } catch (const CaseError& e) {
+    return Error(e.what());
+  } catch (const std::invalid_argument& e) {  // bad input, as the CLI's exit 2 takes it
     return Error(e.what());
   }
 }

@@ -38,8 +38,8 @@ class DesignSession {
   /// `request_body` (an object; empty: none), its report path empty.
   ApiReply Check(const std::string& request_body) const;
   /// POST /api/design: {"check": Check's object, "series": the page's curves} — the lift,
-  /// velocity and acceleration over the lift; the rated run's lift, cam and contact force; the
-  /// overspeed rows' least contact force.
+  /// velocity and acceleration over the lift; the rated run's lift, cam and contact force and its
+  /// impacts; the overspeed rows' least contact force.
   ApiReply Design(const std::string& request_body) const;
   /// POST /api/case: the merged case file as text (Save as case), in {"toml": text}.
   ApiReply SaveCase(const std::string& request_body) const;

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <atomic>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -38,31 +40,44 @@ void Reply(httplib::Response& res, const ApiReply& r) {
   res.set_content(r.body, "application/json");
 }
 
-// The newest X-Needle-Seq seen; a request below it is superseded.
-class Sequence {
+// The page's changes, one page (X-Needle-Client, a random id per page load) at a time: its
+// newest X-Needle-Seq, and one computation at a time, so a change that waited behind a running
+// one is dropped when a newer change came meanwhile, never computed.
+class Pages {
  public:
-  // The request's number (0 without the header: never dropped), noted as seen.
-  long Note(const httplib::Request& req) {
-    if (!req.has_header("X-Needle-Seq")) return 0;
+  struct Page {
+    long newest = 0;
+    std::mutex computing;
+  };
+  // The request's page (a shared one without the header) and its number (0: never dropped).
+  std::pair<std::shared_ptr<Page>, long> Note(const httplib::Request& req) {
+    const std::string id = req.get_header_value("X-Needle-Client");
     long n = 0;
     try {
-      n = std::stol(req.get_header_value("X-Needle-Seq"));
+      n = std::max(0L, std::stol(req.get_header_value("X-Needle-Seq")));
     } catch (...) {
-      return 0;
+      n = 0;
     }
-    long seen = newest_.load();
-    while (n > seen && !newest_.compare_exchange_weak(seen, n)) {
-    }
-    return n;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pages_.size() > kMaxPages && !pages_.count(id)) pages_.clear();  // a bound on memory
+    std::shared_ptr<Page>& page = pages_[id];
+    if (!page) page = std::make_shared<Page>();
+    page->newest = std::max(page->newest, n);
+    return {page, n};
   }
-  bool Superseded(long n) const { return n > 0 && n < newest_.load(); }
+  bool Superseded(const Page& page, long n) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return n > 0 && n < page.newest;
+  }
 
  private:
-  std::atomic<long> newest_{0};
+  static constexpr size_t kMaxPages = 1000;
+  std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<Page>> pages_;
 };
 
 void Routes(httplib::Server& server, const DesignSession& session, const ServeOptions& o,
-            Sequence& sequence) {
+            Pages& pages) {
   server.Get("/", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(DesignPageHtml(), "text/html; charset=utf-8");
   });
@@ -88,14 +103,17 @@ void Routes(httplib::Server& server, const DesignSession& session, const ServeOp
     Reply(res, session.Check(req.body));
   });
   server.Post("/api/design",
-              [&session, &sequence](const httplib::Request& req, httplib::Response& res) {
-                const long n = sequence.Note(req);
+              [&session, &pages](const httplib::Request& req, httplib::Response& res) {
+                const auto [page, n] = pages.Note(req);
                 const auto dropped = [&res] {
                   Reply(res, {409, R"({"dropped": "superseded by a newer change"})"});
                 };
-                if (sequence.Superseded(n)) return dropped();
+                if (pages.Superseded(*page, n)) return dropped();
+                std::lock_guard<std::mutex> one_at_a_time(page->computing);
+                if (pages.Superseded(*page, n))
+                  return dropped();  // a newer change came while it waited
                 const ApiReply r = session.Design(req.body);
-                if (sequence.Superseded(n)) return dropped();
+                if (pages.Superseded(*page, n)) return dropped();
                 Reply(res, r);
               });
   server.Post("/api/case-text", [&session](const httplib::Request& req, httplib::Response& res) {
@@ -120,8 +138,24 @@ int Serve(const DesignSession& session, const ServeOptions& o) {
   server.set_payload_max_length(kMaxBody);
   server.set_read_timeout(5, 0);
   server.set_write_timeout(5, 0);
-  Sequence sequence;
-  Routes(server, session, o, sequence);
+  Pages pages;
+  Routes(server, session, o, pages);
+  // Only SO_REUSEADDR: httplib's default also sets SO_REUSEPORT, which lets a second server
+  // share a port in use, silently.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<const char*>(&yes), sizeof yes);
+  });
+  server.set_keep_alive_timeout(2);  // an idle connection holds a worker thread no longer
+  server.new_task_queue = [] { return new httplib::ThreadPool(16); };
+  // An error without a body (413, 404, 400 from the parser) still says what, in one JSON line.
+  server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    const std::string what = res.status == 413   ? "the body is over the 1 MiB limit"
+                             : res.status == 404 ? "no such page or API: " + req.path
+                                                 : "a request the server could not read";
+    res.set_content(nlohmann::json{{"error", what}}.dump(), "application/json");
+  });
   server.set_exception_handler(
       [](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {
         std::string what = "unknown";
@@ -138,8 +172,8 @@ int Serve(const DesignSession& session, const ServeOptions& o) {
   const int port = o.port == 0 ? server.bind_to_any_port(o.host)
                                : (server.bind_to_port(o.host, o.port) ? o.port : -1);
   if (port < 0)
-    throw CaseError("--port: cannot listen on " + o.host + ":" + std::to_string(o.port) +
-                    " (in use, or not an address of this machine)");
+    throw CaseError("--host/--port: cannot listen on " + o.host + ":" + std::to_string(o.port) +
+                    " (the port in use, or the host not an address of this machine)");
   // SIGINT and SIGTERM go to one thread that stops the server: the pool's threads never see them.
   sigset_t signals, previous;
   sigemptyset(&signals);

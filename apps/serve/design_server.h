@@ -8,13 +8,17 @@
 ///     GET  /chart.js/LICENSE  at /chart.js/LICENSE: served from the install, no CDN
 ///     GET  /api/case        the case file as JSON
 ///     POST /api/check       overrides → `needle check --json`'s object; a bad one: 400, one line
-///     POST /api/design      overrides → {"check", "series"} for the page; a request whose
-///                           X-Needle-Seq is below the newest seen is dropped (409), before and
-///                           after its computation: superseded work is never queued or drawn
+///     POST /api/design      overrides → {"check", "series"} for the page; one computation at
+///                           a time per page (X-Needle-Client), and a request whose X-Needle-Seq
+///                           is below its page's newest is dropped (409) before, while waiting
+///                           for, and after its computation: superseded work is never queued
+///                           behind a newer change, nor drawn
 ///     POST /api/case-text   overrides → {"toml": the merged case file} (Save as case)
 ///
 /// Requests run on the server's thread pool: a slow check never blocks the page's other
-/// requests. Bodies over 1 MiB are refused (413). SIGINT or SIGTERM stops the server and Serve
+/// requests (16 threads; an idle connection is closed after 2 s). Bodies over 1 MiB are refused
+/// (413; a form-encoded body over 8 KiB, httplib's). A request overriding a file key (`[lift]
+/// csv`) is refused: the page does not open files. SIGINT or SIGTERM stops the server and Serve
 /// returns 0.
 
 #include <functional>

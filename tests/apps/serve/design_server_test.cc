@@ -80,6 +80,10 @@ TEST(DesignApiTest, OverridesReplaceTheSameQuantityInAnotherUnit) {
   const std::string relift =
       CaseWithOverrides(lift, nlohmann::json::parse(R"({"lift": {"lift_um": 5}})"), "t.toml");
   EXPECT_EQ(relift, "[lift]\nlift_um = 5\n# measured\ncrank_deg = [0, 1, 2]\n");
+  // A replaced line's own comment stays on the new line.
+  EXPECT_EQ(CaseWithOverrides("[needle]\nmass_kg = 1.2  # Basu: \"about 1.2 kg\"\n",
+                              nlohmann::json::parse(R"({"needle": {"mass_g": 900}})"), "t.toml"),
+            "[needle]\nmass_g = 900  # Basu: \"about 1.2 kg\"\n");
   const auto refused = [&](const std::string& overrides) {
     try {
       CaseWithOverrides(text, nlohmann::json::parse(overrides), "t.toml");
@@ -137,9 +141,18 @@ TEST(DesignServerTest, SupersededWorkIsDroppedAndASlowCheckBlocksNothing) {
   EXPECT_TRUE(design["series"].contains("kinematics"));
   EXPECT_TRUE(design["series"].contains("run"));
   EXPECT_TRUE(design["series"].contains("overspeed"));
+  // Example 1's run has its lash and its seating: both marked, at the run's own angles.
+  const auto& impacts = design["series"]["impacts"];
+  ASSERT_GE(impacts["crank_deg"].size(), 2u);
+  EXPECT_EQ(impacts["kind"].size(), impacts["crank_deg"].size());
   const auto stale = client.Post("/api/design", older, "{}", "application/json");
   ASSERT_TRUE(stale);
   EXPECT_EQ(stale->status, 409);
+  // Another page (a reload, a second tab) counts its own changes: its first is not stale.
+  const auto other_page = client.Post(
+      "/api/design", {{"X-Needle-Seq", "1"}, {"X-Needle-Client", "b"}}, "{}", "application/json");
+  ASSERT_TRUE(other_page);
+  EXPECT_EQ(other_page->status, 200);
   // A design computing on one connection; the case served on another meanwhile.
   std::atomic<bool> design_done{false};
   std::thread slow([&] {
@@ -209,6 +222,34 @@ TEST(DesignServerTest, AThousandMalformedRequestsNeverStopTheServer) {
   const auto ok = client.Post("/api/check", "{}", "application/json");
   ASSERT_TRUE(ok);
   EXPECT_EQ(ok->status, 200);
+}
+
+TEST(DesignServerTest, APortInUseIsRefusedAndFilesAreNotOpened) {
+  Running server("basu-example1.toml");
+  const DesignSession second(Case("basu-cam4.toml"));
+  ServeOptions o;
+  o.port = server.port();
+  try {
+    Serve(second, o);
+    FAIL() << "a second server shared the port";
+  } catch (const CaseError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--host/--port: cannot listen on 127.0.0.1:" + std::to_string(server.port()) +
+                  " (the port in use, or the host not an address of this machine)");
+  }
+  httplib::Client client = server.Client();
+  const auto r =
+      client.Post("/api/check", R"({"lift": {"csv": "/etc/passwd"}})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(nlohmann::json::parse(r->body)["error"],
+            Case("basu-example1.toml") +
+                ": overrides: [lift] csv: names a file; the design page does not open files (edit "
+                "the case)");
+  // An error without a body of its own still says what, in one JSON line.
+  const auto missing = client.Get("/no/such/page");
+  EXPECT_EQ(missing->status, 404);
+  EXPECT_EQ(nlohmann::json::parse(missing->body)["error"], "no such page or API: /no/such/page");
 }
 
 TEST(DesignServerTest, SigintEndsTheCommandCleanly) {
