@@ -14,6 +14,7 @@
 #include "apps/case/case_writer.h"
 #include "apps/report/check_writers.h"
 #include "apps/study/check_scene.h"
+#include "dynamics/simulation.h"
 #include "lib/case_error.h"
 #include "lib/input_file.h"
 #include "lib/kinematics.h"
@@ -101,6 +102,18 @@ nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
   }
   s["kinematics"] = {
       {"crank_deg", deg}, {"lift_mm", lift}, {"velocity_m_s", vel}, {"acceleration_m_s2", acc}};
+  // The acceleration's 95 % band where the law is a local fit of measured readings (the lift
+  // table's accuracy, docs/lift-data.md): at its nodes, at the rated speed.
+  const double w2 = kin.omega() * kin.omega();
+  std::vector<double> band_deg, low, high;
+  for (const LocalNode& n : c.lift.law->nodes()) {
+    if (n.x < sum.open_rad || n.x > sum.close_rad) continue;
+    band_deg.push_back(n.x / kDeg);
+    low.push_back((n.s[2] - n.band2) * w2);
+    high.push_back((n.s[2] + n.band2) * w2);
+  }
+  if (!band_deg.empty())
+    s["acceleration_band"] = {{"crank_deg", band_deg}, {"low_m_s2", low}, {"high_m_s2", high}};
   if (r.run && !r.run->series.empty()) {
     std::vector<double> t, y, u, f;
     for (const SeriesPoint& p : r.run->series) {
@@ -125,6 +138,22 @@ nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
       kind.push_back(i.kind);
     }
     s["impacts"] = {{"crank_deg", at}, {"lift_mm", lift}, {"kind", kind}};
+    // The contact force at f·n, the speed the verdict asks the needle to follow the cam at:
+    // one more run of the check's scene with the rated run's options.
+    if (c.scene && r.overspeed_rpm > 0.0) {
+      SimulationOptions o = r.run_options;
+      o.record_series = true;
+      o.series_sink = nullptr;
+      const SimulationResult at_fn = Simulate(*c.scene, r.overspeed_rpm, o);
+      std::vector<double> tf, ff;
+      for (const SeriesPoint& p : at_fn.series) {
+        tf.push_back(p.crank_rad / kDeg);
+        ff.push_back(p.contact_force_N);
+      }
+      s["run_overspeed"] = {{"speed_rpm", r.overspeed_rpm},
+                            {"crank_deg", Thin(tf, kMost)},
+                            {"contact_force_N", Thin(ff, kMost)}};
+    }
   }
   if (r.sweep) {
     std::vector<double> n, f;

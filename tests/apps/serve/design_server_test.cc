@@ -145,6 +145,9 @@ TEST(DesignServerTest, SupersededWorkIsDroppedAndASlowCheckBlocksNothing) {
   const auto& impacts = design["series"]["impacts"];
   ASSERT_GE(impacts["crank_deg"].size(), 2u);
   EXPECT_EQ(impacts["kind"].size(), impacts["crank_deg"].size());
+  // The force at f·n = 1.2 × 125 rpm beside the rated one.
+  EXPECT_EQ(design["series"]["run_overspeed"]["speed_rpm"], 150.0);
+  EXPECT_GT(design["series"]["run_overspeed"]["contact_force_N"].size(), 100u);
   const auto stale = client.Post("/api/design", older, "{}", "application/json");
   ASSERT_TRUE(stale);
   EXPECT_EQ(stale->status, 409);
@@ -250,6 +253,21 @@ TEST(DesignServerTest, APortInUseIsRefusedAndFilesAreNotOpened) {
   const auto missing = client.Get("/no/such/page");
   EXPECT_EQ(missing->status, 404);
   EXPECT_EQ(nlohmann::json::parse(missing->body)["error"], "no such page or API: /no/such/page");
+}
+
+TEST(DesignServerTest, AMeasuredTableFittedLocallyHasItsAccelerationBand) {
+  Running server("measured-cycloidal.toml");
+  httplib::Client client = server.Client();
+  const auto local =
+      client.Post("/api/design", R"({"lift": {"spline": "local"}})", "application/json");
+  ASSERT_TRUE(local && local->status == 200) << (local ? local->body : "");
+  const auto band = nlohmann::json::parse(local->body)["series"]["acceleration_band"];
+  ASSERT_GE(band["crank_deg"].size(), 2u);
+  for (size_t i = 0; i < band["crank_deg"].size(); ++i)
+    EXPECT_LT(band["low_m_s2"][i].get<double>(), band["high_m_s2"][i].get<double>());
+  // A smoothing spline carries no band: none drawn, none invented.
+  const auto smooth = client.Post("/api/design", "{}", "application/json");
+  EXPECT_FALSE(nlohmann::json::parse(smooth->body)["series"].contains("acceleration_band"));
 }
 
 TEST(DesignServerTest, SigintEndsTheCommandCleanly) {
