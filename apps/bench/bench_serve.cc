@@ -1,4 +1,5 @@
 // needle-bench serve: the design page's request → reply over loopback, per bundled case.
+#include <cmath>
 #include <filesystem>
 #include <future>
 #include <nlohmann/json.hpp>
@@ -66,6 +67,13 @@ std::string RunServe(int repeats) {
     }
     StopServing();
     server.join();
+    ms.erase(std::remove_if(ms.begin(), ms.end(), [](double x) { return !std::isfinite(x); }),
+             ms.end());
+    if (ms.empty()) {
+      md << "| " << file.filename().string() << " | refused | | missed |\n";
+      ++cases;
+      continue;
+    }
     std::sort(ms.begin(), ms.end());
     const double median = ms[ms.size() / 2], slowest = ms.back();
     ++cases;

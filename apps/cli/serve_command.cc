@@ -29,9 +29,11 @@ int RunServeCommand(const ServeCommandOptions& o) {
       std::cerr << "needle serve: warning: bound to " << o.host
                 << ": the page has no login; anyone who reaches this address can use it\n";
     }
-    std::cout << "needle serve: " << o.case_path << " at http://"
-              << (o.host == "0.0.0.0" ? "127.0.0.1" : o.host) << ":" << port << "/ (Ctrl-C stops)"
-              << std::endl;
+    const std::string host = o.host == "0.0.0.0"                     ? "127.0.0.1"
+                             : o.host.find(':') != std::string::npos ? "[" + o.host + "]"
+                                                                     : o.host;
+    std::cout << "needle serve: " << o.case_path << " at http://" << host << ":" << port
+              << "/ (Ctrl-C stops)" << std::endl;
   };
   return Serve(session, so);
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -53,6 +54,7 @@ std::vector<std::string> SameQuantity(const toml::table& section, const std::str
 // A JSON scalar as TOML text; empty for what a case file cannot hold.
 std::string ScalarText(const nlohmann::json& v) {
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX)) return "";
   if (v.is_number_integer()) return std::to_string(v.get<int64_t>());
   if (v.is_number()) {
     const double x = v.get<double>();
@@ -219,15 +221,22 @@ std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json
           dropped[n - 1] = true;
         if (!comment.empty() || r.begin.line != r.end.line || r.end.line > lines.size()) continue;
         const std::string& l = lines[r.end.line - 1];
-        const size_t hash = l.find('#', std::min<size_t>(r.end.column, l.size()));
+        const size_t hash = l.find('#', std::min<size_t>(r.end.column - 1, l.size()));
         if (hash != std::string::npos) comment = "  " + l.substr(hash);
       }
       block += key + " = " + text + comment + "\n";
     }
-    if (t && (t->is_inline() || t->source().begin.line < 1))
+    const auto header = [&](const toml::table& table) {  // its own "[section]" line
+      const size_t at = table.source().begin.line;
+      if (table.is_inline() || at < 1 || at > lines.size()) return false;
+      const std::string& l = lines[at - 1];
+      const size_t first = l.find_first_not_of(" \t");
+      return first != std::string::npos && l[first] == '[';
+    };
+    if (t && !header(*t))
       throw CaseError(where + ": overrides: [" + section +
-                      "]: the case writes this section inline; write it as a [" + section +
-                      "] block to tune it here");
+                      "]: the case writes this section inline or as dotted keys; write it as a [" +
+                      section + "] block to tune it here");
     if (t) {
       after[t->source().begin.line - 1] += block;
     } else {

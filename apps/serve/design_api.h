@@ -28,7 +28,8 @@ struct ApiReply {
 std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json& overrides,
                               const std::string& where);
 
-/// One case the page designs: its file read once; every request merges its overrides into it.
+/// One case the page designs: its file's text read once; every request merges its overrides
+/// into it and reads it anew (a lift table in a CSV file is read again each time).
 class DesignSession {
  public:
   /// Reads and validates `case_path` (throws CaseError as LoadCase does).

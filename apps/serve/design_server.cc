@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -41,15 +43,18 @@ void Reply(httplib::Response& res, const ApiReply& r) {
 }
 
 // The page's changes, one page (X-Needle-Client, a random id per page load) at a time: its
-// newest X-Needle-Seq, and one computation at a time, so a change that waited behind a running
-// one is dropped when a newer change came meanwhile, never computed.
+// newest X-Needle-Seq, and one computation at a time. A change waiting behind the running one
+// is woken and dropped (409) as soon as a newer change of its page arrives: at most one waits,
+// none is computed behind a newer one.
 class Pages {
  public:
   struct Page {
     long newest = 0;
-    std::mutex computing;
+    bool busy = false;
+    std::condition_variable changed;
   };
-  // The request's page (a shared one without the header) and its number (0: never dropped).
+  // The request's page (a shared one without the header) and its number (0: never dropped),
+  // noted as its page's newest.
   std::pair<std::shared_ptr<Page>, long> Note(const httplib::Request& req) {
     const std::string id = req.get_header_value("X-Needle-Client");
     long n = 0;
@@ -63,14 +68,28 @@ class Pages {
     std::shared_ptr<Page>& page = pages_[id];
     if (!page) page = std::make_shared<Page>();
     page->newest = std::max(page->newest, n);
+    page->changed.notify_all();
     return {page, n};
   }
-  bool Superseded(const Page& page, long n) {
+  // Waits for the page's running computation to end; false when the request is superseded
+  // (before or while waiting), true when it may compute now (the page is then busy).
+  bool Begin(Page& page, long n) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    page.changed.wait(lock, [&] { return !page.busy || Stale(page, n); });
+    if (Stale(page, n)) return false;
+    page.busy = true;
+    return true;
+  }
+  // Ends the page's computation; true when its result is still the newest.
+  bool End(Page& page, long n) {
     std::lock_guard<std::mutex> lock(mutex_);
-    return n > 0 && n < page.newest;
+    page.busy = false;
+    page.changed.notify_all();
+    return !Stale(page, n);
   }
 
  private:
+  static bool Stale(const Page& page, long n) { return n > 0 && n < page.newest; }
   static constexpr size_t kMaxPages = 1000;
   std::mutex mutex_;
   std::map<std::string, std::shared_ptr<Page>> pages_;
@@ -105,16 +124,16 @@ void Routes(httplib::Server& server, const DesignSession& session, const ServeOp
   server.Post("/api/design",
               [&session, &pages](const httplib::Request& req, httplib::Response& res) {
                 const auto [page, n] = pages.Note(req);
-                const auto dropped = [&res] {
-                  Reply(res, {409, R"({"dropped": "superseded by a newer change"})"});
-                };
-                if (pages.Superseded(*page, n)) return dropped();
-                std::lock_guard<std::mutex> one_at_a_time(page->computing);
-                if (pages.Superseded(*page, n))
-                  return dropped();  // a newer change came while it waited
-                const ApiReply r = session.Design(req.body);
-                if (pages.Superseded(*page, n)) return dropped();
-                Reply(res, r);
+                const ApiReply dropped{409, R"({"dropped": "superseded by a newer change"})"};
+                if (!pages.Begin(*page, n)) return Reply(res, dropped);
+                ApiReply r;
+                try {
+                  r = session.Design(req.body);
+                } catch (...) {
+                  pages.End(*page, n);
+                  throw;
+                }
+                Reply(res, pages.End(*page, n) ? r : dropped);
               });
   server.Post("/api/case-text", [&session](const httplib::Request& req, httplib::Response& res) {
     Reply(res, session.SaveCase(req.body));
@@ -148,6 +167,33 @@ int Serve(const DesignSession& session, const ServeOptions& o) {
   });
   server.set_keep_alive_timeout(2);  // an idle connection holds a worker thread no longer
   server.new_task_queue = [] { return new httplib::ThreadPool(16); };
+  // Before any route: a chunked body has no length to hold to the 1 MiB limit (411), and a
+  // Host that is not this server's (a page of another site rebinding its name to 127.0.0.1)
+  // is refused (403), unless the server was bound to every address (--host 0.0.0.0 or ::).
+  server.set_pre_routing_handler([&o](const httplib::Request& req, httplib::Response& res) {
+    using R = httplib::Server::HandlerResponse;
+    if (req.has_header("Transfer-Encoding")) {
+      res.status = 411;
+      res.set_content(
+          nlohmann::json{{"error", "a body needs its Content-Length (no chunked bodies)"}}.dump(),
+          "application/json");
+      return R::Handled;
+    }
+    const bool any = o.host == "0.0.0.0" || o.host == "::";
+    std::string host = req.get_header_value("Host");
+    const size_t colon = host.rfind(':');
+    if (colon != std::string::npos && host.back() != ']') host.resize(colon);
+    if (!any && !host.empty() && host != o.host && host != "localhost" && host != "127.0.0.1" &&
+        host != "[::1]") {
+      res.status = 403;
+      res.set_content(nlohmann::json{{"error", "this server answers for " + o.host +
+                                                   " only, not for Host " + host}}
+                          .dump(),
+                      "application/json");
+      return R::Handled;
+    }
+    return R::Unhandled;
+  });
   // An error without a body (413, 404, 400 from the parser) still says what, in one JSON line.
   server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
@@ -188,6 +234,9 @@ int Serve(const DesignSession& session, const ServeOptions& o) {
   std::thread watcher([&] {
     int signal = 0;
     sigwait(&signals, &signal);
+    // A signal before the server runs would be lost (stop() does nothing until it listens).
+    while (!done.load() && !server.is_running())
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     if (!done.load()) StopServing();
   });
   if (o.on_listening) o.on_listening(port);
