@@ -48,13 +48,13 @@ std::string NameList(const NameRow<E> (&table)[N], const char* separator = ", ",
   return out;
 }
 
-/// The names as a choice for messages: "\"a\", \"b\" or \"c\"".
+/// The names as a choice for messages: "\"a\", \"b\" or \"c\"" (`quoted`), or "a, b or c".
 template <typename E, std::size_t N>
-std::string NameChoice(const NameRow<E> (&table)[N]) {
+std::string NameChoice(const NameRow<E> (&table)[N], bool quoted = true) {
   std::string out;
   for (std::size_t i = 0; i < N; ++i) {
     if (i > 0) out += i + 1 == N ? " or " : ", ";
-    out += "\"" + std::string(table[i].name) + "\"";
+    out += quoted ? "\"" + std::string(table[i].name) + "\"" : std::string(table[i].name);
   }
   return out;
 }

@@ -38,8 +38,9 @@ void AddFormatOption(CLI::App* command, OutputFormat& format, bool& json) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->option_text("TEXT")
       ->check([](const std::string& name) {
-        return ParseOutputFormat(name) ? std::string()
-                                       : "expected text, json or markdown, got '" + name + "'";
+        return ParseOutputFormat(name)
+                   ? std::string()
+                   : "expected " + NameChoice(kFormatNames, false) + ", got '" + name + "'";
       });
   command->parse_complete_callback([&format, &json, given] {
     std::string chosen_by = json ? "--json" : "";
