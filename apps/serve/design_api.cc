@@ -14,6 +14,7 @@
 #include "apps/case/case_file.h"
 #include "apps/case/case_writer.h"
 #include "apps/report/check_writers.h"
+#include "apps/report/html_report.h"
 #include "apps/study/check_scene.h"
 #include "dynamics/simulation.h"
 #include "lib/case_error.h"
@@ -80,13 +81,21 @@ nlohmann::json ParseBody(const std::string& body, const std::string& where) {
 
 ApiReply Error(const std::string& line) { return {400, nlohmann::json{{"error", line}}.dump()}; }
 
-// Every n-th of `v`, at most `most` values.
-std::vector<double> Thin(const std::vector<double>& v, size_t most) {
-  if (v.size() <= most) return v;
-  std::vector<double> out;
-  const double step = static_cast<double>(v.size() - 1) / (most - 1);
-  for (size_t i = 0; i < most; ++i) out.push_back(v[static_cast<size_t>(std::round(i * step))]);
-  return out;
+// One curve of a run as the page draws it: the rows a line plot of the series needs at twice
+// the report's figure width (LineEnvelope, the report's own: every peak and drop kept, where
+// every n-th point would lose an impact's spike), as {"crank_deg": […], "value": […]}.
+template <typename Value>
+nlohmann::json Curve(const std::vector<SeriesPoint>& series, Value value) {
+  Rows rows;
+  for (const SeriesPoint& p : series) rows.push_back({p.crank_rad / kDeg, value(p)});
+  const Rows drawn = LineEnvelope(rows, series.front().crank_rad / kDeg,
+                                  series.back().crank_rad / kDeg, 2 * kFigureWidthPx);
+  std::vector<double> x, y;
+  for (size_t i = 0; i < drawn.size(); ++i) {
+    x.push_back(drawn.row(i)[0]);
+    y.push_back(drawn.row(i)[1]);
+  }
+  return {{"crank_deg", x}, {"value", y}};
 }
 
 nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
@@ -117,26 +126,20 @@ nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
   if (!band_deg.empty())
     s["acceleration_band"] = {{"crank_deg", band_deg}, {"low_m_s2", low}, {"high_m_s2", high}};
   if (r.run && !r.run->series.empty()) {
-    std::vector<double> t, y, u, f;
-    for (const SeriesPoint& p : r.run->series) {
-      t.push_back(p.crank_rad / kDeg);
-      y.push_back(p.lift_m * 1e3);
-      u.push_back(p.cam_m * 1e3);
-      f.push_back(p.contact_force_N);
-    }
-    constexpr size_t kMost = 1500;
-    s["run"] = {{"crank_deg", Thin(t, kMost)},
-                {"lift_mm", Thin(y, kMost)},
-                {"cam_mm", Thin(u, kMost)},
-                {"contact_force_N", Thin(f, kMost)}};
-    // The impacts, at the needle's lift where they happen (the series' nearest point).
+    const std::vector<SeriesPoint>& run = r.run->series;
+    const auto force = [](const SeriesPoint& p) { return p.contact_force_N; };
+    s["run"] = {{"lift_mm", Curve(run, [](const SeriesPoint& p) { return p.lift_m * 1e3; })},
+                {"cam_mm", Curve(run, [](const SeriesPoint& p) { return p.cam_m * 1e3; })},
+                {"contact_force_N", Curve(run, force)}};
+    // The impacts, at the needle's lift where they happen (the series' first point from there).
     std::vector<double> at, lift;
     std::vector<std::string> kind;
     for (const Impact& i : r.run->impacts) {
-      const auto near = std::lower_bound(t.begin(), t.end(), i.crank_rad / kDeg);
-      const size_t k = std::min<size_t>(near - t.begin(), t.size() - 1);
+      const auto near = std::lower_bound(
+          run.begin(), run.end(), i.crank_rad,
+          [](const SeriesPoint& p, double crank_rad) { return p.crank_rad < crank_rad; });
       at.push_back(i.crank_rad / kDeg);
-      lift.push_back(y[k]);
+      lift.push_back((near == run.end() ? run.back() : *near).lift_m * 1e3);
       kind.push_back(i.kind);
     }
     s["impacts"] = {{"crank_deg", at}, {"lift_mm", lift}, {"kind", kind}};
@@ -147,14 +150,10 @@ nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
       o.record_series = true;
       o.series_sink = nullptr;
       const SimulationResult at_fn = Simulate(*c.scene, r.overspeed_rpm, o);
-      std::vector<double> tf, ff;
-      for (const SeriesPoint& p : at_fn.series) {
-        tf.push_back(p.crank_rad / kDeg);
-        ff.push_back(p.contact_force_N);
+      if (!at_fn.series.empty()) {
+        s["run_overspeed"] = {{"speed_rpm", r.overspeed_rpm},
+                              {"contact_force_N", Curve(at_fn.series, force)}};
       }
-      s["run_overspeed"] = {{"speed_rpm", r.overspeed_rpm},
-                            {"crank_deg", Thin(tf, kMost)},
-                            {"contact_force_N", Thin(ff, kMost)}};
     }
   }
   if (r.sweep) {
@@ -256,12 +255,10 @@ DesignSession::DesignSession(std::string case_path) : path_(std::move(case_path)
   (void)ParseCase(text_, path_);  // refused now, with the CLI's line, not at the first request
 }
 
-ApiReply DesignSession::Check(const std::string& request_body) const {
+template <typename Reply>
+ApiReply DesignSession::Answer(const std::string& request_body, Reply reply) const {
   try {
-    const std::string text = CaseWithOverrides(text_, ParseBody(request_body, path_), path_);
-    const BoundCase c = Bind(ParseCase(text, path_));
-    const CheckResult r = CheckScene(c);  // the CLI's options: its series recorded too
-    return {200, CheckJson(c, *c.lift.law, r, "").dump(2)};
+    return reply(CaseWithOverrides(text_, ParseBody(request_body, path_), path_));
   } catch (const CaseError& e) {
     return Error(e.what());
   } catch (const std::invalid_argument& e) {  // bad input, as the CLI's exit 2 takes it
@@ -269,32 +266,30 @@ ApiReply DesignSession::Check(const std::string& request_body) const {
   }
 }
 
+ApiReply DesignSession::Check(const std::string& request_body) const {
+  return Answer(request_body, [this](const std::string& text) -> ApiReply {
+    const BoundCase c = Bind(ParseCase(text, path_));
+    const CheckResult r = CheckScene(c);  // the CLI's options: its series recorded too
+    return {200, CheckJson(c, *c.lift.law, r, "").dump(2)};
+  });
+}
+
 ApiReply DesignSession::Design(const std::string& request_body) const {
-  try {
-    const std::string text = CaseWithOverrides(text_, ParseBody(request_body, path_), path_);
+  return Answer(request_body, [this](const std::string& text) -> ApiReply {
     const BoundCase c = Bind(ParseCase(text, path_));
     const CheckResult r = CheckScene(c);
     nlohmann::json j;
     j["check"] = CheckJson(c, *c.lift.law, r, "");
     j["series"] = PageSeries(c, r);
     return {200, j.dump()};
-  } catch (const CaseError& e) {
-    return Error(e.what());
-  } catch (const std::invalid_argument& e) {  // bad input, as the CLI's exit 2 takes it
-    return Error(e.what());
-  }
+  });
 }
 
 ApiReply DesignSession::SaveCase(const std::string& request_body) const {
-  try {
-    const std::string text = CaseWithOverrides(text_, ParseBody(request_body, path_), path_);
+  return Answer(request_body, [this](const std::string& text) -> ApiReply {
     (void)ParseCase(text, path_);  // what is saved reads back
     return {200, nlohmann::json{{"toml", text}}.dump()};
-  } catch (const CaseError& e) {
-    return Error(e.what());
-  } catch (const std::invalid_argument& e) {  // bad input, as the CLI's exit 2 takes it
-    return Error(e.what());
-  }
+  });
 }
 
 std::string DesignSession::CaseJson() const {

@@ -50,6 +50,11 @@ class DesignSession {
   const std::string& path() const { return path_; }
 
  private:
+  // The case with the body's overrides merged, given to `reply`; a bad request (CaseError or
+  // std::invalid_argument, as the CLI's exit 2) is its one line with 400.
+  template <typename Reply>
+  ApiReply Answer(const std::string& request_body, Reply reply) const;
+
   std::string path_;
   std::string text_;
 };

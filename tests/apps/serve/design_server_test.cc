@@ -160,7 +160,7 @@ TEST(DesignServerTest, SupersededWorkIsDroppedAndASlowCheckBlocksNothing) {
   EXPECT_EQ(impacts["kind"].size(), impacts["crank_deg"].size());
   // The force at f·n = 1.2 × 125 rpm beside the rated one.
   EXPECT_EQ(design["series"]["run_overspeed"]["speed_rpm"], 150.0);
-  EXPECT_GT(design["series"]["run_overspeed"]["contact_force_N"].size(), 100u);
+  EXPECT_GT(design["series"]["run_overspeed"]["contact_force_N"]["value"].size(), 100u);
   const auto stale = client.Post("/api/design", older, "{}", "application/json");
   ASSERT_TRUE(stale);
   EXPECT_EQ(stale->status, 409);
@@ -312,6 +312,23 @@ TEST(DesignServerTest, AMeasuredTableFittedLocallyHasItsAccelerationBand) {
   // A smoothing spline carries no band: none drawn, none invented.
   const auto smooth = client.Post("/api/design", "{}", "application/json");
   EXPECT_FALSE(nlohmann::json::parse(smooth->body)["series"].contains("acceleration_band"));
+}
+
+// The page's force curve keeps the run's peak (the report's LineEnvelope, not every n-th point):
+// Example 2 at 1100 rpm, its lash impact, against `needle simulate`'s largest contact force.
+TEST(DesignServerTest, ThePagesForceCurveKeepsTheRunsPeak) {
+  Running server("basu-example2.toml");
+  httplib::Client client = server.Client();
+  const auto r =
+      client.Post("/api/design", R"({"engine": {"speed_rpm": 1100}})", "application/json");
+  ASSERT_TRUE(r && r->status == 200);
+  const auto curve = nlohmann::json::parse(r->body)["series"]["run"]["contact_force_N"];
+  double peak = 0.0;
+  for (const auto& v : curve["value"]) peak = std::max(peak, v.get<double>());
+  const auto cli = RunNeedle("simulate " + Case("basu-example2.toml") + " --rpm 1100 --json");
+  ASSERT_EQ(cli.status, 0) << cli.err;
+  EXPECT_DOUBLE_EQ(peak, nlohmann::json::parse(cli.out)["max_contact_force_N"].get<double>());
+  EXPECT_LE(curve["value"].size(), 4u * 2 * 860);  // at most four rows a column
 }
 
 TEST(DesignServerTest, SigintEndsTheCommandCleanly) {
