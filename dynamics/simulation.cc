@@ -1,5 +1,6 @@
 #include "dynamics/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -22,6 +23,28 @@ constexpr double kStiffOscillations = 2000.0;
 constexpr double kRigidOscillations = 500.0;
 constexpr double kRigidMargin = 0.5;
 
+// The times of the crank angles `grid_rad` (SimulationOptions::grid_rad) from θ_a on.
+std::vector<double> GridTimes(const NeedleTrain& train, const std::vector<double>& grid_rad) {
+  std::vector<double> times;
+  times.reserve(grid_rad.size());
+  for (double th : grid_rad) {
+    const double t = (th - train.Angle(0.0)) / train.omega();
+    if (t >= 0.0) times.push_back(t);
+  }
+  return times;
+}
+
+// A streamed series (o.series_sink): each revolution's points shifted as the kept ones are.
+std::function<void(const SeriesPoint&)> ShiftedSink(const SimulationOptions& o, double shift_rad,
+                                                    double shift_s) {
+  if (!o.series_sink) return {};
+  return [&o, shift_rad, shift_s](SeriesPoint p) {
+    p.crank_rad += shift_rad;
+    p.time_s += shift_s;
+    o.series_sink(p);
+  };
+}
+
 // One integration from x0 over [0, t_end] (then on while the needle settles, for at most
 // settle_deg past it; 0: stop at t_end) appended to r as cam revolution `cycle`, which begins
 // shift_rad after θ_a: its episodes, impacts and series shifted so, its extremes and statistics
@@ -31,17 +54,9 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
                      double settle_deg, const SimulationOptions& o, int cycle, double shift_rad,
                      SimulationResult& r) {
   const double shift_s = shift_rad / train.omega();
-  // A streamed series: each revolution's points shifted as the kept ones are below.
-  std::function<void(const SeriesPoint&)> sink;
-  if (o.series_sink) {
-    sink = [&o, shift_rad, shift_s](SeriesPoint p) {
-      p.crank_rad += shift_rad;
-      p.time_s += shift_s;
-      o.series_sink(p);
-    };
-  }
-  Recorder recorder(train, o.record_series, sink);
+  Recorder recorder(train, o.record_series, ShiftedSink(o, shift_rad, shift_s));
   recorder.set_liftoff_only(o.stop_at_liftoff);
+  if (cycle == 0 && !o.grid_rad.empty()) recorder.set_grid(GridTimes(train, o.grid_rad));
   IntegratorOptions io = o.integrator;
   io.settle_limit_s = settle_deg * kDeg / train.omega();
   IntegrationStats stats;
@@ -94,6 +109,7 @@ CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& 
     e.cycle = cycle;
     r.episodes.push_back(e);
   }
+  if (cycle == 0) r.grid = recorder.grid();
   if (r.series.empty()) r.series.reserve(recorder.series().size());  // later cycles: doubling
   for (SeriesPoint p : recorder.series()) {
     p.crank_rad += shift_rad;
@@ -342,6 +358,37 @@ MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol) {
   return AutoMethod(train, ContactOscillationsPerEvent(scene, speed_rpm), rtol);
 }
 
+namespace {
+
+// Throws std::invalid_argument naming the field of `o` out of its range.
+void ValidateOptions(const SimulationOptions& o) {
+  if (!(o.settle_limit_deg > 0.0 && o.settle_limit_deg <= 36000.0)) {
+    throw std::invalid_argument("SimulationOptions.settle_limit_deg = " +
+                                std::to_string(o.settle_limit_deg) + ": must be in (0, 36000]");
+  }
+  if (!(o.cycles >= 1 && o.cycles <= kMaxCycles)) {
+    throw std::invalid_argument("SimulationOptions.cycles = " + std::to_string(o.cycles) +
+                                ": must be in [1, " + std::to_string(kMaxCycles) + "]");
+  }
+  if (!(o.period_tolerance > 0.0 && o.period_tolerance <= 1e-2)) {
+    throw std::invalid_argument("SimulationOptions.period_tolerance = " +
+                                std::to_string(o.period_tolerance) + ": must be in (0, 1e-2]");
+  }
+  if (!o.grid_rad.empty() && o.cycles != 1) {
+    throw std::invalid_argument("SimulationOptions.grid_rad needs cycles = 1, got " +
+                                std::to_string(o.cycles));
+  }
+  if (!std::is_sorted(o.grid_rad.begin(), o.grid_rad.end())) {
+    throw std::invalid_argument("SimulationOptions.grid_rad must be sorted");
+  }
+  if (o.steady_state && o.cycles < 2) {
+    throw std::invalid_argument("SimulationOptions.steady_state needs cycles >= 2, got " +
+                                std::to_string(o.cycles));
+  }
+}
+
+}  // namespace
+
 SimulationResult Simulate(const Scene& scene, double speed_rpm, const SimulationOptions& o) {
   if (!(speed_rpm > 0.0) || !std::isfinite(speed_rpm)) {
     throw std::invalid_argument("speed must be positive, got " + std::to_string(speed_rpm) +
@@ -355,22 +402,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   r.window_start_rad = theta_a;
   r.window_end_rad = theta_b;
   r.run_end_rad = theta_b;
-  if (!(o.settle_limit_deg > 0.0 && o.settle_limit_deg <= 36000.0)) {
-    throw std::invalid_argument("SimulationOptions.settle_limit_deg = " +
-                                std::to_string(o.settle_limit_deg) + ": must be in (0, 36000]");
-  }
-  if (!(o.cycles >= 1 && o.cycles <= kMaxCycles)) {
-    throw std::invalid_argument("SimulationOptions.cycles = " + std::to_string(o.cycles) +
-                                ": must be in [1, " + std::to_string(kMaxCycles) + "]");
-  }
-  if (!(o.period_tolerance > 0.0 && o.period_tolerance <= 1e-2)) {
-    throw std::invalid_argument("SimulationOptions.period_tolerance = " +
-                                std::to_string(o.period_tolerance) + ": must be in (0, 1e-2]");
-  }
-  if (o.steady_state && o.cycles < 2) {
-    throw std::invalid_argument("SimulationOptions.steady_state needs cycles >= 2, got " +
-                                std::to_string(o.cycles));
-  }
+  ValidateOptions(o);
   const double oscillations = ContactOscillationsPerEvent(scene, speed_rpm);
   const std::string stiffness = StiffnessText(oscillations);
 

@@ -74,6 +74,10 @@ struct SimulationOptions {
   /// with steady_state (a jump in a transient cycle does not count); baseline-dopri5 ignores
   /// both. Off: the run is unchanged.
   bool stop_at_liftoff = false;
+  /// Crank angles, rad, sorted, at which to report the needle's state (SimulationResult::grid):
+  /// a measured trace's angles (`needle fit`). One window only (cycles = 1); an angle before θ_a
+  /// or past the run's end is not reported. Empty: none.
+  std::vector<double> grid_rad;
 };
 
 /// Most cam revolutions one run may ask for, and the longest period looked for.
@@ -155,6 +159,8 @@ struct SimulationResult {
   double jump_rad = 0.0;  ///< total length of jump episodes (in the judged cycles)
   double longest_jump_rad = 0.0;
   IntegrationStats stats;
+  /// The state at SimulationOptions::grid_rad's angles inside the run, in order (time_s from θ_a).
+  std::vector<GridPoint> grid;
   /// Runs of several revolutions (SimulationOptions::cycles > 1): one summary each, in order;
   /// the run stops early once the state repeats (the rest would repeat it too).
   std::vector<CycleSummary> cycles;

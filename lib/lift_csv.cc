@@ -38,11 +38,40 @@ std::vector<std::string> Fields(const std::string& line, char separator) {
 
 std::string Quoted(char c) { return std::string("'") + c + "'"; }
 
+// The number in `field` of column `name` (decimal mark ',' when the separator is ';'); `why` set
+// to what is wrong with it otherwise.
+double FieldValue(const std::string& field, char separator, const std::string& name,
+                  std::string& why) {
+  std::string number = field;
+  if (separator == ';') {  // the decimal mark is ','
+    if (field.find('.') != std::string::npos) {
+      why = "'" + field + "' has a '.' in a table separated by " + Quoted(separator) +
+            ", whose decimal mark is ',' ('.' may be a thousands separator); write it "
+            "without thousands separators and with a decimal comma, or save the table "
+            "with ',' between columns and '.' as the decimal mark";
+      return NAN;
+    }
+    for (char& ch : number) {
+      if (ch == ',') ch = '.';
+    }
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double x = number.empty() ? NAN : std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size()) {
+    why = "'" + field + "' is not a number (column " + name + ")";
+  } else if (!std::isfinite(x) || errno == ERANGE) {
+    why = "'" + field + "' is not a finite number (column " + name + ")";
+  }
+  return x;
+}
+
 }  // namespace
 
 LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineCycle cycle,
-                       std::vector<int>* lines) {
+                       std::vector<int>* lines, std::vector<double>* time_s) {
   if (lines) lines->clear();
+  if (time_s) time_s->clear();
   auto fail = [&](int line, int column, const std::string& what) -> void {
     std::string where = path + ":" + std::to_string(line);
     if (column > 0) where += ":" + std::to_string(column);
@@ -60,9 +89,9 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
   // The column separator, from the header: ',' (decimal mark '.'), or ';' when the header has
   // ';' and no ',' (a spreadsheet in a locale whose decimal mark is ',': 12,5).
   char separator = ',';
-  int angle_col = -1, lift_col = -1, columns = 0;
-  double angle_scale = 0.0, lift_scale = 0.0;
-  std::string angle_name, lift_name;
+  int angle_col = -1, lift_col = -1, time_col = -1, columns = 0;
+  double angle_scale = 0.0, lift_scale = 0.0, time_scale = 0.0;
+  std::string angle_name, lift_name, time_name;
   LiftTable t;
   int last_line = 0;
   while (std::getline(in, raw)) {
@@ -96,6 +125,11 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
           lift_col = k;
           lift_name = name;
           lift_scale = name == "lift_in" ? 25.4e-3 : ToSi(Dimension::kLength, name.substr(5), 1.0);
+        } else if (time_s && (name == "time_s" || name == "time_ms")) {
+          if (time_col >= 0) fail(line, k + 1, "two time columns; keep one");
+          time_col = k;
+          time_name = name;
+          time_scale = name == "time_ms" ? 1e-3 : 1.0;
         } else if (name == "crank" || name == "cam" || name == "lift" || name == "angle") {
           fail(line, k + 1,
                "column '" + name + "' needs a unit: " +
@@ -104,7 +138,8 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
           fail(line, k + 1,
                "unknown column '" + name +
                    "'; expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, "
-                   "lift_in)");
+                   "lift_in)" +
+                   (time_s ? std::string(", and optionally time_s (or time_ms)") : ""));
         }
       }
       if (angle_col < 0)
@@ -117,33 +152,14 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
       fail(line, 0,
            "expected " + std::to_string(columns) + " fields, got " + std::to_string(f.size()));
     }
-    double v[2];
-    const int cols[2] = {angle_col, lift_col};
-    const std::string names[2] = {angle_name, lift_name};
-    for (int k = 0; k < 2; ++k) {
+    double v[3] = {0.0, 0.0, 0.0};
+    const int cols[3] = {angle_col, lift_col, time_col};
+    const std::string names[3] = {angle_name, lift_name, time_name};
+    for (int k = 0; k < (time_col >= 0 ? 3 : 2); ++k) {
       const std::string& field = f[cols[k]];
-      std::string number = field;
-      if (separator == ';') {  // the decimal mark is ','
-        if (field.find('.') != std::string::npos) {
-          fail(line, cols[k] + 1,
-               "'" + field + "' has a '.' in a table separated by " + Quoted(separator) +
-                   ", whose decimal mark is ',' ('.' may be a thousands separator); write it "
-                   "without thousands separators and with a decimal comma, or save the table "
-                   "with ',' between columns and '.' as the decimal mark");
-        }
-        for (char& ch : number) {
-          if (ch == ',') ch = '.';
-        }
-      }
-      char* end = nullptr;
-      errno = 0;
-      const double x = number.empty() ? NAN : std::strtod(number.c_str(), &end);
-      if (number.empty() || end != number.c_str() + number.size()) {
-        fail(line, cols[k] + 1, "'" + field + "' is not a number (column " + names[k] + ")");
-      }
-      if (!std::isfinite(x) || errno == ERANGE) {
-        fail(line, cols[k] + 1, "'" + field + "' is not a finite number (column " + names[k] + ")");
-      }
+      std::string why;
+      const double x = FieldValue(field, separator, names[k], why);
+      if (!why.empty()) fail(line, cols[k] + 1, why);
       v[k] = x;
     }
     const double angle = v[0] * angle_scale, lift = v[1] * lift_scale;
@@ -172,6 +188,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
     }
     t.crank_rad.push_back(angle);
     t.lift_m.push_back(lift);
+    if (time_col >= 0) time_s->push_back(v[2] * time_scale);
     if (lines) lines->push_back(line);
     last_line = line;
   }
@@ -184,8 +201,9 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
   return t;
 }
 
-LiftTable ReadLiftCsv(const std::string& path, EngineCycle cycle, std::vector<int>* lines) {
-  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, cycle, lines);
+LiftTable ReadLiftCsv(const std::string& path, EngineCycle cycle, std::vector<int>* lines,
+                      std::vector<double>* time_s) {
+  return ParseLiftCsv(ReadInputFile(path, "lift table"), path, cycle, lines, time_s);
 }
 
 }  // namespace needle

@@ -301,12 +301,14 @@ namespace needle {
 /// '.' in such a table is refused (it may be a thousands separator). Angles must increase
 /// strictly, every value be a finite number, and there be at least two rows. Throws CaseError
 /// naming the file, the line and the column ("FILE:LINE:COLUMN: what").
-/// `lines`, when given, gets the file's line number of each reading (for messages).
-LiftTable ReadLiftCsv(const std::string& path, EngineCycle cycle,
-                      std::vector<int>* lines = nullptr);
+/// `lines`, when given, gets the file's line number of each reading (for messages). `time_s`,
+/// when given, lets the table have a third column, `time_s` or `time_ms` (a measured trace's
+/// clock, `needle fit`), and gets its readings in s (empty when the column is absent).
+LiftTable ReadLiftCsv(const std::string& path, EngineCycle cycle, std::vector<int>* lines = nullptr,
+                      std::vector<double>* time_s = nullptr);
 
 /// As ReadLiftCsv, from text already in memory; `path` is used in messages only.
 LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineCycle cycle,
-                       std::vector<int>* lines = nullptr);
+                       std::vector<int>* lines = nullptr, std::vector<double>* time_s = nullptr);
 
 }  // namespace needle

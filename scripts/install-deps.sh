@@ -28,6 +28,7 @@ packages=(
   python3-distributed    # Dask: python3 -m needle.distributed (docs/distributed.md)
   libcpp-httplib-dev     # needle serve: the design page's HTTP server (apps/serve)
   libjs-chart.js         # needle serve: the page's charts, served from the install
+  libceres-dev           # needle fit: Ceres Solver's nonlinear least squares
 )
 if ((tests)); then
   packages+=(

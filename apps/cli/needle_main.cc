@@ -13,6 +13,7 @@
 #include "apps/cli/check_command.h"
 #include "apps/cli/compare_command.h"
 #include "apps/cli/dynamics_command.h"
+#include "apps/cli/fit_command.h"
 #include "apps/cli/kinematics_command.h"
 #include "apps/cli/serve_command.h"
 #include "apps/cli/size_command.h"
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
       Register(app, needle::AddProfileCommand, needle::RunProfileCommand),
       Register(app, needle::AddToleranceCommand, needle::RunToleranceCommand),
       Register(app, needle::AddServeCommand, needle::RunServeCommand),
+      Register(app, needle::AddFitCommand, needle::RunFitCommand),
   };
   // An unknown first word is named as such, with the commands there are (CLI11 would say only
   // "A subcommand is required").

@@ -105,6 +105,7 @@ void DefCase(py::module_& m) {
       .def("__repr__", [](const PyCase& c) { return "<needle.Case " + c.name + ">"; });
 
   DefScene(m);
+  DefFit(m);
 
   Def(
       m, "load_case",
@@ -156,12 +157,16 @@ void DefCaseCommands(py::module_& m) {
   Def(
       m, "simulate",
       [](const py::object& source, const py::object& rpm, const py::object& method,
-         const py::object& rtol, const py::object& dynamic, const py::object& series) {
-        return SceneSimulate(SceneSource(source, "simulate"), rpm, method, rtol, dynamic, series);
+         const py::object& rtol, const py::object& dynamic, const py::object& series,
+         const py::object& grid_deg) {
+        return SceneSimulate(SceneSource(source, "simulate"), rpm, method, rtol, dynamic, series,
+                             grid_deg);
       },
       arg("case"), py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(),
       arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
-      "needle simulate: one dynamic run (series=True: the time series under 'columns'); a loop "
+      arg("grid_deg") = py::none(),
+      "needle simulate: one dynamic run (series=True: the time series under 'columns'; grid_deg: "
+      "the needle's lift at those crank angles under 'grid', as a lift sensor reads it); a loop "
       "over speeds binds the case once with needle.Scene(case).simulate(rpm=…)");
 
   Def(

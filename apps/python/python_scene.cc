@@ -69,9 +69,15 @@ py::dict SceneKinematics(SceneSource s, const py::object& rpm, const py::object&
 }
 
 py::dict SceneSimulate(SceneSource s, const py::object& rpm, const py::object& method,
-                       const py::object& rtol, const py::object& dynamic,
-                       const py::object& series) {
+                       const py::object& rtol, const py::object& dynamic, const py::object& series,
+                       const py::object& grid_deg) {
   SimulateJobOptions o;
+  if (!grid_deg.is_none()) {
+    for (const py::handle& v : py::iterable(grid_deg)) {
+      o.grid_deg.push_back(*Number(py::reinterpret_borrow<py::object>(v), "grid_deg",
+                                   "a crank angle in deg", "within ±720 deg", -720.0, 720.0));
+    }
+  }
   o.speed_rpm = Speed(rpm, "rpm");
   RequireSpeedOf(s.path(), s.speed_rpm(), o.speed_rpm, "rpm");
   o.method = MethodKeyword(method);
@@ -81,7 +87,8 @@ py::dict SceneSimulate(SceneSource s, const py::object& rpm, const py::object& m
   return Run([&] { return WriteSimulate(SimulateCase(s.Bound(), o), true); },
              {{"--rpm", "rpm=" + Repr(rpm)},
               {"--method", "method=" + Repr(method)},
-              {"--rtol", "rtol=" + Repr(rtol)}});
+              {"--rtol", "rtol=" + Repr(rtol)},
+              {"--grid", "grid_deg"}});
 }
 
 py::dict SceneOverspeed(SceneSource s, const py::object& from_rpm, const py::object& to_rpm,
@@ -147,12 +154,13 @@ void DefScene(py::module_& m) {
       .def(
           "simulate",
           [](const PyScene& s, const py::object& rpm, const py::object& method,
-             const py::object& rtol, const py::object& dynamic, const py::object& series) {
-            return SceneSimulate(SceneSource(s), rpm, method, rtol, dynamic, series);
+             const py::object& rtol, const py::object& dynamic, const py::object& series,
+             const py::object& grid_deg) {
+            return SceneSimulate(SceneSource(s), rpm, method, rtol, dynamic, series, grid_deg);
           },
           py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(),
           arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
-          "needle simulate of the scene (as needle.simulate)")
+          arg("grid_deg") = py::none(), "needle simulate of the scene (as needle.simulate)")
       .def(
           "overspeed",
           [](const PyScene& s, const py::object& from_rpm, const py::object& to_rpm,

@@ -49,7 +49,8 @@ class SceneSource {
 py::dict SceneKinematics(SceneSource s, const py::object& rpm, const py::object& step_deg,
                          const py::object& spline = py::none());
 py::dict SceneSimulate(SceneSource s, const py::object& rpm, const py::object& method,
-                       const py::object& rtol, const py::object& dynamic, const py::object& series);
+                       const py::object& rtol, const py::object& dynamic, const py::object& series,
+                       const py::object& grid_deg);
 py::dict SceneOverspeed(SceneSource s, const py::object& from_rpm, const py::object& to_rpm,
                         const py::object& step_rpm, const py::object& method,
                         const py::object& rtol, const py::object& threads);
@@ -57,5 +58,7 @@ py::dict SceneCheck(SceneSource s, const py::object& rpm);
 
 /// Defines needle.Scene in module `m`.
 void DefScene(py::module_& m);
+// needle.fit (python_fit.cc).
+void DefFit(py::module_& m);
 
 }  // namespace needle::python

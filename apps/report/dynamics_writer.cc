@@ -41,6 +41,25 @@ std::string CyclesText(const SimulationResult& r) {
 
 }  // namespace
 
+namespace {
+
+// The needle at the run's grid of crank angles (SimulationOptions::grid_rad): crank_deg,
+// lift_mm and contact_force_N, each a list.
+nlohmann::json GridJson(const SimulationResult& r, double speed_rpm) {
+  nlohmann::json g = {{"crank_deg", nlohmann::json::array()},
+                      {"lift_mm", nlohmann::json::array()},
+                      {"contact_force_N", nlohmann::json::array()}};
+  const double theta_a = r.window_start_rad, omega = OmegaFromRpm(speed_rpm);
+  for (const GridPoint& p : r.grid) {
+    g["crank_deg"].push_back((theta_a + omega * p.time_s) / kDeg);
+    g["lift_mm"].push_back(p.lift_m * 1e3);
+    g["contact_force_N"].push_back(p.contact_force_N);
+  }
+  return g;
+}
+
+}  // namespace
+
 CommandOutput WriteSimulate(const CaseRun& run, bool json) {
   const BoundCase& c = run.c;
   const SimulationResult& r = run.result;
@@ -63,6 +82,7 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
     j["method_reason"] = r.method_reason;
     j["skipped_dynamics"] = r.skipped;
     j["liftoff"] = r.liftoff();
+    if (!r.grid.empty()) j["grid"] = GridJson(r, speed);
     const bool with_cycle = r.cycles_asked > 1;
     j["episodes"] =
         RecordList(r.episodes, [&](const Episode& e) { return EpisodeFields(e, with_cycle); });

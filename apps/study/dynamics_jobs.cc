@@ -51,6 +51,16 @@ CaseRun SimulateCase(const BoundCase& c, const SimulateJobOptions& o,
       for (size_t i = 0; i < row.size(); ++i) si[i].push_back(row[i]);
     };
   }
+  for (size_t i = 0; i < o.grid_deg.size(); ++i) {
+    if (!std::isfinite(o.grid_deg[i]) || (i > 0 && !(o.grid_deg[i] > o.grid_deg[i - 1]))) {
+      throw CaseError("--grid: the crank angles must be finite and increase strictly (at " +
+                      std::to_string(i) + ")");
+    }
+    sim.grid_rad.push_back(o.grid_deg[i] * kDeg);
+  }
+  if (!o.grid_deg.empty() && o.cycles && *o.cycles > 1) {
+    throw CaseError("--grid: a grid of crank angles needs one revolution (--cycles 1)");
+  }
   if (o.cycles) {
     sim.cycles = *o.cycles;
     const auto refusal = sim.cycles > 1 ? CyclesRefusal(scene) : std::nullopt;

@@ -27,6 +27,9 @@ struct SimulateJobOptions {
   std::optional<int> cycles;          ///< cam revolutions back to back ([solver] cycles)
   bool series = false;                ///< keep the time series as SI columns (Python)
   bool quasi_static = true;  ///< also n_qs of the scene (the JSON object has it; the text not)
+  /// Crank angles, deg, increasing: the needle's lift there (CaseRun::result.grid), as a lift
+  /// sensor sampled against an encoder reads it (`needle.simulate(grid_deg=…)`). Empty: none.
+  std::vector<double> grid_deg;
 };
 
 /// A run of a case and what it was made with.

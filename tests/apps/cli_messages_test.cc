@@ -131,7 +131,7 @@ TEST(CliMessagesTest, ControlCharactersStayOffTheTerminal) {
   ExpectRefused(
       "\"$(printf 'x\\033[1m')\"",
       "needle: unknown command 'x\\x1B[1m'; expected one of check, compare, kinematics, "
-      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve (see needle "
+      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve, fit (see needle "
       "--help)\n");
   ExpectRefused("kinematics \"/no/such$(printf '\\033[1m\\nx').toml\"",
                 "needle: /no/such\\x1B[1m\\nx.toml: cannot open the case file for reading\n");

@@ -191,7 +191,7 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   EXPECT_EQ(
       unknown.err,
       "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
-      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve (see needle "
+      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve, fit (see needle "
       "--help)\n");
   const auto missing = RunNeedle("kinematics /no/such.toml");
   EXPECT_EQ(missing.status, 2);

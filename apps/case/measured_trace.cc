@@ -1,0 +1,120 @@
+#include "apps/case/measured_trace.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "lib/case_error.h"
+#include "lib/lift_data.h"
+#include "lib/units.h"
+
+namespace needle {
+
+namespace {
+
+// `v` to `digits` significant digits.
+std::string FormatNumber(double v, int digits) {
+  std::ostringstream o;
+  o << std::setprecision(digits) << v;
+  return o.str();
+}
+
+std::string Mm(double m) { return FormatNumber(m * 1e3, 4) + " mm"; }
+std::string Deg(double rad) { return FormatNumber(rad / kDeg, 5) + " deg"; }
+
+// The line of reading i, for messages ("PATH:LINE" or "PATH").
+std::string Where(const MeasuredTrace& t, size_t i) {
+  return i < t.lines.size() ? t.path + ":" + std::to_string(t.lines[i]) : t.path;
+}
+
+// The speed the clock gives, rpm: the least-squares slope of crank angle against time.
+double ClockSpeedRpm(const MeasuredTrace& t) {
+  const size_t n = t.time_s.size();
+  double mt = 0.0, ma = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    mt += t.time_s[i] / n;
+    ma += t.table.crank_rad[i] / n;
+  }
+  double sta = 0.0, stt = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    sta += (t.time_s[i] - mt) * (t.table.crank_rad[i] - ma);
+    stt += (t.time_s[i] - mt) * (t.time_s[i] - mt);
+  }
+  return sta / stt * 60.0 / (2.0 * kPi);
+}
+
+}  // namespace
+
+void CheckMeasuredTrace(const MeasuredTrace& t, const BoundCase& b) {
+  const std::vector<double>& th = t.table.crank_rad;
+  const std::vector<double>& y = t.table.lift_m;
+  if (th.size() != y.size() || (!t.time_s.empty() && t.time_s.size() != th.size())) {
+    throw CaseError(t.path + ": the trace's columns differ in length");
+  }
+  for (size_t i = 0; i < th.size(); ++i) {
+    if (!std::isfinite(th[i]) || !std::isfinite(y[i])) {
+      throw CaseError(Where(t, i) + ": reading " + std::to_string(i) +
+                      " is not a finite number; a trace needs finite angles and lifts");
+    }
+    if (i > 0 && !(th[i] > th[i - 1])) {
+      throw CaseError(Where(t, i) + ": crank_deg " + FormatNumber(th[i] / kDeg, 6) +
+                      " does not increase after " + FormatNumber(th[i - 1] / kDeg, 6) +
+                      "; angles must increase strictly");
+    }
+  }
+  const LiftLaw& law = *b.lift.law;
+  const double open = law.start_rad(), close = law.end_rad();
+  const long inside =
+      std::count_if(th.begin(), th.end(), [&](double a) { return a >= open && a <= close; });
+  if (inside < kMinTraceLiftReadings) {
+    std::ostringstream m;
+    m << t.path << ": crank_deg: the trace runs " << Deg(th.front()) << " to " << Deg(th.back())
+      << " with " << inside << " reading(s) inside the cam's lift (" << Deg(open) << " to "
+      << Deg(close) << "); expected at least " << kMinTraceLiftReadings
+      << " (a trace of another cam, or cam angles under crank_deg?)";
+    throw CaseError(m.str());
+  }
+  const double cam_top = law.Max(0).value;
+  const auto top = std::max_element(y.begin(), y.end());
+  const size_t k = static_cast<size_t>(top - y.begin());
+  if (*top > kTraceOverLiftFactor * cam_top) {
+    throw CaseError(Where(t, k) + ": lift: the trace reaches " + Mm(*top) + ", " +
+                    FormatNumber(*top / cam_top, 3) + " times the cam's largest lift (" +
+                    Mm(cam_top) + "); expected at most " + FormatNumber(kTraceOverLiftFactor, 2) +
+                    " times (a trace in um under lift_mm?)");
+  }
+  if (*top < kTraceUnderLiftFraction * cam_top) {
+    throw CaseError(t.path + ": lift: the trace reaches only " + Mm(*top) + ", " +
+                    FormatNumber(*top / cam_top, 3) + " of the cam's largest lift (" + Mm(cam_top) +
+                    "); expected at least " + FormatNumber(kTraceUnderLiftFraction, 2) +
+                    " of it (a trace in mm under lift_um, or of another cam?)");
+  }
+  if (t.time_s.empty()) return;
+  for (size_t i = 1; i < t.time_s.size(); ++i) {
+    if (!(t.time_s[i] > t.time_s[i - 1])) {
+      throw CaseError(Where(t, i) + ": time: " + FormatNumber(t.time_s[i], 8) +
+                      " s does not increase after " + FormatNumber(t.time_s[i - 1], 8) +
+                      " s; a clock must increase strictly");
+    }
+  }
+  const double clock_rpm = ClockSpeedRpm(t);
+  if (!(std::abs(clock_rpm / t.speed_rpm - 1.0) <= kTraceSpeedTolerance)) {
+    throw CaseError(t.path + ": time: the trace's clock gives " + FormatNumber(clock_rpm, 5) +
+                    " rpm (its crank angle against its time), the trace's speed is " +
+                    FormatNumber(t.speed_rpm, 5) + " rpm; expected within " +
+                    FormatNumber(kTraceSpeedTolerance * 100, 2) +
+                    " % (the trace of another speed, or cam angles under crank_deg?)");
+  }
+}
+
+MeasuredTrace ReadMeasuredTrace(const std::string& path, double speed_rpm, const BoundCase& b) {
+  MeasuredTrace t;
+  t.path = path;
+  t.speed_rpm = speed_rpm;
+  t.table = ReadLiftCsv(path, b.engine.cycle, &t.lines, &t.time_s);
+  CheckMeasuredTrace(t, b);
+  return t;
+}
+
+}  // namespace needle

@@ -1,0 +1,285 @@
+// The analysis of a fit's optimum (apps/study/fit_model.h): covariance and intervals, the scan
+// of the cost, the residual's structure, the second speed, n_dyn's draws.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <sstream>
+
+#include "apps/study/dynamics_jobs.h"
+#include "apps/study/fit_model.h"
+
+namespace needle {
+namespace fit_detail {
+
+// The covariance of q: s² (JᵀWJ)⁻¹, its eigenvalues below kRankFraction of the largest taken as
+// that floor (a direction the traces do not pin down gets a variance that spans its bounds).
+Eigen::MatrixXd Covariance(const Eigen::MatrixXd& J, const Eigen::VectorXd& w, double s2,
+                           std::vector<bool>* identified) {
+  const Eigen::MatrixXd H = J.transpose() * w.asDiagonal() * J;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
+  const Eigen::VectorXd lambda = eig.eigenvalues();
+  const double floor = std::max(lambda.maxCoeff() * kRankFraction, kRankFloor);
+  Eigen::VectorXd inv(lambda.size());
+  identified->assign(lambda.size(), true);
+  for (int k = 0; k < lambda.size(); ++k) {
+    inv[k] = 1.0 / std::max(lambda[k], floor);
+    if (lambda[k] < floor) {
+      // The unknowns that make up this direction are not identified.
+      for (int j = 0; j < lambda.size(); ++j) {
+        if (std::abs(eig.eigenvectors()(j, k)) > 0.1) (*identified)[j] = false;
+      }
+    }
+  }
+  return s2 * eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+double CorrelationOf(const Eigen::MatrixXd& cov, int a, int b) {
+  return cov(a, b) / std::sqrt(cov(a, a) * cov(b, b));
+}
+
+// The fitted values with their 95 % intervals, in the keys' units.
+std::vector<FittedValue> Values(const FitModel& m, const std::vector<double>& q,
+                                const Eigen::MatrixXd& cov, const std::vector<bool>& identified) {
+  std::vector<FittedValue> vs;
+  for (int j = 0; j < m.P(); ++j) {
+    const Coordinate& c = m.coordinates()[j];
+    const double lo = c.ToQ(c.lo_si), hi = c.ToQ(c.hi_si);
+    const double half = 1.959963984540054 * std::sqrt(cov(j, j));
+    auto shown = [&](double q_j) { return Shown(c.key, c.ToSi(q_j)); };
+    FittedValue v;
+    v.key = c.key;
+    v.start = Shown(c.key, c.start_si);
+    v.value = shown(q[j]);
+    v.identified = identified[j];
+    v.low = shown(identified[j] ? std::max(lo, q[j] - half) : lo);
+    v.high = shown(identified[j] ? std::min(hi, q[j] + half) : hi);
+    v.lower_bound = shown(lo);
+    v.upper_bound = shown(hi);
+    const double tol = 1e-6 * std::max(1.0, hi - lo);
+    v.at_bound = q[j] <= lo + tol || q[j] >= hi - tol;
+    vs.push_back(v);
+  }
+  return vs;
+}
+
+// The residual of each trace: RMS, runs test, the 5 % window where it is largest.
+std::vector<TraceFit> TraceFits(FitModel& m, const std::vector<MeasuredTrace>& traces,
+                                const Eigen::VectorXd& r) {
+  std::vector<TraceFit> fits;
+  int row = 0;
+  for (size_t t = 0; t < traces.size(); ++t) {
+    TraceFit f;
+    f.path = traces[t].path;
+    f.speed_rpm = traces[t].speed_rpm;
+    f.readings = static_cast<int>(traces[t].table.crank_rad.size());
+    f.used = static_cast<int>(m.used(t).size());
+    f.noise_m = m.noise_m(t);
+    const double sigma = f.noise_m;
+    int positive = 0, runs = 0;
+    double sum2 = 0.0;
+    for (int i = 0; i < f.used; ++i) {
+      const int k = m.used(t)[i];
+      const double ri = r[row + i];
+      f.crank_rad.push_back(traces[t].table.crank_rad[k]);
+      f.measured_m.push_back(traces[t].table.lift_m[k]);
+      f.fitted_m.push_back(traces[t].table.lift_m[k] + ri * sigma);
+      sum2 += ri * ri;
+      positive += ri > 0.0;
+      if (i == 0 || (ri > 0.0) != (r[row + i - 1] > 0.0)) ++runs;
+    }
+    f.rms_m = f.used ? sigma * std::sqrt(sum2 / f.used) : 0.0;
+    const double n = f.used, n1 = positive, n2 = n - n1;
+    const double mean = 2.0 * n1 * n2 / std::max(n, 1.0) + 1.0;
+    const double var = (mean - 1.0) * (mean - 2.0) / std::max(n - 1.0, 1.0);
+    f.runs_z = var > 0.0 ? (runs - mean) / std::sqrt(var) : 0.0;
+    const int w = std::max(5, f.used / 20);
+    for (int i = 0; i + w <= f.used; i += std::max(1, w / 4)) {
+      double s = 0.0;
+      for (int k = i; k < i + w; ++k) s += r[row + k] * r[row + k];
+      const double rms = sigma * std::sqrt(s / w);
+      if (rms > f.worst_rms_m) {
+        f.worst_rms_m = rms;
+        f.worst_from_rad = f.crank_rad[i];
+        f.worst_to_rad = f.crank_rad[i + w - 1];
+      }
+    }
+    row += f.used;
+    fits.push_back(f);
+  }
+  return fits;
+}
+
+// Whether the model misses something: a trace whose residual RMS exceeds kMissSigmas σ with
+// signs in long runs; the note says which and where.
+void JudgeModel(FitResult& r) {
+  for (const TraceFit& f : r.traces) {
+    if (f.rms_m > kMissSigmas * f.noise_m && f.runs_z < kStructuredZ) {
+      r.model_misses = true;
+      std::ostringstream m;
+      if (!r.model_note.empty()) m << "; ";
+      m << f.path << " at " << G(f.speed_rpm, 5) << " rpm: the residual RMS is "
+        << G(f.rms_m * 1e3, 3) << " mm, " << G(f.rms_m / f.noise_m, 3)
+        << " times the trace's noise, and runs in long stretches (runs test z = " << G(f.runs_z, 3)
+        << "); largest between " << G(f.worst_from_rad / kDeg, 4) << " and "
+        << G(f.worst_to_rad / kDeg, 4) << " deg (RMS " << G(f.worst_rms_m * 1e3, 3) << " mm)";
+      r.model_note += m.str();
+    }
+  }
+  const double dof = 0.0 +
+                     std::accumulate(r.traces.begin(), r.traces.end(), 0,
+                                     [](int n, const TraceFit& f) { return n + f.used; }) -
+                     static_cast<double>(r.parameters.size());
+  const double expected_hi = 1.0 + 3.0 * std::sqrt(2.0 / std::max(dof, 1.0));
+  if (!r.model_misses && r.chi2_reduced > expected_hi) {
+    r.residual_note = "the residual is above the traces' noise (reduced chi-square " +
+                      G(r.chi2_reduced, 3) + ", at most " + G(expected_hi, 3) +
+                      " expected of noise alone): a local minimum, or a model that misses "
+                      "something; more --starts may find a lower one";
+  }
+  if (r.model_misses) {
+    r.model_note = "the model misses something the traces show: " + r.model_note +
+                   ". The intervals are widened by the misfit, but a parameter fitted to make up "
+                   "for a missing effect is not the part's value";
+  }
+}
+
+// For each pair the traces do not separate: the speed (of 0.5, 0.75, 1.25, 1.5 and 2 times each
+// trace's and the rated speed) whose trace, on the first trace's angles and noise, would narrow
+// their two intervals most (the product of the narrowings, at least kSeparatingNarrowing).
+void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::MatrixXd& H,
+                   const std::vector<MeasuredTrace>& traces, const BoundCase& b, FitResult& r) {
+  std::vector<double> speeds;
+  std::vector<double> bases = {b.engine.speed_rpm};
+  for (const MeasuredTrace& t : traces) bases.push_back(t.speed_rpm);
+  for (double base : bases) {
+    for (double f : {0.5, 0.75, 1.25, 1.5, 2.0}) {
+      const double n = base * f;
+      bool near = !(n > 0.0);
+      for (const MeasuredTrace& t : traces) near = near || std::abs(n / t.speed_rpm - 1.0) < 0.05;
+      for (double s : speeds) near = near || std::abs(n / s - 1.0) < 0.05;
+      if (!near) speeds.push_back(n);
+    }
+  }
+  std::sort(speeds.begin(), speeds.end());
+  Query query{0.0, {}};
+  for (int i : m.used(0)) query.crank_rad.push_back(traces[0].table.crank_rad[i]);
+  const double sigma = m.noise_m(0);
+  const Eigen::MatrixXd before = H.completeOrthogonalDecomposition().pseudoInverse();
+  for (double n : speeds) {
+    query.speed_rpm = n;
+    Eigen::MatrixXd Jn;
+    auto lifts = [&](const double* x, Eigen::VectorXd& v) {
+      std::vector<std::vector<double>> y;
+      if (!m.Predict(x, {query}, y)) return false;
+      v = Eigen::Map<Eigen::VectorXd>(y[0].data(), y[0].size()) / sigma;
+      return true;
+    };
+    if (!m.Differentiate(q.data(), static_cast<int>(query.crank_rad.size()), lifts, Jn)) continue;
+    const Eigen::MatrixXd cov =
+        (H + Jn.transpose() * Jn).completeOrthogonalDecomposition().pseudoInverse();
+    for (UnseparatedPair& p : r.unseparated) {
+      const double na = std::sqrt(before(p.a, p.a) / cov(p.a, p.a));
+      const double nb = std::sqrt(before(p.b, p.b) / cov(p.b, p.b));
+      if (std::isfinite(na * nb) && na * nb >= kSeparatingNarrowing &&
+          (!p.separating_rpm || na * nb > p.narrowing_a * p.narrowing_b)) {
+        p.separating_rpm = n;
+        p.correlation_with = CorrelationOf(cov, p.a, p.b);
+        p.narrowing_a = na;
+        p.narrowing_b = nb;
+      }
+    }
+  }
+}
+
+// The cost's own check of the linearised intervals: for each unknown, the cost at kScanPoints
+// points over its screening range and at its bounds, the others at their fitted values. A point
+// whose cost is within ½·3.84·s² of the optimum's (the 95 % likelihood-ratio level) fits as well:
+// the interval is widened to hold it, and where a bound fits, the unknown is not identified. (A
+// play taken up on tangent ramps leaves the needle's lift the same for any play above a few
+// hundredths of a millimetre: the slope at the optimum says nothing of that plateau.)
+constexpr int kScanPoints = 24;  // (ScanIntervals)
+
+void ScanIntervals(FitModel& m, const std::vector<double>& q, double cost, double s2,
+                   const FitOptions& o, std::vector<FittedValue>& values) {
+  const double level = cost + 0.5 * 3.841458820694124 * s2;
+  Eigen::VectorXd r;
+  for (int j = 0; j < m.P(); ++j) {
+    const Coordinate& c = m.coordinates()[j];
+    const double lo = c.ToQ(c.lo_si), hi = c.ToQ(c.hi_si), q0 = c.ToQ(c.start_si);
+    const double spread = c.key.log_scale ? std::log(3.0) : 0.5;
+    std::vector<double> points = {lo, hi};
+    for (int k = 0; k <= kScanPoints; ++k) {
+      points.push_back(std::clamp(q0 - spread + 2.0 * spread * k / kScanPoints, lo, hi));
+    }
+    FittedValue& v = values[j];
+    auto shown = [&](double x) { return Shown(c.key, c.ToSi(x)); };
+    std::vector<double> x = q;
+    for (double point : points) {
+      x[j] = point;
+      if (!m.Residuals(x.data(), r) || HuberCost(r, o.huber_sigmas) > level) continue;
+      const double shown_point = shown(point);
+      if (shown_point < v.low || shown_point > v.high) v.widened = true;
+      v.low = std::min(v.low, shown_point);
+      v.high = std::max(v.high, shown_point);
+      if (point == lo || point == hi) v.identified = false;
+    }
+  }
+}
+
+// n_dyn at q and over draws of q from N(q, cov), clipped to the bounds.
+LiftoffPrediction PredictLiftoff(const FitModel& m, const std::vector<double>& q,
+                                 const Eigen::MatrixXd& cov, const FitOptions& o) {
+  LiftoffPrediction p;
+  double offsets[2];
+  OverspeedJobOptions jo;
+  jo.threads = 1;
+  const CaseOverspeed at = OverspeedOfCase(m.CaseAt(q.data(), offsets), jo);
+  p.status = at.result.status;
+  p.value = at.result.n_dyn_rpm;
+  p.to_rpm = at.options.to_rpm;
+  jo.from_rpm = at.options.from_rpm;
+  jo.to_rpm = at.options.to_rpm;
+  const Eigen::LLT<Eigen::MatrixXd> llt(cov);
+  const Eigen::MatrixXd L = llt.info() == Eigen::Success
+                                ? Eigen::MatrixXd(llt.matrixL())
+                                : Eigen::MatrixXd(cov.diagonal().cwiseSqrt().asDiagonal());
+  std::mt19937_64 gen(o.seed + 1);
+  std::normal_distribution<double> normal;
+  std::vector<double> found;
+  for (int d = 0; d < o.liftoff_draws; ++d) {
+    Eigen::VectorXd z(m.P());
+    for (int j = 0; j < m.P(); ++j) z[j] = normal(gen);
+    const Eigen::VectorXd dq = L * z;
+    std::vector<double> x = q;
+    for (int j = 0; j < m.P(); ++j) {
+      const Coordinate& c = m.coordinates()[j];
+      x[j] = std::clamp(q[j] + dq[j], c.ToQ(c.lo_si), c.ToQ(c.hi_si));
+    }
+    ++p.draws;
+    try {
+      const CaseOverspeed r = OverspeedOfCase(m.CaseAt(x.data(), offsets), jo);
+      if (r.result.n_dyn_rpm) {
+        found.push_back(*r.result.n_dyn_rpm);
+      } else {
+        ++p.draws_without;
+      }
+    } catch (const CaseError&) {
+      ++p.draws_without;
+    }
+  }
+  std::sort(found.begin(), found.end());
+  if (!found.empty()) {
+    auto quantile = [&](double f) {
+      const double x = f * (found.size() - 1);
+      const size_t k = static_cast<size_t>(x);
+      return k + 1 < found.size() ? found[k] + (x - k) * (found[k + 1] - found[k]) : found.back();
+    };
+    p.low = quantile(0.025);
+    p.high = quantile(0.975);
+  }
+  return p;
+}
+
+}  // namespace fit_detail
+}  // namespace needle

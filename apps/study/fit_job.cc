@@ -1,0 +1,189 @@
+#include "apps/study/fit_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "apps/study/fit_model.h"
+#include "lib/case_error.h"
+
+namespace needle {
+
+using namespace fit_detail;
+
+namespace {
+
+// The keys `needle fit` can free, in one table: section, stem, dimension, in logs, and the
+// scale of a linear one's internal coordinate (SI; 0: the case's value).
+struct FitStem {
+  const char* section;
+  const char* stem;
+  Dimension dimension;
+  bool log_scale;
+  const char* shown_unit;  // for FitKeyList
+};
+constexpr FitStem kFitStems[] = {
+    {"needle", "mass", Dimension::kMass, true, "kg"},
+    {"spring", "preload", Dimension::kForce, false, "N"},
+    {"spring", "rate", Dimension::kStiffness, true, "N_mm"},
+    {"train", "contact_stiffness", Dimension::kStiffness, true, "N_m"},
+    {"train", "seat_stiffness", Dimension::kStiffness, true, "N_m"},
+    {"train", "contact_damping_ratio", Dimension::kNone, false, ""},
+    {"train", "seat_damping_ratio", Dimension::kNone, false, ""},
+    {"train", "play", Dimension::kLength, false, "mm"},
+    {"trace", "offset", Dimension::kAngle, false, "deg"},
+    {"trace", "offset", Dimension::kLength, false, "mm"},
+};
+
+}  // namespace
+
+std::string FitKeyList() {
+  std::string s;
+  for (const FitStem& f : kFitStems) {
+    s += (s.empty() ? "" : ", ") + std::string(f.section) + "." + f.stem +
+         (f.shown_unit[0] ? "_" + std::string(f.shown_unit) : "");
+  }
+  return s;
+}
+
+FitKey ParseFitKey(const std::string& name, const std::string& option) {
+  const size_t dot = name.find('.');
+  if (dot != std::string::npos) {
+    const std::string section = name.substr(0, dot), key = name.substr(dot + 1);
+    for (const FitStem& f : kFitStems) {
+      if (section != f.section) continue;
+      const std::string stem = f.stem;
+      std::string unit;
+      if (f.dimension == Dimension::kNone) {
+        if (key != stem) continue;
+      } else {
+        if (key.compare(0, stem.size() + 1, stem + "_") != 0) continue;
+        unit = key.substr(stem.size() + 1);
+        const std::vector<std::string> units = UnitSuffixes(f.dimension);
+        if (std::find(units.begin(), units.end(), unit) == units.end()) continue;
+      }
+      return FitKey{name, section, stem, unit, f.dimension, f.log_scale};
+    }
+  }
+  throw CaseError(option + ": '" + name + "' is not a key needle fit can free; expected one of " +
+                  FitKeyList() + " (any unit suffix of the case file's)");
+}
+
+FitBound ParseFitBound(const std::string& text, const std::string& option) {
+  const size_t eq = text.find('='), colon = text.find(':', eq == std::string::npos ? 0 : eq);
+  if (eq == std::string::npos || colon == std::string::npos) {
+    throw CaseError(option + ": '" + text + "': expected KEY=LOW:HIGH (train.play_mm=0:0.5)");
+  }
+  FitBound b;
+  b.key = ParseFitKey(text.substr(0, eq), option);
+  auto number = [&](const std::string& s) {
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v)) {
+      throw CaseError(option + ": '" + text + "': '" + s + "' is not a finite number");
+    }
+    return v;
+  };
+  b.low = number(text.substr(eq + 1, colon - eq - 1));
+  b.high = number(text.substr(colon + 1));
+  if (!(b.low < b.high)) {
+    throw CaseError(option + ": '" + text + "': the low bound must be below the high one");
+  }
+  return b;
+}
+
+FitResult FitCase(const BoundCase& b, const std::vector<MeasuredTrace>& traces,
+                  const FitOptions& o) {
+  const auto clock = std::chrono::steady_clock::now();
+  if (o.free.empty())
+    throw CaseError("--free: name at least one key to fit; expected " + FitKeyList());
+  if (traces.empty()) throw CaseError("--trace: give at least one trace");
+  if (!(o.starts >= 1 && o.starts <= 64)) throw CaseError("--starts: expected 1 to 64");
+  for (const MeasuredTrace& t : traces) CheckMeasuredTrace(t, b);
+  SceneFor(b, b.lift.law);  // throws what the dynamics lacks, naming it
+  FitModel model(b, Coordinates(b, o), traces);
+  if (model.N() <= model.P()) {
+    throw CaseError("--trace: the traces hold " + std::to_string(model.N()) +
+                    " readings inside the run window, not more than the " +
+                    std::to_string(model.P()) + " unknowns");
+  }
+  FitResult r;
+  // Every start searched for kProbeIterations, the kFinalists best on to convergence.
+  std::vector<StartResult> probes;
+  for (const std::vector<double>& q0 : Starts(model, o)) {
+    probes.push_back(SolveFrom(model, q0, o, std::min(kProbeIterations, o.max_iterations)));
+    r.start_costs.push_back(probes.back().cost);
+  }
+  std::sort(probes.begin(), probes.end(), [](const StartResult& a, const StartResult& b) {
+    return std::isfinite(a.cost) && !(a.cost >= b.cost);
+  });
+  StartResult best;
+  for (size_t k = 0; k < probes.size() && static_cast<int>(k) < kFinalists; ++k) {
+    if (!std::isfinite(probes[k].cost)) break;
+    StartResult s = o.max_iterations > kProbeIterations
+                        ? SolveFrom(model, probes[k].q, o, o.max_iterations)
+                        : probes[k];
+    if (!std::isfinite(s.cost)) s = probes[k];
+    s.iterations += probes[k].iterations;
+    if (!(s.cost >= best.cost)) best = s;
+  }
+  if (!std::isfinite(best.cost)) {
+    throw CaseError(b.path +
+                    ": the model does not run from the case's values nor from any other "
+                    "start (a value the model refuses?)");
+  }
+  r.cost = best.cost;
+  r.iterations = best.iterations;
+  r.termination = best.termination;
+  CachedResiduals at(model, true);
+  at.At(best.q.data(), true);
+  const Eigen::VectorXd& res = at.r();
+  Eigen::VectorXd w(res.size());
+  double weighted = 0.0;
+  for (int i = 0; i < res.size(); ++i) {
+    w[i] = HuberWeight(res[i], o.huber_sigmas);
+    weighted += w[i] * res[i] * res[i];
+  }
+  r.chi2_reduced = weighted / (model.N() - model.P());
+  std::vector<bool> identified;
+  const Eigen::MatrixXd cov = Covariance(at.J(), w, std::max(1.0, r.chi2_reduced), &identified);
+  r.parameters = Values(model, best.q, cov, identified);
+  ScanIntervals(model, best.q, best.cost, std::max(1.0, r.chi2_reduced), o, r.parameters);
+  r.correlation.assign(model.P(), std::vector<double>(model.P(), 0.0));
+  for (int a = 0; a < model.P(); ++a) {
+    for (int c = 0; c < model.P(); ++c) r.correlation[a][c] = CorrelationOf(cov, a, c);
+  }
+  for (int a = 0; a < model.P(); ++a) {
+    for (int c = a + 1; c < model.P(); ++c) {
+      if (std::abs(r.correlation[a][c]) > kUnseparatedCorrelation) {
+        r.unseparated.push_back({a, c, r.correlation[a][c], std::nullopt, 0.0});
+      }
+    }
+  }
+  if (o.suggest_speed && !r.unseparated.empty()) {
+    const Eigen::MatrixXd H = at.J().transpose() * w.asDiagonal() * at.J();
+    SuggestSpeeds(model, best.q, H, traces, b, r);
+  }
+  r.traces = TraceFits(model, traces, res);
+  JudgeModel(r);
+  double offsets[2];
+  r.fitted = model.CaseAt(best.q.data(), offsets);
+  r.fitted.scene = BindScene(r.fitted, r.fitted.lift.law);
+  if (o.predict_liftoff) r.liftoff = PredictLiftoff(model, best.q, cov, o);
+  r.model_runs = model.runs();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  return r;
+}
+
+std::vector<std::pair<std::string, std::pair<std::string, double>>> FittedOverrides(
+    const FitResult& r) {
+  std::vector<std::pair<std::string, std::pair<std::string, double>>> out;
+  for (const FittedValue& v : r.parameters) {
+    if (v.key.section == "trace") continue;
+    const std::string key = v.key.stem + (v.key.unit.empty() ? "" : "_" + v.key.unit);
+    out.push_back({v.key.section, {key, v.value}});
+  }
+  return out;
+}
+
+}  // namespace needle
