@@ -57,5 +57,7 @@ std::string RunOverspeedComparison(int repeats);
 std::string RunSizing(int repeats);
 /// needle serve: a change to its reply over loopback, per bundled case.
 std::string RunServe(int repeats);
+/// needle fit: a calibration's cost on docs/fit.md's bench traces.
+std::string RunFit(int repeats);
 
 }  // namespace needle::bench

@@ -4,6 +4,7 @@
 //   needle-bench kinematics --out DIR   spline error against table spacing and build time
 //   needle-bench targets                the four performance targets, met or missed by how much
 //   needle-bench size                   needle size: each stage's time and springs kept
+//   needle-bench fit                    needle fit: a calibration's cost on the bench traces
 //   needle-bench all        --out DIR   all of them, and DIR/summary.md
 //
 // Times are medians over repeated runs on one core (the overspeed speed-up uses two).
@@ -29,8 +30,9 @@ int main(int argc, char** argv) {
   auto* siz = app.add_subcommand("size", "needle size: each stage's time and springs kept");
   auto* exa = app.add_subcommand("exact", "method exact against dopri5 at rtol 1e-8, per scene");
   auto* srv = app.add_subcommand("serve", "needle serve: a change to its reply, per bundled case");
+  auto* fit = app.add_subcommand("fit", "needle fit: a calibration's cost on the bench traces");
   auto* all = app.add_subcommand("all", "everything, and OUT/summary.md");
-  for (auto* c : {dyn, kin, tgt, ovs, siz, exa, srv, all}) {
+  for (auto* c : {dyn, kin, tgt, ovs, siz, exa, srv, fit, all}) {
     c->add_option("--out", out, "output folder (default bench)");
     c->add_option("--repeats", repeats, "timed repeats per configuration (median)")
         ->check(CLI::PositiveNumber);
@@ -47,6 +49,7 @@ int main(int argc, char** argv) {
     if (siz->parsed() || all->parsed()) md += needle::bench::RunSizing(repeats);
     if (exa->parsed() || all->parsed()) md += needle::bench::RunExactComparison(repeats);
     if (srv->parsed() || all->parsed()) md += needle::bench::RunServe(repeats);
+    if (fit->parsed() || all->parsed()) md += needle::bench::RunFit(repeats);
     needle::WriteFileAtomically(out + "/summary.md", md);
     std::cout << md;
   } catch (const std::exception& e) {

@@ -29,7 +29,7 @@ std::string PairNames(const FitResult& r, const UnseparatedPair& p) {
 std::string PairAdvice(const FitResult& r, const UnseparatedPair& p) {
   std::ostringstream m;
   m << PairNames(r, p) << " are not separated by these traces (correlation " << G(p.correlation, 3)
-    << ")";
+    << "): the traces fix mainly a combination of the two";
   if (p.separating_rpm) {
     m << "; a trace at " << G(*p.separating_rpm, 4) << " rpm would narrow their intervals "
       << G(p.narrowing_a, 3) << " and " << G(p.narrowing_b, 3) << " times (correlation "

@@ -209,3 +209,29 @@ def test_design_equals_cli_json():
     assert got == expected and got_status == 0
     with pytest.raises(TypeError, match="design: expected a path"):
         needle.design(3)
+
+
+def test_fit_returns_the_dictionary_of_fit_json():
+    """needle.fit gives what `needle fit --json` prints, from paths or from arrays (the
+    simulate(grid_deg=…) readings of the same bench), and refuses a bad trace with one line."""
+    case = os.path.join(ROOT, "cases", "basu-example1.toml")
+    trace = os.path.join(ROOT, "docs", "fit", "trace-700rpm.csv")
+    free = ["spring.preload_kgf", "train.contact_damping_ratio"]
+    got = needle.fit(case, traces=[(trace, 700)], free=free, liftoff=False)
+    cli = json.loads(subprocess.run(
+        [BINARY, "fit", case, "--trace", trace, "--rpm", "700", "--free", ",".join(free),
+         "--no-liftoff", "--json"], capture_output=True, text=True, check=True).stdout)
+    for key in free:
+        for field in ("value", "low", "high", "start", "identified"):
+            assert got["parameters"][key][field] == cli["parameters"][key][field], (key, field)
+    assert got["model"] == cli["model"]
+    data = np.loadtxt(trace, delimiter=",", comments="#", skiprows=2)
+    arrays = needle.fit(case, traces=[((data[:, 0], data[:, 1]), 700)], free=free, liftoff=False)
+    assert arrays["parameters"] == got["parameters"]
+    run = needle.simulate(case, rpm=700, grid_deg=data[:, 0], dynamic=True)
+    assert len(run["grid"]["lift_mm"]) == len(data)
+    assert np.max(np.abs(np.array(run["grid"]["crank_deg"]) - data[:, 0])) < 1e-9
+    with pytest.raises(needle.CaseError, match=r"^traces\[0\]: lift: the trace reaches"):
+        needle.fit(case, traces=[((data[:, 0], data[:, 1] * 1000), 700)], free=free)
+    with pytest.raises(needle.CaseError, match=r"^free: 'spring.k' is not a key needle fit"):
+        needle.fit(case, traces=[(trace, 700)], free=["spring.k"])
