@@ -22,7 +22,7 @@ std::string RunServe(int repeats) {
   md << "## needle serve: a change to its reply (2 cores, loopback, medians)\n\n"
         "POST /api/design with one override (the preload, or the rated speed where the case has "
         "no spring), as the page sends on a slider's move: the check and the page's curves, "
-        "over HTTP. The page's drawing (Chart.js) comes on top; the page shows the whole, input "
+        "over HTTP. The page's drawing (uPlot) comes on top; the page shows the whole, input "
         "to redraw, in its header.\n\n"
         "| case | median | slowest | target ≤ 100 ms |\n|---|---|---|---|\n";
   std::vector<std::filesystem::path> files;

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -100,21 +101,27 @@ void Routes(httplib::Server& server, const DesignSession& session, const ServeOp
   server.Get("/", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(DesignPageHtml(), "text/html; charset=utf-8");
   });
-  const std::string chart = o.chart_js, licence = o.chart_js_licence;
-  server.Get("/chart.js", [chart](const httplib::Request&, httplib::Response& res) {
-    const std::string js = ReadFile(chart);
-    if (js.empty()) {
-      res.status = 500;
-      res.set_content("Chart.js is not installed at " + chart +
-                          " (apt-get install libjs-chart.js; scripts/install-deps.sh does)",
-                      "text/plain");
-      return;
-    }
-    res.set_content(js, "application/javascript");
-  });
-  server.Get("/chart.js/LICENSE", [licence](const httplib::Request&, httplib::Response& res) {
-    res.set_content(ReadFile(licence), "text/plain; charset=utf-8");
-  });
+  // uPlot's files, from the install (ServeOptions::uplot_dir).
+  const std::pair<const char*, const char*> files[] = {{"/uplot.js", "dist/uPlot.iife.min.js"},
+                                                       {"/uplot.css", "dist/uPlot.min.css"},
+                                                       {"/uplot/LICENSE", "LICENSE"}};
+  for (const auto& [route, file] : files) {
+    const std::string path = o.uplot_dir + "/" + file;
+    const std::string type = std::string(route) == "/uplot.js"    ? "application/javascript"
+                             : std::string(route) == "/uplot.css" ? "text/css"
+                                                                  : "text/plain; charset=utf-8";
+    server.Get(route, [path, type](const httplib::Request&, httplib::Response& res) {
+      const std::string content = ReadFile(path);
+      if (content.empty()) {
+        res.status = 500;
+        res.set_content(
+            "uPlot is not installed at " + path + " (scripts/install-deps.sh installs it with npm)",
+            "text/plain");
+        return;
+      }
+      res.set_content(content, type);
+    });
+  }
   server.Get("/api/case", [&session](const httplib::Request&, httplib::Response& res) {
     res.set_content(session.CaseJson(), "application/json");
   });
@@ -141,6 +148,11 @@ void Routes(httplib::Server& server, const DesignSession& session, const ServeOp
 }
 
 }  // namespace
+
+std::string DefaultUplotDir() {
+  const std::string installed = NEEDLE_UPLOT_INSTALLED, source = NEEDLE_UPLOT_SOURCE;
+  return std::filesystem::exists(installed + "/dist/uPlot.iife.min.js") ? installed : source;
+}
 
 const std::string& DesignPageHtml() {
   static const std::string page = kDesignPageHtml;

@@ -4,8 +4,8 @@
 /// its API over a DesignSession (design_api.h).
 ///
 ///     GET  /                the page (apps/serve/web/index.html, built in)
-///     GET  /chart.js        Chart.js from the system (Debian's libjs-chart.js), and its licence
-///     GET  /chart.js/LICENSE  at /chart.js/LICENSE: served from the install, no CDN
+///     GET  /uplot.js, /uplot.css, /uplot/LICENSE  uPlot (npm, pinned) and its licence, served
+///                           from the install: no CDN, it works offline
 ///     GET  /api/case        the case file as JSON
 ///     POST /api/check       overrides → `needle check --json`'s object; a bad one: 400, one line
 ///     POST /api/design      overrides → {"check", "series"} for the page; one computation at
@@ -28,14 +28,19 @@
 
 namespace needle {
 
+/// Where uPlot is: the installed copy, else the source tree's (ServeOptions::uplot_dir).
+std::string DefaultUplotDir();
+
 struct ServeOptions {
   std::string host = "127.0.0.1";  ///< the address to bind; anything else prints a warning
   int port = 8080;                 ///< 0: any free port
   /// Called once with the port bound, before serving (tests read it; the CLI prints the URL).
   std::function<void(int)> on_listening;
-  /// Where Chart.js and its licence are installed (Debian's libjs-chart.js).
-  std::string chart_js = "/usr/share/javascript/chart.js/chart.min.js";
-  std::string chart_js_licence = "/usr/share/doc/libjs-chart.js/copyright";
+  /// The folder of uPlot (the page's charts, pinned in apps/serve/web/package.json): its
+  /// dist/uPlot.iife.min.js, dist/uPlot.min.css and LICENSE. Default: the installed copy
+  /// (share/needle/uplot) when there is one, else the one scripts/install-deps.sh put in the
+  /// source tree (apps/serve/web/node_modules/uplot).
+  std::string uplot_dir = DefaultUplotDir();
 };
 
 /// The design page built into the binary.
