@@ -28,8 +28,10 @@ std::vector<double> GridTimes(const NeedleTrain& train, const std::vector<double
   std::vector<double> times;
   times.reserve(grid_rad.size());
   for (double th : grid_rad) {
+    // An angle at θ_a but for the roundoff of its subtraction is at θ_a.
     const double t = (th - train.Angle(0.0)) / train.omega();
-    if (t >= 0.0) times.push_back(t);
+    const double roundoff = 1e-12 * (std::abs(th) + std::abs(train.Angle(0.0))) / train.omega();
+    if (t >= -roundoff) times.push_back(std::max(t, 0.0));
   }
   return times;
 }

@@ -63,6 +63,11 @@ void CheckMeasuredTrace(const MeasuredTrace& t, const BoundCase& b) {
                       "; angles must increase strictly");
     }
   }
+  if (th.size() < static_cast<size_t>(kMinTraceLiftReadings)) {
+    throw CaseError(t.path + ": the trace has " + std::to_string(th.size()) +
+                    " reading(s); expected at least " + std::to_string(kMinTraceLiftReadings) +
+                    " inside the cam's lift");
+  }
   const LiftLaw& law = *b.lift.law;
   const double open = law.start_rad(), close = law.end_rad();
   const long inside =

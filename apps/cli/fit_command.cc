@@ -77,8 +77,17 @@ int RunFitCommand(const FitCommandOptions& o) {
   if (o.case_out) {
     nlohmann::json overrides = nlohmann::json::object();
     for (const auto& [section, kv] : FittedOverrides(r)) overrides[section][kv.first] = kv.second;
-    WriteOutput({"--case", *o.case_out},
-                CaseWithOverrides(ReadInputFile(o.case_path, "case"), overrides, o.case_path));
+    // A lift table read from a CSV beside the case: named from where the calibrated case goes.
+    if (!c.lift.csv_path.empty()) {
+      namespace fs = std::filesystem;
+      const fs::path csv = fs::absolute(c.lift.csv_path);
+      const fs::path folder = fs::absolute(*o.case_out).parent_path();
+      if (folder != fs::absolute(o.case_path).parent_path()) {
+        overrides["lift"]["csv"] = csv.lexically_relative(folder).string();
+      }
+    }
+    WriteOutput({"--case", *o.case_out}, CaseWithOverrides(ReadInputFile(o.case_path, "case"),
+                                                           overrides, o.case_path, true));
   }
   if (report_path) WriteOutput({"--out", *report_path}, FitReport(c, r).Html());
   if (o.json) {

@@ -3,6 +3,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <optional>
+
 #include "apps/case/bound_case.h"
 #include "apps/case/measured_trace.h"
 #include "apps/python/python_scene.h"
@@ -26,7 +28,9 @@ MeasuredTrace TraceOf(const py::handle& item, size_t index, const BoundCase& b) 
   }
   const py::sequence pair = py::reinterpret_borrow<py::sequence>(item);
   if (pair.size() != 2) throw CaseError(where + ": expected (source, rpm), a pair");
-  const double rpm = *Speed(pair[1], where + "'s rpm");
+  const std::optional<double> speed = Speed(pair[1], where + "'s rpm");
+  if (!speed) throw CaseError(where + ": the trace's rpm is None; expected a speed in rpm");
+  const double rpm = *speed;
   const py::object source = pair[0];
   if (IsPath(source)) return ReadMeasuredTrace(PathOf(source), rpm, b);
   if (!py::isinstance<py::sequence>(source) || py::len(source) != 2) {

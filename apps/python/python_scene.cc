@@ -74,8 +74,11 @@ py::dict SceneSimulate(SceneSource s, const py::object& rpm, const py::object& m
   SimulateJobOptions o;
   if (!grid_deg.is_none()) {
     for (const py::handle& v : py::iterable(grid_deg)) {
-      o.grid_deg.push_back(*Number(py::reinterpret_borrow<py::object>(v), "grid_deg",
-                                   "a crank angle in deg", "within ±720 deg", -720.0, 720.0));
+      const std::optional<double> deg =
+          Number(py::reinterpret_borrow<py::object>(v), "grid_deg", "a crank angle in deg",
+                 "within ±720 deg", -720.0, 720.0);
+      if (!deg) throw CaseError("grid_deg: None is not a crank angle; expected numbers in deg");
+      o.grid_deg.push_back(*deg);
     }
   }
   o.speed_rpm = Speed(rpm, "rpm");

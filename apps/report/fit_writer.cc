@@ -36,7 +36,7 @@ std::string PairAdvice(const FitResult& r, const UnseparatedPair& p) {
       << G(p.correlation_with, 3) << ")";
   } else {
     m << "; no second speed tried (0.5 to 2 times the traces' and the rated) would narrow their "
-         "intervals 4 times together";
+         "two intervals by a product of 4 (each about 2 times)";
   }
   return m.str();
 }
@@ -56,7 +56,8 @@ nlohmann::json FitJson(const BoundCase& c, const FitResult& r) {
                           {"upper_bound", v.upper_bound},
                           {"at_bound", v.at_bound},
                           {"identified", v.identified},
-                          {"widened_by_scan", v.widened}};
+                          {"widened_by_scan", v.widened},
+                          {"note", v.note}};
   }
   j["parameters"] = params;
   nlohmann::json corr = nlohmann::json::object();
@@ -93,7 +94,9 @@ nlohmann::json FitJson(const BoundCase& c, const FitResult& r) {
                            {"worst_to_deg", t.worst_to_rad / kDeg},
                            {"worst_rms_mm", t.worst_rms_m * 1e3}});
   }
+  j["notes"] = r.notes;
   j["model"] = {{"chi2_reduced", r.chi2_reduced},
+                {"scale_squared", r.scale2},
                 {"misses_something", r.model_misses},
                 {"note", r.model_note},
                 {"residual_note", r.residual_note}};
@@ -102,14 +105,19 @@ nlohmann::json FitJson(const BoundCase& c, const FitResult& r) {
     nlohmann::json l = {{"status", p.status},
                         {"draws", p.draws},
                         {"draws_without_liftoff", p.draws_without},
+                        {"draws_refused", p.draws_refused},
                         {"to_rpm", p.to_rpm}};
+    const bool drawn = p.draws > p.draws_refused;
     l["value"] = p.value ? nlohmann::json(*p.value) : nlohmann::json();
-    l["low"] = p.draws > p.draws_without ? nlohmann::json(p.low) : nlohmann::json();
-    l["high"] = p.draws > p.draws_without ? nlohmann::json(p.high) : nlohmann::json();
+    // null: no draw ran; high null with high_above_sweep: above the sweep's end
+    l["low"] = drawn && std::isfinite(p.low) ? nlohmann::json(p.low) : nlohmann::json();
+    l["high"] = drawn && std::isfinite(p.high) ? nlohmann::json(p.high) : nlohmann::json();
+    l["high_above_sweep"] = drawn && !std::isfinite(p.high);
     j["liftoff_rpm_dynamic"] = l;
   }
   j["solver"] = {{"cost", r.cost},
                  {"iterations", r.iterations},
+                 {"restarts", r.restarts},
                  {"starts", r.start_costs.size()},
                  {"model_runs", r.model_runs},
                  {"termination", r.termination},
@@ -135,7 +143,7 @@ std::string FitText(const BoundCase& c, const FitResult& r,
     o << "  " << std::left << std::setw(32) << v.key.name << G(v.value, 6) << Unit(v.key) << "  ["
       << G(v.low, 5) << ", " << G(v.high, 5) << "]  (case: " << G(v.start, 6) << ")";
     if (!v.identified) {
-      o << "  not identified: a bound fits as well";
+      o << "  " << v.note;
     } else if (v.widened) {
       o << "  widened: the cost is as low farther out";
     }
@@ -143,8 +151,9 @@ std::string FitText(const BoundCase& c, const FitResult& r,
     o << "\n";
   }
   for (const UnseparatedPair& p : r.unseparated) o << "  " << PairAdvice(r, p) << "\n";
-  o << "residual: reduced chi-square " << G(r.chi2_reduced, 3)
-    << (r.chi2_reduced > 1.0 ? " (the intervals are widened by it)" : "") << "\n";
+  o << "residual: reduced chi-square " << G(r.chi2_reduced, 4) << ", robust scale squared "
+    << G(r.scale2, 4) << (r.scale2 > 1.0 ? " (the intervals are widened by it)" : "") << "\n";
+  for (const std::string& n : r.notes) o << "note: " << n << "\n";
   if (r.model_misses) o << "model: " << r.model_note << "\n";
   if (!r.residual_note.empty()) o << "residual: " << r.residual_note << "\n";
   if (r.liftoff) {
@@ -178,13 +187,15 @@ Report FitReport(const BoundCase& c, const FitResult& r) {
   for (const FittedValue& v : r.parameters) {
     head << "<tr><td>" << Escape(v.key.name) << "</td><td>" << G(v.start, 6) << "</td><td>"
          << G(v.value, 6) << "</td><td>" << G(v.low, 5) << " to " << G(v.high, 5) << "</td><td>"
-         << (v.identified ? "" : "not identified") << (v.at_bound ? " at a bound" : "")
-         << "</td></tr>\n";
+         << Escape(v.identified ? (v.widened ? "widened by the scan" : "") : v.note)
+         << (v.at_bound ? " at a bound" : "") << "</td></tr>\n";
   }
   head << "</table>\n";
   for (const UnseparatedPair& p : r.unseparated)
     head << "<p>" << Escape(PairAdvice(r, p)) << "</p>\n";
-  head << "<p>Reduced chi-square " << G(r.chi2_reduced, 3) << ".</p>\n";
+  head << "<p>Reduced chi-square " << G(r.chi2_reduced, 4) << ", robust scale squared "
+       << G(r.scale2, 4) << ".</p>\n";
+  for (const std::string& n : r.notes) head << "<p>" << Escape(n) << "</p>\n";
   if (r.model_misses) head << "<p><b>Model:</b> " << Escape(r.model_note) << "</p>\n";
   if (!r.residual_note.empty()) head << "<p>" << Escape(r.residual_note) << "</p>\n";
   report.AddHtml(head.str());

@@ -170,7 +170,7 @@ nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
 }  // namespace
 
 std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json& overrides,
-                              const std::string& where) {
+                              const std::string& where, bool files) {
   if (!overrides.is_object())
     throw CaseError(where +
                     ": overrides: expected a JSON object of sections, such as "
@@ -205,7 +205,7 @@ std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json
         throw CaseError(where + ": overrides: " + nlohmann::json(section).dump() + " " +
                         nlohmann::json(key).dump() +
                         ": expected section and key names of letters, digits and _");
-      if (key == "csv")  // a path: the page tunes numbers, it does not open files
+      if (key == "csv" && !files)  // a path: the page tunes numbers, it does not open files
         throw CaseError(where + ": overrides: [" + section + "] " + key +
                         ": names a file; the design page does not open files (edit the case)");
       std::vector<std::string> old;  // the key and its quantity in other units, replaced

@@ -24,9 +24,11 @@ struct ApiReply {
 };
 
 /// The case file `case_text` with `overrides` merged, as TOML text. Throws CaseError naming
-/// `where` (the case's path) and the override that is not a section of keys and scalars.
+/// `where` (the case's path) and the override that is not a section of keys and scalars, or that
+/// names a file ([lift] csv) unless `files` (`needle fit --case`: the table's path from where
+/// the calibrated case goes; the design page opens no files).
 std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json& overrides,
-                              const std::string& where);
+                              const std::string& where, bool files = false);
 
 /// One case the page designs: its file's text read once; every request merges its overrides
 /// into it and reads it anew (a lift table in a CSV file is read again each time).

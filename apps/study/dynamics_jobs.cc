@@ -58,13 +58,14 @@ CaseRun SimulateCase(const BoundCase& c, const SimulateJobOptions& o,
     }
     sim.grid_rad.push_back(o.grid_deg[i] * kDeg);
   }
-  if (!o.grid_deg.empty() && o.cycles && *o.cycles > 1) {
-    throw CaseError("--grid: a grid of crank angles needs one revolution (--cycles 1)");
-  }
   if (o.cycles) {
     sim.cycles = *o.cycles;
     const auto refusal = sim.cycles > 1 ? CyclesRefusal(scene) : std::nullopt;
     if (refusal) throw CaseError("--cycles: " + *refusal);
+  }
+  if (!o.grid_deg.empty() && sim.cycles > 1) {
+    throw CaseError("--grid: a grid of crank angles needs one revolution; the run has " +
+                    std::to_string(sim.cycles) + " ([solver] cycles or --cycles)");
   }
   const double speed = o.speed_rpm.value_or(c.engine.speed_rpm);
   CaseRun run{c, speed, sim.integrator.rtol, NAN, Simulate(scene, speed, sim), {}};

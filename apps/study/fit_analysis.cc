@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -45,13 +46,14 @@ std::vector<FittedValue> Values(const FitModel& m, const std::vector<double>& q,
   for (int j = 0; j < m.P(); ++j) {
     const Coordinate& c = m.coordinates()[j];
     const double lo = c.ToQ(c.lo_si), hi = c.ToQ(c.hi_si);
-    const double half = 1.959963984540054 * std::sqrt(cov(j, j));
+    const double half = kZ95 * std::sqrt(cov(j, j));
     auto shown = [&](double q_j) { return Shown(c.key, c.ToSi(q_j)); };
     FittedValue v;
     v.key = c.key;
-    v.start = Shown(c.key, c.start_si);
+    v.start = Shown(c.key, c.case_si);
     v.value = shown(q[j]);
     v.identified = identified[j];
+    if (!identified[j]) v.note = "not identified: the traces do not move the residual with it";
     v.low = shown(identified[j] ? std::max(lo, q[j] - half) : lo);
     v.high = shown(identified[j] ? std::min(hi, q[j] + half) : hi);
     v.lower_bound = shown(lo);
@@ -97,7 +99,7 @@ std::vector<TraceFit> TraceFits(FitModel& m, const std::vector<MeasuredTrace>& t
     for (int i = 0; i + w <= f.used; i += std::max(1, w / 4)) {
       double s = 0.0;
       for (int k = i; k < i + w; ++k) s += r[row + k] * r[row + k];
-      const double rms = sigma * std::sqrt(s / w);
+      const double rms = sigma * std::sqrt(s / w);  // (window RMS)
       if (rms > f.worst_rms_m) {
         f.worst_rms_m = rms;
         f.worst_from_rad = f.crank_rad[i];
@@ -130,17 +132,25 @@ void JudgeModel(FitResult& r) {
                      std::accumulate(r.traces.begin(), r.traces.end(), 0,
                                      [](int n, const TraceFit& f) { return n + f.used; }) -
                      static_cast<double>(r.parameters.size());
-  const double expected_hi = 1.0 + 3.0 * std::sqrt(2.0 / std::max(dof, 1.0));
-  if (!r.model_misses && r.chi2_reduced > expected_hi) {
-    r.residual_note = "the residual is above the traces' noise (reduced chi-square " +
-                      G(r.chi2_reduced, 3) + ", at most " + G(expected_hi, 3) +
+  // The robust scale's square scatters about 1 as 2.7/ν (the median's efficiency, 37 %): 5 of
+  // its standard deviations, and the same test of χ² with 3 of its own.
+  const double robust_hi = 1.0 + 5.0 * std::sqrt(2.0 / std::max(dof, 1.0));
+  if (!r.model_misses && r.scale2 > robust_hi) {
+    r.residual_note = "the residual is above the traces' noise (its robust scale squared " +
+                      G(r.scale2, 4) + ", at most " + G(robust_hi, 4) +
                       " expected of noise alone): a local minimum, or a model that misses "
                       "something; more --starts may find a lower one";
+  } else if (!r.model_misses && r.chi2_reduced > r.scale2 * (1.0 + 3.0 * std::sqrt(2.0 / dof))) {
+    r.residual_note = "a few readings stand far out (reduced chi-square " + G(r.chi2_reduced, 4) +
+                      " against " + G(r.scale2, 4) +
+                      " from the residual's median): outliers, weighed as |r| by Huber's loss";
   }
   if (r.model_misses) {
     r.model_note = "the model misses something the traces show: " + r.model_note +
-                   ". The intervals are widened by the misfit, but a parameter fitted to make up "
-                   "for a missing effect is not the part's value";
+                   (r.scale2 > 1.0 ? ". The intervals are widened by the misfit, but"
+                                   : ". The intervals are not widened (Huber's weights "
+                                     "keep the reduced chi-square at 1 or below), and") +
+                   " a parameter fitted to make up for a missing effect is not the part's value";
   }
 }
 
@@ -192,44 +202,79 @@ void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::Matri
   }
 }
 
-// The cost's own check of the linearised intervals: for each unknown, the cost at kScanPoints
-// points over its screening range and at its bounds, the others at their fitted values. A point
-// whose cost is within ½·3.84·s² of the optimum's (the 95 % likelihood-ratio level) fits as well:
-// the interval is widened to hold it, and where a bound fits, the unknown is not identified. (A
-// play taken up on tangent ramps leaves the needle's lift the same for any play above a few
-// hundredths of a millimetre: the slope at the optimum says nothing of that plateau.)
-constexpr int kScanPoints = 24;  // (ScanIntervals)
+// The cost's own check of the linearised intervals: along each unknown's axis (the others
+// held) and along each principal axis of the covariance (a correlated pair moves together), the
+// cost at points out from the fit — kScanSteps either way over the reach (the screen's, or four
+// standard deviations), then doubling out to the bounds. A point whose cost is within
+// ½·3.84·s² of the optimum's (the 95 % likelihood-ratio level) fits as well: every interval is
+// widened to hold it, and an unknown it holds at a bound is not identified. (A play taken up on
+// tangent ramps leaves the needle's lift the same for any play above a few hundredths of a
+// millimetre: the slope at the optimum says nothing of that plateau.) The lowest point below the
+// optimum's cost, if any, is returned: the optimum is then a local one.
+constexpr int kScanSteps = 6;
 
-void ScanIntervals(FitModel& m, const std::vector<double>& q, double cost, double s2,
-                   const FitOptions& o, std::vector<FittedValue>& values) {
-  const double level = cost + 0.5 * 3.841458820694124 * s2;
+std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<double>& q,
+                                                 double cost, double s2, const Eigen::MatrixXd& cov,
+                                                 const FitOptions& o,
+                                                 std::vector<FittedValue>& values) {
+  const int p = m.P();
+  const double level = cost + 0.5 * kChi2For95 * s2;
+  Eigen::VectorXd lo(p), hi(p), x0 = Eigen::Map<const Eigen::VectorXd>(q.data(), p);
+  for (int j = 0; j < p; ++j) {
+    lo[j] = m.coordinates()[j].ToQ(m.coordinates()[j].lo_si);
+    hi[j] = m.coordinates()[j].ToQ(m.coordinates()[j].hi_si);
+  }
+  std::vector<Eigen::VectorXd> directions;
+  for (int j = 0; j < p; ++j) {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(p);
+    d[j] = std::max(Spread(m.coordinates()[j].key), 4.0 * std::sqrt(cov(j, j)));
+    directions.push_back(d);
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+  for (int k = 0; p > 1 && k < p; ++k) {
+    directions.push_back(4.0 * std::sqrt(std::max(eig.eigenvalues()[k], 0.0)) *
+                         eig.eigenvectors().col(k));
+  }
+  std::optional<std::vector<double>> lower;
+  double lowest = cost * (1.0 - 1e-9);
   Eigen::VectorXd r;
-  for (int j = 0; j < m.P(); ++j) {
-    const Coordinate& c = m.coordinates()[j];
-    const double lo = c.ToQ(c.lo_si), hi = c.ToQ(c.hi_si), q0 = c.ToQ(c.start_si);
-    const double spread = c.key.log_scale ? std::log(3.0) : 0.5;
-    std::vector<double> points = {lo, hi};
-    for (int k = 0; k <= kScanPoints; ++k) {
-      points.push_back(std::clamp(q0 - spread + 2.0 * spread * k / kScanPoints, lo, hi));
-    }
-    FittedValue& v = values[j];
-    auto shown = [&](double x) { return Shown(c.key, c.ToSi(x)); };
-    std::vector<double> x = q;
-    for (double point : points) {
-      x[j] = point;
-      if (!m.Residuals(x.data(), r) || HuberCost(r, o.huber_sigmas) > level) continue;
-      const double shown_point = shown(point);
-      if (shown_point < v.low || shown_point > v.high) v.widened = true;
-      v.low = std::min(v.low, shown_point);
-      v.high = std::max(v.high, shown_point);
-      if (point == lo || point == hi) v.identified = false;
+  for (const Eigen::VectorXd& d : directions) {
+    std::vector<double> ts;
+    for (int k = -kScanSteps; k <= kScanSteps; ++k) ts.push_back(double(k) / kScanSteps);
+    for (double t = 2.0; t <= 1e6; t *= 2.0) ts.insert(ts.end(), {t, -t});
+    Eigen::VectorXd last = x0;
+    for (double t : ts) {
+      const Eigen::VectorXd x = (x0 + t * d).cwiseMax(lo).cwiseMin(hi);
+      if (t != 0.0 && (x - last).norm() == 0.0) continue;  // at the bounds already
+      last = x;
+      if (t == 0.0 || !m.Residuals(x.data(), r)) continue;
+      const double at = HuberCost(r, o.huber_sigmas);
+      if (at > level) continue;
+      if (at < lowest) {
+        lowest = at;
+        lower = std::vector<double>(x.data(), x.data() + p);
+      }
+      for (int j = 0; j < p; ++j) {
+        const Coordinate& c = m.coordinates()[j];
+        FittedValue& v = values[j];
+        const double shown = Shown(c.key, c.ToSi(x[j]));
+        if (shown < v.low || shown > v.high) v.widened = true;
+        v.low = std::min(v.low, shown);
+        v.high = std::max(v.high, shown);
+        if ((x[j] == lo[j] || x[j] == hi[j]) && x[j] != x0[j] && v.identified) {
+          v.identified = false;
+          v.note = "not identified: its bound " + G(shown) + " fits as well";
+        }
+      }
     }
   }
+  return lower;
 }
 
 // n_dyn at q and over draws of q from N(q, cov), clipped to the bounds.
 LiftoffPrediction PredictLiftoff(const FitModel& m, const std::vector<double>& q,
-                                 const Eigen::MatrixXd& cov, const FitOptions& o) {
+                                 const Eigen::MatrixXd& cov, const std::vector<FittedValue>& values,
+                                 const FitOptions& o) {
   LiftoffPrediction p;
   double offsets[2];
   OverspeedJobOptions jo;
@@ -246,7 +291,8 @@ LiftoffPrediction PredictLiftoff(const FitModel& m, const std::vector<double>& q
                                 : Eigen::MatrixXd(cov.diagonal().cwiseSqrt().asDiagonal());
   std::mt19937_64 gen(o.seed + 1);
   std::normal_distribution<double> normal;
-  std::vector<double> found;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<double> found;  // n_dyn of each draw; +∞: no lift-off up to the sweep's end
   for (int d = 0; d < o.liftoff_draws; ++d) {
     Eigen::VectorXd z(m.P());
     for (int j = 0; j < m.P(); ++j) z[j] = normal(gen);
@@ -254,18 +300,20 @@ LiftoffPrediction PredictLiftoff(const FitModel& m, const std::vector<double>& q
     std::vector<double> x = q;
     for (int j = 0; j < m.P(); ++j) {
       const Coordinate& c = m.coordinates()[j];
-      x[j] = std::clamp(q[j] + dq[j], c.ToQ(c.lo_si), c.ToQ(c.hi_si));
+      const FittedValue& v = values[j];
+      const double u = uniform(gen);
+      x[j] = !v.identified || v.widened
+                 ? c.ToQ(FromShown(c.key, v.low + u * (v.high - v.low)))  // its interval, flat
+                 : std::clamp(q[j] + dq[j], c.ToQ(c.lo_si), c.ToQ(c.hi_si));
     }
     ++p.draws;
     try {
       const CaseOverspeed r = OverspeedOfCase(m.CaseAt(x.data(), offsets), jo);
-      if (r.result.n_dyn_rpm) {
-        found.push_back(*r.result.n_dyn_rpm);
-      } else {
-        ++p.draws_without;
-      }
+      found.push_back(r.result.n_dyn_rpm ? *r.result.n_dyn_rpm
+                                         : std::numeric_limits<double>::infinity());
+      if (!r.result.n_dyn_rpm) ++p.draws_without;
     } catch (const CaseError&) {
-      ++p.draws_without;
+      ++p.draws_refused;
     }
   }
   std::sort(found.begin(), found.end());
@@ -273,10 +321,11 @@ LiftoffPrediction PredictLiftoff(const FitModel& m, const std::vector<double>& q
     auto quantile = [&](double f) {
       const double x = f * (found.size() - 1);
       const size_t k = static_cast<size_t>(x);
-      return k + 1 < found.size() ? found[k] + (x - k) * (found[k + 1] - found[k]) : found.back();
+      if (k + 1 >= found.size() || !std::isfinite(found[k + 1])) return found[k];
+      return found[k] + (x - k) * (found[k + 1] - found[k]);
     };
     p.low = quantile(0.025);
-    p.high = quantile(0.975);
+    p.high = quantile(0.975);  // +∞: above the sweep's end
   }
   return p;
 }

@@ -13,12 +13,14 @@
 /// quadratic up to `huber_sigmas` and linear beyond (outliers weigh as |r|, not r²). Ceres
 /// Solver's trust region minimises it from several starts (events make the cost non-smooth),
 /// parameters that span decades in logs. The 95 % intervals are the linearised ones: covariance
-/// s²(JᵀWJ)⁻¹ at the optimum, W Huber's weights, s² = max(1, Σ w r² / (N − P)) (a fit worse than
-/// the noise widens them), mapped through the log where a parameter is in logs, then widened to
+/// s²(JᵀWJ)⁻¹ at the optimum, W Huber's weights, s² = max(1, (1.4826·median|r|)²) (a fit worse than
+/// the noise widens them; the robust scale, 1.4826 times the median |r|, so that outliers do
+/// not), mapped through the log where a parameter is in logs, then widened to
 /// hold every value a scan of the cost along that unknown finds to fit as well (within
-/// ½·3.84·s² of the optimum: the likelihood-ratio level, where the slope at the optimum misleads);
-/// n_dyn's interval
-/// is the 2.5–97.5 % range of the overspeed search over draws from that normal approximation.
+/// ½·3.84·s² of the optimum: the likelihood-ratio level, where the slope at the optimum
+/// misleads). n_dyn's interval is the 2.5–97.5 % range of the overspeed search over draws from
+/// that normal approximation (an unknown the scan widened or found not identified drawn flat
+/// over its interval).
 
 #include <cstdint>
 #include <optional>
@@ -87,6 +89,7 @@ struct FittedValue {
   /// The linearised interval was widened to hold values the cost's scan found to fit as well
   /// (a flat or many-valleyed cost, FitCase).
   bool widened = false;
+  std::string note;  ///< why it is not identified, when it is not
 };
 
 /// A pair of unknowns the traces do not separate (|correlation| > kUnseparatedCorrelation).
@@ -119,9 +122,12 @@ struct TraceFit {
 
 /// n_dyn of the fitted case with its interval, rpm.
 struct LiftoffPrediction {
-  std::optional<double> value;       ///< at the fitted values (none: no lift-off in the sweep)
-  double low = 0.0, high = 0.0;      ///< 2.5 and 97.5 % of the draws that lift off
+  std::optional<double> value;  ///< at the fitted values (none: no lift-off in the sweep)
+  /// 2.5 and 97.5 % of the draws, a draw without lift-off in the sweep counted as lifting off
+  /// beyond it (high = +∞: above the sweep's end, to_rpm).
+  double low = 0.0, high = 0.0;
   int draws = 0, draws_without = 0;  ///< draws run, and those without lift-off in the sweep
+  int draws_refused = 0;             ///< draws the model refused (not in the quantiles)
   std::string status;                ///< the search's status at the fitted values
   double to_rpm = 0.0;               ///< the sweep's end
 };
@@ -132,8 +138,13 @@ struct FitResult {
   std::vector<UnseparatedPair> unseparated;
   std::vector<TraceFit> traces;
   double chi2_reduced = 0.0;  ///< Σ w r² / (N − P)
-  bool model_misses = false;  ///< the residual is well above the noise and structured
-  std::string model_note;     ///< what and where, when it does
+  /// The intervals' scale s², max(1, (1.4826 · median |r|)²): the residual's robust scale
+  /// against the noise, which a few outliers do not move.
+  double scale2 = 1.0;
+  int restarts = 0;                ///< searches restarted where the scan found a lower cost
+  std::vector<std::string> notes;  ///< what the fit leaves out of the case (its [solver] cycles)
+  bool model_misses = false;       ///< the residual is well above the noise and structured
+  std::string model_note;          ///< what and where, when it does
   /// When the residual exceeds the noise by more than noise alone explains (3 standard
   /// deviations of χ²/ν) without the structure of a missing effect: a local minimum or a model
   /// that misses something, said so.
@@ -150,7 +161,7 @@ struct FitResult {
 
 /// Fits `b`'s unknowns to `traces` (each checked by CheckMeasuredTrace). Throws CaseError on a
 /// key the case cannot free (a rate that comes from a geometry, a section the case lacks), a bound
-/// outside the plausible range, or no start the model runs from.
+/// outside the plausible range, an option out of its range, or no start the model runs from.
 FitResult FitCase(const BoundCase& b, const std::vector<MeasuredTrace>& traces,
                   const FitOptions& options);
 

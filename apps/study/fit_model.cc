@@ -2,10 +2,12 @@
 #include "apps/study/fit_model.h"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <mutex>
 #include <random>
 #include <sstream>
 
@@ -68,7 +70,18 @@ class ReadingCost : public ceres::CostFunction {
   int row_;
 };
 
-// One local search from q0.
+// Ceres logs through glog to stderr (a failed evaluation, a step refused): a command's stderr
+// is its one line of error, so glog keeps only what ends the program.
+void QuietCeres() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging("needle");
+    FLAGS_minloglevel = google::GLOG_FATAL;
+    FLAGS_stderrthreshold = google::GLOG_FATAL;
+    FLAGS_logtostderr = false;
+  });
+}
+
 // One screen point per unknown and stratum (Starts).
 constexpr int kScreenPerUnknown = 16;
 
@@ -94,6 +107,11 @@ double& Slot(const FitKey& k, BoundCase& c, double offsets[2]) {
   }
   if (!c.train) throw CaseError(where + "the case has no [train] to fit");
   TrainSection& t = *c.train;
+  if (t.rigid() && k.stem != "play") {
+    throw CaseError(where +
+                    "the case's contacts are rigid ([train] contact = \"rigid\"): they have "
+                    "no stiffness or damping ratio to fit (a compliant contact has)");
+  }
   if (k.stem == "contact_stiffness") return t.contact_stiffness_N_m;
   if (k.stem == "seat_stiffness") return t.seat_stiffness_N_m;
   if (k.stem == "contact_damping_ratio") return t.contact_damping_ratio;
@@ -107,42 +125,54 @@ std::vector<Coordinate> Coordinates(const BoundCase& b, const FitOptions& o) {
   double offsets[2] = {0.0, 0.0};
   for (const FitKey& k : o.free) {
     for (const Coordinate& c : cs) {
-      if (c.key.section == k.section && c.key.stem == k.stem && c.key.dimension == k.dimension) {
+      if (SameQuantity(c.key, k)) {
         throw CaseError("--free: '" + k.name + "' is given twice (also as '" + c.key.name + "')");
       }
     }
     Coordinate c;
     c.key = k;
-    c.start_si = Slot(k, probe, offsets);
+    c.case_si = c.start_si = Slot(k, probe, offsets);
     std::tie(c.lo_si, c.hi_si) = DefaultBounds(k, b);
+    const auto [lo_range, hi_range] = std::pair<double, double>{c.lo_si, c.hi_si};
+    bool bounded = false;
     for (const FitBound& bound : o.bounds) {
-      if (bound.key.section == k.section && bound.key.stem == k.stem &&
-          bound.key.dimension == k.dimension) {
-        c.lo_si = FromShown(bound.key, bound.low);
-        c.hi_si = FromShown(bound.key, bound.high);
+      if (!SameQuantity(bound.key, k)) continue;
+      if (bounded) throw CaseError("--bounds: " + k.name + " is bounded twice; give it once");
+      bounded = true;
+      c.lo_si = FromShown(bound.key, bound.low);
+      c.hi_si = FromShown(bound.key, bound.high);
+      if (k.section != "trace" && !(c.lo_si >= lo_range && c.hi_si <= hi_range)) {
+        throw CaseError("--bounds: " + bound.key.name + "=" + G(bound.low) + ":" + G(bound.high) +
+                        " reaches outside the plausible range " + G(Shown(bound.key, lo_range)) +
+                        " to " + G(Shown(bound.key, hi_range)) + " (docs/ranges.md)");
       }
     }
     if (k.log_scale && !(c.lo_si > 0.0)) {
       throw CaseError("--bounds: " + k.name + ": the low bound must be above 0 (fitted in logs)");
     }
+    // A case value outside stated bounds: the search starts inside them (their middle, in logs
+    // where the unknown is fitted in logs); outside the plausible range, it is refused.
     if (!(c.start_si >= c.lo_si && c.start_si <= c.hi_si)) {
-      throw CaseError("--bounds: " + k.name + ": the case's value " + G(Shown(k, c.start_si)) +
-                      " is outside the bounds " + G(Shown(k, c.lo_si)) + " to " +
-                      G(Shown(k, c.hi_si)));
+      if (!bounded) {
+        throw CaseError(c.key.name + ": the case's value " + G(Shown(k, c.start_si)) +
+                        " is outside the plausible range " + G(Shown(k, c.lo_si)) + " to " +
+                        G(Shown(k, c.hi_si)) + " (docs/ranges.md)");
+      }
+      c.start_si = k.log_scale ? std::sqrt(c.lo_si * c.hi_si) : 0.5 * (c.lo_si + c.hi_si);
     }
     const double unit_si = IsAngleOffset(k)  ? kDeg
                            : IsLiftOffset(k) ? 0.01 * b.lift.law->Max(0).value
                                              : 0.0;
-    c.scale = unit_si > 0.0 ? unit_si
-                            : std::max(std::abs(c.start_si),
-                                       1e-3 * std::max(std::abs(c.lo_si), std::abs(c.hi_si)));
+    // A linear unknown's scale: its case value, or for a value of 0 (no play, no damping) a
+    // twentieth of its range, so that the screen and the scan reach a useful part of it.
+    c.scale = unit_si > 0.0       ? unit_si
+              : c.start_si != 0.0 ? std::abs(c.start_si)
+                                  : 0.05 * (c.hi_si - c.lo_si);
     cs.push_back(c);
   }
   for (const FitBound& bound : o.bounds) {
-    const bool freed = std::any_of(cs.begin(), cs.end(), [&](const Coordinate& c) {
-      return c.key.section == bound.key.section && c.key.stem == bound.key.stem &&
-             c.key.dimension == bound.key.dimension;
-    });
+    const bool freed = std::any_of(
+        cs.begin(), cs.end(), [&](const Coordinate& c) { return SameQuantity(c.key, bound.key); });
     if (!freed) throw CaseError("--bounds: " + bound.key.name + " is not among --free's keys");
   }
   return cs;
@@ -150,6 +180,7 @@ std::vector<Coordinate> Coordinates(const BoundCase& b, const FitOptions& o) {
 
 StartResult SolveFrom(FitModel& model, std::vector<double> q0, const FitOptions& o,
                       int max_iterations) {
+  QuietCeres();
   CachedResiduals cache(model);
   StartResult s;
   s.q = std::move(q0);
@@ -214,7 +245,7 @@ std::vector<std::vector<double>> Starts(FitModel& m, const FitOptions& o) {
     std::vector<double> q(p);
     for (int j = 0; j < p; ++j) {
       const Coordinate& c = m.coordinates()[j];
-      const double spread = c.key.log_scale ? std::log(3.0) : 0.5;
+      const double spread = Spread(c.key);
       const double x = q0[j] + spread * (2.0 * (strata[j][k] + u(gen)) / n - 1.0);
       q[j] = std::clamp(x, c.ToQ(c.lo_si), c.ToQ(c.hi_si));
     }

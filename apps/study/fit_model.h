@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,9 +39,25 @@ constexpr double kStructuredZ = -3.0;
 // A second speed is named for an unseparated pair when its trace would narrow the pair's two
 // intervals by at least this factor together (the product of the two narrowings).
 constexpr double kSeparatingNarrowing = 4.0;
+// The normal distribution's two-sided 95 % point, and the χ² (1 degree of freedom) 95 % level,
+// its square: the linearised interval's half-width in standard deviations, and the likelihood-ratio
+// level of the scan (ScanIntervals: a cost within ½·kChi2For95·s² of the optimum's).
+constexpr double kZ95 = 1.959963984540054;
+constexpr double kChi2For95 = kZ95 * kZ95;
+// The screen's and the scan's reach about a value: a factor of 3 either way for an unknown in
+// logs, ±50 % of its scale otherwise (in the internal coordinates).
+constexpr double kSpreadLog = 1.0986122886681098;  // ln 3
+constexpr double kSpreadLinear = 0.5;
+inline double Spread(const FitKey& k) { return k.log_scale ? kSpreadLog : kSpreadLinear; }
+inline bool SameQuantity(const FitKey& a, const FitKey& b) {
+  return a.section == b.section && a.stem == b.stem && a.dimension == b.dimension;
+}
+
 // Each start's first search stops after this many iterations; the kFinalists best go on.
 constexpr int kProbeIterations = 6;
 constexpr int kFinalists = 3;
+// Searches restarted at most where the scan finds a lower cost (FitCase).
+constexpr int kScanRestarts = 2;
 
 /// `v` to `digits` significant digits, for messages.
 std::string G(double v, int digits = 6);
@@ -62,13 +79,16 @@ double& Slot(const FitKey& k, BoundCase& c, double offsets[2]);
 struct Coordinate {
   FitKey key;
   double scale = 1.0;  // SI per unit of q (linear)
-  double lo_si = 0.0, hi_si = 0.0, start_si = 0.0;
+  double lo_si = 0.0, hi_si = 0.0;
+  double case_si = 0.0;   // the case's value
+  double start_si = 0.0;  // where the search starts: the case's value, inside the bounds
   double ToQ(double v) const { return key.log_scale ? std::log(v) : v / scale; }
   double ToSi(double q) const { return key.log_scale ? std::exp(q) : q * scale; }
 };
 
 /// The unknowns of `o` in `b`: their bounds (stated, else DefaultBounds) and scales. Throws
-/// CaseError on a key given twice, a bound of a key not freed, a value outside its bounds.
+/// CaseError on a key given twice or bounded twice, a bound of a key not freed or outside the
+/// plausible range, a key the case's contacts do not have (a rigid contact's stiffness).
 std::vector<Coordinate> Coordinates(const BoundCase& b, const FitOptions& o);
 
 // A run at one speed asked for the lift at some crank angles (sorted).
@@ -112,6 +132,8 @@ class FitModel {
   const std::vector<int>& used(size_t t) const { return used_[t]; }
   double noise_m(size_t t) const { return noise_m_[t]; }
   int runs() const { return runs_; }
+  /// Why the model last refused an evaluation (BindScene's or the run's message).
+  const std::string& last_refusal() const { return last_refusal_; }
 
   // The case at q, and its offsets (rad, m).
   BoundCase CaseAt(const double* q, double offsets[2]) const {
@@ -131,7 +153,8 @@ class FitModel {
     Scene scene;
     try {
       scene = BindScene(c, c.lift.law);
-    } catch (const CaseError&) {
+    } catch (const CaseError& e) {
+      last_refusal_ = e.what();
       return false;
     }
     scene.start_rad = start_rad_;
@@ -152,10 +175,16 @@ class FitModel {
       try {
         ++runs_;
         r = Simulate(scene, queries[k].speed_rpm, o);
-      } catch (const std::exception&) {
+      } catch (const std::exception& e) {
+        last_refusal_ = e.what();
         return false;
       }
-      if (r.grid.size() != queries[k].crank_rad.size()) return false;
+      if (r.grid.size() != queries[k].crank_rad.size()) {
+        last_refusal_ = "the run at " + G(queries[k].speed_rpm) + " rpm ended at " +
+                        G(r.run_end_rad / kDeg) + " deg (" + RunStatusName(r.status) + ": " +
+                        r.status_reason + "), before the trace's last reading";
+        return false;
+      }
       lifts[k].resize(r.grid.size());
       for (size_t i = 0; i < r.grid.size(); ++i) lifts[k][i] = r.grid[i].lift_m + offsets[1];
     }
@@ -232,6 +261,7 @@ class FitModel {
   double margin_rad_ = 0.0, start_rad_ = 0.0, end_rad_ = 0.0;
   int rows_ = 0;
   int runs_ = 0;
+  std::string last_refusal_;
 };
 
 // The residuals and their Jacobian at the last q asked: Ceres asks every reading's block at the
@@ -296,9 +326,13 @@ double CorrelationOf(const Eigen::MatrixXd& cov, int a, int b);
 /// The fitted values with their 95 % intervals, in the keys' units.
 std::vector<FittedValue> Values(const FitModel& m, const std::vector<double>& q,
                                 const Eigen::MatrixXd& cov, const std::vector<bool>& identified);
-/// The intervals widened to hold every value a scan of the cost finds to fit as well.
-void ScanIntervals(FitModel& m, const std::vector<double>& q, double cost, double s2,
-                   const FitOptions& o, std::vector<FittedValue>& values);
+/// The intervals widened to hold every value a scan of the cost (along the axes and the
+/// covariance's principal axes) finds to fit as well; returns the lowest point it found below
+/// the optimum's cost, if any (the optimum is then a local one).
+std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<double>& q,
+                                                 double cost, double s2, const Eigen::MatrixXd& cov,
+                                                 const FitOptions& o,
+                                                 std::vector<FittedValue>& values);
 /// Each trace's residual: RMS, runs test, where it is largest.
 std::vector<TraceFit> TraceFits(FitModel& m, const std::vector<MeasuredTrace>& traces,
                                 const Eigen::VectorXd& r);
@@ -307,9 +341,11 @@ void JudgeModel(FitResult& r);
 /// For each pair the traces do not separate, the second speed that would.
 void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::MatrixXd& H,
                    const std::vector<MeasuredTrace>& traces, const BoundCase& b, FitResult& r);
-/// n_dyn at q and over draws of q from N(q, cov).
+/// n_dyn at q and over draws of q from N(q, cov), an unknown not identified or widened by the
+/// scan drawn uniformly over its interval instead.
 LiftoffPrediction PredictLiftoff(const FitModel& m, const std::vector<double>& q,
-                                 const Eigen::MatrixXd& cov, const FitOptions& o);
+                                 const Eigen::MatrixXd& cov, const std::vector<FittedValue>& values,
+                                 const FitOptions& o);
 
 }  // namespace fit_detail
 }  // namespace needle

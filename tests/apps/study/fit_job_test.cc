@@ -219,8 +219,36 @@ TEST(FitJob, RefusesKeysItCannotFreeWithOneLine) {
   o = Free({"train.play_mm", "train.play_um"});
   EXPECT_THROW(FitCase(Example1(), traces, o), CaseError);
   o = Free({"train.play_mm"});
-  o.bounds.push_back(ParseFitBound("train.play_mm=0:0.5"));  // the case's 1 mm is outside
+  o.bounds.push_back(ParseFitBound("train.play_mm=0:0.5"));
+  o.bounds.push_back(ParseFitBound("train.play_um=0:400"));  // the same quantity bounded twice
   EXPECT_THROW(FitCase(Example1(), traces, o), CaseError);
+  o = Free({"train.contact_damping_ratio"});
+  o.bounds.push_back(ParseFitBound("train.contact_damping_ratio=-1:1"));  // below the range
+  try {
+    FitCase(Example1(), traces, o);
+    FAIL();
+  } catch (const CaseError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--bounds: train.contact_damping_ratio=-1:1 reaches outside the plausible range 0 "
+              "to 1 (docs/ranges.md)");
+  }
+  // Bounds that leave out the case's value: the search starts inside them.
+  o = Free({"spring.preload_kgf"});
+  o.starts = 1;
+  o.bounds.push_back(ParseFitBound("spring.preload_kgf=600:700"));
+  const FitResult bounded = FitCase(Example1(), traces, o);
+  EXPECT_EQ(Value(bounded, "spring.preload_kgf").start, 790.0);
+  EXPECT_LE(Value(bounded, "spring.preload_kgf").value, 700.0);
+  // A rigid contact has no stiffness to fit.
+  BoundCase rigid = Example1();
+  rigid.train->contact = ContactKind::kRigid;
+  try {
+    FitCase(rigid, traces, Free({"train.contact_stiffness_N_m"}));
+    FAIL();
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("the case's contacts are rigid"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
