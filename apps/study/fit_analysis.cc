@@ -2,6 +2,7 @@
 // of the cost, the residual's structure, the second speed, n_dyn's draws.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -202,16 +203,31 @@ void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::Matri
   }
 }
 
-// The cost's own check of the linearised intervals: along each unknown's axis (the others
-// held) and along each principal axis of the covariance (a correlated pair moves together), the
-// cost at points out from the fit — kScanSteps either way over the reach (the screen's, or four
-// standard deviations), then doubling out to the bounds. A point whose cost is within
-// ½·3.84·s² of the optimum's (the 95 % likelihood-ratio level) fits as well: every interval is
-// widened to hold it, and an unknown it holds at a bound is not identified. (A play taken up on
-// tangent ramps leaves the needle's lift the same for any play above a few hundredths of a
-// millimetre: the slope at the optimum says nothing of that plateau.) The lowest point below the
-// optimum's cost, if any, is returned: the optimum is then a local one.
+// The cost's own check of the linearised intervals. Along each unknown's axis, out from the fit
+// — kScanSteps either way over its reach (the screen's, or four standard deviations), then
+// doubling out to the bounds — the cost's profile: at each point the other unknowns held, and
+// where that does not fit, searched again (kProfileIterations) with this one held; a direction
+// ends at its first point that does not fit even so. Along each principal axis of the covariance
+// (a correlated pair moved together), the cost itself at the same steps. A point whose cost is
+// within ½·3.84·s² of the optimum's (the 95 % likelihood-ratio level) fits as well: every
+// interval is widened to hold it, and an unknown it holds at a bound is not identified. (A play
+// taken up on tangent ramps leaves the needle's lift the same for any play above a few
+// hundredths of a millimetre: the slope at the optimum says nothing of that plateau.) The lowest
+// point below the optimum's cost, if any, is returned: the optimum is then a local one.
 constexpr int kScanSteps = 6;
+constexpr int kProfileIterations = 4;
+
+namespace {
+
+// The steps t of a scan along d from the fit: 1/kScanSteps … 1, then 2, 4, … (each sign).
+std::vector<double> ScanSteps(double sign) {
+  std::vector<double> ts;
+  for (int k = 1; k <= kScanSteps; ++k) ts.push_back(sign * k / kScanSteps);
+  for (double t = 2.0; t <= 1e6; t *= 2.0) ts.push_back(sign * t);
+  return ts;
+}
+
+}  // namespace
 
 std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<double>& q,
                                                  double cost, double s2, const Eigen::MatrixXd& cov,
@@ -224,47 +240,69 @@ std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<
     lo[j] = m.coordinates()[j].ToQ(m.coordinates()[j].lo_si);
     hi[j] = m.coordinates()[j].ToQ(m.coordinates()[j].hi_si);
   }
-  std::vector<Eigen::VectorXd> directions;
+  std::optional<std::vector<double>> lower;
+  double lowest = cost * (1.0 - 1e-9);
+  // A point that fits as well: the intervals widened to hold it.
+  auto accept = [&](const Eigen::VectorXd& x, double at) {
+    if (at < lowest) {
+      lowest = at;
+      lower = std::vector<double>(x.data(), x.data() + p);
+    }
+    for (int j = 0; j < p; ++j) {
+      const Coordinate& c = m.coordinates()[j];
+      FittedValue& v = values[j];
+      const double shown = Shown(c.key, c.ToSi(x[j]));
+      if (shown < v.low || shown > v.high) v.widened = true;
+      v.low = std::min(v.low, shown);
+      v.high = std::max(v.high, shown);
+      if ((x[j] == lo[j] || x[j] == hi[j]) && x[j] != x0[j] && v.identified) {
+        v.identified = false;
+        v.note = "not identified: its bound " + G(shown) + " fits as well";
+      }
+    }
+  };
+  Eigen::VectorXd r;
+  auto cost_at = [&](const Eigen::VectorXd& x) {
+    return m.Residuals(x.data(), r) ? HuberCost(r, o.huber_sigmas)
+                                    : std::numeric_limits<double>::infinity();
+  };
   for (int j = 0; j < p; ++j) {
     Eigen::VectorXd d = Eigen::VectorXd::Zero(p);
     d[j] = std::max(Spread(m.coordinates()[j].key), 4.0 * std::sqrt(cov(j, j)));
-    directions.push_back(d);
+    for (double sign : {1.0, -1.0}) {
+      Eigen::VectorXd last = x0, held = x0;  // held: the others where the last point left them
+      for (double t : ScanSteps(sign)) {
+        Eigen::VectorXd x = held;
+        x[j] = std::clamp(x0[j] + t * d[j], lo[j], hi[j]);
+        if (x[j] == last[j]) break;  // at the bound already
+        last = x;
+        double at = cost_at(x);
+        if (!(at <= level) && p > 1) {  // the others searched again, this one held
+          const StartResult s =
+              SolveFrom(m, std::vector<double>(x.data(), x.data() + p), o, kProfileIterations, j);
+          if (std::isfinite(s.cost)) {
+            x = Eigen::Map<const Eigen::VectorXd>(s.q.data(), p);
+            at = s.cost;
+          }
+        }
+        if (!(at <= level)) break;
+        held = x;
+        accept(x, at);
+      }
+    }
   }
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
   for (int k = 0; p > 1 && k < p; ++k) {
-    directions.push_back(4.0 * std::sqrt(std::max(eig.eigenvalues()[k], 0.0)) *
-                         eig.eigenvectors().col(k));
-  }
-  std::optional<std::vector<double>> lower;
-  double lowest = cost * (1.0 - 1e-9);
-  Eigen::VectorXd r;
-  for (const Eigen::VectorXd& d : directions) {
-    std::vector<double> ts;
-    for (int k = -kScanSteps; k <= kScanSteps; ++k) ts.push_back(double(k) / kScanSteps);
-    for (double t = 2.0; t <= 1e6; t *= 2.0) ts.insert(ts.end(), {t, -t});
-    Eigen::VectorXd last = x0;
-    for (double t : ts) {
-      const Eigen::VectorXd x = (x0 + t * d).cwiseMax(lo).cwiseMin(hi);
-      if (t != 0.0 && (x - last).norm() == 0.0) continue;  // at the bounds already
-      last = x;
-      if (t == 0.0 || !m.Residuals(x.data(), r)) continue;
-      const double at = HuberCost(r, o.huber_sigmas);
-      if (at > level) continue;
-      if (at < lowest) {
-        lowest = at;
-        lower = std::vector<double>(x.data(), x.data() + p);
-      }
-      for (int j = 0; j < p; ++j) {
-        const Coordinate& c = m.coordinates()[j];
-        FittedValue& v = values[j];
-        const double shown = Shown(c.key, c.ToSi(x[j]));
-        if (shown < v.low || shown > v.high) v.widened = true;
-        v.low = std::min(v.low, shown);
-        v.high = std::max(v.high, shown);
-        if ((x[j] == lo[j] || x[j] == hi[j]) && x[j] != x0[j] && v.identified) {
-          v.identified = false;
-          v.note = "not identified: its bound " + G(shown) + " fits as well";
-        }
+    const Eigen::VectorXd d =
+        4.0 * std::sqrt(std::max(eig.eigenvalues()[k], 0.0)) * eig.eigenvectors().col(k);
+    for (double sign : {1.0, -1.0}) {
+      Eigen::VectorXd last = x0;
+      for (double t : ScanSteps(sign)) {
+        const Eigen::VectorXd x = (x0 + t * d).cwiseMax(lo).cwiseMin(hi);
+        if ((x - last).norm() == 0.0) break;
+        last = x;
+        const double at = cost_at(x);
+        if (at <= level) accept(x, at);
       }
     }
   }

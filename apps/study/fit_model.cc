@@ -179,7 +179,7 @@ std::vector<Coordinate> Coordinates(const BoundCase& b, const FitOptions& o) {
 }
 
 StartResult SolveFrom(FitModel& model, std::vector<double> q0, const FitOptions& o,
-                      int max_iterations) {
+                      int max_iterations, int fixed) {
   QuietCeres();
   CachedResiduals cache(model);
   StartResult s;
@@ -197,6 +197,7 @@ StartResult SolveFrom(FitModel& model, std::vector<double> q0, const FitOptions&
     problem.SetParameterLowerBound(s.q.data(), j, c.ToQ(c.lo_si));
     problem.SetParameterUpperBound(s.q.data(), j, c.ToQ(c.hi_si));
   }
+  if (fixed >= 0) problem.SetManifold(s.q.data(), new ceres::SubsetManifold(model.P(), {fixed}));
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
   so.max_num_iterations = max_iterations;

@@ -306,9 +306,10 @@ struct StartResult {
   std::string termination;
 };
 
-/// One local search (Ceres's trust region, one residual block a reading, Huber's loss) from q0.
+/// One local search (Ceres's trust region, one residual block a reading, Huber's loss) from q0;
+/// `fixed` ≥ 0 holds that unknown at its start (a profile of the cost along it).
 StartResult SolveFrom(FitModel& model, std::vector<double> q0, const FitOptions& o,
-                      int max_iterations);
+                      int max_iterations, int fixed = -1);
 /// ½ Σ ρ(r²) with Huber's ρ (knee k): r² inside the knee, 2k|r| − k² beyond.
 double HuberCost(const Eigen::VectorXd& r, double k);
 /// The starts: the case's values, then the best of a screen (fit_model.cc).

@@ -180,6 +180,44 @@ TEST(FitJob, RecoversTheTracesCrankAngleAndSensorOffsets) {
   EXPECT_LT(deg.high - deg.low, 0.05);
 }
 
+// A user's trial: a light-spring engine's play of 0.1 mm fits as well as its optimum 0.035 mm
+// (the lift is the same for any play on the plateau beyond): the slope at the optimum gives
+// ±0.003 mm, the scan of the cost must widen the interval over the plateau.
+TEST(FitJob, TheScanWidensAnIntervalOverAPlateauTheSlopeCannotSee) {
+  const std::string path = std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-cam4-light-spring.toml";
+  BoundCase truth = Bind(LoadCase(path));
+  truth.spring->rate_N_m = 25e3;
+  truth.train->play_m = 0.1e-3;
+  truth.train->seat_damping_ratio = 0.2;
+  const std::vector<MeasuredTrace> traces = {MakeTrace(truth, 500.0, 0.003, 2500, 0.05, -20, 50),
+                                             MakeTrace(truth, 750.0, 0.003, 2750, 0.05, -20, 50)};
+  const FitResult r = FitCase(Bind(LoadCase(path)), traces,
+                              Free({"spring.rate_N_mm", "train.play_mm",
+                                    "train.seat_damping_ratio"}));
+  const FittedValue& play = Value(r, "train.play_mm");
+  std::cerr << "play " << play.value << " [" << play.low << ", " << play.high << "]\n";
+  EXPECT_LE(play.low, 0.1);
+  EXPECT_GE(play.high, 0.1);
+  EXPECT_TRUE(play.widened || !play.identified);
+}
+
+// Five 1 mm spikes in a 5 µm trace: Huber's loss keeps the values, the robust scale keeps the
+// intervals, and the fit calls them outliers, not a local minimum.
+TEST(FitJob, OutliersNeitherMoveTheValuesNorWidenTheIntervals) {
+  BoundCase truth = Example1();
+  truth.spring->preload_N *= 0.9;
+  MeasuredTrace t = MakeTrace(truth, 700.0, 0.005, 9);
+  for (size_t i : {100, 300, 500, 700, 900}) t.table.lift_m[i] += 1e-3;
+  const FitResult r = FitCase(Example1(), {t}, Free({"spring.preload_kgf"}));
+  const FittedValue& p = Value(r, "spring.preload_kgf");
+  EXPECT_LE(p.low, 0.9 * 790);
+  EXPECT_GE(p.high, 0.9 * 790);
+  EXPECT_LT(r.scale2, 1.2);
+  EXPECT_GT(r.chi2_reduced, 2.0);
+  EXPECT_NE(r.residual_note.find("a few readings stand far out"), std::string::npos)
+      << r.residual_note;
+}
+
 TEST(FitJob, RefusesKeysItCannotFreeWithOneLine) {
   try {
     ParseFitKey("train.stiffness_N_m");
