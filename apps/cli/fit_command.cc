@@ -8,6 +8,7 @@
 #include "apps/case/case_file.h"
 #include "apps/case/measured_trace.h"
 #include "apps/case/plausible_ranges.h"
+#include "apps/cli/cli_checks.h"
 #include "apps/report/command_output.h"
 #include "apps/report/fit_writer.h"
 #include "apps/report/html_report.h"
@@ -36,7 +37,8 @@ CLI::App* AddFitCommand(CLI::App& app, FitCommandOptions& o) {
                   "KEY=LOW:HIGH in the key's unit (default: the plausible ranges)");
   cmd->add_option("--starts", o.starts, "starts of the local search (default 12)")
       ->check(CLI::Range(1, 64));
-  cmd->add_option("--seed", o.seed, "seed of the starts and of n_dyn's draws (default 1)");
+  cmd->add_option("--seed", o.seed, "seed of the starts and of n_dyn's draws (default 1)")
+      ->transform(Seed());
   cmd->add_flag("--no-liftoff", o.no_liftoff, "skip n_dyn's prediction");
   cmd->add_option("--case", o.case_out, "write the calibrated case (TOML) here");
   cmd->add_option("--out", o.out_dir, "write the report (measured against fitted) to this folder");

@@ -64,6 +64,10 @@ void DefFit(py::module_& m) {
         SceneSource scene(source, "fit");
         const std::shared_ptr<const BoundCase> b = scene.Shared();
         FitOptions o;
+        if (py::isinstance<py::str>(free)) {
+          throw CaseError("free: expected a list of keys, e.g. ['" + std::string(py::str(free)) +
+                          "'], got a string");
+        }
         for (const py::handle& k : py::iterable(free)) {
           o.free.push_back(ParseFitKey(py::str(k), "free"));
         }
