@@ -241,6 +241,26 @@ double RampVelocity(const Case& c, double ramp_deg) {
   return (0.3e-3 + law.Lift(law.start_rad())) / (ramp_deg * M_PI / 180) * (500 * 2 * M_PI / 60);
 }
 
+// Above n_dyn the needle flies off the cam and lands back on it: that recontact strikes harder
+// than the lash, and the cam-impact row judges every strike, the recontact with it (a row that
+// read only the lash passed this run: issue 51, item 11's surviving mutant).
+TEST(CheckSceneTest, TheCamImpactRowJudgesARecontactAfterLiftOff) {
+  const Case c = LoadCase(kCases + "basu-example1.toml");
+  CheckOptions o;
+  o.speed_rpm = 700;
+  const CheckResult r = CheckScene(Bind(c), o);
+  ASSERT_TRUE(r.run);
+  double lash = 0.0, recontact = 0.0;
+  for (const Impact& i : r.run->impacts) {
+    if (i.kind == "lash") lash = std::max(lash, i.speed_m_s);
+    if (i.kind == "recontact") recontact = std::max(recontact, i.speed_m_s);
+  }
+  ASSERT_GT(recontact, lash);  // the scene is one where the recontact decides
+  const LimitRow& row = Row(r, "lash_impact_speed");
+  EXPECT_DOUBLE_EQ(row.value, recontact);
+  EXPECT_EQ(row.note.rfind("recontact at ", 0), 0u) << row.note;
+}
+
 // The engine as designed passes: it follows its cam, the cam takes up the play at the ramp's
 // velocity, and the least contact force is the series' own.
 TEST(CheckSceneTest, AMediumSpeedEnginePassesWithItsLashImpactJudged) {
