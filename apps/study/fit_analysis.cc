@@ -54,9 +54,14 @@ std::vector<FittedValue> Values(const FitModel& m, const std::vector<double>& q,
     v.start = Shown(c.key, c.case_si);
     v.value = shown(q[j]);
     v.identified = identified[j];
-    if (!identified[j]) v.note = "not identified: the traces do not move the residual with it";
-    v.low = shown(identified[j] ? std::max(lo, q[j] - half) : lo);
-    v.high = shown(identified[j] ? std::min(hi, q[j] + half) : hi);
+    // Without curvature at the optimum the slope gives no interval: it is where the scan of the
+    // cost (ScanIntervals) finds the unknown fitting as well, from the fitted value out.
+    if (!identified[j]) {
+      v.note = "not identified: the cost is flat about the fitted value; the interval is where "
+               "a scan of the cost finds it fitting as well";
+    }
+    v.low = shown(identified[j] ? std::max(lo, q[j] - half) : q[j]);
+    v.high = shown(identified[j] ? std::min(hi, q[j] + half) : q[j]);
     v.lower_bound = shown(lo);
     v.upper_bound = shown(hi);
     const double tol = 1e-6 * std::max(1.0, hi - lo);
@@ -204,7 +209,8 @@ void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::Matri
 }
 
 // The cost's own check of the linearised intervals. Along each unknown's axis, out from the fit
-// — kScanSteps either way over its reach (the screen's, or four standard deviations), then
+// — kScanSteps either way over four standard deviations (the screen's reach where the optimum
+// has no curvature), then
 // doubling out to the bounds — the cost's profile: at each point the other unknowns held, and
 // where that does not fit, searched again (kProfileIterations) with this one held; a direction
 // ends at its first point that does not fit even so. Along each principal axis of the covariance
@@ -215,7 +221,7 @@ void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::Matri
 // hundredths of a millimetre: the slope at the optimum says nothing of that plateau.) The lowest
 // point below the optimum's cost, if any, is returned: the optimum is then a local one.
 constexpr int kScanSteps = 6;
-constexpr int kProfileIterations = 4;
+constexpr int kProfileIterations = 6;
 
 namespace {
 
@@ -266,9 +272,14 @@ std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<
     return m.Residuals(x.data(), r) ? HuberCost(r, o.huber_sigmas)
                                     : std::numeric_limits<double>::infinity();
   };
+  std::vector<bool> curved(p);  // identified by the curvature at the optimum (Values)
+  for (int j = 0; j < p; ++j) curved[j] = values[j].identified;
   for (int j = 0; j < p; ++j) {
+    // Steps of two thirds of a standard deviation out to four, then doubling; without curvature,
+    // the screen's reach instead.
     Eigen::VectorXd d = Eigen::VectorXd::Zero(p);
-    d[j] = std::max(Spread(m.coordinates()[j].key), 4.0 * std::sqrt(cov(j, j)));
+    const double sd = std::sqrt(cov(j, j));
+    d[j] = curved[j] && sd > 0.0 && std::isfinite(sd) ? 4.0 * sd : Spread(m.coordinates()[j].key);
     for (double sign : {1.0, -1.0}) {
       Eigen::VectorXd last = x0, held = x0;  // held: the others where the last point left them
       for (double t : ScanSteps(sign)) {
