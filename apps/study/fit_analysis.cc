@@ -57,8 +57,9 @@ std::vector<FittedValue> Values(const FitModel& m, const std::vector<double>& q,
     // Without curvature at the optimum the slope gives no interval: it is where the scan of the
     // cost (ScanIntervals) finds the unknown fitting as well, from the fitted value out.
     if (!identified[j]) {
-      v.note = "not identified: the cost is flat about the fitted value; the interval is where "
-               "a scan of the cost finds it fitting as well";
+      v.note =
+          "not identified: the cost is flat about the fitted value; the interval is where "
+          "a scan of the cost finds it fitting as well";
     }
     v.low = shown(identified[j] ? std::max(lo, q[j] - half) : q[j]);
     v.high = shown(identified[j] ? std::min(hi, q[j] + half) : q[j]);
@@ -214,13 +215,15 @@ void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::Matri
 // doubling out to the bounds — the cost's profile: at each point the other unknowns held, and
 // where that does not fit, searched again (kProfileIterations) with this one held; a direction
 // ends at its first point that does not fit even so. Along each principal axis of the covariance
-// (a correlated pair moved together), the cost itself at the same steps. A point whose cost is
-// within ½·3.84·s² of the optimum's (the 95 % likelihood-ratio level) fits as well: every
+// (a correlated pair moved together), the cost itself at the same steps. A walk along an axis
+// that stops ends the interval at its first point that does not fit: the safe side of the
+// crossing, known to a step. A point whose
+// cost is within ½·3.84·s² of the optimum's (the 95 % likelihood-ratio level) fits as well: every
 // interval is widened to hold it, and an unknown it holds at a bound is not identified. (A play
 // taken up on tangent ramps leaves the needle's lift the same for any play above a few
 // hundredths of a millimetre: the slope at the optimum says nothing of that plateau.) The lowest
 // point below the optimum's cost, if any, is returned: the optimum is then a local one.
-constexpr int kScanSteps = 6;
+constexpr int kScanSteps = 4;
 constexpr int kProfileIterations = 6;
 
 namespace {
@@ -275,7 +278,7 @@ std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<
   std::vector<bool> curved(p);  // identified by the curvature at the optimum (Values)
   for (int j = 0; j < p; ++j) curved[j] = values[j].identified;
   for (int j = 0; j < p; ++j) {
-    // Steps of two thirds of a standard deviation out to four, then doubling; without curvature,
+    // Steps of one standard deviation out to four, then doubling; without curvature,
     // the screen's reach instead.
     Eigen::VectorXd d = Eigen::VectorXd::Zero(p);
     const double sd = std::sqrt(cov(j, j));
@@ -296,7 +299,12 @@ std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<
             at = s.cost;
           }
         }
-        if (!(at <= level)) break;
+        if (!(at <= level)) {
+          // The level is crossed between the last point that fits and this one: the interval
+          // ends here, on the safe side of the crossing (its end known to a step, not less).
+          if (std::isfinite(at)) accept(x, level);
+          break;
+        }
         held = x;
         accept(x, at);
       }
