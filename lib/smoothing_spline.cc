@@ -9,6 +9,7 @@
 // R_{j,j+1} = h_j/6. The weighted residual Σ w (y − f)² grows monotonically with λ from 0
 // (interpolation) to that of the least-squares line (λ → ∞).
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
@@ -90,7 +91,17 @@ class SmoothingProblem {
       if (llt.info() != Eigen::Success) throw std::runtime_error("smoothing spline: LLT failed");
       g = llt.solve(qty_);
     } else {
-      g = SolveSparse(n_ - 1, Matrix(lambda), QtTimes(y_), "smoothing spline");
+      // Large tables: R and QᵀQ are formed once, sparse and of one pattern; each λ is one
+      // factorisation of the pentadiagonal SPD matrix by LDLᵀ in its natural order (no fill
+      // outside the band: O(N)), its symbolic analysis done once.
+      if (a_.size() == 0) FormSparse();
+      const double c = lambda * sigma2_;
+      for (Eigen::Index k = 0; k < a_.nonZeros(); ++k)
+        a_.valuePtr()[k] = r_values_[k] + c * q_values_[k];
+      ldlt_.factorize(a_);
+      if (ldlt_.info() != Eigen::Success) throw std::runtime_error("smoothing spline: LDLT failed");
+      g = ldlt_.solve(qty_);
+      if (!g.allFinite()) throw std::runtime_error("smoothing spline: the solution is not finite");
     }
 
     Fit fit;
@@ -176,8 +187,27 @@ class SmoothingProblem {
     qty_ = QtTimes(y_);
   }
 
+  // A = R + λσ²QᵀQ's pattern, and R's and QᵀQ's values in its storage order.
+  void FormSparse() const {
+    const int m = n_ - 1;
+    const std::vector<Eigen::Triplet<double>> r = Matrix(0.0), rq = Matrix(1.0 / sigma2_);
+    a_.resize(m, m);
+    a_.setFromTriplets(r.begin(), r.end());  // R, with QᵀQ's pattern held as zeros
+    r_values_.assign(a_.valuePtr(), a_.valuePtr() + a_.nonZeros());
+    a_.setFromTriplets(rq.begin(), rq.end());  // R + QᵀQ: the same triplets' positions
+    q_values_.resize(r_values_.size());
+    for (size_t k = 0; k < q_values_.size(); ++k) q_values_[k] = a_.valuePtr()[k] - r_values_[k];
+    ldlt_.analyzePattern(a_);
+    qty_ = QtTimes(y_);
+  }
+
   mutable Eigen::MatrixXd r_, qtq_;
   mutable Eigen::VectorXd qty_;
+  mutable Eigen::SparseMatrix<double> a_;
+  mutable std::vector<double> r_values_, q_values_;
+  mutable Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
+                                Eigen::NaturalOrdering<int>>
+      ldlt_;
 
   std::vector<double> x_;
   int n_;
