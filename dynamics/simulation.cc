@@ -305,8 +305,8 @@ double QuasiStaticLiftoffRpm(const Scene& scene) {
 
 RunWindow DefaultRunWindow(const Scene& scene) {
   RunWindow w;
-  w.start_rad = scene.start_rad.value_or(scene.cam->rise_start_rad() - 5.0 * kDeg);
-  w.end_rad = scene.end_rad.value_or(scene.cam->fall_end_rad() + 20.0 * kDeg);
+  w.start_rad = scene.start_rad.value_or(scene.cam->rise_start_rad() - kRunWindowLead_rad);
+  w.end_rad = scene.end_rad.value_or(scene.cam->fall_end_rad() + kRunWindowTail_rad);
   return w;
 }
 

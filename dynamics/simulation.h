@@ -202,8 +202,12 @@ std::array<double, 7> SeriesRow(const SeriesPoint& p);
 /// Significant digits of the series' CSV.
 constexpr int kSeriesCsvPrecision = 10;
 
-/// The run window [θ_a, θ_b] in crank rad (docs/model.md §5): from 5° before the cam input's
-/// rise to 20° after its fall, unless the scene gives its own start or end.
+/// The run window's margins about the cam input's rise and fall (docs/model.md §5), rad.
+constexpr double kRunWindowLead_rad = 5.0 * kPi / 180.0;
+constexpr double kRunWindowTail_rad = 20.0 * kPi / 180.0;
+/// The run window [θ_a, θ_b] in crank rad (docs/model.md §5): from kRunWindowLead_rad before the
+/// cam input's rise to kRunWindowTail_rad after its fall, unless the scene gives its own start or
+/// end.
 struct RunWindow {
   double start_rad = 0.0;  ///< θ_a
   double end_rad = 0.0;    ///< θ_b

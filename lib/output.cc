@@ -13,7 +13,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 namespace needle {
@@ -229,6 +231,12 @@ std::string Fixed(double value, int decimals) {
 
 std::string FixedOrNone(double value, int decimals) {
   return std::isfinite(value) ? Fixed(value, decimals) : std::string("none");
+}
+
+std::string Significant(double value, int digits) {
+  std::ostringstream out;
+  out << std::setprecision(digits) << value;
+  return out.str();
 }
 
 }  // namespace needle

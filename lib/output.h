@@ -79,4 +79,7 @@ std::string Fixed(double value, int decimals);
 /// Fixed(value, decimals), or "none" for a value that is not finite.
 std::string FixedOrNone(double value, int decimals);
 
+/// `value` to `digits` significant digits, as a stream prints it ("0.001", "3.674", "1e+09").
+std::string Significant(double value, int digits);
+
 }  // namespace needle

@@ -2,26 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <sstream>
 
 #include "lib/case_error.h"
 #include "lib/lift_data.h"
+#include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
 
 namespace {
 
-// `v` to `digits` significant digits.
-std::string FormatNumber(double v, int digits) {
-  std::ostringstream o;
-  o << std::setprecision(digits) << v;
-  return o.str();
-}
-
-std::string Mm(double m) { return FormatNumber(m * 1e3, 4) + " mm"; }
-std::string Deg(double rad) { return FormatNumber(rad / kDeg, 5) + " deg"; }
+std::string Mm(double m) { return Significant(m * 1e3, 4) + " mm"; }
+std::string Deg(double rad) { return Significant(rad / kDeg, 5) + " deg"; }
 
 // The line of reading i, for messages ("PATH:LINE" or "PATH").
 std::string Where(const MeasuredTrace& t, size_t i) {
@@ -58,8 +51,8 @@ void CheckMeasuredTrace(const MeasuredTrace& t, const BoundCase& b) {
                       " is not a finite number; a trace needs finite angles and lifts");
     }
     if (i > 0 && !(th[i] > th[i - 1])) {
-      throw CaseError(Where(t, i) + ": crank_deg " + FormatNumber(th[i] / kDeg, 6) +
-                      " does not increase after " + FormatNumber(th[i - 1] / kDeg, 6) +
+      throw CaseError(Where(t, i) + ": crank_deg " + Significant(th[i] / kDeg, 6) +
+                      " does not increase after " + Significant(th[i - 1] / kDeg, 6) +
                       "; angles must increase strictly");
     }
   }
@@ -85,30 +78,30 @@ void CheckMeasuredTrace(const MeasuredTrace& t, const BoundCase& b) {
   const size_t k = static_cast<size_t>(top - y.begin());
   if (*top > kTraceOverLiftFactor * cam_top) {
     throw CaseError(Where(t, k) + ": lift: the trace reaches " + Mm(*top) + ", " +
-                    FormatNumber(*top / cam_top, 3) + " times the cam's largest lift (" +
-                    Mm(cam_top) + "); expected at most " + FormatNumber(kTraceOverLiftFactor, 2) +
+                    Significant(*top / cam_top, 3) + " times the cam's largest lift (" +
+                    Mm(cam_top) + "); expected at most " + Significant(kTraceOverLiftFactor, 2) +
                     " times (a trace in um under lift_mm?)");
   }
   if (*top < kTraceUnderLiftFraction * cam_top) {
     throw CaseError(t.path + ": lift: the trace reaches only " + Mm(*top) + ", " +
-                    FormatNumber(*top / cam_top, 3) + " of the cam's largest lift (" + Mm(cam_top) +
-                    "); expected at least " + FormatNumber(kTraceUnderLiftFraction, 2) +
+                    Significant(*top / cam_top, 3) + " of the cam's largest lift (" + Mm(cam_top) +
+                    "); expected at least " + Significant(kTraceUnderLiftFraction, 2) +
                     " of it (a trace in mm under lift_um, or of another cam?)");
   }
   if (t.time_s.empty()) return;
   for (size_t i = 1; i < t.time_s.size(); ++i) {
     if (!(t.time_s[i] > t.time_s[i - 1])) {
-      throw CaseError(Where(t, i) + ": time: " + FormatNumber(t.time_s[i], 8) +
-                      " s does not increase after " + FormatNumber(t.time_s[i - 1], 8) +
+      throw CaseError(Where(t, i) + ": time: " + Significant(t.time_s[i], 8) +
+                      " s does not increase after " + Significant(t.time_s[i - 1], 8) +
                       " s; a clock must increase strictly");
     }
   }
   const double clock_rpm = ClockSpeedRpm(t);
   if (!(std::abs(clock_rpm / t.speed_rpm - 1.0) <= kTraceSpeedTolerance)) {
-    throw CaseError(t.path + ": time: the trace's clock gives " + FormatNumber(clock_rpm, 5) +
+    throw CaseError(t.path + ": time: the trace's clock gives " + Significant(clock_rpm, 5) +
                     " rpm (its crank angle against its time), the trace's speed is " +
-                    FormatNumber(t.speed_rpm, 5) + " rpm; expected within " +
-                    FormatNumber(kTraceSpeedTolerance * 100, 2) +
+                    Significant(t.speed_rpm, 5) + " rpm; expected within " +
+                    Significant(kTraceSpeedTolerance * 100, 2) +
                     " % (the trace of another speed, or cam angles under crank_deg?)");
   }
 }

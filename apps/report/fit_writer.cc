@@ -11,12 +11,6 @@ namespace needle {
 
 namespace {
 
-std::string G(double v, int digits = 5) {
-  std::ostringstream o;
-  o << std::setprecision(digits) << v;
-  return o.str();
-}
-
 nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 std::string Unit(const FitKey& k) { return k.unit.empty() ? "" : " " + k.unit; }
@@ -28,12 +22,13 @@ std::string PairNames(const FitResult& r, const UnseparatedPair& p) {
 
 std::string PairAdvice(const FitResult& r, const UnseparatedPair& p) {
   std::ostringstream m;
-  m << PairNames(r, p) << " are not separated by these traces (correlation " << G(p.correlation, 3)
-    << "): the traces fix mainly a combination of the two";
+  m << PairNames(r, p) << " are not separated by these traces (correlation "
+    << Significant(p.correlation, 3) << "): the traces fix mainly a combination of the two";
   if (p.separating_rpm) {
-    m << "; a trace at " << G(*p.separating_rpm, 4) << " rpm would narrow their intervals "
-      << G(p.narrowing_a, 3) << " and " << G(p.narrowing_b, 3) << " times (correlation "
-      << G(p.correlation_with, 3) << ")";
+    m << "; a trace at " << Significant(*p.separating_rpm, 4)
+      << " rpm would narrow their intervals " << Significant(p.narrowing_a, 3) << " and "
+      << Significant(p.narrowing_b, 3) << " times (correlation "
+      << Significant(p.correlation_with, 3) << ")";
   } else {
     m << "; no second speed tried (0.5 to 2 times the traces' and the rated) would narrow their "
          "two intervals by a product of 4 (each about 2 times)";
@@ -134,14 +129,16 @@ std::string FitText(const BoundCase& c, const FitResult& r,
   std::ostringstream o;
   o << "fit of " << c.path << " to " << r.traces.size() << " trace(s)\n";
   for (const TraceFit& t : r.traces) {
-    o << "  " << t.path << " at " << G(t.speed_rpm, 6) << " rpm: " << t.used << " of " << t.readings
-      << " readings in the run window, noise " << G(t.noise_m * 1e3, 3) << " mm, residual RMS "
-      << G(t.rms_m * 1e3, 3) << " mm (" << G(t.rms_m / t.noise_m, 3) << " x noise)\n";
+    o << "  " << t.path << " at " << Significant(t.speed_rpm, 6) << " rpm: " << t.used << " of "
+      << t.readings << " readings in the run window, noise " << Significant(t.noise_m * 1e3, 3)
+      << " mm, residual RMS " << Significant(t.rms_m * 1e3, 3) << " mm ("
+      << Significant(t.rms_m / t.noise_m, 3) << " x noise)\n";
   }
   o << "fitted values (95 % intervals):\n";
   for (const FittedValue& v : r.parameters) {
-    o << "  " << std::left << std::setw(32) << v.key.name << G(v.value, 6) << Unit(v.key) << "  ["
-      << G(v.low, 5) << ", " << G(v.high, 5) << "]  (case: " << G(v.start, 6) << ")";
+    o << "  " << std::left << std::setw(32) << v.key.name << Significant(v.value, 6) << Unit(v.key)
+      << "  [" << Significant(v.low, 5) << ", " << Significant(v.high, 5)
+      << "]  (case: " << Significant(v.start, 6) << ")";
     if (!v.identified) {
       o << "  " << v.note;
     } else if (v.widened) {
@@ -151,8 +148,9 @@ std::string FitText(const BoundCase& c, const FitResult& r,
     o << "\n";
   }
   for (const UnseparatedPair& p : r.unseparated) o << "  " << PairAdvice(r, p) << "\n";
-  o << "residual: reduced chi-square " << G(r.chi2_reduced, 4) << ", robust scale squared "
-    << G(r.scale2, 4) << (r.scale2 > 1.0 ? " (the intervals are widened by it)" : "") << "\n";
+  o << "residual: reduced chi-square " << Significant(r.chi2_reduced, 4)
+    << ", robust scale squared " << Significant(r.scale2, 4)
+    << (r.scale2 > 1.0 ? " (the intervals are widened by it)" : "") << "\n";
   for (const std::string& n : r.notes) o << "note: " << n << "\n";
   if (r.model_misses) o << "model: " << r.model_note << "\n";
   if (!r.residual_note.empty()) o << "residual: " << r.residual_note << "\n";
@@ -160,20 +158,20 @@ std::string FitText(const BoundCase& c, const FitResult& r,
     const LiftoffPrediction& p = *r.liftoff;
     o << "n_dyn of the fitted case: ";
     if (p.value) {
-      o << G(*p.value, 5) << " rpm";
+      o << Significant(*p.value, 5) << " rpm";
     } else {
-      o << "none up to " << G(p.to_rpm, 5) << " rpm (" << p.status << ")";
+      o << "none up to " << Significant(p.to_rpm, 5) << " rpm (" << p.status << ")";
     }
     if (p.draws > p.draws_without) {
-      o << ", 95 % range " << G(p.low, 5) << " to " << G(p.high, 5) << " rpm over " << p.draws
-        << " draws";
+      o << ", 95 % range " << Significant(p.low, 5) << " to " << Significant(p.high, 5)
+        << " rpm over " << p.draws << " draws";
       if (p.draws_without)
         o << " (" << p.draws_without << " without lift-off up to the sweep's end)";
     }
     o << "\n";
   }
   o << "solver: " << r.start_costs.size() << " start(s), " << r.model_runs << " model runs, "
-    << G(r.seconds, 3) << " s; " << r.termination << "\n";
+    << Significant(r.seconds, 3) << " s; " << r.termination << "\n";
   if (case_path) o << "calibrated case: " << *case_path << "\n";
   if (report_path) o << "report: " << *report_path << "\n";
   return o.str();
@@ -185,16 +183,17 @@ Report FitReport(const BoundCase& c, const FitResult& r) {
   head << "<h1>Fit of " << Escape(c.path) << "</h1>\n<table><tr><th>key</th><th>case</th>"
        << "<th>fitted</th><th>95 % interval</th><th></th></tr>\n";
   for (const FittedValue& v : r.parameters) {
-    head << "<tr><td>" << Escape(v.key.name) << "</td><td>" << G(v.start, 6) << "</td><td>"
-         << G(v.value, 6) << "</td><td>" << G(v.low, 5) << " to " << G(v.high, 5) << "</td><td>"
+    head << "<tr><td>" << Escape(v.key.name) << "</td><td>" << Significant(v.start, 6)
+         << "</td><td>" << Significant(v.value, 6) << "</td><td>" << Significant(v.low, 5) << " to "
+         << Significant(v.high, 5) << "</td><td>"
          << Escape(v.identified ? (v.widened ? "widened by the scan" : "") : v.note)
          << (v.at_bound ? " at a bound" : "") << "</td></tr>\n";
   }
   head << "</table>\n";
   for (const UnseparatedPair& p : r.unseparated)
     head << "<p>" << Escape(PairAdvice(r, p)) << "</p>\n";
-  head << "<p>Reduced chi-square " << G(r.chi2_reduced, 4) << ", robust scale squared "
-       << G(r.scale2, 4) << ".</p>\n";
+  head << "<p>Reduced chi-square " << Significant(r.chi2_reduced, 4) << ", robust scale squared "
+       << Significant(r.scale2, 4) << ".</p>\n";
   for (const std::string& n : r.notes) head << "<p>" << Escape(n) << "</p>\n";
   if (r.model_misses) head << "<p><b>Model:</b> " << Escape(r.model_note) << "</p>\n";
   if (!r.residual_note.empty()) head << "<p>" << Escape(r.residual_note) << "</p>\n";
@@ -205,7 +204,7 @@ Report FitReport(const BoundCase& c, const FitResult& r) {
       s.rows.push_back({t.crank_rad[i] / kDeg, t.measured_m[i] * 1e3, t.fitted_m[i] * 1e3,
                         (t.measured_m[i] - t.fitted_m[i]) * 1e3});
     }
-    const std::string name = t.path + " at " + G(t.speed_rpm, 6) + " rpm";
+    const std::string name = t.path + " at " + Significant(t.speed_rpm, 6) + " rpm";
     report.AddFigure(
         "Measured and fitted lift: " + name, {s},
         "set xlabel 'crank angle (deg)'\nset ylabel 'lift (mm)'\nset key top right\n"

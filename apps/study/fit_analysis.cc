@@ -127,11 +127,13 @@ void JudgeModel(FitResult& r) {
       r.model_misses = true;
       std::ostringstream m;
       if (!r.model_note.empty()) m << "; ";
-      m << f.path << " at " << G(f.speed_rpm, 5) << " rpm: the residual RMS is "
-        << G(f.rms_m * 1e3, 3) << " mm, " << G(f.rms_m / f.noise_m, 3)
-        << " times the trace's noise, and runs in long stretches (runs test z = " << G(f.runs_z, 3)
-        << "); largest between " << G(f.worst_from_rad / kDeg, 4) << " and "
-        << G(f.worst_to_rad / kDeg, 4) << " deg (RMS " << G(f.worst_rms_m * 1e3, 3) << " mm)";
+      m << f.path << " at " << Significant(f.speed_rpm, 5) << " rpm: the residual RMS is "
+        << Significant(f.rms_m * 1e3, 3) << " mm, " << Significant(f.rms_m / f.noise_m, 3)
+        << " times the trace's noise, and runs in long stretches (runs test z = "
+        << Significant(f.runs_z, 3) << "); largest between "
+        << Significant(f.worst_from_rad / kDeg, 4) << " and "
+        << Significant(f.worst_to_rad / kDeg, 4) << " deg (RMS "
+        << Significant(f.worst_rms_m * 1e3, 3) << " mm)";
       r.model_note += m.str();
     }
   }
@@ -144,12 +146,12 @@ void JudgeModel(FitResult& r) {
   const double robust_hi = 1.0 + 5.0 * std::sqrt(2.0 / std::max(dof, 1.0));
   if (!r.model_misses && r.scale2 > robust_hi) {
     r.residual_note = "the residual is above the traces' noise (its robust scale squared " +
-                      G(r.scale2, 4) + ", at most " + G(robust_hi, 4) +
+                      Significant(r.scale2, 4) + ", at most " + Significant(robust_hi, 4) +
                       " expected of noise alone): a local minimum, or a model that misses "
                       "something; more --starts may find a lower one";
   } else if (!r.model_misses && r.chi2_reduced > r.scale2 * (1.0 + 3.0 * std::sqrt(2.0 / dof))) {
-    r.residual_note = "a few readings stand far out (reduced chi-square " + G(r.chi2_reduced, 4) +
-                      " against " + G(r.scale2, 4) +
+    r.residual_note = "a few readings stand far out (reduced chi-square " +
+                      Significant(r.chi2_reduced, 4) + " against " + Significant(r.scale2, 4) +
                       " from the residual's median): outliers, weighed as |r| by Huber's loss";
   }
   if (r.model_misses) {
@@ -179,8 +181,7 @@ void SuggestSpeeds(FitModel& m, const std::vector<double>& q, const Eigen::Matri
     }
   }
   std::sort(speeds.begin(), speeds.end());
-  Query query{0.0, {}};
-  for (int i : m.used(0)) query.crank_rad.push_back(traces[0].table.crank_rad[i]);
+  Query query = m.queries()[0];  // the first trace's angles, at each speed tried
   const double sigma = m.noise_m(0);
   const Eigen::MatrixXd before = H.completeOrthogonalDecomposition().pseudoInverse();
   for (double n : speeds) {
@@ -266,7 +267,7 @@ std::optional<std::vector<double>> ScanIntervals(FitModel& m, const std::vector<
       v.high = std::max(v.high, shown);
       if ((x[j] == lo[j] || x[j] == hi[j]) && x[j] != x0[j] && v.identified) {
         v.identified = false;
-        v.note = "not identified: its bound " + G(shown) + " fits as well";
+        v.note = "not identified: its bound " + Significant(shown, 6) + " fits as well";
       }
     }
   };

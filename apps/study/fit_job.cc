@@ -98,7 +98,8 @@ namespace {
 // Throws CaseError naming the field of `o` out of its range.
 void ValidateFitOptions(const FitOptions& o) {
   auto require = [](bool ok, const std::string& field, double v, const std::string& rule) {
-    if (!ok) throw CaseError("FitOptions." + field + " = " + G(v) + ": must be " + rule);
+    if (!ok)
+      throw CaseError("FitOptions." + field + " = " + Significant(v, 6) + ": must be " + rule);
   };
   if (o.free.empty())
     throw CaseError("--free: name at least one key to fit; expected " + FitKeyList());
@@ -187,8 +188,8 @@ Analysis Analyse(FitModel& model, const StartResult& best, const std::vector<Mea
   for (int a = 0; a < model.P(); ++a) {
     for (int c = 0; c < model.P(); ++c) r.correlation[a][c] = CorrelationOf(cov, a, c);
     for (int c = a + 1; c < model.P(); ++c) {
-      if (std::abs(CorrelationOf(cov, a, c)) > kUnseparatedCorrelation) {
-        r.unseparated.push_back({a, c, CorrelationOf(cov, a, c), std::nullopt, 0.0});
+      if (std::abs(r.correlation[a][c]) > kUnseparatedCorrelation) {
+        r.unseparated.push_back({a, c, r.correlation[a][c], std::nullopt, 0.0});
       }
     }
   }

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <mutex>
 #include <random>
 #include <sstream>
@@ -15,12 +14,6 @@
 
 namespace needle {
 namespace fit_detail {
-
-std::string G(double v, int digits) {
-  std::ostringstream o;
-  o << std::setprecision(digits) << v;
-  return o.str();
-}
 
 double Shown(const FitKey& k, double si) {
   return k.dimension == Dimension::kNone ? si : FromSi(k.dimension, k.unit, si);
@@ -142,9 +135,10 @@ std::vector<Coordinate> Coordinates(const BoundCase& b, const FitOptions& o) {
       c.lo_si = FromShown(bound.key, bound.low);
       c.hi_si = FromShown(bound.key, bound.high);
       if (k.section != "trace" && !(c.lo_si >= lo_range && c.hi_si <= hi_range)) {
-        throw CaseError("--bounds: " + bound.key.name + "=" + G(bound.low) + ":" + G(bound.high) +
-                        " reaches outside the plausible range " + G(Shown(bound.key, lo_range)) +
-                        " to " + G(Shown(bound.key, hi_range)) + " (docs/ranges.md)");
+        throw CaseError("--bounds: " + bound.key.name + "=" + Significant(bound.low, 6) + ":" +
+                        Significant(bound.high, 6) + " reaches outside the plausible range " +
+                        Significant(Shown(bound.key, lo_range), 6) + " to " +
+                        Significant(Shown(bound.key, hi_range), 6) + " (docs/ranges.md)");
       }
     }
     if (k.log_scale && !(c.lo_si > 0.0)) {
@@ -154,9 +148,9 @@ std::vector<Coordinate> Coordinates(const BoundCase& b, const FitOptions& o) {
     // where the unknown is fitted in logs); outside the plausible range, it is refused.
     if (!(c.start_si >= c.lo_si && c.start_si <= c.hi_si)) {
       if (!bounded) {
-        throw CaseError(c.key.name + ": the case's value " + G(Shown(k, c.start_si)) +
-                        " is outside the plausible range " + G(Shown(k, c.lo_si)) + " to " +
-                        G(Shown(k, c.hi_si)) + " (docs/ranges.md)");
+        throw CaseError(c.key.name + ": the case's value " + Significant(Shown(k, c.start_si), 6) +
+                        " is outside the plausible range " + Significant(Shown(k, c.lo_si), 6) +
+                        " to " + Significant(Shown(k, c.hi_si), 6) + " (docs/ranges.md)");
       }
       c.start_si = k.log_scale ? std::sqrt(c.lo_si * c.hi_si) : 0.5 * (c.lo_si + c.hi_si);
     }
@@ -216,12 +210,19 @@ StartResult SolveFrom(FitModel& model, std::vector<double> q0, const FitOptions&
 }
 
 double HuberCost(const Eigen::VectorXd& r, double k) {
-  double c = 0.0;
+  const ceres::HuberLoss loss(k);
+  double c = 0.0, rho[3];
   for (int i = 0; i < r.size(); ++i) {
-    const double a = std::abs(r[i]);
-    c += a <= k ? a * a : 2.0 * k * a - k * k;
+    loss.Evaluate(r[i] * r[i], rho);
+    c += rho[0];
   }
   return 0.5 * c;
+}
+
+double HuberWeight(double r, double knee) {
+  double rho[3];
+  ceres::HuberLoss(knee).Evaluate(r * r, rho);
+  return rho[1];
 }
 
 // The starts: the case's values, then the best of a screen of kScreenPerUnknown points per

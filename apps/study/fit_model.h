@@ -18,6 +18,7 @@
 #include "apps/study/fit_job.h"
 #include "lib/case_error.h"
 #include "lib/lift_data.h"
+#include "lib/output.h"
 
 namespace needle {
 namespace fit_detail {
@@ -59,8 +60,6 @@ constexpr int kFinalists = 3;
 // Searches restarted at most where the scan finds a lower cost (FitCase).
 constexpr int kScanRestarts = 2;
 
-/// `v` to `digits` significant digits, for messages.
-std::string G(double v, int digits = 6);
 /// A value of key k in its unit, from SI, and back (a dimensionless key: as it is).
 double Shown(const FitKey& k, double si);
 double FromShown(const FitKey& k, double v);
@@ -101,16 +100,17 @@ struct Query {
 class FitModel {
  public:
   FitModel(const BoundCase& b, std::vector<Coordinate> cs, const std::vector<MeasuredTrace>& traces)
-      : base_(b), cs_(std::move(cs)), traces_(traces) {
+      : base_(b), work_(b), cs_(std::move(cs)), traces_(traces) {
     const LiftLaw& law = *b.lift.law;
     margin_rad_ = 0.0;
     for (const Coordinate& c : cs_) {
       if (IsAngleOffset(c.key)) margin_rad_ = std::max(std::abs(c.lo_si), std::abs(c.hi_si));
     }
     // A window that does not move with the unknowns (the play moves the cam input's rise): the
-    // law's from 5° before its rise to 20° after its fall, widened by the angle offset's reach.
-    start_rad_ = b.start_rad.value_or(law.start_rad() - 5.0 * kDeg - margin_rad_);
-    end_rad_ = b.end_rad.value_or(law.end_rad() + 20.0 * kDeg + margin_rad_);
+    // run window's margins (DefaultRunWindow) about the law's rise and fall, widened by the angle
+    // offset's reach.
+    start_rad_ = b.start_rad.value_or(law.start_rad() - kRunWindowLead_rad - margin_rad_);
+    end_rad_ = b.end_rad.value_or(law.end_rad() + kRunWindowTail_rad + margin_rad_);
     for (const MeasuredTrace& t : traces_) {
       std::vector<int> used;
       for (size_t i = 0; i < t.table.crank_rad.size(); ++i) {
@@ -119,6 +119,9 @@ class FitModel {
           used.push_back(static_cast<int>(i));
         }
       }
+      Query query{t.speed_rpm, {}};
+      for (int i : used) query.crank_rad.push_back(t.table.crank_rad[i]);
+      queries_.push_back(std::move(query));
       used_.push_back(used);
       noise_m_.push_back(EstimateNoiseRobust(t.table.crank_rad, t.table.lift_m));
       rows_ += static_cast<int>(used.size());
@@ -130,6 +133,8 @@ class FitModel {
   int N() const { return rows_; }
   const std::vector<Coordinate>& coordinates() const { return cs_; }
   const std::vector<int>& used(size_t t) const { return used_[t]; }
+  /// Each trace's used angles at its speed.
+  const std::vector<Query>& queries() const { return queries_; }
   double noise_m(size_t t) const { return noise_m_[t]; }
   int runs() const { return runs_; }
   /// Why the model last refused an evaluation (BindScene's or the run's message).
@@ -138,8 +143,7 @@ class FitModel {
   // The case at q, and its offsets (rad, m).
   BoundCase CaseAt(const double* q, double offsets[2]) const {
     BoundCase c = base_;
-    offsets[0] = offsets[1] = 0.0;
-    for (int j = 0; j < P(); ++j) Slot(cs_[j].key, c, offsets) = cs_[j].ToSi(q[j]);
+    SetUnknowns(q, c, offsets);
     c.scene.reset();
     return c;
   }
@@ -149,7 +153,8 @@ class FitModel {
   bool Predict(const double* q, const std::vector<Query>& queries,
                std::vector<std::vector<double>>& lifts) {
     double offsets[2];
-    const BoundCase c = CaseAt(q, offsets);
+    SetUnknowns(q, work_, offsets);  // the case's copy the runs work on, set in place
+    const BoundCase& c = work_;
     Scene scene;
     try {
       scene = BindScene(c, c.lift.law);
@@ -180,9 +185,9 @@ class FitModel {
         return false;
       }
       if (r.grid.size() != queries[k].crank_rad.size()) {
-        last_refusal_ = "the run at " + G(queries[k].speed_rpm) + " rpm ended at " +
-                        G(r.run_end_rad / kDeg) + " deg (" + RunStatusName(r.status) + ": " +
-                        r.status_reason + "), before the trace's last reading";
+        last_refusal_ = "the run at " + Significant(queries[k].speed_rpm, 6) + " rpm ended at " +
+                        Significant(r.run_end_rad / kDeg, 6) + " deg (" + RunStatusName(r.status) +
+                        ": " + r.status_reason + "), before the trace's last reading";
         return false;
       }
       lifts[k].resize(r.grid.size());
@@ -191,21 +196,10 @@ class FitModel {
     return true;
   }
 
-  // The traces' queries: each trace's used angles at its speed.
-  std::vector<Query> TraceQueries() const {
-    std::vector<Query> qs;
-    for (size_t t = 0; t < traces_.size(); ++t) {
-      Query q{traces_[t].speed_rpm, {}};
-      for (int i : used_[t]) q.crank_rad.push_back(traces_[t].table.crank_rad[i]);
-      qs.push_back(q);
-    }
-    return qs;
-  }
-
   // The residuals r_i = (y + Δs − ŷ)/σ of every used reading, traces in order.
   bool Residuals(const double* q, Eigen::VectorXd& r) {
     std::vector<std::vector<double>> lifts;
-    if (!Predict(q, TraceQueries(), lifts)) return false;
+    if (!Predict(q, queries_, lifts)) return false;
     r.resize(N());
     int row = 0;
     for (size_t t = 0; t < traces_.size(); ++t) {
@@ -253,7 +247,15 @@ class FitModel {
   }
 
  private:
+  // Each unknown of q set in `c`, SI; the offsets (rad, m) in `offsets`.
+  void SetUnknowns(const double* q, BoundCase& c, double offsets[2]) const {
+    offsets[0] = offsets[1] = 0.0;
+    for (int j = 0; j < P(); ++j) Slot(cs_[j].key, c, offsets) = cs_[j].ToSi(q[j]);
+  }
+
   BoundCase base_;
+  BoundCase work_;              // base_ with the last q's unknowns: what Predict runs
+  std::vector<Query> queries_;  // each trace's used angles at its speed
   std::vector<Coordinate> cs_;
   const std::vector<MeasuredTrace>& traces_;
   std::vector<std::vector<int>> used_;
@@ -310,15 +312,15 @@ struct StartResult {
 /// `fixed` ≥ 0 holds that unknown at its start (a profile of the cost along it).
 StartResult SolveFrom(FitModel& model, std::vector<double> q0, const FitOptions& o,
                       int max_iterations, int fixed = -1);
-/// ½ Σ ρ(r²) with Huber's ρ (knee k): r² inside the knee, 2k|r| − k² beyond.
+/// ½ Σ ρ(r²) with Huber's ρ (knee k): r² inside the knee, 2k|r| − k² beyond (Ceres's HuberLoss,
+/// so that the cost is the search's own).
 double HuberCost(const Eigen::VectorXd& r, double k);
 /// The starts: the case's values, then the best of a screen (fit_model.cc).
 std::vector<std::vector<double>> Starts(FitModel& m, const FitOptions& o);
 
-/// Huber's weight of a residual: 1 inside the knee, knee/|r| beyond.
-inline double HuberWeight(double r, double knee) {
-  return std::abs(r) <= knee ? 1.0 : knee / std::abs(r);
-}
+/// Huber's weight of a residual, ρ'(r²): 1 inside the knee, knee/|r| beyond (Ceres's HuberLoss,
+/// the loss the search minimises).
+double HuberWeight(double r, double knee);
 /// s² (JᵀWJ)⁻¹ with its small eigenvalues floored; `identified` false for the unknowns of a
 /// direction the traces do not pin down.
 Eigen::MatrixXd Covariance(const Eigen::MatrixXd& J, const Eigen::VectorXd& w, double s2,
