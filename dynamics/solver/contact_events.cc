@@ -160,7 +160,7 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
   if (r.u_hi > kSeparationLift_m && r.y_hi > kSeparationLift_m) {
     if (!lifted_) return true;
     const double f_lo = std::max(0.0, r.fc_lo);
-    if (f_lo < min_fc_lift_) return true;
+    if (!seated_ && f_lo < min_fc_lift_) return true;
     const TrainParameters& p = train_.parameters();
     const RigidTrain rigid{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N};
     const double hold_lo = std::min(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
@@ -237,7 +237,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
   if (OnCamWindow(c, x) || (at_lift_edge_ && !seated_ && c.u > kSeparationLift_m)) {
     lifted_ = true;
     const double f = std::max(0.0, fc);
-    min_fc_lift_ = std::min(min_fc_lift_, f);
+    if (!seated_) min_fc_lift_ = std::min(min_fc_lift_, f);
     const TrainParameters& p = train_.parameters();
     const double hold =
         RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(x[0]);
@@ -267,7 +267,9 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
   if (separated && !separated_) {
     Episode e;
     e.start_rad = th;
-    e.kind = Decelerating(th) ? "jump" : "bounce";
+    // docs/model.md §6 (rev. 4): a separation that begins after the needle first seats past
+    // the cam's top is a rebound off the seat (a secondary opening), not a cam losing the needle.
+    e.kind = seated_ ? "rebound" : Decelerating(th) ? "jump" : "bounce";
     e.max_gap_m = x[0] - c.u;
     episodes_.push_back(e);
   } else if (!separated && separated_) {
@@ -281,7 +283,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
     e.max_gap_m = std::max(e.max_gap_m, x[0] - c.u);
     // docs/model.md §6: a jump is any separation that reaches the deceleration zone, wherever it
     // began — a rebound in the acceleration zone that carries on over the crest is lift-off.
-    if (Decelerating(th)) e.kind = "jump";
+    if (e.kind != "rebound" && Decelerating(th)) e.kind = "jump";
   }
   separated_ = separated;
   if (record_series_) Keep({th, t, x[0], x[1], c.u, fc, fs});

@@ -75,7 +75,8 @@ ContactMode ModeFromSigns(const NeedleTrain& train, const EventSigns& signs);
 
 struct Episode {
   /// "jump" (any part of it where s'' < 0 inside [θ_0, θ_N], docs/model.md §6, or at θ_N when the
-  /// cam input's slope drops there, an impulsive deceleration) or "bounce"
+  /// cam input's slope drops there, an impulsive deceleration), "bounce", or "rebound" (it began
+  /// after the needle first seated past the cam's top: a secondary opening, never a jump)
   std::string kind;
   double start_rad = 0.0;
   double end_rad = 0.0;
@@ -251,10 +252,10 @@ class Recorder {
   /// The window the least contact force is taken over (docs/model.md §6): the cam above the
   /// play (u > 1 µm) and the needle off its seat (y > 1 µm), so the cam is lifting it — the same
   /// for an exact and a measured table of one cam, whatever its detected open lift.
-  /// The least ratio's window (min_contact_force_ratio, the limits' rows) also closes when the
-  /// needle first seats past the cam's top: a rebound off the seat is a secondary opening
-  /// (secondary_lift_m), not a cam losing the needle it lifts. The least force in N keeps the
-  /// whole window, every separation episode's: the overspeed scan's margin.
+  /// Both least-force windows (in N, the overspeed scan's margin, and the ratio the limits' rows
+  /// judge) also close when the needle first seats past the cam's top: a rebound off the seat is
+  /// a secondary opening (secondary_lift_m, episodes of kind "rebound"), not a cam losing the
+  /// needle it lifts.
   static bool OnCamWindow(const Contacts& c, const TrainState& x);
   /// Inside the deceleration zone at this angle (docs/model.md §6).
   bool Decelerating(double crank_rad) const;

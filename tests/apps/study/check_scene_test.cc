@@ -1031,11 +1031,17 @@ seat_damping_ratio = 0.1
   // The window closed at the landing: the least force is the lift's own, far from zero.
   EXPECT_EQ(Row(r, "min_contact_force").verdict, "pass") << Row(r, "min_contact_force").note;
   EXPECT_LT(run.min_contact_force_ratio_rad, seated);
-  // The least force in N keeps the whole window (the overspeed scan's margin): the rebound's
-  // separation from the cam is in it, as its bounce episode is in the episodes.
-  EXPECT_EQ(run.min_contact_force_during_lift_N, 0.0);
+  // The least force in N (the overspeed scan's margin) closes its window there too, and the
+  // rebound's separation from the cam is an episode of its own kind, never a jump.
+  double lifting = 1e300;  // the least force in the series while the cam lifts, before seating
+  for (const SeriesPoint& p : run.series) {
+    if (p.crank_rad < seated && p.cam_m > 1e-6 && p.lift_m > 1e-6)
+      lifting = std::min(lifting, std::max(0.0, p.contact_force_N));
+  }
+  EXPECT_GT(run.min_contact_force_during_lift_N, 0.1 * lifting);
+  EXPECT_LE(run.min_contact_force_during_lift_N, lifting);
   ASSERT_EQ(run.episodes.size(), 1u);
-  EXPECT_EQ(run.episodes[0].kind, "bounce");
+  EXPECT_EQ(run.episodes[0].kind, "rebound");
   EXPECT_GT(run.episodes[0].start_rad, seated);
   const LimitRow& reopen = Row(r, "secondary_opening");
   EXPECT_EQ(reopen.verdict, "fail");
