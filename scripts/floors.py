@@ -65,7 +65,6 @@ LONG_FUNCTIONS = {
     "lib/cam_synthesis.cc SynthesizeRise": 112,
     "spring/spring_sizing.cc SizeSpring": 108,
     "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
-    "apps/case/sizing_section.cc ReadSizing": 107,
     "dynamics/solver/event_certification.cc EventDriver::RecordExtremes": 106,
 }
 DECLARATION = re.compile(r"(namespace|struct|class|enum|union|if|for|while|switch|do|else|return|"

@@ -165,9 +165,6 @@ SizingSection ReadSizing(SectionReader r) {
     s.candidates = static_cast<int>(*v);
   if (auto v = number(r.OptionalNumber("verify"), "verify", 0, 100, true))
     s.verify = static_cast<int>(*v);
-  if (s.verify > s.candidates)
-    r.Fail("verify", "verifies " + std::to_string(s.verify) + " springs but only " +
-                         std::to_string(s.candidates) + " candidates are kept");
   ReadDesignProblem(r, s);
   const bool one_wire = s.wire_m.size() == 1 && s.grades.size() <= 1;
   const bool one_index = s.min_index && s.max_index && *s.min_index == *s.max_index;

@@ -36,7 +36,8 @@
 ///     mass_without_spring_kg        the moving mass less a third of the active coils
 ///     end_fixation = 0.5            ν of EN 13906-1's buckling (0.5: both ends fixed)
 ///     candidates = 5                the best springs listed
-///     verify = 3                    of those, at most this many verified in the dynamics
+///     verify = 10                   at most this many checked end to end (the best, then the
+///                                   mass-fatigue front), then the case's own spring
 
 #include <optional>
 #include <string>
@@ -63,7 +64,7 @@ struct SizingSection {
   std::optional<double> mass_without_spring_kg;
   double end_fixation = 0.5;
   int candidates = 5;
-  int verify = 3;
+  int verify = 10;
   std::optional<double> closed_load_N, open_load_N;    ///< P₁, P₂
   std::optional<double> rate_N_m;                      ///< or the rate
   std::optional<double> stroke_m;                      ///< default: the lift's largest

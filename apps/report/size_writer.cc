@@ -109,7 +109,9 @@ std::string SizeText(const BoundCase& c, const SizeResult& r, const SizedSpring*
       << (r.case_spring_mass_kg ? " (the case's spring " + Fixed(*r.case_spring_mass_kg, 3) + " kg)"
                                 : "")
       << '\n';
-    t << "rules (value, limit, margin):\n";
+    t << (chosen->rules.empty()
+              ? "rules: not applied (the case's own spring as stated; the check below judges it)\n"
+              : "rules (value, limit, margin):\n");
     for (const SizingRule& x : chosen->rules)
       t << RowText(x.name, x.value, x.limit, x.at_most, x.margin, x.unit, x.Shouted());
   }
