@@ -180,6 +180,16 @@ std::vector<double> BisectionAhead(double lo, double hi, int count) {
   return out;
 }
 
+// The step from speed n where the force gives no guidance (f ≤ 0), after `last` (n, f): Δn; but
+// where the force has just reached zero the lift-off is near, and the step is no larger than the
+// one that came here; while it stays at zero (contact lost, its jumps still shorter than
+// kMinJump_rad), each step at most doubles the last.
+double UnguidedStep(double step, double res, double n,
+                    const std::optional<std::pair<double, double>>& last) {
+  if (!last) return step;
+  return std::min(step, std::max(res, (last->second > 0.0 ? 1.0 : 2.0) * (n - last->first)));
+}
+
 }  // namespace
 
 OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
@@ -269,9 +279,7 @@ OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
   std::optional<std::pair<double, double>> last;  // (n, f) of the speed before
   while (true) {
     const double f = row->min_contact_force_N / preload;
-    // No guidance: Δn; but where the force has just reached zero the lift-off is near, and the
-    // step is no larger than the one that came here.
-    double d = last && last->second > 0.0 ? std::min(step, std::max(res, n - last->first)) : step;
+    double d = UnguidedStep(step, res, n, last);
     if (f > 0.0) {
       const double d_max = std::max(step, o.max_step_fraction * n);
       if (last && last->second > f) {

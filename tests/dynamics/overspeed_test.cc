@@ -391,6 +391,26 @@ TEST(OverspeedScanTest, TheForceLedScanFindsANarrowWindowAFixedScanMisses) {
   EXPECT_EQ(one.rows.size(), r.rows.size());
 }
 
+// While the force stays at zero (the contact lost, the jumps still short of 0.1°), the scan's step
+// at most doubles: with 0.8 N more preload than kNarrowWindow the contact is lost from 578.97 rpm
+// and the window is 580.27–584.56 rpm wide; the scan stepped from 579.97 to 594.97 rpm over it
+// and reported 624.4 rpm.
+TEST(OverspeedScanTest, AScanWhereTheContactIsLostStepsNoFasterThanDoubling) {
+  std::string text = kNarrowWindow;
+  text.replace(text.find("preload_N = 496.3"), 17, "preload_N = 497.1");
+  const Scene s = MakeScene(ParseCase(text, "narrower-window.toml"));
+  OverspeedOptions o;
+  o.from_rpm = 200;
+  o.to_rpm = 700;
+  o.step_rpm = 15;
+  const OverspeedResult r = OverspeedSearch(s, o);
+  ASSERT_TRUE(r.n_dyn_rpm);
+  EXPECT_GT(*r.n_dyn_rpm, 580.0);
+  EXPECT_LT(*r.n_dyn_rpm, 584.6);
+  EXPECT_TRUE(LiftsOff(s, *r.n_dyn_rpm));
+  EXPECT_FALSE(LiftsOff(s, r.bracket_low_rpm));
+}
+
 // A row and the outcome as fields: SI inside (rad, m), deg and mm shown; an n_dyn not found is
 // a field without a value under its published key; the columns' SI keys are Python's.
 TEST(OverspeedFieldsTest, RowsAndOutcomeShowTheirUnits) {
