@@ -46,7 +46,6 @@ METHOD_TABLE = {"dynamics/solver/integrator.h", "dynamics/solver/methods.cc"}
 MOST_LINES = 100
 LONG_FUNCTIONS = {
     "apps/report/check_report.cc CheckReportWriter::Finish": 296,
-    "apps/study/spring_sizing_scene.cc SizeCase": 258,
     "dynamics/overspeed.cc OverspeedSearch": 227,
     "dynamics/solver/event_driver.cc EventDriver::Run": 223,
     "apps/study/check_scene.cc CheckScene": 200,

@@ -204,6 +204,59 @@ void SetBounds(const BoundCase& c, const SizingSection& z, SizeResult& r,
   }
 }
 
+// The duty of the sizing (spring/spring_sizing.h): the stroke, the rated speed, the limits, and
+// the least preload of a spring of rate k and active coil mass m_s (S·F_g, Basu's formula less
+// its tolerance, the inertia sizing with m₀ + m_s/3; or a stated P₁ judged against those).
+SizingDuty MakeDuty(const BoundCase& c, const SizingSection& z, const LiftLaw& law,
+                    const KinematicsSummary& sum, const SizeResult& r) {
+  const double rpm = c.engine.speed_rpm;
+  const EngineCycle cycle = c.engine.cycle;
+  SizingDuty duty;
+  duty.stroke_m = r.stroke_m;
+  duty.speed_rpm = rpm;
+  duty.cycle = cycle;
+  duty.min_fatigue_factor = c.limits.fatigue_safety_factor;
+  duty.min_gap_m = c.limits.coil_gap_m;
+  if (z.open_load_N) duty.rate_N_m = (*z.open_load_N - *z.closed_load_N) / r.stroke_m;
+  if (z.rate_N_m) duty.rate_N_m = z.rate_N_m;
+  const SpringParameters& spring = *c.spring;
+  const double gas = c.needle->gas_force_N, m0 = r.mass_without_spring_kg;
+  const std::optional<double> basu =
+      c.needle->diameter_m
+          ? std::optional<double>(BasuPreloadN(*c.needle->diameter_m, sum.injection_period_s))
+          : std::nullopt;
+  duty.preload_floor_N =
+      std::max(spring.safety_factor * gas,
+               basu ? *basu * (1.0 - spring.basu_tolerance_percent / 100.0) : 0.0);
+  const double omega = OmegaFromRpm(rpm);
+  duty.preload = [&law, &spring, gas, m0, basu, omega](double rate, double spring_mass) {
+    PreloadNeed need{spring.safety_factor * gas, "combustion load S F_g"};
+    if (basu) {
+      const double b = *basu * (1.0 - spring.basu_tolerance_percent / 100.0);
+      if (b > need.preload_N) need = {b, "Basu's formula less its tolerance"};
+    }
+    RigidTrain t;
+    t.mass_kg = m0 + spring_mass / 3.0;
+    t.rate_N_m = rate;
+    t.gas_force_N = gas;
+    const double inertia =
+        RequiredPreloadN(law, t, omega, spring.safety_factor, spring.overspeed_factor);
+    if (inertia > need.preload_N) need = {inertia, "inertia sizing"};
+    return need;
+  };
+  if (z.closed_load_N) {  // a textbook problem: P₁ is stated, and judged against the duty's
+    const double p1 = *z.closed_load_N;
+    duty.preload_floor_N = p1;
+    duty.closed_load_N = p1;
+    duty.open_load_N = z.open_load_N;
+    duty.preload = [p1, need = duty.preload](double rate, double spring_mass) {
+      const PreloadNeed duty_need = need(rate, spring_mass);
+      return PreloadNeed{p1, "stated closed load P1", duty_need.preload_N, duty_need.rule};
+    };
+  }
+  return duty;
+}
+
 // Whether two springs are the same winding (wire, D, active coils).
 bool SameWinding(const HelicalGeometry& a, const HelicalGeometry& b) {
   const auto same = [](double x, double y) { return std::abs(x - y) <= 1e-9 * std::abs(y); };
@@ -211,8 +264,8 @@ bool SameWinding(const HelicalGeometry& a, const HelicalGeometry& b) {
          same(a.active_coils, b.active_coils);
 }
 
-// The case's own helical spring as the case states it (its wire, D, coils, free length and
-// preload), when its wire is one of the space's and it fits the space's diameters and length.
+// The case's own helical spring as stated (wire, D, coils, free length, preload), always a
+// candidate when its wire is one of the space's and it fits the space's diameters and length.
 std::optional<SizedSpring> OwnSpring(const BoundCase& c, const SizingSpace& sp,
                                      const SizingDuty& duty, SizingObjective objective) {
   const std::optional<HelicalGeometry>& own = c.spring->helical;
@@ -288,9 +341,8 @@ std::string NoFitLine(const std::vector<VerifiedSpring>& verified) {
   return m.str();
 }
 
-// Stage 2 (docs/sizing.md): the candidates checked end to end by CheckScene in order until one
-// passes or [sizing] verify springs have been checked; then, if none passed, the case's own
-// spring as stated, always a candidate when it fits the space.
+// Stage 2 (docs/sizing.md): the candidates checked by CheckScene in order until one passes or
+// [sizing] verify are checked; then, if none passed, the case's own spring as stated.
 void VerifyCandidates(const BoundCase& c, const LiftLaw& law, const SizingSection& z,
                       const SizingDuty& duty, SizingObjective objective, const SizeOptions& options,
                       SizeResult& r) {
@@ -352,7 +404,6 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
   SizeResult r;
   r.objective = z.objective;
   const double rpm = c.engine.speed_rpm;
-  const EngineCycle cycle = c.engine.cycle;
   const KinematicsSummary sum = Kinematics(law, rpm).Summarize();
   r.stroke_m = z.stroke_m.value_or(sum.max_lift_m);
   // 1 % below the lift passes: a table's stated peak may sit a spline's overshoot under it.
@@ -383,49 +434,7 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
     r.mass_without_spring_kg = c.needle->mass_kg;
     r.mass_note = "[needle] mass_kg (the case's spring has no geometry to take out)";
   }
-  SizingDuty duty;
-  duty.stroke_m = r.stroke_m;
-  duty.speed_rpm = rpm;
-  duty.cycle = cycle;
-  duty.min_fatigue_factor = c.limits.fatigue_safety_factor;
-  duty.min_gap_m = c.limits.coil_gap_m;
-  if (z.open_load_N) duty.rate_N_m = (*z.open_load_N - *z.closed_load_N) / r.stroke_m;
-  if (z.rate_N_m) duty.rate_N_m = z.rate_N_m;
-  const SpringParameters& spring = *c.spring;
-  const double gas = c.needle->gas_force_N, m0 = r.mass_without_spring_kg;
-  const std::optional<double> basu =
-      c.needle->diameter_m
-          ? std::optional<double>(BasuPreloadN(*c.needle->diameter_m, sum.injection_period_s))
-          : std::nullopt;
-  duty.preload_floor_N =
-      std::max(spring.safety_factor * gas,
-               basu ? *basu * (1.0 - spring.basu_tolerance_percent / 100.0) : 0.0);
-  const double omega = OmegaFromRpm(rpm);
-  duty.preload = [&law, &spring, gas, m0, basu, omega](double rate, double spring_mass) {
-    PreloadNeed need{spring.safety_factor * gas, "combustion load S F_g"};
-    if (basu) {
-      const double b = *basu * (1.0 - spring.basu_tolerance_percent / 100.0);
-      if (b > need.preload_N) need = {b, "Basu's formula less its tolerance"};
-    }
-    RigidTrain t;
-    t.mass_kg = m0 + spring_mass / 3.0;
-    t.rate_N_m = rate;
-    t.gas_force_N = gas;
-    const double inertia =
-        RequiredPreloadN(law, t, omega, spring.safety_factor, spring.overspeed_factor);
-    if (inertia > need.preload_N) need = {inertia, "inertia sizing"};
-    return need;
-  };
-  if (z.closed_load_N) {  // a textbook problem: P₁ is stated, and judged against the duty's
-    const double p1 = *z.closed_load_N;
-    duty.preload_floor_N = p1;
-    duty.closed_load_N = p1;
-    duty.open_load_N = z.open_load_N;
-    duty.preload = [p1, need = duty.preload](double rate, double spring_mass) {
-      const PreloadNeed duty_need = need(rate, spring_mass);
-      return PreloadNeed{p1, "stated closed load P1", duty_need.preload_N, duty_need.rule};
-    };
-  }
+  const SizingDuty duty = MakeDuty(c, z, law, sum, r);
 
   // Stage 1: the closed form.
   SizingOptions so;
