@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "lib/units.h"
 #include "spring/resonance.h"
@@ -243,6 +244,119 @@ TEST(SpringSizingTest, NothingFitsNamesTheBindingRuleAndTheClosestSpring) {
     for (const SizingRule& x : s.rules) worst = std::max(worst, x.Violation());
     EXPECT_GE(worst, r.binding->Violation());
   }
+}
+
+// BetterSpring's order (spring_sizing.h): the objective, then mass, wire, D and n — each
+// tie-break alone decides, both ways (mutation survivors at spring_sizing.cc:168–171).
+TEST(SpringSizingTest, BetterSpringBreaksTiesByMassWireCoilAndCount) {
+  SizedSpring a;
+  a.objective = 1.0;
+  a.mass_kg = 0.2;
+  a.wire_index = 3;
+  a.geometry.coil_m = 20e-3;
+  a.geometry.active_coils = 6.0;
+  const auto differs = [&a](auto set) {
+    SizedSpring b = a;
+    set(b);
+    EXPECT_TRUE(BetterSpring(a, b));
+    EXPECT_FALSE(BetterSpring(b, a));
+  };
+  differs([](SizedSpring& b) { b.objective = 1.5; });
+  differs([](SizedSpring& b) { b.mass_kg = 0.25; });
+  differs([](SizedSpring& b) { b.wire_index = 4; });
+  differs([](SizedSpring& b) { b.geometry.coil_m = 21e-3; });
+  differs([](SizedSpring& b) { b.geometry.active_coils = 6.5; });
+  EXPECT_FALSE(BetterSpring(a, a));
+  // A lighter spring of a later wire and larger D still wins on mass.
+  SizedSpring lighter = a;
+  lighter.mass_kg = 0.19;
+  lighter.wire_index = 9;
+  lighter.geometry.coil_m = 30e-3;
+  EXPECT_TRUE(BetterSpring(lighter, a));
+}
+
+// EvaluateSpring refuses a wire index outside the space (:177), and a duty without a speed
+// judges no surge rule (:208, :224).
+TEST(SpringSizingTest, EvaluateSpringsIndexAndAnUnspunDuty) {
+  const SizingSpace space = SmallSpace();
+  SizingDuty duty = ValveDuty();
+  const int last = static_cast<int>(space.wires.size()) - 1;
+  for (const int bad : {-1, last + 1}) {
+    try {
+      EvaluateSpring(space, duty, bad, 20e-3, 6, SizingObjective::kMass, true);
+      ADD_FAILURE() << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "EvaluateSpring: wire index out of range") << bad;
+    }
+  }
+  EXPECT_NO_THROW(EvaluateSpring(space, duty, last, 25e-3, 6, SizingObjective::kMass, true));
+  const auto has_surge = [](const SizedSpring& s) {
+    for (const SizingRule& r : s.rules)
+      if (r.key == "surge_ratio") return true;
+    return false;
+  };
+  // The strongest wire on a 25 mm coil passes the screen at the floor preload, so the surge rule
+  // kept after it is what the rules hold.
+  const auto evaluate = [&](bool full) {
+    const SizedSpring s = EvaluateSpring(space, duty, last, 25e-3, 6, SizingObjective::kMass, full);
+    EXPECT_GT(s.rules.size(), 1u) << full;
+    return s;
+  };
+  EXPECT_TRUE(has_surge(evaluate(true)));
+  EXPECT_TRUE(has_surge(evaluate(false)));
+  duty.speed_rpm = 0.0;
+  EXPECT_FALSE(has_surge(evaluate(true)));
+  EXPECT_FALSE(has_surge(evaluate(false)));
+}
+
+// The front trades mass against a judged fatigue factor: a spring whose fatigue is not judged
+// (Zimmerli's data stop at 10 mm wire) is left out, however light (mutation survivor at :386).
+TEST(SpringSizingTest, TheFrontLeavesOutSpringsWhoseFatigueIsNotJudged) {
+  SizedSpring judged;
+  judged.pass = true;
+  judged.mass_kg = 1.0;
+  judged.check = HelicalSpringCheck{};
+  judged.check->fatigue_judged = true;
+  judged.check->fatigue.safety_factor = 2.0;
+  SizedSpring unjudged = judged;
+  unjudged.mass_kg = 0.5;
+  unjudged.check->fatigue_judged = false;
+  const std::vector<SizedSpring> front = MassFatigueFront({judged, unjudged});
+  ASSERT_EQ(front.size(), 1u);
+  EXPECT_EQ(front[0].mass_kg, 1.0);
+}
+
+// The installed-length rule (spring_sizing.cc:244, :252): the installed length is the shortest
+// that keeps the gap at full lift, L₁ ≥ L_c + h + S_a, with the free length rounded up to its
+// step; a space whose largest L₁ lies between that need and the rounded L₁ fails on the rounding
+// (installed_length), and one whose L₁ holds it judges the coil gap, not the length.
+TEST(SpringSizingTest, TheInstalledLengthRuleJudgesTheRoundedLength) {
+  SizingSpace space = SmallSpace();
+  space.free_length_step_m = 5e-3;  // a coarse step: the rounding adds up to 5 mm
+  const SizingDuty duty = ValveDuty();
+  const auto rule = [](const SizedSpring& s, const std::string& key) -> const SizingRule* {
+    for (const SizingRule& r : s.rules)
+      if (r.key == key) return &r;
+    return nullptr;
+  };
+  const int last = static_cast<int>(space.wires.size()) - 1;
+  const SizedSpring fits =
+      EvaluateSpring(space, duty, last, 25e-3, 6, SizingObjective::kMass, true);
+  ASSERT_TRUE(fits.check);
+  EXPECT_EQ(rule(fits, "installed_length"), nullptr);
+  ASSERT_NE(rule(fits, "coil_gap"), nullptr);
+  EXPECT_TRUE(rule(fits, "coil_gap")->passes());
+  const double need = fits.check->solid_length_m + duty.stroke_m + fits.check->min_clearance_m;
+  ASSERT_GT(fits.installed_m - need, 1e-5);
+  ASSERT_LE(fits.installed_m, space.max_installed_m);
+  space.max_installed_m = need + 0.5 * (fits.installed_m - need);
+  const SizedSpring rounded =
+      EvaluateSpring(space, duty, last, 25e-3, 6, SizingObjective::kMass, true);
+  const SizingRule* length = rule(rounded, "installed_length");
+  ASSERT_NE(length, nullptr);
+  EXPECT_FALSE(length->passes());
+  EXPECT_NEAR(length->value, fits.installed_m * 1e3, 1e-9);
+  EXPECT_FALSE(rounded.pass);
 }
 
 TEST(SpringSizingTest, BucklingDeflectionOfEn13906) {

@@ -11,6 +11,7 @@
 #include "apps/case/case_profile.h"
 #include "apps/case/case_scene.h"
 #include "apps/study/dynamics_jobs.h"
+#include "apps/study/limits_table.h"
 #include "lib/input_file.h"
 #include "lib/output.h"
 
@@ -48,6 +49,13 @@ TEST(DefaultSweepRangeTest, TheCaseSectionWins) {
   const Case c = ParseCase(kSmall + "[overspeed]\nfrom_rpm = 500\nto_rpm = 700\n", "t.toml");
   EXPECT_EQ(DefaultSweepRange(Bind(c), 400, 900).from_rpm, 500);
   EXPECT_EQ(DefaultSweepRange(Bind(c), 400, 900).to_rpm, 700);
+  // One end stated: the other is the default's (mutants reading the absent end survived).
+  const Case to = ParseCase(kSmall + "[overspeed]\nto_rpm = 700\n", "t.toml");
+  EXPECT_EQ(DefaultSweepRange(Bind(to), 400, 900).from_rpm, 400);
+  EXPECT_EQ(DefaultSweepRange(Bind(to), 400, 900).to_rpm, 700);
+  const Case from = ParseCase(kSmall + "[overspeed]\nfrom_rpm = 500\n", "t.toml");
+  EXPECT_EQ(DefaultSweepRange(Bind(from), 400, 900).from_rpm, 500);
+  EXPECT_EQ(DefaultSweepRange(Bind(from), 400, 900).to_rpm, 1800);
 }
 
 // Basu's Example 1 passes every part; the numbers are docs/springs.md's and docs/validation.md's.
@@ -1120,6 +1128,121 @@ TEST(CheckSceneTest, ALiftTableThatDoesNotReachTheSeatIsUndecided) {
   const CheckResult low =
       check("lift_mm = [0, 0.073, 0.29, 0.77, 1.54, 2.49, 3.38, 3.67, 3.22, 2.12, 0.954, 0.1]");
   for (const std::string& f : low.failing) EXPECT_EQ(f.find("lift table"), std::string::npos) << f;
+}
+
+// The seating rows read the seat's landings only (issue 51 item 11, mutants of limits_table.cc
+// that survived check_scene_test): the seating velocity is the fastest landing on the seat, not
+// a faster strike of the cam on the roller; the reopening row's note names the first landing
+// past the crest, not a recontact of the cam after a jump.
+TEST(CheckSceneTest, TheSeatingRowsReadTheSeatsLandingsOnly) {
+  CheckOptions o;
+  o.threads = 1;
+  // A steep rise on 2° ramps with 0.4 mm of play: the lash strikes at 0.36 m/s, the needle lands
+  // on its seat at 0.029 m/s.
+  const CheckResult lash = CheckScene(Bind(ParseCase(R"(
+[engine]
+speed_rpm = 300
+cycle = "four-stroke"
+[lift]
+crank_deg = [-10, -8, -6, -4, -2, 0, 5, 10, 15, 20, 25, 30, 35, 40]
+lift_mm = [0.0, 0.25, 0.9, 1.6, 2.1, 2.3, 2.25, 2.0, 1.65, 1.25, 0.85, 0.45, 0.15, 0.0]
+spline = "not-a-knot"
+resolution_mm = 0.01
+[needle]
+mass_kg = 0.5
+[spring]
+preload_N = 600
+rate_N_mm = 20
+[train]
+contact_stiffness_N_m = 1e8
+seat_stiffness_N_m = 1e8
+contact_damping_ratio = 0.1
+seat_damping_ratio = 0.1
+play_mm = 0.4
+ramp_deg = 2
+)",
+                                                     "lash.toml")),
+                                      o);
+  ASSERT_TRUE(lash.run);
+  double landing = 0.0, strike = 0.0;
+  for (const Impact& i : lash.run->impacts) {
+    double& fastest = i.kind.rfind("seat", 0) == 0 ? landing : strike;
+    fastest = std::max(fastest, i.speed_m_s);
+  }
+  EXPECT_GT(strike, 5.0 * landing);
+  EXPECT_EQ(Row(lash, "seating_velocity").value, landing);
+  EXPECT_EQ(Row(lash, "lash_impact_speed").value, strike);
+
+  // A weak spring at 1000 rpm jumps from 7.06° to 27.42°; the cam recontacts the roller three
+  // times before the needle lands at 39.16°, on a seat damped at ζ = 1 so it does not reopen.
+  const CheckResult jump = CheckScene(Bind(ParseCase(R"(
+[engine]
+speed_rpm = 1000
+cycle = "four-stroke"
+[lift]
+crank_deg = [-20, -14, -8, -2, 4, 10, 16, 22, 28, 34, 40]
+lift_mm = [0.0, 0.12, 0.55, 1.30, 2.15, 2.70, 2.55, 1.90, 1.00, 0.30, 0.0]
+spline = "not-a-knot"
+resolution_mm = 0.01
+[needle]
+mass_kg = 0.8
+[spring]
+preload_N = 390
+rate_N_mm = 30
+[train]
+contact_stiffness_N_m = 1e8
+seat_stiffness_N_m = 1e8
+contact_damping_ratio = 0.1
+seat_damping_ratio = 1.0
+play_mm = 0
+)",
+                                                     "jump.toml")),
+                                      o);
+  ASSERT_TRUE(jump.run);
+  ASSERT_GT(jump.run->impacts.size(), 2u);
+  EXPECT_EQ(jump.run->impacts.front().kind, "recontact");
+  // Its landings: 0.33 m/s on the seat at 39.16°, then a bounce at 0.0063 m/s, last of all; the
+  // row reads the fastest landing, not the last one nor a faster recontact before it.
+  double fastest = 0.0;
+  for (const Impact& i : jump.run->impacts)
+    if (i.kind.rfind("seat", 0) == 0) fastest = std::max(fastest, i.speed_m_s);
+  ASSERT_EQ(jump.run->impacts.back().kind, "seat-bounce");
+  ASSERT_LT(jump.run->impacts.back().speed_m_s, 0.1 * fastest);
+  EXPECT_EQ(Row(jump, "seating_velocity").value, fastest);
+  EXPECT_EQ(Row(jump, "secondary_opening").value, 0.0);
+  EXPECT_EQ(Row(jump, "secondary_opening").note, "no reopening after it seated at 39.16 deg");
+}
+
+// The surge rows when one of the two coil-mass runs is undecided (mutation survivors of
+// limits_table.cc at :271 and :291): the check's own result of the surge case, one run's status
+// set by hand, judged again by JudgeLimits.
+TEST(CheckSceneTest, ASurgeRunUndecidedAtOneSpeedIsUndecidedAndTheGapIsTheRatedRuns) {
+  const BoundCase c = Bind(LoadCase(kCases + "basu-example1-surge.toml"));
+  CheckOptions o;
+  o.threads = 1;
+  o.record_series = false;
+  const CheckResult base = CheckScene(c, o);
+  ASSERT_TRUE(base.surge && base.run);
+  ASSERT_TRUE(base.run->min_coil_gap_m && base.surge->rated.min_coil_gap_m);
+  ASSERT_NE(*base.run->min_coil_gap_m, *base.surge->rated.min_coil_gap_m);
+  const auto judged = [&](RunStatus rated, RunStatus overspeed) {
+    CheckResult r = base;
+    r.surge->rated.status = rated;
+    r.surge->overspeed.status = overspeed;
+    r.limits.clear();
+    r.failing.clear();
+    r.warnings.clear();
+    JudgeLimits(c, *c.lift.law, r.cam_zero_crank_rad, r);
+    return r;
+  };
+  // Decided at the rated speed, stopped on its budget at f·n: the surge rows are undecided.
+  const CheckResult at_fn = judged(RunStatus::kComplete, RunStatus::kBudget);
+  EXPECT_EQ(Row(at_fn, "surge_contact_force").note.rfind("undecided: the run with ", 0), 0u)
+      << Row(at_fn, "surge_contact_force").note;
+  EXPECT_TRUE(Contains(at_fn.failing, "surge: undecided: "));
+  // Undecided at the rated speed: the coil gap is the rated run's, not the undecided chain's.
+  const CheckResult at_n = judged(RunStatus::kBudget, RunStatus::kComplete);
+  EXPECT_EQ(Row(at_n, "coil_gap").value, *base.run->min_coil_gap_m * 1e3);
 }
 
 }  // namespace
