@@ -87,7 +87,8 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
   std::string raw;
   int line = 0;
   // The column separator, from the header: ',' (decimal mark '.'), or ';' when the header has
-  // ';' and no ',' (a spreadsheet in a locale whose decimal mark is ',': 12,5).
+  // ';' and no ',' (a spreadsheet in a locale whose decimal mark is ',': 12,5), or a tab when it
+  // has tabs and neither (a spreadsheet's "tab-separated" export; decimal mark '.').
   char separator = ',';
   int angle_col = -1, lift_col = -1, time_col = -1, columns = 0;
   double angle_scale = 0.0, lift_scale = 0.0, time_scale = 0.0;
@@ -107,7 +108,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
              "the header has both ';' and ',', so the separator is ambiguous; separate the "
              "columns with ',' (decimal mark '.') or with ';' (decimal mark ',')");
       }
-      separator = semicolon ? ';' : ',';
+      separator = semicolon ? ';' : comma || s.find('\t') == std::string::npos ? ',' : '\t';
     }
     const std::vector<std::string> f = Fields(s, separator);
     if (header) {

@@ -15,7 +15,15 @@ CLI::App* AddServeCommand(CLI::App& app, ServeCommandOptions& o) {
       ->check(CLI::Range(0, 65535));
   cmd->add_option("--host", o.host,
                   "address to bind (default 127.0.0.1: this machine only; another address is "
-                  "reachable by others, with no login)");
+                  "reachable by others, with no login)")
+      ->check(CLI::Validator(
+          [](std::string& host) -> std::string {
+            return host.find_first_not_of(" \t") == std::string::npos
+                       ? "expected an address to bind, such as 127.0.0.1 or 0.0.0.0, got '" + host +
+                             "'"
+                       : std::string();
+          },
+          "ADDRESS", ""));
   return cmd;
 }
 

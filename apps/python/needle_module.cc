@@ -291,7 +291,7 @@ void DefStudies(py::module_& m) {
           RequireSpeedOf(c, std::nullopt, "");
           result = RunToleranceSamples(Bind(c), o);
         }
-        return ShardArrays(result, o.seed, o.first_sample);
+        return ShardArrays(result, o.seed, o.first_sample, CaseDigest(text));
       },
       py::arg("text"), py::kw_only(), py::arg("path"), py::arg("seed"), py::arg("first_sample"),
       py::arg("samples"), py::arg("threads") = 1, py::arg("shown_as") = py::none(),
@@ -319,10 +319,21 @@ void DefStudies(py::module_& m) {
       m, "tolerance_reduce",
       [](const py::object& source, const py::sequence& shards, const py::object& seed,
          const py::object& first_sample, const py::object& threads, double seconds) {
-        const auto c = CaseOf(source, "tolerance_reduce");
+        std::shared_ptr<const Case> c;
+        std::string text;
+        if (py::isinstance<PyCase>(source)) {
+          PyCase& pc = source.cast<PyCase&>();
+          c = Validated(pc);
+          text = pc.text;
+        } else {
+          const PyCase pc = LoadAnyCase(source, std::nullopt, py::none(), "tolerance_reduce");
+          c = pc.loaded;
+          text = pc.text;
+        }
         ToleranceOptions o;
         SetStudyKeywords(o, seed, first_sample, threads);
-        std::vector<ToleranceSample> samples = ShardSamples(shards, o.seed, o.first_sample);
+        std::vector<ToleranceSample> samples =
+            ShardSamples(shards, o.seed, o.first_sample, CaseDigest(text));
         o.samples = static_cast<int>(samples.size());
         return Run([&] {
           const BoundCase b = Bind(*c);

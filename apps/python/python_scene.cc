@@ -181,6 +181,15 @@ void DefScene(py::module_& m) {
           py::kw_only(), arg("rpm") = py::none(),
           "needle check of the scene (as needle.check: the dict of check --json)")
       .def("__repr__", [](const PyScene& s) { return "<needle.Scene " + s.bound->path + ">"; });
+  // Each method's keywords checked in one line, as the module's functions are (issue 51's
+  // trial: scene.check(foo=1) gave pybind11's multi-line list of signatures).
+  const py::object scene = m.attr("Scene");
+  CheckMethodCalls(scene, "kinematics", {{"rpm", "step_deg"}, 0, {}});
+  CheckMethodCalls(scene, "simulate",
+                   {{"rpm", "method", "rtol", "dynamic", "series", "grid_deg"}, 0, {}});
+  CheckMethodCalls(scene, "overspeed",
+                   {{"from_rpm", "to_rpm", "step_rpm", "method", "rtol", "threads"}, 0, {}});
+  CheckMethodCalls(scene, "check", {{"rpm"}, 0, {}});
 }
 
 }  // namespace needle::python

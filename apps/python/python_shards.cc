@@ -5,7 +5,10 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cinttypes>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,12 +26,13 @@ using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
 const std::vector<std::string> kShardKeys = {
     "failing", "first_sample",   "input_keys", "input_present", "inputs",  "output_keys",
     "outputs", "output_present", "pass",       "refused",       "samples", "seed"};
-const std::vector<std::string> kShardExtras = {"seconds", "worker"};
+const std::vector<std::string> kShardExtras = {"seconds", "worker", "case_digest"};
 
 std::string ShardKeyList() {
   std::string list;
   for (const std::string& k : kShardKeys) list += (list.empty() ? "" : ", ") + k;
-  return "expected the keys tolerance_shard writes: " + list + " (and run_shard's seconds, worker)";
+  return "expected the keys tolerance_shard writes: " + list +
+         " (and case_digest, and run_shard's seconds, worker)";
 }
 
 bool Listed(const std::vector<std::string>& keys, const std::string& key) {
@@ -101,7 +105,23 @@ void AppendShard(const py::dict& shard, const std::string& where,
 
 }  // namespace
 
-py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed, int first_sample) {
+std::string CaseDigest(const std::string& text) {
+  // The text as toml++ reads and writes it back: its tables and keys in order, without comments
+  // or layout, so a file and the dict load_case made of it give the same digest. FNV-1a, 64 bit.
+  std::ostringstream canonical;
+  canonical << toml::parse(text);
+  uint64_t h = 14695981039346656037ull;
+  for (const unsigned char ch : canonical.str()) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016" PRIx64, h);
+  return hex;
+}
+
+py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed, int first_sample,
+                     const std::string& case_digest) {
   const auto table = [&](auto member, const char* keys_name, const char* values_name,
                          const char* present_name, py::dict& out) {
     std::vector<std::string> keys;
@@ -129,6 +149,7 @@ py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed,
   };
   py::dict out;
   out["seed"] = seed;
+  out["case_digest"] = case_digest;
   out["first_sample"] = first_sample;
   out["samples"] = samples.size();
   table(&ToleranceSample::inputs, "input_keys", "inputs", "input_present", out);
@@ -148,7 +169,7 @@ py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed,
 }
 
 std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed,
-                                          int first_sample) {
+                                          int first_sample, const std::string& case_digest) {
   std::vector<ToleranceSample> samples;
   for (size_t i = 0; i < shards.size(); ++i) {
     const std::string where = "shards[" + std::to_string(i) + "]";
@@ -157,6 +178,16 @@ std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t s
     if (made_with != seed)
       throw CaseError("seed=" + std::to_string(seed) + ": " + where + " was made with seed=" +
                       std::to_string(made_with) + "; expected the seed its shards were made with");
+    // The case it was made from (issue 51's trial: shards of another case were reduced as this
+    // one's study). Shards read back from files written before the digest carry none; their
+    // folder is checked by its case_sha256 (needle.shards).
+    if (shard.contains("case_digest")) {
+      const auto made_from = Value<std::string>(shard, where, "case_digest");
+      if (made_from != case_digest)
+        throw CaseError(where + " was made from another case (case_digest " + made_from +
+                        ", this case's " + case_digest +
+                        "); reduce shards with the case they were made from");
+    }
     // The shards tile the study: each starts where the last ended, the first at first_sample (a
     // shard twice, a gap, shards out of order or another first_sample were reduced as if they
     // did, their samples miscounted or mislabelled: issue 51's trial).

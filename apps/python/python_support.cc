@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -368,17 +369,20 @@ void RethrowNamingKeywords(const CaseError& e,
   throw e;
 }
 
-void CheckCalls(py::module_& m, const char* name, const Signature& s) {
-  const py::object original = m.attr(name);
+namespace {
+
+// The check of a call against `s` (CheckCalls), `function` naming it in the messages.
+std::function<void(const py::args&, const py::kwargs&)> CallCheck(const std::string& function,
+                                                                  const Signature& s) {
   const auto list = [&s](size_t from, size_t to) {
     std::string out;
     for (size_t i = from; i < to; ++i) out += (i == from ? "" : ", ") + s.names[i];
     return out;
   };
-  const std::string function = std::string(name) + "()", all = list(0, s.names.size());
+  const std::string all = list(0, s.names.size());
   const std::string by_position = list(0, s.positional),
                     by_keyword = list(s.positional, s.names.size());
-  const auto check = [=](const py::args& args, const py::kwargs& kwargs) {
+  return [=](const py::args& args, const py::kwargs& kwargs) {
     if (args.size() > s.positional)
       throw py::type_error(function + " takes " + std::to_string(s.positional) +
                            " positional argument(s) (" + by_position + "), got " +
@@ -401,6 +405,13 @@ void CheckCalls(py::module_& m, const char* name, const Signature& s) {
         throw py::type_error(function + " missing the argument '" + n + "'; it takes " + all);
     }
   };
+}
+
+}  // namespace
+
+void CheckCalls(py::module_& m, const char* name, const Signature& s) {
+  const py::object original = m.attr(name);
+  const auto check = CallCheck(std::string(name) + "()", s);
   py::options options;
   options.disable_function_signatures();  // the original's doc below starts with its own
   m.attr(name) = py::cpp_function(
@@ -409,6 +420,22 @@ void CheckCalls(py::module_& m, const char* name, const Signature& s) {
         return original(*args, **kwargs);
       },
       py::name(name), py::scope(m),
+      py::doc(py::str(original.attr("__doc__")).cast<std::string>().c_str()));
+}
+
+void CheckMethodCalls(py::object cls, const char* name, const Signature& s) {
+  const py::object original = cls.attr(name);
+  const std::string class_name = py::str(cls.attr("__name__"));
+  const auto check = CallCheck(class_name + "." + name + "()", s);
+  py::options options;
+  options.disable_function_signatures();
+  cls.attr(name) = py::cpp_function(
+      [original, check](const py::object& self, const py::args& args,
+                        const py::kwargs& kwargs) -> py::object {
+        check(args, kwargs);
+        return original(self, *args, **kwargs);
+      },
+      py::name(name), py::is_method(cls),
       py::doc(py::str(original.attr("__doc__")).cast<std::string>().c_str()));
 }
 

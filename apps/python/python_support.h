@@ -158,14 +158,20 @@ py::dict Run(Compute compute,
 // A shard's samples as arrays (python_shards.cc): each quantity a column (its keys in order),
 // whether the sample has it (a refused sample has no outputs), pass, the failing items and the
 // refusals, with the seed of its study and its first sample.
-py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed, int first_sample);
+py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed, int first_sample,
+                     const std::string& case_digest);
+
+// The identity of a case's TOML text as tolerance_shard records it (`case_digest`): the text
+// read and written back by toml++ (no comments, keys in order), hashed (FNV-1a, 64 bit, hex).
+std::string CaseDigest(const std::string& text);
 
 // The samples of shards as ShardArrays gives them (or read back from its files), in order. A
-// shard with a key it does not write, without one it does, of another seed than `seed`, or not
-// starting where the last ended (the first at `first_sample`) is refused (CaseError naming the
-// shard and the key, both seeds or both starts).
+// shard with a key it does not write, without one it does, of another seed than `seed`, of
+// another case (its case_digest, when it has one, not `case_digest`), or not starting where the
+// last ended (the first at `first_sample`) is refused (CaseError naming the shard and the key,
+// both seeds, both digests or both starts).
 std::vector<ToleranceSample> ShardSamples(const py::sequence& shards, uint64_t seed,
-                                          int first_sample);
+                                          int first_sample, const std::string& case_digest);
 
 // The arguments a module function was defined with (its py::arg): their names in order, how
 // many may come by position (those before py::kw_only) and those without a default.
@@ -180,6 +186,10 @@ struct Signature {
 // TypeError of one line naming it and the arguments the function takes (pybind11's own lists
 // every signature over several lines). Then the function runs as it was.
 void CheckCalls(py::module_& m, const char* name, const Signature& s);
+
+// The same for method `name` of class `cls` (all its arguments after self as in `s`): a
+// TypeError of one line naming "Class.name()" and the arguments it takes.
+void CheckMethodCalls(py::object cls, const char* name, const Signature& s);
 
 // m.def(name, f, extra...), its calls checked (CheckCalls).
 template <typename F, typename... Extra>

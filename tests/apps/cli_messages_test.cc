@@ -47,6 +47,11 @@ TEST(CliMessagesTest, NumbersAreDecimalAsTyped) {
       OptionRule("--cycles", "expected a number of cam revolutions in [1, 1000], got 0x2"));
   ExpectRefused("tolerance " + ex2 + " --samples 0x10",
                 OptionRule("--samples", "expected a number of samples in [1, 1000000], got 0x10"));
+  // An empty address was bound as "[::1]" and announced as http://:PORT/ (issue 51's trial).
+  ExpectRefused("serve " + ex2 + " --host ''",
+                OptionRule("--host",
+                           "expected an address to bind, such as 127.0.0.1 or 0.0.0.0, "
+                           "got ''"));
   ExpectRefused("tolerance " + ex2 + " --threads 1e1",
                 OptionRule("--threads", "expected a number of threads in [0, 4096], got 1e1"));
   ExpectRefused(
@@ -128,11 +133,11 @@ TEST(CliMessagesTest, ControlCharactersStayOffTheTerminal) {
   ExpectRefused("kinematics " + Case("basu-cam4.toml") + " \"$(printf 'x\\033[1m\\ny')\"",
                 "needle: The following argument was not expected: x\\x1B[1m\\ny (see needle "
                 "--help)\n");
-  ExpectRefused(
-      "\"$(printf 'x\\033[1m')\"",
-      "needle: unknown command 'x\\x1B[1m'; expected one of check, compare, kinematics, "
-      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve, fit (see needle "
-      "--help)\n");
+  ExpectRefused("\"$(printf 'x\\033[1m')\"",
+                "needle: unknown command 'x\\x1B[1m'; expected one of check, compare, kinematics, "
+                "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve, fit "
+                "(see needle "
+                "--help)\n");
   ExpectRefused("kinematics \"/no/such$(printf '\\033[1m\\nx').toml\"",
                 "needle: /no/such\\x1B[1m\\nx.toml: cannot open the case file for reading\n");
   std::filesystem::remove(path);

@@ -631,6 +631,13 @@ TEST(LiftCsvTest, SpreadsheetExports) {
 }
 
 TEST(LiftCsvTest, SpreadsheetSeparators) {
+  // A spreadsheet's tab-separated export (decimal mark '.'): issue 51's trial found it refused
+  // as "unknown column 'crank_deg\tlift_mm'".
+  const LiftTable tab =
+      ParseLiftCsv("crank_deg\tlift_mm\n-2.5\t0\n0\t12.5\n", "m.tsv", EngineCycle::kFourStroke);
+  ASSERT_EQ(tab.crank_rad.size(), 2u);
+  EXPECT_NEAR(tab.crank_rad[0], -2.5 * kDeg, 1e-15);
+  EXPECT_DOUBLE_EQ(tab.lift_m[1], 12.5e-3);
   const LiftTable semi = ParseLiftCsv(
       "\xEF\xBB\xBF"
       "crank_deg;lift_mm\r\n-2,5;0\r\n0;12,5\r\n",

@@ -107,7 +107,8 @@ def shard_name(first, count):
 def write_shard(folder, meta, shard):
     """Writes a shard atomically (a reader sees the whole file or none)."""
     arrays = {
-        "meta": np.array(json.dumps(meta, sort_keys=True)),
+        "meta": np.array(json.dumps(dict(meta, case_digest=shard.get("case_digest")),
+                                    sort_keys=True)),
         "input_keys": np.array(shard["input_keys"], dtype=str),
         "inputs": shard["inputs"],
         "input_present": shard["input_present"],
@@ -154,6 +155,8 @@ def read_shard(path):
                 "failing": [json.loads(str(f)) for f in z["failing"]],
                 "refused": [str(r) for r in z["refused"]],
             }
+            if meta.get("case_digest"):
+                shard["case_digest"] = str(meta["case_digest"])
     except (OSError, ValueError, KeyError, json.JSONDecodeError):
         return None
     return meta, shard

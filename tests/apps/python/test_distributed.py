@@ -284,7 +284,7 @@ def test_shards_that_are_not_the_studys_are_refused_naming_why():
     assert shard["seed"] == 1
     keys = ("expected the keys tolerance_shard writes: failing, first_sample, input_keys, "
             "input_present, inputs, output_keys, outputs, output_present, pass, refused, "
-            "samples, seed (and run_shard's seconds, worker)")
+            "samples, seed (and case_digest, and run_shard's seconds, worker)")
 
     def refusal(shards, seed=1):
         with pytest.raises(needle.CaseError) as e:
@@ -299,6 +299,21 @@ def test_shards_that_are_not_the_studys_are_refused_naming_why():
         "shards[0]['samples']: expected what tolerance_shard writes there, got a str"
     assert refusal([shard], seed=2) == \
         "seed=2: shards[0] was made with seed=1; expected the seed its shards were made with"
+    # Shards of another case (issue 51's trial: reduced without a word). The same case given as
+    # its path, as a needle.Case or as the dict load_case made of it is the shards' case.
+    other = needle.load_case(path)
+    other["spring"]["preload_kgf"] = 800
+    digest = shard["case_digest"]
+    assert len(digest) == 16
+    with pytest.raises(needle.CaseError) as e:
+        needle.tolerance_reduce(other, [shard], seed=1)
+    assert str(e.value) == (
+        f"shards[0] was made from another case (case_digest {digest}, this case's "
+        f"{needle.tolerance_shard(needle.case_text(other), path=path, seed=1, first_sample=0, samples=1)['case_digest']}"
+        "); reduce shards with the case they were made from")
+    same = needle.load_case(path)
+    for source in (path, same, same.to_dict()):
+        assert needle.tolerance_reduce(source, [shard], seed=1)["samples"] == 2
     # run_shard's additions are a shard's too.
     assert needle.tolerance_reduce(path, [dict(shard, seconds=0.1, worker="w:1")],
                                    seed=1)["samples"] == 2

@@ -315,6 +315,20 @@ def test_a_scene_names_its_keywords_and_refuses_what_cannot_be_bound():
     bare = needle.Scene(CSV)
     assert message(lambda: bare.simulate()) == \
         "rpm=None: " + CSV + " is a bare CSV lift table with no [engine] speed_rpm; give rpm="
+    # A method's unknown keyword or extra argument is one line naming the method and its
+    # keywords (issue 51's trial: pybind11's multi-line list of signatures).
+    with pytest.raises(TypeError) as e:
+        scene.check(foo=1)
+    assert str(e.value) == "Scene.check() got an unexpected keyword argument 'foo'; expected one of rpm"
+    with pytest.raises(TypeError) as e:
+        scene.kinematics(spline="pchip")
+    assert str(e.value) == ("Scene.kinematics() got an unexpected keyword argument 'spline'; "
+                            "expected one of rpm, step_deg")
+    with pytest.raises(TypeError) as e:
+        scene.simulate(400)
+    assert str(e.value) == ("Scene.simulate() takes 0 positional argument(s) (), got 1; give rpm, "
+                            "method, rtol, dynamic, series, grid_deg by keyword")
+    assert scene.simulate(rpm=400)["speed_rpm"] == 400
 
 
 # NumPy.
