@@ -6,6 +6,7 @@
 #include <regex>
 #include <sstream>
 
+#include "apps/study/size_candidates.h"
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"
@@ -257,138 +258,6 @@ SizingDuty MakeDuty(const BoundCase& c, const SizingSection& z, const LiftLaw& l
   return duty;
 }
 
-// Whether two springs are the same winding (wire, D, active coils).
-bool SameWinding(const HelicalGeometry& a, const HelicalGeometry& b) {
-  const auto same = [](double x, double y) { return std::abs(x - y) <= 1e-9 * std::abs(y); };
-  return same(a.wire_m, b.wire_m) && same(a.coil_m, b.coil_m) &&
-         same(a.active_coils, b.active_coils);
-}
-
-// The case's own helical spring as stated (wire, D, coils, free length, preload), always a
-// candidate when its wire is one of the space's and it fits the space's diameters and length.
-std::optional<SizedSpring> OwnSpring(const BoundCase& c, const SizingSpace& sp,
-                                     const SizingDuty& duty, SizingObjective objective) {
-  const std::optional<HelicalGeometry>& own = c.spring->helical;
-  if (!own) return std::nullopt;
-  int wire = -1;
-  for (size_t i = 0; i < sp.wires.size(); ++i) {
-    const SizingWire& w = sp.wires[i];
-    if (std::abs(w.wire_m - own->wire_m) <= 1e-9 * own->wire_m &&
-        std::abs(w.tensile_Pa - own->tensile_Pa) <= 1e-6 * own->tensile_Pa)
-      wire = static_cast<int>(i);
-  }
-  const double tol = 1e-9;
-  const double installed = own->free_length_m - c.spring->preload_N / HelicalRate(*own);
-  if (wire < 0 || (sp.max_outer_m && own->coil_m + own->wire_m > *sp.max_outer_m + tol) ||
-      (sp.min_inner_m && own->coil_m - own->wire_m < *sp.min_inner_m - tol) ||
-      installed > sp.max_installed_m + tol || installed < sp.min_installed_m - tol)
-    return std::nullopt;
-  SizedSpring s = EvaluateSpring(sp, duty, wire, own->coil_m, own->active_coils, objective, true);
-  s.geometry = *own;
-  s.preload_N = c.spring->preload_N;
-  s.preload_rule = "the case's own spring, as stated";
-  s.rate_N_m = HelicalRate(*own);
-  s.installed_m = installed;
-  s.active_mass_kg = ActiveSpringMassKg(*own);
-  s.rules.clear();  // the closed form's rules set their own preload; the check judges this one
-  s.pass = true;
-  return s;
-}
-
-// The springs the check walks, in order: the closed form's best (objective order), then the
-// front between mass and fatigue factor in mass order, each winding once.
-std::vector<SizedSpring> Candidates(const SizingResult& closed) {
-  std::vector<SizedSpring> out;
-  const auto add = [&out](const SizedSpring& s) {
-    for (const SizedSpring& o : out)
-      if (SameWinding(o.geometry, s.geometry)) return;
-    out.push_back(s);
-  };
-  for (const SizedSpring& s : closed.best) add(s);
-  for (const SizedSpring& s : closed.front) add(s);
-  return out;
-}
-
-// The no-fit line: the checked spring whose binding row (its worst failing limit) fails least,
-// with that row.
-std::string NoFitLine(const std::vector<VerifiedSpring>& verified) {
-  const VerifiedSpring* best = nullptr;
-  const LimitRow* best_row = nullptr;
-  double best_violation = INFINITY;
-  for (const VerifiedSpring& v : verified) {
-    const LimitRow* row = nullptr;
-    for (const LimitRow& x : v.check.limits)
-      if (x.verdict == "fail" && (!row || x.Violation() > row->Violation())) row = &x;
-    const double violation = row ? row->Violation() : INFINITY;
-    if (!best || violation < best_violation) {
-      best = &v;
-      best_row = row;
-      best_violation = violation;
-    }
-  }
-  std::ostringstream m;
-  m << "none of the " << verified.size() << " springs checked passes; the closest, d "
-    << Mm(best->spring.geometry.wire_m) << ", D " << Mm(best->spring.geometry.coil_m, 1) << ", n "
-    << Fixed(best->spring.geometry.active_coils, 1) << " (" << best->spring.preload_rule
-    << "), binds at ";
-  if (best_row) {
-    m << best_row->name << ": " << Fixed(best_row->value, 2) << best_row->UnitSuffix()
-      << " against " << (best_row->at_most ? "at most " : "at least ") << Fixed(best_row->limit, 2)
-      << best_row->UnitSuffix();
-  } else {
-    m << (best->check.failing.empty() ? "a failing part" : best->check.failing.front());
-  }
-  return m.str();
-}
-
-// Stage 2 (docs/sizing.md): the candidates checked by CheckScene in order until one passes or
-// [sizing] verify are checked; then, if none passed, the case's own spring as stated.
-void VerifyCandidates(const BoundCase& c, const LiftLaw& law, const SizingSection& z,
-                      const SizingDuty& duty, SizingObjective objective, const SizeOptions& options,
-                      SizeResult& r) {
-  const auto t1 = std::chrono::steady_clock::now();
-  const std::vector<SizedSpring> walk = Candidates(r.closed_form);
-  const size_t verify = std::min(static_cast<size_t>(z.verify), walk.size());
-  CheckOptions co;
-  co.threads = options.threads;
-  co.record_series = false;
-  const auto check = [&](const SizedSpring& s) {
-    const auto tv = std::chrono::steady_clock::now();
-    VerifiedSpring v;
-    v.spring = s;
-    v.sized_case = CaseWithSpring(c, s, r.space, r.mass_without_spring_kg);
-    v.check = CheckScene(v.sized_case, law, co);
-    v.seconds = Seconds(tv);
-    r.verified.push_back(std::move(v));
-    if (r.verified.back().check.pass) r.winner = r.verified.size() - 1;
-  };
-  for (size_t i = 0; i < verify && !r.winner; ++i) check(walk[i]);
-  bool own_checked = false;
-  if (verify > 0 && !r.winner) {
-    const std::optional<SizedSpring> own = OwnSpring(c, r.space, duty, objective);
-    if (own) {
-      check(*own);
-      own_checked = true;
-    }
-  }
-  SizeStage dyn{"check (dynamics, overspeed, coil masses, limits)",
-                static_cast<long>(r.verified.size()), r.winner ? 1 : 0, Seconds(t1), ""};
-  if (verify == 0) {
-    dyn.note = "[sizing] verify = 0: not verified";
-  } else {
-    dyn.note = std::to_string(r.verified.size() - own_checked) + " of the " +
-               std::to_string(walk.size()) +
-               " candidates (the closed form's best, then the mass-fatigue front) checked, in "
-               "order, until one passed" +
-               (walk.size() > verify ? " or [sizing] verify = " + std::to_string(z.verify)
-                                     : std::string()) +
-               (own_checked ? "; then the case's own spring, as stated" : "");
-  }
-  r.stages.push_back(dyn);
-  r.pass = verify == 0 || r.winner.has_value();  // verify = 0: the closed form's best (said so)
-  if (!r.pass) r.no_fit = NoFitLine(r.verified);
-}
-
 }  // namespace
 
 SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& options) {
@@ -481,11 +350,10 @@ SizeResult SizeCase(const BoundCase& c, const LiftLaw& law, const SizeOptions& o
       m << "no spring in the space (" << r.space_note << ")";
     }
     r.no_fit = m.str();
-    return r;
   }
 
   // Stage 2: the candidates, checked end to end, until one passes.
-  VerifyCandidates(c, law, z, duty, so.objective, options, r);
+  VerifyCandidates(c, law, z, duty, options, r);
   return r;
 }
 

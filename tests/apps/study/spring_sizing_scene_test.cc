@@ -55,7 +55,18 @@ TEST(SpringSizingSceneTest, Example2InItsOwnSpaceHasNoSpringAndSaysWhichRuleBind
   const SizeResult r = SizeCase(Bind(c), MakeLiftLaw(c), OneThread());
   EXPECT_FALSE(r.pass);
   EXPECT_TRUE(r.closed_form.best.empty());
-  EXPECT_TRUE(r.verified.empty());
+  // The case's own spring is still checked (its 7 mm wire is not an R40 size: added for it), and
+  // fails where the case does.
+  ASSERT_EQ(r.verified.size(), 1u);
+  EXPECT_EQ(r.verified[0].spring.preload_rule, "the case's own spring, as stated");
+  EXPECT_EQ(r.verified[0].spring.geometry.wire_m, c.spring->helical->wire_m);
+  EXPECT_EQ(r.stages.back().note,
+            "the closed form kept none; then the case's own spring, as stated");
+  EXPECT_NE(r.no_fit.find("; none of the 1 springs checked passes; the closest, d 7.00 mm, D 40.0 "
+                          "mm, n 8.0 (the case's own spring, as stated), binds at spring fatigue "
+                          "safety factor (Goodman): 1.46 against at least 1.50"),
+            std::string::npos)
+      << r.no_fit;
   ASSERT_TRUE(r.closed_form.binding && r.closed_form.closest);
   EXPECT_EQ(r.closed_form.binding->key, "fatigue");
   EXPECT_NEAR(r.closed_form.binding->value, 1.4046, 5e-5);
