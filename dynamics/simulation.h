@@ -131,7 +131,8 @@ struct SimulationResult {
   double max_lift_m = 0.0, max_lift_rad = 0.0;
   double max_contact_force_N = 0.0;
   /// The least cam contact force while the cam lifts the needle (the cam above the play and the
-  /// needle off its seat, docs/model.md §6), N; 0 when the needle was never lifted.
+  /// needle off its seat, until it first seats past the cam's top: docs/model.md §6), N; 0 when
+  /// the needle was never lifted.
   double min_contact_force_during_lift_N = 0.0;
   /// The least ratio of the contact force to the static load holding the needle on the cam
   /// there, F_c / (P₀ + k y − F_g), in the same window until the needle first seats past the

@@ -54,6 +54,11 @@ double FieldValue(const std::string& field, char separator, const std::string& n
     for (char& ch : number) {
       if (ch == ',') ch = '.';
     }
+  } else if (separator == '\t' && field.find(',') != std::string::npos) {
+    why = "'" + field +
+          "' has a ',' in a tab-separated table, whose decimal mark is '.'; save "
+          "it with '.' as the decimal mark, or separated by ';' with decimal commas";
+    return NAN;
   }
   char* end = nullptr;
   errno = 0;

@@ -30,6 +30,13 @@ using case_internal::Positive;
 using case_internal::Section;
 using case_internal::SectionReader;
 
+namespace {
+
+// A power in W shown in the key's horsepower (metric, as the case file reads "hp").
+double HpPerWatt() { return 1.0 / ToSi(Dimension::kPower, "hp", 1.0); }
+
+}  // namespace
+
 DesignInputs ParseDesignInputs(const std::string& text, const std::string& path) {
   const toml::table root = ParseToml(text, path);
   for (const auto& [k, node] : root) {
@@ -44,7 +51,7 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
   SectionReader e(Section(root, path, "engine"), path, "engine");
   if (!e.present())
     e.Fail("power_hp", "section [engine] is missing; it needs power_hp and speed_rpm");
-  d.power_W = Positive(e, "power", Dimension::kPower, 1.0, "power_hp");
+  d.power_W = Positive(e, "power", Dimension::kPower, HpPerWatt(), "power_hp");
   d.speed_rpm = Positive(e, "speed", Dimension::kRotationSpeed, 1.0, "speed_rpm");
   if (auto cycle = case_internal::OptionalCycle(e)) d.cycle = *cycle;
   e.Finish();

@@ -81,6 +81,10 @@ void DefFit(py::module_& m) {
         o.predict_liftoff = Flag(liftoff, "liftoff");
         std::vector<MeasuredTrace> ts;
         size_t index = 0;
+        if (!py::isinstance<py::iterable>(traces) || py::isinstance<py::str>(traces))
+          throw py::type_error("traces=" + Repr(traces) +
+                               ": expected a list of (path or (crank_deg, lift_mm), rpm), got " +
+                               AType(traces));
         for (const py::handle& item : py::iterable(traces))
           ts.push_back(TraceOf(item, index++, *b));
         return Run([&] {

@@ -106,12 +106,13 @@ void AppendShard(const py::dict& shard, const std::string& where,
 }  // namespace
 
 std::string CaseDigest(const std::string& text) {
-  // The text as toml++ reads and writes it back: its tables and keys in order, without comments
-  // or layout, so a file and the dict load_case made of it give the same digest. FNV-1a, 64 bit.
-  std::ostringstream canonical;
-  canonical << toml::parse(text);
+  // The text as load_case holds it: read into a dict and written back as needle writes a dict
+  // (no comments, no inline tables, no layout), so a file and the dict made of it, a path and
+  // its text, give one digest. FNV-1a, 64 bit.
+  const std::string canonical =
+      TomlText(FromToml(toml::parse(text)).cast<py::dict>(), "case_digest");
   uint64_t h = 14695981039346656037ull;
-  for (const unsigned char ch : canonical.str()) {
+  for (const unsigned char ch : canonical) {
     h ^= ch;
     h *= 1099511628211ull;
   }

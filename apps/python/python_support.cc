@@ -384,9 +384,12 @@ std::function<void(const py::args&, const py::kwargs&)> CallCheck(const std::str
                     by_keyword = list(s.positional, s.names.size());
   return [=](const py::args& args, const py::kwargs& kwargs) {
     if (args.size() > s.positional)
-      throw py::type_error(function + " takes " + std::to_string(s.positional) +
-                           " positional argument(s) (" + by_position + "), got " +
-                           std::to_string(args.size()) +
+      throw py::type_error(function +
+                           (s.positional == 0
+                                ? " takes no positional arguments"
+                                : " takes " + std::to_string(s.positional) +
+                                      " positional argument(s) (" + by_position + ")") +
+                           ", got " + std::to_string(args.size()) +
                            (by_keyword.empty() ? "" : "; give " + by_keyword + " by keyword"));
     for (const auto& [key, value] : kwargs) {
       const std::string k = py::str(key);

@@ -162,7 +162,8 @@ py::dict ShardArrays(const std::vector<ToleranceSample>& samples, uint64_t seed,
                      const std::string& case_digest);
 
 // The identity of a case's TOML text as tolerance_shard records it (`case_digest`): the text
-// read and written back by toml++ (no comments, keys in order), hashed (FNV-1a, 64 bit, hex).
+// read into a dict and written back as TomlText writes a dict (no comments, no inline tables),
+// hashed (FNV-1a, 64 bit, hex).
 std::string CaseDigest(const std::string& text);
 
 // The samples of shards as ShardArrays gives them (or read back from its files), in order. A

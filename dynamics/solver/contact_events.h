@@ -202,8 +202,8 @@ class Recorder {
   double max_lift_m() const { return max_lift_; }
   double max_lift_rad() const { return max_lift_rad_; }
   double max_contact_force_N() const { return max_fc_; }
-  /// The least cam contact force while the cam lifts the needle (OnCamWindow), N; 0 when the
-  /// needle was never lifted.
+  /// The least cam contact force while the cam lifts the needle (OnCamWindow, until the needle
+  /// first seats past the cam's top), N; 0 when the needle was never lifted.
   double min_contact_force_during_lift_N() const { return lifted_ ? min_fc_lift_ : 0.0; }
   /// The least contact force over the static load that holds the needle on the cam there,
   /// F_c / (P₀ + k y − F_g), in the same window until the needle first seats past the cam's top

@@ -188,11 +188,11 @@ TEST(NeedleCliTest, BadOptionsExitTwo) {
   EXPECT_EQ(nocase.err, "needle: CASE is required (see needle --help)\n");
   const auto unknown = RunNeedle("frobnicate");
   EXPECT_EQ(unknown.status, 2);
-  EXPECT_EQ(
-      unknown.err,
-      "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
-      "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve, fit (see needle "
-      "--help)\n");
+  EXPECT_EQ(unknown.err,
+            "needle: unknown command 'frobnicate'; expected one of check, compare, kinematics, "
+            "spring, size, design, simulate, overspeed, synth, profile, tolerance, serve, fit (see "
+            "needle "
+            "--help)\n");
   const auto missing = RunNeedle("kinematics /no/such.toml");
   EXPECT_EQ(missing.status, 2);
   EXPECT_EQ(missing.err, "needle: /no/such.toml: cannot open the case file for reading\n");
@@ -322,6 +322,14 @@ TEST(NeedleCliSpringTest, DesignBadInputExitsTwo) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err,
             "needle: " + path + ": [design] discharge_passage_mm: must be positive, got -6\n");
+  // The power is shown in the key's horsepower, not converted to watts (issue 51's trial: "got
+  // -3677.49" for power_hp = -5).
+  {
+    std::ofstream f(path);
+    f << "[engine]\npower_hp = -5\nspeed_rpm = 300\n";
+  }
+  EXPECT_EQ(RunNeedle("design " + path).err,
+            "needle: " + path + ": [engine] power_hp: must be positive, got -5\n");
   std::remove(path.c_str());
 }
 

@@ -638,6 +638,14 @@ TEST(LiftCsvTest, SpreadsheetSeparators) {
   ASSERT_EQ(tab.crank_rad.size(), 2u);
   EXPECT_NEAR(tab.crank_rad[0], -2.5 * kDeg, 1e-15);
   EXPECT_DOUBLE_EQ(tab.lift_m[1], 12.5e-3);
+  try {
+    ParseLiftCsv("crank_deg\tlift_mm\n-2,5\t0\n0\t12,5\n", "m.tsv", EngineCycle::kFourStroke);
+    ADD_FAILURE() << "a decimal comma in a tab-separated table was read";
+  } catch (const std::exception& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "m.tsv:2:1: '-2,5' has a ',' in a tab-separated table, whose decimal mark is '.'; "
+              "save it with '.' as the decimal mark, or separated by ';' with decimal commas");
+  }
   const LiftTable semi = ParseLiftCsv(
       "\xEF\xBB\xBF"
       "crank_deg;lift_mm\r\n-2,5;0\r\n0;12,5\r\n",

@@ -314,6 +314,21 @@ def test_shards_that_are_not_the_studys_are_refused_naming_why():
     same = needle.load_case(path)
     for source in (path, same, same.to_dict()):
         assert needle.tolerance_reduce(source, [shard], seed=1)["samples"] == 2
+    # A file written with an inline table and comments is the same case as its dict (the
+    # digest is of the case as load_case holds it, not of the text's layout).
+    inline = os.path.join(os.path.dirname(path), "inline.toml")
+    with open(path) as f, open(inline, "w") as g:
+        g.write("# inline\n" + f.read().replace(
+            '[engine]\nspeed_rpm = 125\ncycle = "four-stroke"\n',
+            'engine = { speed_rpm = 125, cycle = "four-stroke" }  # one line\n'))
+    assert "engine = {" in open(inline).read()
+    inline_shard = needle.tolerance_shard(open(inline).read(), path=inline, seed=1,
+                                          first_sample=0, samples=1)
+    assert inline_shard["case_digest"] == digest
+    assert inline_shard["case_digest"] == needle.tolerance_shard(
+        needle.case_text(inline), path=inline, seed=1, first_sample=0,
+        samples=1)["case_digest"]
+    assert needle.tolerance_reduce(inline, [inline_shard], seed=1)["samples"] == 1
     # run_shard's additions are a shard's too.
     assert needle.tolerance_reduce(path, [dict(shard, seconds=0.1, worker="w:1")],
                                    seed=1)["samples"] == 2

@@ -233,6 +233,10 @@ def test_fit_returns_the_dictionary_of_fit_json():
     assert np.max(np.abs(np.array(run["grid"]["crank_deg"]) - data[:, 0])) < 1e-9
     with pytest.raises(needle.CaseError, match=r"^traces\[0\]: lift: the trace reaches"):
         needle.fit(case, traces=[((data[:, 0], data[:, 1] * 1000), 700)], free=free)
+    with pytest.raises(TypeError) as e:  # issue 51's trial: "Object of type 'int' is not …"
+        needle.fit(case, traces=5, free=free)
+    assert str(e.value) == ("traces=5: expected a list of (path or (crank_deg, lift_mm), rpm), "
+                            "got an int")
     with pytest.raises(needle.CaseError, match=r"^free: 'spring.k' is not a key needle fit"):
         needle.fit(case, traces=[(trace, 700)], free=["spring.k"])
 
@@ -253,9 +257,10 @@ def test_the_closed_forms_energy_residual_holds_its_stated_bound_on_random_scene
         case = bench.Scene(rng)
         if k < 104:
             continue  # the generator's draws advance as the script's do
-        nqs = needle.spring(case, rpm=100.0)["liftoff_rpm_quasi_static"]
+        nqs = needle.spring(case, rpm=100.0).get("liftoff_rpm_quasi_static")
+        base = nqs if nqs and math.isfinite(nqs) else 500.0  # as the script does
         for f in (0.5, 1.1):
-            r = needle.simulate(case, rpm=max(10.0, min(5000.0, f * nqs)), method="exact",
+            r = needle.simulate(case, rpm=max(10.0, min(5000.0, f * base)), method="exact",
                                 dynamic=True)
             largest = max(largest, abs(r["energy_residual"]))
-    assert 1e-12 < largest < 1e-11
+    assert largest < 1e-11

@@ -326,7 +326,7 @@ def test_a_scene_names_its_keywords_and_refuses_what_cannot_be_bound():
                             "expected one of rpm, step_deg")
     with pytest.raises(TypeError) as e:
         scene.simulate(400)
-    assert str(e.value) == ("Scene.simulate() takes 0 positional argument(s) (), got 1; give rpm, "
+    assert str(e.value) == ("Scene.simulate() takes no positional arguments, got 1; give rpm, "
                             "method, rtol, dynamic, series, grid_deg by keyword")
     assert scene.simulate(rpm=400)["speed_rpm"] == 400
 
