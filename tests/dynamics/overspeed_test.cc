@@ -267,6 +267,16 @@ play_mm = 0.3
 ramp_deg = 8
 )";
 
+// The scan the narrow-window tests run: from 200 to 700 rpm, steps of at most 15 rpm where the
+// force gives no guidance.
+OverspeedOptions NarrowWindowScan() {
+  OverspeedOptions o;
+  o.from_rpm = 200;
+  o.to_rpm = 700;
+  o.step_rpm = 15;
+  return o;
+}
+
 // Whether one full run at n lifts off (a jump of kMinJump_rad), as the search judges.
 bool LiftsOff(const Scene& s, double n) {
   SimulationOptions o;
@@ -371,10 +381,7 @@ TEST(OverspeedScanTest, TheForceLedScanFindsANarrowWindowAFixedScanMisses) {
   const Scene s = MakeScene(ParseCase(kNarrowWindow, "narrow-window.toml"));
   const double fixed = FirstLiftOff(s, 200.0, 700.0, 15.0);
   EXPECT_GT(fixed, 620.0);
-  OverspeedOptions o;
-  o.from_rpm = 200;
-  o.to_rpm = 700;
-  o.step_rpm = 15;
+  OverspeedOptions o = NarrowWindowScan();
   const OverspeedResult r = OverspeedSearch(s, o);
   ASSERT_TRUE(r.n_dyn_rpm);
   EXPECT_NEAR(*r.n_dyn_rpm, 578.57, 0.5);
@@ -399,10 +406,7 @@ TEST(OverspeedScanTest, AScanWhereTheContactIsLostStepsNoFasterThanDoubling) {
   std::string text = kNarrowWindow;
   text.replace(text.find("preload_N = 496.3"), 17, "preload_N = 497.1");
   const Scene s = MakeScene(ParseCase(text, "narrower-window.toml"));
-  OverspeedOptions o;
-  o.from_rpm = 200;
-  o.to_rpm = 700;
-  o.step_rpm = 15;
+  OverspeedOptions o = NarrowWindowScan();
   const OverspeedResult r = OverspeedSearch(s, o);
   ASSERT_TRUE(r.n_dyn_rpm);
   EXPECT_GT(*r.n_dyn_rpm, 580.0);
@@ -478,10 +482,7 @@ TEST(OverspeedScanTest, AStartGuessFindsTheLiftOffOfTheWholeScan) {
 // is not found; the scan from 200 rpm finds it.
 TEST(OverspeedScanTest, AStartGuessAboveAWindowDoesNotLookBelowIt) {
   const Scene s = MakeScene(ParseCase(kNarrowWindow, "narrow-window.toml"));
-  OverspeedOptions o;
-  o.from_rpm = 200;
-  o.to_rpm = 700;
-  o.step_rpm = 15;
+  OverspeedOptions o = NarrowWindowScan();
   o.start_rpm = 600;
   const OverspeedResult r = OverspeedSearch(s, o);
   ASSERT_TRUE(r.n_dyn_rpm);
@@ -498,10 +499,7 @@ TEST(OverspeedScanTest, AStartGuessAboveAWindowDoesNotLookBelowIt) {
 // still saves runs and finds the same lift-off.
 TEST(OverspeedScanTest, AGuessTakenOnlyPastAGivenSpeedKeepsTheScanBelowIt) {
   const Scene s = MakeScene(ParseCase(kNarrowWindow, "narrow-window.toml"));
-  OverspeedOptions o;
-  o.from_rpm = 200;
-  o.to_rpm = 700;
-  o.step_rpm = 15;
+  OverspeedOptions o = NarrowWindowScan();
   const OverspeedResult full = OverspeedSearch(s, o);
   ASSERT_TRUE(full.n_dyn_rpm);
   ASSERT_LT(*full.n_dyn_rpm, 587.0);
