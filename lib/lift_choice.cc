@@ -405,6 +405,10 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
     c.law.spline.start_slope = c.law.spline.end_slope = 0.0;
     c.reason = "sparse exact table (" + points +
                ") closed at both ends: clamped cubic at rest at the seat";
+  } else if (c.table.crank_rad.size() < 4) {  // too few for not-a-knot's four
+    c.law.spline.kind = SplineKind::kNatural;
+    c.reason = "sparse exact table (" + points +
+               ") open at an end: natural cubic (not-a-knot needs 4 points)";
   } else {
     c.law.spline.kind = SplineKind::kNotAKnot;
     c.reason = "sparse exact table (" + points + ") open at an end: not-a-knot cubic";

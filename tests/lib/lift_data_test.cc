@@ -532,6 +532,15 @@ TEST(ExactTableTest, DefaultSplineFollowsTheData) {
   EXPECT_EQ(ChooseLiftLaw(closed, {}).law.spline.start_slope, 0.0);
   EXPECT_FALSE(ChooseLiftLaw(closed, {}).measured);
   EXPECT_EQ(ChooseLiftLaw(open, {}).law.spline.kind, SplineKind::kNotAKnot);
+  // Too few points for not-a-knot's four, open at an end: a natural cubic, said so (issue 51's
+  // trial: a 2-point table was refused for a not-a-knot spline nobody had asked for).
+  const LiftTable two{{0, 10 * kDeg}, {0, 1e-3}};
+  const LiftLawChoice few = ChooseLiftLaw(two, {});
+  EXPECT_EQ(few.law.spline.kind, SplineKind::kNatural);
+  EXPECT_EQ(few.reason,
+            "sparse exact table (2 points) open at an end: natural cubic (not-a-knot needs 4 "
+            "points)");
+  EXPECT_NO_THROW(LiftLaw(two, few.law.spline));
   LiftDataOptions stated;
   stated.kind = SplineKind::kQuintic;
   EXPECT_EQ(ChooseLiftLaw(closed, stated).law.spline.kind, SplineKind::kQuintic);
