@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "lib/case_error.h"
@@ -35,6 +36,22 @@ double ClockSpeedRpm(const MeasuredTrace& t) {
     stt += (t.time_s[i] - mt) * (t.time_s[i] - mt);
   }
   return sta / stt * 60.0 / (2.0 * kPi);
+}
+
+// The width at half height of the samples (θ, y): from the last half-height crossing before the
+// largest lift to the first after it, linearly located; nullopt when the samples do not fall
+// below half height on both sides.
+std::optional<double> HalfWidth(const std::vector<double>& th, const std::vector<double>& y) {
+  const size_t top = static_cast<size_t>(std::max_element(y.begin(), y.end()) - y.begin());
+  const double half = 0.5 * y[top];
+  size_t a = top, b = top;
+  while (a > 0 && y[a - 1] >= half) --a;
+  while (b + 1 < y.size() && y[b + 1] >= half) ++b;
+  if (a == 0 || b + 1 == y.size()) return std::nullopt;
+  const auto cross = [&](size_t lo, size_t hi) {
+    return th[lo] + (half - y[lo]) * (th[hi] - th[lo]) / (y[hi] - y[lo]);
+  };
+  return cross(b, b + 1) - cross(a - 1, a);
 }
 
 }  // namespace
@@ -87,6 +104,31 @@ void CheckMeasuredTrace(const MeasuredTrace& t, const BoundCase& b) {
                     Significant(*top / cam_top, 3) + " of the cam's largest lift (" + Mm(cam_top) +
                     "); expected at least " + Significant(kTraceUnderLiftFraction, 2) +
                     " of it (a trace in mm under lift_um, or of another cam?)");
+  }
+  // The width at half lift against the cam's (sampled every 0.05° of its lift).
+  std::vector<double> cam_th, cam_y;
+  for (double a = open; a <= close; a += 0.05 * kDeg) {
+    cam_th.push_back(a);
+    cam_y.push_back(law.Lift(a));
+  }
+  cam_th.push_back(close);
+  cam_y.push_back(law.Lift(close));
+  cam_th.insert(cam_th.begin(), open - kDeg);
+  cam_y.insert(cam_y.begin(), 0.0);
+  cam_th.push_back(close + kDeg);
+  cam_y.push_back(0.0);
+  const std::optional<double> width = HalfWidth(th, y), cam_width = HalfWidth(cam_th, cam_y);
+  if (width && cam_width && *cam_width > 0.0 &&
+      !(*width >= kTraceWidthLo * *cam_width && *width <= kTraceWidthHi * *cam_width)) {
+    throw CaseError(t.path + ": crank_deg: the trace is above half its largest lift over " +
+                    Deg(*width) + ", the cam over " + Deg(*cam_width) + ": " +
+                    Significant(*width / *cam_width, 2) + " times; expected " +
+                    Significant(kTraceWidthLo, 2) + " to " + Significant(kTraceWidthHi, 2) +
+                    " times (" +
+                    (*width < *cam_width ? "cam angles under crank_deg? name that column cam_deg"
+                                         : "crank angles under cam_deg? name that column "
+                                           "crank_deg; or a trace of another cam") +
+                    ")");
   }
   if (t.time_s.empty()) return;
   for (size_t i = 1; i < t.time_s.size(); ++i) {

@@ -23,6 +23,11 @@ constexpr double kTraceOverLiftFactor = 2.0;
 /// … and must reach at least this fraction of it (a needle the cam lifts follows it most of the
 /// way): a smaller one is the other slip (mm as µm), or a trace of another cam.
 constexpr double kTraceUnderLiftFraction = 0.2;
+/// The trace's width at half its largest lift may be this many times the cam's at most, and
+/// at least kTraceWidthLo of it: a four-stroke trace in cam angles under crank_deg is half as
+/// wide (crank angles under cam_deg twice), while play, ramps and a needle that flies move the
+/// width by far less.
+constexpr double kTraceWidthLo = 0.6, kTraceWidthHi = 1.7;
 /// The speed a trace's clock gives (its crank angle against its time) may differ from the speed
 /// stated for it by at most this fraction.
 constexpr double kTraceSpeedTolerance = 0.01;
@@ -39,8 +44,10 @@ struct MeasuredTrace {
 /// Reads `path` as a trace of case `b` recorded at `speed_rpm` and checks it against the case:
 /// angles that increase and finite numbers (ReadLiftCsv), at least kMinTraceLiftReadings readings
 /// inside the cam's lift, a largest lift within [kTraceUnderLiftFraction, kTraceOverLiftFactor]
-/// of the cam's, and, with a clock column, a clock that increases and gives `speed_rpm` within
-/// kTraceSpeedTolerance. Throws CaseError ("PATH:LINE:COLUMN: what" or "PATH: column: what").
+/// of the cam's, a width at half its largest lift within [kTraceWidthLo, kTraceWidthHi] of the
+/// cam's (where the trace covers both its half-lift crossings), and, with a clock column, a clock
+/// that increases and gives `speed_rpm` within kTraceSpeedTolerance. Throws CaseError
+/// ("PATH:LINE:COLUMN: what" or "PATH: column: what").
 MeasuredTrace ReadMeasuredTrace(const std::string& path, double speed_rpm, const BoundCase& b);
 
 /// The same checks on a trace already in memory (`needle.fit` from Python's arrays).

@@ -82,6 +82,24 @@ TEST(MeasuredTrace, RefusesATraceOutsideTheLift) {
                 "or cam angles under crank_deg?)");
 }
 
+TEST(MeasuredTrace, RefusesCamAnglesUnderCrankDeg) {
+  // Issue 51's trial: a four-stroke trace written in cam angles (half the crank's) under
+  // crank_deg kept enough readings inside the lift and was fitted, to a 25 tkgf preload.
+  const std::string path = WriteTrace("cam-angles", "crank_deg,lift_mm",
+                                      [](double d, double y, int) { return Row(d / 2.0, y); });
+  EXPECT_EQ(Refusal(path), path +
+                               ": crank_deg: the trace is above half its largest lift over 12.269 "
+                               "deg, the cam over 24.537 deg: 0.5 times; expected 0.6 to 1.7 "
+                               "times (cam angles under crank_deg? name that column cam_deg)");
+  const std::string crank = WriteTrace("crank-as-cam", "crank_deg,lift_mm",
+                                       [](double d, double y, int) { return Row(d * 2.0, y); });
+  EXPECT_EQ(Refusal(crank), crank +
+                                ": crank_deg: the trace is above half its largest lift over "
+                                "49.077 deg, the cam over 24.537 deg: 2 times; expected 0.6 to 1.7 "
+                                "times (crank angles under cam_deg? name that column crank_deg; or "
+                                "a trace of another cam)");
+}
+
 TEST(MeasuredTrace, RefusesAWrongUnit) {
   const std::string um_as_mm =
       WriteTrace("um-as-mm", "crank_deg,lift_mm", [](double d, double y, int) {
