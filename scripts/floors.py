@@ -47,7 +47,6 @@ MOST_LINES = 100
 LONG_FUNCTIONS = {
     "dynamics/overspeed.cc OverspeedSearch": 227,
     "dynamics/solver/event_driver.cc EventDriver::Run": 223,
-    "apps/study/check_scene.cc CheckScene": 200,
     "apps/bench/bench_studies.cc RunTargets": 170,
     "lib/lift_breaks.cc FindBreaks": 168,
     "apps/case/lift_section.cc ReadLift": 168,

@@ -110,6 +110,191 @@ SurgeStudy StudySurge(const BoundCase& c, const CheckResult& r, Scene scene,
 
 }  // namespace
 
+namespace {
+
+// A table that does not come down to the seat at an end leaves the opening or the closing (the
+// lash, the seating, a lift-off near the end) to the ramps' extrapolation: the check passed a
+// table cut at half its lift (issue 51's trial). Undecided, with what to change.
+void CheckTableEnds(const LiftLaw& law, CheckResult& r) {
+  const auto fail = [&r](const std::string& what) { r.failing.push_back(what); };
+  const double top = r.kinematics.max_lift_m;
+  for (const bool end : {false, true}) {
+    const double th = end ? law.end_rad() : law.start_rad(), s = law.Lift(th);
+    if (top > 0.0 && s > kOpenEndFraction * top) {
+      fail(std::string("lift table: undecided, it ") + (end ? "ends" : "starts") + " at " +
+           Fixed(s * 1e3, 3) + " mm (" + Fixed(100 * s / top, 1) + " % of its largest lift) at " +
+           Fixed(th / kDeg, 2) + " deg, not on the seat: the " + (end ? "closing" : "opening") +
+           " is not in it; extend the table to where the lift is zero");
+    }
+  }
+}
+
+// "the case has no [needle] and [spring] sections": what a part of the check lacks.
+std::string MissingSections(const BoundCase& c, bool train) {
+  std::vector<std::string> sections;
+  if (!c.needle) sections.push_back("[needle]");
+  if (!c.spring) sections.push_back("[spring]");
+  if (train && !c.train) sections.push_back("[train]");
+  std::string out;
+  for (size_t i = 0; i < sections.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == sections.size() ? " and " : ", ") + sections[i];
+  return "the case has no " + out + (sections.size() > 1 ? " sections" : " section");
+}
+
+// The dynamics: one run at the rated speed, the overspeed sweep and the surge study (beside
+// them on a second core).
+void RunDynamics(const BoundCase& c, std::shared_ptr<const LiftLaw> shared_law,
+                 const CheckOptions& options, CheckResult& r) {
+  const double rpm = r.speed_rpm;
+  // The one scene of the check: the bound one, or one on the law asked for.
+  const Scene scene = SceneFor(c, shared_law);
+  r.run_options = c.run;
+  // The surge study needs nothing of the rated run and the sweep: given a second core it runs
+  // beside them (its runs and theirs are the same either way; the sweep keeps the other cores).
+  const bool helical = r.spring && r.spring->helical;
+  if (!helical) r.surge_reason = "no helical spring geometry";
+  const int cores = ThreadsToUse(options.threads);
+  const auto study_surge = [&c, &r, &scene, &options] {
+    try {
+      r.surge = StudySurge(c, r, scene, options);
+    } catch (const std::invalid_argument& e) {
+      r.surge_reason = e.what();
+    }
+  };
+  std::future<void> surge;
+  if (helical && cores > 1) {
+    try {
+      surge = std::async(std::launch::async, study_surge);
+    } catch (const std::system_error&) {
+      // No thread to be had: the study runs after the sweep, as on one core.
+    }
+  }
+  SimulationOptions sim = r.run_options;
+  sim.force_dynamic = true;  // the report shows the dynamic force
+  sim.record_series = options.record_series;
+  r.run = Simulate(scene, rpm, sim);
+  if (options.rated_run_done && r.spring) options.rated_run_done(*r.spring, *r.run, r.run_options);
+  if (scene.cam->play_m() == 0.0)
+    r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
+  r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);
+  // The speeds the verdict reads, from the rated speed up to f·n (1 + the separation margin),
+  // are always swept: a case's [overspeed] range that leaves some out is widened (a tolerance
+  // sample's or a map point's rated speed moves under a range set for the nominal one).
+  const double reads_to_rpm =
+      r.overspeed_rpm * (1.0 + std::max(0.0, c.limits.separation_margin_fraction));
+  r.sweep_range.from_rpm = std::min(r.sweep_range.from_rpm, rpm);
+  r.sweep_range.to_rpm = std::max(r.sweep_range.to_rpm, reads_to_rpm);
+  OverspeedOptions os;
+  os.simulation = r.run_options;
+  os.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
+  os.from_rpm = r.sweep_range.from_rpm;
+  os.to_rpm = r.sweep_range.to_rpm;
+  os.threads = surge.valid() ? cores - 1 : options.threads;
+  if (options.overspeed_start_rpm) {
+    // On to a nearby scene's n_dyn once the scan has passed the speeds the verdict reads
+    // without lift-off (up to there every speed of the scan is run as without the guess); a
+    // search that does not find a bracket so is run again as any check runs it.
+    OverspeedOptions hinted = os;
+    hinted.start_rpm = options.overspeed_start_rpm;
+    hinted.start_after_rpm = reads_to_rpm;  // the highest speed the separation row reads
+    r.sweep = OverspeedSearch(scene, hinted, options.progress);
+    if (r.sweep->status != "found") r.sweep = OverspeedSearch(scene, os, options.progress);
+  } else {
+    r.sweep = OverspeedSearch(scene, os, options.progress);
+  }
+  if (surge.valid()) {
+    surge.get();  // rethrows what the study threw
+  } else if (helical) {
+    study_surge();
+  }
+  if (r.surge && c.spring->masses == 1) r.surge->massless = *r.run;
+}
+
+// The dynamics' verdicts: lift-off at the rated speed, a run or sweep that is undecided, n_dyn
+// at or below f·n.
+void JudgeDynamics(CheckResult& r) {
+  const auto fail = [&r](const std::string& what) { r.failing.push_back(what); };
+  const double rpm = r.speed_rpm;
+  if (r.run->liftoff()) {
+    fail("dynamics: the needle lifts off the cam at the rated speed " + Fixed(rpm, 0) + " rpm" +
+         ShortJumpNote(*r.run));
+  }
+  // A run that did not end with the needle at rest is no proof of anything.
+  if (r.run->status == RunStatus::kNotFollowing) {
+    fail("dynamics: " + r.run->status_reason);  // a broken scene, not an undecided one
+  } else if (r.run->status != RunStatus::kComplete) {
+    fail("dynamics: undecided at the rated speed, the run is " + RunStatusName(r.run->status) +
+         ": " + r.run->status_reason);
+  }
+  const OverspeedResult& s = *r.sweep;
+  if (s.status == "run-budget" || s.status == "budget") {
+    fail("overspeed: undecided above " + Fixed(s.scanned_to_rpm, 1) + " rpm (" +
+         (s.status == "budget" ? std::string("the scan budget ended the search")
+                               : std::string("the run there stopped on its budget")) +
+         ")");
+  }
+  if (s.status == "not-following") fail("overspeed: " + OverspeedOutcome(s));
+  if (s.status == "floor") {
+    fail("overspeed: the needle lifts off at every speed tried down to " + Fixed(s.floor_rpm, 1) +
+         " rpm");
+  }
+  if (s.n_dyn_rpm && *s.n_dyn_rpm <= r.overspeed_rpm) {
+    fail("overspeed: n_dyn " + Fixed(*s.n_dyn_rpm, 1) + " rpm is at or below " +
+         Fixed(r.overspeed_rpm, 1) + " rpm (the overspeed factor times the rated speed)");
+  }
+}
+
+// The cam profile, when the case has [profile]: undercut and the contact off the face fail.
+void CheckProfile(const BoundCase& c, const LiftLaw& law, CheckResult& r) {
+  const auto fail = [&r](const std::string& what) { r.failing.push_back(what); };
+  double& cam_zero_crank_rad = r.cam_zero_crank_rad;
+  if (c.profile) {
+    r.profile = MakeCaseProfile(c, law, &cam_zero_crank_rad);
+    const bool flat = c.profile->follower.kind == FollowerKind::kFlat;
+    const auto at = [&](double cam_rad) {
+      return CamAndCrank(c, cam_zero_crank_rad, cam_rad, 1, "°");
+    };
+    if (r.profile->undercut) {
+      fail(std::string("cam profile: the profile ") + (flat ? "has a cusp" : "undercuts") +
+           ": least radius " + Fixed(r.profile->min_profile_radius_m * 1e3, 2) + " mm at " +
+           at(r.profile->min_profile_radius_at_rad));
+    }
+    if (r.profile->off_face) {
+      fail("follower face: the contact runs " + Fixed(r.profile->max_contact_offset_m * 1e3, 2) +
+           " mm off the axis at " + at(r.profile->max_contact_offset_at_rad) +
+           ", beyond the face half-width " + Fixed(c.profile->follower.face_half_width_m * 1e3, 2) +
+           " mm");
+    }
+  } else {
+    r.skipped.push_back("cam profile: the case has no [profile] section");
+  }
+}
+
+// The last of the verdict: the warning of undamped coil masses, the spring check's failures
+// first as the surge verdict (JudgeLimits) left them.
+void FinishVerdict(const BoundCase& c, CheckResult& r) {
+  // Undamped coils in the dynamics: every resonance of the chain with a cam harmonic is a lift-off
+  // window as narrow as the run is long, which no sweep of finite steps can be sure to meet (a
+  // 20-mass spring lifted off between 1259 and 1261 rpm only, undamped; not at all at 1 %).
+  if (r.run && c.spring->masses > 1 && !(c.spring->surge_damping_ratio > 0.0)) {
+    r.warnings.push_back("dynamics: the spring's " + std::to_string(c.spring->masses) +
+                         " coil masses are undamped ([spring] surge_damping_ratio = 0): their "
+                         "resonances with the cam's harmonics are lift-off windows narrower than "
+                         "the sweep's steps, which it can miss; state the wire's damping (1 % is "
+                         "typical)");
+  }
+  // The spring check's failures first, as the surge verdict (JudgeLimits) left them.
+  if (r.spring) {
+    std::vector<std::string> lines;
+    for (const std::string& f : r.spring->failures) lines.push_back("spring check: " + f);
+    if (!r.spring->pass && r.spring->failures.empty()) lines.push_back("spring check: fails");
+    r.failing.insert(r.failing.begin(), lines.begin(), lines.end());
+    for (const std::string& w : r.spring->warnings) r.warnings.push_back("spring check: " + w);
+  }
+}
+
+}  // namespace
+
 CheckResult CheckScene(const BoundCase& c, const CheckOptions& options) {
   return CheckScene(c, c.lift.law, options);
 }
@@ -133,19 +318,7 @@ CheckResult CheckScene(const BoundCase& c, std::shared_ptr<const LiftLaw> shared
                         " spline is C¹ only (its second derivative jumps at the knots)");
   }
 
-  // A table that does not come down to the seat at an end leaves the opening or the closing (the
-  // lash, the seating, a lift-off near the end) to the ramps' extrapolation: the check passed a
-  // table cut at half its lift (issue 51's trial). Undecided, with what to change.
-  const double top = r.kinematics.max_lift_m;
-  for (const bool end : {false, true}) {
-    const double th = end ? law.end_rad() : law.start_rad(), s = law.Lift(th);
-    if (top > 0.0 && s > kOpenEndFraction * top) {
-      fail(std::string("lift table: undecided, it ") + (end ? "ends" : "starts") + " at " +
-           Fixed(s * 1e3, 3) + " mm (" + Fixed(100 * s / top, 1) + " % of its largest lift) at " +
-           Fixed(th / kDeg, 2) + " deg, not on the seat: the " + (end ? "closing" : "opening") +
-           " is not in it; extend the table to where the lift is zero");
-    }
-  }
+  CheckTableEnds(law, r);
 
   // The spring check and the dynamics read the acceleration: a case that asks for them on a C¹
   // spline is undecided there, not passed.
@@ -154,20 +327,9 @@ CheckResult CheckScene(const BoundCase& c, std::shared_ptr<const LiftLaw> shared
       " spline is C¹ only and gives no acceleration (inertia force, quasi-static lift-off, cam "
       "input); state a C² spline in [lift] spline (\"local\", \"quintic\", \"not-a-knot\") or "
       "leave it out to have it chosen from the data";
-  const auto missing = [&c](bool train) {
-    std::vector<std::string> sections;
-    if (!c.needle) sections.push_back("[needle]");
-    if (!c.spring) sections.push_back("[spring]");
-    if (train && !c.train) sections.push_back("[train]");
-    std::string out;
-    for (size_t i = 0; i < sections.size(); ++i)
-      out += (i == 0 ? "" : i + 1 == sections.size() ? " and " : ", ") + sections[i];
-    return "the case has no " + out + (sections.size() > 1 ? " sections" : " section");
-  };
-
   // The spring check.
   if (!(c.needle && c.spring)) {
-    r.skipped.push_back("spring check: " + missing(false));
+    r.skipped.push_back("spring check: " + MissingSections(c, false));
   } else if (!law.HasAcceleration()) {
     fail("spring check: " + no_acceleration);
   } else {
@@ -177,144 +339,17 @@ CheckResult CheckScene(const BoundCase& c, std::shared_ptr<const LiftLaw> shared
 
   // The dynamics: one run at the rated speed, and the overspeed sweep.
   if (!(c.train && c.needle && c.spring)) {
-    r.skipped.push_back("dynamics and overspeed: " + missing(true));
+    r.skipped.push_back("dynamics and overspeed: " + MissingSections(c, true));
   } else if (!law.HasAcceleration()) {
     fail("dynamics and overspeed: " + no_acceleration);
   } else {
-    // The one scene of the check: the bound one, or one on the law asked for.
-    const Scene scene = SceneFor(c, shared_law);
-    r.run_options = c.run;
-    // The surge study needs nothing of the rated run and the sweep: given a second core it runs
-    // beside them (its runs and theirs are the same either way; the sweep keeps the other cores).
-    const bool helical = r.spring && r.spring->helical;
-    if (!helical) r.surge_reason = "no helical spring geometry";
-    const int cores = ThreadsToUse(options.threads);
-    const auto study_surge = [&c, &r, &scene, &options] {
-      try {
-        r.surge = StudySurge(c, r, scene, options);
-      } catch (const std::invalid_argument& e) {
-        r.surge_reason = e.what();
-      }
-    };
-    std::future<void> surge;
-    if (helical && cores > 1) {
-      try {
-        surge = std::async(std::launch::async, study_surge);
-      } catch (const std::system_error&) {
-        // No thread to be had: the study runs after the sweep, as on one core.
-      }
-    }
-    SimulationOptions sim = r.run_options;
-    sim.force_dynamic = true;  // the report shows the dynamic force
-    sim.record_series = options.record_series;
-    r.run = Simulate(scene, rpm, sim);
-    if (options.rated_run_done && r.spring)
-      options.rated_run_done(*r.spring, *r.run, r.run_options);
-    if (scene.cam->play_m() == 0.0)
-      r.skipped.push_back("lash analysis: no roller play ([train] play_mm = 0)");
-    r.sweep_range = DefaultSweepRange(c, rpm, r.n_qs_rpm);
-    // The speeds the verdict reads, from the rated speed up to f·n (1 + the separation margin),
-    // are always swept: a case's [overspeed] range that leaves some out is widened (a tolerance
-    // sample's or a map point's rated speed moves under a range set for the nominal one).
-    const double reads_to_rpm =
-        r.overspeed_rpm * (1.0 + std::max(0.0, c.limits.separation_margin_fraction));
-    r.sweep_range.from_rpm = std::min(r.sweep_range.from_rpm, rpm);
-    r.sweep_range.to_rpm = std::max(r.sweep_range.to_rpm, reads_to_rpm);
-    OverspeedOptions os;
-    os.simulation = r.run_options;
-    os.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
-    os.from_rpm = r.sweep_range.from_rpm;
-    os.to_rpm = r.sweep_range.to_rpm;
-    os.threads = surge.valid() ? cores - 1 : options.threads;
-    if (options.overspeed_start_rpm) {
-      // On to a nearby scene's n_dyn once the scan has passed the speeds the verdict reads
-      // without lift-off (up to there every speed of the scan is run as without the guess); a
-      // search that does not find a bracket so is run again as any check runs it.
-      OverspeedOptions hinted = os;
-      hinted.start_rpm = options.overspeed_start_rpm;
-      hinted.start_after_rpm = reads_to_rpm;  // the highest speed the separation row reads
-      r.sweep = OverspeedSearch(scene, hinted, options.progress);
-      if (r.sweep->status != "found") r.sweep = OverspeedSearch(scene, os, options.progress);
-    } else {
-      r.sweep = OverspeedSearch(scene, os, options.progress);
-    }
-    if (surge.valid()) {
-      surge.get();  // rethrows what the study threw
-    } else if (helical) {
-      study_surge();
-    }
-    if (r.surge && c.spring->masses == 1) r.surge->massless = *r.run;
-
-    if (r.run->liftoff()) {
-      fail("dynamics: the needle lifts off the cam at the rated speed " + Fixed(rpm, 0) + " rpm" +
-           ShortJumpNote(*r.run));
-    }
-    // A run that did not end with the needle at rest is no proof of anything.
-    if (r.run->status == RunStatus::kNotFollowing) {
-      fail("dynamics: " + r.run->status_reason);  // a broken scene, not an undecided one
-    } else if (r.run->status != RunStatus::kComplete) {
-      fail("dynamics: undecided at the rated speed, the run is " + RunStatusName(r.run->status) +
-           ": " + r.run->status_reason);
-    }
-    const OverspeedResult& s = *r.sweep;
-    if (s.status == "run-budget" || s.status == "budget") {
-      fail("overspeed: undecided above " + Fixed(s.scanned_to_rpm, 1) + " rpm (" +
-           (s.status == "budget" ? std::string("the scan budget ended the search")
-                                 : std::string("the run there stopped on its budget")) +
-           ")");
-    }
-    if (s.status == "not-following") fail("overspeed: " + OverspeedOutcome(s));
-    if (s.status == "floor") {
-      fail("overspeed: the needle lifts off at every speed tried down to " + Fixed(s.floor_rpm, 1) +
-           " rpm");
-    }
-    if (s.n_dyn_rpm && *s.n_dyn_rpm <= r.overspeed_rpm) {
-      fail("overspeed: n_dyn " + Fixed(*s.n_dyn_rpm, 1) + " rpm is at or below " +
-           Fixed(r.overspeed_rpm, 1) + " rpm (the overspeed factor times the rated speed)");
-    }
+    RunDynamics(c, shared_law, options, r);
+    JudgeDynamics(r);
   }
 
-  // The cam profile, when the case has [profile].
-  double& cam_zero_crank_rad = r.cam_zero_crank_rad;
-  if (c.profile) {
-    r.profile = MakeCaseProfile(c, law, &cam_zero_crank_rad);
-    const bool flat = c.profile->follower.kind == FollowerKind::kFlat;
-    const auto at = [&](double cam_rad) {
-      return CamAndCrank(c, cam_zero_crank_rad, cam_rad, 1, "°");
-    };
-    if (r.profile->undercut) {
-      fail(std::string("cam profile: the profile ") + (flat ? "has a cusp" : "undercuts") +
-           ": least radius " + Fixed(r.profile->min_profile_radius_m * 1e3, 2) + " mm at " +
-           at(r.profile->min_profile_radius_at_rad));
-    }
-    if (r.profile->off_face) {
-      fail("follower face: the contact runs " + Fixed(r.profile->max_contact_offset_m * 1e3, 2) +
-           " mm off the axis at " + at(r.profile->max_contact_offset_at_rad) +
-           ", beyond the face half-width " + Fixed(c.profile->follower.face_half_width_m * 1e3, 2) +
-           " mm");
-    }
-  } else {
-    r.skipped.push_back("cam profile: the case has no [profile] section");
-  }
-  if (law.HasAcceleration()) JudgeLimits(c, law, cam_zero_crank_rad, r, !options.verdict_only);
-  // Undamped coils in the dynamics: every resonance of the chain with a cam harmonic is a lift-off
-  // window as narrow as the run is long, which no sweep of finite steps can be sure to meet (a
-  // 20-mass spring lifted off between 1259 and 1261 rpm only, undamped; not at all at 1 %).
-  if (r.run && c.spring->masses > 1 && !(c.spring->surge_damping_ratio > 0.0)) {
-    r.warnings.push_back("dynamics: the spring's " + std::to_string(c.spring->masses) +
-                         " coil masses are undamped ([spring] surge_damping_ratio = 0): their "
-                         "resonances with the cam's harmonics are lift-off windows narrower than "
-                         "the sweep's steps, which it can miss; state the wire's damping (1 % is "
-                         "typical)");
-  }
-  // The spring check's failures first, as the surge verdict (JudgeLimits) left them.
-  if (r.spring) {
-    std::vector<std::string> lines;
-    for (const std::string& f : r.spring->failures) lines.push_back("spring check: " + f);
-    if (!r.spring->pass && r.spring->failures.empty()) lines.push_back("spring check: fails");
-    r.failing.insert(r.failing.begin(), lines.begin(), lines.end());
-    for (const std::string& w : r.spring->warnings) r.warnings.push_back("spring check: " + w);
-  }
+  CheckProfile(c, law, r);
+  if (law.HasAcceleration()) JudgeLimits(c, law, r.cam_zero_crank_rad, r, !options.verdict_only);
+  FinishVerdict(c, r);
   r.pass = r.failing.empty();  // one rule: a scene passes when nothing fails
   return r;
 }
