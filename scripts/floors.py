@@ -58,7 +58,6 @@ LONG_FUNCTIONS = {
     "dynamics/simulation.cc RunPass": 126,
     "apps/report/compare_writer.cc CompareReport": 118,
     "dynamics/simulation.cc Simulate": 117,
-    "apps/report/kinematics_writer.cc WriteKinematics": 113,
     "lib/cam_synthesis.cc SynthesizeRise": 112,
     "spring/spring_sizing.cc SizeSpring": 108,
     "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
