@@ -56,7 +56,6 @@ LONG_FUNCTIONS = {
     "apps/bench/bench_dynamics.cc RunDynamics": 129,
     "lib/toml_text.cc Step": 127,
     "dynamics/simulation.cc RunPass": 126,
-    "apps/report/compare_writer.cc CompareReport": 118,
     "dynamics/simulation.cc Simulate": 117,
     "lib/cam_synthesis.cc SynthesizeRise": 112,
     "spring/spring_sizing.cc SizeSpring": 108,

@@ -140,55 +140,58 @@ std::string CompareText(const Comparison& cmp, const std::string& path) {
   return out.str();
 }
 
-Report CompareReport(const Comparison& cmp) {
+namespace {
+
+// The comparison's tables: the two designs, the flips and differences, the verdicts side by
+// side, each one's failing lines and the quantities with B − A.
+std::string CompareTables(const Comparison& cmp) {
   const CheckedDesign &a = cmp.a, &b = cmp.b;
-  // The report: verdicts, quantities, and both designs' curves overlaid.
-  Report report("needle compare: " + a.c.path + " against " + b.c.path);  // Html escapes
-  {
-    std::ostringstream t;
-    t << "<p>A: " << Escape(a.c.title.empty() ? a.c.path : a.c.title) << " (" << Escape(a.c.path)
-      << ")<br>B: " << Escape(b.c.title.empty() ? b.c.path : b.c.title) << " (" << Escape(b.c.path)
-      << ")</p>";
-    if (!cmp.unlike.empty()) {
-      t << "<p><span class=\"fail\">Not like for like</span>: " << Escape(Joined(cmp.unlike, "; "))
-        << ".</p>";
-    }
-    t << "<p>"
-      << (cmp.flipped.empty() ? "No verdict flips."
-                              : "<span class=\"fail\">" + std::to_string(cmp.flipped.size()) +
-                                    " verdict(s) flip</span>: " + Escape(Joined(cmp.flipped, ", ")))
-      << "</p>";
-    if (!cmp.differing.empty()) {
-      t << "<p>" << cmp.differing.size()
-        << " other difference(s), not flips: " << Escape(Joined(cmp.differing, ", ")) << "</p>";
-    }
-    t << "<h2>Verdicts</h2><table class=\"grid\"><tr><th>item</th><th>A</th><th>B</th><th></th>"
-         "</tr>";
-    for (const ComparedItem& i : cmp.items) {
-      if (!i.verdict) continue;
-      t << "<tr><td>" << Escape(i.key) << "</td><td>" << Escape(Shown(i.a)) << "</td><td>"
-        << Escape(Shown(i.b)) << "</td><td>"
-        << (i.flips     ? "<span class=\"fail\">flips</span>"
-            : i.differs ? "differs"
-                        : "")
-        << "</td></tr>";
-    }
-    t << "</table><h2>Failing</h2><table class=\"grid\"><tr><th>A</th><th>B</th></tr><tr><td>";
-    for (const CheckedDesign* d : {&a, &b}) {
-      for (const std::string& f : d->result.failing) t << Escape(f) << "<br>";
-      if (d->result.failing.empty()) t << "nothing";
-      t << (d == &a ? "</td><td>" : "</td></tr></table>");
-    }
-    t << "<h2>Quantities</h2><table class=\"grid\"><tr><th>quantity</th><th>A</th><th>B</th>"
-         "<th>B − A</th></tr>";
-    for (const ComparedItem& i : cmp.items) {
-      if (i.verdict) continue;
-      t << "<tr><td>" << Escape(i.key) << "</td><td>" << Shown(i.a) << "</td><td>" << Shown(i.b)
-        << "</td><td>" << Escape(Difference(i)) << "</td></tr>";
-    }
-    report.AddHtml(t.str() + "</table>");
+  std::ostringstream t;
+  t << "<p>A: " << Escape(a.c.title.empty() ? a.c.path : a.c.title) << " (" << Escape(a.c.path)
+    << ")<br>B: " << Escape(b.c.title.empty() ? b.c.path : b.c.title) << " (" << Escape(b.c.path)
+    << ")</p>";
+  if (!cmp.unlike.empty()) {
+    t << "<p><span class=\"fail\">Not like for like</span>: " << Escape(Joined(cmp.unlike, "; "))
+      << ".</p>";
   }
-  // Lift, velocity and acceleration of both against crank angle, each at its rated speed.
+  t << "<p>"
+    << (cmp.flipped.empty() ? "No verdict flips."
+                            : "<span class=\"fail\">" + std::to_string(cmp.flipped.size()) +
+                                  " verdict(s) flip</span>: " + Escape(Joined(cmp.flipped, ", ")))
+    << "</p>";
+  if (!cmp.differing.empty()) {
+    t << "<p>" << cmp.differing.size()
+      << " other difference(s), not flips: " << Escape(Joined(cmp.differing, ", ")) << "</p>";
+  }
+  t << "<h2>Verdicts</h2><table class=\"grid\"><tr><th>item</th><th>A</th><th>B</th><th></th>"
+       "</tr>";
+  for (const ComparedItem& i : cmp.items) {
+    if (!i.verdict) continue;
+    t << "<tr><td>" << Escape(i.key) << "</td><td>" << Escape(Shown(i.a)) << "</td><td>"
+      << Escape(Shown(i.b)) << "</td><td>"
+      << (i.flips     ? "<span class=\"fail\">flips</span>"
+          : i.differs ? "differs"
+                      : "")
+      << "</td></tr>";
+  }
+  t << "</table><h2>Failing</h2><table class=\"grid\"><tr><th>A</th><th>B</th></tr><tr><td>";
+  for (const CheckedDesign* d : {&a, &b}) {
+    for (const std::string& f : d->result.failing) t << Escape(f) << "<br>";
+    if (d->result.failing.empty()) t << "nothing";
+    t << (d == &a ? "</td><td>" : "</td></tr></table>");
+  }
+  t << "<h2>Quantities</h2><table class=\"grid\"><tr><th>quantity</th><th>A</th><th>B</th>"
+       "<th>B − A</th></tr>";
+  for (const ComparedItem& i : cmp.items) {
+    if (i.verdict) continue;
+    t << "<tr><td>" << Escape(i.key) << "</td><td>" << Shown(i.a) << "</td><td>" << Shown(i.b)
+      << "</td><td>" << Escape(Difference(i)) << "</td></tr>";
+  }
+  return t.str() + "</table>";
+}
+
+// Lift, velocity and acceleration of both against crank angle, each at its rated speed.
+void AddKinematicsFigure(Report& report, const CheckedDesign& a, const CheckedDesign& b) {
   std::vector<Series> svaj;
   for (const CheckedDesign* d : {&a, &b}) {
     Series s{d == &a ? "a" : "b", {}};
@@ -215,7 +218,10 @@ Report CompareReport(const Comparison& cmp) {
           "angle (deg)'\n" +
           plot(4) + "unset multiplot",
       900);
-  // Contact forces: quasi-static F_qs of both, and the dynamic F_c where a run was made.
+}
+
+// Contact forces: quasi-static F_qs of both, and the dynamic F_c where a run was made.
+void AddForceFigure(Report& report, const CheckedDesign& a, const CheckedDesign& b) {
   std::vector<Series> forces;
   std::string script =
       "set xlabel 'crank angle (deg)'\nset ylabel 'contact force (N)'\n"
@@ -256,6 +262,16 @@ Report CompareReport(const Comparison& cmp) {
   } else {
     report.AddHtml("<p>No contact forces: neither design has [needle] and [spring].</p>");
   }
+}
+
+}  // namespace
+
+Report CompareReport(const Comparison& cmp) {
+  // The report: verdicts, quantities, and both designs' curves overlaid.
+  Report report("needle compare: " + cmp.a.c.path + " against " + cmp.b.c.path);  // Html escapes
+  report.AddHtml(CompareTables(cmp));
+  AddKinematicsFigure(report, cmp.a, cmp.b);
+  AddForceFigure(report, cmp.a, cmp.b);
   return report;
 }
 
