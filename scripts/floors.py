@@ -58,7 +58,6 @@ LONG_FUNCTIONS = {
     "dynamics/simulation.cc RunPass": 126,
     "dynamics/simulation.cc Simulate": 117,
     "lib/cam_synthesis.cc SynthesizeRise": 112,
-    "spring/spring_sizing.cc SizeSpring": 108,
     "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
     "dynamics/solver/event_certification.cc EventDriver::RecordExtremes": 106,
 }

@@ -270,14 +270,20 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
   return s;
 }
 
-SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
-                        const SizingOptions& options) {
-  if (space.wires.empty()) throw std::invalid_argument("SizeSpring: the space has no wire");
-  if (!duty.preload) throw std::invalid_argument("SizeSpring: the duty has no preload rule");
-  const SizingObjective objective = options.objective;
-  const std::vector<double> coils = CoilCounts(space);
-  SizingResult r;
-  if (coils.empty()) return r;
+namespace {
+
+// After a spring fails: whether more coils can only fail too (the surge ratio f_e ∝ 1/n, and the
+// length needed, which grows with n).
+bool MoreCoilsOnlyWorse(const SizedSpring& s) {
+  const std::string& failed = s.rules.back().key;
+  return failed == "surge_ratio" || (failed == "coil_gap" && !s.check);
+}
+
+// The (wire, D) groups of the space, each with its coil counts and its objective's lower bound,
+// counting the candidates and the groups no coil count gives the stated rate.
+std::vector<Group> SpaceGroups(const SizingSpace& space, const SizingDuty& duty,
+                               SizingObjective objective, const std::vector<double>& coils,
+                               SizingResult& r) {
   std::vector<Group> groups;
   for (int wi = 0; wi < static_cast<int>(space.wires.size()); ++wi) {
     const double d = space.wires[wi].wire_m;
@@ -301,6 +307,64 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
       groups.push_back(gr);
     }
   }
+  return groups;
+}
+
+// Every passing spring of the space, for the front (the same early exits as the search).
+std::vector<SizedSpring> PassingSprings(const SizingSpace& space, const SizingDuty& duty,
+                                        SizingObjective objective, const std::vector<Group>& groups,
+                                        SizingResult& r) {
+  std::vector<SizedSpring> passing;
+  for (const Group& gr : groups) {
+    for (double n : gr.coils) {
+      SizedSpring s = EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, false);
+      ++r.front_evaluated;
+      if (s.pass) {
+        passing.push_back(std::move(s));
+        continue;
+      }
+      const std::string& failed = s.rules.back().key;
+      if (failed == "surge_ratio" || (failed == "coil_gap" && !s.check)) break;
+    }
+  }
+  return passing;
+}
+
+// Nothing passes: the candidate whose worst rule fails least, every rule evaluated.
+void FindClosest(const SizingSpace& space, const SizingDuty& duty, SizingObjective objective,
+                 const std::vector<Group>& groups, SizingResult& r) {
+  double least = INFINITY;
+  for (const Group& gr : groups) {
+    for (double n : gr.coils) {
+      SizedSpring s = EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, true);
+      double worst = 0.0;
+      const SizingRule* rule = nullptr;
+      for (const SizingRule& x : s.rules) {
+        if (x.Violation() > worst) {
+          worst = x.Violation();
+          rule = &x;
+        }
+      }
+      if (rule && worst < least) {
+        least = worst;
+        r.binding = *rule;
+        r.closest = std::move(s);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
+                        const SizingOptions& options) {
+  if (space.wires.empty()) throw std::invalid_argument("SizeSpring: the space has no wire");
+  if (!duty.preload) throw std::invalid_argument("SizeSpring: the duty has no preload rule");
+  const SizingObjective objective = options.objective;
+  const std::vector<double> coils = CoilCounts(space);
+  SizingResult r;
+  if (coils.empty()) return r;
+  std::vector<Group> groups = SpaceGroups(space, duty, objective, coils, r);
   r.groups = static_cast<long>(groups.size());
   std::stable_sort(groups.begin(), groups.end(),
                    [](const Group& a, const Group& b) { return a.bound < b.bound; });
@@ -324,54 +388,16 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
         continue;
       }
       if (options.exhaustive) continue;
-      const std::string& failed = s.rules.back().key;
-      // Both only worsen with more coils (surge f_e ∝ 1/n; the length needed grows with n).
-      if (failed == "surge_ratio" || (failed == "coil_gap" && !s.check)) break;
+      if (MoreCoilsOnlyWorse(s)) break;
       if (monotone && static_cast<int>(r.best.size()) >= options.keep &&
           s.mass_kg > r.best.back().objective)
         break;
     }
     if (group_best) insert(*group_best);
   }
-  if (options.front && !r.best.empty()) {
-    // Every passing spring of the space, for the front (the same early exits as the search).
-    std::vector<SizedSpring> passing;
-    for (const Group& gr : groups) {
-      for (double n : gr.coils) {
-        SizedSpring s = EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, false);
-        ++r.front_evaluated;
-        if (s.pass) {
-          passing.push_back(std::move(s));
-          continue;
-        }
-        const std::string& failed = s.rules.back().key;
-        if (failed == "surge_ratio" || (failed == "coil_gap" && !s.check)) break;
-      }
-    }
-    r.front = MassFatigueFront(passing);
-  }
-  if (r.best.empty()) {
-    // Nothing passes: the candidate whose worst rule fails least, every rule evaluated.
-    double least = INFINITY;
-    for (const Group& gr : groups) {
-      for (double n : gr.coils) {
-        SizedSpring s = EvaluateSpring(space, duty, gr.wire, gr.coil_m, n, objective, true);
-        double worst = 0.0;
-        const SizingRule* rule = nullptr;
-        for (const SizingRule& x : s.rules) {
-          if (x.Violation() > worst) {
-            worst = x.Violation();
-            rule = &x;
-          }
-        }
-        if (rule && worst < least) {
-          least = worst;
-          r.binding = *rule;
-          r.closest = std::move(s);
-        }
-      }
-    }
-  }
+  if (options.front && !r.best.empty())
+    r.front = MassFatigueFront(PassingSprings(space, duty, objective, groups, r));
+  if (r.best.empty()) FindClosest(space, duty, objective, groups, r);
   return r;
 }
 
