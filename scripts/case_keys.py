@@ -27,7 +27,8 @@ SECTIONS = {"ReadNeedle": ["needle"], "ReadHelical": ["spring"], "ReadSpring": [
             "ReadLimits": ["limits"], "ReadEngine": ["engine"], "ReadTrain": ["train"],
             "ReadSolver": ["solver"], "ReadOverspeed": ["overspeed"],
             "ReadTolerance": ["tolerance"], "ReadProfile": ["profile"], "ReadPaper": ["paper"],
-            "ReadLift": ["lift"], "ReadFollowerKeys": ["profile"],
+            "ReadLift": ["lift"], "ReadLiftRule": ["lift"], "ReadBreaks": ["lift"],
+            "ReadSplineEnds": ["lift"], "ReadFollowerKeys": ["profile"],
             "ReadSizing": ["sizing"], "ReadDesignProblem": ["sizing"]}
 ORDER = ["engine", "lift", "needle", "spring", "train", "solver", "overspeed", "profile",
          "tolerance", "paper", "limits", "sizing"]
