@@ -73,136 +73,161 @@ double FieldValue(const std::string& field, char separator, const std::string& n
 
 }  // namespace
 
+namespace {
+
+[[noreturn]] void CsvFail(const std::string& path, int line, int column, const std::string& what) {
+  std::string where = path + ":" + std::to_string(line);
+  if (column > 0) where += ":" + std::to_string(column);
+  throw CaseError(where + ": " + what);
+}
+
+// The column separator, from the header: ',' (decimal mark '.'), or ';' when the header has
+// ';' and no ',' (a spreadsheet in a locale whose decimal mark is ',': 12,5), or a tab when it
+// has tabs and neither (a spreadsheet's "tab-separated" export; decimal mark '.').
+char Separator(const std::string& header, const std::string& path, int line) {
+  const bool semicolon = header.find(';') != std::string::npos;
+  const bool comma = header.find(',') != std::string::npos;
+  if (semicolon && comma) {
+    CsvFail(path, line, 0,
+            "the header has both ';' and ',', so the separator is ambiguous; separate the "
+            "columns with ',' (decimal mark '.') or with ';' (decimal mark ',')");
+  }
+  return semicolon ? ';' : comma || header.find('\t') == std::string::npos ? ',' : '\t';
+}
+
+// The header's columns: which field is the angle, the lift and (a trace's) time, and the scale
+// from each column's unit to SI.
+struct CsvColumns {
+  int angle = -1, lift = -1, time = -1, count = 0;
+  double angle_scale = 0.0, lift_scale = 0.0, time_scale = 0.0;
+  std::string angle_name, lift_name, time_name;
+};
+
+CsvColumns ReadHeader(const std::vector<std::string>& f, const std::string& path, int line,
+                      EngineCycle cycle, bool with_time) {
+  CsvColumns c;
+  c.count = static_cast<int>(f.size());
+  for (int k = 0; k < c.count; ++k) {
+    const std::string& name = f[k];
+    if (name == "crank_deg" || name == "cam_deg") {
+      if (c.angle >= 0) CsvFail(path, line, k + 1, "two angle columns; keep one");
+      c.angle = k;
+      c.angle_name = name;
+      c.angle_scale = kDeg * (name == "cam_deg" ? CrankTurnsPerCycle(cycle) : 1.0);
+    } else if (name == "lift_mm" || name == "lift_um" || name == "lift_in" || name == "lift_m") {
+      if (c.lift >= 0) CsvFail(path, line, k + 1, "two lift columns; keep one");
+      c.lift = k;
+      c.lift_name = name;
+      c.lift_scale = name == "lift_in" ? 25.4e-3 : ToSi(Dimension::kLength, name.substr(5), 1.0);
+    } else if (with_time && (name == "time_s" || name == "time_ms")) {
+      if (c.time >= 0) CsvFail(path, line, k + 1, "two time columns; keep one");
+      c.time = k;
+      c.time_name = name;
+      c.time_scale = name == "time_ms" ? 1e-3 : 1.0;
+    } else if (name == "crank" || name == "cam" || name == "lift" || name == "angle") {
+      CsvFail(path, line, k + 1,
+              "column '" + name + "' needs a unit: " +
+                  (name == "lift" ? "lift_mm, lift_um or lift_in" : "crank_deg or cam_deg"));
+    } else {
+      CsvFail(path, line, k + 1,
+              "unknown column '" + name +
+                  "'; expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, "
+                  "lift_in)" +
+                  (with_time ? std::string(", and optionally time_s (or time_ms)") : ""));
+    }
+  }
+  if (c.angle < 0)
+    CsvFail(path, line, 0, "the header has no angle column; expected crank_deg or cam_deg");
+  if (c.lift < 0)
+    CsvFail(path, line, 0, "the header has no lift column; expected lift_mm, lift_um or lift_in");
+  return c;
+}
+
+// Plausible readings (lib/lift_data.h), shown in the column's own unit: `v` as written, `si`
+// in rad and m.
+void CheckPlausible(const std::string& path, int line, const CsvColumns& c, const double v[2],
+                    const double si[2]) {
+  const double limits[2] = {kMaxCrankRad / c.angle_scale, kMaxLiftM / c.lift_scale};
+  const int cols[2] = {c.angle, c.lift};
+  const std::string* names[2] = {&c.angle_name, &c.lift_name};
+  const char* ranges[2] = {
+      "a crank angle within ±720°, a four-stroke cycle either side of dead centre",
+      "a lift within ±1 m"};
+  for (int k = 0; k < 2; ++k) {
+    if (!(std::abs(si[k]) <= (k == 0 ? kMaxCrankRad : kMaxLiftM))) {
+      std::ostringstream m;
+      m << *names[k] << " " << v[k] << " is outside the plausible range ±" << limits[k] << " "
+        << names[k]->substr(names[k]->find('_') + 1) << " (" << ranges[k]
+        << "); a typo or a unit mix-up?";
+      CsvFail(path, line, cols[k] + 1, m.str());
+    }
+  }
+}
+
+}  // namespace
+
 LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineCycle cycle,
                        std::vector<int>* lines, std::vector<double>* time_s) {
   if (lines) lines->clear();
   if (time_s) time_s->clear();
-  auto fail = [&](int line, int column, const std::string& what) -> void {
-    std::string where = path + ":" + std::to_string(line);
-    if (column > 0) where += ":" + std::to_string(column);
-    throw CaseError(where + ": " + what);
-  };
   // A UTF-8 byte-order mark (Excel's "CSV UTF-8", Calc with the option) is no part of the header.
   constexpr char kUtf8Bom[] = "\xEF\xBB\xBF";
   const bool bom = text.compare(0, 3, kUtf8Bom) == 0;
   if (text.compare(0, 2, "\xFF\xFE") == 0 || text.compare(0, 2, "\xFE\xFF") == 0) {
-    fail(1, 0, "the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8");
+    CsvFail(path, 1, 0,
+            "the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8");
   }
   std::istringstream in(bom ? text.substr(3) : text);
   std::string raw;
-  int line = 0;
-  // The column separator, from the header: ',' (decimal mark '.'), or ';' when the header has
-  // ';' and no ',' (a spreadsheet in a locale whose decimal mark is ',': 12,5), or a tab when it
-  // has tabs and neither (a spreadsheet's "tab-separated" export; decimal mark '.').
+  int line = 0, last_line = 0;
   char separator = ',';
-  int angle_col = -1, lift_col = -1, time_col = -1, columns = 0;
-  double angle_scale = 0.0, lift_scale = 0.0, time_scale = 0.0;
-  std::string angle_name, lift_name, time_name;
+  CsvColumns c;
   LiftTable t;
-  int last_line = 0;
   while (std::getline(in, raw)) {
     ++line;
     const std::string s = Trim(raw);
     if (s.empty() || s[0] == '#') continue;
-    const bool header = angle_col < 0 && lift_col < 0 && columns == 0;
-    if (header) {
-      const bool semicolon = s.find(';') != std::string::npos;
-      const bool comma = s.find(',') != std::string::npos;
-      if (semicolon && comma) {
-        fail(line, 0,
-             "the header has both ';' and ',', so the separator is ambiguous; separate the "
-             "columns with ',' (decimal mark '.') or with ';' (decimal mark ',')");
-      }
-      separator = semicolon ? ';' : comma || s.find('\t') == std::string::npos ? ',' : '\t';
-    }
+    const bool header = c.count == 0;
+    if (header) separator = Separator(s, path, line);
     const std::vector<std::string> f = Fields(s, separator);
     if (header) {
-      columns = static_cast<int>(f.size());
-      for (int k = 0; k < columns; ++k) {
-        const std::string& name = f[k];
-        if (name == "crank_deg" || name == "cam_deg") {
-          if (angle_col >= 0) fail(line, k + 1, "two angle columns; keep one");
-          angle_col = k;
-          angle_name = name;
-          angle_scale = kDeg * (name == "cam_deg" ? CrankTurnsPerCycle(cycle) : 1.0);
-        } else if (name == "lift_mm" || name == "lift_um" || name == "lift_in" ||
-                   name == "lift_m") {
-          if (lift_col >= 0) fail(line, k + 1, "two lift columns; keep one");
-          lift_col = k;
-          lift_name = name;
-          lift_scale = name == "lift_in" ? 25.4e-3 : ToSi(Dimension::kLength, name.substr(5), 1.0);
-        } else if (time_s && (name == "time_s" || name == "time_ms")) {
-          if (time_col >= 0) fail(line, k + 1, "two time columns; keep one");
-          time_col = k;
-          time_name = name;
-          time_scale = name == "time_ms" ? 1e-3 : 1.0;
-        } else if (name == "crank" || name == "cam" || name == "lift" || name == "angle") {
-          fail(line, k + 1,
-               "column '" + name + "' needs a unit: " +
-                   (name == "lift" ? "lift_mm, lift_um or lift_in" : "crank_deg or cam_deg"));
-        } else {
-          fail(line, k + 1,
-               "unknown column '" + name +
-                   "'; expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, "
-                   "lift_in)" +
-                   (time_s ? std::string(", and optionally time_s (or time_ms)") : ""));
-        }
-      }
-      if (angle_col < 0)
-        fail(line, 0, "the header has no angle column; expected crank_deg or cam_deg");
-      if (lift_col < 0)
-        fail(line, 0, "the header has no lift column; expected lift_mm, lift_um or lift_in");
+      c = ReadHeader(f, path, line, cycle, time_s != nullptr);
       continue;
     }
-    if (static_cast<int>(f.size()) != columns) {
-      fail(line, 0,
-           "expected " + std::to_string(columns) + " fields, got " + std::to_string(f.size()));
+    if (static_cast<int>(f.size()) != c.count) {
+      CsvFail(path, line, 0,
+              "expected " + std::to_string(c.count) + " fields, got " + std::to_string(f.size()));
     }
     double v[3] = {0.0, 0.0, 0.0};
-    const int cols[3] = {angle_col, lift_col, time_col};
-    const std::string names[3] = {angle_name, lift_name, time_name};
-    for (int k = 0; k < (time_col >= 0 ? 3 : 2); ++k) {
-      const std::string& field = f[cols[k]];
+    const int cols[3] = {c.angle, c.lift, c.time};
+    const std::string* names[3] = {&c.angle_name, &c.lift_name, &c.time_name};
+    for (int k = 0; k < (c.time >= 0 ? 3 : 2); ++k) {
       std::string why;
-      const double x = FieldValue(field, separator, names[k], why);
-      if (!why.empty()) fail(line, cols[k] + 1, why);
-      v[k] = x;
+      v[k] = FieldValue(f[cols[k]], separator, *names[k], why);
+      if (!why.empty()) CsvFail(path, line, cols[k] + 1, why);
     }
-    const double angle = v[0] * angle_scale, lift = v[1] * lift_scale;
-    // Plausible readings (lib/lift_data.h), shown in the column's own unit.
-    const double limits[2] = {kMaxCrankRad / angle_scale, kMaxLiftM / lift_scale};
-    const double si[2] = {angle, lift};
-    const char* ranges[2] = {
-        "a crank angle within ±720°, a four-stroke cycle either side of dead centre",
-        "a lift within ±1 m"};
-    for (int k = 0; k < 2; ++k) {
-      if (!(std::abs(si[k]) <= (k == 0 ? kMaxCrankRad : kMaxLiftM))) {
-        std::ostringstream m;
-        m << names[k] << " " << v[k] << " is outside the plausible range ±" << limits[k] << " "
-          << names[k].substr(names[k].find('_') + 1) << " (" << ranges[k]
-          << "); a typo or a unit mix-up?";
-        fail(line, cols[k] + 1, m.str());
-      }
-    }
-    if (!t.crank_rad.empty() && !(angle > t.crank_rad.back())) {
+    const double si[2] = {v[0] * c.angle_scale, v[1] * c.lift_scale};
+    CheckPlausible(path, line, c, v, si);
+    if (!t.crank_rad.empty() && !(si[0] > t.crank_rad.back())) {
       std::ostringstream a, b;
       a << v[0];
-      b << t.crank_rad.back() / angle_scale;
-      fail(line, angle_col + 1,
-           angle_name + " " + a.str() + " does not increase after " + b.str() + " (line " +
-               std::to_string(last_line) + "); angles must increase strictly");
+      b << t.crank_rad.back() / c.angle_scale;
+      CsvFail(path, line, c.angle + 1,
+              c.angle_name + " " + a.str() + " does not increase after " + b.str() + " (line " +
+                  std::to_string(last_line) + "); angles must increase strictly");
     }
-    t.crank_rad.push_back(angle);
-    t.lift_m.push_back(lift);
-    if (time_col >= 0) time_s->push_back(v[2] * time_scale);
+    t.crank_rad.push_back(si[0]);
+    t.lift_m.push_back(si[1]);
+    if (c.time >= 0) time_s->push_back(v[2] * c.time_scale);
     if (lines) lines->push_back(line);
     last_line = line;
   }
-  if (columns == 0) fail(line, 0, "no header; expected crank_deg (or cam_deg) and lift_mm");
+  if (c.count == 0)
+    CsvFail(path, line, 0, "no header; expected crank_deg (or cam_deg) and lift_mm");
   if (t.crank_rad.size() < 2) {
-    fail(line, 0,
-         "has " + std::to_string(t.crank_rad.size()) +
-             " row(s) of data; a lift table needs at least 2");
+    CsvFail(path, line, 0,
+            "has " + std::to_string(t.crank_rad.size()) +
+                " row(s) of data; a lift table needs at least 2");
   }
   return t;
 }

@@ -49,7 +49,6 @@ LONG_FUNCTIONS = {
     "dynamics/solver/event_driver.cc EventDriver::Run": 223,
     "apps/bench/bench_studies.cc RunTargets": 170,
     "lib/lift_breaks.cc FindBreaks": 168,
-    "lib/lift_csv.cc ParseLiftCsv": 143,
     "apps/case/synthesis_file.cc ParseSynthesisFile": 138,
     "apps/bench/bench_studies.cc RunOverspeedComparison": 138,
     "apps/bench/bench_dynamics.cc RunDynamics": 129,
