@@ -35,18 +35,10 @@ SynthesisFile LoadSynthesisFile(const std::string& path) {
   return ParseSynthesisFile(ReadInputFile(path, "synthesis file"), path);
 }
 
-SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& path) {
-  const toml::table root = ParseToml(text, path);
-  for (const auto& [k, node] : root) {
-    const std::string key(k.str());
-    if (key == "title" || key == "rise" || key == "limits" || key == "checks" || key == "output")
-      continue;
-    throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
-                    " (known: title, [rise], [limits], [checks], [output])");
-  }
-  SynthesisFile f;
-  f.path = path;
-  f.title = root["title"].value_or(std::string());
+namespace {
+
+// [rise]: its angle and lift, and the step of the synthesis (ranges that keep it finite).
+void ParseRise(const toml::table& root, const std::string& path, SynthesisFile& f) {
   SectionReader rise(Section(root, path, "rise"), path, "rise");
   if (!rise.present())
     rise.Fail("angle_deg", "section [rise] is missing; it needs angle_deg and lift_mm");
@@ -67,6 +59,10 @@ SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& pat
     f.step_rad = *st;
   }
   rise.Finish();
+}
+
+// [limits]: the derivative limits the law is synthesized under.
+void ParseSynthesisLimits(const toml::table& root, const std::string& path, SynthesisFile& f) {
   SectionReader lim(Section(root, path, "limits"), path, "limits");
   if (!lim.present())
     lim.Fail("acceleration", "section [limits] is missing; it needs acceleration and deceleration");
@@ -83,94 +79,117 @@ SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& pat
     f.jerk_limit = *v;
   }
   lim.Finish();
-  if (const toml::table* t = Section(root, path, "checks")) {
-    SectionReader ch(t, path, "checks");
-    // Each value is checked as it is read, so a failure names the key as written.
-    auto length = [&](const std::string& name, bool positive) {
-      return SignedLength(ch, name, positive);
-    };
-    const FollowerKeys k = ReadFollowerKeys(ch);
-    f.follower = k.kind;
-    f.base_radius_m = length("base_radius", true);
-    f.roller_radius_m = k.roller_radius_m;
-    f.face_radius_m = k.face_radius_m;
-    f.face_half_width_m = k.face_half_width_m;
-    if ((k.kind != FollowerKind::kRoller || f.face_half_width_m) && !f.base_radius_m)
-      ch.Fail("base_radius",
-              "a " + std::string(FollowerKindName(k.kind)) + " follower needs base_radius_mm");
-    if (auto u = ch.OptionalQuantity("min_entrainment_speed", Dimension::kVelocity)) {
-      if (!(*u > 0.0 && *u <= 1e3))
-        ch.Fail(ch.last_key(), "must be in (0, 1000] m/s, got " + Number(*u) + " m/s");
-      if (!f.base_radius_m) ch.Fail("base_radius", "the lubrication limit needs base_radius_mm");
-      f.min_entrainment_m_s = *u;
-    }
-    f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
-    f.max_pressure_angle_rad = ch.OptionalQuantity("max_pressure_angle", Dimension::kAngle);
-    if (f.max_pressure_angle_rad &&
-        !(*f.max_pressure_angle_rad > 0.0 && *f.max_pressure_angle_rad < kPi / 2))
-      ch.Fail(ch.last_key(),
-              "must be in (0, 90) deg, got " + Number(*f.max_pressure_angle_rad / kDeg) + " deg");
-    f.min_profile_radius_m = length("min_profile_radius", false);
-    if (f.min_profile_radius_m && !f.base_radius_m) {
-      ch.Fail("base_radius", "the curvature limit needs base_radius_mm");
-    }
-    f.spring_preload_N = ch.OptionalQuantity("spring_preload", Dimension::kForce);
-    if (f.spring_preload_N && !(*f.spring_preload_N >= 0.0 && *f.spring_preload_N <= 1e7))
-      ch.Fail(ch.last_key(), "must be in [0, 1e7] N, got " + Number(*f.spring_preload_N) + " N");
-    f.spring_rate_N_m = ch.OptionalQuantity("spring_rate", Dimension::kStiffness);
-    if (f.spring_rate_N_m && !(*f.spring_rate_N_m >= 0.0 && *f.spring_rate_N_m <= 1e12))
-      ch.Fail(ch.last_key(),
-              "must be in [0, 1e9] N/mm, got " + Number(*f.spring_rate_N_m * 1e-3) + " N/mm");
-    f.moving_mass_kg = ch.OptionalQuantity("moving_mass", Dimension::kMass);
-    if (f.moving_mass_kg && !(*f.moving_mass_kg > 0.0 && *f.moving_mass_kg <= 1e4))
-      ch.Fail(ch.last_key(), "must be in (0, 1e4] kg, got " + Number(*f.moving_mass_kg) + " kg");
-    f.min_spring_reserve = ch.OptionalNumber("min_spring_reserve");
-    if (f.min_spring_reserve && !(f.spring_preload_N && f.moving_mass_kg)) {
-      ch.Fail("min_spring_reserve",
-              "needs spring_preload_N (or _kgf), moving_mass_kg and [output] speed_rpm");
-    }
-    if (f.min_spring_reserve && !(*f.min_spring_reserve > 0.0 && *f.min_spring_reserve <= 1e6))
-      ch.Fail("min_spring_reserve", "must be in (0, 1e6]");
-    f.contact_length_m = length("contact_length", true);
-    if (auto e = ch.OptionalQuantity("elastic_modulus", Dimension::kPressure)) {
-      if (!(*e > 0.0 && *e <= 1e13))
-        ch.Fail(ch.last_key(), "must be in (0, 1e4] GPa, got " + Number(*e * 1e-9) + " GPa");
-      f.elastic_modulus_Pa = *e;
-    }
-    if (auto nu = ch.OptionalNumber("poisson")) {
-      if (!(*nu >= 0.0 && *nu < 0.5)) ch.Fail("poisson", "must be in [0, 0.5), got " + Number(*nu));
-      f.poisson = *nu;
-    }
-    f.max_contact_stress_Pa = ch.OptionalQuantity("max_contact_stress", Dimension::kPressure);
-    if (f.max_contact_stress_Pa &&
-        !(*f.max_contact_stress_Pa > 0.0 && *f.max_contact_stress_Pa <= 1e13))
-      ch.Fail(ch.last_key(),
-              "must be in (0, 1e7] MPa, got " + Number(*f.max_contact_stress_Pa * 1e-6) + " MPa");
-    if (f.max_contact_stress_Pa &&
-        !(f.contact_length_m && f.spring_preload_N && f.moving_mass_kg && f.base_radius_m)) {
-      ch.Fail("max_contact_stress",
-              "needs contact_length_mm, spring_preload, moving_mass_kg and base_radius_mm");
-    }
+}
 
-    if (f.max_pressure_angle_rad && !f.base_radius_m)
-      ch.Fail("base_radius", "the pressure-angle check needs base_radius_mm");
-    ch.Finish();
+// [checks]: the follower and the checks of the synthesized cam (profile, spring, contact).
+void ParseChecks(const toml::table& t, const std::string& path, SynthesisFile& f) {
+  SectionReader ch(&t, path, "checks");
+  // Each value is checked as it is read, so a failure names the key as written.
+  auto length = [&](const std::string& name, bool positive) {
+    return SignedLength(ch, name, positive);
+  };
+  const FollowerKeys k = ReadFollowerKeys(ch);
+  f.follower = k.kind;
+  f.base_radius_m = length("base_radius", true);
+  f.roller_radius_m = k.roller_radius_m;
+  f.face_radius_m = k.face_radius_m;
+  f.face_half_width_m = k.face_half_width_m;
+  if ((k.kind != FollowerKind::kRoller || f.face_half_width_m) && !f.base_radius_m)
+    ch.Fail("base_radius",
+            "a " + std::string(FollowerKindName(k.kind)) + " follower needs base_radius_mm");
+  if (auto u = ch.OptionalQuantity("min_entrainment_speed", Dimension::kVelocity)) {
+    if (!(*u > 0.0 && *u <= 1e3))
+      ch.Fail(ch.last_key(), "must be in (0, 1000] m/s, got " + Number(*u) + " m/s");
+    if (!f.base_radius_m) ch.Fail("base_radius", "the lubrication limit needs base_radius_mm");
+    f.min_entrainment_m_s = *u;
   }
-  if (const toml::table* t = Section(root, path, "output")) {
-    SectionReader o(t, path, "output");
-    if (auto fall = o.OptionalString("fall")) {
-      if (*fall != "mirror" && *fall != "none") o.Fail("fall", "expected \"mirror\" or \"none\"");
-      f.mirror_fall = *fall == "mirror";
-    }
-    f.crank_start_rad = o.OptionalQuantity("crank_start", Dimension::kAngle).value_or(0.0);
-    if (auto n = o.OptionalQuantity("speed", Dimension::kRotationSpeed)) {
-      if (!(*n > 0.0 && *n <= 1e6))
-        o.Fail("speed_rpm", "must be in (0, 1e6] rpm, got " + Number(*n));
-      f.speed_rpm = *n;
-    }
-    if (auto cycle = case_internal::OptionalCycle(o)) f.cycle = *cycle;
-    o.Finish();
+  f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
+  f.max_pressure_angle_rad = ch.OptionalQuantity("max_pressure_angle", Dimension::kAngle);
+  if (f.max_pressure_angle_rad &&
+      !(*f.max_pressure_angle_rad > 0.0 && *f.max_pressure_angle_rad < kPi / 2))
+    ch.Fail(ch.last_key(),
+            "must be in (0, 90) deg, got " + Number(*f.max_pressure_angle_rad / kDeg) + " deg");
+  f.min_profile_radius_m = length("min_profile_radius", false);
+  if (f.min_profile_radius_m && !f.base_radius_m) {
+    ch.Fail("base_radius", "the curvature limit needs base_radius_mm");
   }
+  f.spring_preload_N = ch.OptionalQuantity("spring_preload", Dimension::kForce);
+  if (f.spring_preload_N && !(*f.spring_preload_N >= 0.0 && *f.spring_preload_N <= 1e7))
+    ch.Fail(ch.last_key(), "must be in [0, 1e7] N, got " + Number(*f.spring_preload_N) + " N");
+  f.spring_rate_N_m = ch.OptionalQuantity("spring_rate", Dimension::kStiffness);
+  if (f.spring_rate_N_m && !(*f.spring_rate_N_m >= 0.0 && *f.spring_rate_N_m <= 1e12))
+    ch.Fail(ch.last_key(),
+            "must be in [0, 1e9] N/mm, got " + Number(*f.spring_rate_N_m * 1e-3) + " N/mm");
+  f.moving_mass_kg = ch.OptionalQuantity("moving_mass", Dimension::kMass);
+  if (f.moving_mass_kg && !(*f.moving_mass_kg > 0.0 && *f.moving_mass_kg <= 1e4))
+    ch.Fail(ch.last_key(), "must be in (0, 1e4] kg, got " + Number(*f.moving_mass_kg) + " kg");
+  f.min_spring_reserve = ch.OptionalNumber("min_spring_reserve");
+  if (f.min_spring_reserve && !(f.spring_preload_N && f.moving_mass_kg)) {
+    ch.Fail("min_spring_reserve",
+            "needs spring_preload_N (or _kgf), moving_mass_kg and [output] speed_rpm");
+  }
+  if (f.min_spring_reserve && !(*f.min_spring_reserve > 0.0 && *f.min_spring_reserve <= 1e6))
+    ch.Fail("min_spring_reserve", "must be in (0, 1e6]");
+  f.contact_length_m = length("contact_length", true);
+  if (auto e = ch.OptionalQuantity("elastic_modulus", Dimension::kPressure)) {
+    if (!(*e > 0.0 && *e <= 1e13))
+      ch.Fail(ch.last_key(), "must be in (0, 1e4] GPa, got " + Number(*e * 1e-9) + " GPa");
+    f.elastic_modulus_Pa = *e;
+  }
+  if (auto nu = ch.OptionalNumber("poisson")) {
+    if (!(*nu >= 0.0 && *nu < 0.5)) ch.Fail("poisson", "must be in [0, 0.5), got " + Number(*nu));
+    f.poisson = *nu;
+  }
+  f.max_contact_stress_Pa = ch.OptionalQuantity("max_contact_stress", Dimension::kPressure);
+  if (f.max_contact_stress_Pa &&
+      !(*f.max_contact_stress_Pa > 0.0 && *f.max_contact_stress_Pa <= 1e13))
+    ch.Fail(ch.last_key(),
+            "must be in (0, 1e7] MPa, got " + Number(*f.max_contact_stress_Pa * 1e-6) + " MPa");
+  if (f.max_contact_stress_Pa &&
+      !(f.contact_length_m && f.spring_preload_N && f.moving_mass_kg && f.base_radius_m)) {
+    ch.Fail("max_contact_stress",
+            "needs contact_length_mm, spring_preload, moving_mass_kg and base_radius_mm");
+  }
+
+  if (f.max_pressure_angle_rad && !f.base_radius_m)
+    ch.Fail("base_radius", "the pressure-angle check needs base_radius_mm");
+  ch.Finish();
+}
+
+// [output]: the fall, the crank angle of the rise's start, the speed and the cycle.
+void ParseOutput(const toml::table& t, const std::string& path, SynthesisFile& f) {
+  SectionReader o(&t, path, "output");
+  if (auto fall = o.OptionalString("fall")) {
+    if (*fall != "mirror" && *fall != "none") o.Fail("fall", "expected \"mirror\" or \"none\"");
+    f.mirror_fall = *fall == "mirror";
+  }
+  f.crank_start_rad = o.OptionalQuantity("crank_start", Dimension::kAngle).value_or(0.0);
+  if (auto n = o.OptionalQuantity("speed", Dimension::kRotationSpeed)) {
+    if (!(*n > 0.0 && *n <= 1e6)) o.Fail("speed_rpm", "must be in (0, 1e6] rpm, got " + Number(*n));
+    f.speed_rpm = *n;
+  }
+  if (auto cycle = case_internal::OptionalCycle(o)) f.cycle = *cycle;
+  o.Finish();
+}
+
+}  // namespace
+
+SynthesisFile ParseSynthesisFile(const std::string& text, const std::string& path) {
+  const toml::table root = ParseToml(text, path);
+  for (const auto& [k, node] : root) {
+    const std::string key(k.str());
+    if (key == "title" || key == "rise" || key == "limits" || key == "checks" || key == "output")
+      continue;
+    throw CaseError(path + ": " + key + ": unknown " + (node.is_table() ? "section" : "key") +
+                    " (known: title, [rise], [limits], [checks], [output])");
+  }
+  SynthesisFile f;
+  f.path = path;
+  f.title = root["title"].value_or(std::string());
+  ParseRise(root, path, f);
+  ParseSynthesisLimits(root, path, f);
+  if (const toml::table* t = Section(root, path, "checks")) ParseChecks(*t, path, f);
+  if (const toml::table* t = Section(root, path, "output")) ParseOutput(*t, path, f);
   return f;
 }
 
