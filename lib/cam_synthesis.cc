@@ -327,38 +327,11 @@ std::string FollowerNote(const SynthesisSpec& spec) {
 }
 }  // namespace
 
-SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
-  spec.Validate();
-  const double h = StepOf(spec);
-  // A flat face's cap on S' (its half-width) does not depend on S: it acts as S'max.
-  const bool flat_face =
-      spec.follower.base_radius_m > 0.0 && spec.follower.kind == FollowerKind::kFlat;
-  const double vmax =
-      flat_face ? std::min(spec.speed_limit, SpeedCap(spec.follower, spec.follower_limits, 0.0))
-                : spec.speed_limit;
-  if (vmax < 1e299 && vmax * spec.rise_rad <= spec.height_m) {
-    throw std::invalid_argument(
-        "infeasible: S'max × rise angle = " + std::to_string(vmax * spec.rise_rad * 1e3) +
-        " mm is not more than the displacement " + std::to_string(spec.height_m * 1e3) +
-        " mm; the least S'max that fits with these acceleration limits is " +
-        std::to_string(LeastSpeedLimit(spec) * 1e3) + " mm/rad");
-  }
-  const Formed full = FormSmooth(spec, 1.0, vmax, h, 2 * spec.rise_rad);
-  if (full.total_rad > spec.rise_rad) {
-    const double least = LeastSpeedLimit(spec);
-    throw std::invalid_argument(
-        "infeasible: with the full limits the shortest rise of " +
-        std::to_string(spec.height_m * 1e3) + " mm takes " +
-        std::to_string(full.total_rad * 180.0 / kPi) + " deg, more than " +
-        std::to_string(spec.rise_rad * 180.0 / kPi) + " deg" +
-        (std::isfinite(least) && vmax < 1e299
-             ? "; the least S'max that fits is " + std::to_string(least * 1e3) + " mm/rad"
-             : "; raise the acceleration or jerk limits") +
-        BindingCaps(full) + (spec.follower.base_radius_m > 0.0 ? FollowerNote(spec) : ""));
-  }
+namespace {
 
-  // Smallest α ≤ 1 whose rise still fits in Φ (the rise angle falls as α grows): bracket by
-  // quartering, then bisect.
+// The smallest scale α ≤ 1 of the limits whose rise still fits in Φ (the rise angle falls as α
+// grows): bracketed by quartering, then bisected.
+double FittingScale(const SynthesisSpec& spec, double vmax, double h) {
   const double give_up = 2 * spec.rise_rad;
   double lo = 0.25, hi = 1.0;
   while (FormSmooth(spec, lo, vmax, h, give_up).total_rad <= spec.rise_rad) {
@@ -372,23 +345,12 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
     (FormSmooth(spec, mid, vmax, h, give_up).total_rad > spec.rise_rad ? lo : hi) = mid;
   }
 
-  const Formed f = FormSmooth(spec, hi, vmax, h);
-  // The speed of the constant section: S'max, or the speed the sides were made to meet at.
-  const double v_const = f.meet_speed > 0.0 ? f.meet_speed : vmax;
+  return hi;
+}
 
-  // Assemble: side A forward, the constant section, side C reversed.
-  SynthesizedLaw law;
-  law.scale = hi;
-  law.speed_limit_active = f.speed_active && f.meet_speed == 0.0;
-  law.meet_speed = f.meet_speed;
-  law.pressure_angle_limited = f.v_bound;
-  law.curvature_limited = f.a_bound;
-  law.spring_reserve_limited = f.reserve_bound;
-  law.lubrication_limited = f.lube_bound;
-  law.stress_limited = f.stress_bound;
-  law.face_width_limited = flat_face && vmax < spec.speed_limit && law.speed_limit_active;
-  law.backed_off_steps = f.backed_off;
-
+// The rise's samples: side A forward, the constant section at the speed v_const, side C
+// reversed.
+void Assemble(const Formed& f, double h, double v_const, SynthesizedLaw& law) {
   for (size_t i = 0; i < f.a.size(); ++i) {
     law.phi.push_back(h * i);
     law.s.push_back(f.a[i].s);
@@ -422,7 +384,11 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
     law.s1.push_back(f.c[i].s1);
     law.s2.push_back(-f.c[i].s2);
   }
-  // Close the angle and the height exactly: stretch φ by c ≥ 1 and scale S by H/S_end ≤ 1.
+}
+
+// Closes the angle and the height exactly (φ stretched by c ≥ 1, S scaled by H/S_end ≤ 1),
+// and S3 as the first difference of S2.
+void CloseAngleAndHeight(const SynthesisSpec& spec, SynthesizedLaw& law) {
   const double c = spec.rise_rad / law.phi.back();
   const double k = spec.height_m / law.s.back();
   for (size_t i = 0; i < law.phi.size(); ++i) {
@@ -437,6 +403,61 @@ SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
   for (size_t i = 1; i < law.phi.size(); ++i) {
     law.s3[i] = (law.s2[i] - law.s2[i - 1]) / (law.phi[i] - law.phi[i - 1]);  // (1), k = 3
   }
+}
+
+}  // namespace
+
+SynthesizedLaw SynthesizeRise(const SynthesisSpec& spec) {
+  spec.Validate();
+  const double h = StepOf(spec);
+  // A flat face's cap on S' (its half-width) does not depend on S: it acts as S'max.
+  const bool flat_face =
+      spec.follower.base_radius_m > 0.0 && spec.follower.kind == FollowerKind::kFlat;
+  const double vmax =
+      flat_face ? std::min(spec.speed_limit, SpeedCap(spec.follower, spec.follower_limits, 0.0))
+                : spec.speed_limit;
+  if (vmax < 1e299 && vmax * spec.rise_rad <= spec.height_m) {
+    throw std::invalid_argument(
+        "infeasible: S'max × rise angle = " + std::to_string(vmax * spec.rise_rad * 1e3) +
+        " mm is not more than the displacement " + std::to_string(spec.height_m * 1e3) +
+        " mm; the least S'max that fits with these acceleration limits is " +
+        std::to_string(LeastSpeedLimit(spec) * 1e3) + " mm/rad");
+  }
+  const Formed full = FormSmooth(spec, 1.0, vmax, h, 2 * spec.rise_rad);
+  if (full.total_rad > spec.rise_rad) {
+    const double least = LeastSpeedLimit(spec);
+    throw std::invalid_argument(
+        "infeasible: with the full limits the shortest rise of " +
+        std::to_string(spec.height_m * 1e3) + " mm takes " +
+        std::to_string(full.total_rad * 180.0 / kPi) + " deg, more than " +
+        std::to_string(spec.rise_rad * 180.0 / kPi) + " deg" +
+        (std::isfinite(least) && vmax < 1e299
+             ? "; the least S'max that fits is " + std::to_string(least * 1e3) + " mm/rad"
+             : "; raise the acceleration or jerk limits") +
+        BindingCaps(full) + (spec.follower.base_radius_m > 0.0 ? FollowerNote(spec) : ""));
+  }
+
+  const double hi = FittingScale(spec, vmax, h);
+
+  const Formed f = FormSmooth(spec, hi, vmax, h);
+  // The speed of the constant section: S'max, or the speed the sides were made to meet at.
+  const double v_const = f.meet_speed > 0.0 ? f.meet_speed : vmax;
+
+  // Assemble: side A forward, the constant section, side C reversed.
+  SynthesizedLaw law;
+  law.scale = hi;
+  law.speed_limit_active = f.speed_active && f.meet_speed == 0.0;
+  law.meet_speed = f.meet_speed;
+  law.pressure_angle_limited = f.v_bound;
+  law.curvature_limited = f.a_bound;
+  law.spring_reserve_limited = f.reserve_bound;
+  law.lubrication_limited = f.lube_bound;
+  law.stress_limited = f.stress_bound;
+  law.face_width_limited = flat_face && vmax < spec.speed_limit && law.speed_limit_active;
+  law.backed_off_steps = f.backed_off;
+
+  Assemble(f, h, v_const, law);
+  CloseAngleAndHeight(spec, law);
   return law;
 }
 

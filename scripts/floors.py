@@ -54,7 +54,6 @@ LONG_FUNCTIONS = {
     "lib/toml_text.cc Step": 127,
     "dynamics/simulation.cc RunPass": 126,
     "dynamics/simulation.cc Simulate": 117,
-    "lib/cam_synthesis.cc SynthesizeRise": 112,
     "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
     "dynamics/solver/event_certification.cc EventDriver::RecordExtremes": 106,
 }
