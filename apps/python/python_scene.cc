@@ -132,11 +132,12 @@ py::dict SceneCheck(SceneSource s, const py::object& rpm) {
 }
 
 void DefScene(py::module_& m) {
-  py::class_<PyScene>(
+  py::class_<PyScene> scene(
       m, "Scene",
       "A case bound once: its lift law chosen and built, its dynamic scene and run options made. "
       "Run it many times (scene.simulate(rpm=…) in a loop over speeds) without reading or "
-      "binding the case again. A snapshot: a needle.Case changed afterwards does not change it.")
+      "binding the case again. A snapshot: a needle.Case changed afterwards does not change it.");
+  scene
       .def(py::init([](const py::object& source) {
              SceneSource s(source, "Scene");
              py::gil_scoped_release release;
@@ -147,49 +148,40 @@ void DefScene(py::module_& m) {
       .def_property_readonly("title", [](const PyScene& s) { return s.bound->title; })
       .def_property_readonly("speed_rpm",
                              [](const PyScene& s) { return s.bound->engine.speed_rpm; })
-      .def(
-          "kinematics",
-          [](const PyScene& s, const py::object& rpm, const py::object& step_deg) {
-            return SceneKinematics(SceneSource(s), rpm, step_deg);
-          },
-          py::kw_only(), arg("rpm") = py::none(), arg("step_deg") = 5.0,
-          "needle kinematics of the scene (as needle.kinematics)")
-      .def(
-          "simulate",
-          [](const PyScene& s, const py::object& rpm, const py::object& method,
-             const py::object& rtol, const py::object& dynamic, const py::object& series,
-             const py::object& grid_deg) {
-            return SceneSimulate(SceneSource(s), rpm, method, rtol, dynamic, series, grid_deg);
-          },
-          py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(),
-          arg("rtol") = py::none(), arg("dynamic") = false, arg("series") = false,
-          arg("grid_deg") = py::none(), "needle simulate of the scene (as needle.simulate)")
-      .def(
-          "overspeed",
-          [](const PyScene& s, const py::object& from_rpm, const py::object& to_rpm,
-             const py::object& step_rpm, const py::object& method, const py::object& rtol,
-             const py::object& threads) {
-            return SceneOverspeed(SceneSource(s), from_rpm, to_rpm, step_rpm, method, rtol,
-                                  threads);
-          },
-          py::kw_only(), arg("from_rpm") = py::none(), arg("to_rpm") = py::none(),
-          arg("step_rpm") = py::none(), arg("method") = py::none(), arg("rtol") = py::none(),
-          arg("threads") = 0, "needle overspeed of the scene (as needle.overspeed)")
-      .def(
-          "check",
-          [](const PyScene& s, const py::object& rpm) { return SceneCheck(SceneSource(s), rpm); },
-          py::kw_only(), arg("rpm") = py::none(),
-          "needle check of the scene (as needle.check: the dict of check --json)")
       .def("__repr__", [](const PyScene& s) { return "<needle.Scene " + s.bound->path + ">"; });
   // Each method's keywords checked in one line, as the module's functions are (issue 51's
   // trial: scene.check(foo=1) gave pybind11's multi-line list of signatures).
-  const py::object scene = m.attr("Scene");
-  CheckMethodCalls(scene, "kinematics", {{"rpm", "step_deg"}, 0, {}});
-  CheckMethodCalls(scene, "simulate",
-                   {{"rpm", "method", "rtol", "dynamic", "series", "grid_deg"}, 0, {}});
-  CheckMethodCalls(scene, "overspeed",
-                   {{"from_rpm", "to_rpm", "step_rpm", "method", "rtol", "threads"}, 0, {}});
-  CheckMethodCalls(scene, "check", {{"rpm"}, 0, {}});
+  DefMethod(
+      scene, "kinematics",
+      [](const PyScene& s, const py::object& rpm, const py::object& step_deg) {
+        return SceneKinematics(SceneSource(s), rpm, step_deg);
+      },
+      py::kw_only(), arg("rpm") = py::none(), arg("step_deg") = 5.0,
+      "needle kinematics of the scene (as needle.kinematics)");
+  DefMethod(
+      scene, "simulate",
+      [](const PyScene& s, const py::object& rpm, const py::object& method, const py::object& rtol,
+         const py::object& dynamic, const py::object& series, const py::object& grid_deg) {
+        return SceneSimulate(SceneSource(s), rpm, method, rtol, dynamic, series, grid_deg);
+      },
+      py::kw_only(), arg("rpm") = py::none(), arg("method") = py::none(), arg("rtol") = py::none(),
+      arg("dynamic") = false, arg("series") = false, arg("grid_deg") = py::none(),
+      "needle simulate of the scene (as needle.simulate)");
+  DefMethod(
+      scene, "overspeed",
+      [](const PyScene& s, const py::object& from_rpm, const py::object& to_rpm,
+         const py::object& step_rpm, const py::object& method, const py::object& rtol,
+         const py::object& threads) {
+        return SceneOverspeed(SceneSource(s), from_rpm, to_rpm, step_rpm, method, rtol, threads);
+      },
+      py::kw_only(), arg("from_rpm") = py::none(), arg("to_rpm") = py::none(),
+      arg("step_rpm") = py::none(), arg("method") = py::none(), arg("rtol") = py::none(),
+      arg("threads") = 0, "needle overspeed of the scene (as needle.overspeed)");
+  DefMethod(
+      scene, "check",
+      [](const PyScene& s, const py::object& rpm) { return SceneCheck(SceneSource(s), rpm); },
+      py::kw_only(), arg("rpm") = py::none(),
+      "needle check of the scene (as needle.check: the dict of check --json)");
 }
 
 }  // namespace needle::python

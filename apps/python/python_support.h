@@ -192,10 +192,10 @@ void CheckCalls(py::module_& m, const char* name, const Signature& s);
 // TypeError of one line naming "Class.name()" and the arguments it takes.
 void CheckMethodCalls(py::object cls, const char* name, const Signature& s);
 
-// m.def(name, f, extra...), its calls checked (CheckCalls).
-template <typename F, typename... Extra>
-void Def(py::module_& m, const char* name, F&& f, const Extra&... extra) {
-  m.def(name, std::forward<F>(f), extra...);
+// The signature a function or method is defined with: its py::arg names in order, how many
+// come before py::kw_only, and those without a default.
+template <typename... Extra>
+Signature SignatureOf(const Extra&... extra) {
   Signature s;
   bool keyword_only = false;
   const auto add = [&](const auto& e) {
@@ -208,7 +208,22 @@ void Def(py::module_& m, const char* name, F&& f, const Extra&... extra) {
     }
   };
   (add(extra), ...);
-  CheckCalls(m, name, s);
+  return s;
+}
+
+// m.def(name, f, extra...), its calls checked (CheckCalls).
+template <typename F, typename... Extra>
+void Def(py::module_& m, const char* name, F&& f, const Extra&... extra) {
+  m.def(name, std::forward<F>(f), extra...);
+  CheckCalls(m, name, SignatureOf(extra...));
+}
+
+// cls.def(name, f, extra...) for a method (its arguments after self in `extra`), its calls
+// checked (CheckMethodCalls).
+template <typename Class, typename F, typename... Extra>
+void DefMethod(Class& cls, const char* name, F&& f, const Extra&... extra) {
+  cls.def(name, std::forward<F>(f), extra...);
+  CheckMethodCalls(cls, name, SignatureOf(extra...));
 }
 
 // The folder of this module's file: needle.distributed and the package's Python files live in
