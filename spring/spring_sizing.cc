@@ -48,10 +48,6 @@ HelicalSpringCheck Probe(HelicalGeometry g, double stroke_m, double speed_rpm, E
   return CheckHelicalSpring(g, 0.0, stroke_m, speed_rpm, cycle);
 }
 
-double CoilMassKg(const HelicalGeometry& g, double coils) {
-  return g.density_kg_m3 * kPi * kPi * g.wire_m * g.wire_m * g.coil_m * coils / 4.0;
-}
-
 std::vector<double> CoilCounts(const SizingSpace& s) {
   std::vector<double> out;
   for (int i = 0;; ++i) {
@@ -399,6 +395,10 @@ SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
     r.front = MassFatigueFront(PassingSprings(space, duty, objective, groups, r));
   if (r.best.empty()) FindClosest(space, duty, objective, groups, r);
   return r;
+}
+
+double CoilMassKg(const HelicalGeometry& g, double coils) {
+  return g.density_kg_m3 * kPi * kPi * g.wire_m * g.wire_m * g.coil_m * coils / 4.0;
 }
 
 std::vector<SizedSpring> MassFatigueFront(const std::vector<SizedSpring>& springs) {

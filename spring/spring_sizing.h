@@ -186,6 +186,9 @@ SizedSpring EvaluateSpring(const SizingSpace& space, const SizingDuty& duty, int
 SizingResult SizeSpring(const SizingSpace& space, const SizingDuty& duty,
                         const SizingOptions& options = {});
 
+/// The mass of `coils` coils of `g`'s wire, ρ π² d² D n / 4, kg.
+double CoilMassKg(const HelicalGeometry& g, double coils);
+
 /// Springs of `springs` on the front between mass and fatigue safety factor: none lighter has
 /// a factor as high. Lightest first; springs whose fatigue is not judged (Zimmerli's data:
 /// wire of 10 mm or more) have no factor and are left out.

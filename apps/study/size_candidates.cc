@@ -14,13 +14,21 @@
 #include "spring/helical_spring.h"
 
 namespace needle {
-namespace {
+
+namespace sizing_internal {
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-std::string Mm(double m, int digits = 2) { return Fixed(m * 1e3, digits) + " mm"; }
+std::string Mm(double m, int digits) { return Fixed(m * 1e3, digits) + " mm"; }
+
+}  // namespace sizing_internal
+
+namespace {
+
+using sizing_internal::Mm;
+using sizing_internal::Seconds;
 
 // Whether two springs are the same spring of the space: one wire (its grade and R_m), D, n.
 bool SameSpring(const SizedSpring& a, const SizedSpring& b) {
@@ -72,8 +80,7 @@ std::optional<SizedSpring> OwnSpring(const BoundCase& c, SizingSpace& sp, const 
   s.active_mass_kg = ActiveSpringMassKg(*own);
   s.check = CheckHelicalSpring(*own, p0, duty.stroke_m, duty.speed_rpm, duty.cycle);
   s.total_coils = s.check->total_coils;
-  s.mass_kg = own->density_kg_m3 * kPi * kPi * own->wire_m * own->wire_m * own->coil_m *
-              s.total_coils / 4.0;
+  s.mass_kg = CoilMassKg(*own, s.total_coils);
   s.objective = s.mass_kg;
   s.buckling_m = BucklingDeflection(*own, sp.wires[wire].elastic_modulus_Pa, sp.end_fixation);
   s.pass = true;  // no closed-form rules: the check judges it

@@ -6,12 +6,22 @@
 /// passed, the case's own helical spring as stated, a candidate whenever its wire is one of the
 /// space's and it fits the space.
 
+#include <chrono>
+#include <string>
+
 #include "apps/case/bound_case.h"
 #include "apps/study/spring_sizing_scene.h"
 #include "lib/lift_law.h"
 #include "spring/spring_sizing.h"
 
 namespace needle {
+
+namespace sizing_internal {
+/// Seconds since `since`: a stage's wall time.
+double Seconds(std::chrono::steady_clock::time_point since);
+/// A length in m shown in mm with `digits` decimals ("16.00 mm").
+std::string Mm(double m, int digits = 2);
+}  // namespace sizing_internal
 
 /// Checks the candidates of `r.closed_form` (and the case's own spring) on `law`, filling
 /// `r.verified`, `r.winner`, the stage's row, `r.pass` and `r.no_fit` (which names the closest

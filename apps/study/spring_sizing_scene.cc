@@ -17,11 +17,8 @@
 namespace needle {
 namespace {
 
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
-std::string Mm(double m, int digits = 2) { return Fixed(m * 1e3, digits) + " mm"; }
+using sizing_internal::Mm;
+using sizing_internal::Seconds;
 
 // The default range of the case's own wire: a third to twice its diameter (R40 sizes inside).
 constexpr double kCaseWireLo = 1.0 / 3.0, kCaseWireHi = 2.0;

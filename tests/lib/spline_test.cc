@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <random>
+#include <tuple>
+#include <vector>
 
 namespace needle {
 namespace {
@@ -198,6 +200,21 @@ TEST(SplineTest, MakimaReproducesLinesAndQuadraticsOnUniformKnots) {
   EXPECT_NEAR(s.Evaluate(3.9, 1), -2.0, 1e-12);
 }
 
+// A smoothing fit of noisy samples (x, y) of `truth`: its weighted residual Σ((y − s)/σ)², and
+// the squared errors against the truth of the fit and of the data.
+template <typename Spline, typename Truth>
+std::tuple<double, double, double> SmoothingSums(const std::vector<double>& x,
+                                                 const std::vector<double>& y, double sigma,
+                                                 const Spline& s, Truth truth) {
+  double r = 0, err = 0, raw = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    r += std::pow((y[i] - s.Evaluate(x[i])) / sigma, 2);
+    err += std::pow(s.Evaluate(x[i]) - truth(x[i]), 2);
+    raw += std::pow(y[i] - truth(x[i]), 2);
+  }
+  return {r, err, raw};
+}
+
 TEST(SplineTest, SmoothingMeetsTheDiscrepancyPrinciple) {
   // Noisy samples of a smooth curve with known σ: the fit's weighted residual is N+1.
   std::vector<double> x, y;
@@ -212,12 +229,8 @@ TEST(SplineTest, SmoothingMeetsTheDiscrepancyPrinciple) {
   o.kind = SplineKind::kSmoothing;
   o.sigma = sigma;
   const auto s = BuildSpline(x, y, o);
-  double r = 0, err = 0, raw = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    r += std::pow((y[i] - s.Evaluate(x[i])) / sigma, 2);
-    err += std::pow(s.Evaluate(x[i]) - std::sin(2 * x[i]), 2);
-    raw += std::pow(y[i] - std::sin(2 * x[i]), 2);
-  }
+  const auto [r, err, raw] =
+      SmoothingSums(x, y, sigma, s, [](double t) { return std::sin(2 * t); });
   EXPECT_NEAR(r, 41.0, 1e-6);
   EXPECT_LT(err, raw);  // the smoothed values are nearer the truth than the data
   EXPECT_EQ(s.continuity(), 2);
@@ -240,12 +253,8 @@ TEST(SplineTest, SmoothingOfALargeTableMeetsTheDiscrepancyPrinciple) {
   o.kind = SplineKind::kSmoothing;
   o.sigma = sigma;
   const auto s = BuildSpline(x, y, o);
-  double r = 0, err = 0, raw = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    r += std::pow((y[i] - s.Evaluate(x[i])) / sigma, 2);
-    err += std::pow(s.Evaluate(x[i]) - std::sin(3 * x[i]), 2);
-    raw += std::pow(y[i] - std::sin(3 * x[i]), 2);
-  }
+  const auto [r, err, raw] =
+      SmoothingSums(x, y, sigma, s, [](double t) { return std::sin(3 * t); });
   EXPECT_NEAR(r, 2001.0, 1e-5);
   EXPECT_LT(err, 0.1 * raw);
   // The solve is the smoothing system's: the cubic through the fitted values with the solved
