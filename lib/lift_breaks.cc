@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "lib/lift_data.h"
@@ -57,60 +58,104 @@ double DerivativeNoise(const std::vector<double>& x, size_t from, size_t to, dou
 
 }  // namespace
 
-std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vector<double>& y,
-                                  double sigma_m) {
-  std::vector<LiftBreak> found;
-  const long n = static_cast<long>(x.size());
-  const long m = kBreakSideWindows, d = kBreakSideWindows + 2;
-  if (n != static_cast<long>(y.size()) || n < 2 * (m + d + 6) + 2) return found;
-  // s2[i] = 2 f[x_{i-1}, x_i, x_{i+1}] ≈ s'', i = 1 … n−2, its weights on the three readings.
-  std::vector<double> s2(n, 0.0), at(n, 0.0);
-  std::vector<std::array<double, 3>> w2(n);
-  for (long i = 1; i + 1 < n; ++i) {
-    const double a = x[i - 1], b = x[i], c = x[i + 1];
-    w2[i] = {2.0 / ((a - b) * (a - c)), 2.0 / ((b - a) * (b - c)), 2.0 / ((c - a) * (c - b))};
-    s2[i] = w2[i][0] * y[i - 1] + w2[i][1] * y[i] + w2[i][2] * y[i + 1];
-    at[i] = (a + b + c) / 3.0;
-  }
-  // Ĵ_k over the interval (x_k, x_k+1): the right line's value at its middle minus the left's,
-  // from s2 at k−m … k−1 (readings ≤ x_k) and k+2 … k+m+1 (readings ≥ x_k+1); and its noise.
-  // Ĉ_k: the two windows across the interval less the mean of the two lines there: a corner
-  // (s' jumps by K) makes them K/h apiece, where an s'' jump or a smooth law leaves them between.
-  std::vector<double> jump(n, 0.0), noise(n, 0.0), spike(n, 0.0), spike_noise(n, 0.0);
-  std::vector<double> wy(n, 0.0), wc(n, 0.0);
-  for (long k = m + 1; k + m + 2 < n; ++k) {
-    std::fill(wy.begin() + (k - m - 1), wy.begin() + (k + m + 3), 0.0);
-    std::fill(wc.begin() + (k - m - 1), wc.begin() + (k + m + 3), 0.0);
-    // The line through s2[from … from+m) at `where`, its weights on the readings added to `to`.
-    auto side = [&](long from, double where, double sign, std::vector<double>& to) {
+namespace {
+
+// FindBreaks' first stage: s2[i] = 2 f[x_{i-1}, x_i, x_{i+1}] ≈ s'' with its weights on the
+// three readings; over each interval (x_k, x_k+1) Ĵ_k, the right line's value at its middle
+// minus the left's, from s2 at k−m … k−1 (readings ≤ x_k) and k+2 … k+m+1 (readings ≥ x_k+1);
+// and Ĉ_k, the two windows across the interval less the mean of the two lines there: a corner
+// (s' jumps by K) makes them K/h apiece, where an s'' jump or a smooth law leaves them between.
+class BreakStatistics {
+ public:
+  static constexpr long m = kBreakSideWindows, d = kBreakSideWindows + 2;
+
+  BreakStatistics(const std::vector<double>& x, const std::vector<double>& y, double sigma_m)
+      : x_(x),
+        n_(static_cast<long>(x.size())),
+        sigma_m_(sigma_m),
+        s2_(n_, 0.0),
+        at_(n_, 0.0),
+        w2_(n_),
+        mean_at_(n_, 0.0),
+        spread_(n_, 0.0),
+        jump_(n_, 0.0),
+        spike_(n_, 0.0),
+        wy_(n_, 0.0),
+        wc_(n_, 0.0),
+        tail_(TailSigmas(n_, kBreakSigmas)) {
+    for (long i = 1; i + 1 < n_; ++i) {
+      const double a = x[i - 1], b = x[i], c = x[i + 1];
+      w2_[i] = {2.0 / ((a - b) * (a - c)), 2.0 / ((b - a) * (b - c)), 2.0 / ((c - a) * (c - b))};
+      s2_[i] = w2_[i][0] * y[i - 1] + w2_[i][1] * y[i] + w2_[i][2] * y[i + 1];
+      at_[i] = (a + b + c) / 3.0;
+    }
+    for (long from = 1; from + m < n_; ++from) {  // each window's mean abscissa and spread
       double mean = 0.0, sxx = 0.0;
-      for (long i = from; i < from + m; ++i) mean += at[i] / m;
-      for (long i = from; i < from + m; ++i) sxx += (at[i] - mean) * (at[i] - mean);
-      double v = 0.0;
-      for (long i = from; i < from + m; ++i) {
-        const double a = 1.0 / m + (at[i] - mean) * (where - mean) / sxx;  // line's weight
-        v += a * s2[i];
-        for (int j = 0; j < 3; ++j) to[i - 1 + j] += sign * a * w2[i][j];
+      for (long i = from; i < from + m; ++i) mean += at_[i] / m;
+      for (long i = from; i < from + m; ++i) sxx += (at_[i] - mean) * (at_[i] - mean);
+      mean_at_[from] = mean;
+      spread_[from] = sxx;
+    }
+    for (long k = m + 1; k + m + 2 < n_; ++k) {
+      const double mid = 0.5 * (x[k] + x[k + 1]);
+      jump_[k] = Side(k + 2, mid, 1.0, nullptr) - Side(k - m, mid, -1.0, nullptr);
+      for (long i = k; i <= k + 1; ++i) {
+        spike_[k] += s2_[i] - 0.5 * (Side(k + 2, at_[i], -0.5, nullptr) +
+                                     Side(k - m, at_[i], -0.5, nullptr));
       }
-      return v;
-    };
-    const double mid = 0.5 * (x[k] + x[k + 1]);
-    jump[k] = side(k + 2, mid, 1.0, wy) - side(k - m, mid, -1.0, wy);
-    for (long i = k; i <= k + 1; ++i) {
-      spike[k] += s2[i] - 0.5 * (side(k + 2, at[i], -0.5, wc) + side(k - m, at[i], -0.5, wc));
-      for (int j = 0; j < 3; ++j) wc[i - 1 + j] += w2[i][j];
     }
-    double w = 0.0, c = 0.0;
-    for (long i = k - m - 1; i < k + m + 3; ++i) {
-      w += wy[i] * wy[i];
-      c += wc[i] * wc[i];
-    }
-    noise[k] = sigma_m * std::sqrt(w);
-    spike_noise[k] = sigma_m * std::sqrt(c);
   }
-  const double tail = TailSigmas(n, kBreakSigmas);
-  // Stands out: above its noise, and above the smooth level around it.
-  auto stands_out = [&](const std::vector<double>& v, const std::vector<double>& v_noise, long k) {
+
+  // The intervals whose Ĵ or Ĉ stands out.
+  std::vector<long> Flagged() {
+    std::vector<long> flagged;
+    for (long k = m + 1 + d + 3; k + m + 2 + d + 3 < n_; ++k) {
+      if (StandsOut(jump_, true, k) || StandsOut(spike_, false, k)) flagged.push_back(k);
+    }
+    return flagged;
+  }
+
+  const std::vector<double>& jump() const { return jump_; }
+  const std::vector<double>& spike() const { return spike_; }
+  double tail() const { return tail_; }
+
+ private:
+  // The line through s2[from … from+m) at `where`; with `to`, its weights on the readings are
+  // added there (times `sign`).
+  double Side(long from, double where, double sign, std::vector<double>* to) const {
+    const double mean = mean_at_[from], sxx = spread_[from];
+    double v = 0.0;
+    for (long i = from; i < from + m; ++i) {
+      const double a = 1.0 / m + (at_[i] - mean) * (where - mean) / sxx;  // line's weight
+      v += a * s2_[i];
+      if (to)
+        for (int j = 0; j < 3; ++j) (*to)[i - 1 + j] += sign * a * w2_[i][j];
+    }
+    return v;
+  }
+
+  // The noise of Ĵ_k (or Ĉ_k): σ times the norm of its weights on the readings.
+  double Noise(long k, bool of_jump) {
+    std::vector<double>& to = of_jump ? wy_ : wc_;
+    std::fill(to.begin() + (k - m - 1), to.begin() + (k + m + 3), 0.0);
+    const double mid = 0.5 * (x_[k] + x_[k + 1]);
+    if (of_jump) {
+      Side(k + 2, mid, 1.0, &to);
+      Side(k - m, mid, -1.0, &to);
+    } else {
+      for (long i = k; i <= k + 1; ++i) {
+        Side(k + 2, at_[i], -0.5, &to);
+        Side(k - m, at_[i], -0.5, &to);
+        for (int j = 0; j < 3; ++j) to[i - 1 + j] += w2_[i][j];
+      }
+    }
+    double w = 0.0;
+    for (long i = k - m - 1; i < k + m + 3; ++i) w += to[i] * to[i];
+    return sigma_m_ * std::sqrt(w);
+  }
+
+  // Stands out: above the smooth level around it, and above its noise (asked only then).
+  bool StandsOut(const std::vector<double>& v, bool of_jump, long k) {
     double around[8];
     for (long j = 0; j < 4; ++j) {
       around[2 * j] = std::abs(v[k - d - j]);
@@ -120,15 +165,108 @@ std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vecto
     // zero on one side (a few) does not move it.
     std::nth_element(around, around + 4, around + 8);
     const double smooth = around[4];
-    return std::abs(v[k]) > tail * v_noise[k] && std::abs(v[k]) > kBreakOverSmooth * smooth;
-  };
-  std::vector<long> flagged;
-  for (long k = m + 1 + d + 3; k + m + 2 + d + 3 < n; ++k) {
-    if (stands_out(jump, noise, k) || stands_out(spike, spike_noise, k)) flagged.push_back(k);
+    return std::abs(v[k]) > kBreakOverSmooth * smooth && std::abs(v[k]) > tail_ * Noise(k, of_jump);
   }
+
+  const std::vector<double>& x_;
+  long n_;
+  double sigma_m_;
+  std::vector<double> s2_, at_;
+  std::vector<std::array<double, 3>> w2_;
+  std::vector<double> mean_at_, spread_, jump_, spike_;
+  std::vector<double> wy_, wc_;  // Noise's weights, zeroed where used
+  double tail_;
+};
+
+// The interval near `around` whose two sides' cubics fit their readings best: the readings of a
+// side all lie on it there.
+long BestInterval(const std::vector<double>& x, const std::vector<double>& y, long around) {
+  const long p = kBreakFitPoints, n = static_cast<long>(x.size());
+  double best = std::numeric_limits<double>::infinity();
+  long k = around;
+  for (long kk = around - 2; kk <= around + 2; ++kk) {
+    if (kk - p + 1 < 0 || kk + p >= n) continue;
+    const double h = x[kk + 1] - x[kk], c = 0.5 * (x[kk] + x[kk + 1]);
+    double left_ss = 0.0, right_ss = 0.0;
+    FitSide(x, y, kk - p + 1, kk + 1, c, h, &left_ss);
+    FitSide(x, y, kk + 1, kk + p + 1, c, h, &right_ss);
+    if (left_ss + right_ss < best) {
+      best = left_ss + right_ss;
+      k = kk;
+    }
+  }
+  return k;
+}
+
+// The break over interval k where the two sides' cubics meet: an s'' jump where their slopes
+// meet within half a step of it, else a corner (which must keep its size on twice the
+// readings); its jump above what the readings' noise or rounding can make. Else std::nullopt.
+std::optional<LiftBreak> SidesMeet(const std::vector<double>& x, const std::vector<double>& y,
+                                   long k, double sigma_m, double tail) {
+  const long p = kBreakFitPoints, n = static_cast<long>(x.size());
+  LiftBreak b;
+  const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+  const SideCubic left = FitSide(x, y, k - p + 1, k + 1, c, h);
+  const SideCubic right = FitSide(x, y, k + 1, k + p + 1, c, h);
+  const double lo = x[k] - 0.5 * h, hi = x[k + 1] + 0.5 * h;
+  const auto slopes =
+      RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); }, lo, hi);
+  if (slopes) {
+    b.order = 2;
+    b.crank_rad = *slopes;
+    b.jump = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
+  } else {
+    b.order = 1;
+    const auto lifts =
+        RootIn([&](double t) { return right.Value(t, 0) - left.Value(t, 0); }, lo, hi);
+    b.crank_rad = lifts.value_or(c);
+    b.jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
+    // A corner keeps its size when the sides' cubics take twice the readings; the slopes'
+    // disagreement across a kink of s'' (a smooth exact law's junction of s''') grows ~4×.
+    if (k - 2 * p + 1 >= 0 && k + 2 * p < n) {
+      const SideCubic wide_left = FitSide(x, y, k - 2 * p + 1, k + 1, c, h);
+      const SideCubic wide_right = FitSide(x, y, k + 1, k + 2 * p + 1, c, h);
+      const double wide = wide_right.Value(b.crank_rad, 1) - wide_left.Value(b.crank_rad, 1);
+      if (!(std::abs(wide - b.jump) <= 0.25 * std::abs(b.jump))) return std::nullopt;
+    }
+  }
+  b.lift_m = 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
+  const double jump_noise =
+      sigma_m * std::hypot(DerivativeNoise(x, k - p + 1, k + 1, c, h, b.crank_rad, b.order),
+                           DerivativeNoise(x, k + 1, k + p + 1, c, h, b.crank_rad, b.order));
+  if (!(std::abs(b.jump) > tail * jump_noise)) return std::nullopt;
+  return b;
+}
+
+// A jump, not a steep but smooth change over a few readings (a jerk-limited law's ramp of s''):
+// the two sides' cubics fit their readings kBreakOverSmooth times better than one cubic fits
+// them all.
+bool SidesFitApart(const std::vector<double>& x, const std::vector<double>& y, long k,
+                   double sigma_m, double tail) {
+  const long p = kBreakFitPoints;
+  const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+  double left_ss = 0.0, right_ss = 0.0, joint_ss = 0.0;
+  FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
+  FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
+  FitSide(x, y, k - p + 1, k + p + 1, c, h, &joint_ss);
+  const double sides = std::sqrt((left_ss + right_ss) / (2 * p - 8));
+  const double joint = std::sqrt(joint_ss / (2 * p - 4));
+  return kBreakOverSmooth * sides < joint && joint > tail * sigma_m;
+}
+
+}  // namespace
+
+std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vector<double>& y,
+                                  double sigma_m) {
+  std::vector<LiftBreak> found;
+  const long n = static_cast<long>(x.size());
+  const long m = BreakStatistics::m, d = BreakStatistics::d, p = kBreakFitPoints;
+  if (n != static_cast<long>(y.size()) || n < 2 * (m + d + 6) + 2) return found;
+  BreakStatistics stats(x, y, sigma_m);
+  const std::vector<long> flagged = stats.Flagged();
+  const std::vector<double>&jump = stats.jump(), &spike = stats.spike();
   // Runs of flagged intervals (a break at a reading flags the two beside it, its neighbours see
   // a part of it): the largest |Ĵ| of each run is the break's interval.
-  const long p = kBreakFitPoints;
   for (size_t r = 0; r < flagged.size();) {
     size_t e = r;
     long k = flagged[r];
@@ -140,73 +278,11 @@ std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vecto
       }
     }
     r = e + 1;
-    LiftBreak b;
-    // The interval is the one near the run's whose two sides' cubics fit their readings best:
-    // the readings of a side all lie on it there.
-    {
-      double best = std::numeric_limits<double>::infinity();
-      const long around = k;
-      for (long kk = around - 2; kk <= around + 2; ++kk) {
-        if (kk - p + 1 < 0 || kk + p >= n) continue;
-        const double h = x[kk + 1] - x[kk], c = 0.5 * (x[kk] + x[kk + 1]);
-        double left_ss = 0.0, right_ss = 0.0;
-        FitSide(x, y, kk - p + 1, kk + 1, c, h, &left_ss);
-        FitSide(x, y, kk + 1, kk + p + 1, c, h, &right_ss);
-        if (left_ss + right_ss < best) {
-          best = left_ss + right_ss;
-          k = kk;
-        }
-      }
-    }
+    k = BestInterval(x, y, k);
     if (k - p + 1 < 0 || k + p >= n) continue;
-    {
-      const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
-      const SideCubic left = FitSide(x, y, k - p + 1, k + 1, c, h);
-      const SideCubic right = FitSide(x, y, k + 1, k + p + 1, c, h);
-      // Equal slopes within half a step of the interval: s'' jumps; else a corner there.
-      const double lo = x[k] - 0.5 * h, hi = x[k + 1] + 0.5 * h;
-      const auto slopes =
-          RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); }, lo, hi);
-      if (slopes) {
-        b.order = 2;
-        b.crank_rad = *slopes;
-        b.jump = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
-      } else {
-        b.order = 1;
-        const auto lifts =
-            RootIn([&](double t) { return right.Value(t, 0) - left.Value(t, 0); }, lo, hi);
-        b.crank_rad = lifts.value_or(c);
-        b.jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
-        // A corner keeps its size when the sides' cubics take twice the readings; the slopes'
-        // disagreement across a kink of s'' (a smooth exact law's junction of s''') grows ~4×.
-        if (k - 2 * p + 1 >= 0 && k + 2 * p < n) {
-          const SideCubic wide_left = FitSide(x, y, k - 2 * p + 1, k + 1, c, h);
-          const SideCubic wide_right = FitSide(x, y, k + 1, k + 2 * p + 1, c, h);
-          const double wide = wide_right.Value(b.crank_rad, 1) - wide_left.Value(b.crank_rad, 1);
-          if (!(std::abs(wide - b.jump) <= 0.25 * std::abs(b.jump))) continue;
-        }
-      }
-      b.lift_m = 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
-      // The jump stands above what the readings' noise or rounding can make of it.
-      const double jump_noise =
-          sigma_m * std::hypot(DerivativeNoise(x, k - p + 1, k + 1, c, h, b.crank_rad, b.order),
-                               DerivativeNoise(x, k + 1, k + p + 1, c, h, b.crank_rad, b.order));
-      if (!(std::abs(b.jump) > tail * jump_noise)) continue;
-    }
-    if (k - p + 1 < 0 || k + p >= n) continue;
-    // A jump, not a steep but smooth change over a few readings (a jerk-limited law's ramp of
-    // s''): the two sides' cubics fit their readings kBreakOverSmooth times better than one
-    // cubic fits them all.
-    {
-      const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
-      double left_ss = 0.0, right_ss = 0.0, joint_ss = 0.0;
-      FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
-      FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
-      FitSide(x, y, k - p + 1, k + p + 1, c, h, &joint_ss);
-      const double sides = std::sqrt((left_ss + right_ss) / (2 * p - 8));
-      const double joint = std::sqrt(joint_ss / (2 * p - 4));
-      if (!(kBreakOverSmooth * sides < joint && joint > tail * sigma_m)) continue;
-    }
+    std::optional<LiftBreak> met = SidesMeet(x, y, k, sigma_m, stats.tail());
+    if (!met || !SidesFitApart(x, y, k, sigma_m, stats.tail())) continue;
+    LiftBreak b = *met;
     // An s'' jump is measured alike by the lines of s2 and by the cubics; a jump of s''' (a
     // kink of s'', which the lines see as J₃·h and the cubics as nothing) is no break here.
     if (b.order == 2 && !(std::abs(b.jump - jump[k]) <= kBreakJumpAgreement * std::abs(jump[k])))

@@ -253,6 +253,45 @@ std::pair<Extremum, Extremum> LiftLaw::Extrema(int order) const {
   // Candidates: both sides of every break, and the interior roots of the next derivative
   // on each piece (found by sampling, then TOMS 748 to machine precision).
   const auto& x = spline_.breaks();
+  const auto& c = spline_.coefficients();
+  const int degree = spline_.degree();
+  // The polynomial of piece i (its `k`th derivative), also at its right end.
+  auto piece_value = [&](size_t i, double t, int k) {
+    const double dt = t - x[i];
+    double v = 0.0;
+    for (int m = degree; m >= k; --m) {
+      double falling = 1.0;
+      for (int j = 0; j < k; ++j) falling *= (m - j);
+      v = v * dt + falling * c(static_cast<Eigen::Index>(i), m);
+    }
+    return v;
+  };
+  // The least and largest value at the pieces' ends: an interior candidate of a piece whose
+  // values all lie strictly between them can be neither extreme, and its roots are not sought.
+  double end_lo = spline_.Evaluate(x.front(), order), end_hi = end_lo;
+  for (size_t i = 0; i + 1 < x.size(); ++i) {
+    for (const double t : {x[i], x[i + 1]}) {
+      const double v = piece_value(i, t, order);
+      end_lo = std::min(end_lo, v);
+      end_hi = std::max(end_hi, v);
+    }
+  }
+  // The piece's values lie within its value at the left end ± Σ |coefficient| · width^power.
+  auto within_ends = [&](size_t i) {
+    const double width = x[i + 1] - x[i];
+    double reach = 0.0, scale = 0.0, power = 1.0;
+    for (int m = order; m <= degree; ++m) {
+      double falling = 1.0;
+      for (int j = 0; j < order; ++j) falling *= (m - j);
+      const double term = std::abs(falling * c(static_cast<Eigen::Index>(i), m)) * power;
+      if (m > order) reach += term;
+      scale += term;
+      power *= width;
+    }
+    const double left = piece_value(i, x[i], order);
+    reach += 1e-12 * scale;  // the roundoff of an evaluation
+    return left + reach < end_hi && left - reach > end_lo;
+  };
   Extremum lo{x.front(), spline_.Evaluate(x.front(), order)};
   Extremum hi = lo;
   auto consider = [&](double at, double value) {
@@ -262,32 +301,21 @@ std::pair<Extremum, Extremum> LiftLaw::Extrema(int order) const {
   const int samples = 16;
   for (size_t i = 0; i + 1 < x.size(); ++i) {
     const double a = x[i], b = x[i + 1];
-    // Evaluate inside the piece: the polynomial of piece i, also at its right end.
-    auto piece_value = [&](double t, int k) {
-      const auto& c = spline_.coefficients();
-      const double dt = t - a;
-      double v = 0.0;
-      for (int m = spline_.degree(); m >= k; --m) {
-        double falling = 1.0;
-        for (int j = 0; j < k; ++j) falling *= (m - j);
-        v = v * dt + falling * c(static_cast<Eigen::Index>(i), m);
-      }
-      return v;
-    };
-    consider(a, piece_value(a, order));
-    consider(b, piece_value(b, order));
-    auto slope = [&](double t) { return piece_value(t, order + 1); };
+    consider(a, piece_value(i, a, order));
+    consider(b, piece_value(i, b, order));
+    if (within_ends(i)) continue;
+    auto slope = [&](double t) { return piece_value(i, t, order + 1); };
     double t0 = a, s0 = slope(a);
     for (int k = 1; k <= samples; ++k) {
       const double t1 = a + (b - a) * k / samples;
       const double s1 = slope(t1);
-      if (s0 == 0.0) consider(t0, piece_value(t0, order));
+      if (s0 == 0.0) consider(t0, piece_value(i, t0, order));
       if (s0 * s1 < 0.0) {
         std::uintmax_t it = 60;
         const auto r = boost::math::tools::toms748_solve(
             slope, t0, t1, s0, s1, boost::math::tools::eps_tolerance<double>(50), it);
         const double root = 0.5 * (r.first + r.second);
-        consider(root, piece_value(root, order));
+        consider(root, piece_value(i, root, order));
       }
       t0 = t1;
       s0 = s1;

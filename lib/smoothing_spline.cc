@@ -9,10 +9,12 @@
 // R_{j,j+1} = h_j/6. The weighted residual Σ w (y − f)² grows monotonically with λ from 0
 // (interpolation) to that of the least-squares line (λ → ∞).
 #include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <array>
 #include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "lib/linear_solve.h"
@@ -20,6 +22,11 @@
 
 namespace needle {
 namespace {
+
+// The discrepancy principle's root is taken where the residual is within this fraction of its
+// target, N+1: below the χ² spread √(2(N+1)) for N < 2e8, and above the roundoff of the residual
+// on a table of 1e6 readings (about ±200, ≈ 2e-4 of N: the root search there chased it).
+constexpr double kDiscrepancyTolerance = 1e-4;
 
 struct Fit {
   Eigen::VectorXd f;      // fitted values
@@ -34,6 +41,8 @@ class SmoothingProblem {
     y_ = Eigen::Map<const Eigen::VectorXd>(y.data(), n_ + 1);
     h_.resize(n_);
     for (int i = 0; i < n_; ++i) h_[i] = x[i + 1] - x[i];
+    inv_h_.resize(n_);
+    for (int i = 0; i < n_; ++i) inv_h_[i] = 1.0 / h_[i];
   }
 
   // Qᵀ v for v of length N+1: (Qᵀv)_j = v_{j−1}/h_{j−1} − v_j(1/h_{j−1} + 1/h_j) + v_{j+1}/h_j.
@@ -45,20 +54,26 @@ class SmoothingProblem {
     return out;
   }
 
-  // Q γ for γ of length N−1 (interior knots 1..N−1).
-  Eigen::VectorXd QTimes(const Eigen::VectorXd& g) const {
-    Eigen::VectorXd out = Eigen::VectorXd::Zero(n_ + 1);
+  // Q γ for γ of length N−1 (interior knots 1..N−1), into `out` (length N+1).
+  void QTimes(const Eigen::VectorXd& g, Eigen::VectorXd& out) const {
+    out.setZero(n_ + 1);
     for (int j = 1; j < n_; ++j) {
-      out(j - 1) += g(j - 1) / h_[j - 1];
-      out(j) -= g(j - 1) * (1.0 / h_[j - 1] + 1.0 / h_[j]);
-      out(j + 1) += g(j - 1) / h_[j];
+      const double a = g(j - 1) * inv_h_[j - 1], b = g(j - 1) * inv_h_[j];
+      out(j - 1) += a;
+      out(j) -= a + b;
+      out(j + 1) += b;
     }
+  }
+  Eigen::VectorXd QTimes(const Eigen::VectorXd& g) const {
+    Eigen::VectorXd out;
+    QTimes(g, out);
     return out;
   }
 
-  // Triplets of R + λ Qᵀ W⁻¹ Q (pentadiagonal), W⁻¹ = σ² I.
-  std::vector<Eigen::Triplet<double>> Matrix(double lambda) const {
+  // Triplets of R + c QᵀQ (pentadiagonal), c = λσ² (W⁻¹ = σ² I); R left out if !with_r.
+  std::vector<Eigen::Triplet<double>> Matrix(double c, bool with_r = true) const {
     std::vector<Eigen::Triplet<double>> a;
+    a.reserve(8 * static_cast<size_t>(n_));
     const int m = n_ - 1;
     auto q = [&](int row, int col) -> double {  // Q_{row,col}, col = interior index 1..N−1
       if (row == col - 1) return 1.0 / h_[col - 1];
@@ -67,22 +82,23 @@ class SmoothingProblem {
       return 0.0;
     };
     for (int j = 1; j <= m; ++j) {
-      a.emplace_back(j - 1, j - 1, (h_[j - 1] + h_[j]) / 3.0);
-      if (j < m) {
+      if (with_r) a.emplace_back(j - 1, j - 1, (h_[j - 1] + h_[j]) / 3.0);
+      if (with_r && j < m) {
         a.emplace_back(j - 1, j, h_[j] / 6.0);
         a.emplace_back(j, j - 1, h_[j] / 6.0);
       }
       for (int k = std::max(1, j - 2); k <= std::min(m, j + 2); ++k) {
         double s = 0.0;  // (QᵀQ)_{jk} = Σ_r Q_{r,j} Q_{r,k}
         for (int r = std::max(0, j - 1); r <= std::min(n_, j + 1); ++r) s += q(r, j) * q(r, k);
-        if (s != 0.0) a.emplace_back(j - 1, k - 1, lambda * sigma2_ * s);
+        if (s != 0.0) a.emplace_back(j - 1, k - 1, c * s);
       }
     }
     return a;
   }
 
-  Fit Solve(double lambda) const {
-    Eigen::VectorXd g;
+  // The fit for λ, into `fit` (whose storage is reused: a large table's solves allocate once).
+  void Solve(double lambda, Fit& fit) const {
+    Eigen::VectorXd& g = g_;
     if (n_ - 1 <= kDense) {
       // Small tables: R and QᵀQ are formed once; each λ is one Cholesky of a dense SPD matrix.
       if (r_.size() == 0) FormDense();
@@ -91,24 +107,21 @@ class SmoothingProblem {
       if (llt.info() != Eigen::Success) throw std::runtime_error("smoothing spline: LLT failed");
       g = llt.solve(qty_);
     } else {
-      // Large tables: R and QᵀQ are formed once, sparse and of one pattern; each λ is one
-      // factorisation of the pentadiagonal SPD matrix by LDLᵀ in its natural order (no fill
-      // outside the band: O(N)), its symbolic analysis done once.
-      if (a_.size() == 0) FormSparse();
-      const double c = lambda * sigma2_;
-      for (Eigen::Index k = 0; k < a_.nonZeros(); ++k)
-        a_.valuePtr()[k] = r_values_[k] + c * q_values_[k];
-      ldlt_.factorize(a_);
-      if (ldlt_.info() != Eigen::Success) throw std::runtime_error("smoothing spline: LDLT failed");
-      g = ldlt_.solve(qty_);
+      // Large tables: R and QᵀQ are formed once as their three bands; each λ is one LDLᵀ of
+      // the pentadiagonal SPD matrix in its natural order (Reinsch; no fill outside the band).
+      if (band_r_[0].empty()) FormBands();
+      SolveBanded(lambda * sigma2_, g);
       if (!g.allFinite()) throw std::runtime_error("smoothing spline: the solution is not finite");
     }
-
-    Fit fit;
-    fit.f = y_ - lambda * sigma2_ * QTimes(g);  // f = y − λW⁻¹Qγ
-    fit.gamma = Eigen::VectorXd::Zero(n_ + 1);
+    QTimes(g, qg_);
+    fit.f = y_ - lambda * sigma2_ * qg_;  // f = y − λW⁻¹Qγ
+    fit.gamma.setZero(n_ + 1);
     fit.gamma.segment(1, n_ - 1) = g;
     fit.residual = (y_ - fit.f).squaredNorm() / sigma2_;
+  }
+  Fit Solve(double lambda) const {
+    Fit fit;
+    Solve(lambda, fit);
     return fit;
   }
 
@@ -116,7 +129,7 @@ class SmoothingProblem {
   double Gcv(double lambda) const {
     const int m = n_ - 1;
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
-    for (const auto& t : Matrix(lambda)) a(t.row(), t.col()) += t.value();
+    for (const auto& t : Matrix(lambda * sigma2_)) a(t.row(), t.col()) += t.value();
     Eigen::MatrixXd q = Eigen::MatrixXd::Zero(n_ + 1, m);
     for (int j = 0; j < m; ++j) {
       Eigen::VectorXd e = Eigen::VectorXd::Zero(m);
@@ -187,33 +200,68 @@ class SmoothingProblem {
     qty_ = QtTimes(y_);
   }
 
-  // A = R + λσ²QᵀQ's pattern, and R's and QᵀQ's values in its storage order.
-  void FormSparse() const {
+  // R's and QᵀQ's diagonals 0, 1 and 2 below the main one: band[d][j] = A(j, j − d).
+  void FormBands() const {
     const int m = n_ - 1;
-    const std::vector<Eigen::Triplet<double>> r = Matrix(0.0), rq = Matrix(1.0 / sigma2_);
-    a_.resize(m, m);
-    a_.setFromTriplets(r.begin(), r.end());  // R, with QᵀQ's pattern held as zeros
-    r_values_.assign(a_.valuePtr(), a_.valuePtr() + a_.nonZeros());
-    a_.setFromTriplets(rq.begin(), rq.end());  // R + QᵀQ: the same triplets' positions
-    q_values_.resize(r_values_.size());
-    for (size_t k = 0; k < q_values_.size(); ++k) q_values_[k] = a_.valuePtr()[k] - r_values_[k];
-    ldlt_.analyzePattern(a_);
+    for (int d = 0; d < 3; ++d) {
+      band_r_[d].assign(m, 0.0);
+      band_q_[d].assign(m, 0.0);
+    }
+    for (const auto& t : Matrix(0.0))
+      if (t.row() >= t.col()) band_r_[t.row() - t.col()][t.row()] += t.value();
+    for (const auto& t : Matrix(1.0, false))
+      if (t.row() >= t.col()) band_q_[t.row() - t.col()][t.row()] += t.value();
     qty_ = QtTimes(y_);
+  }
+
+  // Solves (R + c QᵀQ) γ = Qᵀy by LDLᵀ of the pentadiagonal matrix, into g: O(N).
+  void SolveBanded(double c, Eigen::VectorXd& g) const {
+    const int m = n_ - 1;
+    // D (as its inverse) and L's two subdiagonals; row j: l2_j = a2_j / d_{j−2},
+    // l1_j = (a1_j − l2_j l1_{j−1} d_{j−2}) / d_{j−1}, d_j = a0_j − l1_j² d_{j−1} − l2_j² d_{j−2}.
+    std::vector<double>&inv_d = dd_, &l1 = l1_, &l2 = l2_;
+    inv_d.assign(m + 2, 0.0);  // two leading zero rows stand for j − 1, j − 2 < 0
+    l1.assign(m + 2, 0.0);
+    l2.assign(m + 2, 0.0);
+    double d1 = 0.0, d2 = 0.0;  // d_{j−1}, d_{j−2}
+    for (int j = 0; j < m; ++j) {
+      const int r = j + 2;
+      const double a0 = band_r_[0][j] + c * band_q_[0][j];
+      const double a1 = band_r_[1][j] + c * band_q_[1][j];  // 0 for j < 1
+      const double a2 = band_r_[2][j] + c * band_q_[2][j];  // 0 for j < 2
+      l2[r] = a2 * inv_d[r - 2];
+      l1[r] = (a1 - l2[r] * l1[r - 1] * d2) * inv_d[r - 1];
+      const double d = a0 - l1[r] * l1[r] * d1 - l2[r] * l2[r] * d2;
+      if (!(d > 0.0)) throw std::runtime_error("smoothing spline: LDLT failed");
+      inv_d[r] = 1.0 / d;
+      d2 = d1;
+      d1 = d;
+    }
+    g.resize(m);
+    double z1 = 0.0, z2 = 0.0;
+    for (int j = 0; j < m; ++j) {  // L z = b, then D⁻¹ z
+      const double z = qty_(j) - l1[j + 2] * z1 - l2[j + 2] * z2;
+      z2 = z1;
+      z1 = z;
+      g(j) = z * inv_d[j + 2];
+    }
+    if (m >= 2) g(m - 2) -= l1[m + 1] * g(m - 1);  // Lᵀ x = D⁻¹ z
+    for (int j = m - 3; j >= 0; --j) {
+      g(j) -= l1[j + 3] * g(j + 1) + l2[j + 4] * g(j + 2);
+    }
   }
 
   mutable Eigen::MatrixXd r_, qtq_;
   mutable Eigen::VectorXd qty_;
-  mutable Eigen::SparseMatrix<double> a_;
-  mutable std::vector<double> r_values_, q_values_;
-  mutable Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
-                                Eigen::NaturalOrdering<int>>
-      ldlt_;
+  mutable std::array<std::vector<double>, 3> band_r_, band_q_;
+  mutable std::vector<double> dd_, l1_, l2_;  // SolveBanded's factors, kept between solves
+  mutable Eigen::VectorXd g_, qg_;            // γ and Qγ of the last solve
 
   std::vector<double> x_;
   int n_;
   double sigma2_;
   Eigen::VectorXd y_;
-  std::vector<double> h_;
+  std::vector<double> h_, inv_h_;  // knot spacings and their inverses
 };
 
 }  // namespace
@@ -230,19 +278,32 @@ PiecewisePolynomial BuildSmoothingSpline(const std::vector<double>& x, const std
   }
   const double target = problem.points();  // discrepancy principle: Σ((y − f)/σ)² = N+1
   if (problem.LineResidual() <= target) return problem.Line();  // even a line fits within σ
+  // A residual within kDiscrepancyTolerance of the target is the root (TOMS 748 stops at an
+  // exact zero).
+  const double tolerance = kDiscrepancyTolerance * target;
+  Fit last;  // the fit of the λ solved last: the root's, when the search ends
+  double last_log_lambda = std::numeric_limits<double>::quiet_NaN();
   auto excess = [&](double log_lambda) {
-    return problem.Solve(scale * std::pow(10.0, log_lambda)).residual - target;
+    problem.Solve(scale * std::pow(10.0, log_lambda), last);
+    last_log_lambda = log_lambda;
+    const double e = last.residual - target;
+    return std::abs(e) <= tolerance ? 0.0 : e;
   };
   // Bracket the root in log10(λ/scale), then TOMS 748.
-  double lo = -2.0, hi = 2.0;
+  double lo = -2.0, hi = 2.0, e_lo = excess(lo), e_hi = 0.0;
   int guard = 0;
-  while (excess(lo) > 0.0 && guard++ < 60) lo -= 2.0;
-  while (excess(hi) < 0.0 && guard++ < 120) hi += 2.0;
+  while (e_lo > 0.0 && guard++ < 60) e_lo = excess(lo -= 2.0);
+  if (e_lo == 0.0) return problem.Spline(last);
+  e_hi = excess(hi);
+  while (e_hi < 0.0 && guard++ < 120) e_hi = excess(hi += 2.0);
   if (guard >= 120) throw std::runtime_error("smoothing spline: could not bracket λ");
+  if (e_hi == 0.0) return problem.Spline(last);
   std::uintmax_t iterations = 100;
   const auto root = boost::math::tools::toms748_solve(
-      excess, lo, hi, boost::math::tools::eps_tolerance<double>(40), iterations);
-  return problem.Spline(problem.Solve(scale * std::pow(10.0, 0.5 * (root.first + root.second))));
+      excess, lo, hi, e_lo, e_hi, boost::math::tools::eps_tolerance<double>(40), iterations);
+  const double at = 0.5 * (root.first + root.second);
+  if (at == last_log_lambda) return problem.Spline(last);
+  return problem.Spline(problem.Solve(scale * std::pow(10.0, at)));
 }
 
 }  // namespace needle

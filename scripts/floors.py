@@ -48,7 +48,6 @@ LONG_FUNCTIONS = {
     "dynamics/overspeed.cc OverspeedSearch": 227,
     "dynamics/solver/event_driver.cc EventDriver::Run": 223,
     "apps/bench/bench_studies.cc RunTargets": 170,
-    "lib/lift_breaks.cc FindBreaks": 168,
     "apps/bench/bench_studies.cc RunOverspeedComparison": 138,
     "apps/bench/bench_dynamics.cc RunDynamics": 129,
     "lib/toml_text.cc Step": 127,

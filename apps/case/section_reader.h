@@ -174,8 +174,11 @@ class SectionReader {
       const std::string key(k.str());
       if (!used_.count(key)) Fail(key, "unknown key in this section");
     }
+    const std::string* last_name = nullptr;  // an array's entries share one name: one lookup
+    const RangedKey* ranged = nullptr;
     for (const ReadValue& v : read_) {
-      const RangedKey* ranged = FindRangedKey(section_, v.name);
+      if (!last_name || v.name != *last_name) ranged = FindRangedKey(section_, v.name);
+      last_name = &v.name;
       if (!ranged) continue;
       const PlausibleRange& range = *ranged->range;
       if (v.table_entry || ranged->upper_only) {

@@ -683,6 +683,26 @@ TEST(LiftCsvTest, SpreadsheetSeparators) {
             "m.csv:2:2: '1,2,3' is not a number (column lift_mm)");
 }
 
+// The fast reader (std::from_chars) and strtod read every number form alike: a sign '+', a
+// leading or trailing point, exponents, hex and a zero; and an underflow is refused as before.
+TEST(LiftCsvTest, NumberFormsReadAsStrtodReadsThem) {
+  const std::vector<std::string> forms = {
+      "+0.5", ".25",    "5.", "1e-3",      "-1.5E+2",           "0.0000",
+      "-0",   "0x1p-3", "7",  "0.1234567", "12.345678901234567"};
+  for (const std::string& form : forms) {
+    SCOPED_TRACE(form);
+    const LiftTable t =
+        ParseLiftCsv("crank_deg,lift_um\n0,0\n1," + form + "\n", "m.csv", EngineCycle::kFourStroke);
+    EXPECT_EQ(t.lift_m[1], std::strtod(form.c_str(), nullptr) * 1e-6);
+  }
+  EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1e-400\n"),
+            "m.csv:3:2: '1e-400' is not a finite number (column lift_mm)");
+  EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,+-1\n"),
+            "m.csv:3:2: '+-1' is not a number (column lift_mm)");
+  EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1.5x\n"),
+            "m.csv:3:2: '1.5x' is not a number (column lift_mm)");
+}
+
 TEST(LiftCsvTest, UnitsAndCamAngles) {
   const LiftTable t = ParseLiftCsv("cam_deg,lift_um\n# note\n\n0,0\n5,100\n10,0\n", "m.csv",
                                    EngineCycle::kFourStroke);

@@ -231,14 +231,14 @@ TEST(SplineTest, SmoothingMeetsTheDiscrepancyPrinciple) {
   const auto s = BuildSpline(x, y, o);
   const auto [r, err, raw] =
       SmoothingSums(x, y, sigma, s, [](double t) { return std::sin(2 * t); });
-  EXPECT_NEAR(r, 41.0, 1e-6);
+  EXPECT_NEAR(r, 41.0, 1e-4 * 41.0);  // the root search stops within 1e-4 of N+1
   EXPECT_LT(err, raw);  // the smoothed values are nearer the truth than the data
   EXPECT_EQ(s.continuity(), 2);
   EXPECT_NEAR(s.Evaluate(x.front(), 2), 0.0, 1e-9);  // natural ends
 }
 
-// Past 64 knots the smoothing system is solved sparse (LDLᵀ in its natural order, R and QᵀQ
-// formed once): on 2,001 noisy samples the fit still meets the discrepancy principle, its ends
+// Past 64 knots the smoothing system is solved banded (LDLᵀ of the pentadiagonal matrix, R and
+// QᵀQ formed once): on 2,001 noisy samples the fit still meets the discrepancy principle, its ends
 // are natural, and it is nearer the truth than the data.
 TEST(SplineTest, SmoothingOfALargeTableMeetsTheDiscrepancyPrinciple) {
   std::vector<double> x, y;
@@ -255,7 +255,7 @@ TEST(SplineTest, SmoothingOfALargeTableMeetsTheDiscrepancyPrinciple) {
   const auto s = BuildSpline(x, y, o);
   const auto [r, err, raw] =
       SmoothingSums(x, y, sigma, s, [](double t) { return std::sin(3 * t); });
-  EXPECT_NEAR(r, 2001.0, 1e-5);
+  EXPECT_NEAR(r, 2001.0, 1e-4 * 2001.0);
   EXPECT_LT(err, 0.1 * raw);
   // The solve is the smoothing system's: the cubic through the fitted values with the solved
   // second derivatives has a continuous slope at every knot (Qᵀf = Rγ), which a wrong solve breaks.
