@@ -232,7 +232,7 @@ TEST(SplineTest, SmoothingMeetsTheDiscrepancyPrinciple) {
   const auto [r, err, raw] =
       SmoothingSums(x, y, sigma, s, [](double t) { return std::sin(2 * t); });
   EXPECT_NEAR(r, 41.0, 1e-4 * 41.0);  // the root search stops within 1e-4 of N+1
-  EXPECT_LT(err, raw);  // the smoothed values are nearer the truth than the data
+  EXPECT_LT(err, raw);                // the smoothed values are nearer the truth than the data
   EXPECT_EQ(s.continuity(), 2);
   EXPECT_NEAR(s.Evaluate(x.front(), 2), 0.0, 1e-9);  // natural ends
 }
