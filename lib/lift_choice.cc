@@ -375,7 +375,11 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
   } else if (dense) {
     SetEstimatedNoise(o, &c);
   } else {
-    c.noise_m = o.resolution_m.value_or(1e-5) / std::sqrt(12.0);  // the paper's 0.01 mm
+    // A sparse table's rounding: as stated, else the digits its lifts are printed to (the
+    // paper's 0.01 mm when they are not decimal millimetres). Its band's noise is this σ.
+    const std::optional<double> q =
+        o.resolution_m ? o.resolution_m : PrintedResolution(c.table.lift_m);
+    c.noise_m = q.value_or(1e-5) / std::sqrt(12.0);
     c.noise_source = "rounding";
   }
   c.law.spline.sigma = c.noise_m;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/spline_band.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -86,14 +87,23 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
-// The spline of one piece; a local fit's nodes are added to `nodes`.
+// The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
+// spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
                                const SplineOptions& options, std::vector<LocalNode>* nodes) {
-  if (options.kind != SplineKind::kLocal) return BuildSpline(x, y, options);
-  CheckSplineInputs(x, y, options);
-  LocalFit fit = FitLocal(x, y, options.sigma, options.quantized);
-  nodes->insert(nodes->end(), fit.nodes.begin(), fit.nodes.end());
-  return std::move(fit.law);
+  auto keep = [&](LocalFit fit) {
+    nodes->insert(nodes->end(), fit.nodes.begin(), fit.nodes.end());
+    return std::move(fit.law);
+  };
+  if (options.kind == SplineKind::kLocal || options.kind == SplineKind::kSmoothing) {
+    CheckSplineInputs(x, y, options);
+    return keep(options.kind == SplineKind::kLocal
+                    ? FitLocal(x, y, options.sigma, options.quantized)
+                    : BuildSmoothingFit(x, y, options));
+  }
+  PiecewisePolynomial law = BuildSpline(x, y, options);
+  std::vector<LocalNode> band = InterpolationNodes(x, y, options, law);
+  return keep(LocalFit{std::move(law), std::move(band)});
 }
 
 // The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i

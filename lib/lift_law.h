@@ -99,10 +99,11 @@ class LiftLaw {
   Extremum Max(int order) const;
   Extremum Min(int order) const;
   /// The 95 % band of the largest (`largest`) or smallest s'' over the open lift, m/rad²: the
-  /// extreme of the nodes' bands (lib/local_fit.h), and always holding Max(2) (Min(2)); none for
-  /// a law that is not a local fit.
+  /// extreme of the nodes' bands (lib/local_fit.h, lib/spline_band.h), and always holding
+  /// Max(2) (Min(2)); none for a law without nodes (pchip, makima, a table too short or too
+  /// long for an interpolating spline's band).
   std::optional<ExtremumBand> AccelerationBand(bool largest) const;
-  /// The local fit's nodes inside the open lift (empty for other kinds).
+  /// The nodes inside the open lift that carry the band of s'' (empty when there is none).
   const std::vector<LocalNode>& nodes() const { return nodes_; }
 
   const LiftTable& table() const { return table_; }

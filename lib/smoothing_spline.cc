@@ -19,6 +19,7 @@
 
 #include "lib/linear_solve.h"
 #include "lib/spline.h"
+#include "lib/spline_band.h"
 
 namespace needle {
 namespace {
@@ -96,23 +97,29 @@ class SmoothingProblem {
     return a;
   }
 
-  // The fit for λ, into `fit` (whose storage is reused: a large table's solves allocate once).
-  void Solve(double lambda, Fit& fit) const {
-    Eigen::VectorXd& g = g_;
+  // γ = (R + λσ²QᵀQ)⁻¹ rhs, into g.
+  void SolveSystem(double lambda, const Eigen::VectorXd& rhs, Eigen::VectorXd& g) const {
     if (n_ - 1 <= kDense) {
       // Small tables: R and QᵀQ are formed once; each λ is one Cholesky of a dense SPD matrix.
       if (r_.size() == 0) FormDense();
       const Eigen::MatrixXd a = r_ + (lambda * sigma2_) * qtq_;
       const Eigen::LLT<Eigen::MatrixXd> llt(a);
       if (llt.info() != Eigen::Success) throw std::runtime_error("smoothing spline: LLT failed");
-      g = llt.solve(qty_);
+      g = llt.solve(rhs);
     } else {
       // Large tables: R and QᵀQ are formed once as their three bands; each λ is one LDLᵀ of
       // the pentadiagonal SPD matrix in its natural order (Reinsch; no fill outside the band).
       if (band_r_[0].empty()) FormBands();
-      SolveBanded(lambda * sigma2_, g);
+      SolveBanded(lambda * sigma2_, rhs, g);
       if (!g.allFinite()) throw std::runtime_error("smoothing spline: the solution is not finite");
     }
+  }
+
+  // The fit for λ, into `fit` (whose storage is reused: a large table's solves allocate once).
+  void Solve(double lambda, Fit& fit) const {
+    Eigen::VectorXd& g = g_;
+    if (qty_.size() == 0) qty_ = QtTimes(y_);
+    SolveSystem(lambda, qty_, g);
     QTimes(g, qg_);
     fit.f = y_ - lambda * sigma2_ * qg_;  // f = y − λW⁻¹Qγ
     fit.gamma.setZero(n_ + 1);
@@ -185,6 +192,24 @@ class SmoothingProblem {
 
   int points() const { return n_ + 1; }
 
+  // A node at interior knot j of the fit for λ: s'' = γ_j, and its 95 % half-width
+  // 1.96 σ‖Q A⁻¹ e_j‖ + |γ_j(S f) − γ_j| (lib/spline_band.h).
+  LocalNode Node(double lambda, const Fit& fit, const PiecewisePolynomial& law, int j) const {
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(n_ - 1), g, qg, again;
+    unit(j - 1) = 1.0;
+    SolveSystem(lambda, unit, g);
+    QTimes(g, qg);
+    SolveSystem(lambda, QtTimes(fit.f), again);  // the fit smoothed once more
+    LocalNode node;
+    node.x = x_[j];
+    node.s[0] = fit.f(j);
+    node.s[1] = law.Evaluate(x_[j], 1);
+    node.s[2] = fit.gamma(j);
+    node.band2 = 1.96 * std::sqrt(sigma2_) * qg.norm() + std::abs(again(j - 1) - fit.gamma(j));
+    node.window = 1;
+    return node;
+  }
+
  private:
   static constexpr int kDense = 64;
 
@@ -214,8 +239,8 @@ class SmoothingProblem {
     qty_ = QtTimes(y_);
   }
 
-  // Solves (R + c QᵀQ) γ = Qᵀy by LDLᵀ of the pentadiagonal matrix, into g: O(N).
-  void SolveBanded(double c, Eigen::VectorXd& g) const {
+  // Solves (R + c QᵀQ) γ = rhs by LDLᵀ of the pentadiagonal matrix, into g: O(N).
+  void SolveBanded(double c, const Eigen::VectorXd& rhs, Eigen::VectorXd& g) const {
     const int m = n_ - 1;
     // D (as its inverse) and L's two subdiagonals; row j: l2_j = a2_j / d_{j−2},
     // l1_j = (a1_j − l2_j l1_{j−1} d_{j−2}) / d_{j−1}, d_j = a0_j − l1_j² d_{j−1} − l2_j² d_{j−2}.
@@ -240,7 +265,7 @@ class SmoothingProblem {
     g.resize(m);
     double z1 = 0.0, z2 = 0.0;
     for (int j = 0; j < m; ++j) {  // L z = b, then D⁻¹ z
-      const double z = qty_(j) - l1[j + 2] * z1 - l2[j + 2] * z2;
+      const double z = rhs(j) - l1[j + 2] * z1 - l2[j + 2] * z2;
       z2 = z1;
       z1 = z;
       g(j) = z * inv_d[j + 2];
@@ -266,44 +291,89 @@ class SmoothingProblem {
 
 }  // namespace
 
-PiecewisePolynomial BuildSmoothingSpline(const std::vector<double>& x, const std::vector<double>& y,
-                                         const SplineOptions& options) {
-  const SmoothingProblem problem(x, y, options.sigma);
+namespace {
+
+// The λ the options' rule chooses and its fit; `line` when even the least-squares line fits
+// the readings within σ (λ → ∞).
+struct Chosen {
+  bool line = false;
+  double lambda = 0.0;
+  Fit fit;
+};
+
+Chosen ChooseLambda(const SmoothingProblem& problem, const SplineOptions& options) {
   const double scale = problem.Scale();
+  Chosen c;
   if (options.smoothing_rule == SmoothingRule::kGcv) {
     // Minimise GCV over log10(λ/scale) in [−12, 12] (Brent).
     auto score = [&](double log_lambda) { return problem.Gcv(scale * std::pow(10.0, log_lambda)); };
     const auto best = boost::math::tools::brent_find_minima(score, -12.0, 12.0, 40);
-    return problem.Spline(problem.Solve(scale * std::pow(10.0, best.first)));
+    c.lambda = scale * std::pow(10.0, best.first);
+    c.fit = problem.Solve(c.lambda);
+    return c;
   }
   const double target = problem.points();  // discrepancy principle: Σ((y − f)/σ)² = N+1
-  if (problem.LineResidual() <= target) return problem.Line();  // even a line fits within σ
+  if (problem.LineResidual() <= target) {  // even a line fits within σ
+    c.line = true;
+    return c;
+  }
   // A residual within kDiscrepancyTolerance of the target is the root (TOMS 748 stops at an
   // exact zero).
   const double tolerance = kDiscrepancyTolerance * target;
-  Fit last;  // the fit of the λ solved last: the root's, when the search ends
   double last_log_lambda = std::numeric_limits<double>::quiet_NaN();
-  auto excess = [&](double log_lambda) {
-    problem.Solve(scale * std::pow(10.0, log_lambda), last);
+  auto excess = [&](double log_lambda) {  // c.fit: the fit of the λ solved last
+    problem.Solve(scale * std::pow(10.0, log_lambda), c.fit);
     last_log_lambda = log_lambda;
-    const double e = last.residual - target;
+    const double e = c.fit.residual - target;
     return std::abs(e) <= tolerance ? 0.0 : e;
+  };
+  auto found = [&](double log_lambda) {
+    c.lambda = scale * std::pow(10.0, log_lambda);
+    if (log_lambda != last_log_lambda) c.fit = problem.Solve(c.lambda);
+    return c;
   };
   // Bracket the root in log10(λ/scale), then TOMS 748.
   double lo = -2.0, hi = 2.0, e_lo = excess(lo), e_hi = 0.0;
   int guard = 0;
   while (e_lo > 0.0 && guard++ < 60) e_lo = excess(lo -= 2.0);
-  if (e_lo == 0.0) return problem.Spline(last);
+  if (e_lo == 0.0) return found(lo);
   e_hi = excess(hi);
   while (e_hi < 0.0 && guard++ < 120) e_hi = excess(hi += 2.0);
   if (guard >= 120) throw std::runtime_error("smoothing spline: could not bracket λ");
-  if (e_hi == 0.0) return problem.Spline(last);
+  if (e_hi == 0.0) return found(hi);
   std::uintmax_t iterations = 100;
   const auto root = boost::math::tools::toms748_solve(
       excess, lo, hi, e_lo, e_hi, boost::math::tools::eps_tolerance<double>(40), iterations);
-  const double at = 0.5 * (root.first + root.second);
-  if (at == last_log_lambda) return problem.Spline(last);
-  return problem.Spline(problem.Solve(scale * std::pow(10.0, at)));
+  return found(0.5 * (root.first + root.second));
+}
+
+}  // namespace
+
+PiecewisePolynomial BuildSmoothingSpline(const std::vector<double>& x, const std::vector<double>& y,
+                                         const SplineOptions& options) {
+  const SmoothingProblem problem(x, y, options.sigma);
+  const Chosen c = ChooseLambda(problem, options);
+  return c.line ? problem.Line() : problem.Spline(c.fit);
+}
+
+LocalFit BuildSmoothingFit(const std::vector<double>& x, const std::vector<double>& y,
+                           const SplineOptions& options) {
+  const SmoothingProblem problem(x, y, options.sigma);
+  const Chosen c = ChooseLambda(problem, options);
+  if (c.line) return {problem.Line(), {}};
+  LocalFit out{problem.Spline(c.fit), {}};
+  const Eigen::Index n = c.fit.gamma.size();
+  if (n < 3) return out;
+  Eigen::Index j_max = 1, j_min = 1;  // interior knots: the natural ends hold s'' = 0
+  for (Eigen::Index j = 1; j + 1 < n; ++j) {
+    if (c.fit.gamma(j) > c.fit.gamma(j_max)) j_max = j;
+    if (c.fit.gamma(j) < c.fit.gamma(j_min)) j_min = j;
+  }
+  for (const Eigen::Index j : {std::min(j_max, j_min), std::max(j_max, j_min)}) {
+    if (!out.nodes.empty() && out.nodes.back().x == x[j]) continue;
+    out.nodes.push_back(problem.Node(c.lambda, c.fit, out.law, static_cast<int>(j)));
+  }
+  return out;
 }
 
 }  // namespace needle

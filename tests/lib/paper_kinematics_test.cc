@@ -123,7 +123,12 @@ TEST(PaperKinematicsTest, SummaryFieldsShowTheSummaryInTheirUnits) {
   EXPECT_EQ(*shown("injection_period_s"), s.injection_period_s);
   EXPECT_EQ(*shown("rho"), s.rho);
   EXPECT_EQ(*shown("min_acceleration_m_s2"), *s.min_acceleration_m_s2);
-  EXPECT_EQ(fields.size(), 15u);
+  // The two 95 % bands of the extremes: the sparse table's cubic carries them (lib/spline_band.h).
+  EXPECT_EQ(fields.size(), 17u);
+  const Field& band = FieldAt(fields, "max_acceleration_band_m_s2");
+  ASSERT_EQ(band.list_si.size(), 2u);
+  EXPECT_LT(band.list_si[0], *s.max_acceleration_m_s2);
+  EXPECT_GT(band.list_si[1], *s.max_acceleration_m_s2);
 
   c.lift.spline.kind = SplineKind::kPchip;
   const LiftLaw c1 = MakeLiftLaw(c);
