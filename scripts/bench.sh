@@ -42,6 +42,12 @@ else
   echo "bench: SciPy missing (apt-get install python3-scipy): lift tables not measured, bench/lift-tables.md not regenerated" >&2
 fi
 
+# Dense tables of 1e6 rows: needle's wall time (bench/dense_tables.py, about a minute).
+if python3 -c 'import numpy' 2>/dev/null || /usr/bin/python3 -c 'import numpy' 2>/dev/null; then
+  python3 bench/dense_tables.py >/dev/null 2>>bench/log.txt ||
+    echo "bench: bench/dense_tables.py failed (bench/log.txt)" >&2
+fi
+
 # Python binds once and runs many (bench/python_scene.py, a few seconds; needs the module).
 /usr/bin/python3 bench/python_scene.py >/dev/null 2>>bench/log.txt ||
   echo "bench: bench/python_scene.py failed (bench/log.txt); BENCHMARKS.md keeps the last bench/python-scene.md" >&2
@@ -64,6 +70,8 @@ HEAD
   if [[ -f bench/siconos-cam-follower.md ]]; then echo; cat bench/siconos-cam-follower.md; fi
   # Lift tables as users export them against SciPy (bench/lift_tables.py; needs python3-scipy).
   if [[ -f bench/lift-tables.md ]]; then echo; cat bench/lift-tables.md; fi
+  # Dense tables of 1e6 rows: needle's wall time (bench/dense_tables.py; needs python3-numpy).
+  if [[ -f bench/dense-tables.md ]]; then echo; cat bench/dense-tables.md; fi
   # Python: bind once, run many (bench/python_scene.py).
   if [[ -f bench/python-scene.md ]]; then echo; cat bench/python-scene.md; fi
 } > BENCHMARKS.md.tmp && mv BENCHMARKS.md.tmp BENCHMARKS.md
