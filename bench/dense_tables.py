@@ -100,8 +100,9 @@ def main():
              f"{a.repeats} runs alternating the binaries, one process at a time. Regenerate with "
              "`python3 bench/dense_tables.py [--before OLD]`. Target (issue 50): ≤ 1 s.", "",
              "| table | " + " | ".join(f"{n} s" for n, _ in binaries) +
-             (" | before / needle" if a.before else "") + " | a_max m/s² | band | reading |",
-             "|---|" + "---|" * (len(binaries) + (1 if a.before else 0) + 3)]
+             (" | before / needle" if a.before else "") + " | a_max m/s² | band | reading |" +
+             (" before: a_max |" if a.before else ""),
+             "|---|" + "---|" * (len(binaries) + (2 if a.before else 0) + 3)]
     with tempfile.TemporaryDirectory() as d:
         files = write_tables(d)
         labels = {"staircase": "CSV, lifts rounded to 1e-4 mm (a staircase)",
@@ -111,12 +112,17 @@ def main():
         for name, args in files.items():
             times = {n: [] for n, _ in binaries}
             last = None
+            before_amax = ""
             for _ in range(a.repeats):
                 for n, b in binaries:
                     wall, j, err = run(b, args)
                     times[n].append(wall)
                     if n == "needle":
                         last = j if j else err
+                    elif j:
+                        before_amax = f"{j['max_acceleration_m_s2']:.3f}"
+                    else:
+                        before_amax = "failed"
             med = {n: statistics.median(v) for n, v in times.items()}
             if isinstance(last, dict):
                 band = last.get("max_acceleration_band_m_s2")
@@ -128,7 +134,8 @@ def main():
             row = f"| {labels[name]} | " + " | ".join(f"{med[n]:.2f}" for n, _ in binaries)
             if a.before:
                 row += f" | {med['before'] / med['needle']:.2f}×"
-            lines.append(row + f" | {amax} | {band_s} | {reading} |")
+            row += f" | {amax} | {band_s} | {reading} |"
+            lines.append(row + (f" {before_amax} |" if a.before else ""))
             print(lines[-1], flush=True)
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "dense-tables.md"), "w") as f:
