@@ -67,10 +67,12 @@ KinematicsSummary Kinematics::Summarize() const {
 
 std::string PlusMinus(double value, const std::optional<ExtremumBand>& band, int decimals) {
   if (!band) return "";
-  const double h = std::max(band->high - value, value - band->low);
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(decimals) << " ± " << h;
-  return out.str();
+  std::ostringstream up, down;
+  up << std::fixed << std::setprecision(decimals) << std::max(0.0, band->high - value);
+  down << std::fixed << std::setprecision(decimals) << std::max(0.0, value - band->low);
+  // The band as the JSON gives it: symmetric as "± h", else its two reaches, "+a/-b".
+  if (up.str() == down.str()) return " ± " + up.str();
+  return " +" + up.str() + "/-" + down.str();
 }
 
 std::vector<Field> KinematicsFields(const KinematicsSummary& s) {

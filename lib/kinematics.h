@@ -49,8 +49,9 @@ struct KinematicsSummary {
   std::optional<ExtremumBand> max_acceleration_band_m_s2, min_acceleration_band_m_s2;
 };
 
-/// " ± h" with h the larger distance from `value` to the band's ends, `decimals` after the
-/// point; empty without a band: "a_max 535 ± 6 m/s²".
+/// The band around `value`, `decimals` after the point: " ± h" when its two ends are as far
+/// from it ("a_max 535 ± 6 m/s²"), else " +a/-b", the reach above and below ("51.96 +0.00/-32.17":
+/// the JSON's [19.79, 51.96]); empty without a band.
 std::string PlusMinus(double value, const std::optional<ExtremumBand>& band, int decimals);
 
 class Kinematics {

@@ -156,16 +156,39 @@ class BreakStatistics {
 
   // Stands out: above the smooth level around it, and above its noise (asked only then).
   bool StandsOut(const std::vector<double>& v, bool of_jump, long k) {
-    double around[8];
+    // Above kBreakOverSmooth times the median of the eight around it (the fifth smallest): a
+    // break beside (two or three of them) or the law's smooth level passing zero on one side
+    // (a few) does not move it. Counted, not sorted: above it is above at least five of them.
+    const double at = std::abs(v[k]);
+    int below = 0;
     for (long j = 0; j < 4; ++j) {
-      around[2 * j] = std::abs(v[k - d - j]);
-      around[2 * j + 1] = std::abs(v[k + d + j]);
+      below += at > kBreakOverSmooth * std::abs(v[k - d - j]);
+      below += at > kBreakOverSmooth * std::abs(v[k + d + j]);
     }
-    // The median: a break beside (two or three of them) or the law's smooth level passing
-    // zero on one side (a few) does not move it.
-    std::nth_element(around, around + 4, around + 8);
-    const double smooth = around[4];
-    return std::abs(v[k]) > kBreakOverSmooth * smooth && std::abs(v[k]) > tail_ * Noise(k, of_jump);
+    return below >= 5 && at > tail_ * LeastNoise(k, of_jump) && at > tail_ * Noise(k, of_jump);
+  }
+
+  // A lower bound of Noise(k, of_jump), exact in floating point: σ times the norm of its weights
+  // on the window's two outermost readings alone, each computed as Noise computes it (one or
+  // two terms added to zero in the same order; a sum of squares only grows with more terms, and
+  // rounding is monotone). A value not above it is not above Noise either, which is not asked.
+  double LeastNoise(long k, bool of_jump) const {
+    auto weight = [&](long from, double where, long i) {  // Side's weight on s2[i]
+      return 1.0 / m + (at_[i] - mean_at_[from]) * (where - mean_at_[from]) / spread_[from];
+    };
+    const long right = k + m + 1, left = k - m;  // s2 entries reaching readings k+m+2, k−m−1
+    double outer_right = 0.0, outer_left = 0.0;
+    if (of_jump) {
+      const double mid = 0.5 * (x_[k] + x_[k + 1]);
+      outer_right += 1.0 * weight(k + 2, mid, right) * w2_[right][2];
+      outer_left += -1.0 * weight(k - m, mid, left) * w2_[left][0];
+    } else {
+      for (long i = k; i <= k + 1; ++i) {
+        outer_right += -0.5 * weight(k + 2, at_[i], right) * w2_[right][2];
+        outer_left += -0.5 * weight(k - m, at_[i], left) * w2_[left][0];
+      }
+    }
+    return sigma_m_ * std::sqrt(outer_left * outer_left + outer_right * outer_right);
   }
 
   const std::vector<double>& x_;

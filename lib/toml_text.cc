@@ -17,6 +17,7 @@ class Transcoder {
 
   std::string Run() {
     if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) i_ = 3;
+    out_.reserve(text_.size());
     while (i_ < text_.size()) Step();
     Flush();
     return out_;
@@ -119,13 +120,13 @@ class Transcoder {
           Fail("non-ASCII character outside a string or comment (TOML allows it only there)");
         if (ch == '#') {
           state_ = State::kComment;
-        } else if (Starts("\"\"\"")) {
+        } else if (ch == '"' && Starts("\"\"\"")) {
           state_ = State::kMultiBasic;
           out_ += "\"\"\"";
           i_ += 3;
           column_ += 2;
           return;
-        } else if (Starts("'''")) {
+        } else if (ch == '\'' && Starts("'''")) {
           state_ = State::kMultiLiteral;
           OpenLiteral(true);
           i_ += 3;
@@ -173,7 +174,7 @@ class Transcoder {
         }
         if (state_ == State::kBasic && ch == '"') {
           state_ = State::kNormal;
-        } else if (state_ == State::kMultiBasic && Starts("\"\"\"")) {
+        } else if (state_ == State::kMultiBasic && ch == '"' && Starts("\"\"\"")) {
           // Up to two more quotes may end the content ("""a""""" is a"").
           size_t run = 0;
           while (i_ + run < text_.size() && text_[i_ + run] == '"' && run < 5) ++run;
@@ -194,7 +195,7 @@ class Transcoder {
           CloseLiteral();
           return;
         }
-        if (state_ == State::kMultiLiteral && Starts("'''")) {
+        if (state_ == State::kMultiLiteral && ch == '\'' && Starts("'''")) {
           size_t run = 0;
           while (i_ + run < text_.size() && text_[i_ + run] == '\'' && run < 5) ++run;
           // The last three close it; up to two before them belong to the content.

@@ -108,11 +108,16 @@ class SectionReader {
     const toml::array* array = node.as_array();
     if (!array) Fail(key->first, "expected an array of numbers");
     std::vector<double> out;
+    out.reserve(array->size());
     for (size_t i = 0; i < array->size(); ++i) {
-      const std::string entry = key->first + "[" + std::to_string(i) + "]";
-      out.push_back(ToSi(dimension, key->second, ToNumber(entry, *array->get(i))));
-      read_.push_back({entry, name, out.back(), true});
+      const toml::node& entry = *array->get(i);
+      const auto* f = entry.as_floating_point();  // the usual case, its key built only to fail
+      const bool plain = f && std::isfinite(f->get()) && std::abs(f->get()) <= kLargestInput;
+      const double v =
+          plain ? f->get() : ToNumber(key->first + "[" + std::to_string(i) + "]", entry);
+      out.push_back(ToSi(dimension, key->second, v));
     }
+    read_.push_back({key->first, name, 0.0, true, out});
     return out;
   }
 
@@ -174,14 +179,16 @@ class SectionReader {
       const std::string key(k.str());
       if (!used_.count(key)) Fail(key, "unknown key in this section");
     }
-    const std::string* last_name = nullptr;  // an array's entries share one name: one lookup
-    const RangedKey* ranged = nullptr;
     for (const ReadValue& v : read_) {
-      if (!last_name || v.name != *last_name) ranged = FindRangedKey(section_, v.name);
-      last_name = &v.name;
+      const RangedKey* ranged = FindRangedKey(section_, v.name);
       if (!ranged) continue;
       const PlausibleRange& range = *ranged->range;
-      if (v.table_entry || ranged->upper_only) {
+      if (v.table_entry) {  // an array's entries, each held to the upper end only
+        for (size_t i = 0; i < v.entries.size(); ++i) {
+          if (v.entries[i] > range.hi)
+            Fail(v.key + "[" + std::to_string(i) + "]", AboveRangeEnd(range, v.entries[i]));
+        }
+      } else if (ranged->upper_only) {
         if (v.si > range.hi) Fail(v.key, AboveRangeEnd(range, v.si));
       } else if (!(v.si >= range.lo && v.si <= range.hi)) {
         Fail(v.key, ShownValue(range, v.si) + " is outside the plausible range " +
@@ -248,10 +255,11 @@ class SectionReader {
 
   // A value as read, in SI, for the range check in Finish.
   struct ReadValue {
-    std::string key;   ///< as written ("mass_kg", "lift_mm[3]")
+    std::string key;   ///< as written ("mass_kg", "lift_mm")
     std::string name;  ///< without the unit suffix ("mass")
     double si = 0.0;
-    bool table_entry = false;  ///< an entry of an array
+    bool table_entry = false;       ///< an array: its entries, in SI, in `entries`
+    std::vector<double> entries{};  ///< an array's entries, in SI
   };
 
   const toml::table* table_;

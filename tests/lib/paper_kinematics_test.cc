@@ -141,3 +141,18 @@ TEST(PaperKinematicsTest, SummaryFieldsShowTheSummaryInTheirUnits) {
 
 }  // namespace
 }  // namespace needle
+
+namespace needle {
+namespace {
+
+// The text shows the band the JSON holds: symmetric as "± h", else both reaches (a user's trial
+// read "51.96 ± 32.17" where the JSON band was [19.79, 51.96]).
+TEST(PaperKinematicsTest, TheTextShowsTheBandTheJsonHolds) {
+  EXPECT_EQ(PlusMinus(51.96, ExtremumBand{19.79, 51.96}, 2), " +0.00/-32.17");
+  EXPECT_EQ(PlusMinus(10.0, ExtremumBand{9.0, 11.0}, 2), " ± 1.00");
+  EXPECT_EQ(PlusMinus(10.0, ExtremumBand{9.5, 11.0}, 1), " +1.0/-0.5");
+  EXPECT_EQ(PlusMinus(10.0, std::nullopt, 2), "");
+}
+
+}  // namespace
+}  // namespace needle
