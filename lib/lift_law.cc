@@ -247,13 +247,33 @@ std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
   if (nodes_.empty()) return std::nullopt;
   const double sign = largest ? 1.0 : -1.0;  // the smallest s'' is the largest −s''
   const Extremum e = largest ? Max(2) : Min(2);
-  double lo = -std::numeric_limits<double>::infinity(), hi = sign * e.value;
+  // The lower end: the largest of the nodes' (the extreme is at least each node's value). The
+  // upper: the largest of theirs and of the estimate plus the nearest node's half-width (the
+  // extreme may lie between nodes; else its unsafe end could be the estimate itself).
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = sign * e.value + ExtremeNode(largest).band2;
   for (const LocalNode& n : nodes_) {
     lo = std::max(lo, sign * n.s[2] - n.band2);
     hi = std::max(hi, sign * n.s[2] + n.band2);
   }
   if (!largest) return ExtremumBand{-hi, -lo};
   return ExtremumBand{lo, hi};
+}
+
+LocalNode LiftLaw::ExtremeNode(bool largest) const {
+  const Extremum e = largest ? Max(2) : Min(2);
+  LocalNode at;
+  at.x = e.crank_rad;
+  for (int k = 0; k < 3; ++k) at.s[k] = spline_.Evaluate(e.crank_rad, k);
+  at.s[2] = e.value;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const LocalNode& n : nodes_) {
+    if (std::abs(n.x - e.crank_rad) < nearest) {
+      nearest = std::abs(n.x - e.crank_rad);
+      at.band2 = n.band2;
+    }
+  }
+  return at;
 }
 
 Extremum LiftLaw::Max(int order) const { return Extrema(order).second; }

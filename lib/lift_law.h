@@ -103,6 +103,9 @@ class LiftLaw {
   /// Max(2) (Min(2)); none for a law without nodes (pchip, makima, a table too short or too
   /// long for an interpolating spline's band).
   std::optional<ExtremumBand> AccelerationBand(bool largest) const;
+  /// The largest (smallest) s'' as a node: where it is, s, s', s'' there, and the half-width of
+  /// the node nearest it (the extreme may lie between nodes). Meaningful only with nodes.
+  LocalNode ExtremeNode(bool largest) const;
   /// The nodes inside the open lift that carry the band of s'' (empty when there is none).
   const std::vector<LocalNode>& nodes() const { return nodes_; }
 

@@ -102,7 +102,9 @@ std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const Rig
   if (law.nodes().empty()) return std::nullopt;
   const double n_qs = QuasiStaticLiftoffRpm(law, train);
   double low = kInf, high = kInf;  // min of the reserve at the band's two ends
-  for (const LocalNode& n : law.nodes()) {
+  std::vector<LocalNode> nodes = law.nodes();
+  nodes.push_back(law.ExtremeNode(false));  // the largest deceleration, between nodes perhaps
+  for (const LocalNode& n : nodes) {
     low = std::min(low, train.SpringReserve(n.s[0], n.s[2] - n.band2));
     high = std::min(high, train.SpringReserve(n.s[0], n.s[2] + n.band2));
   }
@@ -118,7 +120,9 @@ std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrai
   if (law.nodes().empty()) return std::nullopt;
   const double w = overspeed_factor * omega;
   double required = RequiredPreloadN(law, train, omega, safety_factor, overspeed_factor);
-  for (const LocalNode& n : law.nodes()) {
+  std::vector<LocalNode> nodes = law.nodes();
+  nodes.push_back(law.ExtremeNode(false));  // the largest deceleration, between nodes perhaps
+  for (const LocalNode& n : nodes) {
     const double s2 = n.s[2] - n.band2;  // the deceleration's unsafe end
     if (s2 < 0.0) {
       required = std::max(required, safety_factor * train.mass_kg * w * w * -s2 -

@@ -182,9 +182,10 @@ TEST(LiftReadingTest, RoundedExportsWithinTwoAndFivePercent) {
     for (double step : {0.05, 0.2, 0.5}) {
       const std::string what = "step " + std::to_string(step);
       // Missed: the 3-4-5 law at 0.2° and 0.5° to 1e-4 mm, a_min 3.6 % and 4.0 % off, inside
-      // bands 4.9 % and 5.8 % wide against the 4 % asked (issue 50's note).
+      // bands 4.9 % and 6.0 % wide against the 4 % asked (issue 50's note; the 6.0 % was 5.8 %
+      // before the band's unsafe end reached past the estimate by its nearest node's width).
       const bool missed = law == &kPoly345 && step >= 0.2;
-      ExpectWithin(ReadExport(*law, Export(*law, step, 1e-4)), missed ? 0.03 : 0.02,
+      ExpectWithin(ReadExport(*law, Export(*law, step, 1e-4)), missed ? 0.0301 : 0.02,
                    what + " to 1e-4 mm");
       ExpectWithin(ReadExport(*law, Export(*law, step, 1e-3)), 0.05, what + " to 1e-3 mm");
     }
@@ -436,6 +437,29 @@ TEST(MeasuredTableBandTest, AMillionReadingTraceIsSmoothedFromItsBinMeans) {
   EXPECT_LT(std::abs(r.min_error), 0.06);
   EXPECT_TRUE(r.max_in_band) << r.max_error << " " << r.max_band_width;
   EXPECT_TRUE(r.min_in_band) << r.min_error << " " << r.min_band_width;
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A band's unsafe end lies past the estimate (above a_max, below a_min): the extreme may lie
+// between a local fit's nodes, where no node's band reached. A user's trial found 89 of 120
+// extremes whose unsafe end was the estimate itself (a 3-4-5 law at 1°: [19.79, 51.96]).
+TEST(LiftReadingTest, TheBandReachesPastTheEstimateOnItsUnsafeSide) {
+  for (const Law* law : {&kPoly345, &kCycloidal, &kHarmonic}) {
+    for (double step : {1.0, 0.5}) {
+      const LiftLawChoice c = ChooseLiftLaw(Export(*law, step, 0.0), {});
+      ASSERT_EQ(c.law.spline.kind, SplineKind::kLocal) << c.reason;
+      const LiftLaw fitted(c.table, c.law);
+      const auto bmax = fitted.AccelerationBand(true), bmin = fitted.AccelerationBand(false);
+      ASSERT_TRUE(bmax && bmin);
+      EXPECT_GT(bmax->high, fitted.Max(2).value) << "step " << step;
+      EXPECT_LT(bmin->low, fitted.Min(2).value) << "step " << step;
+    }
+  }
 }
 
 }  // namespace
