@@ -8,23 +8,12 @@
 #include <string>
 
 namespace needle {
-namespace {
 
-constexpr int kTerms = kLocalDegree + 1;
-constexpr Eigen::Index kQrBelow = 40;  // windows up to this many readings are solved by QR
-constexpr double kNodeSpacing = 0.5;   // nodes half a window's width apart
-
-// Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
-struct Points {
-  std::vector<double> x, y, count;
-};
-
-Points Binned(const std::vector<double>& x, const std::vector<double>& y) {
-  Points p;
-  const size_t n = x.size();
-  const size_t per = (n + kLocalMaxNodes - 1) / kLocalMaxNodes;  // readings per bin, ≥ 1
-  for (size_t i = 0; i < n; i += per) {
-    const size_t end = std::min(n, i + per);
+BinMeans MeansOfBins(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                     size_t to, size_t per) {
+  BinMeans p;
+  for (size_t i = from; i < to; i += per) {
+    const size_t end = std::min(to, i + per);
     double sx = 0.0, sy = 0.0;
     for (size_t k = i; k < end; ++k) {
       sx += x[k];
@@ -36,6 +25,20 @@ Points Binned(const std::vector<double>& x, const std::vector<double>& y) {
     p.count.push_back(m);
   }
   return p;
+}
+
+namespace {
+
+constexpr int kTerms = kLocalDegree + 1;
+constexpr Eigen::Index kQrBelow = 40;  // windows up to this many readings are solved by QR
+constexpr double kNodeSpacing = 0.5;   // nodes half a window's width apart
+
+// Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
+using Points = BinMeans;
+
+Points Binned(const std::vector<double>& x, const std::vector<double>& y) {
+  const size_t n = x.size();
+  return MeansOfBins(x, y, 0, n, (n + kLocalMaxNodes - 1) / kLocalMaxNodes);  // ≥ 1 per bin
 }
 
 // The estimates of s, s', s'' at t from the points [lo, hi), and the standard deviation of s''

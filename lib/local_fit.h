@@ -40,6 +40,15 @@ constexpr double kLepskiSigmas = 2.5;
 /// Above this many readings a piece is averaged in bins first (O(n) overall).
 constexpr int kLocalMaxNodes = 1500;
 
+/// Means of consecutive readings in bins (a dense table's, before a fit): angle, lift and count.
+struct BinMeans {
+  std::vector<double> x, y, count;
+};
+
+/// The means of readings [from, to) in bins of `per` (≥ 1; the last bin may hold fewer).
+BinMeans MeansOfBins(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                     size_t to, size_t per);
+
 /// One node of a local fit.
 struct LocalNode {
   double x = 0.0;      ///< where, rad

@@ -386,22 +386,11 @@ Readings ForSmoothing(const std::vector<double>& x, const std::vector<double>& y
   const size_t n = x.size();
   if (n <= kSmoothingMaxPoints) return {x, y, {}};
   const size_t k = (n - 2 + kSmoothingMaxPoints - 3) / (kSmoothingMaxPoints - 2);
-  Readings r;
-  r.x.push_back(x.front());
-  r.y.push_back(y.front());
-  r.relative.push_back(1.0);
-  for (size_t from = 1; from + 1 < n; from += k) {
-    const size_t to = std::min(from + k, n - 1);
-    double sx = 0.0, sy = 0.0;
-    for (size_t i = from; i < to; ++i) {
-      sx += x[i];
-      sy += y[i];
-    }
-    const double count = static_cast<double>(to - from);
-    r.x.push_back(sx / count);
-    r.y.push_back(sy / count);
-    r.relative.push_back(1.0 / count);
-  }
+  const BinMeans bins = MeansOfBins(x, y, 1, n - 1, k);
+  Readings r{{x.front()}, {y.front()}, {1.0}};
+  r.x.insert(r.x.end(), bins.x.begin(), bins.x.end());
+  r.y.insert(r.y.end(), bins.y.begin(), bins.y.end());
+  for (const double count : bins.count) r.relative.push_back(1.0 / count);
   r.x.push_back(x.back());
   r.y.push_back(y.back());
   r.relative.push_back(1.0);
