@@ -87,6 +87,27 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
+// A local fit's bias that all its windows share (a rounded table's wide windows flatten its
+// peaks alike) is not in its nodes' bands: the fit through every other reading (both ends kept),
+// whose windows span twice the angle, differs from it by about three times that bias. Each node's
+// band grows by that difference (pieces of up to kLocalMaxNodes readings: the coarse tables).
+void AddHalfTableBias(const std::vector<double>& x, const std::vector<double>& y,
+                      const SplineOptions& options, LocalFit* fit) {
+  const size_t n = x.size();
+  if (n > static_cast<size_t>(kLocalMaxNodes) || n < 2 * static_cast<size_t>(kLocalMinimumPoints))
+    return;
+  std::vector<double> hx, hy;
+  for (size_t i = 0; i < n; ++i) {
+    if (i % 2 == 0 || i + 1 == n) {
+      hx.push_back(x[i]);
+      hy.push_back(y[i]);
+    }
+  }
+  const LocalFit half = FitLocal(hx, hy, options.sigma, options.quantized);
+  for (LocalNode& node : fit->nodes)
+    node.band2 += std::abs(half.law.Evaluate(node.x, 2) - node.s[2]);
+}
+
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
 // spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
@@ -95,11 +116,15 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
     nodes->insert(nodes->end(), fit.nodes.begin(), fit.nodes.end());
     return std::move(fit.law);
   };
-  if (options.kind == SplineKind::kLocal || options.kind == SplineKind::kSmoothing) {
+  if (options.kind == SplineKind::kLocal) {
     CheckSplineInputs(x, y, options);
-    return keep(options.kind == SplineKind::kLocal
-                    ? FitLocal(x, y, options.sigma, options.quantized)
-                    : BuildSmoothingFit(x, y, options));
+    LocalFit fit = FitLocal(x, y, options.sigma, options.quantized);
+    AddHalfTableBias(x, y, options, &fit);
+    return keep(std::move(fit));
+  }
+  if (options.kind == SplineKind::kSmoothing) {
+    CheckSplineInputs(x, y, options);
+    return keep(BuildSmoothingFit(x, y, options));
   }
   PiecewisePolynomial law = BuildSpline(x, y, options);
   std::vector<LocalNode> band = InterpolationNodes(x, y, options, law);

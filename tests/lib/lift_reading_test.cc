@@ -182,10 +182,10 @@ TEST(LiftReadingTest, RoundedExportsWithinTwoAndFivePercent) {
     for (double step : {0.05, 0.2, 0.5}) {
       const std::string what = "step " + std::to_string(step);
       // Missed: the 3-4-5 law at 0.2° and 0.5° to 1e-4 mm, a_min 3.6 % and 4.0 % off, inside
-      // bands 4.9 % and 6.0 % wide against the 4 % asked (issue 50's note; the 6.0 % was 5.8 %
-      // before the band's unsafe end reached past the estimate by its nearest node's width).
+      // bands up to 7.1 % wide against the 4 % asked (issue 50's note; 5.8 % before the band's
+      // unsafe end reached past the estimate, 6.0 % before the half table's bias was added).
       const bool missed = law == &kPoly345 && step >= 0.2;
-      ExpectWithin(ReadExport(*law, Export(*law, step, 1e-4)), missed ? 0.0301 : 0.02,
+      ExpectWithin(ReadExport(*law, Export(*law, step, 1e-4)), missed ? 0.036 : 0.02,
                    what + " to 1e-4 mm");
       ExpectWithin(ReadExport(*law, Export(*law, step, 1e-3)), 0.05, what + " to 1e-3 mm");
     }
@@ -460,6 +460,25 @@ TEST(LiftReadingTest, TheBandReachesPastTheEstimateOnItsUnsafeSide) {
       EXPECT_LT(bmin->low, fitted.Min(2).value) << "step " << step;
     }
   }
+}
+
+}  // namespace
+}  // namespace needle
+
+namespace needle {
+namespace {
+
+// A coarse table rounded to 0.01 mm (a 3-4-5 rise and return over 64° at 4°, 6° of base circle
+// each side, 37 rows): the local fit's wide windows flatten the return's peak, a_min −37.79
+// against −45.67 m/s² at 600 rpm, and its band [−38.84, −34.63] missed the truth on the unsafe
+// side (a user's trial). The fit through every other reading shows that bias; the band holds it.
+TEST(LiftReadingTest, ACoarseRoundedTablesBandHoldsTheBiasItsWindowsShare) {
+  const Law law{2.5, 64.0, 0.0, 64.0, Poly345};
+  LiftTable t = Export(law, 4.0, 1e-2, 6.0);
+  const Read r = ReadExport(law, t);
+  ASSERT_EQ(r.choice.law.spline.kind, SplineKind::kLocal) << r.choice.reason;
+  EXPECT_GT(std::abs(r.min_error), 0.1);  // the estimate is that far off
+  EXPECT_TRUE(r.min_in_band) << r.min_error << " " << r.min_band_width;
 }
 
 }  // namespace
