@@ -17,7 +17,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "lib/linear_solve.h"
 #include "lib/spline.h"
 #include "lib/spline_band.h"
 
@@ -52,6 +51,7 @@ class SmoothingProblem {
     for (int i = 0; i < n_; ++i) h_[i] = x[i + 1] - x[i];
     inv_h_.resize(n_);
     for (int i = 0; i < n_; ++i) inv_h_[i] = 1.0 / h_[i];
+    qty_ = QtTimes(y_);
   }
 
   // Qᵀ v for v of length N+1: (Qᵀv)_j = v_{j−1}/h_{j−1} − v_j(1/h_{j−1} + 1/h_j) + v_{j+1}/h_j.
@@ -127,7 +127,6 @@ class SmoothingProblem {
   // The fit for λ, into `fit` (whose storage is reused: a large table's solves allocate once).
   void Solve(double lambda, Fit& fit) const {
     Eigen::VectorXd& g = g_;
-    if (qty_.size() == 0) qty_ = QtTimes(y_);
     SolveSystem(lambda, qty_, g);
     QTimes(g, qg_);
     if (!relative_.empty()) qg_ = qg_.cwiseProduct(RelativeVector());  // W⁻¹/σ² Qγ
@@ -205,14 +204,21 @@ class SmoothingProblem {
 
   int points() const { return n_ + 1; }
 
+  // γ of the fit smoothed once more, S f: its difference from the fit's γ is the bias's scale.
+  Eigen::VectorXd SmoothedAgain(double lambda, const Fit& fit) const {
+    Eigen::VectorXd again;
+    SolveSystem(lambda, QtTimes(fit.f), again);
+    return again;
+  }
+
   // A node at interior knot j of the fit for λ: s'' = γ_j, and its 95 % half-width
-  // 1.96 σ‖Q A⁻¹ e_j‖ + |γ_j(S f) − γ_j| (lib/spline_band.h).
-  LocalNode Node(double lambda, const Fit& fit, const PiecewisePolynomial& law, int j) const {
-    Eigen::VectorXd unit = Eigen::VectorXd::Zero(n_ - 1), g, qg, again;
+  // 1.96 σ‖Q A⁻¹ e_j‖ + |γ_j(S f) − γ_j| (lib/spline_band.h), `again` = SmoothedAgain.
+  LocalNode Node(double lambda, const Fit& fit, const Eigen::VectorXd& again,
+                 const PiecewisePolynomial& law, int j) const {
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(n_ - 1), g, qg;
     unit(j - 1) = 1.0;
     SolveSystem(lambda, unit, g);
     QTimes(g, qg);
-    SolveSystem(lambda, QtTimes(fit.f), again);  // the fit smoothed once more
     LocalNode node;
     node.x = x_[j];
     node.s[0] = fit.f(j);
@@ -236,8 +242,6 @@ class SmoothingProblem {
     for (int j = 0; j < m; ++j) q.col(j) = QTimes(Eigen::VectorXd::Unit(m, j));
     qtq_ = relative_.empty() ? Eigen::MatrixXd(q.transpose() * q)
                              : Eigen::MatrixXd(q.transpose() * RelativeVector().asDiagonal() * q);
-
-    qty_ = QtTimes(y_);
   }
 
   // R's and QᵀQ's diagonals 0, 1 and 2 below the main one: band[d][j] = A(j, j − d).
@@ -251,7 +255,6 @@ class SmoothingProblem {
       if (t.row() >= t.col()) band_r_[t.row() - t.col()][t.row()] += t.value();
     for (const auto& t : Matrix(1.0, false))
       if (t.row() >= t.col()) band_q_[t.row() - t.col()][t.row()] += t.value();
-    qty_ = QtTimes(y_);
   }
 
   // Solves (R + c QᵀQ) γ = rhs by LDLᵀ of the pentadiagonal matrix, into g: O(N).
@@ -292,7 +295,7 @@ class SmoothingProblem {
   }
 
   mutable Eigen::MatrixXd r_, qtq_;
-  mutable Eigen::VectorXd qty_;
+  Eigen::VectorXd qty_;  // Qᵀy
   mutable std::array<std::vector<double>, 3> band_r_, band_q_;
   mutable std::vector<double> dd_, l1_, l2_;  // SolveBanded's factors, kept between solves
   mutable Eigen::VectorXd g_, qg_;            // γ and Qγ of the last solve
@@ -309,10 +312,6 @@ class SmoothingProblem {
   Eigen::VectorXd y_;
   std::vector<double> h_, inv_h_;  // knot spacings and their inverses
 };
-
-}  // namespace
-
-namespace {
 
 // The λ the options' rule chooses and its fit; `line` when even the least-squares line fits
 // the readings within σ (λ → ∞).
@@ -368,10 +367,6 @@ Chosen ChooseLambda(const SmoothingProblem& problem, const SplineOptions& option
   return found(0.5 * (root.first + root.second));
 }
 
-}  // namespace
-
-namespace {
-
 // The readings the smoothing spline is fitted to: all of them up to kSmoothingMaxPoints; above,
 // the first and last kept and the others averaged in bins of equal count k (a bin's mean has
 // σ²/k; its angle the mean of its readings'). The smoothing system of 1e6 readings is too
@@ -422,9 +417,10 @@ LocalFit BuildSmoothingFit(const std::vector<double>& x_given, const std::vector
     if (c.fit.gamma(j) > c.fit.gamma(j_max)) j_max = j;
     if (c.fit.gamma(j) < c.fit.gamma(j_min)) j_min = j;
   }
+  const Eigen::VectorXd again = problem.SmoothedAgain(c.lambda, c.fit);
   for (const Eigen::Index j : {std::min(j_max, j_min), std::max(j_max, j_min)}) {
     if (!out.nodes.empty() && out.nodes.back().x == x[j]) continue;
-    out.nodes.push_back(problem.Node(c.lambda, c.fit, out.law, static_cast<int>(j)));
+    out.nodes.push_back(problem.Node(c.lambda, c.fit, again, out.law, static_cast<int>(j)));
   }
   return out;
 }
