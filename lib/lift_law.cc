@@ -87,27 +87,6 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
-// A local fit's bias that all its windows share (a rounded table's wide windows flatten its
-// peaks alike) is not in its nodes' bands: the fit through every other reading (both ends kept),
-// whose windows span twice the angle, differs from it by about three times that bias. Each node's
-// band grows by that difference (pieces of up to kLocalMaxNodes readings: the coarse tables).
-void AddHalfTableBias(const std::vector<double>& x, const std::vector<double>& y,
-                      const SplineOptions& options, LocalFit* fit) {
-  const size_t n = x.size();
-  if (n > static_cast<size_t>(kLocalMaxNodes) || n < 2 * static_cast<size_t>(kLocalMinimumPoints))
-    return;
-  std::vector<double> hx, hy;
-  for (size_t i = 0; i < n; ++i) {
-    if (i % 2 == 0 || i + 1 == n) {
-      hx.push_back(x[i]);
-      hy.push_back(y[i]);
-    }
-  }
-  const LocalFit half = FitLocal(hx, hy, options.sigma, options.quantized);
-  for (LocalNode& node : fit->nodes)
-    node.band2 += std::abs(half.law.Evaluate(node.x, 2) - node.s[2]);
-}
-
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
 // spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
@@ -119,7 +98,7 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
   if (options.kind == SplineKind::kLocal) {
     CheckSplineInputs(x, y, options);
     LocalFit fit = FitLocal(x, y, options.sigma, options.quantized);
-    AddHalfTableBias(x, y, options, &fit);
+    AddLocalFitBias(x, y, options, &fit);
     return keep(std::move(fit));
   }
   if (options.kind == SplineKind::kSmoothing) {
@@ -271,12 +250,12 @@ double LiftLaw::MeanLift() const { return spline_.Integral() / (end_rad() - star
 std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
   if (nodes_.empty()) return std::nullopt;
   const double sign = largest ? 1.0 : -1.0;  // the smallest s'' is the largest −s''
-  const Extremum e = largest ? Max(2) : Min(2);
+  const LocalNode e = ExtremeNode(largest);
   // The lower end: the largest of the nodes' (the extreme is at least each node's value). The
   // upper: the largest of theirs and of the estimate plus the nearest node's half-width (the
   // extreme may lie between nodes; else its unsafe end could be the estimate itself).
   double lo = -std::numeric_limits<double>::infinity();
-  double hi = sign * e.value + ExtremeNode(largest).band2;
+  double hi = sign * e.s[2] + e.band2;
   for (const LocalNode& n : nodes_) {
     lo = std::max(lo, sign * n.s[2] - n.band2);
     hi = std::max(hi, sign * n.s[2] + n.band2);

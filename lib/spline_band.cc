@@ -1,4 +1,4 @@
-// The band of an interpolating spline's s'' (lib/spline_band.h).
+// The bands of an interpolating spline's s'' and of a local fit's shared bias (lib/spline_band.h).
 #include "lib/spline_band.h"
 
 #include <algorithm>
@@ -36,6 +36,18 @@ void Half(const std::vector<double>& x, const std::vector<double>& y, size_t fir
 }
 
 }  // namespace
+
+void AddLocalFitBias(const std::vector<double>& x, const std::vector<double>& y,
+                     const SplineOptions& options, LocalFit* fit) {
+  const size_t n = x.size();
+  if (n > static_cast<size_t>(kLocalMaxNodes) || n < 2 * static_cast<size_t>(kLocalMinimumPoints))
+    return;
+  std::vector<double> hx, hy;
+  Half(x, y, 0, &hx, &hy);
+  const LocalFit half = FitLocal(hx, hy, options.sigma, options.quantized);
+  for (LocalNode& node : fit->nodes)
+    node.band2 += std::abs(half.law.Evaluate(node.x, 2) - node.s[2]);
+}
 
 std::vector<LocalNode> InterpolationNodes(const std::vector<double>& x,
                                           const std::vector<double>& y,

@@ -36,6 +36,14 @@ std::vector<LocalNode> InterpolationNodes(const std::vector<double>& x,
                                           const SplineOptions& options,
                                           const PiecewisePolynomial& law);
 
+/// A local fit's bias that all its windows share (a rounded table's wide windows flatten its
+/// peaks alike) is not in its nodes' bands: the fit through every other reading (both ends
+/// kept), whose windows span twice the angle, differs from it by about three times that bias.
+/// Adds that difference to each node's half-width, for tables of up to kLocalMaxNodes readings
+/// (the coarse ones); `fit` is FitLocal's of (x, y) with `options`' σ.
+void AddLocalFitBias(const std::vector<double>& x, const std::vector<double>& y,
+                     const SplineOptions& options, LocalFit* fit);
+
 /// The smoothing spline through (x, y) (BuildSmoothingSpline) and its nodes at the knots of its
 /// largest and smallest s'' (none when the fit is the least-squares line).
 LocalFit BuildSmoothingFit(const std::vector<double>& x, const std::vector<double>& y,

@@ -44,6 +44,13 @@ ForceMinimum Minimize(const LiftLaw& law, const std::function<double(double)>& f
   return {best, best_x};
 }
 
+// The law's nodes and its largest deceleration (which may lie between them), each with its band.
+std::vector<LocalNode> BandNodes(const LiftLaw& law) {
+  std::vector<LocalNode> nodes = law.nodes();
+  nodes.push_back(law.ExtremeNode(false));
+  return nodes;
+}
+
 }  // namespace
 
 void RequireAcceleration(const LiftLaw& law) {
@@ -102,8 +109,7 @@ std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const Rig
   if (law.nodes().empty()) return std::nullopt;
   const double n_qs = QuasiStaticLiftoffRpm(law, train);
   double low = kInf, high = kInf;  // min of the reserve at the band's two ends
-  std::vector<LocalNode> nodes = law.nodes();
-  nodes.push_back(law.ExtremeNode(false));  // the largest deceleration, between nodes perhaps
+  const std::vector<LocalNode> nodes = BandNodes(law);
   for (const LocalNode& n : nodes) {
     low = std::min(low, train.SpringReserve(n.s[0], n.s[2] - n.band2));
     high = std::min(high, train.SpringReserve(n.s[0], n.s[2] + n.band2));
@@ -120,8 +126,7 @@ std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrai
   if (law.nodes().empty()) return std::nullopt;
   const double w = overspeed_factor * omega;
   double required = RequiredPreloadN(law, train, omega, safety_factor, overspeed_factor);
-  std::vector<LocalNode> nodes = law.nodes();
-  nodes.push_back(law.ExtremeNode(false));  // the largest deceleration, between nodes perhaps
+  const std::vector<LocalNode> nodes = BandNodes(law);
   for (const LocalNode& n : nodes) {
     const double s2 = n.s[2] - n.band2;  // the deceleration's unsafe end
     if (s2 < 0.0) {
