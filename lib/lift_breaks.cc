@@ -80,8 +80,7 @@ class BreakStatistics {
         spread_(n_, 0.0),
         jump_(n_, 0.0),
         spike_(n_, 0.0),
-        wy_(n_, 0.0),
-        wc_(n_, 0.0),
+        weights_(n_, 0.0),
         tail_(TailSigmas(n_, kBreakSigmas)) {
     for (long i = 1; i + 1 < n_; ++i) {
       const double a = x[i - 1], b = x[i], c = x[i + 1];
@@ -123,10 +122,9 @@ class BreakStatistics {
   // The line through s2[from … from+m) at `where`; with `to`, its weights on the readings are
   // added there (times `sign`).
   double Side(long from, double where, double sign, std::vector<double>* to) const {
-    const double mean = mean_at_[from], sxx = spread_[from];
     double v = 0.0;
     for (long i = from; i < from + m; ++i) {
-      const double a = 1.0 / m + (at_[i] - mean) * (where - mean) / sxx;  // line's weight
+      const double a = Weight(from, where, i);
       v += a * s2_[i];
       if (to)
         for (int j = 0; j < 3; ++j) (*to)[i - 1 + j] += sign * a * w2_[i][j];
@@ -134,9 +132,15 @@ class BreakStatistics {
     return v;
   }
 
+  // The weight of s2[i] in the line through s2[from … from+m) at `where`.
+  double Weight(long from, double where, long i) const {
+    const double mean = mean_at_[from];
+    return 1.0 / m + (at_[i] - mean) * (where - mean) / spread_[from];
+  }
+
   // The noise of Ĵ_k (or Ĉ_k): σ times the norm of its weights on the readings.
   double Noise(long k, bool of_jump) {
-    std::vector<double>& to = of_jump ? wy_ : wc_;
+    std::vector<double>& to = weights_;
     std::fill(to.begin() + (k - m - 1), to.begin() + (k + m + 3), 0.0);
     const double mid = 0.5 * (x_[k] + x_[k + 1]);
     if (of_jump) {
@@ -173,19 +177,16 @@ class BreakStatistics {
   // two terms added to zero in the same order; a sum of squares only grows with more terms, and
   // rounding is monotone). A value not above it is not above Noise either, which is not asked.
   double LeastNoise(long k, bool of_jump) const {
-    auto weight = [&](long from, double where, long i) {  // Side's weight on s2[i]
-      return 1.0 / m + (at_[i] - mean_at_[from]) * (where - mean_at_[from]) / spread_[from];
-    };
     const long right = k + m + 1, left = k - m;  // s2 entries reaching readings k+m+2, k−m−1
     double outer_right = 0.0, outer_left = 0.0;
     if (of_jump) {
       const double mid = 0.5 * (x_[k] + x_[k + 1]);
-      outer_right += 1.0 * weight(k + 2, mid, right) * w2_[right][2];
-      outer_left += -1.0 * weight(k - m, mid, left) * w2_[left][0];
+      outer_right += 1.0 * Weight(k + 2, mid, right) * w2_[right][2];
+      outer_left += -1.0 * Weight(k - m, mid, left) * w2_[left][0];
     } else {
       for (long i = k; i <= k + 1; ++i) {
-        outer_right += -0.5 * weight(k + 2, at_[i], right) * w2_[right][2];
-        outer_left += -0.5 * weight(k - m, at_[i], left) * w2_[left][0];
+        outer_right += -0.5 * Weight(k + 2, at_[i], right) * w2_[right][2];
+        outer_left += -0.5 * Weight(k - m, at_[i], left) * w2_[left][0];
       }
     }
     return sigma_m_ * std::sqrt(outer_left * outer_left + outer_right * outer_right);
@@ -197,7 +198,7 @@ class BreakStatistics {
   std::vector<double> s2_, at_;
   std::vector<std::array<double, 3>> w2_;
   std::vector<double> mean_at_, spread_, jump_, spike_;
-  std::vector<double> wy_, wc_;  // Noise's weights, zeroed where used
+  std::vector<double> weights_;  // Noise's weights on the readings, zeroed where used
   double tail_;
 };
 
