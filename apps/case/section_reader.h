@@ -110,11 +110,9 @@ class SectionReader {
     std::vector<double> out;
     out.reserve(array->size());
     for (size_t i = 0; i < array->size(); ++i) {
-      const toml::node& entry = *array->get(i);
-      const auto* f = entry.as_floating_point();  // the usual case, its key built only to fail
-      const bool plain = f && std::isfinite(f->get()) && std::abs(f->get()) <= kLargestInput;
+      // The entry's key ("lift_mm[3]") is built only for a message.
       const double v =
-          plain ? f->get() : ToNumber(key->first + "[" + std::to_string(i) + "]", entry);
+          ToNumber(*array->get(i), [&] { return key->first + "[" + std::to_string(i) + "]"; });
       out.push_back(ToSi(dimension, key->second, v));
     }
     read_.push_back({key->first, name, 0.0, true, out});
@@ -233,22 +231,28 @@ class SectionReader {
   }
 
   double ToNumber(const std::string& key, const toml::node& node) const {
+    return ToNumber(node, [&] { return key; });
+  }
+
+  // The number `node` holds; `key()` names it in a message (built only then).
+  template <typename Key>
+  double ToNumber(const toml::node& node, const Key& key) const {
     double v;
     if (const auto* i = node.as_integer()) {
       v = static_cast<double>(i->get());
     } else if (const auto* f = node.as_floating_point()) {
       v = f->get();
     } else {
-      Fail(key, "expected a number");
+      Fail(key(), "expected a number");
     }
-    if (std::isnan(v)) Fail(key, "is NaN; expected a finite number");
-    if (!std::isfinite(v)) Fail(key, "is infinite; expected a finite number");
+    if (std::isnan(v)) Fail(key(), "is NaN; expected a finite number");
+    if (!std::isfinite(v)) Fail(key(), "is infinite; expected a finite number");
     // No input of a needle valve is this large; beyond it unit conversions and products
     // overflow (rate_N_mm = 1e308 became an "inf N/m" rate).
     if (std::abs(v) > kLargestInput) {
       std::ostringstream m;
       m << "is " << v << "; expected a magnitude of at most 1e15";
-      Fail(key, m.str());
+      Fail(key(), m.str());
     }
     return v;
   }
