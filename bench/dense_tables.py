@@ -27,13 +27,12 @@ import sys
 import tempfile
 import time
 
+from debian_python import reexec_or_exit
+
 try:
     import numpy as np
 except ImportError:
-    if os.path.exists("/usr/bin/python3") and not os.environ.get("DENSE_TABLES_REEXEC"):
-        os.environ["DENSE_TABLES_REEXEC"] = "1"
-        os.execv("/usr/bin/python3", ["/usr/bin/python3", os.path.abspath(__file__)] + sys.argv[1:])
-    sys.exit("dense_tables.py: needs NumPy (apt-get install python3-numpy)")
+    reexec_or_exit(__file__, "dense_tables.py: needs NumPy (apt-get install python3-numpy)")
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROWS = 1_000_001

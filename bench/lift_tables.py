@@ -28,18 +28,16 @@ import os
 import re
 import sys
 
+from debian_python import reexec_or_exit
+
 try:
     import numpy as np
     import scipy
     from scipy.interpolate import make_smoothing_spline
     from scipy.signal import savgol_filter
 except ImportError:
-    # Debian's python3-scipy lives in /usr/bin/python3's dist-packages; another python3 first
-    # on PATH (pyenv, a venv) does not see it. Re-run there once, else say what is missing.
-    if os.path.exists("/usr/bin/python3") and not os.environ.get("LIFT_TABLES_REEXEC"):
-        os.environ["LIFT_TABLES_REEXEC"] = "1"
-        os.execv("/usr/bin/python3", ["/usr/bin/python3", os.path.abspath(__file__)] + sys.argv[1:])
-    sys.exit("lift_tables.py: needs NumPy and SciPy >= 1.10 (Debian: apt-get install python3-scipy)")
+    reexec_or_exit(__file__, "lift_tables.py: needs NumPy and SciPy >= 1.10 "
+                   "(Debian: apt-get install python3-scipy)")
 
 import argparse
 import concurrent.futures
