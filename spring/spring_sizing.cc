@@ -319,8 +319,7 @@ std::vector<SizedSpring> PassingSprings(const SizingSpace& space, const SizingDu
         passing.push_back(std::move(s));
         continue;
       }
-      const std::string& failed = s.rules.back().key;
-      if (failed == "surge_ratio" || (failed == "coil_gap" && !s.check)) break;
+      if (MoreCoilsOnlyWorse(s)) break;
     }
   }
   return passing;
