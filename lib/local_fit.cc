@@ -3,7 +3,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -47,6 +49,8 @@ struct Estimate {
   double s[3] = {};
   double sd2 = 0.0;
   double width = 0.0;  // the window's span, rad
+  // The fit's residuals: the largest |s_i − fit(θ_i)| (m) and Σ c_i (s_i − fit(θ_i))² (m²).
+  double largest_residual = 0.0, residual_square_sum = 0.0;
 };
 
 Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) {
@@ -63,18 +67,18 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
     double power = 1.0;
     for (int c = 0; c < kTerms; ++c, power *= u) v(r, c) = root_w(r) * power;
   }
-  // The weights of β_0, β_1, β_2 on the weighted readings, V (VᵀV)⁻¹ e_d: by QR where few
+  // The weights of β_0 … β_5 on the weighted readings, V (VᵀV)⁻¹ e_d: by QR where few
   // readings make VᵀV ill-conditioned (a one-sided window of 7), by its Cholesky factor above.
   Eigen::MatrixXd g;
   if (k <= kQrBelow) {
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(v);
     const Eigen::MatrixXd r = qr.matrixQR().topRows(kTerms).triangularView<Eigen::Upper>();
-    const Eigen::MatrixXd z =
-        r.transpose().triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(kTerms, 3));
+    const Eigen::MatrixXd z = r.transpose().triangularView<Eigen::Lower>().solve(
+        Eigen::MatrixXd::Identity(kTerms, kTerms));
     g = qr.householderQ() * (Eigen::MatrixXd::Identity(k, kTerms) * z);
   } else {
     const Eigen::MatrixXd vtv = v.transpose() * v;
-    g = v * vtv.ldlt().solve(Eigen::MatrixXd::Identity(kTerms, 3));
+    g = v * vtv.ldlt().solve(Eigen::MatrixXd::Identity(kTerms, kTerms));
   }
   Estimate e;
   e.width = p.x[hi - 1] - p.x[lo];
@@ -93,7 +97,31 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
     if (d == 2) e.sd2 = scale * (quantized ? std::sqrt(3.0) * sum_abs / 1.96 : std::sqrt(var));
     scale *= (d + 1) / b;
   }
+  // The residuals, from the whole polynomial β = gᵀ W s (the test of Misfits).
+  Eigen::VectorXd ws(k);
+  for (Eigen::Index i = 0; i < k; ++i) ws(i) = root_w(i) * p.y[lo + i];
+  const Eigen::VectorXd beta = g.transpose() * ws;
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const double u = (p.x[lo + i] - t) / b;
+    double fitted = 0.0;
+    for (int c = kTerms - 1; c >= 0; --c) fitted = fitted * u + beta(c);
+    const double r = p.y[lo + i] - fitted;
+    e.largest_residual = std::max(e.largest_residual, std::abs(r));
+    e.residual_square_sum += p.count[lo + i] * r * r;
+  }
   return e;
+}
+
+// Whether the window's polynomial misses its readings by more than their noise can: the
+// rounding's bound q/2 = √3 σ twice over (a rounded reading is never further than q/2 from the
+// law, the fit adds its own error), or for white noise Σ c_i r_i² above its χ² expectation
+// (k − 6) σ² by three standard deviations and two readings' worth. A window that reaches past
+// a junction the breaks did not find (s''' jumps where s'' does not) misfits there long before
+// its s'' moves out of the narrower windows' noise (docs/lift-data.md, "Reading a table").
+bool Misfits(const Estimate& e, size_t readings, double sigma, bool quantized) {
+  if (quantized) return e.largest_residual > 2.0 * std::sqrt(3.0) * sigma;
+  const double dof = static_cast<double>(readings) - kTerms;
+  return e.residual_square_sum > (dof + 3.0 * std::sqrt(2.0 * dof) + 2.0) * sigma * sigma;
 }
 
 // The window sizes Lepski's rule tries: 7, 9, 11, … (×1.25, distinct), up to n.
@@ -106,34 +134,53 @@ std::vector<size_t> WindowSizes(size_t n) {
   }
 }
 
-// The node at t: Lepski's window among the K nearest points, trying sizes from sizes[from] on
-// (a neighbour's choice less two: the rule compares a window with the narrower ones tried).
-// `chosen` gets the index of the size chosen.
-LocalNode NodeAt(const Points& p, double t, double sigma, bool quantized,
-                 const std::vector<size_t>& sizes, size_t from, size_t* chosen_size) {
+// Which readings a window at t takes: the nearest, or only those at and before t (left), or at
+// and after it (right). A one-sided window stays inside its piece next to a junction that the
+// breaks did not find, where every centred one reaches across it (Katkovnik's LPA-ICI).
+enum class Side { kNearest, kLeft, kRight };
+constexpr Side kSides[] = {Side::kNearest, Side::kLeft, Side::kRight};
+
+// Grows [lo, hi) to `size` points on `side` of t; false when that side has too few.
+bool Grow(const Points& p, double t, Side side, size_t size, size_t* lo, size_t* hi) {
   const size_t n = p.x.size();
-  size_t lo = std::lower_bound(p.x.begin(), p.x.end(), t) - p.x.begin(), hi = lo;
+  while (*hi - *lo < size) {
+    const bool left = side == Side::kLeft || (side == Side::kNearest && *lo > 0 &&
+                                              (*hi == n || t - p.x[*lo - 1] <= p.x[*hi] - t));
+    if (left ? *lo == 0 : *hi == n) return false;
+    left ? --*lo : ++*hi;
+  }
+  return true;
+}
+
+// The node at t on `side`: Lepski's window, trying sizes from sizes[from] on (a neighbour's
+// choice less two: the rule compares a window with the narrower ones tried), and none wider
+// than the first whose polynomial misfits its readings. `chosen_size` gets the index of the size
+// chosen; nullopt when the side has fewer than sizes[from] points.
+std::optional<LocalNode> NodeAt(const Points& p, double t, double sigma, bool quantized,
+                                const std::vector<size_t>& sizes, Side side, size_t from,
+                                size_t* chosen_size, bool* misfit_ended = nullptr) {
+  const auto at = std::lower_bound(p.x.begin(), p.x.end(), t);
+  size_t lo = at - p.x.begin(), hi = lo;
+  if (side == Side::kLeft) lo = hi = at != p.x.end() && *at == t ? lo + 1 : lo;
   std::vector<Estimate> tried;
   size_t chosen = 0;
-  for (size_t j = from; j < sizes.size(); ++j) {
-    while (hi - lo < sizes[j]) {  // grow towards the nearer side
-      if (lo == 0) {
-        ++hi;
-      } else if (hi == n || t - p.x[lo - 1] <= p.x[hi] - t) {
-        --lo;
-      } else {
-        ++hi;
-      }
-    }
+  for (size_t j = from; j < sizes.size() && Grow(p, t, side, sizes[j], &lo, &hi); ++j) {
     const Estimate e = FitAt(p, t, lo, hi, quantized);
     bool agrees = true;
     for (const Estimate& narrower : tried) {
       agrees = agrees && std::abs(e.s[2] - narrower.s[2]) <= kLepskiSigmas * sigma * narrower.sd2;
     }
+    const bool misfits = Misfits(e, hi - lo, sigma, quantized);
+    // A neighbour's window too wide here: start again from the narrowest.
+    if (misfits && tried.empty() && from > 0) {
+      return NodeAt(p, t, sigma, quantized, sizes, side, 0, chosen_size, misfit_ended);
+    }
     tried.push_back(e);
-    if (!agrees) break;
+    if (misfit_ended) *misfit_ended = agrees && misfits && tried.size() > 1;
+    if (!agrees || (misfits && tried.size() > 1)) break;
     chosen = tried.size() - 1;
   }
+  if (tried.empty()) return std::nullopt;
   *chosen_size = from + chosen;
   const Estimate& e = tried[chosen];
   LocalNode node;
@@ -152,6 +199,30 @@ LocalNode NodeAt(const Points& p, double t, double sigma, bool quantized,
   }
   node.band2 = 1.96 * sigma * e.sd2 + step;
   return node;
+}
+
+// The node at t: the nearest readings' window, or where that window ended on a misfit (a
+// junction the breaks did not find lies within its reach), a one-sided window that grows wider
+// and has the narrower band. `last` holds each side's chosen size, the next node's start.
+LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
+                     const std::vector<size_t>& sizes, std::array<size_t, 3>* last) {
+  auto on = [&](int k, bool* misfit_ended) {
+    const size_t from = (*last)[k] >= 2 ? (*last)[k] - 2 : 0;
+    std::optional<LocalNode> node =
+        NodeAt(p, t, sigma, quantized, sizes, kSides[k], from, &(*last)[k], misfit_ended);
+    if (!node && from > 0) {
+      node = NodeAt(p, t, sigma, quantized, sizes, kSides[k], 0, &(*last)[k], misfit_ended);
+    }
+    return node;
+  };
+  bool misfit_ended = false;
+  LocalNode best = *on(0, &misfit_ended);  // the nearest side always has the points
+  if (!misfit_ended) return best;
+  for (int k = 1; k < 3; ++k) {
+    const std::optional<LocalNode> node = on(k, nullptr);
+    if (node && node->window > best.window && node->band2 < best.band2) best = *node;
+  }
+  return best;
 }
 
 }  // namespace
@@ -195,11 +266,10 @@ LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, do
   // one before (at least the next point): the interpolant's s'' between two nodes is their s''
   // plus their values' noise over the spacing squared, which a spacing of the window's order
   // keeps at the noise of s'' itself.
-  size_t last = 0;
+  std::array<size_t, 3> last{};
   double t = x.front();
   for (;;) {
-    const size_t from = last >= 2 ? last - 2 : 0;
-    fit.nodes.push_back(NodeAt(p, t, sigma_m, quantized, sizes, from, &last));
+    fit.nodes.push_back(BestNodeAt(p, t, sigma_m, quantized, sizes, &last));
     if (t >= x.back()) break;
     const size_t next = std::upper_bound(p.x.begin(), p.x.end(), t) - p.x.begin();
     double step = kNodeSpacing * fit.nodes.back().width;

@@ -12,7 +12,12 @@
 /// σ √(Σ g_i²/c_i). The window is chosen at each node by Lepski's rule: the widest of the
 /// windows K_j = 7, 9, 11, … (×1.25) whose s'' agrees with every narrower one's within
 /// kLepskiSigmas of the narrower one's standard deviation, so it grows while the noise shrinks
-/// faster than the law's curvature bends the fit. An exact table (σ ≈ 0) keeps the narrowest
+/// faster than the law's curvature bends the fit, and up to the first window whose polynomial
+/// misfits its readings (a residual above q = √12 σ for rounding; Σ c_i r_i² above its χ² range
+/// for white noise): it reaches past a junction no break marks (s''' jumps). Where the nearest
+/// readings' window ends on such a misfit, the node also tries the readings on each side of it
+/// alone and keeps the one-sided window that grows wider with a narrower band (LPA-ICI,
+/// Katkovnik 2006). An exact table (σ ≈ 0) keeps the narrowest
 /// window, a quintic through 7 readings (error O(h⁴) in s''); a rounded or measured one is
 /// smoothed exactly as much as its σ asks. Windows never reach past the readings given, so a
 /// piece between two junctions is fitted from its own data, one-sided at its ends.
