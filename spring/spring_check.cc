@@ -22,7 +22,12 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
                   Fixed(*r.basu_preload_N / kKgf, 1) + " kgf (tolerance " +
                   Fixed(r.basu_tolerance_percent, 1) + " %)");
   }
-  if (!r.preload_ok && r.train.preload_N >= r.required_preload_N) {
+  if (!r.decelerates) {
+    out.push_back(
+        "inertia sizing: undecided: the lift table never decelerates (a lift that "
+        "returns to its seat must), so it does not hold the lift's top; give the whole "
+        "lift");
+  } else if (!r.preload_ok && r.train.preload_N >= r.required_preload_N) {
     out.push_back("inertia sizing: undecided within the table's accuracy: the preload " +
                   Fixed(r.train.preload_N, 1) + " N meets the required " +
                   Fixed(r.required_preload_N, 1) + " N of the fitted lift, not the " +
@@ -95,7 +100,9 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
   r.liftoff_rpm_quasi_static_band = QuasiStaticLiftoffBand(law, r.train);
   r.required_preload_unsafe_N =
       RequiredPreloadUnsafeN(law, r.train, omega, spring.safety_factor, spring.overspeed_factor);
-  r.preload_ok = r.train.preload_N >= r.required_preload_unsafe_N.value_or(r.required_preload_N);
+  r.decelerates = *sum.min_acceleration_m_s2 < 0.0;
+  r.preload_ok = r.decelerates &&
+                 r.train.preload_N >= r.required_preload_unsafe_N.value_or(r.required_preload_N);
   const double S = spring.safety_factor;
   r.safety_factor = S;
   r.gas_force_N = r.train.gas_force_N;

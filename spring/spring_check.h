@@ -40,6 +40,9 @@ struct SpringCheckResult {
   std::optional<double> required_preload_unsafe_N;
   double preload_margin_percent = 0.0;  ///< +∞ when nothing is required
   bool preload_ok = false;
+  /// Whether the lift decelerates anywhere (s'' < 0): a table that never does (it stops before
+  /// the lift's top, or holds two readings) leaves the inertia sizing undecided, and failed.
+  bool decelerates = false;
   double gas_force_N = 0.0;                ///< F_g, the combustion load
   std::string gas_source;                  ///< where F_g comes from
   double combustion_margin_percent = 0.0;  ///< 100·(P₀ − S·F_g)/(S·F_g); +∞ when F_g ≤ 0

@@ -99,8 +99,10 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
     out << "required preload (S = " << Fixed(c.spring->safety_factor, 2) << " at "
         << Fixed(c.spring->overspeed_factor, 2) << " x " << Fixed(speed, 0)
         << " rpm): " << t("required_preload_N") << " = " << t("required_preload_kgf")
-        << "; margin of the case's spring " << or_unbounded("preload_margin_percent") << " -> "
-        << PassFail(preload_ok) << '\n';
+        << "; margin of the case's spring "
+        << (check.decelerates ? or_unbounded("preload_margin_percent")
+                              : std::string("undecided (the table never decelerates)"))
+        << " -> " << PassFail(preload_ok) << '\n';
     if (helical) {
       const std::vector<Field> hf = HelicalFields(*helical);
       const auto ht = [&](const char* key) { return FieldText(FieldAt(hf, key)); };

@@ -101,5 +101,31 @@ rate_N_mm = 50
   EXPECT_TRUE(r.pass);
 }
 
+// A table of two readings (a straight rise, a user's trial) never decelerates: n_qs is none,
+// and the spring passed with nothing limiting its preload. Its inertia sizing is undecided now.
+TEST(SpringCheckTest, ATableThatNeverDeceleratesLeavesTheInertiaSizingUndecided) {
+  const Case c = ParseCase(R"(
+[engine]
+speed_rpm = 600
+[lift]
+crank_deg = [0, 10]
+lift_mm = [0, 1]
+[needle]
+mass_kg = 0.05
+[spring]
+preload_N = 100
+rate_N_mm = 5
+)",
+                           "t.toml");
+  const SpringCheckResult r = CheckSpring(c, MakeLiftLaw(c), c.engine.speed_rpm);
+  EXPECT_FALSE(r.decelerates);
+  EXPECT_FALSE(r.preload_ok);
+  EXPECT_FALSE(r.pass);
+  ASSERT_EQ(r.failures.size(), 1u);
+  EXPECT_EQ(r.failures[0],
+            "inertia sizing: undecided: the lift table never decelerates (a lift that returns to "
+            "its seat must), so it does not hold the lift's top; give the whole lift");
+}
+
 }  // namespace
 }  // namespace needle
