@@ -116,114 +116,129 @@ class Transcoder {
     ++column_;
     switch (state_) {
       case State::kNormal:
-        if (ch >= 0x80)
-          Fail("non-ASCII character outside a string or comment (TOML allows it only there)");
-        if (ch == '#') {
-          state_ = State::kComment;
-        } else if (ch == '"' && Starts("\"\"\"")) {
-          state_ = State::kMultiBasic;
-          out_ += "\"\"\"";
-          i_ += 3;
-          column_ += 2;
-          return;
-        } else if (ch == '\'' && Starts("'''")) {
-          state_ = State::kMultiLiteral;
-          OpenLiteral(true);
-          i_ += 3;
-          column_ += 2;
-          return;
-        } else if (ch == '"') {
-          state_ = State::kBasic;
-        } else if (ch == '\'') {
-          state_ = State::kLiteral;
-          OpenLiteral(false);
-          ++i_;
-          return;
-        }
-        out_ += static_cast<char>(ch);
-        ++i_;
-        return;
+        return StepNormal(ch);
       case State::kComment:
-        if (ch >= 0x80) {
-          Decode();
-          out_ += '?';
-          return;
-        }
-        out_ += static_cast<char>(ch);
-        ++i_;
-        return;
+        return StepComment(ch);
       case State::kBasic:
       case State::kMultiBasic:
-        if (ch >= 0x80) {
-          out_ += Escape(Decode());
-          return;
-        }
-        if (ch == '\\') {
-          out_ += '\\';
-          ++i_;
-          if (i_ < text_.size()) {
-            const unsigned char next = static_cast<unsigned char>(text_[i_]);
-            if (next >= 0x80) Fail("a backslash before a non-ASCII character (no such escape)");
-            if (next != '\n') {  // a line-ending backslash is handled as a newline
-              out_ += static_cast<char>(next);
-              ++i_;
-              ++column_;
-            }
-          }
-          return;
-        }
-        if (state_ == State::kBasic && ch == '"') {
-          state_ = State::kNormal;
-        } else if (state_ == State::kMultiBasic && ch == '"' && Starts("\"\"\"")) {
-          // Up to two more quotes may end the content ("""a""""" is a"").
-          size_t run = 0;
-          while (i_ + run < text_.size() && text_[i_ + run] == '"' && run < 5) ++run;
-          out_.append(run, '"');
-          i_ += run;
-          column_ += static_cast<int>(run) - 1;
-          state_ = State::kNormal;
-          return;
-        }
-        out_ += static_cast<char>(ch);
-        ++i_;
-        return;
+        return StepBasic(ch);
       case State::kLiteral:
-      case State::kMultiLiteral: {
-        if (state_ == State::kLiteral && ch == '\'') {
-          ++i_;
-          state_ = State::kNormal;
-          CloseLiteral();
-          return;
-        }
-        if (state_ == State::kMultiLiteral && ch == '\'' && Starts("'''")) {
-          size_t run = 0;
-          while (i_ + run < text_.size() && text_[i_ + run] == '\'' && run < 5) ++run;
-          // The last three close it; up to two before them belong to the content.
-          for (size_t k = 0; k + 3 < run; ++k) {
-            literal_ += '\'';
-            escaped_ += '\'';
-          }
-          i_ += run;
-          column_ += static_cast<int>(run) - 1;
-          state_ = State::kNormal;
-          CloseLiteral();
-          return;
-        }
-        if (ch >= 0x80) {
-          const size_t from = i_;
-          const unsigned long cp = Decode();
-          literal_ += text_.substr(from, i_ - from);
-          escaped_ += Escape(cp);
-          literal_non_ascii_ = true;
-          return;
-        }
-        literal_ += static_cast<char>(ch);
-        if (ch == '\\' || ch == '"') escaped_ += '\\';
-        escaped_ += static_cast<char>(ch);
-        ++i_;
-        return;
-      }
+      case State::kMultiLiteral:
+        return StepLiteral(ch);
     }
+  }
+
+  // Step() on the character ch at i_ (not a newline) outside strings and comments.
+  void StepNormal(unsigned char ch) {
+    if (ch >= 0x80)
+      Fail("non-ASCII character outside a string or comment (TOML allows it only there)");
+    if (ch == '#') {
+      state_ = State::kComment;
+    } else if (ch == '"' && Starts("\"\"\"")) {
+      state_ = State::kMultiBasic;
+      out_ += "\"\"\"";
+      i_ += 3;
+      column_ += 2;
+      return;
+    } else if (ch == '\'' && Starts("'''")) {
+      state_ = State::kMultiLiteral;
+      OpenLiteral(true);
+      i_ += 3;
+      column_ += 2;
+      return;
+    } else if (ch == '"') {
+      state_ = State::kBasic;
+    } else if (ch == '\'') {
+      state_ = State::kLiteral;
+      OpenLiteral(false);
+      ++i_;
+      return;
+    }
+    out_ += static_cast<char>(ch);
+    ++i_;
+  }
+
+  // … inside a comment: passed on, a non-ASCII character as '?'.
+  void StepComment(unsigned char ch) {
+    if (ch >= 0x80) {
+      Decode();
+      out_ += '?';
+      return;
+    }
+    out_ += static_cast<char>(ch);
+    ++i_;
+  }
+
+  // … inside a basic string: passed on, a non-ASCII character as its escape.
+  void StepBasic(unsigned char ch) {
+    if (ch >= 0x80) {
+      out_ += Escape(Decode());
+      return;
+    }
+    if (ch == '\\') {
+      out_ += '\\';
+      ++i_;
+      if (i_ < text_.size()) {
+        const unsigned char next = static_cast<unsigned char>(text_[i_]);
+        if (next >= 0x80) Fail("a backslash before a non-ASCII character (no such escape)");
+        if (next != '\n') {  // a line-ending backslash is handled as a newline
+          out_ += static_cast<char>(next);
+          ++i_;
+          ++column_;
+        }
+      }
+      return;
+    }
+    if (state_ == State::kBasic && ch == '"') {
+      state_ = State::kNormal;
+    } else if (state_ == State::kMultiBasic && ch == '"' && Starts("\"\"\"")) {
+      // Up to two more quotes may end the content ("""a""""" is a"").
+      size_t run = 0;
+      while (i_ + run < text_.size() && text_[i_ + run] == '"' && run < 5) ++run;
+      out_.append(run, '"');
+      i_ += run;
+      column_ += static_cast<int>(run) - 1;
+      state_ = State::kNormal;
+      return;
+    }
+    out_ += static_cast<char>(ch);
+    ++i_;
+  }
+
+  // … inside a literal string: held back (OpenLiteral), and its escaped form built alongside.
+  void StepLiteral(unsigned char ch) {
+    if (state_ == State::kLiteral && ch == '\'') {
+      ++i_;
+      state_ = State::kNormal;
+      CloseLiteral();
+      return;
+    }
+    if (state_ == State::kMultiLiteral && ch == '\'' && Starts("'''")) {
+      size_t run = 0;
+      while (i_ + run < text_.size() && text_[i_ + run] == '\'' && run < 5) ++run;
+      // The last three close it; up to two before them belong to the content.
+      for (size_t k = 0; k + 3 < run; ++k) {
+        literal_ += '\'';
+        escaped_ += '\'';
+      }
+      i_ += run;
+      column_ += static_cast<int>(run) - 1;
+      state_ = State::kNormal;
+      CloseLiteral();
+      return;
+    }
+    if (ch >= 0x80) {
+      const size_t from = i_;
+      const unsigned long cp = Decode();
+      literal_ += text_.substr(from, i_ - from);
+      escaped_ += Escape(cp);
+      literal_non_ascii_ = true;
+      return;
+    }
+    literal_ += static_cast<char>(ch);
+    if (ch == '\\' || ch == '"') escaped_ += '\\';
+    escaped_ += static_cast<char>(ch);
+    ++i_;
   }
 
   const std::string& text_;

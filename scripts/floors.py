@@ -50,11 +50,6 @@ LONG_FUNCTIONS = {
     "apps/bench/bench_studies.cc RunTargets": 170,
     "apps/bench/bench_studies.cc RunOverspeedComparison": 138,
     "apps/bench/bench_dynamics.cc RunDynamics": 129,
-    "lib/toml_text.cc Step": 127,
-    "dynamics/simulation.cc RunPass": 126,
-    "dynamics/simulation.cc Simulate": 117,
-    "dynamics/model/needle_train.cc NeedleTrain::Jacobian": 107,
-    "dynamics/solver/event_certification.cc EventDriver::RecordExtremes": 106,
 }
 DECLARATION = re.compile(r"(namespace|struct|class|enum|union|if|for|while|switch|do|else|return|"
                          r"case|template|extern|using|typedef|static_assert)\b")

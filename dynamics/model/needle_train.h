@@ -232,6 +232,13 @@ class NeedleTrain {
 
  private:
   double CamAngle(double crank_rad, const Phase& phase) const;
+  // Segment j's (1…N) ∂S_j/∂s_j and ∂S_j/∂ṡ_j in `phase`: the rate and dashpot, and the clash
+  // law's while the mode has the segment solid.
+  double SegmentStiffness(int j, const Phase& phase) const;
+  double SegmentDamping(int j, const Phase& phase) const;
+  // Jacobian()'s rows and columns of the chain's coils (N > 1), u'' = `upp` at c's angle.
+  void ChainJacobian(const TrainState& x, const Contacts& c, const Phase& phase, double upp,
+                     TrainJacobian& J, TrainState& dfdt) const;
 
   const CamInput& cam_;
   TrainParameters p_;

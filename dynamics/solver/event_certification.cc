@@ -17,6 +17,9 @@
 namespace needle {
 namespace internal {
 
+// RecordExtremes samples a stretch at this many intervals.
+constexpr int kStretchSamples = 16;
+
 std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i, int s, double a,
                                              double wa, double b, double wb) {
   if (!(b > a)) return std::nullopt;
@@ -139,15 +142,10 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
   return end;
 }
 
-void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> covering,
-                                 const EventSigns& signs) {
-  constexpr int n = 16;
-  const Phase& phase = system_.phase;
-  const ClosedFormPiece& piece = *stepper_->ClosedForm();
-  // A frozen stretch: every sample repeats its start, which the record holds.
-  if (o_.leave_out && Frozen(piece, t0, t1)) return;
-  const bool screen = o_.leave_out && !phase.gated && !train_.HasConstraint();
-  if (!screen) covering.reset();
+StretchRanges EventDriver::SettledRanges(const ClosedFormPiece& piece, double t0, double t1,
+                                         std::optional<double> covering, const EventSigns& signs,
+                                         bool* lift_covered) {
+  constexpr int n = kStretchSamples;
   StretchRanges ranges = Ranges(piece, t0, t1);
   // No witness leaves its sign inside the stretch (the certified search found none before its
   // end): off the seat (its gap g_s = −y at or below zero) the lift is at least 0, and below
@@ -163,21 +161,35 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   // A lift that rises (falls) over the whole stretch, by more than round-off between two
   // samples, from one the record holds to the covering one: its interior samples set no
   // extreme of the lift that the covering sample does not set after them.
-  bool lift_covered = false;
+  *lift_covered = false;
   if (covering) {
     const double y0 = Motion(t0)[0];
     const FormRange rate = piece.Range(LinearForm{0.0, 1.0, 0.0, 0.0, 0.0}, t0, t1);
     const double step = (t1 - t0) / n, roundoff = 1e-12 * (std::abs(*covering) + lift_scale_);
     if (rate.lo * step > roundoff && !(y0 < recorder_.min_lift_m())) {
-      lift_covered = true;
+      *lift_covered = true;
       ranges.y_lo = std::max(ranges.y_lo, y0);
       ranges.y_hi = std::min(ranges.y_hi, *covering);
     } else if (-rate.hi * step > roundoff && !(y0 > recorder_.max_lift_m())) {
-      lift_covered = true;
+      *lift_covered = true;
       ranges.y_lo = std::max(ranges.y_lo, *covering);
       ranges.y_hi = std::min(ranges.y_hi, y0);
     }
   }
+  return ranges;
+}
+
+void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> covering,
+                                 const EventSigns& signs) {
+  constexpr int n = kStretchSamples;
+  const Phase& phase = system_.phase;
+  const ClosedFormPiece& piece = *stepper_->ClosedForm();
+  // A frozen stretch: every sample repeats its start, which the record holds.
+  if (o_.leave_out && Frozen(piece, t0, t1)) return;
+  const bool screen = o_.leave_out && !phase.gated && !train_.HasConstraint();
+  if (!screen) covering.reset();
+  bool lift_covered = false;
+  const StretchRanges ranges = SettledRanges(piece, t0, t1, covering, signs, &lift_covered);
   // Nothing recorded can change inside the stretch: its interior samples are left out.
   if (!recorder_.MayChange(ranges, lift_covered, true)) return;
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();

@@ -214,6 +214,12 @@ class EventDriver {
   bool Frozen(const ClosedFormPiece& piece, double t0, double t1) const;
   // The ranges of what the record sees over [t0, t1] of a closed-form piece.
   StretchRanges Ranges(const ClosedFormPiece& piece, double t0, double t1) const;
+  // Ranges() narrowed by what RecordExtremes knows of the stretch: the witnesses' `signs` bound
+  // the lift, and a lift that rises (falls) throughout, from a sample the record holds to the
+  // `covering` one, sets no extreme before that sample does (then *lift_covered).
+  StretchRanges SettledRanges(const ClosedFormPiece& piece, double t0, double t1,
+                              std::optional<double> covering, const EventSigns& signs,
+                              bool* lift_covered);
   // The end of a closed-form piece from t past its cap, up to `limit` and the run's end t_end_:
   // the limit where the stretch cannot change the record (Recorder::MayChange), the cam input
   // is constant on it (a needle resting on its seat, or hanging in its play) and every witness's
