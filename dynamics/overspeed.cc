@@ -190,232 +190,266 @@ double UnguidedStep(double step, double res, double n,
   return std::min(step, std::max(res, (last->second > 0.0 ? 1.0 : 2.0) * (n - last->first)));
 }
 
-}  // namespace
+// The search's state between its phases (OverspeedSearch): the start (down from a guess, or
+// halving below a start that lifts off), the scan up led by the contact margin, and the
+// bisection of the first lift-off's bracket.
+class Scan {
+ public:
+  Scan(const Scene& scene, const OverspeedOptions& o, const std::function<void(int, int)>& progress)
+      : o_(o),
+        sim_(SearchRuns(o)),
+        threads_(ThreadsToUse(o.threads)),
+        step_(o.step_rpm > 0.0 ? o.step_rpm : std::max(1.0, 0.025 * o.from_rpm)),
+        floor_(o.floor_rpm > 0.0 ? o.floor_rpm : o.from_rpm / 16.0),
+        res_(o.resolution_rpm),
+        preload_(scene.train.preload_N > 0.0 ? scene.train.preload_N : 1.0),
+        runs_(scene, sim_, threads_, progress) {
+    result_.threads = threads_;
+    result_.step_rpm = step_;
+    result_.floor_rpm = floor_;
+    runs_.set_estimate(static_cast<int>(std::ceil(std::log(o.to_rpm / o.from_rpm) /
+                                                  std::log1p(o.max_step_fraction))) +
+                       10);
+  }
 
-OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
-                                const std::function<void(int, int)>& progress) {
-  o.Validate();
-  OverspeedResult result;
-  SimulationOptions sim = o.simulation;
-  sim.force_dynamic = true;  // lift-off is a dynamic question
-  sim.record_series = false;
-  sim.stop_at_liftoff = true;  // … and the only one asked
-  const int threads = ThreadsToUse(o.threads);
-  result.threads = threads;
-  const double step = o.step_rpm > 0.0 ? o.step_rpm : std::max(1.0, 0.025 * o.from_rpm);
-  result.step_rpm = step;
-  const double floor = o.floor_rpm > 0.0 ? o.floor_rpm : o.from_rpm / 16.0;
-  result.floor_rpm = floor;
-  const double res = o.resolution_rpm;
-  const double preload = scene.train.preload_N > 0.0 ? scene.train.preload_N : 1.0;
-  Runs runs(scene, sim, threads, progress);
-  runs.set_estimate(static_cast<int>(std::ceil(std::log(o.to_rpm / o.from_rpm) /
-                                               std::log1p(o.max_step_fraction))) +
-                    10);
-  int scanned = 0;
-  const auto budget_stop = [&](const OverspeedRow& row, double n) {
-    result.scanned_to_rpm = n;
+  OverspeedResult Run() {
+    if (!Start()) {
+      ScanUp();
+      if (found_) {
+        Bisect();
+      } else if (result_.status == "found") {
+        result_.status = "none";
+      }
+    }
+    result_.rows = runs_.AskedRows();
+    return std::move(result_);
+  }
+
+ private:
+  // The runs of the search: dynamic, no series, stopped at the first lift-off.
+  static SimulationOptions SearchRuns(const OverspeedOptions& o) {
+    SimulationOptions sim = o.simulation;
+    sim.force_dynamic = true;  // lift-off is a dynamic question
+    sim.record_series = false;
+    sim.stop_at_liftoff = true;  // … and the only one asked
+    return sim;
+  }
+
+  // Whether the run at n ends the search: a broken scene (no speed of it can be judged), or a
+  // run stopped on its budget without a lift-off. Sets the status and the speed reached.
+  bool BudgetStop(const OverspeedRow& row, double n) {
+    result_.scanned_to_rpm = n;
     if (row.status == RunStatus::kNotFollowing) {
-      result.status = "not-following";  // a broken scene: no speed of it can be judged
+      result_.status = "not-following";
       return true;
     }
     if (row.lifts_off || row.status != RunStatus::kBudget) return false;
-    result.status = "run-budget";
+    result_.status = "run-budget";
     return true;
-  };
-
-  // The start of the upward scan: start_rpm or below it, from_rpm, or below that where the needle
-  // lifts off there.
-  const bool guessed = o.start_rpm && *o.start_rpm > o.from_rpm && *o.start_rpm < o.to_rpm;
-  const bool hinted = guessed && !o.start_after_rpm;     // start at the guess
-  bool jump = guessed && o.start_after_rpm.has_value();  // jump to it past start_after_rpm
-  double n = hinted ? *o.start_rpm : o.from_rpm;
-  double top = o.to_rpm;  // the scan ends here (a lift-off known there, or the range's end)
-  ++scanned;
-  const OverspeedRow* row = &runs.At(n);
-  if (budget_stop(*row, n)) {
-    result.rows = runs.AskedRows();
-    return result;
-  }
-  for (double down = std::max(step, kStartStepFraction * n);
-       hinted && row->lifts_off && n > o.from_rpm && scanned < o.max_speeds; down *= 2.0) {
-    top = n;
-    n = std::max(n - down, o.from_rpm);
-    ++scanned;
-    row = &runs.At(n);
-    if (budget_stop(*row, n)) {
-      result.rows = runs.AskedRows();
-      return result;
-    }
-  }
-  if (row->lifts_off && n > o.from_rpm) {  // the scan budget ended the way down
-    result.status = "budget";
-    result.scanned_to_rpm = n;
-    result.rows = runs.AskedRows();
-    return result;
-  }
-  if (row->lifts_off) {
-    result.lifts_off_at_start = true;
-    while (row->lifts_off) {
-      if (n <= floor) {
-        result.status = "floor";
-        result.rows = runs.AskedRows();
-        return result;
-      }
-      top = n;
-      n = std::max(0.5 * n, floor);
-      ++scanned;
-      row = &runs.At(n);
-      if (budget_stop(*row, n)) {
-        result.rows = runs.AskedRows();
-        return result;
-      }
-    }
   }
 
-  // Upward, led by the margin, to the first lift-off.
-  double lo = 0.0, hi = 0.0, lo_margin = 0.0;
-  bool found = false;
-  std::optional<std::pair<double, double>> last;  // (n, f) of the speed before
-  while (true) {
-    const double f = row->min_contact_force_N / preload;
-    double d = UnguidedStep(step, res, n, last);
-    if (f > 0.0) {
-      const double d_max = std::max(step, o.max_step_fraction * n);
-      if (last && last->second > f) {
-        // Falling: toward the zero of the secant through the last two (n², f), and just past.
-        const double n2 = n * n + f * (n * n - last->first * last->first) / (last->second - f);
-        d = std::min(d_max, std::sqrt(n2) - n + res);
+  // Runs n (one more speed scanned) into row_; BudgetStop's answer.
+  bool Ask(double n) {
+    ++scanned_;
+    row_ = &runs_.At(n);
+    return BudgetStop(*row_, n);
+  }
+
+  // The start of the upward scan: start_rpm or below it, from_rpm, or below that where the
+  // needle lifts off there. True when the search ends here.
+  bool Start() {
+    const bool guessed = o_.start_rpm && *o_.start_rpm > o_.from_rpm && *o_.start_rpm < o_.to_rpm;
+    const bool hinted = guessed && !o_.start_after_rpm;  // start at the guess
+    jump_ = guessed && o_.start_after_rpm.has_value();   // jump to it past start_after_rpm
+    n_ = hinted ? *o_.start_rpm : o_.from_rpm;
+    top_ = o_.to_rpm;  // the scan ends here (a lift-off known there, or the range's end)
+    if (Ask(n_)) return true;
+    for (double down = std::max(step_, kStartStepFraction * n_);
+         hinted && row_->lifts_off && n_ > o_.from_rpm && scanned_ < o_.max_speeds; down *= 2.0) {
+      top_ = n_;
+      n_ = std::max(n_ - down, o_.from_rpm);
+      if (Ask(n_)) return true;
+    }
+    if (row_->lifts_off && n_ > o_.from_rpm) {  // the scan budget ended the way down
+      result_.status = "budget";
+      result_.scanned_to_rpm = n_;
+      return true;
+    }
+    if (!row_->lifts_off) return false;
+    result_.lifts_off_at_start = true;
+    while (row_->lifts_off) {
+      if (n_ <= floor_) {
+        result_.status = "floor";
+        return true;
+      }
+      top_ = n_;
+      n_ = std::max(0.5 * n_, floor_);
+      if (Ask(n_)) return true;
+    }
+    return false;
+  }
+
+  // The scan's step from n_, where the contact margin is f.
+  double ScanStep(double f) const {
+    double d = UnguidedStep(step_, res_, n_, last_);
+    if (!(f > 0.0)) return d;
+    const double d_max = std::max(step_, o_.max_step_fraction * n_);
+    if (last_ && last_->second > f) {
+      // Falling: toward the zero of the secant through the last two (n², f), and just past.
+      const double n2 = n_ * n_ + f * (n_ * n_ - last_->first * last_->first) / (last_->second - f);
+      d = std::min(d_max, std::sqrt(n2) - n_ + res_);
+    } else {
+      d = d_max * std::min(1.0, f / kFullStepMargin);
+      // Rising: out of a dip, perhaps into the next; no further than f would fall at the
+      // rate it rose.
+      if (last_ && last_->second < f)
+        d = std::min(d, 0.5 * f * (n_ - last_->first) / (f - last_->second));
+    }
+    return std::max(d, res_);
+  }
+
+  // Upward, led by the margin, to the first lift-off (found_, its bracket [lo_, hi_]).
+  void ScanUp() {
+    while (true) {
+      const double f = row_->min_contact_force_N / preload_;
+      const double d = ScanStep(f);
+      if (n_ >= top_) break;
+      const auto before = last_;
+      last_ = std::make_pair(n_, f);
+      const double next = std::min(n_ + d, top_);
+      if (scanned_ >= o_.max_speeds) {
+        result_.status = "budget";
+        break;
+      }
+      if (Ask(next)) break;
+      if (row_->lifts_off) {
+        found_ = true;
+        last_ = before;  // the speed before lo
+        lo_ = n_;
+        lo_margin_ = f;
+        hi_ = next;
+        break;
+      }
+      // The margin went from positive to zero across the step without a lift-off at its end:
+      // the contact was first lost inside it, where a lift-off window may lie that closes
+      // again before `next` (a surge resonance).
+      if (f > 0.0 && !(row_->min_contact_force_N > 0.0)) {
+        BisectToLoss(n_, next);
+        if (found_ || result_.status != "found") break;
+        row_ = &runs_.At(next);
+      }
+      if (jump_ && next >= *o_.start_after_rpm && *o_.start_rpm > next && *o_.start_rpm < top_) {
+        jump_ = false;
+        const std::optional<double> known = JumpToGuess(next);
+        if (!known) break;
+        last_.reset();
+        n_ = *known;
+        row_ = &runs_.At(*known);
+        continue;
+      }
+      n_ = next;
+    }
+  }
+
+  // Bisects [a, b] on the margin's sign to where it reaches zero and asks there.
+  void BisectToLoss(double a, double b) {
+    while (b - a > res_ && !found_) {
+      const double m = 0.5 * (a + b);
+      ++scanned_;
+      const OverspeedRow& probe = runs_.At(m);
+      if (BudgetStop(probe, m)) break;
+      if (probe.lifts_off) {
+        found_ = true;
+        last_.reset();
+        lo_ = a;
+        lo_margin_ = 0.0;
+        hi_ = m;
+      } else if (probe.min_contact_force_N > 0.0) {
+        a = m;
       } else {
-        d = d_max * std::min(1.0, f / kFullStepMargin);
-        // Rising: out of a dip, perhaps into the next; no further than f would fall at the
-        // rate it rose.
-        if (last && last->second < f)
-          d = std::min(d, 0.5 * f * (n - last->first) / (f - last->second));
+        b = m;
       }
-      d = std::max(d, res);
     }
-    if (n >= top) break;
-    const auto before = last;
-    last = std::make_pair(n, f);
-    const double next = std::min(n + d, top);
-    if (scanned >= o.max_speeds) {
-      result.status = "budget";
-      break;
-    }
-    ++scanned;
-    row = &runs.At(next);
-    if (budget_stop(*row, next)) break;
-    if (row->lifts_off) {
-      found = true;
-      last = before;  // the speed before lo
-      lo = n;
-      lo_margin = f;
-      hi = next;
-      break;
-    }
-    // The margin went from positive to zero across the step without a lift-off at its end: the
-    // contact was first lost inside it, where a lift-off window may lie that closes again before
-    // `next` (a surge resonance). Bisect on the margin's sign to where it reaches zero and ask
-    // there.
-    if (f > 0.0 && !(row->min_contact_force_N > 0.0)) {
-      double a = n, b = next;
-      while (b - a > res && !found) {
-        const double m = 0.5 * (a + b);
-        ++scanned;
-        const OverspeedRow& probe = runs.At(m);
-        if (budget_stop(probe, m)) break;
-        if (probe.lifts_off) {
-          found = true;
-          last.reset();
-          lo = a;
-          lo_margin = 0.0;
-          hi = m;
-        } else if (probe.min_contact_force_N > 0.0) {
-          a = m;
-        } else {
-          b = m;
-        }
-      }
-      if (found || result.status != "found") break;
-      row = &runs.At(next);
-    }
-    // Past start_after_rpm without a lift-off (every speed below it run as without a guess): on
-    // to the guess, down from it while the needle lifts off there (not below `next`), and the
-    // scan goes on up from the highest speed known not to lift off.
-    if (jump && next >= *o.start_after_rpm && *o.start_rpm > next && *o.start_rpm < top) {
-      jump = false;
-      double known = next, m = *o.start_rpm;
-      bool stopped = false;
-      for (double down = std::max(step, kStartStepFraction * m);; down *= 2.0) {
-        if (scanned >= o.max_speeds) {
-          result.status = "budget";
-          stopped = true;
-          break;
-        }
-        ++scanned;
-        const OverspeedRow& probe = runs.At(m);
-        if (budget_stop(probe, m)) {
-          stopped = true;
-          break;
-        }
-        if (!probe.lifts_off) {
-          known = m;
-          break;
-        }
-        top = m;
-        m = std::max(m - down, known);
-        if (m == known) break;  // scan up from `next` to the lift-off at `top`
-      }
-      if (stopped) break;
-      last.reset();
-      n = known;
-      row = &runs.At(known);
-      continue;
-    }
-    n = next;
   }
-  if (found) {
-    runs.set_estimate(scanned + static_cast<int>(std::ceil(std::log2((hi - lo) / res))));
-    // Bisection, guided: where the margin fell to a positive value at lo, the first probe is
-    // just past the zero of the secant through lo and the speed before it (as in the scan);
-    // a guided probe that did not halve the bracket hands over to plain halving.
+
+  // Past start_after_rpm without a lift-off (every speed below it run as without a guess): on
+  // to the guess, down from it while the needle lifts off there (not below `next`). The highest
+  // speed known not to lift off, from which the scan goes on up; nullopt when the search ends.
+  std::optional<double> JumpToGuess(double next) {
+    double known = next, m = *o_.start_rpm;
+    for (double down = std::max(step_, kStartStepFraction * m);; down *= 2.0) {
+      if (scanned_ >= o_.max_speeds) {
+        result_.status = "budget";
+        return std::nullopt;
+      }
+      ++scanned_;
+      const OverspeedRow& probe = runs_.At(m);
+      if (BudgetStop(probe, m)) return std::nullopt;
+      if (!probe.lifts_off) return m;
+      top_ = m;
+      m = std::max(m - down, known);
+      if (m == known) return known;  // scan up from `next` to the lift-off at `top`
+    }
+  }
+
+  // Bisection, guided: where the margin fell to a positive value at lo, the first probe is just
+  // past the zero of the secant through lo and the speed before it (as in the scan); a guided
+  // probe that did not halve the bracket hands over to plain halving.
+  void Bisect() {
+    runs_.set_estimate(scanned_ + static_cast<int>(std::ceil(std::log2((hi_ - lo_) / res_))));
     bool guide = true;
-    while (hi - lo > res) {
-      const double width = hi - lo;
-      double probe = lo + 0.5 * width;
-      std::vector<double> ahead = BisectionAhead(lo, hi, threads - 1);
+    while (hi_ - lo_ > res_) {
+      const double width = hi_ - lo_;
+      double probe = lo_ + 0.5 * width;
+      std::vector<double> ahead = BisectionAhead(lo_, hi_, threads_ - 1);
       bool guided = false;
-      if (guide && last && last->first < lo && last->second > lo_margin && lo_margin > 0.0) {
-        const double n2 = lo * lo + lo_margin * (lo * lo - last->first * last->first) /
-                                        (last->second - lo_margin);
-        const double g = std::sqrt(n2) + 0.25 * res;
-        if (g > lo + 0.1 * res && g < hi - 0.1 * res) {
+      if (guide && last_ && last_->first < lo_ && last_->second > lo_margin_ && lo_margin_ > 0.0) {
+        const double n2 = lo_ * lo_ + lo_margin_ * (lo_ * lo_ - last_->first * last_->first) /
+                                          (last_->second - lo_margin_);
+        const double g = std::sqrt(n2) + 0.25 * res_;
+        if (g > lo_ + 0.1 * res_ && g < hi_ - 0.1 * res_) {
           probe = g;
           guided = true;
           ahead.clear();
         }
       }
-      const OverspeedRow& m = runs.At(probe, ahead);
+      const OverspeedRow& m = runs_.At(probe, ahead);
       // A run stopped on its budget shows no lift-off but proves none either: the bracket
       // keeps it on the high side, so n_dyn is never reported below an undecided speed.
       if (m.lifts_off || m.status == RunStatus::kBudget || m.status == RunStatus::kNotFollowing) {
-        hi = probe;
+        hi_ = probe;
       } else {
-        last = std::make_pair(lo, lo_margin);
-        lo = probe;
-        lo_margin = m.min_contact_force_N / preload;
+        last_ = std::make_pair(lo_, lo_margin_);
+        lo_ = probe;
+        lo_margin_ = m.min_contact_force_N / preload_;
       }
-      if (guided) guide = hi - lo <= 0.5 * width;
+      if (guided) guide = hi_ - lo_ <= 0.5 * width;
     }
-    result.n_dyn_rpm = hi;
-    result.bracket_low_rpm = lo;
-    result.bracket_high_rpm = hi;
-  } else if (result.status == "found") {
-    result.status = "none";
+    result_.n_dyn_rpm = hi_;
+    result_.bracket_low_rpm = lo_;
+    result_.bracket_high_rpm = hi_;
   }
-  result.rows = runs.AskedRows();
-  return result;
+
+  const OverspeedOptions& o_;
+  const SimulationOptions sim_;  // before runs_, which holds it
+  const int threads_;
+  const double step_, floor_, res_, preload_;
+  Runs runs_;
+  OverspeedResult result_;
+  int scanned_ = 0;
+  const OverspeedRow* row_ = nullptr;  // the last speed asked by the scan
+  double n_ = 0.0, top_ = 0.0;         // the scan's speed and its end
+  double lo_ = 0.0, hi_ = 0.0, lo_margin_ = 0.0;
+  bool found_ = false, jump_ = false;
+  std::optional<std::pair<double, double>> last_;  // (n, f) of the speed before
+};
+
+}  // namespace
+
+OverspeedResult OverspeedSearch(const Scene& scene, const OverspeedOptions& o,
+                                const std::function<void(int, int)>& progress) {
+  o.Validate();
+  return Scan(scene, o, progress).Run();
 }
 
 std::vector<Field> OverspeedFields(const OverspeedResult& r) {

@@ -132,6 +132,131 @@ std::string AutoByTolerance(const Scene& scene, double rpm, const std::vector<do
 
 }  // namespace
 
+namespace {
+
+// Every method at every tolerance on one scene (one row: `exact` takes no tolerance), errors
+// against the reference run `ref` on `grid`.
+std::vector<Row> MeasureScene(const BenchScene& bs, const Scene& scene,
+                              const std::vector<double>& grid, const MeasuredRun& ref,
+                              const std::vector<double>& tolerances, int repeats) {
+  std::vector<Row> rows;
+  for (Method m : Methods()) {
+    for (double rtol : tolerances) {
+      if (MethodIsClosedForm(m) && rtol != tolerances.front()) continue;  // no tolerance
+      const MeasuredRun run = MeasureRun(scene, bs.rpm, m, rtol, grid, repeats);
+      Row r{bs.name,
+            run.method,
+            rtol,
+            run.median_seconds * 1e3,
+            run.stats.steps,
+            run.stats.rhs_evaluations,
+            run.stats.events,
+            CompareRuns(run, ref),
+            run.energy_residual,
+            run.failure};
+      if (!MethodIsEventDriven(m)) r.err.event_rad.reset();
+      rows.push_back(r);
+      std::cerr << bs.name << " " << run.method << " " << rtol << ": " << Num(r.ms)
+                << " ms, lift error " << Num(r.err.lift_m * 1e6) << " um"
+                << (run.failure.empty() ? "" : " FAILED: " + run.failure) << '\n';
+    }
+  }
+  return rows;
+}
+
+// The scene's rows as out_dir/work-precision-NAME.csv.
+void WriteSceneCsv(const std::string& out_dir, const BenchScene& bs, const std::vector<Row>& rows) {
+  std::ostringstream csv;
+  csv << "scene,method,rtol,median_ms,steps,rhs_evaluations,events,lift_error_um,contact_force_"
+         "error_N,"
+         "event_angle_error_deg,impacts,reference_impacts,energy_residual,failure\n";
+  for (const Row& r : rows) {
+    csv << r.scene << ',' << r.method << ',' << r.rtol << ',' << r.ms << ',' << r.steps << ','
+        << r.rhs << ',' << r.events << ',' << r.err.lift_m * 1e6 << ',' << r.err.force_N << ','
+        << (r.err.event_rad ? std::to_string(*r.err.event_rad / kDeg) : "") << ','
+        << r.err.event_count << ',' << r.err.reference_event_count << ',' << r.energy << ",\""
+        << r.failure << "\"\n";
+  }
+  WriteFileAtomically(out_dir + "/work-precision-" + bs.name + ".csv", csv.str());
+}
+
+// The scene's section: the reference's uncertainty, each method's cost to 1 µm and 1 nm,
+// `auto`'s against the fastest, and event location against the no-event baseline.
+std::string SceneCosts(const BenchScene& bs, const Scene& scene, const MeasuredRun& ref,
+                       const RunErrors& ref_err, const std::vector<Row>& rows) {
+  std::ostringstream md;
+  const double oscillations = ContactOscillationsPerEvent(scene, bs.rpm);
+  const std::string auto_pick = MethodName(AutoMethod(scene, bs.rpm, 1e-8).method);
+  md << "### " << bs.name << ": " << bs.note << "\n\n"
+     << "Reference uncertainty: " << Num(ref_err.lift_m * 1e6)
+     << " µm of lift. Impacts in the reference: " << ref.impacts.size() << ". `auto` picks "
+     << auto_pick << " at the default rtol 1e-8 (" << Num(oscillations, 4)
+     << " contact oscillations per event).\n\n"
+     << "| method | ms to 1 µm | ms to 1 nm | rhs to 1 µm | rhs to 1 nm "
+        "|\n|---|---|---|---|---|\n";
+  std::string fastest_um, fastest_nm;
+  double best_um = INFINITY, best_nm = INFINITY;
+  for (Method m : Methods()) {
+    const std::string name = MethodName(m);
+    const double t_um = CostToReach(rows, name, 1e-6, false),
+                 t_nm = CostToReach(rows, name, 1e-9, false);
+    md << "| " << name << " | " << Num(t_um) << " | " << Num(t_nm) << " | "
+       << Num(CostToReach(rows, name, 1e-6, true)) << " | "
+       << Num(CostToReach(rows, name, 1e-9, true)) << " |\n";
+    if (t_um < best_um) best_um = t_um, fastest_um = name;
+    if (t_nm < best_nm) best_nm = t_nm, fastest_nm = name;
+  }
+  const double auto_um = CostToReach(rows, auto_pick, 1e-6, false),
+               auto_nm = CostToReach(rows, auto_pick, 1e-9, false);
+  md << "\nFastest to 1 µm: **" << fastest_um << "** (" << Num(best_um) << " ms); to 1 nm: **"
+     << fastest_nm << "** (" << Num(best_nm) << " ms). `auto` (" << auto_pick << ") needs "
+     << Num(auto_um) << " ms and " << Num(auto_nm) << " ms: " << Num(auto_um / best_um, 2)
+     << "× and " << Num(auto_nm / best_nm, 2) << "× the fastest.\n";
+  const double ev_um = CostToReach(rows, "dopri5", 1e-6, true),
+               base_um = CostToReach(rows, "baseline-dopri5", 1e-6, true);
+  const double ev_01 = CostToReach(rows, "dopri5", 1e-7, true),
+               base_01 = CostToReach(rows, "baseline-dopri5", 1e-7, true);
+  const double ev_f = CostToReachForce(rows, "dopri5", 1.0),
+               base_f = CostToReachForce(rows, "baseline-dopri5", 1.0);
+  md << "At equal contact-force error (1 N): " << Num(ev_f, 4) << " against " << Num(base_f, 4)
+     << " (" << Num(base_f / ev_f, 2) << "×). ";
+  EventRatios().push_back({bs.name, base_01 / ev_01});
+  md << "Event location against the baseline (max(0, …) inside the right-hand side, no events), "
+     << "right-hand-side evaluations at equal lift error: 1 µm " << Num(ev_um, 4) << " against "
+     << Num(base_um, 4) << " (" << Num(base_um / ev_um, 2) << "×), 0.1 µm " << Num(ev_01, 4)
+     << " against " << Num(base_01, 4) << " (" << Num(base_01 / ev_01, 2) << "×).\n\n";
+  return md.str();
+}
+
+// The largest event-angle error and energy residual of dopri5 and cvode-bdf by tolerance.
+std::string EventAndEnergyByTolerance(const std::vector<Row>& rows,
+                                      const std::vector<double>& tolerances) {
+  std::ostringstream md;
+  md << "Largest event-angle error and energy residual by tolerance (dopri5 / cvode-bdf):\n\n| "
+        "rtol | dopri5 event deg | "
+        "dopri5 energy | cvode-bdf event deg | cvode-bdf energy |\n|---|---|---|---|---|\n";
+  for (double rtol : tolerances) {
+    auto find = [&](const std::string& name) -> const Row* {
+      for (const Row& r : rows)
+        if (r.method == name && r.rtol == rtol) return &r;
+      return nullptr;
+    };
+    const Row* a = find("dopri5");
+    const Row* b = find("cvode-bdf");
+    auto ev = [](const Row* r) {
+      if (!r || !r->failure.empty()) return std::string("failed");
+      return r->err.event_rad ? Num(*r->err.event_rad / kDeg, 2)
+                              : "impacts differ (" + std::to_string(r->err.event_count) + " vs " +
+                                    std::to_string(r->err.reference_event_count) + ")";
+    };
+    md << "| " << Num(rtol, 1) << " | " << ev(a) << " | " << (a ? Num(a->energy, 2) : "–") << " | "
+       << ev(b) << " | " << (b ? Num(b->energy, 2) : "–") << " |\n";
+  }
+  return md.str();
+}
+
+}  // namespace
+
 std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
   std::ostringstream md;
   md << "## Dynamics: work against precision\n\n"
@@ -161,102 +286,11 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
     const MeasuredRun ref = MeasureRun(scene, bs.rpm, Named("exact"), 1e-13, grid, 1);
     const MeasuredRun check = MeasureRun(scene, bs.rpm, Named("dopri5"), 1e-13, grid, 1);
     const RunErrors ref_err = CompareRuns(check, ref);
-    std::vector<Row> rows;
-    for (Method m : Methods()) {
-      for (double rtol : tolerances) {
-        if (MethodIsClosedForm(m) && rtol != tolerances.front()) continue;  // no tolerance
-        const MeasuredRun run = MeasureRun(scene, bs.rpm, m, rtol, grid, repeats);
-        Row r{bs.name,
-              run.method,
-              rtol,
-              run.median_seconds * 1e3,
-              run.stats.steps,
-              run.stats.rhs_evaluations,
-              run.stats.events,
-              CompareRuns(run, ref),
-              run.energy_residual,
-              run.failure};
-        if (!MethodIsEventDriven(m)) r.err.event_rad.reset();
-        rows.push_back(r);
-        std::cerr << bs.name << " " << run.method << " " << rtol << ": " << Num(r.ms)
-                  << " ms, lift error " << Num(r.err.lift_m * 1e6) << " um"
-                  << (run.failure.empty() ? "" : " FAILED: " + run.failure) << '\n';
-      }
-    }
-    std::ostringstream csv;
-    csv << "scene,method,rtol,median_ms,steps,rhs_evaluations,events,lift_error_um,contact_force_"
-           "error_N,"
-           "event_angle_error_deg,impacts,reference_impacts,energy_residual,failure\n";
-    for (const Row& r : rows) {
-      csv << r.scene << ',' << r.method << ',' << r.rtol << ',' << r.ms << ',' << r.steps << ','
-          << r.rhs << ',' << r.events << ',' << r.err.lift_m * 1e6 << ',' << r.err.force_N << ','
-          << (r.err.event_rad ? std::to_string(*r.err.event_rad / kDeg) : "") << ','
-          << r.err.event_count << ',' << r.err.reference_event_count << ',' << r.energy << ",\""
-          << r.failure << "\"\n";
-    }
-    WriteFileAtomically(out_dir + "/work-precision-" + bs.name + ".csv", csv.str());
-
-    const double oscillations = ContactOscillationsPerEvent(scene, bs.rpm);
-    const std::string auto_pick = MethodName(AutoMethod(scene, bs.rpm, 1e-8).method);
-    md << "### " << bs.name << ": " << bs.note << "\n\n"
-       << "Reference uncertainty: " << Num(ref_err.lift_m * 1e6)
-       << " µm of lift. Impacts in the reference: " << ref.impacts.size() << ". `auto` picks "
-       << auto_pick << " at the default rtol 1e-8 (" << Num(oscillations, 4)
-       << " contact oscillations per event).\n\n"
-       << "| method | ms to 1 µm | ms to 1 nm | rhs to 1 µm | rhs to 1 nm "
-          "|\n|---|---|---|---|---|\n";
-    std::string fastest_um, fastest_nm;
-    double best_um = INFINITY, best_nm = INFINITY;
-    for (Method m : Methods()) {
-      const std::string name = MethodName(m);
-      const double t_um = CostToReach(rows, name, 1e-6, false),
-                   t_nm = CostToReach(rows, name, 1e-9, false);
-      md << "| " << name << " | " << Num(t_um) << " | " << Num(t_nm) << " | "
-         << Num(CostToReach(rows, name, 1e-6, true)) << " | "
-         << Num(CostToReach(rows, name, 1e-9, true)) << " |\n";
-      if (t_um < best_um) best_um = t_um, fastest_um = name;
-      if (t_nm < best_nm) best_nm = t_nm, fastest_nm = name;
-    }
-    const double auto_um = CostToReach(rows, auto_pick, 1e-6, false),
-                 auto_nm = CostToReach(rows, auto_pick, 1e-9, false);
-    md << "\nFastest to 1 µm: **" << fastest_um << "** (" << Num(best_um) << " ms); to 1 nm: **"
-       << fastest_nm << "** (" << Num(best_nm) << " ms). `auto` (" << auto_pick << ") needs "
-       << Num(auto_um) << " ms and " << Num(auto_nm) << " ms: " << Num(auto_um / best_um, 2)
-       << "× and " << Num(auto_nm / best_nm, 2) << "× the fastest.\n";
-    const double ev_um = CostToReach(rows, "dopri5", 1e-6, true),
-                 base_um = CostToReach(rows, "baseline-dopri5", 1e-6, true);
-    const double ev_01 = CostToReach(rows, "dopri5", 1e-7, true),
-                 base_01 = CostToReach(rows, "baseline-dopri5", 1e-7, true);
-    const double ev_f = CostToReachForce(rows, "dopri5", 1.0),
-                 base_f = CostToReachForce(rows, "baseline-dopri5", 1.0);
-    md << "At equal contact-force error (1 N): " << Num(ev_f, 4) << " against " << Num(base_f, 4)
-       << " (" << Num(base_f / ev_f, 2) << "×). ";
-    EventRatios().push_back({bs.name, base_01 / ev_01});
-    md << "Event location against the baseline (max(0, …) inside the right-hand side, no events), "
-       << "right-hand-side evaluations at equal lift error: 1 µm " << Num(ev_um, 4) << " against "
-       << Num(base_um, 4) << " (" << Num(base_um / ev_um, 2) << "×), 0.1 µm " << Num(ev_01, 4)
-       << " against " << Num(base_01, 4) << " (" << Num(base_01 / ev_01, 2) << "×).\n\n";
+    const std::vector<Row> rows = MeasureScene(bs, scene, grid, ref, tolerances, repeats);
+    WriteSceneCsv(out_dir, bs, rows);
+    md << SceneCosts(bs, scene, ref, ref_err, rows);
     md << AutoByTolerance(scene, bs.rpm, tolerances, rows, ref_err.lift_m);
-    md << "Largest event-angle error and energy residual by tolerance (dopri5 / cvode-bdf):\n\n| "
-          "rtol | dopri5 event deg | "
-          "dopri5 energy | cvode-bdf event deg | cvode-bdf energy |\n|---|---|---|---|---|\n";
-    for (double rtol : tolerances) {
-      auto find = [&](const std::string& name) -> const Row* {
-        for (const Row& r : rows)
-          if (r.method == name && r.rtol == rtol) return &r;
-        return nullptr;
-      };
-      const Row* a = find("dopri5");
-      const Row* b = find("cvode-bdf");
-      auto ev = [](const Row* r) {
-        if (!r || !r->failure.empty()) return std::string("failed");
-        return r->err.event_rad ? Num(*r->err.event_rad / kDeg, 2)
-                                : "impacts differ (" + std::to_string(r->err.event_count) + " vs " +
-                                      std::to_string(r->err.reference_event_count) + ")";
-      };
-      md << "| " << Num(rtol, 1) << " | " << ev(a) << " | " << (a ? Num(a->energy, 2) : "–")
-         << " | " << ev(b) << " | " << (b ? Num(b->energy, 2) : "–") << " |\n";
-    }
+    md << EventAndEnergyByTolerance(rows, tolerances);
     md << '\n';
   }
   return md.str();

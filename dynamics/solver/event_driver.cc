@@ -160,6 +160,163 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
   return std::nullopt;
 }
 
+std::pair<int, double> EventDriver::EarliestCrossing(const ClosedFormPiece* piece,
+                                                     const EventSigns& signs, double from,
+                                                     double t1, std::pair<double, double> step,
+                                                     const TrainState& x_end) {
+  const Phase& phase = system_.phase;
+  int first = -1;
+  double first_t = t1;
+  const EventValues end_values = Events(train_, phase, x_end, EndContacts(x_end, step.second));
+  // The values at `from`, taken once, and only when a witness is searched.
+  std::optional<EventValues> from_values;
+  double gate_end = t1;  // 5 and 6 are gated by witness 4: searched up to its crossing
+  for (int i = 0; i < static_cast<int>(end_values.size()); ++i) {
+    if (!piece && SignOf(end_values[i]) == signs[i]) continue;
+    if (!from_values) from_values = Events(train_, phase, Motion(from), from);
+    std::optional<double> root;
+    if (SignOf((*from_values)[i]) != signs[i]) {
+      root = from;  // roundoff at a restart: the function is already past zero
+    } else if (piece && o_.leave_out && (i == 5 || i == 6) && !((*from_values)[kLiftGate] > 0.0)) {
+      // 5 and 6 observe a lifted needle only: from a needle below the separation lift up
+      // to witness 4's crossing (gate_end, the end of their search) they are +1 (Events),
+      // so they cannot cross inside it. (A search would find the gate's opening itself at
+      // gate_end, which is no earlier than the earliest crossing: some 40 halvings to the
+      // time's round-off for nothing.)
+      root.reset();
+    } else if (piece) {
+      // The closed form's step ends at t1 itself (no snapping): its end values serve. Only
+      // a crossing before the earliest found so far matters: the search ends there.
+      const double b = std::min((i == 5 || i == 6) ? gate_end : t1, first_t);
+      root = Certified(*piece, i, signs[i], from, (*from_values)[i], b,
+                       b == step.second ? end_values[i] : Value(i, b));
+      if (root && first >= 0 && !(*root < first_t)) root.reset();
+    } else {
+      root = Sampled(i, signs[i], from, (*from_values)[i], t1, step.second);
+    }
+    if (i == 4 && root) gate_end = *root;
+    if (root && (first < 0 || *root < first_t)) {
+      first = i;
+      first_t = *root;
+    }
+  }
+  return {first, first_t};
+}
+
+bool EventDriver::Cross(int first, double first_t, double segment_end, TrainState& xs,
+                        EventSigns& signs, double& restart, IntegrationStats& stats) {
+  Phase& phase = system_.phase;
+  signs[first] = -signs[first];
+  const ContactMode was = phase.mode;
+  // An impact (the gap witness of a contact crossing upward); on a rigid contact the mode
+  // waits for the reset map (the approach is read in the mode before it).
+  const bool impact = (first == kCamGap || first == kSeatGap) && signs[first] > 0;
+  const bool cam = first == kCamGap;
+  const bool rigid_impact = impact && (cam ? train_.cam_law() : train_.seat_law()).Constraint();
+  const ContactMode next = rigid_impact ? was : ModeFromSigns(train_, signs);
+  bool switched = next != phase.mode;
+  if (switched) {
+    phase.mode = next;
+    values_valid_ = false;
+    signs[5] = SignOf(Events(train_, phase, xs, first_t)[5]);  // depends on the mode
+    // A rigid contact lets go: the needle leaves its surface from on it (integration
+    // drift removed), and the other contact settles against the new state.
+    const bool released = (train_.cam_law().Constraint() && was.cam && !next.cam) ||
+                          (train_.seat_law().Constraint() && was.seat && !next.seat);
+    if (released) {
+      Phase on = phase;
+      on.mode = was;
+      xs = train_.Project(xs, first_t, on);
+      signs = SettleMode(xs, first_t);
+    }
+  }
+  recorder_.Crossing(first, signs[first], first_t, xs, phase, !rigid_impact);
+  restart = first_t;
+  // An impact under a law with a reset map.
+  if (impact) {
+    // A rigid impact's approach speed, for the chattering test after the reset.
+    double approach = 0.0;
+    if (rigid_impact) {
+      const Contacts before = train_.Evaluate(xs, first_t, phase);
+      approach = cam ? before.g_c_rate : before.g_s_rate;
+    }
+    if (auto after = train_.Reset(cam, xs, first_t, phase)) {
+      ++stats.resets;
+      recorder_.ImpactLoss((*after)[3] - xs[3]);
+      xs = *after;
+      signs = SettleMode(xs, first_t);
+      switched = true;
+      if (rigid_impact) {
+        if (auto t_inf = Accumulate(cam, first_t, approach, segment_end, xs, signs)) {
+          ++stats.accumulations;
+          restart = *t_inf;
+        }
+      }
+    }
+  }
+  return switched;
+}
+
+void EventDriver::CrossSlopeJump(double t, const std::vector<double>& break_times,
+                                 const std::vector<double>& break_angles, size_t& next_break,
+                                 TrainState& x, EventSigns& signs, IntegrationStats& stats) {
+  Phase& phase = system_.phase;
+  if (StrikeAtCorner(t, x)) {
+    ++stats.events;
+    ++stats.resets;
+  }
+  x = train_.Project(x, t, phase);
+  while (next_break < break_times.size() && break_times[next_break] <= t) ++next_break;
+  phase.segment_end_rad = next_break < break_times.size() ? break_angles[next_break]
+                                                          : std::numeric_limits<double>::infinity();
+  signs = SettleMode(x, t);
+}
+
+void EventDriver::OverBudget(const char* what, double budget, double at, IntegrationStats& stats) {
+  stats.rhs_evaluations = system_.evaluations();
+  ThrowOverBudget(what, budget, train_, at, stats, method_);
+}
+
+void EventDriver::CountStep(double at, std::chrono::steady_clock::time_point started,
+                            IntegrationStats& stats) {
+  if (stats.steps >= o_.max_steps) OverBudget("steps", o_.max_steps, at, stats);
+  ++stats.steps;
+  // The wall clock, every 64 steps (a clock read costs ~20 ns; a step ~100 ns or more).
+  if (o_.max_seconds > 0.0 && stats.steps % 64 == 0 &&
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() -
+              recorder_.sink_seconds() >
+          o_.max_seconds) {
+    OverBudget("seconds", o_.max_seconds, at, stats);
+  }
+}
+
+bool EventDriver::RecordStep(double t0, double t1, double from, const TrainState& x_end,
+                             const EventSigns& signs, IntegrationStats& stats) {
+  const Phase& phase = system_.phase;
+  GridUpTo(t1);
+  // A few dense samples for the extremes, then the step end; the closed form's steps are
+  // long, and the largest forces inside them are located instead.
+  if (stepper_->ClosedForm()) {
+    RecordExtremes(from, t1, x_end[0], signs);  // x_end is recorded at t1 below
+  } else {
+    for (int k = 1; k <= 3; ++k) {
+      const double tk = t0 + (t1 - t0) * k / 4.0;
+      recorder_.Sample(tk, At(tk), phase);
+    }
+  }
+  recorder_.Sample(t1, x_end, phase, EndContacts(x_end, t1));
+  if (JumpReached(t1)) {
+    stats.stopped_at_jump = true;
+    return true;
+  }
+  if (o_.stop_after_lift && train_.Angle(t1) > train_.cam().law().end_rad() &&
+      !recorder_.separated()) {
+    stats.stopped_after_lift = true;
+    return true;
+  }
+  return false;
+}
+
 IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   IntegrationStats stats;
   t_end_ = t_end;
@@ -182,11 +339,6 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   double t = 0.0;
   Restart(x, t, std::min(t_end, 0.01 / train_.FastestAngularFrequency()));
 
-  // A budget stops the run with the work done so far (its statistics go with the message).
-  const auto over = [&](const char* what, double budget, double at) {
-    stats.rhs_evaluations = system_.evaluations();
-    ThrowOverBudget(what, budget, train_, at, stats, method_);
-  };
   while (t < horizon) {
     while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
     const double segment_end =
@@ -196,15 +348,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     stepper_->LimitTo(segment_end);
     const auto step = stepper_->DoStep();
     values_valid_ = false;  // a new dense output (and a new phase after a switch)
-    if (stats.steps >= o_.max_steps) over("steps", o_.max_steps, step.first);
-    ++stats.steps;
-    // The wall clock, every 64 steps (a clock read costs ~20 ns; a step ~100 ns or more).
-    if (o_.max_seconds > 0.0 && stats.steps % 64 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() -
-                recorder_.sink_seconds() >
-            o_.max_seconds) {
-      over("seconds", o_.max_seconds, step.first);
-    }
+    CountStep(step.first, started, stats);
     const double t0 = step.first;
     double t1 = step.second;
     recorder_.Commit(t0);  // nothing is recorded before the step any more
@@ -219,96 +363,14 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     const TrainState x_end = system_.FromScaled(stepper_->CurrentState());
     const ClosedFormPiece* piece = stepper_->ClosedForm();
     while (true) {
-      int first = -1;
-      double first_t = t1;
-      const EventValues end_values = Events(train_, phase, x_end, EndContacts(x_end, step.second));
-      // The values at `from`, taken once, and only when a witness is searched.
-      std::optional<EventValues> from_values;
-      double gate_end = t1;  // 5 and 6 are gated by witness 4: searched up to its crossing
-      for (int i = 0; i < static_cast<int>(end_values.size()); ++i) {
-        if (!piece && SignOf(end_values[i]) == signs[i]) continue;
-        if (!from_values) from_values = Events(train_, phase, Motion(from), from);
-        std::optional<double> root;
-        if (SignOf((*from_values)[i]) != signs[i]) {
-          root = from;  // roundoff at a restart: the function is already past zero
-        } else if (piece && o_.leave_out && (i == 5 || i == 6) &&
-                   !((*from_values)[kLiftGate] > 0.0)) {
-          // 5 and 6 observe a lifted needle only: from a needle below the separation lift up
-          // to witness 4's crossing (gate_end, the end of their search) they are +1 (Events),
-          // so they cannot cross inside it. (A search would find the gate's opening itself at
-          // gate_end, which is no earlier than the earliest crossing: some 40 halvings to the
-          // time's round-off for nothing.)
-          root.reset();
-        } else if (piece) {
-          // The closed form's step ends at t1 itself (no snapping): its end values serve. Only
-          // a crossing before the earliest found so far matters: the search ends there.
-          const double b = std::min((i == 5 || i == 6) ? gate_end : t1, first_t);
-          root = Certified(*piece, i, signs[i], from, (*from_values)[i], b,
-                           b == step.second ? end_values[i] : Value(i, b));
-          if (root && first >= 0 && !(*root < first_t)) root.reset();
-        } else {
-          root = Sampled(i, signs[i], from, (*from_values)[i], t1, step.second);
-        }
-        if (i == 4 && root) gate_end = *root;
-        if (root && (first < 0 || *root < first_t)) {
-          first = i;
-          first_t = *root;
-        }
-      }
+      const auto [first, first_t] = EarliestCrossing(piece, signs, from, t1, step, x_end);
       if (first < 0) break;
-      if (++stats.events > o_.max_events) over("events", o_.max_events, first_t);
+      if (++stats.events > o_.max_events) OverBudget("events", o_.max_events, first_t, stats);
       xs = At(first_t);
       // The closed form: the stretch before it, whose end (xs) the crossing records below.
       if (piece) RecordExtremes(from, first_t, xs[0], signs);
       GridUpTo(first_t);
-      signs[first] = -signs[first];
-      const ContactMode was = phase.mode;
-      // An impact (the gap witness of a contact crossing upward); on a rigid contact the mode
-      // waits for the reset map (the approach is read in the mode before it).
-      const bool impact = (first == kCamGap || first == kSeatGap) && signs[first] > 0;
-      const bool cam = first == kCamGap;
-      const bool rigid_impact = impact && (cam ? train_.cam_law() : train_.seat_law()).Constraint();
-      const ContactMode next = rigid_impact ? was : ModeFromSigns(train_, signs);
-      bool switched = next != phase.mode;
-      if (switched) {
-        phase.mode = next;
-        values_valid_ = false;
-        signs[5] = SignOf(Events(train_, phase, xs, first_t)[5]);  // depends on the mode
-        // A rigid contact lets go: the needle leaves its surface from on it (integration
-        // drift removed), and the other contact settles against the new state.
-        const bool released = (train_.cam_law().Constraint() && was.cam && !next.cam) ||
-                              (train_.seat_law().Constraint() && was.seat && !next.seat);
-        if (released) {
-          Phase on = phase;
-          on.mode = was;
-          xs = train_.Project(xs, first_t, on);
-          signs = SettleMode(xs, first_t);
-        }
-      }
-      recorder_.Crossing(first, signs[first], first_t, xs, phase, !rigid_impact);
-      restart = first_t;
-      // An impact under a law with a reset map.
-      if (impact) {
-        // A rigid impact's approach speed, for the chattering test after the reset.
-        double approach = 0.0;
-        if (rigid_impact) {
-          const Contacts before = train_.Evaluate(xs, first_t, phase);
-          approach = cam ? before.g_c_rate : before.g_s_rate;
-        }
-        if (auto after = train_.Reset(cam, xs, first_t, phase)) {
-          ++stats.resets;
-          recorder_.ImpactLoss((*after)[3] - xs[3]);
-          xs = *after;
-          signs = SettleMode(xs, first_t);
-          switched = true;
-          if (rigid_impact) {
-            if (auto t_inf = Accumulate(cam, first_t, approach, segment_end, xs, signs)) {
-              ++stats.accumulations;
-              restart = *t_inf;
-            }
-          }
-        }
-      }
+      const bool switched = Cross(first, first_t, segment_end, xs, signs, restart, stats);
       // The closed form restarts at every event: its audit quadrature then never spans the kink
       // of a contact's potential ½k(g⁺)² where a gap crosses zero without a mode switch.
       if (switched || piece) break;
@@ -321,29 +383,9 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
       Restart(x, t, std::max(stepper_->CurrentStep(), 1e-3 * (t1 - t0)));
       continue;
     }
-    GridUpTo(t1);
-    // A few dense samples for the extremes, then the step end; the closed form's steps are
-    // long, and the largest forces inside them are located instead.
-    if (piece) {
-      RecordExtremes(from, t1, x_end[0], signs);  // x_end is recorded at t1 below
-    } else {
-      for (int k = 1; k <= 3; ++k) {
-        const double tk = t0 + (t1 - t0) * k / 4.0;
-        recorder_.Sample(tk, At(tk), phase);
-      }
-    }
     t = t1;
     x = x_end;
-    recorder_.Sample(t, x, phase, EndContacts(x, t));
-    if (JumpReached(t)) {
-      stats.stopped_at_jump = true;
-      break;
-    }
-    if (o_.stop_after_lift && train_.Angle(t) > train_.cam().law().end_rad() &&
-        !recorder_.separated()) {
-      stats.stopped_after_lift = true;
-      break;
-    }
+    if (RecordStep(t0, t1, from, x_end, signs, stats)) break;
     bool extended;  // the horizon moved past t_end: the backend restarts as past a break
     if (t >= t_end) {
       // The run ends where the needle came to rest, wherever in the step that was (a step of
@@ -357,20 +399,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
     if (RunIsOver(t, x, phase, recorder_, t_end, t_limit, horizon, extended)) break;
     if (at_segment_end && t < horizon && train_.HasConstraint() &&
         train_.cam().SlopeMayJump(phase.segment_end_rad)) {
-      // A rigid contact sticking across a break where the cam's slope may jump: the needle on
-      // the surface as it arrives (from the left), the mode settled against the surface beyond,
-      // so that the jump is an impact (the surface turns into the needle) or a release (it
-      // drops away). A rigid cam that reaches the needle exactly there (a linear ramp ending
-      // at the lift's first point, u = 0 at θ_0) strikes it at the near side's speed.
-      if (StrikeAtCorner(t, x)) {
-        ++stats.events;
-        ++stats.resets;
-      }
-      x = train_.Project(x, t, phase);
-      while (next_break < breaks.size() && breaks[next_break] <= t) ++next_break;
-      phase.segment_end_rad = next_break < breaks.size() ? all_breaks.angles[next_break]
-                                                         : std::numeric_limits<double>::infinity();
-      signs = SettleMode(x, t);
+      CrossSlopeJump(t, all_breaks.times, all_breaks.angles, next_break, x, signs, stats);
     }
     if ((at_segment_end || extended) && t < horizon)
       Restart(x, t, stepper_->CurrentStep());  // past the break

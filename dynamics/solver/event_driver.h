@@ -18,6 +18,7 @@
 ///   - budgets (steps, events), recording (Recorder) and the end of the run (docs/model.md §5).
 #include <array>
 #include <boost/math/tools/roots.hpp>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -226,6 +227,32 @@ class EventDriver {
   // range keeps its sign over it (no crossing, certified without halving), else the cap.
   double LongestQuiet(const ClosedFormPiece& piece, double t, double cap, double limit) const;
 
+  // A budget stops the run with the work done so far (its statistics go with the message).
+  [[noreturn]] void OverBudget(const char* what, double budget, double at, IntegrationStats& stats);
+  // One more step (at its start `at`), against the steps' and the wall clock's budgets.
+  void CountStep(double at, std::chrono::steady_clock::time_point started, IntegrationStats& stats);
+  // Records the step [t0, t1] after its last crossing at `from` (x_end at t1): the grid, the
+  // samples or located extremes, and the step's end. True when the run stops there (its first
+  // lift-off, or past the lift without one, as asked).
+  bool RecordStep(double t0, double t1, double from, const TrainState& x_end,
+                  const EventSigns& signs, IntegrationStats& stats);
+  // The earliest witness crossing after `from` and up to t1 in the last step (its ends `step`,
+  // x_end the state at its end; `piece` the closed form's, else nullptr): (i, t) of the first
+  // witness to leave its stored sign, i = −1 when none does.
+  std::pair<int, double> EarliestCrossing(const ClosedFormPiece* piece, const EventSigns& signs,
+                                          double from, double t1, std::pair<double, double> step,
+                                          const TrainState& x_end);
+  // Witness `first` crossed at first_t, the state there xs: its sign flips, the mode switches,
+  // a rigid contact releases or an impact's reset map applies (xs, signs, the restart time and
+  // the counts updated). Whether the mode switched or a reset applied.
+  bool Cross(int first, double first_t, double segment_end, TrainState& xs, EventSigns& signs,
+             double& restart, IntegrationStats& stats);
+  // A rigid contact sticking across a break at t where the cam's slope may jump: the needle on
+  // the surface as it arrives, the next break's angle the phase's, and the mode settled against
+  // the surface beyond (an impact or a release).
+  void CrossSlopeJump(double t, const std::vector<double>& break_times,
+                      const std::vector<double>& break_angles, size_t& next_break, TrainState& x,
+                      EventSigns& signs, IntegrationStats& stats);
   // Samples a stretch (t0, t1) of a closed-form step at 16 points for the record, and where a
   // sample sets a new largest contact or seat force, or a new least contact force, locates that
   // extreme by Brent's method between the samples around it and records it there (a lift-off
