@@ -337,6 +337,7 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
     found += ")";
     if (pieces_fit) {
       c.law.breaks_rad = at;
+      c.law.break_uncertainty_rad = c.break_uncertainty_rad;
       c.table = WithBreakReadings(c.table, inside);
       breaks = found + ", " + breaks;
     } else {

@@ -90,15 +90,16 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
 // spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
-                               const SplineOptions& options, std::vector<LocalNode>* nodes) {
+                               const SplineOptions& options, std::vector<LocalNode>* nodes,
+                               LocalTrim trim = {}) {
   auto keep = [&](LocalFit fit) {
     nodes->insert(nodes->end(), fit.nodes.begin(), fit.nodes.end());
     return std::move(fit.law);
   };
   if (options.kind == SplineKind::kLocal) {
     CheckSplineInputs(x, y, options);
-    LocalFit fit = FitLocal(x, y, options.sigma, options.quantized);
-    AddLocalFitBias(x, y, options, &fit);
+    LocalFit fit = FitLocal(x, y, options.sigma, options.quantized, trim);
+    AddLocalFitBias(x, y, options, &fit, trim);
     return keep(std::move(fit));
   }
   if (options.kind == SplineKind::kSmoothing) {
@@ -147,7 +148,10 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
           std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
           "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
     }
-    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes);
+    // A found break's readings nearer than its uncertainty belong to either side's law.
+    const double u = options.break_uncertainty_rad;
+    const LocalTrim trim{p > 0 ? u : 0.0, p + 2 < cuts.size() ? u : 0.0};
+    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes, trim);
     breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
     rows += part.coefficients().rows();
     parts.push_back(part.coefficients());

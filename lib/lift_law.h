@@ -61,6 +61,10 @@ struct LiftLawOptions {
   /// Each must be an angle of the table strictly inside the open lift (inside the table, for
   /// measured data).
   std::vector<double> breaks_rad;
+  /// How far from its true place a break may lie, rad (≥ 0, found breaks: LiftLawChoice's
+  /// break_uncertainty_rad): a local fit leaves the readings that near a break out of its
+  /// windows (lib/local_fit.h LocalTrim).
+  double break_uncertainty_rad = 0.0;
 };
 
 /// A lift law: table plus spline. Immutable after construction.

@@ -176,8 +176,9 @@ std::optional<LocalNode> NodeAt(const Points& p, double t, double sigma, bool qu
       return NodeAt(p, t, sigma, quantized, sizes, side, 0, chosen_size, misfit_ended);
     }
     tried.push_back(e);
-    if (misfit_ended) *misfit_ended = agrees && misfits && tried.size() > 1;
-    if (!agrees || (misfits && tried.size() > 1)) break;
+    const bool ends = misfits && tried.size() > 1;
+    if (misfit_ended) *misfit_ended = agrees && ends;
+    if (!agrees || ends) break;
     chosen = tried.size() - 1;
   }
   if (tried.empty()) return std::nullopt;
@@ -218,9 +219,23 @@ LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
   bool misfit_ended = false;
   LocalNode best = *on(0, &misfit_ended);  // the nearest side always has the points
   if (!misfit_ended) return best;
+  const double spacing_width = best.width;
+  std::optional<LocalNode> sides[2];
   for (int k = 1; k < 3; ++k) {
-    const std::optional<LocalNode> node = on(k, nullptr);
-    if (node && node->window > best.window && node->band2 < best.band2) best = *node;
+    sides[k - 1] = on(k, nullptr);
+    const std::optional<LocalNode>& node = sides[k - 1];
+    if (node && node->window > best.window && node->band2 < best.band2) {
+      best = *node;
+      if (kSides[k] == Side::kLeft) best.width = spacing_width;  // its span lies behind the node
+    }
+  }
+  // Where the two sides' s'' differ beyond their bands, s'' jumps here (a junction no break
+  // marks): the band reaches each side's value and its band.
+  if (sides[0] && sides[1] &&
+      std::abs(sides[0]->s[2] - sides[1]->s[2]) > sides[0]->band2 + sides[1]->band2) {
+    for (const std::optional<LocalNode>& node : sides) {
+      best.band2 = std::max(best.band2, std::abs(node->s[2] - best.s[2]) + node->band2);
+    }
   }
   return best;
 }
@@ -252,14 +267,23 @@ PiecewisePolynomial QuinticHermite(const std::vector<LocalNode>& nodes) {
 }
 
 LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, double sigma_m,
-                  bool quantized) {
+                  bool quantized, LocalTrim trim) {
   if (x.size() != y.size() || static_cast<int>(x.size()) < kLocalMinimumPoints) {
     throw std::invalid_argument("local fit needs at least " + std::to_string(kLocalMinimumPoints) +
                                 " points, got " + std::to_string(x.size()));
   }
-  const Points p = static_cast<int>(x.size()) > kLocalMaxNodes
-                       ? Binned(x, y)
-                       : Points{x, y, std::vector<double>(x.size(), 1.0)};
+  // The readings the windows take: all but those within the trims of the ends.
+  const size_t from = std::lower_bound(x.begin(), x.end(), x.front() + trim.front_rad) - x.begin();
+  const size_t to = std::upper_bound(x.begin(), x.end(), x.back() - trim.back_rad) - x.begin();
+  const bool trimmed = (from > 0 || to < x.size()) && to > from &&
+                       to - from >= 2 * static_cast<size_t>(kLocalMinimumPoints);
+  const std::vector<double> tx =
+      trimmed ? std::vector<double>(x.begin() + from, x.begin() + to) : x;
+  const std::vector<double> ty =
+      trimmed ? std::vector<double>(y.begin() + from, y.begin() + to) : y;
+  const Points p = static_cast<int>(tx.size()) > kLocalMaxNodes
+                       ? Binned(tx, ty)
+                       : Points{tx, ty, std::vector<double>(tx.size(), 1.0)};
   LocalFit fit{PiecewisePolynomial({0.0, 1.0}, Eigen::MatrixXd::Zero(1, kTerms), 2), {}};
   const std::vector<size_t> sizes = WindowSizes(p.x.size());
   // Nodes from the first reading to the last, each kNodeSpacing of its window's width past the

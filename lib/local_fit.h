@@ -60,7 +60,7 @@ struct LocalNode {
   double s[3] = {};    ///< s, s', s'' there (m, m/rad, m/rad²)
   double band2 = 0.0;  ///< 95 % half-width of s'' there, m/rad², ≥ 0
   int window = 0;      ///< readings in its window (bins counted once)
-  double width = 0.0;  ///< the window's span, rad
+  double width = 0.0;  ///< the nearest readings' window's span, rad (the next node's distance)
 };
 
 /// A local fit: the law and its nodes.
@@ -75,8 +75,15 @@ struct LocalFit {
 /// `quantized`: the readings' errors are their rounding to q = √12 σ, bounded by q/2 and alike
 /// within a bin, so an estimate's error is bounded by q/2 Σ|g_i| (taken as 1.96 standard
 /// deviations) instead of σ √(Σ g_i²/c_i).
+/// `trim`: readings within trim.front_rad of the first reading and trim.back_rad of the last
+/// are left out of every window (a break placed only to within that angle: which side's law
+/// they follow is not known), the nodes still reaching the piece's ends; no trim where it would
+/// leave fewer than 2 kLocalMinimumPoints readings.
+struct LocalTrim {
+  double front_rad = 0.0, back_rad = 0.0;
+};
 LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, double sigma_m,
-                  bool quantized = false);
+                  bool quantized = false, LocalTrim trim = {});
 
 /// The C² quintic Hermite interpolant of the nodes' (s, s', s'').
 PiecewisePolynomial QuinticHermite(const std::vector<LocalNode>& nodes);

@@ -38,13 +38,13 @@ void Half(const std::vector<double>& x, const std::vector<double>& y, size_t fir
 }  // namespace
 
 void AddLocalFitBias(const std::vector<double>& x, const std::vector<double>& y,
-                     const SplineOptions& options, LocalFit* fit) {
+                     const SplineOptions& options, LocalFit* fit, LocalTrim trim) {
   const size_t n = x.size();
   if (n > static_cast<size_t>(kLocalMaxNodes) || n < 2 * static_cast<size_t>(kLocalMinimumPoints))
     return;
   std::vector<double> hx, hy;
   Half(x, y, 0, &hx, &hy);
-  const LocalFit half = FitLocal(hx, hy, options.sigma, options.quantized);
+  const LocalFit half = FitLocal(hx, hy, options.sigma, options.quantized, trim);
   for (LocalNode& node : fit->nodes)
     node.band2 += std::abs(half.law.Evaluate(node.x, 2) - node.s[2]);
 }

@@ -42,7 +42,7 @@ std::vector<LocalNode> InterpolationNodes(const std::vector<double>& x,
 /// Adds that difference to each node's half-width, for tables of up to kLocalMaxNodes readings
 /// (the coarse ones); `fit` is FitLocal's of (x, y) with `options`' σ.
 void AddLocalFitBias(const std::vector<double>& x, const std::vector<double>& y,
-                     const SplineOptions& options, LocalFit* fit);
+                     const SplineOptions& options, LocalFit* fit, LocalTrim trim = {});
 
 /// The smoothing spline through (x, y) (BuildSmoothingSpline) and its nodes at the knots of its
 /// largest and smallest s'' (none when the fit is the least-squares line).
