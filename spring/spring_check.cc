@@ -190,9 +190,10 @@ std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {
       FlagField("preload_ok", r.preload_ok),
       FlagField("pass", r.pass),
   };
-  // The lift table's accuracy carried to n_qs (a local fit's band; a bounded one only).
+  // The lift table's accuracy carried to n_qs (a local fit's band); its upper end null where
+  // the band of every deceleration reaches zero (the accuracy leaves n_qs unbounded above).
   const auto& band = r.liftoff_rpm_quasi_static_band;
-  if (band && std::isfinite(band->high)) {
+  if (band) {
     Field f = ListField("n_qs_band", kRpm, {band->low, band->high});
     f.key = "liftoff_rpm_quasi_static_band";
     f.decimals = 1;
