@@ -84,10 +84,16 @@ TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& 
   for (double v : y) largest = std::max(largest, std::abs(v));
   r.rounding_sigma_m =
       r.printed_m ? *r.printed_m / std::sqrt(12.0) : kExactRelativeFloor * std::max(largest, 1e-9);
+  // The seat's readings (the last zero before the rise, the first after the fall) are left
+  // out: the rise may begin anywhere up to the next reading, and a window holding both sides of
+  // that junction (an s'' jump between readings, off the cut) would read as noise above the
+  // rounding (a harmonic exported to 9 decimals from an angle off its grid read as measured).
+  const size_t from = y[first] <= 0.0 && first < last ? first + 1 : first;
+  const size_t to = y[last] <= 0.0 && last > from ? last - 1 : last;
   std::vector<size_t> all, even, odd;
-  for (size_t i = first; i <= last; ++i) {
+  for (size_t i = from; i <= to; ++i) {
     all.push_back(i);
-    ((i - first) % 2 ? odd : even).push_back(i);
+    ((i - from) % 2 ? odd : even).push_back(i);
   }
   double sum = 0.0, half_sum = 0.0;
   long count = 0, half_count = 0;

@@ -1,5 +1,6 @@
 #include "lib/lift_law.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
@@ -87,6 +88,34 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
+// How much of a piece's seat end (its first reading, `front`, or its last) a local fit leaves
+// out: a zero the lift leaves from (or returns to) between it and the next reading, where the
+// quintic through the next kLocalMinimumPoints readings misses that zero by more than twice the
+// rounding's bound on the two: that reading is the base circle's, not the law's. 0 where it
+// fits (the law starts on it) or the end is no seat.
+double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, double sigma,
+                bool front) {
+  const size_t n = x.size(), k = kLocalMinimumPoints;
+  if (n < 2 * k + 1) return 0.0;
+  const size_t seat = front ? 0 : n - 1;
+  if (y[seat] > 0.0) return 0.0;
+  Eigen::MatrixXd v(k, kLocalDegree + 1);
+  Eigen::VectorXd b(k);
+  const double h = std::abs(x[front ? 1 : n - 2] - x[seat]);
+  for (size_t r = 0; r < k; ++r) {
+    const size_t i = front ? 1 + r : n - 2 - r;
+    const double t = (x[i] - x[seat]) / h;
+    double power = 1.0;
+    for (int c = 0; c <= kLocalDegree; ++c, power *= t) v(r, c) = power;
+    b(r) = y[i];
+  }
+  // Its value at the seat, Σ g_i y_i, and that value's rounding bound √3 σ Σ|g_i| (the
+  // extrapolation amplifies it), plus the seat reading's own.
+  const Eigen::RowVectorXd g = v.completeOrthogonalDecomposition().pseudoInverse().row(0);
+  const double bound = std::sqrt(3.0) * sigma * (g.cwiseAbs().sum() + 1.0);
+  return std::abs(g.dot(b) - y[seat]) > 2.0 * bound ? h : 0.0;
+}
+
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
 // spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
@@ -148,9 +177,14 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
           std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
           "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
     }
-    // A found break's readings nearer than its uncertainty belong to either side's law.
+    // A found break's readings nearer than its uncertainty belong to either side's law; so does
+    // a seat reading (a zero the open lift starts or ends on): the rise begins anywhere up to the
+    // next reading.
     const double u = options.break_uncertainty_rad;
-    const LocalTrim trim{p > 0 ? u : 0.0, p + 2 < cuts.size() ? u : 0.0};
+    const double sigma = options.spline.sigma;
+    const bool last_piece = p + 2 == cuts.size();
+    const LocalTrim trim{p > 0 ? u : SeatTrim(px, py, sigma, true),
+                         !last_piece ? u : SeatTrim(px, py, sigma, false)};
     PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes, trim);
     breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
     rows += part.coefficients().rows();
