@@ -144,7 +144,9 @@ std::optional<std::string> PreloadSlip(const SpringCheckResult& r) {
   consider("the combustion load S·F_g", r.safety_factor * r.gas_force_N);
   consider("the inertia sizing", r.required_preload_N);
   const double p0 = r.train.preload_N;
-  if (!(largest > 0.0) || !(p0 > 3.0 * largest)) return std::nullopt;
+  // A rule under half a newton bounds nothing a slip could be read from (a lift whose
+  // deceleration is tiny: "10771019217.3× the largest rule (the inertia sizing, 0 N)").
+  if (!(largest >= 0.5) || !(p0 > 3.0 * largest)) return std::nullopt;
   const std::string line = "the preload " + Fixed(p0, 0) + " N is " + Fixed(p0 / largest, 1) +
                            "× the largest rule (" + rule + ", " + Fixed(largest, 0) + " N)";
   std::string hint;

@@ -74,6 +74,11 @@ TEST(SpringCheckTest, APreloadFarAboveEveryRuleIsAWarningNamingTheLikelySlip) {
             "300 N)");
   r.required_preload_N = r.gas_force_N = 0.0;  // no rule asks for a preload
   EXPECT_FALSE(PreloadSlip(r));
+  // … nor one that asks for 3e-8 N (a user's trial: "10771019217.3× the largest rule (the
+  // inertia sizing, 0 N)"): no slip is read from it.
+  r.required_preload_N = 2.8e-8;
+  r.train.preload_N = 300.0;
+  EXPECT_FALSE(PreloadSlip(r));
 }
 
 // The same on a case: an 8 mm needle at 1500 rpm (Basu's formula asks 987 N) with 3500 N, which
