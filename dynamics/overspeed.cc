@@ -212,6 +212,9 @@ class Scan {
                        10);
   }
 
+  Scan(const Scan&) = delete;  // runs_ holds a reference to sim_
+  Scan& operator=(const Scan&) = delete;
+
   OverspeedResult Run() {
     if (!Start()) {
       ScanUp();

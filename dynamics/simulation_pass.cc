@@ -37,11 +37,6 @@ std::function<void(const SeriesPoint&)> ShiftedSink(const SimulationOptions& o, 
   };
 }
 
-// One integration from x0 over [0, t_end] (then on while the needle settles, for at most
-// settle_deg past it; 0: stop at t_end) appended to r as cam revolution `cycle`, which begins
-// shift_rad after θ_a: its episodes, impacts and series shifted so, its extremes and statistics
-// merged, r's status set. Returns the revolution's summary, with the state at its end (NaN
-// after a budget stop).
 // Adds one pass's records (its impacts, episodes, series and extremes, moved by shift_rad and
 // shift_s) and its work to the run's result (RunPass).
 void MergePass(const Recorder& recorder, const IntegrationStats& stats, int cycle, double shift_rad,
@@ -120,6 +115,11 @@ bool Repeats(const NeedleTrain& train, const TrainState& a, const TrainState& b,
 
 }  // namespace
 
+// One integration from x0 over [0, t_end] (then on while the needle settles, for at most
+// settle_deg past it; 0: stop at t_end) appended to r as cam revolution `cycle`, which begins
+// shift_rad after θ_a: its episodes, impacts and series shifted so, its extremes and statistics
+// merged, r's status set. Returns the revolution's summary, with the state at its end (NaN
+// after a budget stop).
 CycleSummary RunPass(const NeedleTrain& train, Method method, const TrainState& x0, double t_end,
                      double settle_deg, const SimulationOptions& o, int cycle, double shift_rad,
                      SimulationResult& r) {

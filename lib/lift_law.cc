@@ -113,7 +113,9 @@ double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, doub
   // extrapolation amplifies it), plus the seat reading's own.
   const Eigen::RowVectorXd g = v.completeOrthogonalDecomposition().pseudoInverse().row(0);
   const double bound = std::sqrt(3.0) * sigma * (g.cwiseAbs().sum() + 1.0);
-  return std::abs(g.dot(b) - y[seat]) > 2.0 * bound ? h : 0.0;
+  // Half a step: the trim leaves the seat reading out and keeps its neighbour whatever the
+  // round-off of x.back() − trim.
+  return std::abs(g.dot(b) - y[seat]) > 2.0 * bound ? 0.5 * h : 0.0;
 }
 
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
@@ -141,10 +143,16 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
 }
 
 // The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
-// strictly inside) and joined: C⁰ at the breaks, where s'' (and s' by the pieces' error) jump.
+// strictly inside) and joined at the breaks, where s'' (and s' by the pieces' error) jump: C⁰
+// for the interpolating kinds; a local fit's two ends are each piece's own estimate there (its
+// readings within the break's uncertainty left out), apart by a few printed digits.
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
                                 const LiftLawOptions& options, std::vector<LocalNode>* nodes) {
-  if (options.breaks_rad.empty()) return BuildPiece(x, y, options.spline, nodes);
+  const double sigma = options.spline.sigma;
+  if (options.breaks_rad.empty()) {
+    return BuildPiece(x, y, options.spline, nodes,
+                      LocalTrim{SeatTrim(x, y, sigma, true), SeatTrim(x, y, sigma, false)});
+  }
   std::vector<size_t> cuts{0};
   for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
     const double at = options.breaks_rad[b];
@@ -181,7 +189,6 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
     // a seat reading (a zero the open lift starts or ends on): the rise begins anywhere up to the
     // next reading.
     const double u = options.break_uncertainty_rad;
-    const double sigma = options.spline.sigma;
     const bool last_piece = p + 2 == cuts.size();
     const LocalTrim trim{p > 0 ? u : SeatTrim(px, py, sigma, true),
                          !last_piece ? u : SeatTrim(px, py, sigma, false)};

@@ -114,9 +114,10 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
 
 // Whether the window's polynomial misses its readings by more than their noise can: the
 // rounding's bound q/2 = √3 σ twice over (a rounded reading is never further than q/2 from the
-// law, the fit adds its own error), or for white noise Σ c_i r_i² above its χ² expectation
-// (k − 6) σ² by three standard deviations and two readings' worth. A window that reaches past
-// a junction the breaks did not find (s''' jumps where s'' does not) misfits there long before
+// law, the fit adds its own error), or for white noise Σ c_i r_i² above (k − 6) σ² by three of
+// its χ² standard deviations and two readings' worth (the tricube weights make the unweighted
+// sum somewhat larger: pure noise misfits about 1–3 % of single windows). A window that reaches
+// past a junction the breaks did not find (s''' jumps where s'' does not) misfits there long before
 // its s'' moves out of the narrower windows' noise (docs/lift-data.md, "Reading a table").
 bool Misfits(const Estimate& e, size_t readings, double sigma, bool quantized) {
   if (quantized) return e.largest_residual > 2.0 * std::sqrt(3.0) * sigma;

@@ -60,7 +60,8 @@ struct LocalNode {
   double s[3] = {};    ///< s, s', s'' there (m, m/rad, m/rad²)
   double band2 = 0.0;  ///< 95 % half-width of s'' there, m/rad², ≥ 0
   int window = 0;      ///< readings in its window (bins counted once)
-  double width = 0.0;  ///< the nearest readings' window's span, rad (the next node's distance)
+  double width = 0.0;  ///< the span, rad, half of which spaces the next node (a window behind
+                       ///< the node: the nearest readings' window's)
 };
 
 /// A local fit: the law and its nodes.

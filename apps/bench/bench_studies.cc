@@ -150,8 +150,6 @@ std::optional<double> FixedStepOverspeed(const Scene& scene, OverspeedOptions o,
   return hi;
 }
 
-// Before (main's fixed-step search, full runs) against after (the force-led search, runs that
-// stop at lift-off), one thread, interleaved repeats in this one process, medians.
 namespace {
 
 // The wall time of f(), ms.
@@ -299,6 +297,8 @@ std::string ComparisonToleranceSample(int repeats) {
 
 }  // namespace
 
+// Before (main's fixed-step search, full runs) against after (the force-led search, runs that
+// stop at lift-off), one thread, interleaved repeats in this one process, medians.
 std::string RunOverspeedComparison(int repeats) {
   std::ostringstream md;
   md << "## The overspeed search before and after (one thread, medians of interleaved runs in "

@@ -559,13 +559,19 @@ namespace {
 // 0.03°). The seat's readings are left out of that reading now, and a seat reading the law
 // does not start on is left out of the fit's windows (at 0.07° the return's last node had
 // a_max +24 %).
+// The same with equal rise and return (no break found at the top: the seat's trim then applies
+// to the one piece; a review found it left out there, a_max +30 %).
 TEST(LiftReadingTest, AnExactExportOffTheLawsGridIsReadAsExact) {
-  const Law law{3.5, 33.3, 0.0, 28.7, Harmonic};
-  for (double step : {0.03, 0.07}) {
-    const Read r = ReadExport(law, Export(law, step, 0.0, 25.31));
-    ASSERT_TRUE(r.choice.reading) << r.choice.reason;
-    EXPECT_NE(r.choice.reading->kind, TableKind::kMeasured) << r.choice.reason;
-    ExpectWithin(r, 0.01, "step " + std::to_string(step) + " to 9 decimals");
+  for (const Law& law :
+       {Law{3.5, 33.3, 0.0, 28.7, Harmonic}, Law{3.5, 30.0, 0.0, 30.0, Harmonic}}) {
+    for (double step : {0.03, 0.07}) {
+      const Read r = ReadExport(law, Export(law, step, 0.0, 25.31));
+      const std::string what = "rise " + std::to_string(law.rise_deg) + ", step " +
+                               std::to_string(step) + " to 9 decimals";
+      ASSERT_TRUE(r.choice.reading) << r.choice.reason;
+      EXPECT_NE(r.choice.reading->kind, TableKind::kMeasured) << what << ": " << r.choice.reason;
+      ExpectWithin(r, 0.01, what);
+    }
   }
 }
 
