@@ -121,10 +121,10 @@ double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, doub
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
 // spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
-                               const SplineOptions& options, std::vector<LocalNode>* nodes,
+                               const SplineOptions& options, LiftLawNodes* nodes,
                                LocalTrim trim = {}) {
   auto keep = [&](LocalFit fit) {
-    nodes->insert(nodes->end(), fit.nodes.begin(), fit.nodes.end());
+    nodes->ready.insert(nodes->ready.end(), fit.nodes.begin(), fit.nodes.end());
     return std::move(fit.law);
   };
   if (options.kind == SplineKind::kLocal) {
@@ -138,8 +138,9 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
     return keep(BuildSmoothingFit(x, y, options));
   }
   PiecewisePolynomial law = BuildSpline(x, y, options);
-  std::vector<LocalNode> band = InterpolationNodes(x, y, options, law);
-  return keep(LocalFit{std::move(law), std::move(band)});
+  nodes->deferred.push_back(
+      [x, y, options, law] { return InterpolationNodes(x, y, options, law); });
+  return law;
 }
 
 // The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
@@ -147,7 +148,7 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
 // for the interpolating kinds; a local fit's two ends are each piece's own estimate there (its
 // readings within the break's uncertainty left out), apart by a few printed digits.
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
-                                const LiftLawOptions& options, std::vector<LocalNode>* nodes) {
+                                const LiftLawOptions& options, LiftLawNodes* nodes) {
   const double sigma = options.spline.sigma;
   if (options.breaks_rad.empty()) {
     return BuildPiece(x, y, options.spline, nodes,
@@ -210,8 +211,7 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
 // measured data the whole table's fit and its crossings of the closed level; for an exact table
 // the fit of its open part, from the last zero before the rise to the first zero after the fall.
 PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& options,
-                                double* open_rad, double* close_rad,
-                                std::vector<LocalNode>* nodes) {
+                                double* open_rad, double* close_rad, LiftLawNodes* nodes) {
   const auto& th = table.crank_rad;
   const auto& s = table.lift_m;
   if (th.size() != s.size() || th.empty()) {
@@ -262,7 +262,7 @@ LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
     : table_(std::move(table)),
       kind_(options.spline.kind),
       closed_level_m_(options.closed_level_m),
-      spline_(FitOpenLift(table_, options, &open_rad_, &close_rad_, &nodes_)) {
+      spline_(FitOpenLift(table_, options, &open_rad_, &close_rad_, nodes_.get())) {
   if (options.open_rad) open_rad_ = *options.open_rad;
   if (options.close_rad) close_rad_ = *options.close_rad;
   const double lo = spline_.breaks().front(), hi = spline_.breaks().back();
@@ -272,10 +272,6 @@ LiftLaw::LiftLaw(LiftTable table, const LiftLawOptions& options)
                                 Deg(hi) + "°) and open before it closes");
   }
   spline_ = spline_.Restrict(open_rad_, close_rad_);
-  nodes_.erase(
-      std::remove_if(nodes_.begin(), nodes_.end(),
-                     [&](const LocalNode& n) { return n.x < open_rad_ || n.x > close_rad_; }),
-      nodes_.end());
   const Extremum low = Min(0);
   if (low.value < 0.0) {
     undershoot_m_ = -low.value;
@@ -292,8 +288,25 @@ double LiftLaw::Derivative(double crank_rad, int order) const {
 
 double LiftLaw::MeanLift() const { return spline_.Integral() / (end_rad() - start_rad()); }
 
+const std::vector<LocalNode>& LiftLaw::nodes() const {
+  std::call_once(nodes_->once, [this] {
+    std::vector<LocalNode> all = nodes_->ready;
+    for (const auto& band : nodes_->deferred) {
+      const std::vector<LocalNode> more = band();
+      all.insert(all.end(), more.begin(), more.end());
+    }
+    all.erase(
+        std::remove_if(all.begin(), all.end(),
+                       [&](const LocalNode& n) { return n.x < open_rad_ || n.x > close_rad_; }),
+        all.end());
+    nodes_->all = std::move(all);
+    nodes_->deferred.clear();
+  });
+  return nodes_->all;
+}
+
 std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
-  if (nodes_.empty()) return std::nullopt;
+  if (nodes().empty()) return std::nullopt;
   const double sign = largest ? 1.0 : -1.0;  // the smallest s'' is the largest −s''
   const LocalNode e = ExtremeNode(largest);
   // The lower end: the largest of the nodes' (the extreme is at least each node's value). The
@@ -301,7 +314,7 @@ std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
   // extreme may lie between nodes; else its unsafe end could be the estimate itself).
   double lo = -std::numeric_limits<double>::infinity();
   double hi = sign * e.s[2] + e.band2;
-  for (const LocalNode& n : nodes_) {
+  for (const LocalNode& n : nodes()) {
     lo = std::max(lo, sign * n.s[2] - n.band2);
     hi = std::max(hi, sign * n.s[2] + n.band2);
   }
@@ -316,7 +329,7 @@ LocalNode LiftLaw::ExtremeNode(bool largest) const {
   for (int k = 0; k < 3; ++k) at.s[k] = spline_.Evaluate(e.crank_rad, k);
   at.s[2] = e.value;
   double nearest = std::numeric_limits<double>::infinity();
-  for (const LocalNode& n : nodes_) {
+  for (const LocalNode& n : nodes()) {
     if (std::abs(n.x - e.crank_rad) < nearest) {
       nearest = std::abs(n.x - e.crank_rad);
       at.band2 = n.band2;

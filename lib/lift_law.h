@@ -12,6 +12,9 @@
 /// band of the seated needle) the spline is built on the whole table and the open lift runs
 /// from the first to the last crossing of h. A case may state θ_open and θ_close itself.
 
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -67,6 +70,15 @@ struct LiftLawOptions {
   double break_uncertainty_rad = 0.0;
 };
 
+/// Internal to LiftLaw: a fit's nodes, ready (a local fit's, a smoothing spline's) or deferred
+/// (an interpolating spline's band, lib/spline_band.h), and all of them once asked.
+struct LiftLawNodes {
+  std::vector<LocalNode> ready;
+  std::vector<std::function<std::vector<LocalNode>()>> deferred;
+  std::once_flag once;
+  std::vector<LocalNode> all;
+};
+
 /// A lift law: table plus spline. Immutable after construction.
 class LiftLaw {
  public:
@@ -110,8 +122,10 @@ class LiftLaw {
   /// The largest (smallest) s'' as a node: where it is, s, s', s'' there, and the half-width of
   /// the node nearest it (the extreme may lie between nodes). Meaningful only with nodes.
   LocalNode ExtremeNode(bool largest) const;
-  /// The nodes inside the open lift that carry the band of s'' (empty when there is none).
-  const std::vector<LocalNode>& nodes() const { return nodes_; }
+  /// The nodes inside the open lift that carry the band of s'' (empty when there is none). An
+  /// interpolating spline's are computed when first asked (26 splines a piece: a scene that
+  /// reads no band never pays for them); thread-safe.
+  const std::vector<LocalNode>& nodes() const;
 
   const LiftTable& table() const { return table_; }
   const PiecewisePolynomial& spline() const { return spline_; }
@@ -124,8 +138,9 @@ class LiftLaw {
   SplineKind kind_;
   double closed_level_m_ = 0.0;
   double open_rad_ = 0.0, close_rad_ = 0.0;  // set by spline_'s initialiser: declared before it
-  std::vector<LocalNode> nodes_;             // set by spline_'s initialiser: declared before it
-  PiecewisePolynomial spline_;               // restricted to [θ_open, θ_close]
+  std::shared_ptr<LiftLawNodes> nodes_ =
+      std::make_shared<LiftLawNodes>();  // set by spline_'s initialiser: declared before it
+  PiecewisePolynomial spline_;           // restricted to [θ_open, θ_close]
   double undershoot_m_ = 0.0, undershoot_rad_ = 0.0;
 };
 
