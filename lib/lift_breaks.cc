@@ -247,8 +247,8 @@ std::optional<LiftBreak> SidesMeet(const std::vector<double>& x, const std::vect
     b.jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
     // A corner's slope jump exceeds what the law's own s'' turns the slope by over the step
     // (a coarse table of a law whose s''' jumps: sides that miss by 0.5 % of the peak velocity).
-    const double turn = h * std::max(std::abs(left.Value(b.crank_rad, 2)),
-                                     std::abs(right.Value(b.crank_rad, 2)));
+    const double turn =
+        h * std::max(std::abs(left.Value(b.crank_rad, 2)), std::abs(right.Value(b.crank_rad, 2)));
     if (!(std::abs(b.jump) > turn)) return std::nullopt;
     // A corner keeps its size when the sides' cubics take twice the readings; the slopes'
     // disagreement across a kink of s'' (a smooth exact law's junction of s''') grows ~4×.
