@@ -118,6 +118,17 @@ double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, doub
   return std::abs(g.dot(b) - y[seat]) > 2.0 * bound ? 0.5 * h : 0.0;
 }
 
+// A local fit's trims of one piece (x, y): a found break's readings nearer than its uncertainty
+// belong to either side's law; so does a seat reading at the open lift's first or last end
+// (SeatTrim): the rise begins anywhere up to the next reading. None for the other kinds.
+LocalTrim PieceTrim(const std::vector<double>& x, const std::vector<double>& y,
+                    const LiftLawOptions& options, bool first_piece, bool last_piece) {
+  if (options.spline.kind != SplineKind::kLocal) return {};
+  const double u = options.break_uncertainty_rad, sigma = options.spline.sigma;
+  return {first_piece ? SeatTrim(x, y, sigma, true) : u,
+          last_piece ? SeatTrim(x, y, sigma, false) : u};
+}
+
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
 // spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
@@ -149,10 +160,8 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
 // readings within the break's uncertainty left out), apart by a few printed digits.
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
                                 const LiftLawOptions& options, LiftLawNodes* nodes) {
-  const double sigma = options.spline.sigma;
   if (options.breaks_rad.empty()) {
-    return BuildPiece(x, y, options.spline, nodes,
-                      LocalTrim{SeatTrim(x, y, sigma, true), SeatTrim(x, y, sigma, false)});
+    return BuildPiece(x, y, options.spline, nodes, PieceTrim(x, y, options, true, true));
   }
   std::vector<size_t> cuts{0};
   for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
@@ -186,14 +195,8 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
           std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
           "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
     }
-    // A found break's readings nearer than its uncertainty belong to either side's law; so does
-    // a seat reading (a zero the open lift starts or ends on): the rise begins anywhere up to the
-    // next reading.
-    const double u = options.break_uncertainty_rad;
-    const bool last_piece = p + 2 == cuts.size();
-    const LocalTrim trim{p > 0 ? u : SeatTrim(px, py, sigma, true),
-                         !last_piece ? u : SeatTrim(px, py, sigma, false)};
-    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes, trim);
+    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes,
+                                          PieceTrim(px, py, options, p == 0, p + 2 == cuts.size()));
     breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
     rows += part.coefficients().rows();
     parts.push_back(part.coefficients());

@@ -38,9 +38,15 @@ constexpr double kNodeSpacing = 0.5;   // nodes half a window's width apart
 // Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
 using Points = BinMeans;
 
-Points Binned(const std::vector<double>& x, const std::vector<double>& y) {
-  const size_t n = x.size();
-  return MeansOfBins(x, y, 0, n, (n + kLocalMaxNodes - 1) / kLocalMaxNodes);  // ≥ 1 per bin
+// Readings [from, to) as fitted: themselves, or above kLocalMaxNodes the means of bins.
+Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                    size_t to) {
+  const size_t n = to - from;
+  if (n > static_cast<size_t>(kLocalMaxNodes)) {
+    return MeansOfBins(x, y, from, to, (n + kLocalMaxNodes - 1) / kLocalMaxNodes);  // ≥ 1 a bin
+  }
+  return Points{std::vector<double>(x.begin() + from, x.begin() + to),
+                std::vector<double>(y.begin() + from, y.begin() + to), std::vector<double>(n, 1.0)};
 }
 
 // The estimates of s, s', s'' at t from the points [lo, hi), and the standard deviation of s''
@@ -274,17 +280,13 @@ LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, do
                                 " points, got " + std::to_string(x.size()));
   }
   // The readings the windows take: all but those within the trims of the ends.
-  const size_t from = std::lower_bound(x.begin(), x.end(), x.front() + trim.front_rad) - x.begin();
-  const size_t to = std::upper_bound(x.begin(), x.end(), x.back() - trim.back_rad) - x.begin();
-  const bool trimmed = (from > 0 || to < x.size()) && to > from &&
-                       to - from >= 2 * static_cast<size_t>(kLocalMinimumPoints);
-  const std::vector<double> tx =
-      trimmed ? std::vector<double>(x.begin() + from, x.begin() + to) : x;
-  const std::vector<double> ty =
-      trimmed ? std::vector<double>(y.begin() + from, y.begin() + to) : y;
-  const Points p = static_cast<int>(tx.size()) > kLocalMaxNodes
-                       ? Binned(tx, ty)
-                       : Points{tx, ty, std::vector<double>(tx.size(), 1.0)};
+  size_t from = std::lower_bound(x.begin(), x.end(), x.front() + trim.front_rad) - x.begin();
+  size_t to = std::upper_bound(x.begin(), x.end(), x.back() - trim.back_rad) - x.begin();
+  if (!(to > from && to - from >= 2 * static_cast<size_t>(kLocalMinimumPoints))) {
+    from = 0;  // too few left: no trim
+    to = x.size();
+  }
+  const Points p = FittedPoints(x, y, from, to);
   LocalFit fit{PiecewisePolynomial({0.0, 1.0}, Eigen::MatrixXd::Zero(1, kTerms), 2), {}};
   const std::vector<size_t> sizes = WindowSizes(p.x.size());
   // Nodes from the first reading to the last, each kNodeSpacing of its window's width past the
