@@ -7,6 +7,15 @@ namespace needle::bench {
 
 std::string CaseDir() { return std::string(NEEDLE_SOURCE_DIR) + "/cases/"; }
 
+OverspeedOptions SearchOptions(const BoundCase& c, double from_rpm, double to_rpm, int threads) {
+  OverspeedOptions o;
+  o.from_rpm = from_rpm;
+  o.to_rpm = to_rpm;
+  o.threads = threads;
+  o.simulation = c.run;
+  return o;
+}
+
 const std::vector<BenchScene>& Scenes() {
   static const std::vector<BenchScene> scenes = {
       {"soft", "basu-cam4-light-spring.toml",

@@ -8,12 +8,18 @@
 #include <utility>
 #include <vector>
 
+#include "apps/case/bound_case.h"
+#include "dynamics/overspeed.h"
 #include "dynamics/solver/integrator.h"
 
 namespace needle::bench {
 
 /// The bundled cases' folder, with its final '/'.
 std::string CaseDir();
+
+/// The overspeed search of bound case `c` from `from_rpm` to `to_rpm` on `threads` threads,
+/// its runs as the case asks (c.run).
+OverspeedOptions SearchOptions(const BoundCase& c, double from_rpm, double to_rpm, int threads = 1);
 
 /// A bench scene: its name, case file and speed.
 struct BenchScene {

@@ -171,11 +171,7 @@ std::string ComparisonSearch(int repeats) {
   std::ostringstream md;
   const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example2.toml"));
   const Scene scene = *c.scene;
-  OverspeedOptions o;
-  o.from_rpm = 600;
-  o.to_rpm = 1300;
-  o.threads = 1;
-  o.simulation = c.run;
+  OverspeedOptions o = SearchOptions(c, 600, 1300);
   std::vector<double> timed_before, timed_after;
   int runs_before = 0;
   std::optional<double> before;
@@ -210,11 +206,7 @@ std::string ComparisonChecks(int repeats) {
     co.threads = 1;
     co.record_series = false;
     const SweepRange range = DefaultSweepRange(c, c.engine.speed_rpm, QuasiStaticLiftoffRpm(scene));
-    OverspeedOptions o;
-    o.from_rpm = range.from_rpm;
-    o.to_rpm = range.to_rpm;
-    o.threads = 1;
-    o.simulation = c.run;
+    OverspeedOptions o = SearchOptions(c, range.from_rpm, range.to_rpm);
     o.simulation.steady_state = c.overspeed && c.overspeed->steady_state;
     std::vector<double> check, sweep_new, sweep_old;
     int runs_before = 0;

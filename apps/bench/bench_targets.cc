@@ -95,10 +95,7 @@ std::string TargetOverspeed(int repeats) {
   std::ostringstream md;
   const BoundCase c = Bind(LoadCase(CaseDir() + "basu-cam4-light-spring.toml"));
   const Scene scene = *c.scene;
-  OverspeedOptions o;
-  o.from_rpm = 400;
-  o.to_rpm = 1200;
-  o.simulation = c.run;
+  OverspeedOptions o = SearchOptions(c, 400, 1200);
   // Interleaved one- and two-thread runs, medians of each: background load hits both alike.
   std::vector<double> ones, twos;
   for (int r = 0; r < 3 * repeats; ++r) {
