@@ -15,6 +15,22 @@ namespace {
 
 using StepperFactory = std::unique_ptr<Stepper> (*)(TrainSystem&, const IntegratorOptions&);
 
+}  // namespace
+
+// The backends, each in its own file and named only here (a new integrator: its file, its
+// enumerator in integrator.h, its factory here and one row below). `system` outlives the
+// stepper.
+std::unique_ptr<Stepper> MakeDopri5(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeRkf78(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeRosenbrock4(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeCvodeBdf(TrainSystem& system, const IntegratorOptions& o);
+std::unique_ptr<Stepper> MakeCvodeAdams(TrainSystem& system, const IntegratorOptions& o);
+/// The closed-form propagator (exact_stepper.cc); throws std::invalid_argument with the reason
+/// when the train is outside the linear class (ExactRefusal).
+std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& o);
+
+namespace {
+
 struct MethodRow {
   Method method;
   const char* name;
@@ -35,7 +51,6 @@ constexpr const char* kCvodeRigid =
     "restarts at first order after every impact and misplaces the short flights of a rigid "
     "contact; use dopri5, rkf78 or rosenbrock4";
 
-// A new integrator: its backend file, an enumerator and one row here.
 const MethodRow kMethodTable[] = {
     {Method::kDopri5,
      "dopri5",

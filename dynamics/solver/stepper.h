@@ -82,16 +82,6 @@ class Stepper {
   virtual const ClosedFormPiece* ClosedForm() const { return nullptr; }
 };
 
-/// The backends (odeint_steppers.cc, cvode_stepper.cc). `system` outlives the stepper.
-std::unique_ptr<Stepper> MakeDopri5(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeRkf78(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeRosenbrock4(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeCvodeBdf(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeCvodeAdams(TrainSystem& system, const IntegratorOptions& o);
-/// The closed-form propagator (exact_stepper.cc); throws std::invalid_argument with the reason
-/// when the train is outside the linear class (ExactRefusal).
-std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& o);
-
 /// The backend of a method from the method table (methods.cc); nullptr for the baseline.
 std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o);
 
