@@ -82,12 +82,12 @@ std::string SynthesizedCaseText(const SynthesisFile& f, const SynthesizedLaw& la
     << "\"\n\n[lift]\ncrank_deg = [" << angles.str() << "]\nlift_mm = [" << lifts.str()
     << "]\nspline = \"not-a-knot\"\nresolution_mm = 0.000001\n";
   if (f.base_radius_m) {
-    c << "\n[profile]\nfollower = \"" << FollowerKindName(f.follower)
+    const FollowerGeometry& g = f.follower;
+    c << "\n[profile]\nfollower = \"" << FollowerKindName(g.kind)
       << "\"\nbase_radius_mm = " << *f.base_radius_m * mm;
-    if (f.follower == FollowerKind::kRoller)
-      c << "\nroller_radius_mm = " << f.roller_radius_m.value_or(0.0) * mm;
-    if (f.face_radius_m) c << "\nface_radius_mm = " << *f.face_radius_m * mm;
-    if (f.face_half_width_m) c << "\nface_half_width_mm = " << *f.face_half_width_m * mm;
+    if (g.kind == FollowerKind::kRoller) c << "\nroller_radius_mm = " << g.roller_radius_m * mm;
+    if (g.face_radius_m > 0.0) c << "\nface_radius_mm = " << g.face_radius_m * mm;
+    if (g.face_half_width_m > 0.0) c << "\nface_half_width_mm = " << g.face_half_width_m * mm;
     c << "\noffset_mm = " << f.offset_m * mm << "\n";
   }
   // Every [checks] input the synthesis used goes on into the case, so that `needle check` on

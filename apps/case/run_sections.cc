@@ -180,12 +180,8 @@ ToleranceSection ReadTolerance(SectionReader r) {
 ProfileSection ReadProfile(SectionReader r) {
   ProfileSection p;
   FollowerGeometry& g = p.follower;
-  const FollowerKeys k = ReadFollowerKeys(r);
-  g.kind = k.kind;
+  g = ReadFollowerKeys(r);
   g.base_radius_m = *SignedLength(r, "base_radius", true, true);
-  g.roller_radius_m = k.roller_radius_m.value_or(0.0);
-  g.face_radius_m = k.face_radius_m.value_or(0.0);
-  g.face_half_width_m = k.face_half_width_m.value_or(0.0);
   g.offset_m = r.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
   if (g.kind != FollowerKind::kFlat &&
       !(std::abs(g.offset_m) < g.base_radius_m + g.ContactRadius())) {

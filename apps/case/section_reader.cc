@@ -70,11 +70,8 @@ std::optional<double> SignedLength(SectionReader& r, const std::string& name, bo
   return v;
 }
 
-FollowerKeys ReadFollowerKeys(SectionReader& r) {
-  FollowerKeys k;
-  auto length = [&](const std::string& name, bool positive) {
-    return SignedLength(r, name, positive);
-  };
+FollowerGeometry ReadFollowerKeys(SectionReader& r) {
+  FollowerGeometry k;
   if (auto name = r.OptionalString("follower")) {
     const std::optional<FollowerKind> kind = ParseFollowerKind(*name);
     if (!kind)
@@ -82,18 +79,25 @@ FollowerKeys ReadFollowerKeys(SectionReader& r) {
     k.kind = *kind;
   }
   const std::string kind = FollowerKindName(k.kind);
-  k.roller_radius_m = length("roller_radius", false);
-  if (k.roller_radius_m && k.kind != FollowerKind::kRoller)
+  // Each checked as it is read, so that a failure names the key as written (last_key).
+  auto length = [&](const std::string& name, bool positive) {
+    return SignedLength(r, name, positive);
+  };
+  const auto roller = length("roller_radius", false);
+  if (roller && k.kind != FollowerKind::kRoller)
     r.Fail(r.last_key(), "a " + kind + " follower has no roller" +
                              (k.kind == FollowerKind::kCurved ? "; give face_radius_mm" : ""));
-  k.face_radius_m = length("face_radius", true);
-  if (k.face_radius_m && k.kind != FollowerKind::kCurved)
+  const auto face = length("face_radius", true);
+  if (face && k.kind != FollowerKind::kCurved)
     r.Fail(r.last_key(), "only a curved follower has a face radius (follower = \"curved\")");
-  if (k.kind == FollowerKind::kCurved && !k.face_radius_m)
+  if (k.kind == FollowerKind::kCurved && !face)
     r.Fail("face_radius_mm", "a curved follower needs the radius of its face");
-  k.face_half_width_m = length("face_half_width", true);
-  if (k.face_half_width_m && k.kind == FollowerKind::kRoller)
+  const auto half_width = length("face_half_width", true);
+  if (half_width && k.kind == FollowerKind::kRoller)
     r.Fail(r.last_key(), "a roller has no face; set follower = \"flat\" or \"curved\"");
+  k.roller_radius_m = roller.value_or(0.0);
+  k.face_radius_m = face.value_or(0.0);
+  k.face_half_width_m = half_width.value_or(0.0);
   return k;
 }
 

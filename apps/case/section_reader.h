@@ -298,12 +298,10 @@ std::optional<double> SignedLength(SectionReader& r, const std::string& name, bo
 
 // The follower's kind and its radius and face keys, the same in [profile] and [checks]: each
 // key belongs to the kinds that have it.
-struct FollowerKeys {
-  FollowerKind kind = FollowerKind::kRoller;
-  std::optional<double> roller_radius_m, face_radius_m, face_half_width_m;
-};
-
-FollowerKeys ReadFollowerKeys(SectionReader& r);
+/// The follower's kind and shape keys (`follower`, roller_radius, face_radius, face_half_width;
+/// 0 where not given), read straight into its geometry, shared by [profile] and the synthesis
+/// file's [checks]; base_radius and offset are the section's own.
+FollowerGeometry ReadFollowerKeys(SectionReader& r);
 
 /// The table `name` of `root`, or null when absent; a non-table there is a CaseError.
 const toml::table* Section(const toml::table& root, const std::string& file, const char* name);

@@ -22,7 +22,6 @@
 
 namespace needle {
 
-using case_internal::FollowerKeys;
 using case_internal::Number;
 using case_internal::ParseToml;
 using case_internal::Positive;
@@ -88,15 +87,12 @@ void ParseChecks(const toml::table& t, const std::string& path, SynthesisFile& f
   auto length = [&](const std::string& name, bool positive) {
     return SignedLength(ch, name, positive);
   };
-  const FollowerKeys k = ReadFollowerKeys(ch);
-  f.follower = k.kind;
+  f.follower = ReadFollowerKeys(ch);
   f.base_radius_m = length("base_radius", true);
-  f.roller_radius_m = k.roller_radius_m;
-  f.face_radius_m = k.face_radius_m;
-  f.face_half_width_m = k.face_half_width_m;
-  if ((k.kind != FollowerKind::kRoller || f.face_half_width_m) && !f.base_radius_m)
+  const FollowerKind kind = f.follower.kind;
+  if ((kind != FollowerKind::kRoller || f.follower.face_half_width_m > 0.0) && !f.base_radius_m)
     ch.Fail("base_radius",
-            "a " + std::string(FollowerKindName(k.kind)) + " follower needs base_radius_mm");
+            "a " + std::string(FollowerKindName(kind)) + " follower needs base_radius_mm");
   if (auto u = ch.OptionalQuantity("min_entrainment_speed", Dimension::kVelocity)) {
     if (!(*u > 0.0 && *u <= 1e3))
       ch.Fail(ch.last_key(), "must be in (0, 1000] m/s, got " + Number(*u) + " m/s");

@@ -19,10 +19,11 @@ struct SynthesisFile {
   std::string path, title;
   double rise_rad = 0.0, height_m = 0.0, step_rad = 0.0;
   double speed_limit = 1e300, accel_limit = 0.0, decel_limit = 0.0, jerk_limit = 1e300;
-  FollowerKind follower = FollowerKind::kRoller;  ///< [checks] follower
-  std::optional<double> base_radius_m, roller_radius_m;
-  std::optional<double> face_radius_m;      ///< curved face
-  std::optional<double> face_half_width_m;  ///< flat or curved face: caps S' (flat) or φ (curved)
+  /// [checks] follower and its shape keys (roller_radius, face_radius, face_half_width: 0 where
+  /// not given; a face's half-width caps S' (flat) or φ (curved)); its base radius and offset
+  /// are below.
+  FollowerGeometry follower;
+  std::optional<double> base_radius_m;
   /// Lubrication: the least entrainment velocity at [output] speed_rpm, m/s (steers S'').
   std::optional<double> min_entrainment_m_s;
   double offset_m = 0.0;

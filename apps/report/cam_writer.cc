@@ -26,7 +26,7 @@ std::string SynthText(const SynthesisFile& f, const SynthesisResult& r,
       << " steps; limits used at " << Fixed(100 * rise.scale, 2) << " %\n";
   if (rise.face_width_limited) {
     out << "constant-speed section at S' = the flat face's half-width "
-        << Fixed(*f.face_half_width_m * 1e3, 3) << " mm/rad (S'max "
+        << Fixed(f.follower.face_half_width_m * 1e3, 3) << " mm/rad (S'max "
         << (f.speed_limit < 1e299 ? Fixed(f.speed_limit * 1e3, 3) + " mm/rad" : "not given")
         << ") from " << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg")
         << " (" << t("constant_speed_length_deg") << ")\n";
@@ -50,12 +50,12 @@ std::string SynthText(const SynthesisFile& f, const SynthesisResult& r,
         << " steps formed again with a lower S'' so that a later cap and the jerk limit both "
            "hold (back-off)\n";
   if (r.profile) {
-    out << FollowerKindName(f.follower) << " follower: ";
-    if (f.follower != FollowerKind::kRoller)
+    out << FollowerKindName(f.follower.kind) << " follower: ";
+    if (f.follower.kind != FollowerKind::kRoller)
       out << "contact up to " << t("max_contact_offset_mm") << " off the axis at "
           << t("max_contact_offset_at_deg")
-          << (f.face_half_width_m
-                  ? " (face half-width " + Fixed(*f.face_half_width_m * 1e3, 3) + " mm)"
+          << (f.follower.face_half_width_m > 0.0
+                  ? " (face half-width " + Fixed(f.follower.face_half_width_m * 1e3, 3) + " mm)"
                   : "")
           << "; ";
     out << "entrainment speed min " << t("min_entrainment_speed_m_s") << " at "
@@ -68,7 +68,7 @@ std::string SynthText(const SynthesisFile& f, const SynthesisResult& r,
         << (f.max_pressure_angle_rad ? " (limit " + Fixed(*f.max_pressure_angle_rad / kDeg, 1) + ")"
                                      : "")
         << "; profile radius min " << t("min_profile_radius_mm") << "; "
-        << (r.profile->undercut ? (f.follower == FollowerKind::kFlat ? "CUSP" : "UNDERCUT")
+        << (r.profile->undercut ? (f.follower.kind == FollowerKind::kFlat ? "CUSP" : "UNDERCUT")
                                 : "no undercut")
         << '\n';
   }
@@ -112,7 +112,7 @@ CommandOutput WriteSynth(const SynthesisFile& f, const SynthesisResult& r, const
     j["contact_stress_cap_tighter"] = rise.stress_limited;
     j["face_width_limits_speed"] = rise.face_width_limited;
     j["backed_off_steps"] = rise.backed_off_steps;
-    if (f.base_radius_m) j["follower"] = FollowerKindName(f.follower);
+    if (f.base_radius_m) j["follower"] = FollowerKindName(f.follower.kind);
     j["steps"] = rise.phi.size() - 1;
     if (r.profile) j["undercut"] = r.profile->undercut;
     if (r.min_spring_reserve) j["spring_reserve_cap_tighter"] = rise.spring_reserve_limited;

@@ -52,12 +52,8 @@ RigidTrain TrainOf(const SynthesisFile& f) {
 
 // The follower of [checks]. Call only when it gives base_radius_mm.
 FollowerGeometry FollowerOf(const SynthesisFile& f) {
-  FollowerGeometry g;
-  g.kind = f.follower;
+  FollowerGeometry g = f.follower;
   g.base_radius_m = *f.base_radius_m;
-  g.roller_radius_m = f.roller_radius_m.value_or(0.0);
-  g.face_radius_m = f.face_radius_m.value_or(0.0);
-  g.face_half_width_m = f.face_half_width_m.value_or(0.0);
   g.offset_m = f.offset_m;
   return g;
 }
