@@ -296,11 +296,10 @@ std::optional<long> OptionalCount(SectionReader& r, const std::string& key, doub
 std::optional<double> SignedLength(SectionReader& r, const std::string& name, bool positive,
                                    bool required = false);
 
-// The follower's kind and its radius and face keys, the same in [profile] and [checks]: each
-// key belongs to the kinds that have it.
 /// The follower's kind and shape keys (`follower`, roller_radius, face_radius, face_half_width;
 /// 0 where not given), read straight into its geometry, shared by [profile] and the synthesis
-/// file's [checks]; base_radius and offset are the section's own.
+/// file's [checks]: each key belongs to the kinds that have it. base_radius and offset are the
+/// section's own.
 FollowerGeometry ReadFollowerKeys(SectionReader& r);
 
 /// The table `name` of `root`, or null when absent; a non-table there is a CaseError.

@@ -20,8 +20,8 @@ struct SynthesisFile {
   double rise_rad = 0.0, height_m = 0.0, step_rad = 0.0;
   double speed_limit = 1e300, accel_limit = 0.0, decel_limit = 0.0, jerk_limit = 1e300;
   /// [checks] follower and its shape keys (roller_radius, face_radius, face_half_width: 0 where
-  /// not given; a face's half-width caps S' (flat) or φ (curved)); its base radius and offset
-  /// are below.
+  /// not given; a face's half-width caps S' (flat) or φ (curved)). Its own base_radius_m and
+  /// offset_m stay 0: the file's are base_radius_m and offset_m below (FollowerOf joins them).
   FollowerGeometry follower;
   std::optional<double> base_radius_m;
   /// Lubrication: the least entrainment velocity at [output] speed_rpm, m/s (steers S'').

@@ -227,6 +227,8 @@ class CvodeStepper final : public Stepper {
 
 }  // namespace
 
+MakeBackend MakeCvodeBdf, MakeCvodeAdams;  // checked against the table's type
+
 std::unique_ptr<Stepper> MakeCvodeBdf(TrainSystem& system, const IntegratorOptions& o) {
   return std::make_unique<CvodeStepper>(system, o, true);
 }

@@ -94,6 +94,8 @@ std::optional<std::string> ExactRefusal(const NeedleTrain& train) {
   return std::nullopt;
 }
 
+MakeBackend MakeExact;  // checked against the table's type
+
 std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& o) {
   if (const std::optional<std::string> why = ExactRefusal(system.train()))
     throw std::invalid_argument(*why);

@@ -13,21 +13,15 @@
 namespace needle {
 namespace {
 
-using StepperFactory = std::unique_ptr<Stepper> (*)(TrainSystem&, const IntegratorOptions&);
+using StepperFactory = MakeBackend*;
 
 }  // namespace
 
 // The backends, each in its own file and named only here (a new integrator: its file, its
-// enumerator in integrator.h, its factory here and one row below). `system` outlives the
-// stepper.
-std::unique_ptr<Stepper> MakeDopri5(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeRkf78(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeRosenbrock4(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeCvodeBdf(TrainSystem& system, const IntegratorOptions& o);
-std::unique_ptr<Stepper> MakeCvodeAdams(TrainSystem& system, const IntegratorOptions& o);
-/// The closed-form propagator (exact_stepper.cc); throws std::invalid_argument with the reason
-/// when the train is outside the linear class (ExactRefusal).
-std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& o);
+// enumerator in integrator.h, its factory here and one row below): odeint_steppers.cc,
+// cvode_stepper.cc, and the closed-form propagator exact_stepper.cc (which throws
+// std::invalid_argument with the reason when the train is outside the linear class).
+MakeBackend MakeDopri5, MakeRkf78, MakeRosenbrock4, MakeCvodeBdf, MakeCvodeAdams, MakeExact;
 
 namespace {
 

@@ -174,6 +174,8 @@ class Rosenbrock4Stepper final : public OdeintStepper {
 
 }  // namespace
 
+MakeBackend MakeDopri5, MakeRkf78, MakeRosenbrock4;  // checked against the table's type
+
 std::unique_ptr<Stepper> MakeDopri5(TrainSystem& system, const IntegratorOptions& o) {
   return std::make_unique<Dopri5Stepper>(system, o);
 }

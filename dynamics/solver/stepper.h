@@ -82,6 +82,11 @@ class Stepper {
   virtual const ClosedFormPiece* ClosedForm() const { return nullptr; }
 };
 
+/// A backend's factory: methods.cc's table names each, and each backend's file declares its own
+/// with this type (`MakeBackend MakeDopri5;`) before defining it, so that the definition is
+/// checked against the table's signature. `system` outlives the stepper.
+using MakeBackend = std::unique_ptr<Stepper>(TrainSystem& system, const IntegratorOptions& o);
+
 /// The backend of a method from the method table (methods.cc); nullptr for the baseline.
 std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o);
 
