@@ -11,11 +11,6 @@
 #include "lib/units.h"
 
 namespace needle {
-namespace {
-
-using StepperFactory = MakeBackend*;
-
-}  // namespace
 
 // The backends, each in its own file and named only here (a new integrator: its file, its
 // enumerator in integrator.h, its factory here and one row below): odeint_steppers.cc,
@@ -28,7 +23,7 @@ namespace {
 struct MethodRow {
   Method method;
   const char* name;
-  StepperFactory make;  ///< nullptr: not a backend of the event driver (the baseline)
+  MakeBackend* make;  ///< nullptr: not a backend of the event driver (the baseline)
   /// Why the method does not take a rigid contact (a train with a constraint), after
   /// `method "NAME" `; nullptr when it does.
   const char* rigid_refusal;
@@ -120,7 +115,7 @@ std::string MethodList() {
 }
 
 std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o) {
-  const StepperFactory make = Row(m).make;
+  MakeBackend* const make = Row(m).make;
   return make ? make(system, o) : nullptr;
 }
 
