@@ -3,9 +3,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "apps/case/case_file.h"
+
 namespace needle::bench {
 
 std::string CaseDir() { return std::string(NEEDLE_SOURCE_DIR) + "/cases/"; }
+
+BoundCase BindBundled(const std::string& file) { return Bind(LoadCase(CaseDir() + file)); }
 
 OverspeedOptions SearchOptions(const BoundCase& c, double from_rpm, double to_rpm, int threads) {
   OverspeedOptions o;

@@ -17,6 +17,9 @@ namespace needle::bench {
 /// The bundled cases' folder, with its final '/'.
 std::string CaseDir();
 
+/// Bundled case `file` ("basu-example2.toml"), loaded and bound.
+BoundCase BindBundled(const std::string& file);
+
 /// The overspeed search of bound case `c` from `from_rpm` to `to_rpm` on `threads` threads,
 /// its runs as the case asks (c.run).
 OverspeedOptions SearchOptions(const BoundCase& c, double from_rpm, double to_rpm, int threads = 1);

@@ -273,14 +273,14 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
     // A second of untimed runs first: without it the first scene's first tolerances were
     // measured up to 1.5× slow in some runs on this machine (the rest of the run was not).
     const BenchScene& bs = Scenes().front();
-    const Scene scene = *Bind(LoadCase(CaseDir() + bs.file)).scene;
+    const Scene scene = *BindBundled(bs.file).scene;
     const std::vector<double> grid = WindowGrid(scene, bs.rpm, 2000);
     const auto start = std::chrono::steady_clock::now();
     while (std::chrono::steady_clock::now() - start < std::chrono::seconds(1))
       MeasureRun(scene, bs.rpm, Named("dopri5"), 1e-6, grid, 1);
   }
   for (const BenchScene& bs : Scenes()) {
-    const BoundCase c = Bind(LoadCase(CaseDir() + bs.file));
+    const BoundCase c = BindBundled(bs.file);
     const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, bs.rpm, 2000);
     const MeasuredRun ref = MeasureRun(scene, bs.rpm, Named("exact"), 1e-13, grid, 1);
@@ -301,7 +301,7 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
 // form takes one mass), median of 5 × repeats runs; its steps and right-hand-side evaluations
 // say whether a slower time is the machine or the method.
 std::string LongChainRow(int repeats) {
-  const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example1-surge.toml"));
+  const BoundCase c = BindBundled("basu-example1-surge.toml");
   const Scene scene = *c.scene;
   SimulationOptions o = c.run;
   o.force_dynamic = true;
@@ -342,7 +342,7 @@ std::string RunExactComparison(int repeats) {
         "dopri5 1e-8 µs | steps | dopri5 lift error µm | exact / dopri5 |\n"
      << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ExactScene& es : scenes) {
-    const BoundCase c = Bind(LoadCase(CaseDir() + es.file));
+    const BoundCase c = BindBundled(es.file);
     const Scene scene = *c.scene;
     const std::vector<double> grid = WindowGrid(scene, es.rpm, 2000);
     const MeasuredRun ref = MeasureRun(scene, es.rpm, Named("dopri5"), 1e-12, grid, 1);

@@ -169,7 +169,7 @@ double MedianOf(std::vector<double> v) {
 // The search alone on a lash-and-lift-off scene (Example 2, 600 to 1300 rpm).
 std::string ComparisonSearch(int repeats) {
   std::ostringstream md;
-  const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example2.toml"));
+  const BoundCase c = BindBundled("basu-example2.toml");
   const Scene scene = *c.scene;
   OverspeedOptions o = SearchOptions(c, 600, 1300);
   std::vector<double> timed_before, timed_after;
@@ -199,7 +199,7 @@ std::string ComparisonChecks(int repeats) {
            {"basu-example2.toml",
             "`check basu-example2` without report (a tolerance sample before it took from the "
             "nominal)"}}) {
-    const BoundCase c = Bind(LoadCase(CaseDir() + name));
+    const BoundCase c = BindBundled(name);
     const LiftLaw& law = *c.lift.law;
     const Scene scene = *c.scene;
     CheckOptions co;
@@ -236,7 +236,7 @@ std::string ComparisonChecks(int repeats) {
 // their verdicts compared, and n_dyn.
 std::string ComparisonToleranceSample(int repeats) {
   std::ostringstream md;
-  const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example2.toml"));
+  const BoundCase c = BindBundled("basu-example2.toml");
   ToleranceOptions o;
   o.samples = 20;
   o.seed = 1;

@@ -43,7 +43,7 @@ std::string TargetVerdict(double measured, double goal) {
 // The targets' row: Example 1 simulated to a lift error of 0.1 µm, the fastest method.
 std::string TargetExample1(int repeats) {
   std::ostringstream md;
-  const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example1.toml"));
+  const BoundCase c = BindBundled("basu-example1.toml");
   const Scene scene = *c.scene;
   const std::vector<double> grid = WindowGrid(scene, 125, 2000);
   const MeasuredRun ref = MeasureRun(scene, 125, Named("exact"), 1e-13, grid, 1);
@@ -74,7 +74,7 @@ std::string TargetExample1(int repeats) {
 // The targets' row: a lift-off-and-lash scene at 1100 rpm in-process (Example 2 by `exact`).
 std::string TargetLash(int repeats) {
   std::ostringstream md;
-  const BoundCase c = Bind(LoadCase(CaseDir() + "basu-example2.toml"));
+  const BoundCase c = BindBundled("basu-example2.toml");
   const Scene scene = *c.scene;
   SimulationOptions o = c.run;
   o.force_dynamic = true;
@@ -93,7 +93,7 @@ std::string TargetLash(int repeats) {
 // The targets' row: the overspeed search of cam 4's light spring to 0.5 rpm, one core and two.
 std::string TargetOverspeed(int repeats) {
   std::ostringstream md;
-  const BoundCase c = Bind(LoadCase(CaseDir() + "basu-cam4-light-spring.toml"));
+  const BoundCase c = BindBundled("basu-cam4-light-spring.toml");
   const Scene scene = *c.scene;
   OverspeedOptions o = SearchOptions(c, 400, 1200);
   // Interleaved one- and two-thread runs, medians of each: background load hits both alike.

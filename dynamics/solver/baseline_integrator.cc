@@ -46,10 +46,7 @@ IntegrationStats IntegrateBaseline(Method method, const NeedleTrain& train, cons
                               std::min(t_end, 0.01 / train.FastestAngularFrequency()), observer));
   if (stats.steps > o.max_steps) ThrowOverBudget("steps", o.max_steps, train, t_end, stats, method);
   recorder.Finish(last_t, last, phase);
-  stats.rhs_evaluations = system.evaluations();
-  stats.final_state = last;
-  stats.final_time = last_t;
-  stats.final_phase = phase;
+  stats.End(last_t, last, phase, system.evaluations());
   return stats;
 }
 

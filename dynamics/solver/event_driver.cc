@@ -406,10 +406,7 @@ IntegrationStats EventDriver::Run(const TrainState& x0, double t_end) {
   }
   recorder_.Finish(t, x, phase);
   phase.segment_end_rad = std::numeric_limits<double>::infinity();
-  stats.rhs_evaluations = system_.evaluations();
-  stats.final_state = x;
-  stats.final_time = t;
-  stats.final_phase = phase;
+  stats.End(t, x, phase, system_.evaluations());
   return stats;
 }
 

@@ -142,6 +142,15 @@ struct IntegrationStats {
   bool stopped_at_jump = false;
   /// The run stopped past the lift without a jump (IntegratorOptions::stop_after_lift).
   bool stopped_after_lift = false;
+
+  /// Records how the run ended: at time `t` (s) in state `x` and contact mode `phase`, after
+  /// `evaluations` right-hand sides. The one place both drivers end a run.
+  void End(double t, const TrainState& x, const Phase& phase, long evaluations) {
+    final_time = t;
+    final_state = x;
+    final_phase = phase;
+    rhs_evaluations = evaluations;
+  }
 };
 
 /// A step or event budget ran out: the run stopped at `crank_rad`. The message names the angle
