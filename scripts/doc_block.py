@@ -1,6 +1,6 @@
 """A generated block of a document: the lines between two marker lines, which a script writes
 (--write) or checks against what it would write (--check). Shared by the scripts that keep
-numbers and tables of docs/ regenerated (bundled_verdicts, case_keys, doc_tolerance,
+numbers and tables of docs/ regenerated (bundled_verdicts, doc_tolerance,
 layout_table)."""
 import argparse
 import sys

@@ -138,34 +138,14 @@ BoundLift RebindLift(const BoundLift& lift, LiftTable table) {
 
 BoundCase BindSections(const Case& c) {
   BoundCase b;
-  b.path = c.path;
-  b.title = c.title;
-  b.engine = c.engine;
-  b.needle = c.needle;
-  b.spring = c.spring;
-  b.train = c.train;
-  b.overspeed = c.overspeed;
-  b.profile = c.profile;
-  b.tolerance = c.tolerance;
-  b.paper = c.paper;
-  b.limits = c.limits;
-  b.sizing = c.sizing;
-  SimulationOptions& o = b.run;
-  if (c.solver) {
-    o.method = c.solver->method;
-    o.integrator.rtol = c.solver->rtol;
-    o.integrator.atol_m = c.solver->atol_m.value_or(DefaultAtol(c.solver->rtol));
-    o.integrator.max_steps = c.solver->max_steps;
-    o.integrator.max_events = c.solver->max_events;
-    o.integrator.max_seconds = c.solver->max_seconds;
-    o.settle_limit_deg = c.solver->settle_limit_deg;
-    o.cycles = c.solver->cycles;
-    o.period_tolerance = c.solver->period_tolerance;
-    b.atol_given = c.solver->atol_m.has_value();
+  static_cast<CaseSections&>(b) = c;  // the sections as read
+  if (c.solver) {                     // [solver] was read straight into the run options
+    b.run = c.solver->run;
+    b.atol_given = c.solver->atol_given;
     b.start_rad = c.solver->start_rad;
     b.end_rad = c.solver->end_rad;
   } else {
-    o.integrator.atol_m = DefaultAtol(o.integrator.rtol);
+    b.run.integrator.atol_m = DefaultAtol(b.run.integrator.rtol);
   }
   return b;
 }

@@ -44,14 +44,8 @@ struct BoundLift {
 BoundLift RebindLift(const BoundLift& lift, LiftTable table);
 
 /// What the jobs of a case run.
-struct BoundCase {
-  std::string path;   ///< the case file, for messages
-  std::string title;  ///< its one-line description (may be empty)
-  EngineSection engine;
+struct BoundCase : CaseSections {  ///< the sections as read: path, title, [engine], [needle], …
   BoundLift lift;
-  std::optional<NeedleParameters> needle;  ///< [needle]
-  std::optional<SpringParameters> spring;  ///< [spring]
-  std::optional<TrainSection> train;       ///< [train]
   /// The dynamic scene, when the case has [needle], [spring] and [train], the law gives an
   /// acceleration (a C¹ spline leaves it out: the check calls that undecided) and the model
   /// takes it (else left out: BindScene says why). Built by Bind
@@ -61,12 +55,6 @@ struct BoundCase {
   SimulationOptions run;                     ///< [solver]'s method, tolerances and budgets
   bool atol_given = false;                   ///< [solver] atol_mm stated
   std::optional<double> start_rad, end_rad;  ///< [solver] start_deg, end_deg
-  std::optional<OverspeedSection> overspeed;
-  std::optional<ProfileSection> profile;
-  std::optional<ToleranceSection> tolerance;
-  std::optional<PaperSection> paper;
-  LimitsSection limits;
-  std::optional<SizingSection> sizing;
 };
 
 /// Binds case `c`: its lift resolved (throws CaseError naming [lift] on a corner, an outlier or

@@ -109,7 +109,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
   c.title = root["title"].value_or(std::string());
   for (const SectionEntry& s : kSectionTable) {
     const toml::table* t = Section(root, path, s.name);
-    if (t || s.always_read) s.read(SectionReader(t, path, s.name), c);
+    if (t || s.always_read) s.read(SectionReader(t, path, s.name, CaseFileKeys()), c);
   }
   if (c.lift.spline_given) CheckSplineFits(c, c.lift.spline.kind, "[lift] spline");
   // The moving mass includes a third of the spring (docs/model.md §4): with the spring's
@@ -131,7 +131,7 @@ Case ParseCase(const std::string& text, const std::string& path) {
                     ": [spring] clash: a rigid [train] has no contact stiffness for the coils "
                     "to take; give clash_stiffness_N_m");
   }
-  if (c.overspeed && c.overspeed->steady_state && !(c.solver && c.solver->cycles >= 2)) {
+  if (c.overspeed && c.overspeed->steady_state && !(c.solver && c.solver->run.cycles >= 2)) {
     throw CaseError(path +
                     ": [overspeed] steady_state: needs [solver] cycles of at least 2 (the steady "
                     "state is judged on the revolutions after the first)");

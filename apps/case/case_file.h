@@ -60,6 +60,7 @@
 #include "apps/case/case_sections.h"
 #include "apps/case/sizing_section.h"
 #include "apps/case/synthesis_file.h"
+#include "dynamics/simulation.h"
 #include "lib/case_error.h"
 #include "lib/engine_cycle.h"
 #include "lib/follower.h"
@@ -91,40 +92,24 @@ struct LiftSection {
   std::string lift_key = "lift_mm";  ///< the key of the lifts, as written (`lift_um`, …)
 };
 
-/// [solver]: how the dynamics is integrated.
+/// [solver]: how the dynamics is integrated, read straight into the run options
+/// (dynamics/simulation.h: method, rtol, atol, the budgets, settle, cycles, the period
+/// tolerance; the defaults are theirs), and the window override.
 struct SolverSection {
-  std::string method = "auto";               ///< "auto" or a name of MethodList()
-  double rtol = 1e-8;                        ///< relative tolerance
-  std::optional<double> atol_m;              ///< absolute tolerance (default rtol·1 mm)
-  long max_steps = 2000000;                  ///< step budget
-  long max_events = 100000;                  ///< event budget
-  double max_seconds = 60.0;                 ///< wall-time budget of one run, s; 0: none
+  SimulationOptions run;                     ///< atol_m: atol_mm's, else DefaultAtol(rtol)
+  bool atol_given = false;                   ///< atol_mm stated
   std::optional<double> start_rad, end_rad;  ///< window override
-  /// Past the window's end, at most this much more while the needle settles (docs/model.md §5)
-  double settle_limit_deg = 3600.0;
-  int cycles = 1;                  ///< cam revolutions run back to back, [1, 1000]
-  double period_tolerance = 1e-6;  ///< a cycle-end state repeats within this fraction, (0, 1e-2]
 };
 
 /// The case's [needle] and [spring] are the spring module's parameters.
 using NeedleSection = NeedleParameters;
 using SpringSection = SpringParameters;
 
-struct Case {
-  std::string path;   ///< the file it came from, for messages
-  std::string title;  ///< optional one-line description
-  EngineSection engine;
+/// The file model: the sections as read (CaseSections), the lift table and its rule, and
+/// [solver].
+struct Case : CaseSections {
   LiftSection lift;
-  std::optional<NeedleSection> needle;
-  std::optional<SpringSection> spring;
-  std::optional<TrainSection> train;
   std::optional<SolverSection> solver;
-  std::optional<OverspeedSection> overspeed;
-  std::optional<ProfileSection> profile;
-  std::optional<ToleranceSection> tolerance;
-  std::optional<PaperSection> paper;
-  LimitsSection limits;                 ///< [limits], defaults when absent
-  std::optional<SizingSection> sizing;  ///< [sizing] (`needle size`, sizing_section.h)
 };
 
 /// Reads an engine file for the design chain; throws CaseError like LoadCase.

@@ -9,9 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "apps/case/sizing_section.h"
 #include "dynamics/model/needle_train.h"
 #include "lib/engine_cycle.h"
 #include "lib/follower.h"
+#include "spring/spring_parameters.h"
 
 namespace needle {
 
@@ -104,6 +106,23 @@ struct LimitsSection {
   /// A cam harmonic is significant when its acceleration reaches this fraction of the largest
   /// (the resonance map's orders; information, no verdict).
   double harmonic_threshold = 0.05;
+};
+
+/// The sections a case carries as read, from the file model (case_file.h, `Case`) into the
+/// bound case (bound_case.h, `BoundCase`) whole: all but [lift] and [solver], which are bound.
+struct CaseSections {
+  std::string path;   ///< the file it came from, for messages
+  std::string title;  ///< optional one-line description
+  EngineSection engine;
+  std::optional<NeedleParameters> needle;  ///< [needle]: the spring module's parameters
+  std::optional<SpringParameters> spring;  ///< [spring]: likewise
+  std::optional<TrainSection> train;
+  std::optional<OverspeedSection> overspeed;
+  std::optional<ProfileSection> profile;
+  std::optional<ToleranceSection> tolerance;
+  std::optional<PaperSection> paper;
+  LimitsSection limits;                 ///< [limits], defaults when absent
+  std::optional<SizingSection> sizing;  ///< [sizing] (`needle size`, sizing_section.h)
 };
 
 }  // namespace needle

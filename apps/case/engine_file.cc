@@ -48,7 +48,7 @@ DesignInputs ParseDesignInputs(const std::string& text, const std::string& path)
   DesignInputs d;
   d.path = path;
   d.title = root["title"].value_or(std::string());
-  SectionReader e(Section(root, path, "engine"), path, "engine");
+  SectionReader e(Section(root, path, "engine"), path, "engine", EngineFileKeys());
   if (!e.present())
     e.Fail("power_hp", "section [engine] is missing; it needs power_hp and speed_rpm");
   d.power_W = Positive(e, "power", Dimension::kPower, HpPerWatt(), "power_hp");

@@ -1,9 +1,12 @@
 #include "apps/case/plausible_ranges.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "apps/case/case_file.h"
+#include "apps/case/case_keys.h"
 
 namespace needle {
 namespace {
@@ -19,13 +22,6 @@ std::string WithUnit(const PlausibleRange& r, const std::string& number) {
 }
 
 }  // namespace
-
-const RangedKey* FindRangedKey(const std::string& section, const std::string& name) {
-  for (const RangedKey& k : kRangedKeys) {
-    if (section == k.section && name == k.name) return &k;
-  }
-  return nullptr;
-}
 
 std::string RangeText(const PlausibleRange& r) {
   // The seed's end is a whole number a double cannot show.
@@ -43,27 +39,35 @@ std::string AboveRangeEnd(const PlausibleRange& r, double si) {
 }
 
 std::string PlausibleRangesMarkdown() {
+  // Where each range applies: the case file's keys, the synthesis file's [checks], the options.
+  struct Use {
+    const PlausibleRange* range;
+    std::string where;
+  };
+  std::vector<Use> uses;
+  const auto add = [&uses](const PlausibleRange* range, const std::string& where) {
+    auto it =
+        std::find_if(uses.begin(), uses.end(), [&](const Use& u) { return u.range == range; });
+    if (it == uses.end()) {
+      uses.push_back({range, where});
+    } else {
+      it->where += ", " + where;
+    }
+  };
+  for (CaseKeyList keys : {CaseFileKeys(), SynthesisCheckKeys()}) {
+    for (const CaseKey& k : keys) {
+      if (k.range)
+        add(k.range, std::string("`[") + k.section + "] " + k.name + "`" +
+                         (k.upper_only ? " (entries: upper end)" : ""));
+    }
+  }
+  for (const RangedOption& o : kRangedOptions) add(o.range, std::string("`") + o.name + "`");
   std::string out =
       "| quantity | plausible range | case-file keys and options | why |\n"
       "| --- | --- | --- | --- |\n";
-  const PlausibleRange* done[sizeof kRangedKeys / sizeof kRangedKeys[0]] = {};
-  size_t n_done = 0;
-  for (const RangedKey& k : kRangedKeys) {
-    bool seen = false;
-    for (size_t i = 0; i < n_done; ++i) seen = seen || done[i] == k.range;
-    if (seen) continue;
-    done[n_done++] = k.range;
-    std::string where;
-    for (const RangedKey& other : kRangedKeys) {
-      if (other.range != k.range) continue;
-      const std::string section(other.section);
-      where += where.empty() ? "" : ", ";
-      where += section.empty() ? std::string("`") + other.name + "`"
-                               : "`[" + section + "] " + other.name + "`" +
-                                     (other.upper_only ? " (entries: upper end)" : "");
-    }
-    out += std::string("| ") + k.range->quantity + " | " + RangeText(*k.range) + " | " + where +
-           " | " + k.range->reason + " |\n";
+  for (const Use& u : uses) {
+    out += std::string("| ") + u.range->quantity + " | " + RangeText(*u.range) + " | " + u.where +
+           " | " + u.range->reason + " |\n";
   }
   for (const DerivedRange& d : kDerivedRanges) {
     out += std::string("| ") + d.range->quantity + " | " + RangeText(*d.range) + " | " + d.keys +

@@ -7,10 +7,11 @@
 /// for minutes or prints numbers 120 digits long. A value outside is one line naming the file
 /// and key (or the option), the value and the range; exit 2.
 ///
-/// This file is the one table. The case reader (apps/case/case_file.cc, SectionReader::Finish)
-/// checks every key listed in kRangedKeys as it finishes a section; the command-line options
-/// check theirs with RangeValidator (apps/cli/cli_checks.h). docs/ranges.md is generated from
-/// the table (PlausibleRangesMarkdown) and a test holds the two equal.
+/// This file is the one table of ranges. A case file's key names its range in its declaration
+/// (apps/case/case_keys.h), which SectionReader::Finish checks as it finishes a section; the
+/// command-line options are listed in kRangedOptions and check theirs with RangeValidator
+/// (apps/cli/cli_checks.h). docs/ranges.md is generated from both (PlausibleRangesMarkdown) and
+/// a test holds the two equal.
 
 #include <optional>
 #include <string>
@@ -265,86 +266,26 @@ inline constexpr PlausibleRange kFirstSampleRange{
 inline constexpr PlausibleRange kThreadsRange{
     "threads", 0.0, 4096.0, "", 1.0, "0 is all cores; no machine has more than 4096"};
 
-/// Where a range applies: a case-file key ("[section] name", `name` without its unit
-/// suffix) or a command-line option (`section` empty, `name` the option).
-struct RangedKey {
-  const char* section;
-  const char* name;
+/// A command-line option's range (a case file's keys have theirs in their declarations,
+/// apps/case/case_keys.h).
+struct RangedOption {
+  const char* name;  ///< the option, "--rpm"
   const PlausibleRange* range;
-  bool upper_only = false;  ///< a table's entries: the upper end only
 };
 
-inline constexpr RangedKey kRangedKeys[] = {
-    {"engine", "speed", &kCrankSpeedRange},
-    {"overspeed", "from", &kCrankSpeedRange},
-    {"overspeed", "to", &kCrankSpeedRange},
-    {"lift", "max_lift", &kLiftRange},
-    {"lift", "lift", &kLiftRange, true},
-    {"lift", "resolution", &kReadingRange},
-    {"lift", "noise", &kReadingRange},
-    {"needle", "mass", &kMovingMassRange},
-    {"needle", "diameter", &kNeedleDiameterRange},
-    {"needle", "gas_force", &kGasForceRange},
-    {"needle", "combustion_pressure", &kCombustionPressureRange},
-    {"spring", "preload", &kPreloadRange},
-    {"spring", "rate", &kSpringRateRange},
-    {"spring", "wire", &kWireRange},
-    {"spring", "coil", &kCoilRange},
-    {"spring", "free_length", &kFreeLengthRange},
-    {"spring", "active_coils", &kActiveCoilsRange},
-    {"spring", "shear_modulus", &kShearModulusRange},
-    {"spring", "tensile", &kTensileRange},
-    {"spring", "density", &kDensityRange},
-    {"spring", "safety_factor", &kSafetyFactorRange},
-    {"spring", "overspeed_factor", &kOverspeedFactorRange},
-    {"spring", "surge_damping_ratio", &kDampingRatioRange},
-    {"spring", "clash_stiffness", &kContactStiffnessRange},
-    {"spring", "clash_damping_ratio", &kDampingRatioRange},
-    {"train", "contact_stiffness", &kContactStiffnessRange},
-    {"train", "seat_stiffness", &kContactStiffnessRange},
-    {"train", "contact_damping_ratio", &kDampingRatioRange},
-    {"train", "seat_damping_ratio", &kDampingRatioRange},
-    {"train", "restitution", &kRestitutionRange},
-    {"train", "seat_restitution", &kRestitutionRange},
-    {"train", "play", &kPlayRange},
-    {"train", "ramp", &kRampRange},
-    {"profile", "base_radius", &kProfileLengthRange},
-    {"profile", "roller_radius", &kProfileLengthRange},
-    {"profile", "face_radius", &kProfileLengthRange},
-    {"profile", "face_half_width", &kProfileLengthRange},
-    {"profile", "offset", &kOffsetRange},
-    {"checks", "base_radius", &kProfileLengthRange},
-    {"checks", "roller_radius", &kProfileLengthRange},
-    {"checks", "face_radius", &kProfileLengthRange},
-    {"checks", "face_half_width", &kProfileLengthRange},
-    {"checks", "min_profile_radius", &kProfileLengthRange},
-    {"checks", "offset", &kOffsetRange},
-    {"limits", "seating_velocity", &kImpactSpeedLimitRange},
-    {"limits", "lash_impact_velocity", &kImpactSpeedLimitRange},
-    {"limits", "hertz_stress", &kHertzStressLimitRange},
-    {"limits", "contact_length", &kProfileLengthRange},
-    {"limits", "elastic_modulus", &kElasticModulusRange},
-    {"limits", "coil_gap", &kCoilGapRange},
-    {"tolerance", "lift", &kLengthSigmaRange},
-    {"tolerance", "play", &kLengthSigmaRange},
-    {"tolerance", "lift_correlation", &kCorrelationRange},
-    {"tolerance", "mass", &kRelativeSigmaRange},
-    {"tolerance", "preload", &kRelativeSigmaRange},
-    {"tolerance", "rate", &kRelativeSigmaRange},
-    {"tolerance", "stiffness", &kRelativeSigmaRange},
-    {"tolerance", "speed", &kRelativeSigmaRange},
-    {"", "--rpm", &kCrankSpeedRange},
-    {"", "--from", &kCrankSpeedRange},
-    {"", "--to", &kCrankSpeedRange},
-    {"", "--seed", &kSeedRange},
-    {"", "--step", &kTableStepRange},
-    {"", "--step-rpm", &kSpeedStepRange},
-    {"", "--noise-mm", &kNoiseOptionRange},
-    {"", "--rtol", &kRtolRange},
-    {"", "--cycles", &kCyclesRange},
-    {"", "--samples", &kSamplesRange},
-    {"", "--first-sample", &kFirstSampleRange},
-    {"", "--threads", &kThreadsRange},
+inline constexpr RangedOption kRangedOptions[] = {
+    {"--rpm", &kCrankSpeedRange},
+    {"--from", &kCrankSpeedRange},
+    {"--to", &kCrankSpeedRange},
+    {"--seed", &kSeedRange},
+    {"--step", &kTableStepRange},
+    {"--step-rpm", &kSpeedStepRange},
+    {"--noise-mm", &kNoiseOptionRange},
+    {"--rtol", &kRtolRange},
+    {"--cycles", &kCyclesRange},
+    {"--samples", &kSamplesRange},
+    {"--first-sample", &kFirstSampleRange},
+    {"--threads", &kThreadsRange},
 };
 
 /// A range of a quantity formed from several keys, checked once they are all read.
@@ -356,10 +297,6 @@ struct DerivedRange {
 inline constexpr DerivedRange kDerivedRanges[] = {
     {"`[spring] preload` / (π/4 · `[needle] diameter`²)", &kPreloadPressureRange},
 };
-
-/// The range of case-file key `name` (without its unit suffix) in `section`, or of option
-/// `name` when `section` is empty; nullptr when none is listed.
-const RangedKey* FindRangedKey(const std::string& section, const std::string& name);
 
 /// "[lo, hi] unit" in the shown unit ("[0.001, 1000] kg").
 std::string RangeText(const PlausibleRange& r);

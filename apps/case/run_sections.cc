@@ -91,44 +91,46 @@ TrainSection ReadTrain(SectionReader r) {
 
 SolverSection ReadSolver(SectionReader r) {
   SolverSection s;
+  SimulationOptions& o = s.run;
+  IntegratorOptions& i = o.integrator;
   if (auto m = r.OptionalString("method")) {
     if (*m != "auto" && !ParseMethod(*m)) {  // the names from the method table
       std::string list = "auto";
       for (Method known : AllMethods()) list += ", " + MethodName(known);
       r.Fail("method", "expected one of " + list + "; got \"" + *m + "\"");
     }
-    s.method = *m;
+    o.method = *m;
   }
   if (auto rtol = r.OptionalNumber("rtol")) {
     if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
       r.Fail("rtol", "must be in " + RtolRangeText() + ", got " + Number(*rtol));
-    s.rtol = *rtol;
+    i.rtol = *rtol;
   }
-  if (auto atol = r.OptionalQuantity("atol", Dimension::kLength)) {
-    if (!(*atol > 0.0)) r.Fail("atol", "must be positive");
-    s.atol_m = *atol;
-  }
+  const auto atol = r.OptionalQuantity("atol", Dimension::kLength);
+  if (atol && !(*atol > 0.0)) r.Fail("atol", "must be positive");
+  i.atol_m = atol.value_or(DefaultAtol(i.rtol));
+  s.atol_given = atol.has_value();
   // Budgets: whole numbers in a range a long holds.
   for (auto [key, into] :
-       {std::pair<const char*, long*>{"max_steps", &s.max_steps}, {"max_events", &s.max_events}}) {
+       {std::pair<const char*, long*>{"max_steps", &i.max_steps}, {"max_events", &i.max_events}}) {
     if (auto v = OptionalCount(r, key, 1e12, "1e12")) *into = *v;
   }
   if (auto v = r.OptionalNumber("max_seconds")) {
     if (!(*v >= 0.0 && *v <= 86400.0))
       r.Fail("max_seconds", "must be in [0, 86400] s (0: no wall-time budget), got " + Number(*v));
-    s.max_seconds = *v;
+    i.max_seconds = *v;
   }
   if (auto settle = r.OptionalQuantity("settle", Dimension::kAngle)) {
     if (!(*settle > 0.0 && *settle <= 36000.0 * kDeg))
       r.Fail("settle_deg", "must be in (0, 36000] deg, got " + Number(*settle / kDeg));
-    s.settle_limit_deg = *settle / kDeg;
+    o.settle_limit_deg = *settle / kDeg;
   }
   if (auto v = OptionalCount(r, "cycles", kMaxCycles, std::to_string(kMaxCycles)))
-    s.cycles = static_cast<int>(*v);
+    o.cycles = static_cast<int>(*v);
   if (auto v = r.OptionalNumber("period_tolerance")) {
     if (!(*v > 0.0 && *v <= 1e-2))
       r.Fail("period_tolerance", "must be in (0, 1e-2], got " + Number(*v));
-    s.period_tolerance = *v;
+    o.period_tolerance = *v;
   }
   s.start_rad = r.OptionalQuantity("start", Dimension::kAngle);
   s.end_rad = r.OptionalQuantity("end", Dimension::kAngle);

@@ -12,11 +12,13 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "apps/case/case_file.h"
+#include "apps/case/case_keys.h"
 #include "apps/case/plausible_ranges.h"
 #include "lib/case_error.h"
 #include "lib/follower.h"
@@ -37,8 +39,12 @@ std::string Number(double v);
 // key must be consumed, and each dimensional key must carry a unit suffix of its dimension.
 class SectionReader {
  public:
-  SectionReader(const toml::table* table, std::string file, std::string section)
-      : table_(table), file_(std::move(file)), section_(std::move(section)) {}
+  /// `keys`: the file's declared keys (apps/case/case_keys.h), the only ones the reader may
+  /// ask for, and their ranges; {} for a section not declared there (the engine file's
+  /// [design], the synthesis file's [rise], [limits] and [output]: no list, no range).
+  SectionReader(const toml::table* table, std::string file, std::string section,
+                CaseKeyList keys = {nullptr, 0})
+      : table_(table), file_(std::move(file)), section_(std::move(section)), keys_(keys) {}
 
   bool present() const { return table_ != nullptr; }
 
@@ -54,6 +60,7 @@ class SectionReader {
   // Finds the key `name_<unit>` for a quantity; returns the key and its SI factor's unit.
   std::optional<std::pair<std::string, std::string>> FindQuantity(const std::string& name,
                                                                   Dimension dimension) {
+    const CaseKey* declared = Declared(name, dimension);
     if (!table_) return std::nullopt;
     std::optional<std::pair<std::string, std::string>> found;
     for (const auto& [k, node] : *table_) {
@@ -80,6 +87,7 @@ class SectionReader {
     if (found) {
       used_.insert(found->first);
       last_key_ = found->first;
+      last_declared_ = declared;
     }
     return found;
   }
@@ -90,7 +98,7 @@ class SectionReader {
     const double raw = ToNumber(key->first, *table_->get(key->first));
     const double si = ToSi(dimension, key->second, raw);
     if (!std::isfinite(si) || std::abs(si) > 1e18) Fail(key->first, "is out of range in SI units");
-    read_.push_back({key->first, name, si, false});
+    read_.push_back({key->first, last_declared_, si, false});
     return si;
   }
 
@@ -115,30 +123,30 @@ class SectionReader {
           ToNumber(*array->get(i), [&] { return key->first + "[" + std::to_string(i) + "]"; });
       out.push_back(ToSi(dimension, key->second, v));
     }
-    read_.push_back({key->first, name, 0.0, true, out});
+    read_.push_back({key->first, last_declared_, 0.0, true, out});
     return out;
   }
 
   std::optional<double> OptionalNumber(const std::string& name) {
-    if (!table_ || !table_->contains(name)) return std::nullopt;
-    used_.insert(name);
-    const double v = ToNumber(name, *table_->get(name));
-    read_.push_back({name, name, v, false});
+    const toml::node* node = PlainNode(name);
+    if (!node) return std::nullopt;
+    const double v = ToNumber(name, *node);
+    read_.push_back({name, last_declared_, v, false});
     return v;
   }
 
   std::optional<std::string> OptionalString(const std::string& name) {
-    if (!table_ || !table_->contains(name)) return std::nullopt;
-    used_.insert(name);
-    const auto* s = table_->get(name)->as_string();
+    const toml::node* node = PlainNode(name);
+    if (!node) return std::nullopt;
+    const auto* s = node->as_string();
     if (!s) Fail(name, "expected a string");
     return s->get();
   }
 
   std::optional<std::vector<std::string>> OptionalStringArray(const std::string& name) {
-    if (!table_ || !table_->contains(name)) return std::nullopt;
-    used_.insert(name);
-    const toml::array* a = table_->get(name)->as_array();
+    const toml::node* node = PlainNode(name);
+    if (!node) return std::nullopt;
+    const toml::array* a = node->as_array();
     std::vector<std::string> out;
     for (size_t i = 0; a && i < a->size(); ++i) {
       const auto* s = a->get(i)->as_string();
@@ -151,15 +159,18 @@ class SectionReader {
   }
 
   std::optional<bool> OptionalBool(const std::string& name) {
-    if (!table_ || !table_->contains(name)) return std::nullopt;
-    used_.insert(name);
-    const auto* b = table_->get(name)->as_boolean();
+    const toml::node* node = PlainNode(name);
+    if (!node) return std::nullopt;
+    const auto* b = node->as_boolean();
     if (!b) Fail(name, "expected true or false");
     return b->get();
   }
 
   // Declares a plain key (no unit) the section knows, so FindQuantity does not mistake it.
-  void Known(const std::string& key) { known_plain_.insert(key); }
+  void Known(const std::string& key) {
+    Declared(key, Dimension::kNone);
+    known_plain_.insert(key);
+  }
 
   // Declares a quantity name that extends a shorter one (`fuel_density` beside `fuel`).
   void Declare(const std::string& name) { declared_.insert(name); }
@@ -178,15 +189,14 @@ class SectionReader {
       if (!used_.count(key)) Fail(key, "unknown key in this section");
     }
     for (const ReadValue& v : read_) {
-      const RangedKey* ranged = FindRangedKey(section_, v.name);
-      if (!ranged) continue;
-      const PlausibleRange& range = *ranged->range;
+      if (!v.declared || !v.declared->range) continue;
+      const PlausibleRange& range = *v.declared->range;
       if (v.table_entry) {  // an array's entries, each held to the upper end only
         for (size_t i = 0; i < v.entries.size(); ++i) {
           if (v.entries[i] > range.hi)
             Fail(v.key + "[" + std::to_string(i) + "]", AboveRangeEnd(range, v.entries[i]));
         }
-      } else if (ranged->upper_only) {
+      } else if (v.declared->upper_only) {
         if (v.si > range.hi) Fail(v.key, AboveRangeEnd(range, v.si));
       } else if (!(v.si >= range.lo && v.si <= range.hi)) {
         Fail(v.key, ShownValue(range, v.si) + " is outside the plausible range " +
@@ -196,6 +206,25 @@ class SectionReader {
   }
 
  private:
+  // The node of plain key `name` (declared with no unit), marked read, or nullptr when the
+  // section does not have it.
+  const toml::node* PlainNode(const std::string& name) {
+    last_declared_ = Declared(name, Dimension::kNone);
+    if (!table_ || !table_->contains(name)) return nullptr;
+    used_.insert(name);
+    return table_->get(name);
+  }
+  // The declaration of key `name` of `dimension` (kNone: a plain key) in the file's list, or
+  // nullptr when the reader has none; a key the list does not declare is the reader's bug.
+  const CaseKey* Declared(const std::string& name, Dimension dimension) const {
+    if (!keys_.first) return nullptr;
+    const CaseKey* k = FindCaseKey(keys_, section_, name, dimension);
+    if (!k) {
+      throw std::logic_error("[" + section_ + "] " + name + " (" + DimensionName(dimension) +
+                             ") is read but not declared in apps/case/case_keys.cc");
+    }
+    return k;
+  }
   bool IsOtherQuantity(const std::string& key) const { return known_plain_.count(key) > 0; }
 
   bool BelongsToLongerName(const std::string& key, const std::string& name) const {
@@ -259,8 +288,8 @@ class SectionReader {
 
   // A value as read, in SI, for the range check in Finish.
   struct ReadValue {
-    std::string key;   ///< as written ("mass_kg", "lift_mm")
-    std::string name;  ///< without the unit suffix ("mass")
+    std::string key;          ///< as written ("mass_kg", "lift_mm")
+    const CaseKey* declared;  ///< its declaration (nullptr: none)
     double si = 0.0;
     bool table_entry = false;       ///< an array: its entries, in SI, in `entries`
     std::vector<double> entries{};  ///< an array's entries, in SI
@@ -274,6 +303,8 @@ class SectionReader {
   std::set<std::string> known_plain_;
   std::set<std::string> declared_;
   std::string last_key_;
+  const CaseKey* last_declared_ = nullptr;
+  CaseKeyList keys_;
 };
 
 // A required or optional quantity that must be positive; the message names the key as written.

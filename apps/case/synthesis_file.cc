@@ -82,7 +82,7 @@ void ParseSynthesisLimits(const toml::table& root, const std::string& path, Synt
 
 // [checks]: the follower and the checks of the synthesized cam (profile, spring, contact).
 void ParseChecks(const toml::table& t, const std::string& path, SynthesisFile& f) {
-  SectionReader ch(&t, path, "checks");
+  SectionReader ch(&t, path, "checks", SynthesisCheckKeys());
   // Each value is checked as it is read, so a failure names the key as written.
   auto length = [&](const std::string& name, bool positive) {
     return SignedLength(ch, name, positive);

@@ -10,7 +10,7 @@
 #include <random>
 #include <sstream>
 
-#include "apps/case/plausible_ranges.h"
+#include "apps/case/case_keys.h"
 
 namespace needle {
 namespace fit_detail {
@@ -34,8 +34,8 @@ std::pair<double, double> DefaultBounds(const FitKey& k, const BoundCase& c) {
     const double top = c.lift.law->Max(0).value;
     return {-kOffsetBoundFraction * top, kOffsetBoundFraction * top};
   }
-  const RangedKey* r = FindRangedKey(k.section, k.stem);
-  double lo = r->range->lo, hi = r->range->hi;
+  const CaseKey* declared = FindCaseKey(CaseFileKeys(), k.section, k.stem, k.dimension);
+  double lo = declared->range->lo, hi = declared->range->hi;
   if (k.log_scale) lo = std::max(lo, 1e-8 * hi);
   return {lo, hi};
 }
