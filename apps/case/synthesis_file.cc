@@ -43,19 +43,22 @@ void ParseRise(const toml::table& root, const std::string& path, SynthesisFile& 
     rise.Fail("angle_deg", "section [rise] is missing; it needs angle_deg and lift_mm");
   // Ranges that keep the synthesis finite and its memory bounded (a lift of 3e305 mm made the
   // speed search loop forever; a step of 1e-7° asked for 5.7 GB).
-  f.rise_rad = Positive(rise, "angle", Dimension::kAngle, 180.0 / kPi, "angle_deg");
-  if (!(f.rise_rad <= 2 * kPi))
-    rise.Fail(rise.last_key(), "must be at most 360 deg of cam, got " + Number(f.rise_rad / kDeg));
-  f.height_m = Positive(rise, "lift", Dimension::kLength, 1e3, "lift_mm");
-  if (!(f.height_m <= 1.0))
-    rise.Fail(rise.last_key(), "must be at most 1000 mm, got " + Number(f.height_m * 1e3) + " mm");
+  f.rise.rise_rad = Positive(rise, "angle", Dimension::kAngle, 180.0 / kPi, "angle_deg");
+  if (!(f.rise.rise_rad <= 2 * kPi))
+    rise.Fail(rise.last_key(),
+              "must be at most 360 deg of cam, got " + Number(f.rise.rise_rad / kDeg));
+  f.rise.height_m = Positive(rise, "lift", Dimension::kLength, 1e3, "lift_mm");
+  if (!(f.rise.height_m <= 1.0))
+    rise.Fail(rise.last_key(),
+              "must be at most 1000 mm, got " + Number(f.rise.height_m * 1e3) + " mm");
   if (auto st = rise.OptionalQuantity("step", Dimension::kAngle)) {
-    if (!(*st > 0.0 && *st < f.rise_rad / 10))
+    if (!(*st > 0.0 && *st < f.rise.rise_rad / 10))
       rise.Fail(rise.last_key(), "must be positive and below a tenth of the rise");
-    if (!(*st >= f.rise_rad / 1e6))
+    if (!(*st >= f.rise.rise_rad / 1e6))
       rise.Fail(rise.last_key(), "must be at least a millionth of the rise (" +
-                                     Number(f.rise_rad / kDeg / 1e6) + " deg): at most 1e6 steps");
-    f.step_rad = *st;
+                                     Number(f.rise.rise_rad / kDeg / 1e6) +
+                                     " deg): at most 1e6 steps");
+    f.rise.step_rad = *st;
   }
   rise.Finish();
 }
@@ -67,15 +70,17 @@ void ParseSynthesisLimits(const toml::table& root, const std::string& path, Synt
     lim.Fail("acceleration", "section [limits] is missing; it needs acceleration and deceleration");
   if (auto v = lim.OptionalQuantity("speed", Dimension::kSlope)) {
     if (!(*v > 0.0 && *v < 1e6)) lim.Fail(lim.last_key(), "must be positive and finite");
-    f.speed_limit = *v;
+    f.rise.speed_limit = *v;
   }
-  f.accel_limit = Positive(lim, "acceleration", Dimension::kSlope2, 1e3, "acceleration_mm_rad2");
-  f.decel_limit = Positive(lim, "deceleration", Dimension::kSlope2, 1e3, "deceleration_mm_rad2");
-  if (!(f.accel_limit < 1e12)) lim.Fail("acceleration", "must be finite (below 1e15 mm/rad2)");
-  if (!(f.decel_limit < 1e12)) lim.Fail("deceleration", "must be finite (below 1e15 mm/rad2)");
+  f.rise.accel_limit =
+      Positive(lim, "acceleration", Dimension::kSlope2, 1e3, "acceleration_mm_rad2");
+  f.rise.decel_limit =
+      Positive(lim, "deceleration", Dimension::kSlope2, 1e3, "deceleration_mm_rad2");
+  if (!(f.rise.accel_limit < 1e12)) lim.Fail("acceleration", "must be finite (below 1e15 mm/rad2)");
+  if (!(f.rise.decel_limit < 1e12)) lim.Fail("deceleration", "must be finite (below 1e15 mm/rad2)");
   if (auto v = lim.OptionalQuantity("jerk", Dimension::kSlope3)) {
     if (!(*v > 0.0 && *v < 1e15)) lim.Fail(lim.last_key(), "must be positive and finite");
-    f.jerk_limit = *v;
+    f.rise.jerk_limit = *v;
   }
   lim.Finish();
 }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "lib/cam_synthesis.h"
 #include "lib/engine_cycle.h"
 #include "lib/follower.h"
 
@@ -17,8 +18,10 @@ namespace needle {
 /// [output] fall = "mirror" | "none", crank_start_deg, speed_rpm, cycle (for --case).
 struct SynthesisFile {
   std::string path, title;
-  double rise_rad = 0.0, height_m = 0.0, step_rad = 0.0;
-  double speed_limit = 1e300, accel_limit = 0.0, decel_limit = 0.0, jerk_limit = 1e300;
+  /// [rise] and [limits], read straight into the synthesis' own spec (lib/cam_synthesis.h: Φ,
+  /// H, the step, S'max, a⁺, a⁻, j); its follower, caps, train and ω stay unset here (the
+  /// synthesis scene sets them from [checks] and [output], SpecOf).
+  SynthesisSpec rise;
   /// [checks] follower and its shape keys (roller_radius, face_radius, face_half_width: 0 where
   /// not given; a face's half-width caps S' (flat) or φ (curved)). Its own base_radius_m and
   /// offset_m stay 0: the file's are base_radius_m and offset_m below (FollowerOf joins them).

@@ -15,6 +15,7 @@
 
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
+#include "dynamics/solver/integrator.h"
 
 namespace needle {
 
@@ -74,6 +75,15 @@ inline void AddSpeedOption(CLI::App* cmd, std::optional<double>& speed_rpm,
                                "crank speed in rpm (default: [engine] "
                                "speed_rpm)") {
   cmd->add_option("--rpm", speed_rpm, help)->check(SpeedRpm());
+}
+
+/// The dynamic commands' `--method` and `--rtol` (simulate, overspeed): each defaults to the
+/// case's [solver] (then auto and 1e-8); the tolerance is held to kRtolRange.
+inline void AddMethodOptions(CLI::App* cmd, std::optional<std::string>& method,
+                             std::optional<double>& rtol) {
+  cmd->add_option("--method", method, MethodList() + " (default: [solver] method or auto)");
+  cmd->add_option("--rtol", rtol, "relative tolerance (default: [solver] rtol or 1e-8)")
+      ->check(InRange(kRtolRange, "a relative tolerance"));
 }
 
 /// A 64-bit seed: digits only, at most 18446744073709551615 (CLI11 alone took a longer number

@@ -19,9 +19,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommandOptions& o) {
       "simulate", "Dynamic run: lift-off episodes, impacts, forces, energy audit");
   cmd->add_option("CASE", o.case_path, "case file with [needle], [spring] and [train]")->required();
   AddSpeedOption(cmd, o.run.speed_rpm);
-  cmd->add_option("--method", o.run.method, MethodList() + " (default: [solver] method or auto)");
-  cmd->add_option("--rtol", o.run.rtol, "relative tolerance (default: [solver] rtol or 1e-8)")
-      ->check(InRange(kRtolRange, "a relative tolerance"));
+  AddMethodOptions(cmd, o.run.method, o.run.rtol);
   cmd->add_option("--cycles", o.run.cycles,
                   "cam revolutions run back to back, the state carried over, until the state "
                   "repeats (default: [solver] cycles or 1)")
@@ -64,9 +62,7 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
          "end of the sweep, rpm (default: [overspeed] to_rpm, else the larger of 2 x n_qs and 2 x "
          "the rated speed)")
       ->check(SpeedRpm());
-  cmd->add_option("--method", o.search.method, MethodList());
-  cmd->add_option("--rtol", o.search.rtol, "relative tolerance")
-      ->check(InRange(kRtolRange, "a relative tolerance"));
+  AddMethodOptions(cmd, o.search.method, o.search.rtol);
   cmd->add_option("--threads", o.search.threads, "threads (default and most: all cores)")
       ->transform(WholeIn(kThreadsRange, "a number of threads"));
   cmd->add_option("--step-rpm", o.search.step_rpm,

@@ -27,13 +27,14 @@ std::string SynthText(const SynthesisFile& f, const SynthesisResult& r,
   if (rise.face_width_limited) {
     out << "constant-speed section at S' = the flat face's half-width "
         << Fixed(f.follower.face_half_width_m * 1e3, 3) << " mm/rad (S'max "
-        << (f.speed_limit < 1e299 ? Fixed(f.speed_limit * 1e3, 3) + " mm/rad" : "not given")
+        << (f.rise.speed_limit < 1e299 ? Fixed(f.rise.speed_limit * 1e3, 3) + " mm/rad"
+                                       : "not given")
         << ") from " << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg")
         << " (" << t("constant_speed_length_deg") << ")\n";
   } else if (rise.speed_limit_active) {
-    out << "constant-speed section at S'max = " << Fixed(f.speed_limit * 1e3, 3) << " mm/rad from "
-        << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg") << " ("
-        << t("constant_speed_length_deg") << ")\n";
+    out << "constant-speed section at S'max = " << Fixed(f.rise.speed_limit * 1e3, 3)
+        << " mm/rad from " << v("constant_speed_start_deg") << " to " << t("constant_speed_end_deg")
+        << " (" << t("constant_speed_length_deg") << ")\n";
   } else if (rise.meet_speed > 0.0) {
     out << "S' limit not active; the sides meet at S' = " << t("meet_speed_mm_rad")
         << " with S'' = 0 (lowered from where they would meet with a step in S'', "

@@ -59,14 +59,7 @@ FollowerGeometry FollowerOf(const SynthesisFile& f) {
 }
 
 SynthesisSpec SpecOf(const SynthesisFile& f, double cam_omega) {
-  SynthesisSpec spec;
-  spec.rise_rad = f.rise_rad;
-  spec.height_m = f.height_m;
-  spec.step_rad = f.step_rad;
-  spec.speed_limit = f.speed_limit;
-  spec.accel_limit = f.accel_limit;
-  spec.decel_limit = f.decel_limit;
-  spec.jerk_limit = f.jerk_limit;
+  SynthesisSpec spec = f.rise;                 // [rise] and [limits] as read
   if (f.base_radius_m && f.offset_m == 0.0) {  // the steering caps assume a radial follower
     spec.follower = FollowerOf(f);
     spec.follower_limits.max_pressure_angle_rad = f.max_pressure_angle_rad.value_or(0.0);
