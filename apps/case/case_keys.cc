@@ -1,6 +1,9 @@
 #include "apps/case/case_keys.h"
 
+#include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace needle {
 namespace {
@@ -246,6 +249,19 @@ const CaseKey* FindCaseKey(CaseKeyList keys, const std::string& section, const s
     if (section == k.section && name == k.name && dimension == k.dimension) return &k;
   }
   return nullptr;
+}
+
+std::string CaseKeyText(const std::string& section, const std::string& name,
+                        const std::string& unit) {
+  for (const CaseKey& k : CaseFileKeys()) {
+    if (section != k.section || name != k.name) continue;
+    const std::vector<std::string> units = UnitSuffixes(k.dimension);
+    if (unit.empty() && units.empty()) return name;
+    if (std::find(units.begin(), units.end(), unit) != units.end()) return name + "_" + unit;
+  }
+  throw std::logic_error("a case writer writes [" + section + "] " + name +
+                         (unit.empty() ? "" : "_" + unit) +
+                         ", which apps/case/case_keys.cc does not declare");
 }
 
 std::string CaseKeysMarkdown() {

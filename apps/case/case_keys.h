@@ -53,6 +53,13 @@ CaseKeyList EngineFileKeys();
 const CaseKey* FindCaseKey(CaseKeyList keys, const std::string& section, const std::string& name,
                            Dimension dimension);
 
+/// Key `name` of case-file section `section` as a writer writes it, with unit suffix `unit`
+/// ("" for a plain key): CaseKeyText("train", "contact_stiffness", "N_m") is
+/// "contact_stiffness_N_m". Throws std::logic_error (a writer's bug) unless the list declares the
+/// key with a dimension that has that suffix (or, for "", a plain key).
+std::string CaseKeyText(const std::string& section, const std::string& name,
+                        const std::string& unit = "");
+
 /// docs/case-file.md's key reference: one row per key, with its unit suffixes, range and doc.
 std::string CaseKeysMarkdown();
 

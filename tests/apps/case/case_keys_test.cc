@@ -41,6 +41,25 @@ TEST(CaseKeysTest, AReaderAskingForAnUndeclaredKeyIsABug) {
   EXPECT_FALSE(design.OptionalNumber("mixing_ratio"));
 }
 
+// A case writer names each key through the list: a key it does not declare, or a unit that is
+// not one of the key's, is the writer's bug.
+TEST(CaseKeysTest, AWriterWritesOnlyDeclaredKeys) {
+  EXPECT_EQ(CaseKeyText("train", "contact_stiffness", "N_m"), "contact_stiffness_N_m");
+  EXPECT_EQ(CaseKeyText("spring", "active_coils"), "active_coils");
+  EXPECT_EQ(CaseKeyText("train", "ramp", "deg"), "ramp_deg");  // and the plain `ramp`
+  EXPECT_EQ(CaseKeyText("train", "ramp"), "ramp");
+  EXPECT_THROW(CaseKeyText("train", "contact_stiffness", "kg"), std::logic_error);
+  EXPECT_THROW(CaseKeyText("train", "contact_stiffness"), std::logic_error);
+  try {
+    CaseKeyText("train", "cam_friction");
+    FAIL() << "an undeclared key was written";
+  } catch (const std::logic_error& e) {
+    EXPECT_STREQ(e.what(),
+                 "a case writer writes [train] cam_friction, which apps/case/case_keys.cc does "
+                 "not declare");
+  }
+}
+
 // The declared range is the one Finish holds the value to.
 TEST(CaseKeysTest, FinishHoldsAValueToItsDeclaredRange) {
   toml::table train = toml::parse("play_mm = 20\n");
