@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "dynamics/simulation_pass.h"
+#include "lib/field_error.h"
 #include "lib/name_table.h"
 #include "lib/output.h"
 #include "lib/units.h"
@@ -146,34 +147,28 @@ MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol) {
   return AutoMethod(train, ContactOscillationsPerEvent(scene, speed_rpm), rtol);
 }
 
-namespace {
-
-// Throws std::invalid_argument naming the field of `o` out of its range.
-void ValidateOptions(const SimulationOptions& o) {
-  if (!(o.settle_limit_deg > 0.0 && o.settle_limit_deg <= 36000.0)) {
-    throw std::invalid_argument("SimulationOptions.settle_limit_deg = " +
-                                std::to_string(o.settle_limit_deg) + ": must be in (0, 36000]");
-  }
-  if (!(o.cycles >= 1 && o.cycles <= kMaxCycles)) {
-    throw std::invalid_argument("SimulationOptions.cycles = " + std::to_string(o.cycles) +
-                                ": must be in [1, " + std::to_string(kMaxCycles) + "]");
-  }
-  if (!(o.period_tolerance > 0.0 && o.period_tolerance <= 1e-2)) {
-    throw std::invalid_argument("SimulationOptions.period_tolerance = " +
-                                std::to_string(o.period_tolerance) + ": must be in (0, 1e-2]");
-  }
-  if (!o.grid_rad.empty() && o.cycles != 1) {
+void SimulationOptions::Validate() const {
+  integrator.Validate();
+  RequireField(settle_limit_deg > 0.0 && settle_limit_deg <= 36000.0, "SimulationOptions",
+               "settle_limit_deg", settle_limit_deg, "must be in (0, 36000]");
+  RequireField(cycles >= 1 && cycles <= kMaxCycles, "SimulationOptions", "cycles",
+               static_cast<long>(cycles), "must be in [1, " + std::to_string(kMaxCycles) + "]");
+  RequireField(period_tolerance > 0.0 && period_tolerance <= 1e-2, "SimulationOptions",
+               "period_tolerance", period_tolerance, "must be in (0, 1e-2]");
+  if (!grid_rad.empty() && cycles != 1) {
     throw std::invalid_argument("SimulationOptions.grid_rad needs cycles = 1, got " +
-                                std::to_string(o.cycles));
+                                std::to_string(cycles));
   }
-  if (!std::is_sorted(o.grid_rad.begin(), o.grid_rad.end())) {
+  if (!std::is_sorted(grid_rad.begin(), grid_rad.end())) {
     throw std::invalid_argument("SimulationOptions.grid_rad must be sorted");
   }
-  if (o.steady_state && o.cycles < 2) {
+  if (steady_state && cycles < 2) {
     throw std::invalid_argument("SimulationOptions.steady_state needs cycles >= 2, got " +
-                                std::to_string(o.cycles));
+                                std::to_string(cycles));
   }
 }
+
+namespace {
 
 // The rigid answer of a run whose dynamics are skipped (Simulate): the quasi-static forces of
 // the law, `fmin` their least.
@@ -244,7 +239,7 @@ SimulationResult Simulate(const Scene& scene, double speed_rpm, const Simulation
   r.window_start_rad = theta_a;
   r.window_end_rad = theta_b;
   r.run_end_rad = theta_b;
-  ValidateOptions(o);
+  o.Validate();
   const double oscillations = ContactOscillationsPerEvent(scene, speed_rpm);
   const std::string stiffness = StiffnessText(oscillations);
 

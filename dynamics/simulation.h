@@ -78,6 +78,12 @@ struct SimulationOptions {
   /// a measured trace's angles (`needle fit`). One window only (cycles = 1); an angle before θ_a
   /// or past the run's end is not reported. Empty: none.
   std::vector<double> grid_rad;
+
+  /// The rules of the run options, in one place: the integrator's (IntegratorOptions::
+  /// Validate), settle_limit_deg, cycles and period_tolerance in their ranges (each a FieldError,
+  /// lib/field_error.h, naming the field, its value and the rule), a grid with one window,
+  /// sorted, and steady_state with cycles ≥ 2 (std::invalid_argument).
+  void Validate() const;
 };
 
 /// Most cam revolutions one run may ask for, and the longest period looked for.

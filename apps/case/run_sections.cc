@@ -27,18 +27,19 @@ TrainSection ReadTrain(SectionReader r) {
       r.Fail("contact", "expected \"compliant\" or \"rigid\", got \"" + *contact + "\"");
     if (*contact == "rigid") t.contact = ContactKind::kRigid;
   }
+  // Each law's keys, read straight into the contact parameters; the other law's are refused.
+  const auto number = [&r](const char* key, double& into) {
+    if (auto v = r.OptionalNumber(key)) into = *v;
+  };
+  const auto stiffness = [&r](const char* key) {
+    return r.OptionalQuantity(key, Dimension::kStiffness);
+  };
   if (t.rigid()) {
     t.contact_stiffness_N_m = t.seat_stiffness_N_m = 0.0;  // a rigid law has none
-    // Newton's restitution; the compliant law's keys do not apply.
-    for (auto [key, into] : {std::pair<const char*, double*>{"restitution", &t.restitution},
-                             {"seat_restitution", &t.seat_restitution}}) {
-      if (auto e = r.OptionalNumber(key)) {
-        if (!(*e >= 0.0 && *e <= 1.0)) r.Fail(key, "must be in [0, 1], got " + Number(*e));
-        *into = *e;
-      }
-    }
+    number("restitution", t.restitution);                  // Newton's restitution
+    number("seat_restitution", t.seat_restitution);
     for (const char* key : {"contact_stiffness", "seat_stiffness"}) {
-      if (r.OptionalQuantity(key, Dimension::kStiffness))
+      if (stiffness(key))
         r.Fail(r.last_key(), "applies to contact = \"compliant\"; a rigid contact has none");
     }
     for (const char* key : {"contact_damping_ratio", "seat_damping_ratio"}) {
@@ -51,24 +52,11 @@ TrainSection ReadTrain(SectionReader r) {
         r.Fail(key, "applies to contact = \"rigid\"; a compliant contact has a damping ratio");
     }
     t.contact_stiffness_N_m = r.Quantity("contact_stiffness", Dimension::kStiffness);
-    if (!(t.contact_stiffness_N_m > 0.0)) {
-      r.Fail(r.last_key(), "must be positive, got " + Number(t.contact_stiffness_N_m) + " N/m");
-    }
-    if (auto ks = r.OptionalQuantity("seat_stiffness", Dimension::kStiffness)) {
-      if (!(*ks > 0.0)) r.Fail(r.last_key(), "must be positive, got " + Number(*ks) + " N/m");
-      t.seat_stiffness_N_m = *ks;
-    } else {
-      t.seat_stiffness_N_m = t.contact_stiffness_N_m;
-    }
-    for (auto [key, into] :
-         {std::pair<const char*, double*>{"contact_damping_ratio", &t.contact_damping_ratio},
-          {"seat_damping_ratio", &t.seat_damping_ratio}}) {
-      if (auto z = r.OptionalNumber(key)) {
-        if (!(*z >= 0.0)) r.Fail(key, "must not be negative, got " + Number(*z));
-        *into = *z;
-      }
-    }
+    t.seat_stiffness_N_m = stiffness("seat_stiffness").value_or(t.contact_stiffness_N_m);
+    number("contact_damping_ratio", t.contact_damping_ratio);
+    number("seat_damping_ratio", t.seat_damping_ratio);
   }
+  r.Validated([&t] { t.ContactParameters::Validate(); });  // the laws' one rule
   if (auto play = r.OptionalQuantity("play", Dimension::kLength)) {
     if (!(*play >= 0.0)) r.Fail("play_mm", "must not be negative, got " + Number(*play * 1e3));
     t.play_m = *play;
@@ -101,13 +89,8 @@ SolverSection ReadSolver(SectionReader r) {
     }
     o.method = *m;
   }
-  if (auto rtol = r.OptionalNumber("rtol")) {
-    if (!(*rtol >= kMinRtol && *rtol <= kMaxRtol))
-      r.Fail("rtol", "must be in " + RtolRangeText() + ", got " + Number(*rtol));
-    i.rtol = *rtol;
-  }
+  if (auto rtol = r.OptionalNumber("rtol")) i.rtol = *rtol;
   const auto atol = r.OptionalQuantity("atol", Dimension::kLength);
-  if (atol && !(*atol > 0.0)) r.Fail("atol", "must be positive");
   i.atol_m = atol.value_or(DefaultAtol(i.rtol));
   s.atol_given = atol.has_value();
   // Budgets: whole numbers in a range a long holds.
@@ -120,18 +103,12 @@ SolverSection ReadSolver(SectionReader r) {
       r.Fail("max_seconds", "must be in [0, 86400] s (0: no wall-time budget), got " + Number(*v));
     i.max_seconds = *v;
   }
-  if (auto settle = r.OptionalQuantity("settle", Dimension::kAngle)) {
-    if (!(*settle > 0.0 && *settle <= 36000.0 * kDeg))
-      r.Fail("settle_deg", "must be in (0, 36000] deg, got " + Number(*settle / kDeg));
+  if (auto settle = r.OptionalQuantity("settle", Dimension::kAngle))
     o.settle_limit_deg = *settle / kDeg;
-  }
   if (auto v = OptionalCount(r, "cycles", kMaxCycles, std::to_string(kMaxCycles)))
     o.cycles = static_cast<int>(*v);
-  if (auto v = r.OptionalNumber("period_tolerance")) {
-    if (!(*v > 0.0 && *v <= 1e-2))
-      r.Fail("period_tolerance", "must be in (0, 1e-2], got " + Number(*v));
-    o.period_tolerance = *v;
-  }
+  if (auto v = r.OptionalNumber("period_tolerance")) o.period_tolerance = *v;
+  r.Validated([&o] { o.Validate(); });  // the run options' one rule
   s.start_rad = r.OptionalQuantity("start", Dimension::kAngle);
   s.end_rad = r.OptionalQuantity("end", Dimension::kAngle);
   if (s.start_rad && s.end_rad && !(*s.end_rad > *s.start_rad)) {

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -21,6 +22,7 @@
 #include "apps/case/case_keys.h"
 #include "apps/case/plausible_ranges.h"
 #include "lib/case_error.h"
+#include "lib/field_error.h"
 #include "lib/follower.h"
 #include "lib/units.h"
 
@@ -86,6 +88,7 @@ class SectionReader {
     }
     if (found) {
       used_.insert(found->first);
+      written_[name] = found->first;
       last_key_ = found->first;
       last_declared_ = declared;
     }
@@ -175,6 +178,18 @@ class SectionReader {
   // Declares a quantity name that extends a shorter one (`fuel_density` beside `fuel`).
   void Declare(const std::string& name) { declared_.insert(name); }
 
+  // Runs `validate`, a module struct's Validate() (the one place its rules are stated, for the
+  // struct the section is read straight into), and turns its FieldError into this file's one
+  // line: the key declared for that member, as written, the rule and the value in the member's
+  // unit ("t.toml: [train] contact_stiffness_N_m: must be positive, got -5 N/m").
+  template <typename Validate>
+  void Validated(const Validate& validate) const {
+    try {
+      validate();
+    } catch (const FieldError& e) {
+      Fail(KeyOfMember(e.field), e.rule + ", got " + Number(e.value) + MemberUnit(e.field));
+    }
+  }
   // The key (with its unit) of the quantity found last, for messages.
   const std::string& last_key() const { return last_key_; }
 
@@ -206,6 +221,40 @@ class SectionReader {
   }
 
  private:
+  // The declaration of member `member` of the struct the section is read into: the plain key of
+  // that name, or the quantity whose name and a unit suffix of its dimension it is
+  // ("contact_stiffness_N_m", "atol_m", "settle_limit_deg"); nullptr when none.
+  const CaseKey* MemberKey(const std::string& member) const {
+    if (!keys_.first) return nullptr;
+    for (const CaseKey& k : keys_) {
+      if (section_ != k.section) continue;
+      const std::string name = k.name;
+      if (k.dimension == Dimension::kNone ? member == name
+                                          : member.compare(0, name.size() + 1, name + "_") == 0)
+        return &k;
+    }
+    return nullptr;
+  }
+  // The key of member `member` as written (or its name, when not written), for a message.
+  std::string KeyOfMember(const std::string& member) const {
+    const CaseKey* k = MemberKey(member);
+    if (!k) return member;
+    const auto it = written_.find(k->name);
+    return it != written_.end() ? it->second : std::string(k->name);
+  }
+  // " N/m": the unit the member's name ends in (its dimension's suffix), "" for a plain number.
+  std::string MemberUnit(const std::string& member) const {
+    const CaseKey* k = MemberKey(member);
+    if (!k) return "";
+    for (std::string u : UnitSuffixes(k->dimension)) {
+      if (member.size() > u.size() &&
+          member.compare(member.size() - u.size() - 1, u.size() + 1, "_" + u) == 0) {
+        std::replace(u.begin(), u.end(), '_', '/');
+        return " " + u;
+      }
+    }
+    return "";
+  }
   // The node of plain key `name` (declared with no unit), marked read, or nullptr when the
   // section does not have it.
   const toml::node* PlainNode(const std::string& name) {
@@ -304,6 +353,7 @@ class SectionReader {
   std::set<std::string> declared_;
   std::string last_key_;
   const CaseKey* last_declared_ = nullptr;
+  std::map<std::string, std::string> written_;  // a quantity's name -> its key as written
   CaseKeyList keys_;
 };
 

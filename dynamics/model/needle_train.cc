@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "lib/field_error.h"
 #include "lib/units.h"
 #include "spring/resonance.h"
 
@@ -15,13 +16,32 @@ namespace needle {
 namespace {
 
 void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-  if (!ok) {
-    throw std::invalid_argument("TrainParameters." + field + " = " + std::to_string(value) + ": " +
-                                rule);
-  }
+  RequireField(ok, "TrainParameters", field, value, rule);
 }
 
 }  // namespace
+
+void ContactParameters::Validate() const { ValidateContacts("ContactParameters"); }
+
+void ContactParameters::ValidateContacts(const char* owner) const {
+  const auto require = [owner](bool ok, const char* field, double value, const char* rule) {
+    RequireField(ok, owner, field, value, rule);
+  };
+  if (contact == ContactKind::kCompliant) {  // the compliant law's own parameters
+    require(contact_stiffness_N_m > 0.0 && std::isfinite(contact_stiffness_N_m),
+            "contact_stiffness_N_m", contact_stiffness_N_m, "must be positive");
+    require(contact_damping_ratio >= 0.0 && std::isfinite(contact_damping_ratio),
+            "contact_damping_ratio", contact_damping_ratio, "must not be negative");
+    require(seat_stiffness_N_m > 0.0 && std::isfinite(seat_stiffness_N_m), "seat_stiffness_N_m",
+            seat_stiffness_N_m, "must be positive");
+    require(seat_damping_ratio >= 0.0 && std::isfinite(seat_damping_ratio), "seat_damping_ratio",
+            seat_damping_ratio, "must not be negative");
+  }
+  require(restitution >= 0.0 && restitution <= 1.0, "restitution", restitution,
+          "must be in [0, 1]");
+  require(seat_restitution >= 0.0 && seat_restitution <= 1.0, "seat_restitution", seat_restitution,
+          "must be in [0, 1]");
+}
 
 void TrainParameters::Validate() const {
   Require(mass_kg > 0.0 && std::isfinite(mass_kg), "mass_kg", mass_kg, "must be positive");
@@ -29,20 +49,7 @@ void TrainParameters::Validate() const {
           "must not be negative");
   Require(rate_N_m >= 0.0 && std::isfinite(rate_N_m), "rate_N_m", rate_N_m, "must not be negative");
   Require(std::isfinite(gas_force_N), "gas_force_N", gas_force_N, "must be finite");
-  if (contact == ContactKind::kCompliant) {  // the compliant law's own parameters
-    Require(contact_stiffness_N_m > 0.0 && std::isfinite(contact_stiffness_N_m),
-            "contact_stiffness_N_m", contact_stiffness_N_m, "must be positive");
-    Require(contact_damping_ratio >= 0.0 && std::isfinite(contact_damping_ratio),
-            "contact_damping_ratio", contact_damping_ratio, "must not be negative");
-    Require(seat_stiffness_N_m > 0.0 && std::isfinite(seat_stiffness_N_m), "seat_stiffness_N_m",
-            seat_stiffness_N_m, "must be positive");
-    Require(seat_damping_ratio >= 0.0 && std::isfinite(seat_damping_ratio), "seat_damping_ratio",
-            seat_damping_ratio, "must not be negative");
-  }
-  Require(restitution >= 0.0 && restitution <= 1.0, "restitution", restitution,
-          "must be in [0, 1]");
-  Require(seat_restitution >= 0.0 && seat_restitution <= 1.0, "seat_restitution", seat_restitution,
-          "must be in [0, 1]");
+  ValidateContacts("TrainParameters");
   Require(coil_masses >= 1 && coil_masses <= kMaxCoilMasses, "coil_masses", coil_masses,
           "must be in [1, " + std::to_string(kMaxCoilMasses) + "]");
   if (coil_masses > 1) {  // the chain's own parameters

@@ -64,6 +64,14 @@ struct ContactParameters {
   double restitution = 0.0;                       ///< e of the rigid cam contact, in [0, 1]
   double seat_restitution = 0.0;                  ///< e_s of the rigid seat, in [0, 1]
   bool rigid() const { return contact == ContactKind::kRigid; }
+
+  /// The contact laws' rules, in one place: k_c, ζ_c, k_s and ζ_s (compliant only: a rigid law
+  /// has none), e and e_s in [0, 1]. Throws FieldError (lib/field_error.h) naming the field, its
+  /// value and the rule.
+  void Validate() const;
+
+ protected:
+  void ValidateContacts(const char* owner) const;  ///< Validate, naming `owner` in what()
 };
 
 /// Parameters of the train, SI: its contacts' and the rest. Every field has a default;
@@ -83,8 +91,8 @@ struct TrainParameters : ContactParameters {
   double clash_stiffness_N_m = 1e8;   ///< k_cl of the coils in contact, > 0 (with coil_clash)
   double clash_damping_ratio = 0.05;  ///< ζ_cl against the coil mass m_c, ≥ 0 (with coil_clash)
 
-  /// Throws std::invalid_argument naming the field, its value and the rule it broke; k_c, ζ_c,
-  /// k_s and ζ_s only when `contact` is compliant (a rigid law has none).
+  /// Throws FieldError (a std::invalid_argument) naming the field, its value and the rule it
+  /// broke; the contacts' rules are ContactParameters::Validate's.
   void Validate() const;
 };
 

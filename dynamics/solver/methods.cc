@@ -8,6 +8,7 @@
 #include <string>
 
 #include "dynamics/solver/stepper.h"
+#include "lib/field_error.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -125,25 +126,23 @@ std::string RtolRangeText() {
 }
 
 void IntegratorOptions::Validate() const {
-  if (!(rtol >= kMinRtol && rtol <= kMaxRtol)) {
-    throw std::invalid_argument("IntegratorOptions.rtol = " + std::to_string(rtol) +
-                                ": must be in " + RtolRangeText());
-  }
-  if (!(atol_m > 0.0)) throw std::invalid_argument("IntegratorOptions.atol_m must be positive");
-  if (!(atol_m_s >= 0.0) || !std::isfinite(atol_m_s))
-    throw std::invalid_argument("IntegratorOptions.atol_m_s must be positive (or 0: atol_m)");
-  if (!(atol_J >= 0.0) || !std::isfinite(atol_J))
-    throw std::invalid_argument("IntegratorOptions.atol_J must be positive (or 0: atol_m)");
-  if (max_steps < 1) throw std::invalid_argument("IntegratorOptions.max_steps must be at least 1");
-  if (max_events < 1)
-    throw std::invalid_argument("IntegratorOptions.max_events must be at least 1");
-  if (!(max_seconds >= 0.0) || !std::isfinite(max_seconds))
-    throw std::invalid_argument("IntegratorOptions.max_seconds must be finite and ≥ 0");
-  if (!(settle_limit_s >= 0.0) || !std::isfinite(settle_limit_s))
-    throw std::invalid_argument("IntegratorOptions.settle_limit_s must be finite and ≥ 0");
-  if (!(stop_jump_rad >= 0.0) || !std::isfinite(stop_jump_rad))
-    throw std::invalid_argument("IntegratorOptions.stop_jump_rad = " +
-                                std::to_string(stop_jump_rad) + ": must be finite and ≥ 0");
+  const auto require = [](bool ok, const char* field, auto value, const std::string& rule) {
+    RequireField(ok, "IntegratorOptions", field, value, rule);
+  };
+  require(rtol >= kMinRtol && rtol <= kMaxRtol, "rtol", rtol, "must be in " + RtolRangeText());
+  require(atol_m > 0.0 && std::isfinite(atol_m), "atol_m", atol_m, "must be positive");
+  require(atol_m_s >= 0.0 && std::isfinite(atol_m_s), "atol_m_s", atol_m_s,
+          "must be positive (or 0: atol_m)");
+  require(atol_J >= 0.0 && std::isfinite(atol_J), "atol_J", atol_J,
+          "must be positive (or 0: atol_m)");
+  require(max_steps >= 1, "max_steps", max_steps, "must be at least 1");
+  require(max_events >= 1, "max_events", max_events, "must be at least 1");
+  require(max_seconds >= 0.0 && std::isfinite(max_seconds), "max_seconds", max_seconds,
+          "must be finite and ≥ 0");
+  require(settle_limit_s >= 0.0 && std::isfinite(settle_limit_s), "settle_limit_s", settle_limit_s,
+          "must be finite and ≥ 0");
+  require(stop_jump_rad >= 0.0 && std::isfinite(stop_jump_rad), "stop_jump_rad", stop_jump_rad,
+          "must be finite and ≥ 0");
 }
 
 std::array<double, 4> IntegratorOptions::AbsoluteTolerances() const {

@@ -15,6 +15,9 @@
 #include "apps/case/case_keys.h"
 #include "apps/case/plausible_ranges.h"
 #include "apps/case/section_reader.h"
+#include "dynamics/model/needle_train.h"
+#include "dynamics/simulation.h"
+#include "lib/field_error.h"
 #include "lib/units.h"
 #include "spring/wire_material.h"
 
@@ -342,7 +345,7 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
   EXPECT_EQ(Error(kGood + "[spring]\npreload_N = 100\nrate_N_mm = 1e308\n"),
             "t.toml: [spring] rate_N_mm: is 1e+308; expected a magnitude of at most 1e15");
   EXPECT_EQ(Error(kGood + "[solver]\nsettle_deg = 0\n"),
-            "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 0");
+            "t.toml: [solver] settle_deg: must be in (0, 36000], got 0 deg");
   std::remove(path.c_str());
 }
 
@@ -872,7 +875,7 @@ TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
   EXPECT_TRUE(solver("atol_mm = 1e-6").atol_given);
   EXPECT_EQ(error("rtol = 0.5").rfind("t.toml: [solver] rtol: must be in ", 0), 0u);
   EXPECT_DOUBLE_EQ(solver("atol_mm = 1e-6 \nrtol = 1e-4").run.integrator.atol_m, 1e-9);
-  EXPECT_EQ(error("atol_mm = 0"), "t.toml: [solver] atol: must be positive");
+  EXPECT_EQ(error("atol_mm = 0"), "t.toml: [solver] atol_mm: must be positive, got 0 m");
   EXPECT_DOUBLE_EQ(solver("max_seconds = 0").run.integrator.max_seconds, 0.0);
   EXPECT_DOUBLE_EQ(solver("max_seconds = 86400").run.integrator.max_seconds, 86400.0);
   EXPECT_EQ(error("max_seconds = -1"),
@@ -883,7 +886,7 @@ TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
             "86401");
   EXPECT_DOUBLE_EQ(solver("settle_deg = 36000").run.settle_limit_deg, 36000.0);
   EXPECT_EQ(error("settle_deg = 36001"),
-            "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 36001");
+            "t.toml: [solver] settle_deg: must be in (0, 36000], got 36001 deg");
   EXPECT_DOUBLE_EQ(*solver("start_deg = -20").start_rad, -20 * kDeg);
   EXPECT_FALSE(solver("start_deg = -20").end_rad);
   EXPECT_EQ(error("start_deg = 10\nend_deg = 5"),
@@ -1076,6 +1079,37 @@ std::string WithKey(const CaseKey& k, const std::string& line) {
   const size_t own = text.find("\n" + key + " = ", start);
   if (own != std::string::npos && own < end) text.erase(own + 1, text.find('\n', own + 1) - own);
   return Replace(text, header, header + line + "\n");
+}
+
+// [train] and [solver] are read straight into the modules' structs, whose Validate() is the one
+// rule: the reader only names the key as written ("FILE: [section] key: RULE, got VALUE"), so a
+// rule changed in the module changes the case file's message with it.
+TEST(CaseFileTest, TheModulesValidateIsTheReadersRule) {
+  const auto rule = [](const auto& invalid) {
+    try {
+      invalid.Validate();
+    } catch (const FieldError& e) {
+      return e.rule;
+    }
+    return std::string("(valid)");
+  };
+  ContactParameters contact;
+  contact.contact_stiffness_N_m = -5000.0;
+  EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_mm = -5\n"),
+            "t.toml: [train] contact_stiffness_N_mm: " + rule(contact) + ", got -5000 N/m");
+  contact = ContactParameters{};
+  contact.seat_damping_ratio = -1.0;
+  EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_m = 1e9\nseat_damping_ratio = -1\n"),
+            "t.toml: [train] seat_damping_ratio: " + rule(contact) + ", got -1");
+  SimulationOptions run;
+  run.integrator.rtol = 1.0;
+  EXPECT_EQ(Error(kGood + "[solver]\nrtol = 1\n"),
+            "t.toml: [solver] rtol: " + rule(run) + ", got 1");
+  EXPECT_EQ(rule(run), "must be in [1e-14, 1e-2]");
+  run = SimulationOptions{};
+  run.settle_limit_deg = 0.0;
+  EXPECT_EQ(Error(kGood + "[solver]\nsettle_rad = 0\n"),
+            "t.toml: [solver] settle_rad: " + rule(run) + ", got 0 deg");
 }
 
 // Every key of the one list (apps/case/case_keys.cc) is read by its section's reader: set in a
