@@ -180,14 +180,14 @@ class SectionReader {
 
   // Runs `validate`, a module struct's Validate() (the one place its rules are stated, for the
   // struct the section is read straight into), and turns its FieldError into this file's one
-  // line: the key declared for that member, as written, the rule and the value in the member's
-  // unit ("t.toml: [train] contact_stiffness_N_m: must be positive, got -5 N/m").
+  // line: the key declared for that member, as written, the rule and the value in the unit the
+  // key was written in ("t.toml: [train] contact_stiffness_N_mm: must be positive, got -5 N/mm").
   template <typename Validate>
   void Validated(const Validate& validate) const {
     try {
       validate();
     } catch (const FieldError& e) {
-      Fail(KeyOfMember(e.field), e.rule + ", got " + Number(e.value) + MemberUnit(e.field));
+      Fail(KeyOfMember(e.field), e.rule + ", got " + WrittenValue(e.field, e.value));
     }
   }
   // The key (with its unit) of the quantity found last, for messages.
@@ -242,18 +242,24 @@ class SectionReader {
     const auto it = written_.find(k->name);
     return it != written_.end() ? it->second : std::string(k->name);
   }
-  // " N/m": the unit the member's name ends in (its dimension's suffix), "" for a plain number.
-  std::string MemberUnit(const std::string& member) const {
+  // A member's value as the file wrote its key: "-5 N/mm" for contact_stiffness_N_m = -5000
+  // written as contact_stiffness_N_mm (the member's unit is the suffix its name ends in); a
+  // plain number as it is.
+  std::string WrittenValue(const std::string& member, double value) const {
     const CaseKey* k = MemberKey(member);
-    if (!k) return "";
-    for (std::string u : UnitSuffixes(k->dimension)) {
-      if (member.size() > u.size() &&
-          member.compare(member.size() - u.size() - 1, u.size() + 1, "_" + u) == 0) {
-        std::replace(u.begin(), u.end(), '_', '/');
-        return " " + u;
-      }
-    }
-    return "";
+    if (!k || k->dimension == Dimension::kNone) return Number(value);
+    const auto ends_in = [&member](const std::string& u) {
+      return member.size() > u.size() &&
+             member.compare(member.size() - u.size() - 1, u.size() + 1, "_" + u) == 0;
+    };
+    const std::vector<std::string> units = UnitSuffixes(k->dimension);
+    const auto own = std::find_if(units.begin(), units.end(), ends_in);
+    const auto it = written_.find(k->name);
+    if (own == units.end() || it == written_.end()) return Number(value);
+    std::string unit = it->second.substr(std::string(k->name).size() + 1);
+    const double shown = ToSi(k->dimension, *own, value) / ToSi(k->dimension, unit, 1.0);
+    std::replace(unit.begin(), unit.end(), '_', '/');
+    return Number(shown) + " " + unit;
   }
   // The node of plain key `name` (declared with no unit), marked read, or nullptr when the
   // section does not have it.

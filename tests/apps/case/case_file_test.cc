@@ -875,7 +875,7 @@ TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
   EXPECT_TRUE(solver("atol_mm = 1e-6").atol_given);
   EXPECT_EQ(error("rtol = 0.5").rfind("t.toml: [solver] rtol: must be in ", 0), 0u);
   EXPECT_DOUBLE_EQ(solver("atol_mm = 1e-6 \nrtol = 1e-4").run.integrator.atol_m, 1e-9);
-  EXPECT_EQ(error("atol_mm = 0"), "t.toml: [solver] atol_mm: must be positive, got 0 m");
+  EXPECT_EQ(error("atol_mm = -1e-6"), "t.toml: [solver] atol_mm: must be positive, got -1e-06 mm");
   EXPECT_DOUBLE_EQ(solver("max_seconds = 0").run.integrator.max_seconds, 0.0);
   EXPECT_DOUBLE_EQ(solver("max_seconds = 86400").run.integrator.max_seconds, 86400.0);
   EXPECT_EQ(error("max_seconds = -1"),
@@ -1096,7 +1096,7 @@ TEST(CaseFileTest, TheModulesValidateIsTheReadersRule) {
   ContactParameters contact;
   contact.contact_stiffness_N_m = -5000.0;
   EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_mm = -5\n"),
-            "t.toml: [train] contact_stiffness_N_mm: " + rule(contact) + ", got -5000 N/m");
+            "t.toml: [train] contact_stiffness_N_mm: " + rule(contact) + ", got -5 N/mm");
   contact = ContactParameters{};
   contact.seat_damping_ratio = -1.0;
   EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_m = 1e9\nseat_damping_ratio = -1\n"),
@@ -1107,9 +1107,9 @@ TEST(CaseFileTest, TheModulesValidateIsTheReadersRule) {
             "t.toml: [solver] rtol: " + rule(run) + ", got 1");
   EXPECT_EQ(rule(run), "must be in [1e-14, 1e-2]");
   run = SimulationOptions{};
-  run.settle_limit_deg = 0.0;
-  EXPECT_EQ(Error(kGood + "[solver]\nsettle_rad = 0\n"),
-            "t.toml: [solver] settle_rad: " + rule(run) + ", got 0 deg");
+  run.settle_limit_deg = 700.0 / kDeg;  // the member is in degrees, the key as written in rad
+  EXPECT_EQ(Error(kGood + "[solver]\nsettle_rad = 700\n"),
+            "t.toml: [solver] settle_rad: " + rule(run) + ", got 700 rad");
 }
 
 // Every key of the one list (apps/case/case_keys.cc) is read by its section's reader: set in a
