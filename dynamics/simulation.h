@@ -248,6 +248,9 @@ MethodChoice AutoMethod(const NeedleTrain& train, double oscillations_per_event,
 /// The same for a scene at a speed.
 MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol);
 
+/// One run of `scene` at `speed_rpm`. Throws std::invalid_argument (FieldError for a field) when
+/// `options` break SimulationOptions::Validate: checked first, also where the rigid answer is
+/// reported instead of the dynamics.
 SimulationResult Simulate(const Scene& scene, double speed_rpm, const SimulationOptions& options);
 
 }  // namespace needle

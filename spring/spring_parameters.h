@@ -20,6 +20,10 @@ struct NeedleParameters {
   /// Where F_g comes from: "stated", "combustion pressure … on d", "Basu's 35 kg/cm² on d",
   /// or "none (no needle diameter)".
   std::string gas_source;
+
+  /// The needle's rules, in one place: m > 0, d > 0 when given, F_g finite. Throws FieldError
+  /// (lib/field_error.h) naming the field, its value and the rule.
+  void Validate() const;
 };
 
 /// End type of a helical compression spring (EN 13906-1).
@@ -84,6 +88,12 @@ struct SpringParameters {
   bool coil_clash = false;
   std::optional<double> clash_stiffness_N_m;
   std::optional<double> clash_damping_ratio;
+
+  /// The spring's rules, in one place: P₀ ≥ 0, k ≥ 0, S and f at least 1, the Basu tolerance in
+  /// [0, 100] %, the surge and clash damping ratios in [0, 1], the clash stiffness > 0. Throws
+  /// FieldError (lib/field_error.h) naming the field, its value and the rule. The helical
+  /// geometry's own rules (the spring index, the coils) are checked where it is read.
+  void Validate() const;
 };
 
 }  // namespace needle

@@ -43,8 +43,9 @@ struct BoundLift {
 /// Bind names it. Throws CaseError as Bind does.
 BoundLift RebindLift(const BoundLift& lift, LiftTable table);
 
-/// What the jobs of a case run.
-struct BoundCase : CaseSections {  ///< the sections as read: path, title, [engine], [needle], …
+/// What the jobs of a case run: the sections as read (CaseSections: path, title, [engine],
+/// [needle], [spring], [train], …) and what Bind makes of the rest.
+struct BoundCase : CaseSections {
   BoundLift lift;
   /// The dynamic scene, when the case has [needle], [spring] and [train], the law gives an
   /// acceleration (a C¹ spline leaves it out: the check calls that undecided) and the model

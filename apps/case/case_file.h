@@ -96,7 +96,9 @@ struct LiftSection {
 /// (dynamics/simulation.h: method, rtol, atol, the budgets, settle, cycles, the period
 /// tolerance; the defaults are theirs), and the window override.
 struct SolverSection {
-  SimulationOptions run;                     ///< atol_m: atol_mm's, else DefaultAtol(rtol)
+  /// atol_m: atol_mm's, else DefaultAtol(rtol), set by the reader (a caller that changes rtol
+  /// in code sets atol_m too).
+  SimulationOptions run;
   bool atol_given = false;                   ///< atol_mm stated
   std::optional<double> start_rad, end_rad;  ///< window override
 };

@@ -10,7 +10,8 @@ namespace {
 
 using D = Dimension;
 
-// [profile]'s and [checks]' follower keys (ReadFollowerKeys): one declaration for both.
+// [profile]'s and [checks]' follower keys (ReadFollowerKeys): one declaration for both lists.
+// A macro: C++17 has no constexpr way to splice one array's entries into two others.
 // clang-format off
 #define NEEDLE_FOLLOWER_KEYS(section)                                                          \
   {section, "follower", D::kNone, "\"roller\" (default), \"flat\" or \"curved\""},             \
@@ -94,7 +95,7 @@ constexpr CaseKey kCaseKeys[] = {
     {"spring", "allowable_stress_fraction", D::kNone,
      "the allowed static stress as a fraction "
      "of R_m (default 0.5)"},
-    {"spring", "masses", D::kNone, "the coil masses of the surge model (0: one mass)"},
+    {"spring", "masses", D::kNone, "the coil masses of the dynamics (1, the default: one mass)"},
     {"spring", "surge_damping_ratio", D::kNone, "the coils' modal damping ratio",
      &kDampingRatioRange},
     {"spring", "clash", D::kNone, "model the coils' clash (coil against coil)"},
@@ -137,7 +138,7 @@ constexpr CaseKey kCaseKeys[] = {
     {"overspeed", "steady_state", D::kNone, "judge lift-off on the steady revolutions"},
 
     NEEDLE_FOLLOWER_KEYS("profile"),
-    {"profile", "lever_ratio", D::kNone, "the rocker's ratio, needle lift per follower lift"},
+    {"profile", "lever_ratio", D::kNone, "the rocker's ratio λ, roller travel per needle travel"},
     {"profile", "points", D::kNone, "points over one cam revolution (default 720)"},
 
     {"tolerance", "lift", D::kLength, "σ of each lift-table point", &kLengthSigmaRange},

@@ -11,8 +11,10 @@
 ///   that is not declared, or declared with another dimension (std::logic_error: a bug, exit 3);
 /// - the range check: SectionReader::Finish holds each value read to its key's range;
 /// - docs/case-file.md's key reference (CaseKeysMarkdown) and docs/ranges.md
-///   (PlausibleRangesMarkdown), written from it by `NEEDLE_REGENERATE=1 ctest -R CaseKeys`;
-/// - the tests: every declared key is read by its section's reader (KeysTest).
+///   (PlausibleRangesMarkdown), written from it by `NEEDLE_REGENERATE=1 ctest -R
+///   "TheDocsKeyReferenceIsTheList|TheDocsRangesTableIsTheCodes"`;
+/// - the tests: every case-file key is read by its section's reader
+///   (CaseFileTest.EveryDeclaredKeyIsReadByItsSectionsReader).
 /// A key is declared with the same (section, name) twice only for two dimensions (`ramp` and
 /// `ramp_deg`, `end_slope` and `end_slope_mm_deg`).
 

@@ -190,12 +190,14 @@ class SectionReader {
       Fail(KeyOfMember(e.field), e.rule + ", got " + WrittenValue(e.field, e.value));
     }
   }
+
   // The key (with its unit) of the quantity found last, for messages.
   const std::string& last_key() const { return last_key_; }
 
-  // Every key must have been read, and every value read must lie in its plausible range
-  // (apps/case/plausible_ranges.h, the one table of them). The section's own checks (a sign,
-  // a missing partner) ran as each key was read, so their messages come first.
+  // Every key must have been read, and every value read must lie in the plausible range its
+  // declaration names (apps/case/case_keys.cc, from plausible_ranges.h). The section's own
+  // checks (a sign, a missing partner, a module's Validate) ran before, so their messages come
+  // first.
   void Finish() const {
     if (!table_) return;
     for (const auto& [k, node] : *table_) {
@@ -222,18 +224,32 @@ class SectionReader {
 
  private:
   // The declaration of member `member` of the struct the section is read into: the plain key of
-  // that name, or the quantity whose name and a unit suffix of its dimension it is
-  // ("contact_stiffness_N_m", "atol_m", "settle_limit_deg"); nullptr when none.
+  // that name, or the quantity whose name it starts with and a unit suffix of whose dimension it
+  // ends in ("contact_stiffness_N_m", "atol_m", "settle_limit_deg"; not "atol_m_s"); nullptr
+  // when none.
   const CaseKey* MemberKey(const std::string& member) const {
     if (!keys_.first) return nullptr;
     for (const CaseKey& k : keys_) {
       if (section_ != k.section) continue;
       const std::string name = k.name;
-      if (k.dimension == Dimension::kNone ? member == name
-                                          : member.compare(0, name.size() + 1, name + "_") == 0)
+      if (k.dimension == Dimension::kNone) {
+        if (member == name) return &k;
+      } else if (member.compare(0, name.size() + 1, name + "_") == 0 &&
+                 MemberUnitIn(member, k.dimension)) {
         return &k;
+      }
     }
     return nullptr;
+  }
+  // The unit suffix of `dimension` member `member` ends in ("N_m" of contact_stiffness_N_m), or
+  // nullopt.
+  static std::optional<std::string> MemberUnitIn(const std::string& member, Dimension dimension) {
+    for (const std::string& u : UnitSuffixes(dimension)) {
+      if (member.size() > u.size() &&
+          member.compare(member.size() - u.size() - 1, u.size() + 1, "_" + u) == 0)
+        return u;
+    }
+    return std::nullopt;
   }
   // The key of member `member` as written (or its name, when not written), for a message.
   std::string KeyOfMember(const std::string& member) const {
@@ -248,16 +264,11 @@ class SectionReader {
   std::string WrittenValue(const std::string& member, double value) const {
     const CaseKey* k = MemberKey(member);
     if (!k || k->dimension == Dimension::kNone) return Number(value);
-    const auto ends_in = [&member](const std::string& u) {
-      return member.size() > u.size() &&
-             member.compare(member.size() - u.size() - 1, u.size() + 1, "_" + u) == 0;
-    };
-    const std::vector<std::string> units = UnitSuffixes(k->dimension);
-    const auto own = std::find_if(units.begin(), units.end(), ends_in);
     const auto it = written_.find(k->name);
-    if (own == units.end() || it == written_.end()) return Number(value);
+    if (it == written_.end()) return Number(value);
     std::string unit = it->second.substr(std::string(k->name).size() + 1);
-    const double shown = ToSi(k->dimension, *own, value) / ToSi(k->dimension, unit, 1.0);
+    const double si = ToSi(k->dimension, *MemberUnitIn(member, k->dimension), value);
+    const double shown = si / ToSi(k->dimension, unit, 1.0);
     std::replace(unit.begin(), unit.end(), '_', '/');
     return Number(shown) + " " + unit;
   }

@@ -208,9 +208,9 @@ rate_N_mm = 40
   EXPECT_DOUBLE_EQ(*c.spring->rate_N_m, 4e4);
   EXPECT_DOUBLE_EQ(c.spring->safety_factor, 1.5);
   EXPECT_EQ(Error(Replace(spring, "mass_kg = 2.0", "mass_kg = 0")),
-            "t.toml: [needle] mass_kg: must be positive, got 0");
+            "t.toml: [needle] mass_kg: must be positive, got 0 kg");
   EXPECT_EQ(Error(Replace(spring, "diameter_mm = 12.8", "diameter_mm = -1")),
-            "t.toml: [needle] diameter_mm: must be positive, got -1");
+            "t.toml: [needle] diameter_mm: must be positive, got -1 mm");
   EXPECT_EQ(Error(Replace(spring, "rate_N_mm = 40", "")),
             "t.toml: [spring] rate: missing; give rate_N_mm (or rate_N_m, rate_kgf_mm …) or the "
             "helical geometry");
@@ -568,7 +568,7 @@ TEST(CaseFileTest, TheSpringsCoilClash) {
   EXPECT_EQ(Error(Replace(spring, "clash = true\nclash_stiffness_N_mm = 5e5", "")),
             "t.toml: [spring] clash_damping_ratio: needs clash = true");
   EXPECT_EQ(Error(Replace(spring, "5e5", "-1")),
-            "t.toml: [spring] clash_stiffness_N_mm: must be positive, got -1000 N/m");
+            "t.toml: [spring] clash_stiffness_N_mm: must be positive, got -1 N/mm");
   EXPECT_EQ(Error(Replace(spring, "= 0.1", "= 2")),
             "t.toml: [spring] clash_damping_ratio: must be in [0, 1], got 2");
   EXPECT_EQ(Error(Replace(spring, "clash = true", "clash = 1")),
@@ -743,7 +743,7 @@ density_kg_m3 = 7850
                 "20000] kg/m3 (docs/ranges.md)");
   // A sign check that was there before keeps its own message.
   EXPECT_EQ(error("mass_kg = 2.0", "mass_kg = -2"),
-            t + "[needle] mass_kg: must be positive, got -2");
+            t + "[needle] mass_kg: must be positive, got -2 kg");
 }
 
 }  // namespace
@@ -826,9 +826,9 @@ TEST(CaseFileTest, BasusToleranceIsAPercentageFrom0To100) {
   EXPECT_DOUBLE_EQ(tolerance("100"), 100.0);
   const std::string plain = kHelicalSpring + "shear_modulus_GPa = 80\ntensile_MPa = 1800\n";
   EXPECT_EQ(Error(plain + "basu_tolerance_percent = -1\n"),
-            "t.toml: [spring] basu_tolerance_percent: must be in 0…100, got -1");
+            "t.toml: [spring] basu_tolerance_percent: must be in [0, 100], got -1");
   EXPECT_EQ(Error(plain + "basu_tolerance_percent = 101\n"),
-            "t.toml: [spring] basu_tolerance_percent: must be in 0…100, got 101");
+            "t.toml: [spring] basu_tolerance_percent: must be in [0, 100], got 101");
 }
 
 }  // namespace
@@ -1135,9 +1135,9 @@ TEST(CaseFileTest, EveryDeclaredKeyIsReadByItsSectionsReader) {
 }
 
 // Issue 51: [profile] base_radius_mm = 2e7 was taken, though the docs capped it. Every case-file
-// key of the one range table (apps/case/plausible_ranges.h) is tried at ten times its range's
+// key declared with a range (apps/case/case_keys.cc) is tried at ten times its range's
 // ends: each is refused naming the key as written, and a value its own reading lets through
-// gets the range's message. The synthesis file's [checks] keys are tried likewise below.
+// gets the range's message. (The synthesis and engine files' ranges: CaseKeysTest.)
 TEST(CaseFileTest, EveryRangeOfTheTableIsEnforcedOnItsKey) {
   int tried = 0;
   for (const CaseKey& k : CaseFileKeys()) {

@@ -11,7 +11,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "apps/case/case_file.h"
 #include "apps/case/section_reader.h"
+#include "apps/case/synthesis_file.h"
 
 namespace needle {
 namespace {
@@ -39,6 +41,43 @@ TEST(CaseKeysTest, AReaderAskingForAnUndeclaredKeyIsABug) {
   // A reader without a list (the engine file's [design]) asks for what it likes.
   SectionReader design(&train, "e.toml", "design");
   EXPECT_FALSE(design.OptionalNumber("mixing_ratio"));
+}
+
+std::string Bundled(const std::string& file) {
+  std::stringstream s;
+  s << std::ifstream(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + file).rdbuf();
+  return s.str();
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+// The engine file's [engine] and the synthesis file's [checks] hold their keys to the ranges
+// their own lists declare (EngineFileKeys, SynthesisCheckKeys), as a case file's sections do.
+TEST(CaseKeysTest, TheEngineAndSynthesisFilesHoldTheirDeclaredRanges) {
+  const std::string engine = Bundled("basu-example1-engine.toml");
+  EXPECT_NO_THROW(ParseDesignInputs(engine, "e.toml"));
+  try {
+    ParseDesignInputs(Replace(engine, "speed_rpm = 125", "speed_rpm = 1e6"), "e.toml");
+    FAIL() << "a crank speed of 1e6 rpm was taken";
+  } catch (const CaseError& e) {
+    EXPECT_STREQ(e.what(),
+                 "e.toml: [engine] speed_rpm: 1e+06 rpm is outside the plausible range [1, "
+                 "50000] rpm (docs/ranges.md)");
+  }
+  const std::string synth = Bundled("matec-2018-synth.toml");
+  EXPECT_NO_THROW(ParseSynthesisFile(synth, "s.toml"));
+  try {
+    ParseSynthesisFile(Replace(synth, "base_radius_mm = 10", "base_radius_mm = 2e7"), "s.toml");
+    FAIL() << "a base radius of 20 km was taken";
+  } catch (const CaseError& e) {
+    EXPECT_STREQ(e.what(),
+                 "s.toml: [checks] base_radius_mm: 2e+07 mm is outside the plausible range [0, "
+                 "2000] mm (docs/ranges.md)");
+  }
 }
 
 // A case writer names each key through the list: a key it does not declare, or a unit that is

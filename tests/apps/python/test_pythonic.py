@@ -202,7 +202,7 @@ def test_a_changed_case_runs_as_the_changed_file(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text(open(EXAMPLE1).read().replace("mass_kg = ", "mass_kg = -1.0 #", 1))
     msg = message(lambda: needle.spring(case))
-    assert msg == EXAMPLE1 + ": [needle] mass_kg: must be positive, got -1"
+    assert msg == EXAMPLE1 + ": [needle] mass_kg: must be positive, got -1 kg"
     assert "needle: " + msg.replace(EXAMPLE1, str(bad)) == cli_error("spring", str(bad))
     case["needle"]["mass_kg"] = 1.6
     assert same(needle.spring(case), after)

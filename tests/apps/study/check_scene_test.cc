@@ -540,8 +540,8 @@ namespace {
 TEST(CheckSceneSurgeTest, ASurgeRunStoppedOnItsBudgetIsUndecided) {
   Case c = LoadCase(kCases + "basu-example2.toml");
   c.solver = SolverSection{};
-  c.solver->run.integrator.max_steps =
-      400;  // the closed form's run needs far fewer; the chain's, more
+  // The closed form's run needs far fewer steps; the chain's, more.
+  c.solver->run.integrator.max_steps = 400;
   CheckOptions o;
   o.record_series = false;
   const CheckResult r = CheckScene(Bind(c), o);
