@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "lib/field_error.h"
 #include "lib/name_table.h"
 #include "lib/units.h"
 
@@ -57,10 +58,8 @@ double FollowerGeometry::ContactRadius() const {
 }
 
 void FollowerGeometry::Validate() const {
-  auto req = [](bool ok, const char* field, double v, const char* rule) {
-    if (!ok)
-      throw std::invalid_argument(std::string("FollowerGeometry.") + field + " = " + Num(v) + ": " +
-                                  rule);
+  auto req = [](bool ok, const char* field, double v, const std::string& rule) {
+    if (!ok) throw FieldError("FollowerGeometry", field, Num(v), v, rule);
   };
   req(base_radius_m > 0.0 && std::isfinite(base_radius_m), "base_radius_m", base_radius_m,
       "must be positive");
@@ -79,7 +78,8 @@ void FollowerGeometry::Validate() const {
   }
   if (kind != FollowerKind::kFlat) {
     req(std::abs(offset_m) < base_radius_m + ContactRadius(), "offset_m", offset_m,
-        "must be smaller than base circle plus roller (or face) radius");
+        std::string("must be smaller than base radius plus ") +
+            (kind == FollowerKind::kCurved ? "face" : "roller") + " radius");
   }
 }
 

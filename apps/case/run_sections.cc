@@ -162,16 +162,8 @@ ProfileSection ReadProfile(SectionReader r) {
   g = ReadFollowerKeys(r);
   g.base_radius_m = *SignedLength(r, "base_radius", true, true);
   g.offset_m = r.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
-  if (g.kind != FollowerKind::kFlat &&
-      !(std::abs(g.offset_m) < g.base_radius_m + g.ContactRadius())) {
-    r.Fail("offset", "must be smaller than base radius plus " +
-                         std::string(g.kind == FollowerKind::kCurved ? "face" : "roller") +
-                         " radius");
-  }
-  if (auto l = r.OptionalNumber("lever_ratio")) {
-    if (!(*l > 0.0)) r.Fail("lever_ratio", "must be positive, got " + Number(*l));
-    g.lever_ratio = *l;
-  }
+  if (auto l = r.OptionalNumber("lever_ratio")) g.lever_ratio = *l;
+  r.Validated([&g] { g.Validate(); });  // the follower's one rule (lib/follower.h)
   if (auto n = r.OptionalNumber("points")) {
     if (!(*n >= 8 && *n <= 1e6) || *n != std::floor(*n))
       r.Fail("points", "must be a whole number in 8…1e6");

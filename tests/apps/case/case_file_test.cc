@@ -334,7 +334,8 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
             "t.toml: [profile] face_radius_mm: a curved follower needs the radius of its face");
   EXPECT_EQ(Error(kGood + "[profile]\nfollower = \"curved\"\nbase_radius_mm = 10\n"
                           "face_radius_mm = 5\noffset_mm = 15\n"),
-            "t.toml: [profile] offset: must be smaller than base radius plus face radius");
+            "t.toml: [profile] offset_mm: must be smaller than base radius plus face radius, got "
+            "15 mm");
   EXPECT_EQ(Error(kGood + "[solver]\nmax_steps = 1e308\n"),
             "t.toml: [solver] max_steps: is 1e+308; expected a magnitude of at most 1e15");
   EXPECT_EQ(Error(kGood + "[solver]\nmax_steps = 1e13\n"),
@@ -1155,12 +1156,9 @@ TEST(CaseFileTest, EveryRangeOfTheTableIsEnforcedOnItsKey) {
           entry ? "lift_mm = [0, 1, " + v.str() + ", 1, 0]" : key + " = " + v.str();
       const std::string error = Error(WithKey(k, line));
       SCOPED_TRACE(line);
-      // A wire out of its range is first a spring index out of 4…20, which names the coil; an
-      // offset first reaches past the base circle and roller, named without its unit.
-      const std::string named = "t.toml: [" + section + "] " +
-                                (key == "wire_mm"     ? "coil_mm"
-                                 : key == "offset_mm" ? "offset"
-                                                      : key);
+      // A wire out of its range is first a spring index out of 4…20, which names the coil (an
+      // offset first reaches past the base circle and roller: the follower's rule names it).
+      const std::string named = "t.toml: [" + section + "] " + (key == "wire_mm" ? "coil_mm" : key);
       EXPECT_EQ(error.rfind(named, 0), 0u) << error;
       ++tried;
     }
