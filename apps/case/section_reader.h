@@ -268,7 +268,7 @@ class SectionReader {
     if (it == written_.end()) return Number(value);
     std::string unit = it->second.substr(std::string(k->name).size() + 1);
     const double si = ToSi(k->dimension, *MemberUnitIn(member, k->dimension), value);
-    const double shown = si / ToSi(k->dimension, unit, 1.0);
+    const double shown = FromSi(k->dimension, unit, si);
     std::replace(unit.begin(), unit.end(), '_', '/');
     return Number(shown) + " " + unit;
   }

@@ -53,6 +53,7 @@ NeedleSection ReadNeedle(SectionReader r) {
     n.gas_force_N = 0.0;
     n.gas_source = "none (no needle diameter)";
   }
+  r.Validated([&n] { n.Validate(); });  // the gas load formed
   r.Finish();
   return n;
 }

@@ -105,6 +105,12 @@ void ParseChecks(const toml::table& t, const std::string& path, SynthesisFile& f
     f.min_entrainment_m_s = *u;
   }
   f.offset_m = ch.OptionalQuantity("offset", Dimension::kLength).value_or(0.0);
+  if (f.base_radius_m) {  // the follower's one rule (lib/follower.h), as [profile]'s
+    FollowerGeometry g = f.follower;
+    g.base_radius_m = *f.base_radius_m;
+    g.offset_m = f.offset_m;
+    ch.Validated([&g] { g.Validate(); });
+  }
   f.max_pressure_angle_rad = ch.OptionalQuantity("max_pressure_angle", Dimension::kAngle);
   if (f.max_pressure_angle_rad &&
       !(*f.max_pressure_angle_rad > 0.0 && *f.max_pressure_angle_rad < kPi / 2))

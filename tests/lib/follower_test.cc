@@ -194,6 +194,16 @@ TEST(FollowerTest, NamesAndValidation) {
     EXPECT_STREQ(e.what(),
                  "FollowerGeometry.face_radius_m = 0: must be positive for a curved face");
   }
+  g.face_radius_m = 0.005;
+  g.offset_m = 0.015;  // at the edge: base radius plus face radius
+  try {
+    g.Validate();
+    ADD_FAILURE() << "an offset past the base circle and face was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "FollowerGeometry.offset_m = 0.015: must be smaller than base radius plus face "
+                 "radius");
+  }
   g = Flat(0.01);
   g.offset_m = 0.5;  // a flat face may sit far off centre: only its contact offset moves
   EXPECT_NO_THROW(g.Validate());

@@ -296,6 +296,11 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
             path + ": [checks] base_radius_mm: must be positive, got -10 mm");
   EXPECT_EQ(error("max_pressure_angle_deg = 45", "max_pressure_angle_deg = 90"),
             path + ": [checks] max_pressure_angle_deg: must be in (0, 90) deg, got 90 deg");
+  // The follower's own rule (FollowerGeometry::Validate), named as written, as in [profile].
+  EXPECT_EQ(error("offset_mm = 0", "offset_mm = 19"),
+            path +
+                ": [checks] offset_mm: must be smaller than base radius plus face radius, got "
+                "19 mm");
   EXPECT_EQ(error("angle_deg = 63", "angle_deg = 400"),
             path + ": [rise] angle_deg: must be at most 360 deg of cam, got 400");
   EXPECT_EQ(error("speed_rpm = 1000", "speed_rpm = 1e9"),
@@ -877,6 +882,7 @@ TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
   EXPECT_EQ(error("rtol = 0.5").rfind("t.toml: [solver] rtol: must be in ", 0), 0u);
   EXPECT_DOUBLE_EQ(solver("atol_mm = 1e-6 \nrtol = 1e-4").run.integrator.atol_m, 1e-9);
   EXPECT_EQ(error("atol_mm = -1e-6"), "t.toml: [solver] atol_mm: must be positive, got -1e-06 mm");
+  EXPECT_EQ(error("atol_mm = 0"), "t.toml: [solver] atol_mm: must be positive, got 0 mm");
   EXPECT_DOUBLE_EQ(solver("max_seconds = 0").run.integrator.max_seconds, 0.0);
   EXPECT_DOUBLE_EQ(solver("max_seconds = 86400").run.integrator.max_seconds, 86400.0);
   EXPECT_EQ(error("max_seconds = -1"),
@@ -1082,7 +1088,8 @@ std::string WithKey(const CaseKey& k, const std::string& line) {
   return Replace(text, header, header + line + "\n");
 }
 
-// [train] and [solver] are read straight into the modules' structs, whose Validate() is the one
+// [train], [solver] (and [needle], [spring], [profile]'s follower) are read straight into the
+// modules' structs, whose Validate() is the one
 // rule: the reader only names the key as written ("FILE: [section] key: RULE, got VALUE"), so a
 // rule changed in the module changes the case file's message with it.
 TEST(CaseFileTest, TheModulesValidateIsTheReadersRule) {
@@ -1107,6 +1114,14 @@ TEST(CaseFileTest, TheModulesValidateIsTheReadersRule) {
   EXPECT_EQ(Error(kGood + "[solver]\nrtol = 1\n"),
             "t.toml: [solver] rtol: " + rule(run) + ", got 1");
   EXPECT_EQ(rule(run), "must be in [1e-14, 1e-2]");
+  NeedleParameters needle;
+  needle.mass_kg = -2.0;
+  EXPECT_EQ(Error(kGood + "[needle]\nmass_g = -2000\n"),
+            "t.toml: [needle] mass_g: " + rule(needle) + ", got -2000 g");
+  SpringParameters spring;
+  spring.preload_N = -5.0 * kKgf;
+  EXPECT_EQ(Error(kGood + "[needle]\nmass_kg = 2\n[spring]\npreload_kgf = -5\nrate_N_mm = 1\n"),
+            "t.toml: [spring] preload_kgf: " + rule(spring) + ", got -5 kgf");
   run = SimulationOptions{};
   run.settle_limit_deg = 700.0 / kDeg;  // the member is in degrees, the key as written in rad
   EXPECT_EQ(Error(kGood + "[solver]\nsettle_rad = 700\n"),
