@@ -238,11 +238,11 @@ constexpr CaseKey kEngineKeys[] = {
 
 }  // namespace
 
-CaseKeyList CaseFileKeys() { return {kCaseKeys, sizeof kCaseKeys / sizeof kCaseKeys[0]}; }
+CaseKeyList CaseFileKeys() { return CaseKeyList::Of(kCaseKeys); }
 
-CaseKeyList SynthesisCheckKeys() { return {kCheckKeys, sizeof kCheckKeys / sizeof kCheckKeys[0]}; }
+CaseKeyList SynthesisCheckKeys() { return CaseKeyList::Of(kCheckKeys); }
 
-CaseKeyList EngineFileKeys() { return {kEngineKeys, sizeof kEngineKeys / sizeof kEngineKeys[0]}; }
+CaseKeyList EngineFileKeys() { return CaseKeyList::Of(kEngineKeys); }
 
 const CaseKey* FindCaseKey(CaseKeyList keys, const std::string& section, const std::string& name,
                            Dimension dimension) {

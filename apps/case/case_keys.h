@@ -37,8 +37,12 @@ struct CaseKey {
 
 /// The keys of one file's sections: a case file's or the synthesis file's [checks].
 struct CaseKeyList {
-  const CaseKey* first;
-  std::size_t size;
+  const CaseKey* first = nullptr;  ///< nullptr: no list
+  std::size_t size = 0;
+  template <std::size_t N>
+  static constexpr CaseKeyList Of(const CaseKey (&keys)[N]) {
+    return {keys, N};
+  }
   const CaseKey* begin() const { return first; }
   const CaseKey* end() const { return first + size; }
 };

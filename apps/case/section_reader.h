@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -45,7 +44,7 @@ class SectionReader {
   /// ask for, and their ranges; {} for a section not declared there (the engine file's
   /// [design], the synthesis file's [rise], [limits] and [output]: no list, no range).
   SectionReader(const toml::table* table, std::string file, std::string section,
-                CaseKeyList keys = {nullptr, 0})
+                CaseKeyList keys = {})
       : table_(table), file_(std::move(file)), section_(std::move(section)), keys_(keys) {}
 
   bool present() const { return table_ != nullptr; }
@@ -88,7 +87,6 @@ class SectionReader {
     }
     if (found) {
       used_.insert(found->first);
-      written_[name] = found->first;
       last_key_ = found->first;
       last_declared_ = declared;
     }
@@ -187,7 +185,8 @@ class SectionReader {
     try {
       validate();
     } catch (const FieldError& e) {
-      Fail(KeyOfMember(e.field), e.rule + ", got " + WrittenValue(e.field, e.value));
+      const auto [key, value] = AsWritten(e.field, e.value);
+      Fail(key, e.rule + ", got " + value);
     }
   }
 
@@ -251,26 +250,21 @@ class SectionReader {
     }
     return std::nullopt;
   }
-  // The key of member `member` as written (or its name, when not written), for a message.
-  std::string KeyOfMember(const std::string& member) const {
+  // Member `member`'s key as the file wrote it and `value` (in the member's unit, the suffix its
+  // name ends in) in that key's unit: ("contact_stiffness_N_mm", "-5 N/mm") for
+  // contact_stiffness_N_m = -5000; a plain key and number as they are; the member's own name when
+  // it has no key here.
+  std::pair<std::string, std::string> AsWritten(const std::string& member, double value) const {
     const CaseKey* k = MemberKey(member);
-    if (!k) return member;
-    const auto it = written_.find(k->name);
-    return it != written_.end() ? it->second : std::string(k->name);
-  }
-  // A member's value as the file wrote its key: "-5 N/mm" for contact_stiffness_N_m = -5000
-  // written as contact_stiffness_N_mm (the member's unit is the suffix its name ends in); a
-  // plain number as it is.
-  std::string WrittenValue(const std::string& member, double value) const {
-    const CaseKey* k = MemberKey(member);
-    if (!k || k->dimension == Dimension::kNone) return Number(value);
-    const auto it = written_.find(k->name);
-    if (it == written_.end()) return Number(value);
-    std::string unit = it->second.substr(std::string(k->name).size() + 1);
+    if (!k) return {member, Number(value)};
+    const auto read = std::find_if(read_.begin(), read_.end(),
+                                   [k](const ReadValue& v) { return v.declared == k; });
+    if (k->dimension == Dimension::kNone || read == read_.end()) return {k->name, Number(value)};
+    std::string unit = read->key.substr(std::string(k->name).size() + 1);
     const double si = ToSi(k->dimension, *MemberUnitIn(member, k->dimension), value);
-    const double shown = FromSi(k->dimension, unit, si);
+    const std::string shown = Number(FromSi(k->dimension, unit, si));
     std::replace(unit.begin(), unit.end(), '_', '/');
-    return Number(shown) + " " + unit;
+    return {read->key, shown + " " + unit};
   }
   // The node of plain key `name` (declared with no unit), marked read, or nullptr when the
   // section does not have it.
@@ -370,7 +364,6 @@ class SectionReader {
   std::set<std::string> declared_;
   std::string last_key_;
   const CaseKey* last_declared_ = nullptr;
-  std::map<std::string, std::string> written_;  // a quantity's name -> its key as written
   CaseKeyList keys_;
 };
 

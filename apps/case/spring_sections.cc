@@ -23,7 +23,6 @@ NeedleSection ReadNeedle(SectionReader r) {
   NeedleSection n;
   n.mass_kg = r.Quantity("mass", Dimension::kMass);
   n.diameter_m = r.OptionalQuantity("diameter", Dimension::kLength);
-  r.Validated([&n] { n.Validate(); });  // before the gas load is formed on the diameter
   // The gas load (docs/model.md §4): stated, or a combustion pressure on the needle's area, by
   // default Basu's 35 kg/cm² ("the spring must be strong enough to withstand the combustion
   // pressure"); 0 without a diameter.
@@ -53,7 +52,7 @@ NeedleSection ReadNeedle(SectionReader r) {
     n.gas_force_N = 0.0;
     n.gas_source = "none (no needle diameter)";
   }
-  r.Validated([&n] { n.Validate(); });  // the gas load formed
+  r.Validated([&n] { n.Validate(); });  // the needle's one rule (spring/spring_parameters.h)
   r.Finish();
   return n;
 }
@@ -141,7 +140,6 @@ SpringSection ReadSpring(SectionReader r) {
                            {"basu_tolerance_percent", &sp.basu_tolerance_percent}}) {
     if (auto v = r.OptionalNumber(key)) *into = *v;
   }
-  r.Validated([&sp] { sp.Validate(); });  // the rate before it meets the geometry's
   if (r.FindQuantity("wire", Dimension::kLength)) {
     // One rate: a stated one beside the geometry's was taken by the quasi-static check while
     // the helical check printed the geometry's (issue 51).
@@ -191,7 +189,7 @@ SpringSection ReadSpring(SectionReader r) {
     if (!sp.coil_clash) r.Fail("clash_damping_ratio", "needs clash = true");
     sp.clash_damping_ratio = *z;
   }
-  r.Validated([&sp] { sp.Validate(); });  // the coils' keys
+  r.Validated([&sp] { sp.Validate(); });  // the spring's one rule (spring/spring_parameters.h)
   r.Finish();
   return sp;
 }

@@ -43,6 +43,17 @@ TEST(CaseKeysTest, AReaderAskingForAnUndeclaredKeyIsABug) {
   EXPECT_FALSE(design.OptionalNumber("mixing_ratio"));
 }
 
+// The message of the CaseError `run` throws, or "(no error)".
+template <typename Run>
+std::string CaseErrorOf(const Run& run) {
+  try {
+    run();
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
 std::string Bundled(const std::string& file) {
   std::stringstream s;
   s << std::ifstream(std::string(NEEDLE_SOURCE_DIR) + "/cases/" + file).rdbuf();
@@ -60,24 +71,19 @@ std::string Replace(std::string text, const std::string& from, const std::string
 TEST(CaseKeysTest, TheEngineAndSynthesisFilesHoldTheirDeclaredRanges) {
   const std::string engine = Bundled("basu-example1-engine.toml");
   EXPECT_NO_THROW(ParseDesignInputs(engine, "e.toml"));
-  try {
-    ParseDesignInputs(Replace(engine, "speed_rpm = 125", "speed_rpm = 1e6"), "e.toml");
-    FAIL() << "a crank speed of 1e6 rpm was taken";
-  } catch (const CaseError& e) {
-    EXPECT_STREQ(e.what(),
-                 "e.toml: [engine] speed_rpm: 1e+06 rpm is outside the plausible range [1, "
-                 "50000] rpm (docs/ranges.md)");
-  }
+  EXPECT_EQ(CaseErrorOf([&] {
+              ParseDesignInputs(Replace(engine, "speed_rpm = 125", "speed_rpm = 1e6"), "e.toml");
+            }),
+            "e.toml: [engine] speed_rpm: 1e+06 rpm is outside the plausible range [1, 50000] rpm "
+            "(docs/ranges.md)");
   const std::string synth = Bundled("matec-2018-synth.toml");
   EXPECT_NO_THROW(ParseSynthesisFile(synth, "s.toml"));
-  try {
-    ParseSynthesisFile(Replace(synth, "base_radius_mm = 10", "base_radius_mm = 2e7"), "s.toml");
-    FAIL() << "a base radius of 20 km was taken";
-  } catch (const CaseError& e) {
-    EXPECT_STREQ(e.what(),
-                 "s.toml: [checks] base_radius_mm: 2e+07 mm is outside the plausible range [0, "
-                 "2000] mm (docs/ranges.md)");
-  }
+  EXPECT_EQ(CaseErrorOf([&] {
+              ParseSynthesisFile(Replace(synth, "base_radius_mm = 10", "base_radius_mm = 2e7"),
+                                 "s.toml");
+            }),
+            "s.toml: [checks] base_radius_mm: 2e+07 mm is outside the plausible range [0, 2000] "
+            "mm (docs/ranges.md)");
 }
 
 // A case writer names each key through the list: a key it does not declare, or a unit that is
@@ -104,14 +110,9 @@ TEST(CaseKeysTest, FinishHoldsAValueToItsDeclaredRange) {
   toml::table train = toml::parse("play_mm = 20\n");
   SectionReader r(&train, "t.toml", "train", CaseFileKeys());
   r.OptionalQuantity("play", Dimension::kLength);
-  try {
-    r.Finish();
-    FAIL() << "a play of 20 mm was taken";
-  } catch (const CaseError& e) {
-    EXPECT_STREQ(e.what(),
-                 "t.toml: [train] play_mm: 20 mm is outside the plausible range [0, 10] mm "
-                 "(docs/ranges.md)");
-  }
+  EXPECT_EQ(CaseErrorOf([&] { r.Finish(); }),
+            "t.toml: [train] play_mm: 20 mm is outside the plausible range [0, 10] mm "
+            "(docs/ranges.md)");
 }
 
 // The block of generated document `page` (docs/…) between `begin` and `end` is `table`; with
