@@ -149,12 +149,13 @@ MethodChoice AutoMethod(const Scene& scene, double speed_rpm, double rtol) {
 
 void SimulationOptions::Validate() const {
   integrator.Validate();
-  RequireField(settle_limit_deg > 0.0 && settle_limit_deg <= 36000.0, "SimulationOptions",
-               "settle_limit_deg", settle_limit_deg, "must be in (0, 36000]");
-  RequireField(cycles >= 1 && cycles <= kMaxCycles, "SimulationOptions", "cycles",
-               static_cast<long>(cycles), "must be in [1, " + std::to_string(kMaxCycles) + "]");
-  RequireField(period_tolerance > 0.0 && period_tolerance <= 1e-2, "SimulationOptions",
-               "period_tolerance", period_tolerance, "must be in (0, 1e-2]");
+  const FieldRules require{"SimulationOptions"};
+  require(settle_limit_deg > 0.0 && settle_limit_deg <= 36000.0, "settle_limit_deg",
+          settle_limit_deg, "must be in (0, 36000]");
+  require(cycles >= 1 && cycles <= kMaxCycles, "cycles", static_cast<long>(cycles),
+          "must be in [1, " + std::to_string(kMaxCycles) + "]");
+  require(period_tolerance > 0.0 && period_tolerance <= 1e-2, "period_tolerance", period_tolerance,
+          "must be in (0, 1e-2]");
   if (!grid_rad.empty() && cycles != 1) {
     throw std::invalid_argument("SimulationOptions.grid_rad needs cycles = 1, got " +
                                 std::to_string(cycles));

@@ -4,6 +4,7 @@
 /// stated, as Ceres' Solver::Options::IsValid): the struct, the field, its value and the rule
 /// it breaks. what() reads "Owner.field = value: rule"; a reader of an input file catches it and
 /// names the field as its user wrote it (apps/case/section_reader.h, SectionReader::Validated).
+/// FieldRules states a struct's rules.
 
 #include <stdexcept>
 #include <string>
@@ -25,16 +26,20 @@ struct FieldError : std::invalid_argument {
   std::string rule;   ///< what it must be ("must be positive", "must be in [0, 1]")
 };
 
-/// Throws FieldError(owner, field, value, rule) unless `ok`: a real-valued member.
-inline void RequireField(bool ok, const char* owner, const std::string& field, double value,
-                         const std::string& rule) {
-  if (!ok) throw FieldError(owner, field, std::to_string(value), value, rule);
-}
-
-/// The same for a whole-numbered member (a count, a budget).
-inline void RequireField(bool ok, const char* owner, const std::string& field, long value,
-                         const std::string& rule) {
-  if (!ok) throw FieldError(owner, field, std::to_string(value), static_cast<double>(value), rule);
-}
+/// The rules of one struct's Validate(), naming the struct in what():
+///     const FieldRules require{"SpringParameters"};
+///     require(preload_N >= 0.0, "preload_N", preload_N, "must not be negative");
+struct FieldRules {
+  const char* owner;
+  /// Throws FieldError unless `ok`: a real-valued member (what() shows std::to_string of it).
+  void operator()(bool ok, const std::string& field, double value, const std::string& rule) const {
+    if (!ok) throw FieldError(owner, field, std::to_string(value), value, rule);
+  }
+  /// The same for a whole-numbered member (a count, a budget).
+  void operator()(bool ok, const std::string& field, long value, const std::string& rule) const {
+    if (!ok)
+      throw FieldError(owner, field, std::to_string(value), static_cast<double>(value), rule);
+  }
+};
 
 }  // namespace needle

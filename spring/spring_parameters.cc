@@ -7,19 +7,16 @@
 namespace needle {
 
 void NeedleParameters::Validate() const {
-  RequireField(mass_kg > 0.0 && std::isfinite(mass_kg), "NeedleParameters", "mass_kg", mass_kg,
-               "must be positive");
+  const FieldRules require{"NeedleParameters"};
+  require(mass_kg > 0.0 && std::isfinite(mass_kg), "mass_kg", mass_kg, "must be positive");
   if (diameter_m)
-    RequireField(*diameter_m > 0.0 && std::isfinite(*diameter_m), "NeedleParameters", "diameter_m",
-                 *diameter_m, "must be positive");
-  RequireField(std::isfinite(gas_force_N), "NeedleParameters", "gas_force_N", gas_force_N,
-               "must be finite");
+    require(*diameter_m > 0.0 && std::isfinite(*diameter_m), "diameter_m", *diameter_m,
+            "must be positive");
+  require(std::isfinite(gas_force_N), "gas_force_N", gas_force_N, "must be finite");
 }
 
 void SpringParameters::Validate() const {
-  const auto require = [](bool ok, const char* field, double value, const char* rule) {
-    RequireField(ok, "SpringParameters", field, value, rule);
-  };
+  const FieldRules require{"SpringParameters"};
   require(preload_N >= 0.0 && std::isfinite(preload_N), "preload_N", preload_N,
           "must not be negative");
   if (rate_N_m)

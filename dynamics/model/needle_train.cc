@@ -16,7 +16,7 @@ namespace needle {
 namespace {
 
 void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-  RequireField(ok, "TrainParameters", field, value, rule);
+  FieldRules{"TrainParameters"}(ok, field, value, rule);
 }
 
 }  // namespace
@@ -24,9 +24,7 @@ void Require(bool ok, const std::string& field, double value, const std::string&
 void ContactParameters::Validate() const { ValidateContacts("ContactParameters"); }
 
 void ContactParameters::ValidateContacts(const char* owner) const {
-  const auto require = [owner](bool ok, const char* field, double value, const char* rule) {
-    RequireField(ok, owner, field, value, rule);
-  };
+  const FieldRules require{owner};
   if (contact == ContactKind::kCompliant) {  // the compliant law's own parameters
     require(contact_stiffness_N_m > 0.0 && std::isfinite(contact_stiffness_N_m),
             "contact_stiffness_N_m", contact_stiffness_N_m, "must be positive");

@@ -126,9 +126,7 @@ std::string RtolRangeText() {
 }
 
 void IntegratorOptions::Validate() const {
-  const auto require = [](bool ok, const char* field, auto value, const std::string& rule) {
-    RequireField(ok, "IntegratorOptions", field, value, rule);
-  };
+  const FieldRules require{"IntegratorOptions"};
   require(rtol >= kMinRtol && rtol <= kMaxRtol, "rtol", rtol, "must be in " + RtolRangeText());
   require(atol_m > 0.0 && std::isfinite(atol_m), "atol_m", atol_m, "must be positive");
   require(atol_m_s >= 0.0 && std::isfinite(atol_m_s), "atol_m_s", atol_m_s,
