@@ -151,7 +151,7 @@ void SimulationOptions::Validate() const {
   integrator.Validate();
   const FieldRules require{"SimulationOptions"};
   require(settle_limit_deg > 0.0 && settle_limit_deg <= 36000.0, "settle_limit_deg",
-          settle_limit_deg, "must be in (0, 36000]");
+          settle_limit_deg, "must be in (0, 36000] deg");
   require(cycles >= 1 && cycles <= kMaxCycles, "cycles", static_cast<long>(cycles),
           "must be in [1, " + std::to_string(kMaxCycles) + "]");
   require(period_tolerance > 0.0 && period_tolerance <= 1e-2, "period_tolerance", period_tolerance,

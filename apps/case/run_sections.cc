@@ -58,7 +58,8 @@ TrainSection ReadTrain(SectionReader r) {
   }
   r.Validated([&t] { t.ContactParameters::Validate(); });  // the laws' one rule
   if (auto play = r.OptionalQuantity("play", Dimension::kLength)) {
-    if (!(*play >= 0.0)) r.Fail("play_mm", "must not be negative, got " + Number(*play * 1e3));
+    if (!(*play >= 0.0))
+      r.Fail(r.last_key(), "must not be negative, got " + Number(*play * 1e3) + " mm");
     t.play_m = *play;
   }
   r.Known("ramp");
@@ -69,7 +70,7 @@ TrainSection ReadTrain(SectionReader r) {
   if (ramp && ramp_angle) r.Fail("ramp", "give ramp = \"tangent\" or ramp_deg, not both");
   if (ramp_angle) {
     if (!(*ramp_angle > 0.0))
-      r.Fail("ramp_deg", "must be positive, got " + Number(*ramp_angle / kDeg));
+      r.Fail(r.last_key(), "must be positive, got " + Number(*ramp_angle / kDeg) + " deg");
     t.linear_ramp = true;
     t.ramp_rad = *ramp_angle;
   }

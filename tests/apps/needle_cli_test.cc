@@ -424,7 +424,7 @@ TEST(NeedleCliDynamicsTest, BadTrainInputIsOneLineAndExitTwo) {
       {"mass_kg = 1.2", "mass_kg = 0", "[needle] mass_kg: must be positive, got 0 kg\n"},
       {"contact_stiffness_N_m = 2e8", "contact_stiffness_N_m = -2e8",
        "[train] contact_stiffness_N_m: must be positive, got -2e+08 N/m\n"},
-      {"play_mm = 0.5", "play_mm = -0.5", "[train] play_mm: must not be negative, got -0.5\n"},
+      {"play_mm = 0.5", "play_mm = -0.5", "[train] play_mm: must not be negative, got -0.5 mm\n"},
       {"contact_damping_ratio = 0.05", "contact_damping_ratio = -0.05",
        "[train] contact_damping_ratio: must not be negative, got -0.05\n"},
   };

@@ -351,7 +351,7 @@ TEST(CaseFileTest, SynthesisAndSolverRanges) {
   EXPECT_EQ(Error(kGood + "[spring]\npreload_N = 100\nrate_N_mm = 1e308\n"),
             "t.toml: [spring] rate_N_mm: is 1e+308; expected a magnitude of at most 1e15");
   EXPECT_EQ(Error(kGood + "[solver]\nsettle_deg = 0\n"),
-            "t.toml: [solver] settle_deg: must be in (0, 36000], got 0 deg");
+            "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 0 deg");
   std::remove(path.c_str());
 }
 
@@ -893,7 +893,7 @@ TEST(CaseFileTest, TheSolverKeysAreReadAndBounded) {
             "86401");
   EXPECT_DOUBLE_EQ(solver("settle_deg = 36000").run.settle_limit_deg, 36000.0);
   EXPECT_EQ(error("settle_deg = 36001"),
-            "t.toml: [solver] settle_deg: must be in (0, 36000], got 36001 deg");
+            "t.toml: [solver] settle_deg: must be in (0, 36000] deg, got 36001 deg");
   EXPECT_DOUBLE_EQ(*solver("start_deg = -20").start_rad, -20 * kDeg);
   EXPECT_FALSE(solver("start_deg = -20").end_rad);
   EXPECT_EQ(error("start_deg = 10\nend_deg = 5"),
@@ -1126,6 +1126,12 @@ TEST(CaseFileTest, TheModulesValidateIsTheReadersRule) {
   run.settle_limit_deg = 700.0 / kDeg;  // the member is in degrees, the key as written in rad
   EXPECT_EQ(Error(kGood + "[solver]\nsettle_rad = 700\n"),
             "t.toml: [solver] settle_rad: " + rule(run) + ", got 700 rad");
+  EXPECT_EQ(rule(run), "must be in (0, 36000] deg");  // its bounds' unit beside a value in rad
+  // The reader's own rules name the key as written, too.
+  EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_m = 1e9\nplay_um = -20\n"),
+            "t.toml: [train] play_um: must not be negative, got -0.02 mm");
+  EXPECT_EQ(Error(kGood + "[train]\ncontact_stiffness_N_m = 1e9\nramp_rad = -1\n"),
+            "t.toml: [train] ramp_rad: must be positive, got -57.2958 deg");
 }
 
 // Every key of the one list (apps/case/case_keys.cc) is read by its section's reader: set in a
