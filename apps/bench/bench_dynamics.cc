@@ -296,29 +296,52 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
   return md.str();
 }
 
-// The long chain (issue 33: measured, and not made slower by the closed form's work): the surge
-// scene's 20 coil masses at its 520 rpm, as `needle simulate` runs it (auto: dopri5, the closed
-// form takes one mass), median of 5 × repeats runs; its steps and right-hand-side evaluations
-// say whether a slower time is the machine or the method.
+// The coil chain by method "exact" (issue 53) against the time stepper auto takes (dopri5 at the
+// case's tolerance) and dopri5 at rtol 1e-12: the surge scene's chain of 20 and of 40 coil
+// masses at 520 rpm, forced dynamic, as `needle simulate` runs it; medians of 5 × repeats
+// interleaved runs, with each run's steps, energy residual and least coil gap.
 std::string LongChainRow(int repeats) {
   const BoundCase c = BindBundled("basu-example1-surge.toml");
-  const Scene scene = *c.scene;
-  SimulationOptions o = c.run;
-  o.force_dynamic = true;
-  std::vector<double> times;
-  SimulationResult last;
-  for (int r = 0; r < 5 * repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    last = Simulate(scene, 520.0, o);
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  std::sort(times.begin(), times.end());
   std::ostringstream md;
-  md << "The long chain: `basu-example1-surge` (" << scene.train.coil_masses
-     << " coil masses) at 520 rpm, method " << last.method << ": "
-     << Num(times[times.size() / 2] * 1e3) << " ms, " << last.stats.steps << " steps, "
-     << last.stats.rhs_evaluations << " right-hand-side evaluations (median of " << times.size()
-     << " runs).\n\n";
+  md << "### The coil chain by method exact\n\n"
+     << "`basu-example1-surge` at 520 rpm, forced dynamic, its 4 revolutions; medians of "
+     << 5 * repeats << " interleaved runs.\n\n"
+     << "| coil masses | method | ms | steps | energy residual | least coil gap mm |\n"
+     << "|---|---|---|---|---|---|\n";
+  for (const int masses : {20, 40}) {
+    Scene scene = *c.scene;
+    scene.train.coil_masses = masses;
+    struct Run {
+      std::string method;
+      double rtol;
+      std::vector<double> times;
+      SimulationResult last;
+    };
+    std::vector<Run> runs = {{"auto", c.run.integrator.rtol, {}, {}},
+                             {"dopri5", 1e-12, {}, {}},
+                             {"exact", c.run.integrator.rtol, {}, {}}};
+    for (int r = 0; r < 5 * repeats; ++r) {
+      for (Run& run : runs) {
+        SimulationOptions o = c.run;
+        o.force_dynamic = true;
+        o.method = run.method;
+        o.integrator.rtol = run.rtol;
+        if (run.rtol == 1e-12) o.integrator.atol_m = DefaultAtol(1e-12);
+        const auto t0 = std::chrono::steady_clock::now();
+        run.last = Simulate(scene, 520.0, o);
+        run.times.push_back(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
+    }
+    for (Run& run : runs) {
+      std::sort(run.times.begin(), run.times.end());
+      md << "| " << masses << " | " << run.last.method << " rtol " << Num(run.rtol) << " | "
+         << Num(run.times[run.times.size() / 2] * 1e3) << " | " << run.last.stats.steps << " | "
+         << Num(run.last.energy_residual) << " | "
+         << (run.last.min_coil_gap_m ? Num(*run.last.min_coil_gap_m * 1e3) : "–") << " |\n";
+    }
+  }
+  md << "\n";
   return md.str();
 }
 

@@ -217,6 +217,11 @@ class NeedleTrain {
   int MeasuredLike(int i) const { return i < 4 ? i : (i < 4 + coils_ ? 0 : 1); }
   /// The needle's mass m in the equation of motion, kg: mass_kg, or mass_kg − m_s/3 + m_s/(2N).
   double NeedleMassKg() const { return needle_mass_kg_; }
+  /// A coil mass m_c = m_s/N, kg, a segment's rate N k, N/m, and its dashpot c, N·s/m (0
+  /// without coil masses).
+  double CoilMassKg() const { return coil_mass_kg_; }
+  double SegmentRateNm() const { return segment_rate_N_m_; }
+  double SegmentDampingNsm() const { return segment_damping_N_s_m_; }
   /// The largest |v_i| of the coil masses, m/s (0 without them).
   double LargestCoilSpeed(const TrainState& x) const;
   /// The largest compression of one segment beyond its installed length, max_j x_{j−1} − x_j,

@@ -51,9 +51,14 @@ Poly Shift(Poly p, double a) {
 
 }  // namespace
 
+int ClosedFormPiece::DegreeOf(const Poly& p) { return Degree(p); }
+
+ClosedFormPiece::Poly ClosedFormPiece::DerivativeOf(const Poly& p) { return needle::Derivative(p); }
+
 ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode,
-                                 double segment_angle_rad, double t0, const TrainState& x0)
-    : train_(train), mode_(mode), t0_(t0), x0_(x0) {
+                                 double segment_angle_rad, double t0, const TrainState& x0,
+                                 const ChainModes* chain)
+    : train_(train), mode_(mode), t0_(t0), x0_(x0), chain_(chain) {
   const TrainParameters& p = train.parameters();
   m_ = p.mass_kg;
   c_ = 0.0;
@@ -81,6 +86,10 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
   if (mode.seat) {
     K_ += train.seat_law().ForceStiffness();
     c_ += train.seat_law().ForceDamping();
+  }
+  if (chain_) {
+    StartChain();
+    return;
   }
 
   // The particular solution.
@@ -152,6 +161,11 @@ void ClosedFormPiece::BasisUncached(double tau, double& ecm1, double& es) const 
 }
 
 std::array<double, 2> ClosedFormPiece::PositionVelocity(double tau) const {
+  if (chain_) {
+    const ChainNeedle& h = ChainAt(tau);
+    return {x0_[0] + (Eval(p_, degree_p_, tau) - p_[0]) + h.dh,
+            x0_[1] + (Eval(dp_, degree_dp_, tau) - dp_[0]) + h.dhv};
+  }
   double ecm1, es;
   Basis(tau, ecm1, es);
   // Written as the change from (y₀, ẏ₀), with φ₀ − 1 = (e^{−στ}C − 1) + σ e^{−στ}S and
@@ -167,6 +181,7 @@ std::array<double, 2> ClosedFormPiece::PositionVelocity(double tau) const {
 std::array<double, 3> ClosedFormPiece::Motion(double t) const {
   const double tau = t - t0_;
   const auto [y, v] = PositionVelocity(tau);
+  if (chain_) return {y, v, Eval(needle::Derivative(dp_), tau) + ChainAt(tau).ha};
   return {y, v, (Eval(f_, tau) - c_ * v - K_ * y) / m_};
 }
 
@@ -184,6 +199,11 @@ double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
 }
 
 TrainState ClosedFormPiece::State(double t) const {
+  if (chain_) {
+    // The chain's W and D by the 10-point rule on parts of at most LongestStep().
+    if (t <= t0_) return x0_;
+    return StateByQuadrature(t, static_cast<int>(std::ceil((t - t0_) / longest_step_)));
+  }
   const std::array<double, 3> now = Motion(t);
   TrainState x = {now[0], now[1], x0_[2], x0_[3]};
   if (t <= t0_) return x;
@@ -197,6 +217,11 @@ TrainState ClosedFormPiece::State(double t) const {
 TrainState ClosedFormPiece::StateByQuadrature(double t, int parts) const {
   const std::array<double, 3> now = Motion(t);
   TrainState x = {now[0], now[1], x0_[2], x0_[3]};
+  if (chain_) {
+    x = ChainState(t - t0_);
+    x[2] = x0_[2];
+    x[3] = x0_[3];
+  }
   if (t <= t0_) return x;
   using Rule = boost::math::quadrature::gauss<double, 10>;
   const Phase phase{mode_};
@@ -207,8 +232,12 @@ TrainState ClosedFormPiece::StateByQuadrature(double t, int parts) const {
     for (size_t i = 0; i < Rule::abscissa().size(); ++i) {
       for (const double sign : {-1.0, 1.0}) {
         const double s = mid + sign * half * Rule::abscissa()[i];
-        const std::array<double, 3> at = Motion(s);
-        train_.Derivative({at[0], at[1], 0.0, 0.0}, s, phase, dxdt);
+        if (chain_) {
+          train_.Derivative(ChainState(s - t0_), s, phase, dxdt);
+        } else {
+          const std::array<double, 3> at = Motion(s);
+          train_.Derivative({at[0], at[1], 0.0, 0.0}, s, phase, dxdt);
+        }
         x[2] += half * Rule::weights()[i] * dxdt[2];
         x[3] += half * Rule::weights()[i] * dxdt[3];
       }
@@ -360,6 +389,7 @@ std::array<double, 2> ClosedFormPiece::HomogeneousAt(double t) const {
 }
 
 const ClosedFormPiece::HomogeneousStart& ClosedFormPiece::StartAt(double t) const {
+  if (chain_ && t != start_.t) ChainStart(t);
   if (t != start_.t) {
     const std::array<double, 2> hh = HomogeneousAt(t);
     HomogeneousStart& s = start_;

@@ -31,10 +31,19 @@
 /// Root isolation needs bounds: for a witness that is a linear form of (y, ẏ, u, u̇) (see
 /// LinearForm), Bounds() gives |w'| and |w''| over an interval, from the polynomial part's
 /// coefficients and the homogeneous part's energy ½mh'² + ½Kh², which never grows (c ≥ 0).
+///
+/// The coil chain ([spring] masses > 1, without coil clash) takes the same form with y, P and h
+/// the needle's entries of the chain's vectors (chain_modes.h): P from the chain's recurrence,
+/// h(τ) = Re Σ_k α_k e^{λ_k τ} over its modes. Its bounds come from the modal sum, each term
+/// decaying (Re λ_k ≤ 0): |h⁽ʲ⁾(τ)| ≤ Σ_k |α_k| |λ_k|ʲ e^{Re λ_k τ_a} for τ ≥ τ_a. Its audit
+/// integrals W and D are taken by the 10-point rule on parts no longer than LongestStep() (the
+/// chain's dashpots make its ∫ c ṡ² a sum over pairs of modes).
 
+#include <Eigen/Dense>
 #include <array>
 
 #include "dynamics/model/needle_train.h"
+#include "dynamics/solver/chain_modes.h"
 #include "dynamics/solver/contact_events.h"
 
 namespace needle {
@@ -58,10 +67,11 @@ class ClosedFormPiece {
   using Poly = std::array<double, kMaxDegree + 1>;
 
   /// The piece of `train` in `mode` from (t₀, x₀) on the cam's segment holding angle
-  /// `segment_angle_rad`, under linear contact laws (ExactRefusal is nullopt). Throws
+  /// `segment_angle_rad`, under linear contact laws (ExactRefusal is nullopt); `chain` is the
+  /// chain's modes in `mode` when the train has coil masses (else nullptr). Throws
   /// std::invalid_argument when the cam piece's degree is above 6.
   ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode, double segment_angle_rad,
-                  double t0, const TrainState& x0);
+                  double t0, const TrainState& x0, const ChainModes* chain = nullptr);
 
   /// The state [y, ẏ, W, D] at t (any t ≥ t₀; exact for y, ẏ).
   TrainState State(double t) const;
@@ -70,6 +80,11 @@ class ClosedFormPiece {
   TrainState StateByQuadrature(double t, int parts) const;
   /// y, ẏ, ÿ at t.
   std::array<double, 3> Motion(double t) const;
+  /// The train's state at t with W and D at 0: y and ẏ (one mass), and the coils' lifts and
+  /// velocities (the chain).
+  TrainState MotionState(double t) const;
+  /// Whether the piece carries a coil chain.
+  bool Chain() const { return chain_ != nullptr; }
   /// y and ẏ at t (Motion's first two, without ÿ).
   std::array<double, 2> LiftAndSpeed(double t) const { return PositionVelocity(t - t0_); }
   /// The cam input u and its rate u̇ at t on the piece's own polynomials (the train's own
@@ -99,7 +114,8 @@ class ClosedFormPiece {
   }
   /// The same with the form's polynomial in s = t − t_a (FormPolynomial) given.
   FormRange Range(const LinearForm& form, const Poly& q, double t_a, double t_b) const;
-  /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds.
+  /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds
+  /// (one mass only: a chain's needle trades energy with its coils).
   double HomogeneousEnergy(double t) const;
   /// Stiffness K (N/m), mass m (kg) and whether the cam input is constant on the piece.
   double stiffness() const { return K_; }
@@ -108,7 +124,7 @@ class ClosedFormPiece {
   bool InputConstant() const;
   /// At rest for good: no homogeneous part (y₀ and ẏ₀ are the particular solution's, exactly),
   /// a constant forcing and input, so that y and ẏ keep their starting bits at every t.
-  bool Frozen() const { return Y0_ == 0.0 && V0_ == 0.0 && ForcingConstant() && InputConstant(); }
+  bool Frozen() const { return HomogeneousZero() && ForcingConstant() && InputConstant(); }
   /// Whether the forcing f(τ) is constant on the piece (then ÿ = −(K h + c h′)/m: the net force
   /// on the needle is the homogeneous part's alone).
   bool ForcingConstant() const;
@@ -137,6 +153,23 @@ class ClosedFormPiece {
     double lift_amplitude = 0.0;
   };
   const HomogeneousStart& StartAt(double t_a) const;
+  // The chain's particular solution, modal coefficients and step (the constructor's rest).
+  void StartChain();
+  // StartAt's homogeneous start for the chain, from the modal sum.
+  void ChainStart(double t) const;
+  // Degree() and the derivative of a polynomial, for both files of the piece.
+  static int DegreeOf(const Poly& p);
+  static Poly DerivativeOf(const Poly& p);
+  // No homogeneous part at all: the start is the particular solution's, to the bit.
+  bool HomogeneousZero() const;
+  // The chain's needle entries at τ: h(τ) − h(0), h′(τ) − h′(0) and h″(τ) (cached by τ), and
+  // the modes' e^{λ_k τ} − 1 in grow_.
+  struct ChainNeedle {
+    double tau = -1e300, dh = 0.0, dhv = 0.0, ha = 0.0;
+  };
+  const ChainNeedle& ChainAt(double tau) const;
+  // The chain's whole state at τ, W and D at 0.
+  TrainState ChainState(double tau) const;
   // e^{−στ}C − 1 and e^{−στ}S at τ ≥ 0.
   void Basis(double tau, double& ecm1, double& es) const;
   void BasisUncached(double tau, double& ecm1, double& es) const;
@@ -162,6 +195,16 @@ class ClosedFormPiece {
   // the bounds of the half that starts there).
   mutable double basis_tau_ = -1e300, basis_ecm1_ = 0.0, basis_es_ = 0.0;
   mutable HomogeneousStart start_;
+  // The coil chain: its modes in this contact mode (nullptr for one mass), the particular
+  // solution of every node (N × (kMaxDegree + 1), row 0 is p_), the modal coefficients w_k c_k
+  // of the start's homogeneous part, the needle's α_k = w_k V₀ₖ c_k, and the modes' e^{λτ} − 1.
+  const ChainModes* chain_ = nullptr;
+  Eigen::MatrixXd chain_p_;
+  Eigen::VectorXcd chain_c_, alpha_;
+  bool chain_rest_ = false;
+  Eigen::MatrixXd chain_real_;         // [Re(V diag(w c)), −Im(V diag(w c))]
+  mutable Eigen::VectorXd grow_, dz_;  // [Re; Im] of e^{λτ} − 1, and the state's change
+  mutable ChainNeedle chain_at_;
 };
 
 }  // namespace needle

@@ -200,6 +200,8 @@ class Recorder {
   size_t next_grid() const { return grid_.size(); }
   const std::vector<GridPoint>& grid() const { return grid_; }
   double max_lift_m() const { return max_lift_; }
+  /// The largest compression of one segment of the chain beyond its installed length, m.
+  double max_segment_compression_m() const { return max_segment_compression_m_; }
   double max_lift_rad() const { return max_lift_rad_; }
   double max_contact_force_N() const { return max_fc_; }
   /// The least cam contact force while the cam lifts the needle (OnCamWindow, until the needle

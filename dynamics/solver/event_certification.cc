@@ -194,11 +194,15 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   if (!recorder_.MayChange(ranges, lift_covered, true)) return;
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
   const double min_fc = recorder_.min_contact_force_during_lift_N();
-  // The three forces at x, each signed so that its extreme is a minimum.
-  const auto forces = [&](double t, const TrainState& x) {
+  const double max_compression = recorder_.max_segment_compression_m();
+  // The three forces at x, each signed so that its extreme is a minimum, and a chain's largest
+  // segment compression (the least coil gap, where the run reports it), negated.
+  const bool chain_gap = train_.Coils() > 0 && train_.parameters().coil_travel_m > 0.0;
+  const auto extremes = [&](double t, const TrainState& x) {
     const Contacts c = train_.Evaluate(x, t, phase);
     const double fc = train_.AppliedCamForce(c, phase);
-    return std::array<double, 3>{-fc, -train_.AppliedSeatForce(c, phase), fc};
+    return std::array<double, 4>{-fc, -train_.AppliedSeatForce(c, phase), fc,
+                                 chain_gap ? -train_.LargestSegmentCompression(x) : 0.0};
   };
   // The sample screen: the seat force from y and ẏ alone (the train's own bits); the cam force
   // from the piece's input, within kAllowance of the cam's scale (the two inputs differ by
@@ -207,10 +211,11 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   const ContactLaw& cam = train_.cam_law();
   const ContactLaw& seat = train_.seat_law();
   std::array<double, n + 1> ts;
-  std::array<std::array<double, n + 1>, 3> f;
+  std::array<std::array<double, n + 1>, 4> f;
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
     const TrainState x = Motion(ts[k]);
+    f[3][k] = chain_gap ? -train_.LargestSegmentCompression(x) : 0.0;
     if (screen && k > 0 && k < n) {
       const std::array<double, 2> in = piece.Input(ts[k]);
       const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;
@@ -239,9 +244,10 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     f[2][k] = fc;
     if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase, c);
   }
-  const std::array<double, 3> record = {-max_fc, -max_fs, min_fc};
+  const std::array<double, 4> record = {-max_fc, -max_fs, min_fc, -max_compression};
   // A lift-off run locates only the least contact force (Recorder::set_liftoff_only).
-  for (int which = recorder_.liftoff_only() ? 2 : 0; which < 3; ++which) {
+  const int last = chain_gap && !recorder_.liftoff_only() ? 4 : 3;
+  for (int which = recorder_.liftoff_only() ? 2 : 0; which < last; ++which) {
     const auto& v = f[which];
     const int k = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
     // Only a new record inside the step, and for the least contact force one while pushing.
@@ -252,7 +258,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     const double base = ts[k - 1], width = ts[k + 1] - ts[k - 1];
     const auto at = [&](double d) { return base + d * width; };
     const auto best = boost::math::tools::brent_find_minima(
-        [&](double d) { return forces(at(d), Motion(at(d)))[which]; }, 0.0, 1.0,
+        [&](double d) { return extremes(at(d), Motion(at(d)))[which]; }, 0.0, 1.0,
         std::numeric_limits<double>::digits / 2, iterations);
     recorder_.Sample(at(best.first), Motion(at(best.first)), phase);
   }

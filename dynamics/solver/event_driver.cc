@@ -133,7 +133,8 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
     // H = ½ m h′² + ½ K h² ≤ ½ m v_r² + ½ (F_r + c v_r)²/K. H never grows: above four times
     // that at hi, no time up to hi is at rest, and none is sampled.
     const double K = piece->stiffness(), c = piece->damping(), m = piece->mass();
-    if (o_.leave_out && !phase.gated && K > 0.0 && piece->ForcingConstant()) {
+    // (One mass only: a chain's needle trades energy with its coils.)
+    if (o_.leave_out && !phase.gated && !piece->Chain() && K > 0.0 && piece->ForcingConstant()) {
       const double f = recorder_.RestForceTolerance() + c * kRestSpeed_m_s;
       const double rest_energy = 0.5 * m * kRestSpeed_m_s * kRestSpeed_m_s + 0.5 * f * f / K;
       if (piece->HomogeneousEnergy(hi) > 4.0 * rest_energy) return std::nullopt;

@@ -80,6 +80,11 @@ class EventDriver {
     if (const ClosedFormPiece* piece = stepper_->ClosedForm()) {
       // The closed form's y and ẏ without ÿ and the state's copies: the bits the backend's
       // scaled state would give (one mass: y, ẏ, and W, D left at 0).
+      if (piece->Chain()) {  // the coils' lifts and velocities too
+        TrainState x = piece->MotionState(t);
+        for (size_t i = 0; i < x.size(); ++i) x[i] = system_.RoundTrip(static_cast<int>(i), x[i]);
+        return x;
+      }
       const std::array<double, 2> yv = piece->LiftAndSpeed(t);
       return {system_.RoundTrip(0, yv[0]), system_.RoundTrip(1, yv[1]), 0.0, 0.0};
     }

@@ -4,6 +4,7 @@
 // oscillation, whichever comes first, unless the driver lets it run on (SetLongest: a stretch in
 // which nothing recorded can change); its dense output is the closed form itself. The driver
 // bounds the witnesses on it (ClosedFormPiece::Bounds) so no crossing is missed.
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -34,7 +35,8 @@ class ExactStepper final : public Stepper {
     // next break, so both ends belong to one segment even where t sits on a break up to
     // round-off).
     const double limit = std::isfinite(stop_) ? stop_ : t_ + 1.0;
-    piece_.emplace(train, system_.phase.mode, train.Angle(0.5 * (t_ + limit)), t_, x_);
+    piece_.emplace(train, system_.phase.mode, train.Angle(0.5 * (t_ + limit)), t_, x_,
+                   Modes(system_.phase.mode));
     const double start = t_;
     const double cap = t_ + piece_->LongestStep();
     t_ = cap < stop_ && longest_ ? std::max(cap, std::min(stop_, longest_(*piece_, t_, cap, stop_)))
@@ -45,8 +47,7 @@ class ExactStepper final : public Stepper {
   }
   void CalcState(double t, TrainState& z) override { z = system_.ToScaled(StateAt(t)); }
   void CalcMotion(double t, TrainState& z) override {
-    const std::array<double, 3> m = piece_->Motion(t);
-    z = system_.ToScaled({m[0], m[1], 0.0, 0.0});
+    z = system_.ToScaled(piece_->MotionState(t));
   }
   TrainState CurrentState() const override { return system_.ToScaled(x_); }
   double CurrentTime() const override { return t_; }
@@ -61,11 +62,25 @@ class ExactStepper final : public Stepper {
   // The state at t: with the audit's W and D, or (no audit) with the piece's start values.
   TrainState StateAt(double t) const {
     if (audit_) return piece_->State(t);
+    if (piece_->Chain()) {
+      TrainState x = piece_->MotionState(t);
+      x[2] = x_[2];
+      x[3] = x_[3];
+      return x;
+    }
     const std::array<double, 3> m = piece_->Motion(t);
     TrainState x = x_;
     x[0] = m[0];
     x[1] = m[1];
     return x;
+  }
+  // The coil chain's modes in `mode`, made when first asked (a run meets at most four modes:
+  // the cam and the seat pushing or not); nullptr for one mass.
+  const ChainModes* Modes(const ContactMode& mode) {
+    if (system_.train().Coils() == 0) return nullptr;
+    std::unique_ptr<ChainModes>& m = modes_[(mode.cam ? 1 : 0) + (mode.seat ? 2 : 0)];
+    if (!m) m = std::make_unique<ChainModes>(system_.train(), mode);
+    return m.get();
   }
 
   TrainSystem& system_;
@@ -73,15 +88,20 @@ class ExactStepper final : public Stepper {
   TrainState x_{};
   double t_ = 0.0, step_ = 0.0, stop_ = 0.0;
   std::optional<ClosedFormPiece> piece_;
+  std::array<std::unique_ptr<ChainModes>, 4> modes_;
   std::function<double(const ClosedFormPiece&, double, double, double)> longest_;
 };
 
 }  // namespace
 
 std::optional<std::string> ExactRefusal(const NeedleTrain& train) {
-  if (train.Coils() > 0) {
+  if (train.ClashSegments() > 0) {
     return std::string(
-        "method \"exact\" carries one mass; the spring has coil masses ([spring] masses > 1)");
+        "method \"exact\" carries no coil clash; the spring's coils may clash ([spring] "
+        "clash = true)");
+  }
+  if (train.Coils() > 0 && !(train.parameters().rate_N_m > 0.0)) {
+    return std::string("method \"exact\" needs a coil chain with a spring rate above 0");
   }
   for (const ContactLaw* law : {&train.cam_law(), &train.seat_law()}) {
     if (!law->Linear()) {

@@ -1,0 +1,66 @@
+#pragma once
+/// @file
+/// Internal to the solver: the coil chain's free motion in one contact mode, by its modes
+/// (method "exact" with [spring] masses > 1, docs/model.md §9). In a contact mode, without coil
+/// clash, the chain of docs/model.md §4a is linear with constant coefficients:
+///
+///     M q̈ + C q̇ + K q = f(τ) e₀,   q = [y, x₁ … x_{N−1}],   M = diag(m, m_c, …, m_c),
+///     K, C tridiagonal from the N segments (rate N k, dashpot c; the last one ends at the fixed
+///     seat of the spring), with k_c + k_s and c_c + c_s added on the needle where the cam and
+///     the seat push; f(τ) = k_c u + c_c u̇ [cam] − P₀ + F_g, the forcing of the one-mass form.
+///
+/// In first-order form z = [q, q̇], ż = A z + f(τ) [0, e₀/m], A = [[0, I], [−M⁻¹K, −M⁻¹C]]. Its
+/// free motion is z_h(τ) = V e^{Λτ} V⁻¹ z_h(0) from A's eigen decomposition (complex: the exact
+/// first-order propagator, for any damping, proportional to the segments' rates or not, as the
+/// contacts' dashpots make it). K is positive definite (the chain is held at its fixed end), so
+/// the polynomial particular solution comes from K⁻¹ by the recurrence
+///
+///     K a_j + C (j+1) a_{j+1} + M (j+2)(j+1) a_{j+2} = f_j e₀,   from the top degree down.
+///
+/// A train holds at most four such modes (cam, seat, both, none): the stepper keeps them.
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "dynamics/model/needle_train.h"
+
+namespace needle {
+
+class ChainModes {
+ public:
+  /// The chain of `train` (Coils() > 0, linear contact laws, no coil clash) in `mode`. Throws
+  /// std::invalid_argument when K is not positive definite (a spring without rate) or when the
+  /// eigenvectors do not reproduce A to 1e-9 (a defective A: critically damped modes).
+  ChainModes(const NeedleTrain& train, const ContactMode& mode);
+
+  /// N: the needle and the N − 1 coil masses.
+  int Dofs() const { return dofs_; }
+  /// Stiffness, damping and mass of the needle's own row: K₀₀, C₀₀, m.
+  double NeedleStiffness() const { return K_(0, 0); }
+  double NeedleDamping() const { return C_(0, 0); }
+  double NeedleMass() const { return mass_[0]; }
+  /// The mode's first-order eigenvalues λ_k, one of each conjugate pair (Im λ ≥ 0) with its
+  /// weight w_k (2 for a pair, 1 for a real one): z_h = Σ_k w_k Re(V_k c_k e^{λ_k τ}).
+  const Eigen::VectorXcd& Lambda() const { return lambda_; }
+  const Eigen::VectorXd& Weight() const { return weight_; }
+  /// V's rows for those λ_k (2N × count) and V⁻¹'s rows (count × 2N).
+  const Eigen::MatrixXcd& Vectors() const { return vectors_; }
+  const Eigen::MatrixXcd& Inverse() const { return inverse_; }
+  /// max |λ_k|, rad/s: the fastest mode.
+  double Fastest() const { return fastest_; }
+  /// The particular solution's coefficients, N × (degree + 1), for the needle's forcing
+  /// coefficients f_j (j = 0 … degree): column j is a_j.
+  Eigen::MatrixXd Particular(const double* f, int degree) const;
+
+ private:
+  int dofs_;
+  Eigen::MatrixXd K_, C_;
+  Eigen::VectorXd mass_;
+  Eigen::LLT<Eigen::MatrixXd> stiffness_;
+  Eigen::VectorXcd lambda_;
+  Eigen::VectorXd weight_;
+  Eigen::MatrixXcd vectors_, inverse_;
+  double fastest_ = 0.0;
+};
+
+}  // namespace needle
