@@ -338,7 +338,7 @@ std::string LongChainRow(int repeats) {
       md << "| " << masses << " | " << run.last.method << " rtol " << Num(run.rtol) << " | "
          << Num(run.times[run.times.size() / 2] * 1e3) << " | " << run.last.stats.steps << " | "
          << Num(run.last.energy_residual) << " | "
-         << (run.last.min_coil_gap_m ? Num(*run.last.min_coil_gap_m * 1e3) : "–") << " |\n";
+         << (run.last.min_coil_gap_m ? Num(*run.last.min_coil_gap_m * 1e3, 10) : "–") << " |\n";
     }
   }
   md << "\n";
