@@ -1,14 +1,26 @@
 #include "dynamics/solver/chain_modes.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace needle {
 
 ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     : dofs_(train.Coils() + 1) {
+  Assemble(train, mode);
+  stiffness_.compute(K_);
+  if (stiffness_.info() != Eigen::Success || !(train.SegmentRateNm() > 0.0)) {
+    throw std::invalid_argument("method \"exact\": the coil chain needs a spring rate above 0");
+  }
+  Decompose();
+}
+
+void ChainModes::Assemble(const NeedleTrain& train, const ContactMode& mode) {
   const int n = dofs_;
   const double k = train.SegmentRateNm(), c = train.SegmentDampingNsm();
   K_ = Eigen::MatrixXd::Zero(n, n);
@@ -37,11 +49,10 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     K_(0, 0) += train.seat_law().ForceStiffness();
     C_(0, 0) += train.seat_law().ForceDamping();
   }
-  stiffness_.compute(K_);
-  if (stiffness_.info() != Eigen::Success || !(k > 0.0)) {
-    throw std::invalid_argument("method \"exact\": the coil chain needs a spring rate above 0");
-  }
+}
 
+void ChainModes::Decompose() {
+  const int n = dofs_;
   // A in balanced coordinates: z̃ = S z with S = diag(M^½, M^½/s), s = √‖M^-½ K M^-½‖∞, so
   // that Ã = S A S⁻¹ = [[0, s I], [−K̃/s, −C̃]] holds entries of one size (A's own span k_c/m
   // against 1, some 1e8, costs the eigenvectors digits); then V = S⁻¹ Ṽ, V⁻¹ = Ṽ⁻¹ S.
@@ -57,32 +68,40 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
   if (eigen.info() != Eigen::Success) {
     throw std::invalid_argument("method \"exact\": the coil chain's modes did not converge");
   }
-  const Eigen::VectorXcd all = eigen.eigenvalues();
   const Eigen::MatrixXcd Vt = eigen.eigenvectors();
-  const Eigen::MatrixXcd Vtinv = Eigen::PartialPivLU<Eigen::MatrixXcd>(Vt).inverse();
-  // The decomposition must give Ã back: a defective Ã (repeated λ, critical damping) does not.
-  const double misfit = (Vt * all.asDiagonal() * Vtinv - A.cast<std::complex<double>>()).norm();
-  if (!(misfit <= 1e-9 * A.norm())) {
+  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(Vt);
+  // A mode at or near critical damping makes Ṽ (nearly) singular: its modal sum would lose the
+  // digits the bounds and the audit need.
+  if (!(lu.rcond() >= kLeastConditioning)) {
     throw std::invalid_argument(
-        "method \"exact\": the coil chain's modes are defective (critically damped)");
+        "method \"exact\": a mode of the coil chain is at or near critical damping (its "
+        "eigenvectors' reciprocal condition " +
+        std::to_string(lu.rcond()) + " < 1e-8); take dopri5");
   }
   Eigen::VectorXd S(2 * n);
   S << root_mass, root_mass / scale;
-  const Eigen::MatrixXcd V = S.cwiseInverse().cast<std::complex<double>>().asDiagonal() * Vt;
-  const Eigen::MatrixXcd Vinv = Vtinv * S.cast<std::complex<double>>().asDiagonal();
+  KeepOnePerPair(eigen.eigenvalues(),
+                 S.cwiseInverse().cast<std::complex<double>>().asDiagonal() * Vt,
+                 lu.inverse() * S.cast<std::complex<double>>().asDiagonal(), C_.isZero(0.0));
+}
+
+void ChainModes::KeepOnePerPair(const Eigen::VectorXcd& all, const Eigen::MatrixXcd& V,
+                                const Eigen::MatrixXcd& Vinv, bool undamped) {
   // One of each conjugate pair (EigenSolver gives them as exact conjugates, side by side).
   std::vector<int> keep;
-  for (int i = 0; i < 2 * n; ++i) {
+  for (int i = 0; i < all.size(); ++i) {
     if (all[i].imag() >= 0.0) keep.push_back(i);
   }
   const int m = static_cast<int>(keep.size());
   lambda_.resize(m);
   weight_.resize(m);
-  vectors_.resize(2 * n, m);
-  inverse_.resize(m, 2 * n);
+  vectors_.resize(V.rows(), m);
+  inverse_.resize(m, V.cols());
   for (int r = 0; r < m; ++r) {
     const int i = keep[r];
-    lambda_[r] = all[i];
+    // Undamped (no dashpot pushes, ζ_s = 0): every λ is imaginary; round-off's real part, of
+    // either sign, is dropped, so that no term of the modal sum grows (the bounds need it).
+    lambda_[r] = undamped ? std::complex<double>(0.0, all[i].imag()) : all[i];
     weight_[r] = all[i].imag() > 0.0 ? 2.0 : 1.0;
     vectors_.col(r) = V.col(i);
     inverse_.row(r) = Vinv.row(i);

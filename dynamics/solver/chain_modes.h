@@ -28,31 +28,45 @@ namespace needle {
 
 class ChainModes {
  public:
+  /// The least reciprocal condition of the eigenvectors taken: below it a mode is at or near
+  /// critical damping (a defective A), and its modal sum loses the digits the run needs.
+  static constexpr double kLeastConditioning = 1e-8;
+
   /// The chain of `train` (Coils() > 0, linear contact laws, no coil clash) in `mode`. Throws
-  /// std::invalid_argument when K is not positive definite (a spring without rate) or when the
-  /// eigenvectors do not reproduce A to 1e-9 (a defective A: critically damped modes).
+  /// std::invalid_argument, with the reason, when K is not positive definite (a spring without
+  /// rate) or a mode is at or near critical damping (kLeastConditioning).
   ChainModes(const NeedleTrain& train, const ContactMode& mode);
 
   /// N: the needle and the N − 1 coil masses.
   int Dofs() const { return dofs_; }
-  /// Stiffness, damping and mass of the needle's own row: K₀₀, C₀₀, m.
+  /// Stiffness, damping and mass of the needle's own row: K₀₀ (N/m), C₀₀ (N·s/m), m (kg).
   double NeedleStiffness() const { return K_(0, 0); }
   double NeedleDamping() const { return C_(0, 0); }
   double NeedleMass() const { return mass_[0]; }
-  /// The mode's first-order eigenvalues λ_k, one of each conjugate pair (Im λ ≥ 0) with its
-  /// weight w_k (2 for a pair, 1 for a real one): z_h = Σ_k w_k Re(V_k c_k e^{λ_k τ}).
+  /// The mode's first-order eigenvalues λ_k (1/s, Re λ_k ≤ 0; exactly 0 for an undamped chain),
+  /// one of each conjugate pair (Im λ ≥ 0) with its weight w_k (2 for a pair, 1 for a real one):
+  /// z_h = Σ_k w_k Re(V_k c_k e^{λ_k τ}).
   const Eigen::VectorXcd& Lambda() const { return lambda_; }
   const Eigen::VectorXd& Weight() const { return weight_; }
-  /// V's rows for those λ_k (2N × count) and V⁻¹'s rows (count × 2N).
+  /// V's columns for those λ_k (2N × count; rows: lifts in m, then velocities in m/s, of the
+  /// needle and coils 1 … N − 1) and V⁻¹'s rows (count × 2N).
   const Eigen::MatrixXcd& Vectors() const { return vectors_; }
   const Eigen::MatrixXcd& Inverse() const { return inverse_; }
   /// max |λ_k|, rad/s: the fastest mode.
   double Fastest() const { return fastest_; }
   /// The particular solution's coefficients, N × (degree + 1), for the needle's forcing
-  /// coefficients f_j (j = 0 … degree): column j is a_j.
+  /// coefficients f_j (N/s^j, j = 0 … degree): column j is a_j (m/s^j), node 0 the needle.
   Eigen::MatrixXd Particular(const double* f, int degree) const;
 
  private:
+  // M, K and C of the chain in `mode` (the constructor's first part).
+  void Assemble(const NeedleTrain& train, const ContactMode& mode);
+  // The balanced first-order matrix's eigen decomposition, checked for conditioning.
+  void Decompose();
+  // λ, V's columns and V⁻¹'s rows of one member of each conjugate pair.
+  void KeepOnePerPair(const Eigen::VectorXcd& all, const Eigen::MatrixXcd& V,
+                      const Eigen::MatrixXcd& Vinv, bool undamped);
+
   int dofs_;
   Eigen::MatrixXd K_, C_;
   Eigen::VectorXd mass_;

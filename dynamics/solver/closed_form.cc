@@ -215,12 +215,14 @@ TrainState ClosedFormPiece::State(double t) const {
 }
 
 TrainState ClosedFormPiece::StateByQuadrature(double t, int parts) const {
-  const std::array<double, 3> now = Motion(t);
-  TrainState x = {now[0], now[1], x0_[2], x0_[3]};
+  TrainState x;
   if (chain_) {
     x = ChainState(t - t0_);
     x[2] = x0_[2];
     x[3] = x0_[3];
+  } else {
+    const std::array<double, 3> now = Motion(t);
+    x = {now[0], now[1], x0_[2], x0_[3]};
   }
   if (t <= t0_) return x;
   using Rule = boost::math::quadrature::gauss<double, 10>;
@@ -285,6 +287,7 @@ double ClosedFormPiece::HomogeneousIntegral(const Poly& q, double T, double h1, 
 }
 
 ClosedFormPiece::AuditTerms ClosedFormPiece::Audit(double T, double y1, double v1) const {
+  if (chain_) throw std::logic_error("closed form: a chain's audit is the quadrature's");
   // y = P + h, h homogeneous (h(0) = Y₀, h'(0) = V₀). Ẇ = F_c u̇ in cam mode; Ḋ = c ġ² for each
   // pushing contact plus the jump of its conservative part, (F − k g⁺) ġ:
   //   ∫ c_total h'² = H(0) − H(T), H = ½ m h'² + ½ K h²  (the homogeneous part's energy);
@@ -407,6 +410,7 @@ const ClosedFormPiece::HomogeneousStart& ClosedFormPiece::StartAt(double t) cons
 }
 
 double ClosedFormPiece::HomogeneousEnergy(double t) const {
+  if (chain_) throw std::logic_error("closed form: a chain's needle has no energy of its own");
   const std::array<double, 2> h = HomogeneousAt(t);
   return 0.5 * m_ * h[1] * h[1] + 0.5 * K_ * h[0] * h[0];
 }

@@ -73,7 +73,8 @@ class ClosedFormPiece {
   ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode, double segment_angle_rad,
                   double t0, const TrainState& x0, const ChainModes* chain = nullptr);
 
-  /// The state [y, ẏ, W, D] at t (any t ≥ t₀; exact for y, ẏ).
+  /// The state [y, ẏ, W, D] at t, and the coils' lifts and velocities of a chain (any t ≥ t₀;
+  /// exact for the lifts and velocities).
   TrainState State(double t) const;
   /// The same with W and D by 10-point Gauss–Legendre on `parts` equal parts of [t₀, t] (the
   /// rule for K = 0; tests compare the closed form with it).
@@ -115,7 +116,7 @@ class ClosedFormPiece {
   /// The same with the form's polynomial in s = t − t_a (FormPolynomial) given.
   FormRange Range(const LinearForm& form, const Poly& q, double t_a, double t_b) const;
   /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds
-  /// (one mass only: a chain's needle trades energy with its coils).
+  /// (one mass only: a chain's needle trades energy with its coils; std::logic_error there).
   double HomogeneousEnergy(double t) const;
   /// Stiffness K (N/m), mass m (kg) and whether the cam input is constant on the piece.
   double stiffness() const { return K_; }
@@ -165,7 +166,7 @@ class ClosedFormPiece {
   // The chain's needle entries at τ: h(τ) − h(0), h′(τ) − h′(0) and h″(τ) (cached by τ), and
   // the modes' e^{λ_k τ} − 1 in grow_.
   struct ChainNeedle {
-    double tau = -1e300, dh = 0.0, dhv = 0.0, ha = 0.0;
+    double tau = -1e300, dh = 0.0, dhv = 0.0, ha = 0.0;  // s, m, m/s, m/s²
   };
   const ChainNeedle& ChainAt(double tau) const;
   // The chain's whole state at τ, W and D at 0.

@@ -58,8 +58,7 @@ const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
     // the mode is slow against τ.
     const double a = lambda[k].real(), b = lambda[k].imag();
     const double em1 = std::expm1(a * tau), e = 1.0 + em1;
-    double sin_half, cos_half;
-    ::sincos(0.5 * b * tau, &sin_half, &cos_half);
+    const double sin_half = std::sin(0.5 * b * tau), cos_half = std::cos(0.5 * b * tau);
     const std::complex<double> g(em1 - 2.0 * e * sin_half * sin_half,
                                  2.0 * e * sin_half * cos_half);
     grow_[k] = g.real();

@@ -195,14 +195,14 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
   const double min_fc = recorder_.min_contact_force_during_lift_N();
   const double max_compression = recorder_.max_segment_compression_m();
-  // The three forces at x, each signed so that its extreme is a minimum, and a chain's largest
-  // segment compression (the least coil gap, where the run reports it), negated.
+  // The three forces at x, each signed so that its extreme is a minimum, and (which = 3) a
+  // chain's largest segment compression (the least coil gap, where the run reports it), negated.
   const bool chain_gap = train_.Coils() > 0 && train_.parameters().coil_travel_m > 0.0;
-  const auto extremes = [&](double t, const TrainState& x) {
+  const auto extreme = [&](int which, double t, const TrainState& x) {
+    if (which == 3) return -train_.LargestSegmentCompression(x);
     const Contacts c = train_.Evaluate(x, t, phase);
     const double fc = train_.AppliedCamForce(c, phase);
-    return std::array<double, 4>{-fc, -train_.AppliedSeatForce(c, phase), fc,
-                                 chain_gap ? -train_.LargestSegmentCompression(x) : 0.0};
+    return which == 0 ? -fc : which == 1 ? -train_.AppliedSeatForce(c, phase) : fc;
   };
   // The sample screen: the seat force from y and ẏ alone (the train's own bits); the cam force
   // from the piece's input, within kAllowance of the cam's scale (the two inputs differ by
@@ -258,7 +258,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     const double base = ts[k - 1], width = ts[k + 1] - ts[k - 1];
     const auto at = [&](double d) { return base + d * width; };
     const auto best = boost::math::tools::brent_find_minima(
-        [&](double d) { return extremes(at(d), Motion(at(d)))[which]; }, 0.0, 1.0,
+        [&](double d) { return extreme(which, at(d), Motion(at(d))); }, 0.0, 1.0,
         std::numeric_limits<double>::digits / 2, iterations);
     recorder_.Sample(at(best.first), Motion(at(best.first)), phase);
   }

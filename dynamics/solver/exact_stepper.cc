@@ -21,7 +21,15 @@ namespace {
 
 class ExactStepper final : public Stepper {
  public:
-  ExactStepper(TrainSystem& system, bool audit) : system_(system), audit_(audit) {}
+  ExactStepper(TrainSystem& system, bool audit) : system_(system), audit_(audit) {
+    // A chain's modes in each of its four contact modes (the cam and the seat pushing or not),
+    // made before the run: a chain the closed form cannot carry is refused before it starts.
+    if (system_.train().Coils() > 0) {
+      for (int i = 0; i < 4; ++i)
+        modes_[i] =
+            std::make_unique<ChainModes>(system_.train(), ContactMode{(i & 1) != 0, (i & 2) != 0});
+    }
+  }
   void Initialize(const TrainState& z, double t, double /*dt*/) override {
     x_ = system_.FromScaled(z);
     t_ = t;
@@ -74,13 +82,9 @@ class ExactStepper final : public Stepper {
     x[1] = m[1];
     return x;
   }
-  // The coil chain's modes in `mode`, made when first asked (a run meets at most four modes:
-  // the cam and the seat pushing or not); nullptr for one mass.
-  const ChainModes* Modes(const ContactMode& mode) {
-    if (system_.train().Coils() == 0) return nullptr;
-    std::unique_ptr<ChainModes>& m = modes_[(mode.cam ? 1 : 0) + (mode.seat ? 2 : 0)];
-    if (!m) m = std::make_unique<ChainModes>(system_.train(), mode);
-    return m.get();
+  // The coil chain's modes in `mode`; nullptr for one mass.
+  const ChainModes* Modes(const ContactMode& mode) const {
+    return modes_[(mode.cam ? 1 : 0) + (mode.seat ? 2 : 0)].get();
   }
 
   TrainSystem& system_;

@@ -72,8 +72,10 @@ enum class AutoCase {
 /// The method the method table gives `auto` for trains of kind `c`.
 Method AutoMethodFor(AutoCase c);
 
-/// Why method "exact" cannot solve `train` (a contact law not linear in the gap and its rate),
-/// or nullopt when it can. `auto` falls back to a time stepper then.
+/// Why method "exact" cannot solve `train` (a contact law not linear in the gap and its rate, a
+/// coil chain that may clash or has no spring rate), or nullopt when it can. `auto` falls back
+/// to a time stepper then (and for every chain: AutoMethod). A chain whose modes are at or near
+/// critical damping is refused when the run starts (ChainModes).
 std::optional<std::string> ExactRefusal(const NeedleTrain& train);
 
 /// The relative tolerance's range, [kMinRtol, kMaxRtol].
