@@ -52,6 +52,13 @@ fi
 /usr/bin/python3 bench/python_scene.py >/dev/null 2>>bench/log.txt ||
   echo "bench: bench/python_scene.py failed (bench/log.txt); BENCHMARKS.md keeps the last bench/python-scene.md" >&2
 
+# SciPy's solve_ivp on the same one-mass model as `exact` (bench/scipy_peer.py, about a
+# minute; needs python3-scipy and the module).
+if /usr/bin/python3 -c 'import scipy' 2>/dev/null; then
+  PYTHONPATH=build/python /usr/bin/python3 bench/scipy_peer.py >/dev/null 2>>bench/log.txt ||
+    echo "bench: bench/scipy_peer.py failed (bench/log.txt); BENCHMARKS.md keeps the last bench/scipy-peer.md" >&2
+fi
+
 {
   cat <<'HEAD'
 # Benchmarks
@@ -74,5 +81,7 @@ HEAD
   if [[ -f bench/dense-tables.md ]]; then echo; cat bench/dense-tables.md; fi
   # Python: bind once, run many (bench/python_scene.py).
   if [[ -f bench/python-scene.md ]]; then echo; cat bench/python-scene.md; fi
+  # SciPy's solve_ivp against exact (bench/scipy_peer.py).
+  if [[ -f bench/scipy-peer.md ]]; then echo; cat bench/scipy-peer.md; fi
 } > BENCHMARKS.md.tmp && mv BENCHMARKS.md.tmp BENCHMARKS.md
 echo "wrote bench/ and BENCHMARKS.md"
