@@ -51,10 +51,6 @@ Poly Shift(Poly p, double a) {
 
 }  // namespace
 
-int ClosedFormPiece::DegreeOf(const Poly& p) { return Degree(p); }
-
-ClosedFormPiece::Poly ClosedFormPiece::DerivativeOf(const Poly& p) { return needle::Derivative(p); }
-
 ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode,
                                  double segment_angle_rad, double t0, const TrainState& x0,
                                  const ChainModes* chain)
@@ -115,13 +111,17 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
     fastest = std::max(fastest, -r2_);
   }
   longest_step_ = fastest > 0.0 ? kPi / fastest : std::numeric_limits<double>::infinity();
+  SetStart();
+}
+
+void ClosedFormPiece::SetStart() {
   dp_ = needle::Derivative(p_);
   degree_p_ = Degree(p_);
   degree_dp_ = Degree(dp_);
   degree_u_ = Degree(u_);
   degree_du_ = Degree(du_);
-  Y0_ = x0[0] - p_[0];
-  V0_ = x0[1] - p_[1];
+  Y0_ = x0_[0] - p_[0];
+  V0_ = x0_[1] - p_[1];
 }
 
 void ClosedFormPiece::Basis(double tau, double& ecm1, double& es) const {

@@ -158,9 +158,8 @@ class ClosedFormPiece {
   void StartChain();
   // StartAt's homogeneous start for the chain, from the modal sum.
   void ChainStart(double t) const;
-  // Degree() and the derivative of a polynomial, for both files of the piece.
-  static int DegreeOf(const Poly& p);
-  static Poly DerivativeOf(const Poly& p);
+  // From p_ and u_: P′, the four polynomials' degrees, and the homogeneous start Y₀, V₀.
+  void SetStart();
   // No homogeneous part at all: the start is the particular solution's, to the bit.
   bool HomogeneousZero() const;
   // The chain's needle entries at τ: h(τ) − h(0), h′(τ) − h′(0) and h″(τ) (cached by τ), and

@@ -18,13 +18,7 @@ void ClosedFormPiece::StartChain() {
   chain_p_ = chain_->Particular(f_.data(), kMaxDegree);
   for (int j = 0; j <= kMaxDegree; ++j) p_[j] = chain_p_(0, j);
   longest_step_ = kPi / chain_->Fastest();
-  dp_ = DerivativeOf(p_);
-  degree_p_ = DegreeOf(p_);
-  degree_dp_ = DegreeOf(dp_);
-  degree_u_ = DegreeOf(u_);
-  degree_du_ = DegreeOf(du_);
-  Y0_ = x0_[0] - p_[0];
-  V0_ = x0_[1] - p_[1];
+  SetStart();
   // The start's homogeneous part z_h(0) = [q − P(0), q̇ − P′(0)], node 0 the needle, node i the
   // coil mass i (state entries 3 + i and 3 + (N − 1) + i).
   const int n = chain_->Dofs(), coils = n - 1;

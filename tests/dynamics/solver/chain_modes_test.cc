@@ -39,6 +39,36 @@ struct Chain {
   TrainParameters p;
 };
 
+// The bundled 20-mass chain at 400 rpm, and a start 40 % into its lift: the needle 2 µm into
+// the cam (or 1 µm into the seat) and moving off it, the coils off their even compression.
+struct SurgeChain {
+  SurgeChain()
+      : c(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1-surge.toml")),
+        s(MakeScene(c)),
+        omega(OmegaFromRpm(400)),
+        train(*s.cam, s.train, omega, DefaultRunWindow(s).start_rad) {}
+  double Angle() const {
+    const LiftLaw& law = s.cam->law();
+    return law.start_rad() + 0.4 * (law.end_rad() - law.start_rad());
+  }
+  TrainState Start(const ContactMode& mode) const {
+    const double th = Angle();
+    const int coils = train.Coils();
+    TrainState x0(train.StateSize(), 0.0);
+    x0[0] = mode.seat ? -1e-6 : s.cam->U(th) - 2e-6;
+    x0[1] = mode.seat ? 0.02 : omega * s.cam->Slope(th) + 0.05;
+    for (int i = 1; i <= coils; ++i) {
+      x0[3 + i] = x0[0] * (coils + 1 - i) / (coils + 1.0) + 2e-6 * (i % 3);
+      x0[3 + coils + i] = 0.02 * std::sin(i);
+    }
+    return x0;
+  }
+  Case c;
+  Scene s;
+  double omega;
+  NeedleTrain train;
+};
+
 // V Λ V⁻¹ over both members of each pair, against ∂f/∂x of the train's own right-hand side
 // (NeedleTrain::Jacobian: the same equations, written out a second time, by rows).
 TEST(ChainModesTest, TheModesGiveTheTrainsJacobianBack) {
@@ -108,24 +138,12 @@ TEST(ChainModesTest, TwoMassesInFlightRingAtTheTextbookFrequencies) {
 // within Bounds() of the lift's form and y within its Range(), on 2001 points, for pieces on the
 // cam, in flight and on the seat of the bundled chain.
 TEST(ChainModesTest, TheModalBoundsHoldAlongAPiece) {
-  const Case k = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1-surge.toml");
-  const Scene s = MakeScene(k);
-  const double omega = OmegaFromRpm(400), theta_a = DefaultRunWindow(s).start_rad;
-  const NeedleTrain train(*s.cam, s.train, omega, theta_a);
-  const LiftLaw& law = s.cam->law();
+  const SurgeChain chain;
   for (const ContactMode mode :
        {ContactMode{true, false}, ContactMode{false, false}, ContactMode{false, true}}) {
-    const ChainModes modes(train, mode);
-    const double th = law.start_rad() + 0.4 * (law.end_rad() - law.start_rad());
-    const double t0 = train.Time(th);
-    TrainState x0(train.StateSize(), 0.0);
-    x0[0] = mode.seat ? -1e-6 : s.cam->U(th) - 2e-6;
-    x0[1] = mode.seat ? 0.02 : omega * s.cam->Slope(th) + 0.05;
-    for (int i = 1; i <= train.Coils(); ++i) {
-      x0[3 + i] = x0[0] * (train.Coils() + 1 - i) / (train.Coils() + 1.0) + 2e-6 * (i % 3);
-      x0[3 + train.Coils() + i] = 0.02 * std::sin(i);
-    }
-    const ClosedFormPiece piece(train, mode, th, t0, x0, &modes);
+    const ChainModes modes(chain.train, mode);
+    const double th = chain.Angle(), t0 = chain.train.Time(th);
+    const ClosedFormPiece piece(chain.train, mode, th, t0, chain.Start(mode), &modes);
     const LinearForm lift{1.0, 0.0, 0.0, 0.0, 0.0};
     for (const double ta : {0.0, 2e-4}) {
       const double a = t0 + ta, b = a + 3.0 * piece.LongestStep();
@@ -153,22 +171,12 @@ TEST(ChainModesTest, TheModalBoundsHoldAlongAPiece) {
 // the cam in its rise (a forcing polynomial of degree 5) and in flight; and the piece starts on
 // its start state to the bit.
 TEST(ChainModesTest, APieceSolvesTheTrainsOwnEquations) {
-  const Case k = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1-surge.toml");
-  const Scene s = MakeScene(k);
-  const double omega = OmegaFromRpm(400), theta_a = DefaultRunWindow(s).start_rad;
-  const NeedleTrain train(*s.cam, s.train, omega, theta_a);
-  const LiftLaw& law = s.cam->law();
+  const SurgeChain chain;
+  const NeedleTrain& train = chain.train;
   for (const ContactMode mode : {ContactMode{true, false}, ContactMode{false, false}}) {
     const ChainModes modes(train, mode);
-    const double th = law.start_rad() + 0.4 * (law.end_rad() - law.start_rad());
-    const double t0 = train.Time(th);
-    TrainState x0(train.StateSize(), 0.0);
-    x0[0] = s.cam->U(th) - 2e-6;
-    x0[1] = omega * s.cam->Slope(th) + (mode.cam ? 0.0 : 0.05);
-    for (int i = 1; i <= train.Coils(); ++i) {
-      x0[3 + i] = x0[0] * (train.Coils() + 1 - i) / (train.Coils() + 1.0) + 1e-6 * (i % 3);
-      x0[3 + train.Coils() + i] = 0.01 * std::sin(i);
-    }
+    const double th = chain.Angle(), t0 = train.Time(th);
+    const TrainState x0 = chain.Start(mode);
     const ClosedFormPiece piece(train, mode, th, t0, x0, &modes);
     const TrainState start = piece.MotionState(t0);
     for (int i = 0; i < train.StateSize(); ++i) {
