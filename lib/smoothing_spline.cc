@@ -143,9 +143,17 @@ class SmoothingProblem {
     return fit;
   }
 
-  // Generalised cross-validation score N·RSS/(N − tr A)², A = I − λσ²Q(R + λσ²QᵀQ)⁻¹Qᵀ.
+  // Generalised cross-validation score N·RSS/(N − tr A)², A = I − λσ²Q(R + λσ²QᵀQ)⁻¹Qᵀ. On a
+  // large table tr A comes from the band of (R + λσ²QᵀQ)⁻¹ (BandedTrace): O(N) per λ.
   double Gcv(double lambda) const {
     const int m = n_ - 1;
+    if (m > kDense) {
+      Fit fit;
+      Solve(lambda, fit);  // factors R + λσ²QᵀQ (SolveBanded keeps L and D)
+      const double trace_a = (n_ + 1) - lambda * sigma2_ * BandedTrace();
+      const double denom = (n_ + 1) - trace_a;
+      return (n_ + 1) * fit.residual * sigma2_ / (denom * denom);
+    }
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
     for (const auto& t : Matrix(lambda * sigma2_)) a(t.row(), t.col()) += t.value();
     Eigen::MatrixXd q = Eigen::MatrixXd::Zero(n_ + 1, m);
@@ -292,6 +300,27 @@ class SmoothingProblem {
     for (int j = m - 3; j >= 0; --j) {
       g(j) -= l1[j + 3] * g(j + 1) + l2[j + 4] * g(j + 2);
     }
+  }
+
+  // tr((R + cQᵀQ)⁻¹ QᵀQ) from the last SolveBanded's LDLᵀ: the five central diagonals of the
+  // inverse Σ by Hutchinson and de Hoog's recursion, Σ = D⁻¹L⁻¹ + (I − Lᵀ)Σ from the last row
+  // up (Σ_ij for j − i ≤ 2 needs only Σ's band below-right of it), against QᵀQ's band.
+  double BandedTrace() const {
+    const int m = n_ - 1;
+    const std::vector<double>&inv_d = dd_, &l1 = l1_, &l2 = l2_;
+    // L_{i+1,i} = l1[i + 3], L_{i+2,i} = l2[i + 4]; Σ_{i,i}, Σ_{i,i+1}, Σ_{i,i+2} in s0, s1, s2.
+    std::vector<double> s0(m + 2, 0.0), s1(m + 2, 0.0), s2(m + 2, 0.0);
+    double trace = 0.0;
+    for (int i = m - 1; i >= 0; --i) {
+      const double a = i + 1 < m ? l1[i + 3] : 0.0, b = i + 2 < m ? l2[i + 4] : 0.0;
+      s2[i] = -a * s1[i + 1] - b * s0[i + 2];
+      s1[i] = -a * s0[i + 1] - b * s1[i + 1];
+      s0[i] = inv_d[i + 2] - a * s1[i] - b * s2[i];
+      trace += s0[i] * band_q_[0][i];
+      if (i + 1 < m) trace += 2.0 * s1[i] * band_q_[1][i + 1];
+      if (i + 2 < m) trace += 2.0 * s2[i] * band_q_[2][i + 2];
+    }
+    return trace;
   }
 
   mutable Eigen::MatrixXd r_, qtq_;

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <random>
 #include <tuple>
@@ -298,6 +300,51 @@ TEST(SplineTest, SmoothingGcvGivesAFiniteC2Fit) {
     raw += std::pow(y[i] - std::cos(x[i]), 2);
   }
   EXPECT_LT(err, raw);
+}
+
+// GCV on a table above the dense solver's 64 knots takes tr A from the band of the smoothing
+// system's inverse (O(N)); it must pick the fit a brute-force GCV picks: the hat matrix
+// A = I − cQ(R + cQᵀQ)⁻¹Qᵀ (Reinsch's Q and R) formed whole, GCV = N·RSS/(N − tr A)² minimised
+// over log c by Brent. 151 unevenly spaced noisy readings of a sine.
+TEST(SplineTest, GcvOnALargeTableIsTheDenseGcvs) {
+  const int n = 150;
+  std::vector<double> x, y;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0, 0.02);
+  for (int i = 0; i <= n; ++i) {
+    x.push_back(0.1 * i + 0.03 * std::sin(1.7 * i));
+    y.push_back(std::sin(x.back()) + noise(rng));
+  }
+  SplineOptions o;
+  o.kind = SplineKind::kSmoothing;
+  o.sigma = 0.02;
+  o.smoothing_rule = SmoothingRule::kGcv;
+  const auto s = BuildSpline(x, y, o);
+
+  Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(n + 1, n - 1), R = Eigen::MatrixXd::Zero(n - 1, n - 1);
+  for (int j = 1; j < n; ++j) {
+    const double h0 = x[j] - x[j - 1], h1 = x[j + 1] - x[j];
+    Q(j - 1, j - 1) = 1.0 / h0;
+    Q(j, j - 1) = -1.0 / h0 - 1.0 / h1;
+    Q(j + 1, j - 1) = 1.0 / h1;
+    R(j - 1, j - 1) = (h0 + h1) / 3.0;
+    if (j < n - 1) R(j - 1, j) = R(j, j - 1) = h1 / 6.0;
+  }
+  const Eigen::VectorXd Y = Eigen::Map<const Eigen::VectorXd>(y.data(), n + 1);
+  const auto hat = [&](double log_c) {
+    const double c = std::pow(10.0, log_c);
+    const Eigen::MatrixXd B = R + c * Q.transpose() * Q;
+    return Eigen::MatrixXd(Eigen::MatrixXd::Identity(n + 1, n + 1) -
+                           c * Q * B.ldlt().solve(Q.transpose()));
+  };
+  const auto gcv = [&](double log_c) {
+    const Eigen::MatrixXd A = hat(log_c);
+    const double rss = (Y - A * Y).squaredNorm(), dof = (n + 1) - A.trace();
+    return (n + 1) * rss / (dof * dof);
+  };
+  const auto best = boost::math::tools::brent_find_minima(gcv, -12.0, 6.0, 40);
+  const Eigen::VectorXd f = hat(best.first) * Y;
+  for (int i = 0; i <= n; ++i) EXPECT_NEAR(s.Evaluate(x[i]), f[i], 1e-3 * o.sigma) << i;
 }
 
 TEST(SplineTest, RejectsBadInputWithAClearMessage) {
