@@ -197,7 +197,8 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   const double max_compression = recorder_.max_segment_compression_m();
   // The three forces at x, each signed so that its extreme is a minimum, and (which = 3) a
   // chain's largest segment compression (the least coil gap, where the run reports it), negated.
-  const bool chain_gap = train_.Coils() > 0 && train_.parameters().coil_travel_m > 0.0;
+  const bool chain = train_.Coils() > 0;
+  const bool chain_gap = chain && train_.parameters().coil_travel_m > 0.0;
   const auto extreme = [&](int which, double t, const TrainState& x) {
     if (which == 3) return -train_.LargestSegmentCompression(x);
     const Contacts c = train_.Evaluate(x, t, phase);
@@ -251,11 +252,23 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     const auto& v = f[which];
     const int k = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
     // Only a new record inside the step, and for the least contact force one while pushing.
-    if (k == 0 || k == n || !(v[k] < record[which])) continue;
+    // A chain's extreme may also lie between an end sample and its neighbour: its stretches
+    // start and end where a break or an event puts them, a force may peak just past one (at
+    // the stretch's start, already the record; at its end, a new one). (One mass: not searched,
+    // its bundled outputs kept.)
+    int lo = k - 1, hi = k + 1;
+    if (k == 0 || k == n) {
+      const bool edge = chain && (k == 0 ? v[0] <= record[which] : v[n] < record[which]);
+      if (!edge) continue;
+      lo = k == 0 ? 0 : n - 1;
+      hi = k == 0 ? 1 : n;
+    } else if (!(v[k] < record[which])) {
+      continue;
+    }
     if (which == 2 && !(v[k] > 0.0)) continue;
     std::uintmax_t iterations = 60;
     // In the fraction of the bracket: Brent's tolerance has an absolute part.
-    const double base = ts[k - 1], width = ts[k + 1] - ts[k - 1];
+    const double base = ts[lo], width = ts[hi] - ts[lo];
     const auto at = [&](double d) { return base + d * width; };
     const auto best = boost::math::tools::brent_find_minima(
         [&](double d) { return extreme(which, at(d), Motion(at(d))); }, 0.0, 1.0,

@@ -258,6 +258,13 @@ TEST(ChainModesTest, ExactAgreesWithDopri5OnTheBundledChain) {
       EXPECT_NEAR(*d.min_coil_gap_m * 1e3, *e.min_coil_gap_m * 1e3, 1e-5) << rpm;
     }
     EXPECT_LT(e.energy_residual, 1e-10) << rpm;
+    // The largest forces: the closed form locates them (Brent between its samples, also next
+    // to a stretch's end sample), dopri5 samples them: never below dopri5's, within 1e-6.
+    for (const auto& [closed, sampled] : {std::pair{e.max_contact_force_N, d.max_contact_force_N},
+                                          std::pair{e.max_seat_force_N, d.max_seat_force_N}}) {
+      EXPECT_GE(closed, sampled * (1.0 - 1e-9)) << rpm;
+      EXPECT_NEAR(closed, sampled, 1e-6 * sampled) << rpm;
+    }
     std::printf(
         "zeta_s %g, %g rpm: %zu impacts, %zu episodes, dopri5 %ld steps, exact %ld steps, "
         "residual %.2e vs %.2e\n",
