@@ -215,15 +215,9 @@ TrainState ClosedFormPiece::State(double t) const {
 }
 
 TrainState ClosedFormPiece::StateByQuadrature(double t, int parts) const {
-  TrainState x;
-  if (chain_) {
-    x = ChainState(t - t0_);
-    x[2] = x0_[2];
-    x[3] = x0_[3];
-  } else {
-    const std::array<double, 3> now = Motion(t);
-    x = {now[0], now[1], x0_[2], x0_[3]};
-  }
+  TrainState x = MotionState(t);
+  x[2] = x0_[2];
+  x[3] = x0_[3];
   if (t <= t0_) return x;
   using Rule = boost::math::quadrature::gauss<double, 10>;
   const Phase phase{mode_};
@@ -234,12 +228,7 @@ TrainState ClosedFormPiece::StateByQuadrature(double t, int parts) const {
     for (size_t i = 0; i < Rule::abscissa().size(); ++i) {
       for (const double sign : {-1.0, 1.0}) {
         const double s = mid + sign * half * Rule::abscissa()[i];
-        if (chain_) {
-          train_.Derivative(ChainState(s - t0_), s, phase, dxdt);
-        } else {
-          const std::array<double, 3> at = Motion(s);
-          train_.Derivative({at[0], at[1], 0.0, 0.0}, s, phase, dxdt);
-        }
+        train_.Derivative(MotionState(s), s, phase, dxdt);
         x[2] += half * Rule::weights()[i] * dxdt[2];
         x[3] += half * Rule::weights()[i] * dxdt[3];
       }
@@ -392,7 +381,10 @@ std::array<double, 2> ClosedFormPiece::HomogeneousAt(double t) const {
 }
 
 const ClosedFormPiece::HomogeneousStart& ClosedFormPiece::StartAt(double t) const {
-  if (chain_ && t != start_.t) ChainStart(t);
+  if (chain_ && t != start_.t) {
+    ChainStart(t);
+    return start_;
+  }
   if (t != start_.t) {
     const std::array<double, 2> hh = HomogeneousAt(t);
     HomogeneousStart& s = start_;

@@ -216,7 +216,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
     const TrainState x = Motion(ts[k]);
-    f[3][k] = chain_gap ? -train_.LargestSegmentCompression(x) : 0.0;
+    f[3][k] = chain_gap ? extreme(3, ts[k], x) : 0.0;
     if (screen && k > 0 && k < n) {
       const std::array<double, 2> in = piece.Input(ts[k]);
       const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;

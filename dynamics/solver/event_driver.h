@@ -79,7 +79,8 @@ class EventDriver {
   TrainState Motion(double t) {
     if (const ClosedFormPiece* piece = stepper_->ClosedForm()) {
       // The closed form's y and ẏ without ÿ and the state's copies: the bits the backend's
-      // scaled state would give (one mass: y, ẏ, and W, D left at 0).
+      // scaled state would give (one mass: y, ẏ, and W, D left at 0; the one-mass path kept
+      // apart, this is the certified search's hot path).
       if (piece->Chain()) {  // the coils' lifts and velocities too
         TrainState x = piece->MotionState(t);
         for (size_t i = 0; i < x.size(); ++i) x[i] = system_.RoundTrip(static_cast<int>(i), x[i]);

@@ -70,16 +70,9 @@ class ExactStepper final : public Stepper {
   // The state at t: with the audit's W and D, or (no audit) with the piece's start values.
   TrainState StateAt(double t) const {
     if (audit_) return piece_->State(t);
-    if (piece_->Chain()) {
-      TrainState x = piece_->MotionState(t);
-      x[2] = x_[2];
-      x[3] = x_[3];
-      return x;
-    }
-    const std::array<double, 3> m = piece_->Motion(t);
-    TrainState x = x_;
-    x[0] = m[0];
-    x[1] = m[1];
+    TrainState x = piece_->MotionState(t);
+    x[2] = x_[2];
+    x[3] = x_[3];
     return x;
   }
   // The coil chain's modes in `mode`; nullptr for one mass.

@@ -281,19 +281,25 @@ TEST(SplineTest, SmoothingOfDataWithinNoiseOfALineIsTheLine) {
   EXPECT_NEAR(s.Evaluate(2.5, 1), s.Evaluate(0.5, 1), 1e-12);
 }
 
+// The smoothing spline through (x, y) with λ by GCV, σ = kGcvSigma (the noise of its tests).
+constexpr double kGcvSigma = 0.02;
+PiecewisePolynomial GcvSpline(const std::vector<double>& x, const std::vector<double>& y) {
+  SplineOptions o;
+  o.kind = SplineKind::kSmoothing;
+  o.sigma = kGcvSigma;
+  o.smoothing_rule = SmoothingRule::kGcv;
+  return BuildSpline(x, y, o);
+}
+
 TEST(SplineTest, SmoothingGcvGivesAFiniteC2Fit) {
   std::vector<double> x, y;
   std::mt19937 rng(3);
-  std::normal_distribution<double> noise(0, 0.02);
+  std::normal_distribution<double> noise(0, kGcvSigma);
   for (int i = 0; i <= 30; ++i) {
     x.push_back(i * 0.1);
     y.push_back(std::cos(x.back()) + noise(rng));
   }
-  SplineOptions o;
-  o.kind = SplineKind::kSmoothing;
-  o.sigma = 0.02;
-  o.smoothing_rule = SmoothingRule::kGcv;
-  const auto s = BuildSpline(x, y, o);
+  const auto s = GcvSpline(x, y);
   double err = 0, raw = 0;
   for (size_t i = 0; i < x.size(); ++i) {
     err += std::pow(s.Evaluate(x[i]) - std::cos(x[i]), 2);
@@ -310,16 +316,12 @@ TEST(SplineTest, GcvOnALargeTableIsTheDenseGcvs) {
   const int n = 150;
   std::vector<double> x, y;
   std::mt19937 rng(11);
-  std::normal_distribution<double> noise(0, 0.02);
+  std::normal_distribution<double> noise(0, kGcvSigma);
   for (int i = 0; i <= n; ++i) {
     x.push_back(0.1 * i + 0.03 * std::sin(1.7 * i));
     y.push_back(std::sin(x.back()) + noise(rng));
   }
-  SplineOptions o;
-  o.kind = SplineKind::kSmoothing;
-  o.sigma = 0.02;
-  o.smoothing_rule = SmoothingRule::kGcv;
-  const auto s = BuildSpline(x, y, o);
+  const auto s = GcvSpline(x, y);
 
   Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(n + 1, n - 1), R = Eigen::MatrixXd::Zero(n - 1, n - 1);
   for (int j = 1; j < n; ++j) {
@@ -344,7 +346,7 @@ TEST(SplineTest, GcvOnALargeTableIsTheDenseGcvs) {
   };
   const auto best = boost::math::tools::brent_find_minima(gcv, -12.0, 6.0, 40);
   const Eigen::VectorXd f = hat(best.first) * Y;
-  for (int i = 0; i <= n; ++i) EXPECT_NEAR(s.Evaluate(x[i]), f[i], 1e-3 * o.sigma) << i;
+  for (int i = 0; i <= n; ++i) EXPECT_NEAR(s.Evaluate(x[i]), f[i], 1e-3 * kGcvSigma) << i;
 }
 
 TEST(SplineTest, RejectsBadInputWithAClearMessage) {
