@@ -25,6 +25,16 @@ BinMeans MeansOfBins(const std::vector<double>& x, const std::vector<double>& y,
     p.x.push_back(sx / m);
     p.y.push_back(sy / m);
     p.count.push_back(m);
+    std::array<double, 4> c{};
+    for (size_t k = i; k < end; ++k) {
+      const double d = x[k] - p.x.back();
+      double power = d * d;
+      for (double& moment : c) {
+        moment += power / m;
+        power *= d;
+      }
+    }
+    p.moments.push_back(c);
   }
   return p;
 }
@@ -46,7 +56,9 @@ Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, 
     return MeansOfBins(x, y, from, to, (n + kLocalMaxNodes - 1) / kLocalMaxNodes);  // ≥ 1 a bin
   }
   return Points{std::vector<double>(x.begin() + from, x.begin() + to),
-                std::vector<double>(y.begin() + from, y.begin() + to), std::vector<double>(n, 1.0)};
+                std::vector<double>(y.begin() + from, y.begin() + to),
+                std::vector<double>(n, 1.0),
+                {}};
 }
 
 // The estimates of s, s', s'' at t from the points [lo, hi), and the standard deviation of s''
@@ -59,6 +71,24 @@ struct Estimate {
   double largest_residual = 0.0, residual_square_sum = 0.0;
 };
 
+// The mean over point i's bin of u^c = ((θ − t)/b)^c, c = 0 … 5, u its mean's: u^c itself for a
+// single reading, else Σ_j C(c, j) u^(c−j) μ_j with μ_j the bin's central moments over b^j.
+std::array<double, kTerms> MeanPowers(const Points& p, size_t i, double u, double b) {
+  std::array<double, kTerms> row, power;
+  power[0] = 1.0;
+  for (int c = 1; c < kTerms; ++c) power[c] = power[c - 1] * u;
+  row = power;
+  if (p.moments.empty()) return row;
+  double mu[kTerms] = {1.0, 0.0};
+  for (int j = 2; j < kTerms; ++j) mu[j] = p.moments[i][j - 2] / std::pow(b, j);
+  static constexpr double kBinomial[kTerms][kTerms] = {
+      {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}};
+  for (int c = 2; c < kTerms; ++c) {
+    for (int j = 2; j <= c; ++j) row[c] += kBinomial[c][j] * power[c - j] * mu[j];
+  }
+  return row;
+}
+
 Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) {
   const Eigen::Index k = static_cast<Eigen::Index>(hi - lo);
   double reach = 0.0;
@@ -70,8 +100,8 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
     const double u = (p.x[lo + r] - t) / b;
     const double a = 1.0 - std::abs(u * u * u);
     root_w(r) = std::sqrt(p.count[lo + r] * a * a * a);  // tricube, times the count
-    double power = 1.0;
-    for (int c = 0; c < kTerms; ++c, power *= u) v(r, c) = root_w(r) * power;
+    const std::array<double, kTerms> row = MeanPowers(p, lo + r, u, b);
+    for (int c = 0; c < kTerms; ++c) v(r, c) = root_w(r) * row[c];
   }
   // The weights of β_0 … β_5 on the weighted readings, V (VᵀV)⁻¹ e_d: by QR where few
   // readings make VᵀV ill-conditioned (a one-sided window of 7), by its Cholesky factor above.
@@ -110,7 +140,12 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
   for (Eigen::Index i = 0; i < k; ++i) {
     const double u = (p.x[lo + i] - t) / b;
     double fitted = 0.0;
-    for (int c = kTerms - 1; c >= 0; --c) fitted = fitted * u + beta(c);
+    if (p.moments.empty()) {
+      for (int c = kTerms - 1; c >= 0; --c) fitted = fitted * u + beta(c);
+    } else {
+      const std::array<double, kTerms> row = MeanPowers(p, lo + i, u, b);
+      for (int c = 0; c < kTerms; ++c) fitted += beta(c) * row[c];
+    }
     const double r = p.y[lo + i] - fitted;
     e.largest_residual = std::max(e.largest_residual, std::abs(r));
     e.residual_square_sum += p.count[lo + i] * r * r;

@@ -30,6 +30,7 @@
 /// than kLocalMaxNodes readings is first averaged in bins of consecutive readings (σ/√count each):
 /// the cost is O(n).
 
+#include <array>
 #include <vector>
 
 #include "lib/piecewise_polynomial.h"
@@ -45,9 +46,14 @@ constexpr double kLepskiSigmas = 2.5;
 /// Above this many readings a piece is averaged in bins first (O(n) overall).
 constexpr int kLocalMaxNodes = 1500;
 
-/// Means of consecutive readings in bins (a dense table's, before a fit): angle, lift and count.
+/// Means of consecutive readings in bins (a dense table's, before a fit): angle, lift and count,
+/// and each bin's spread: the central moments mean (θ − x̄)^j, j = 2 … 5, rad^j, that a fit
+/// reads a bin's mean through (the mean of a polynomial over the bin is not its value at x̄: a
+/// bin of other spacing than its neighbours', the table's last or one holding a break's reading,
+/// would otherwise stand off their curve by s''·var/2). Empty when every bin is one reading.
 struct BinMeans {
   std::vector<double> x, y, count;
+  std::vector<std::array<double, 4>> moments;
 };
 
 /// The means of readings [from, to) in bins of `per` (≥ 1; the last bin may hold fewer).
