@@ -283,6 +283,22 @@ bool SidesFitApart(const std::vector<double>& x, const std::vector<double>& y, l
   return kBreakOverSmooth * sides < joint && joint > tail * sigma_m;
 }
 
+// How near a reading a break over interval k is put at it (kBreakSnapFraction,
+// kBreakSnapResiduals).
+double SnapDistance(const std::vector<double>& x, const std::vector<double>& y, long k,
+                    double sigma_m, const LiftBreak& b) {
+  const long p = kBreakFitPoints;
+  const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+  double snap = kBreakSnapFraction * h;
+  if (b.order != 2 || !(std::abs(b.jump) > 0.0)) return snap;
+  double left_ss = 0.0, right_ss = 0.0;
+  FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
+  FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
+  const double fit_m = std::max(sigma_m, std::sqrt((left_ss + right_ss) / (2 * p - 8)));
+  const double lift_says = std::sqrt(2.0 * kBreakSnapResiduals * fit_m / std::abs(b.jump));
+  return std::min(std::max(snap, lift_says), 0.25 * h);
+}
+
 }  // namespace
 
 std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vector<double>& y,
@@ -317,11 +333,12 @@ std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vecto
     if (b.order == 2 && !(std::abs(b.jump - jump[k]) <= kBreakJumpAgreement * std::abs(jump[k])))
       continue;
     const double h = x[k + 1] - x[k];
+    const double snap = SnapDistance(x, y, k, sigma_m, b);
     b.index = static_cast<size_t>(k);
-    if (std::abs(b.crank_rad - x[k]) <= kBreakSnapFraction * h) {
+    if (std::abs(b.crank_rad - x[k]) <= snap) {
       b.crank_rad = x[k];
       b.lift_m = y[k];
-    } else if (std::abs(b.crank_rad - x[k + 1]) <= kBreakSnapFraction * h) {
+    } else if (std::abs(b.crank_rad - x[k + 1]) <= snap) {
       b.crank_rad = x[k + 1];
       b.lift_m = y[k + 1];
       b.index = static_cast<size_t>(k + 1);

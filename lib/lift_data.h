@@ -141,6 +141,12 @@ constexpr double kBreakJumpAgreement = 0.05;
 /// knot a hair's breadth from another; the lift moves by J·(0.02 h)²/2 there, far below 1e-9 m
 /// on any grid of a degree or less).
 constexpr double kBreakSnapFraction = 0.02;
+/// ... or, for an s'' jump J, within the δ at which a reading's lift on the far side's curve
+/// moves by |J|·δ²/2 = this many times the sides' fit error (their RMS residual, at least σ):
+/// the readings cannot tell the break from the reading, and a knot that near one makes a sliver
+/// whose s'' is that lift error over δ² (a harmonic's end at 12° found at 11.989° on a 0.5°
+/// table: s'' 1.9 % off beside it). Never past a quarter of the step.
+constexpr double kBreakSnapResiduals = 3.0;
 /// An exact table: the RMS of its sixth differences' pseudo-residuals, the windows across the
 /// breaks left out, is at most this many times the σ of its printed digits' rounding (q/√12):
 /// twice allows for the law's own sixth derivative and the rounding of the angles.
