@@ -329,6 +329,14 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
        << (r.printed_m ? "printed to " + Mm(*r.printed_m) + " mm" : std::string("digits unknown"));
   const std::string stated = o.kind ? "stated in the case; " : "";
   if (r.kind == TableKind::kMeasured) return ReadMeasured(given, o, std::move(c), at);
+  // A reading below the seat by more than a printed digit is no export of a law (whose lift is
+  // never below 0) but a gauge's: noise the law's own interpolation error hid from the residual.
+  const double lowest = *std::min_element(y.begin(), y.end());
+  if (lowest < -std::max(r.printed_m.value_or(0.0), r.rounding_sigma_m)) {
+    LiftLawChoice m = ReadMeasured(given, o, std::move(c), at);
+    m.reason = "a reading at " + Mm(lowest) + " mm, below the seat: " + m.reason;
+    return m;
+  }
   c.noise_source = "rounding";
   c.law.spline.quantized = true;  // exact or rounded: its error is the rounding's
   const bool pieces_fit = kind == SplineKind::kNotAKnot || kind == SplineKind::kNatural ||
