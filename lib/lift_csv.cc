@@ -1,10 +1,13 @@
 // Lift tables from CSV files (lib/lift_data.h).
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "lib/case_error.h"
 #include "lib/input_file.h"
@@ -14,39 +17,60 @@
 namespace needle {
 namespace {
 
-std::string Trim(const std::string& s) {
+std::string_view Trim(std::string_view s) {
   const size_t a = s.find_first_not_of(" \t\r");
-  if (a == std::string::npos) return "";
+  if (a == std::string_view::npos) return {};
   const size_t b = s.find_last_not_of(" \t\r");
   return s.substr(a, b - a + 1);
 }
 
 // A field as a spreadsheet writes it: trimmed, and one pair of enclosing double quotes (Calc
 // quotes its text cells, the header) removed.
-std::string Unquote(const std::string& s) {
-  const std::string t = Trim(s);
+std::string_view Unquote(std::string_view s) {
+  const std::string_view t = Trim(s);
   if (t.size() >= 2 && t.front() == '"' && t.back() == '"') return Trim(t.substr(1, t.size() - 2));
   return t;
 }
 
-// The fields between separators (an empty one after a trailing separator); none of "".
-std::vector<std::string> Fields(const std::string& line, char separator) {
-  std::vector<std::string> out;
-  if (line.empty()) return out;
+// The fields between separators (an empty one after a trailing separator); none of "". Views
+// into `line`, into `out` (reused from row to row: a table of a million rows allocates once).
+void Fields(std::string_view line, char separator, std::vector<std::string_view>* out) {
+  out->clear();
+  if (line.empty()) return;
   for (size_t start = 0;;) {
     const size_t end = line.find(separator, start);
-    out.push_back(Unquote(line.substr(start, end == std::string::npos ? end : end - start)));
-    if (end == std::string::npos) return out;
+    out->push_back(Unquote(line.substr(start, end == std::string_view::npos ? end : end - start)));
+    if (end == std::string_view::npos) return;
     start = end + 1;
   }
 }
 
 std::string Quoted(char c) { return std::string("'") + c + "'"; }
 
+// std::from_chars reads a plain decimal number (correctly rounded, as strtod does) at a fraction
+// of strtod's cost; anything else (hex, inf, out of range, a subnormal, a zero that may be an
+// underflow) is left to strtod and its messages: nullopt.
+std::optional<double> PlainDecimal(std::string_view number) {
+  const char* first = number.data() + (number.size() > 1 && number[0] == '+' ? 1 : 0);
+  const char* last = number.data() + number.size();
+  double x = 0.0;
+  const auto [ptr, ec] = std::from_chars(first, last, x);
+  if (ec == std::errc() && ptr == last && std::isfinite(x) &&
+      std::abs(x) >= std::numeric_limits<double>::min() &&
+      (first == number.data() || *first != '-')) {
+    return x;
+  }
+  return std::nullopt;
+}
+
 // The number in `field` of column `name` (decimal mark ',' when the separator is ';'); `why` set
 // to what is wrong with it otherwise.
-double FieldValue(const std::string& field, char separator, const std::string& name,
+double FieldValue(std::string_view field_view, char separator, const std::string& name,
                   std::string& why) {
+  if (separator != ';') {  // decimal mark '.': a plain number is read where it lies
+    if (const std::optional<double> x = PlainDecimal(field_view)) return *x;
+  }
+  const std::string field(field_view);
   std::string number = field;
   if (separator == ';') {  // the decimal mark is ','
     if (field.find('.') != std::string::npos) {
@@ -65,19 +89,8 @@ double FieldValue(const std::string& field, char separator, const std::string& n
           "it with '.' as the decimal mark, or separated by ';' with decimal commas";
     return NAN;
   }
-  // std::from_chars reads a plain decimal number (correctly rounded, as strtod does) at a
-  // fraction of strtod's cost; anything else (hex, inf, out of range, a subnormal, a zero that
-  // may be an underflow) is left to strtod and its messages.
-  {
-    const char* first = number.data() + (number.size() > 1 && number[0] == '+' ? 1 : 0);
-    const char* last = number.data() + number.size();
-    double x = 0.0;
-    const auto [ptr, ec] = std::from_chars(first, last, x);
-    if (ec == std::errc() && ptr == last && std::isfinite(x) &&
-        std::abs(x) >= std::numeric_limits<double>::min() &&
-        (first == number.data() || *first != '-')) {
-      return x;
-    }
+  if (separator == ';') {
+    if (const std::optional<double> x = PlainDecimal(number)) return *x;
   }
   char* end = nullptr;
   errno = 0;
@@ -196,21 +209,25 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
     CsvFail(path, 1, 0,
             "the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8");
   }
-  std::istringstream in(bom ? text.substr(3) : text);
-  std::string raw;
+  const std::string_view all = std::string_view(text).substr(bom ? 3 : 0);
   int line = 0, last_line = 0;
   char separator = ',';
   CsvColumns c;
   LiftTable t;
-  while (std::getline(in, raw)) {
+  std::vector<std::string_view> f;
+  for (size_t at = 0; at < all.size();) {  // the lines, as std::getline splits them
+    const size_t end = std::min(all.find('\n', at), all.size());
+    const std::string_view raw = all.substr(at, end - at);
+    at = end + 1;
     ++line;
-    const std::string s = Trim(raw);
+    const std::string_view s = Trim(raw);
     if (s.empty() || s[0] == '#') continue;
     const bool header = c.count == 0;
-    if (header) separator = Separator(s, path, line);
-    const std::vector<std::string> f = Fields(s, separator);
+    if (header) separator = Separator(std::string(s), path, line);
+    Fields(s, separator, &f);
     if (header) {
-      c = ReadHeader(f, path, line, cycle, time_s != nullptr);
+      c = ReadHeader(std::vector<std::string>(f.begin(), f.end()), path, line, cycle,
+                     time_s != nullptr);
       continue;
     }
     if (static_cast<int>(f.size()) != c.count) {
