@@ -15,38 +15,45 @@ namespace needle {
 
 namespace {
 
-// A cubic fitted by least squares to readings [from, to) of (x, y), in u = (θ − c)/h.
+// A polynomial fitted by least squares to readings [from, to) of (x, y), in u = (θ − c)/h.
 using SideCubic = SidePolynomial<3>;
 
-SideCubic FitSide(const std::vector<double>& x, const std::vector<double>& y, size_t from,
-                  size_t to, double c, double h, double* sum_squares = nullptr) {
-  SideCubic s;
-  s.c = c;
-  s.h = h;
-  Eigen::MatrixXd v(to - from, 4);
-  Eigen::VectorXd r(to - from);
+// The basis u^k, k = 0 … Degree, at readings [from, to).
+template <int Degree>
+Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, double c,
+                          double h) {
+  Eigen::MatrixXd v(to - from, Degree + 1);
   for (size_t i = from; i < to; ++i) {
     const double u = (x[i] - c) / h;
-    v.row(i - from) << 1.0, u, u * u, u * u * u;
-    r(i - from) = y[i];
+    double power = 1.0;
+    for (int k = 0; k <= Degree; ++k, power *= u) v(i - from, k) = power;
   }
+  return v;
+}
+
+template <int Degree = 3>
+SidePolynomial<Degree> FitSide(const std::vector<double>& x, const std::vector<double>& y,
+                               size_t from, size_t to, double c, double h,
+                               double* sum_squares = nullptr) {
+  SidePolynomial<Degree> s;
+  s.c = c;
+  s.h = h;
+  const Eigen::MatrixXd v = SideBasis<Degree>(x, from, to, c, h);
+  const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, static_cast<Eigen::Index>(to - from));
   s.a = v.colPivHouseholderQr().solve(r);
   if (sum_squares) *sum_squares = (v * s.a - r).squaredNorm();
   return s;
 }
 
-// The norm of the weights, on readings [from, to), of the `order`th derivative at t of the cubic
-// FitSide fits there: its standard deviation per unit σ of the readings.
+// The norm of the weights, on readings [from, to), of the `order`th derivative at t of the
+// polynomial FitSide fits there: its standard deviation per unit σ of the readings.
+template <int Degree = 3>
 double DerivativeNoise(const std::vector<double>& x, size_t from, size_t to, double c, double h,
                        double t, int order) {
-  Eigen::MatrixXd v(to - from, 4);
-  for (size_t i = from; i < to; ++i) {
-    const double u = (x[i] - c) / h;
-    v.row(i - from) << 1.0, u, u * u, u * u * u;
-  }
+  const Eigen::MatrixXd v = SideBasis<Degree>(x, from, to, c, h);
   const double u = (t - c) / h;
-  Eigen::Vector4d d = Eigen::Vector4d::Zero();  // the derivative's row on the coefficients
-  for (int m = order; m <= 3; ++m) {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(Degree + 1);  // the derivative's row
+  for (int m = order; m <= Degree; ++m) {
     double falling = 1.0;
     for (int j = 0; j < order; ++j) falling *= (m - j);
     d(m) = falling * std::pow(u, m - order) / std::pow(h, order);
@@ -222,6 +229,28 @@ long BestInterval(const std::vector<double>& x, const std::vector<double>& y, lo
   return k;
 }
 
+// A corner stands out of the noise of quintics through the 7 readings on each side too, and keeps
+// its size on them where their noise can tell: a law that leaves the seat smoothly but steeply (s ∝
+// ξ⁴, a degree-8 rise at 1.5° steps) bends the cubics' slopes apart by their truncation, "a corner
+// at 3.192 deg (its velocity jumps by 0.0005 mm/deg)", and quintics, which hold ξ⁴, do not.
+bool QuinticsSeeTheCorner(const std::vector<double>& x, const std::vector<double>& y, long k,
+                          double sigma_m, double tail, const LiftBreak& b) {
+  constexpr long q = 7;
+  const long n = static_cast<long>(x.size());
+  if (k - q + 1 < 0 || k + q >= n) return true;
+  const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+  const auto left = FitSide<5>(x, y, k - q + 1, k + 1, c, h);
+  const auto right = FitSide<5>(x, y, k + 1, k + q + 1, c, h);
+  const double noise =
+      sigma_m * std::hypot(DerivativeNoise<5>(x, k - q + 1, k + 1, c, h, b.crank_rad, 1),
+                           DerivativeNoise<5>(x, k + 1, k + q + 1, c, h, b.crank_rad, 1));
+  const double jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
+  if (!(std::abs(jump) > tail * noise)) return false;  // no corner beyond the quintics' noise
+  // Where their noise can tell, the same corner.
+  return !(tail * noise < 0.25 * std::abs(b.jump)) ||
+         std::abs(jump - b.jump) <= 0.25 * std::abs(b.jump);
+}
+
 // The break over interval k where the two sides' cubics meet: an s'' jump where their slopes
 // meet within half a step of it, else a corner (which must keep its size on twice the
 // readings); its jump above what the readings' noise or rounding can make. Else std::nullopt.
@@ -258,6 +287,7 @@ std::optional<LiftBreak> SidesMeet(const std::vector<double>& x, const std::vect
       const double wide = wide_right.Value(b.crank_rad, 1) - wide_left.Value(b.crank_rad, 1);
       if (!(std::abs(wide - b.jump) <= 0.25 * std::abs(b.jump))) return std::nullopt;
     }
+    if (!QuinticsSeeTheCorner(x, y, k, sigma_m, tail, b)) return std::nullopt;
   }
   b.lift_m = 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
   const double jump_noise =

@@ -382,6 +382,23 @@ TEST(LiftReadingTest, ABreakAHairFromAReadingIsPutAtIt) {
   EXPECT_EQ(r.choice.law.breaks_rad[1], 30.0 * kDeg);
 }
 
+// A degree-8 rise (s ∝ ξ⁴ off the seat: s, s', s'' and s''' all 0 there) exported at 1.5° to 9
+// decimals with 20° of base circle, from a new user's trial: refused, "the lift has a corner at
+// 3.192 deg (its velocity jumps by 0.0005 mm/deg)": the cubics either side of the rise's foot
+// bend apart by their truncation. Quintics, which hold ξ⁴, see no corner.
+double Poly8(double xi, int d) {
+  const double x2 = xi * xi;
+  return d ? x2 * (840 - 4480 * xi + 8400 * x2 - 6720 * x2 * xi + 1960 * x2 * x2)
+           : x2 * x2 * (70 - 224 * xi + 280 * x2 - 160 * x2 * xi + 35 * x2 * x2);
+}
+
+TEST(LiftReadingTest, ASteepButSmoothFootIsNoCorner) {
+  EXPECT_NEAR(Poly8(1.0, 0), 1.0, 1e-12);
+  const Law law{10.0, 120.0, 0.0, 120.0, Poly8};
+  const Read r = ReadExport(law, Export(law, 1.5, 0.0, 20.0));
+  ExpectWithin(r, 0.01, "degree-8 rise at 1.5 deg, 20 deg of base circle");
+}
+
 // A gauge's table whose noise (0.1 µm) hides under its law's interpolation error at 1° steps
 // was read as an exact export and refused for a seated reading 8e-5 mm below zero; a reading
 // below the seat is read as the noise it is.
