@@ -352,6 +352,9 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
     if (pieces_fit) {
       c.law.breaks_rad = at;
       c.law.break_uncertainty_rad = c.break_uncertainty_rad;
+      for (const LiftBreak* b : inside) {
+        c.law.break_estimated.push_back(!std::binary_search(x.begin(), x.end(), b->crank_rad));
+      }
       c.table = WithBreakReadings(c.table, inside);
       breaks = found + ", " + breaks;
     } else {

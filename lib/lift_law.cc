@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <limits>
@@ -118,15 +119,42 @@ double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, doub
   return std::abs(g.dot(b) - y[seat]) > 2.0 * bound ? 0.5 * h : 0.0;
 }
 
+// Where `law` leaves the seat between the seat reading at `seat` and the next at `next` (either
+// side of it): where it crosses zero, or else touches it (its least value there).
+double Foot(const PiecewisePolynomial& law, double seat, double next) {
+  const auto s = [&](double t) { return law.Evaluate(t); };
+  const auto [lo, hi] = std::minmax(seat, next);
+  if (s(seat) <= 0.0 && s(next) > 0.0) {
+    boost::uintmax_t iterations = 100;
+    const auto [a, b] = boost::math::tools::toms748_solve(
+        s, lo, hi, boost::math::tools::eps_tolerance<double>(52), iterations);
+    return 0.5 * (a + b);
+  }
+  return boost::math::tools::brent_find_minima(s, lo, hi, 52).first;
+}
+
+// `node`, put at `to` with the law's s, s' and s'' there.
+void MoveNode(const PiecewisePolynomial& law, double to, LocalNode* node) {
+  node->x = to;
+  for (int k = 0; k < 3; ++k) node->s[k] = law.Evaluate(to, k);
+}
+
 // A local fit's trims of one piece (x, y): a found break's readings nearer than its uncertainty
 // belong to either side's law; so does a seat reading at the open lift's first or last end
-// (SeatTrim): the rise begins anywhere up to the next reading. None for the other kinds.
+// (SeatTrim): the rise begins anywhere up to the next reading; and a reading added at a break,
+// its lift an estimate (break_estimated). None for the other kinds.
 LocalTrim PieceTrim(const std::vector<double>& x, const std::vector<double>& y,
-                    const LiftLawOptions& options, bool first_piece, bool last_piece) {
+                    const LiftLawOptions& options, size_t piece, size_t pieces) {
   if (options.spline.kind != SplineKind::kLocal) return {};
   const double u = options.break_uncertainty_rad, sigma = options.spline.sigma;
-  return {first_piece ? SeatTrim(x, y, sigma, true) : u,
-          last_piece ? SeatTrim(x, y, sigma, false) : u};
+  // An estimated break reading: the least trim that leaves it out (the next reading is a
+  // grid step on).
+  const auto estimated = [&](size_t b) {
+    const bool e = b < options.break_estimated.size() && options.break_estimated[b];
+    return std::max(u, e ? 1e-9 * (x.back() - x.front()) : 0.0);
+  };
+  return {piece == 0 ? SeatTrim(x, y, sigma, true) : estimated(piece - 1),
+          piece + 1 == pieces ? SeatTrim(x, y, sigma, false) : estimated(piece)};
 }
 
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
@@ -161,7 +189,7 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
                                 const LiftLawOptions& options, LiftLawNodes* nodes) {
   if (options.breaks_rad.empty()) {
-    return BuildPiece(x, y, options.spline, nodes, PieceTrim(x, y, options, true, true));
+    return BuildPiece(x, y, options.spline, nodes, PieceTrim(x, y, options, 0, 1));
   }
   std::vector<size_t> cuts{0};
   for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
@@ -195,8 +223,8 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
           std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
           "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
     }
-    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes,
-                                          PieceTrim(px, py, options, p == 0, p + 2 == cuts.size()));
+    PiecewisePolynomial part =
+        BuildPiece(px, py, options.spline, nodes, PieceTrim(px, py, options, p, cuts.size() - 1));
     breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
     rows += part.coefficients().rows();
     parts.push_back(part.coefficients());
@@ -249,7 +277,26 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
   }
   *open_rad = x.front();
   *close_rad = x.back();
-  return BuildPieces(x, y, options, nodes);
+  PiecewisePolynomial law = BuildPieces(x, y, options, nodes);
+  // A seat reading the local fit's law does not start on (SeatTrim): the rise leaves the seat
+  // between it and the next reading, and the open lift begins there, not at the reading (the
+  // law carried back to it overstates a 2-3 cubic's s'' by 4 % at 1.5° steps).
+  // The end node there, its band kept, moves with it (it was the law carried to the reading).
+  if (options.spline.kind == SplineKind::kLocal && x.size() > 2 && !nodes->ready.empty()) {
+    auto [front, back] =
+        std::minmax_element(nodes->ready.begin(), nodes->ready.end(),
+                            [](const LocalNode& a, const LocalNode& b) { return a.x < b.x; });
+    const size_t n = x.size();
+    if (SeatTrim(x, y, options.spline.sigma, true) > 0.0) {
+      *open_rad = Foot(law, x[0], x[1]);
+      MoveNode(law, *open_rad, &*front);
+    }
+    if (SeatTrim(x, y, options.spline.sigma, false) > 0.0) {
+      *close_rad = Foot(law, x[n - 1], x[n - 2]);
+      MoveNode(law, *close_rad, &*back);
+    }
+  }
+  return law;
 }
 
 }  // namespace

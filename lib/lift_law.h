@@ -68,6 +68,10 @@ struct LiftLawOptions {
   /// break_uncertainty_rad): a local fit leaves the readings that near a break out of its
   /// windows (lib/local_fit.h LocalTrim).
   double break_uncertainty_rad = 0.0;
+  /// Which breaks_rad have a reading added at them whose lift is an estimate (a found break
+  /// between readings: the sides' cubics' mean there), left out of a local fit's windows, each
+  /// piece's end there its own; empty: none.
+  std::vector<bool> break_estimated;
 };
 
 /// Internal to LiftLaw: a fit's nodes, ready (a local fit's, a smoothing spline's) or deferred
