@@ -332,13 +332,15 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   // A reading below the seat by more than a printed digit is no export of a law (whose lift is
   // never below 0) but a gauge's: noise the law's own interpolation error hid from the residual.
   const double lowest = *std::min_element(y.begin(), y.end());
-  if (lowest < -std::max(r.printed_m.value_or(0.0), r.rounding_sigma_m)) {
+  const double digit = std::max(r.printed_m.value_or(0.0), r.rounding_sigma_m);
+  if (lowest < -digit) {
     LiftLawChoice m = ReadMeasured(given, o, std::move(c), at);
     m.reason = "a reading at " + Mm(lowest) + " mm, below the seat: " + m.reason;
     return m;
   }
   c.noise_source = "rounding";
-  c.law.spline.quantized = true;  // exact or rounded: its error is the rounding's
+  c.law.negative_allowance_m = digit;  // a reading a printed digit below the seat: its round-off
+  c.law.spline.quantized = true;       // exact or rounded: its error is the rounding's
   const bool pieces_fit = kind == SplineKind::kNotAKnot || kind == SplineKind::kNatural ||
                           kind == SplineKind::kQuintic || kind == SplineKind::kLocal;
   std::string breaks = "ends at " + DegreeList({x[first], x[last]}) + " deg (the seat)";

@@ -123,14 +123,18 @@ double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, doub
 // side of it): where it crosses zero, or else touches it (its least value there).
 double Foot(const PiecewisePolynomial& law, double seat, double next) {
   const auto s = [&](double t) { return law.Evaluate(t); };
-  const auto [lo, hi] = std::minmax(seat, next);
-  if (s(seat) <= 0.0 && s(next) > 0.0) {
+  const auto zero_between = [&](double from, double to) {
     boost::uintmax_t iterations = 100;
-    const auto [a, b] = boost::math::tools::toms748_solve(
-        s, lo, hi, boost::math::tools::eps_tolerance<double>(52), iterations);
-    return 0.5 * (a + b);
-  }
-  return boost::math::tools::brent_find_minima(s, lo, hi, 52).first;
+    const auto [l, r] = boost::math::tools::toms748_solve(
+        s, std::min(from, to), std::max(from, to), boost::math::tools::eps_tolerance<double>(52),
+        iterations);
+    return 0.5 * (l + r);
+  };
+  if (s(seat) <= 0.0 && s(next) > 0.0) return zero_between(seat, next);
+  const auto [lo, hi] = std::minmax(seat, next);
+  const double least = boost::math::tools::brent_find_minima(s, lo, hi, 52).first;
+  // A dip below the seat: the law leaves it where it comes back up through zero.
+  return s(least) < 0.0 && s(next) > 0.0 ? zero_between(least, next) : least;
 }
 
 // `node`, put at `to` with the law's s, s' and s'' there.
@@ -161,7 +165,7 @@ LocalTrim PieceTrim(const std::vector<double>& x, const std::vector<double>& y,
 // spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
 PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
                                const SplineOptions& options, LiftLawNodes* nodes,
-                               LocalTrim trim = {}) {
+                               LocalTrim trim = {}, bool* trimmed = nullptr) {
   auto keep = [&](LocalFit fit) {
     nodes->ready.insert(nodes->ready.end(), fit.nodes.begin(), fit.nodes.end());
     return std::move(fit.law);
@@ -169,6 +173,7 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
   if (options.kind == SplineKind::kLocal) {
     CheckSplineInputs(x, y, options);
     LocalFit fit = FitLocal(x, y, options.sigma, options.quantized, trim);
+    if (trimmed) *trimmed = fit.trimmed;
     AddLocalFitBias(x, y, options, &fit, trim);
     return keep(std::move(fit));
   }
@@ -189,7 +194,12 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
                                 const LiftLawOptions& options, LiftLawNodes* nodes) {
   if (options.breaks_rad.empty()) {
-    return BuildPiece(x, y, options.spline, nodes, PieceTrim(x, y, options, 0, 1));
+    const LocalTrim trim = PieceTrim(x, y, options, 0, 1);
+    bool trimmed = false;
+    PiecewisePolynomial law = BuildPiece(x, y, options.spline, nodes, trim, &trimmed);
+    nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
+    nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
+    return law;
   }
   std::vector<size_t> cuts{0};
   for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
@@ -223,8 +233,11 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
           std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
           "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
     }
-    PiecewisePolynomial part =
-        BuildPiece(px, py, options.spline, nodes, PieceTrim(px, py, options, p, cuts.size() - 1));
+    const LocalTrim trim = PieceTrim(px, py, options, p, cuts.size() - 1);
+    bool trimmed = false;
+    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes, trim, &trimmed);
+    if (p == 0) nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
+    if (p + 2 == cuts.size()) nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
     breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
     rows += part.coefficients().rows();
     parts.push_back(part.coefficients());
@@ -287,11 +300,11 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
         std::minmax_element(nodes->ready.begin(), nodes->ready.end(),
                             [](const LocalNode& a, const LocalNode& b) { return a.x < b.x; });
     const size_t n = x.size();
-    if (SeatTrim(x, y, options.spline.sigma, true) > 0.0) {
+    if (nodes->seat_left_out[0]) {
       *open_rad = Foot(law, x[0], x[1]);
       MoveNode(law, *open_rad, &*front);
     }
-    if (SeatTrim(x, y, options.spline.sigma, false) > 0.0) {
+    if (nodes->seat_left_out[1]) {
       *close_rad = Foot(law, x[n - 1], x[n - 2]);
       MoveNode(law, *close_rad, &*back);
     }

@@ -77,6 +77,9 @@ struct LiftLawOptions {
 /// Internal to LiftLaw: a fit's nodes, ready (a local fit's, a smoothing spline's) or deferred
 /// (an interpolating spline's band, lib/spline_band.h), and all of them once asked.
 struct LiftLawNodes {
+  /// Whether a local fit left the open lift's first (last) reading, a seat reading the law does
+  /// not start on, out of its windows.
+  bool seat_left_out[2] = {false, false};
   std::vector<LocalNode> ready;
   std::vector<std::function<std::vector<LocalNode>()>> deferred;
   std::once_flag once;

@@ -322,7 +322,9 @@ LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, do
     to = x.size();
   }
   const Points p = FittedPoints(x, y, from, to);
-  LocalFit fit{PiecewisePolynomial({0.0, 1.0}, Eigen::MatrixXd::Zero(1, kTerms), 2), {}};
+  LocalFit fit{PiecewisePolynomial({0.0, 1.0}, Eigen::MatrixXd::Zero(1, kTerms), 2),
+               {},
+               from > 0 || to < x.size()};
   const std::vector<size_t> sizes = WindowSizes(p.x.size());
   // Nodes from the first reading to the last, each kNodeSpacing of its window's width past the
   // one before (at least the next point): the interpolant's s'' between two nodes is their s''

@@ -74,6 +74,7 @@ struct LocalNode {
 struct LocalFit {
   PiecewisePolynomial law;
   std::vector<LocalNode> nodes;
+  bool trimmed = false;  ///< the trims asked were applied (not dropped for too few readings)
 };
 
 /// Fits (x, y), x strictly increasing, at least kLocalMinimumPoints readings, with σ ≥ 0 the

@@ -452,6 +452,13 @@ TEST(LiftReadingTest, AReadingBelowTheSeatIsNoise) {
   EXPECT_TRUE(r.choice.measured) << r.choice.reason;
   EXPECT_EQ(r.choice.reason.rfind("a reading at -", 0), 0u) << r.choice.reason;
   ExpectWithin(r, 0.06, "0.1 um noise at 1 deg");
+  // One printed digit below the seat is an export's round-off: still an exact (rounded) table,
+  // accepted (a reviewer's case: -q was refused while -2q was read as measured).
+  LiftTable digit = Export(law, 0.25, 1e-3, 10.0);
+  digit.lift_m[3] = -1e-6;
+  const Read d = ReadExport(law, digit);
+  EXPECT_FALSE(d.choice.measured) << d.choice.reason;
+  ExpectWithin(d, 0.05, "a reading -0.001 mm at 1e-3 mm");
 }
 
 }  // namespace
