@@ -18,19 +18,6 @@ namespace {
 // A polynomial fitted by least squares to readings [from, to) of (x, y), in u = (θ − c)/h.
 using SideCubic = SidePolynomial<3>;
 
-// The basis u^k, k = 0 … Degree, at readings [from, to).
-template <int Degree>
-Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, double c,
-                          double h) {
-  Eigen::MatrixXd v(to - from, Degree + 1);
-  for (size_t i = from; i < to; ++i) {
-    const double u = (x[i] - c) / h;
-    double power = 1.0;
-    for (int k = 0; k <= Degree; ++k, power *= u) v(i - from, k) = power;
-  }
-  return v;
-}
-
 template <int Degree = 3>
 SidePolynomial<Degree> FitSide(const std::vector<double>& x, const std::vector<double>& y,
                                size_t from, size_t to, double c, double h,
@@ -251,16 +238,33 @@ bool QuinticsSeeTheCorner(const std::vector<double>& x, const std::vector<double
          std::abs(jump - b.jump) <= 0.25 * std::abs(b.jump);
 }
 
+// The cubics fitted to the kBreakFitPoints readings on each side of interval k, and the RMS of
+// their residuals.
+struct Sides {
+  SideCubic left, right;
+  double rms_m = 0.0;
+};
+
+Sides FitSides(const std::vector<double>& x, const std::vector<double>& y, long k) {
+  const long p = kBreakFitPoints;
+  const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+  Sides sides;
+  double left_ss = 0.0, right_ss = 0.0;
+  sides.left = FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
+  sides.right = FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
+  sides.rms_m = std::sqrt((left_ss + right_ss) / (2 * p - 8));
+  return sides;
+}
+
 // The break over interval k where the two sides' cubics meet: an s'' jump where their slopes
 // meet within half a step of it, else a corner (which must keep its size on twice the
 // readings); its jump above what the readings' noise or rounding can make. Else std::nullopt.
 std::optional<LiftBreak> SidesMeet(const std::vector<double>& x, const std::vector<double>& y,
-                                   long k, double sigma_m, double tail) {
+                                   long k, const Sides& sides, double sigma_m, double tail) {
   const long p = kBreakFitPoints, n = static_cast<long>(x.size());
   LiftBreak b;
   const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
-  const SideCubic left = FitSide(x, y, k - p + 1, k + 1, c, h);
-  const SideCubic right = FitSide(x, y, k + 1, k + p + 1, c, h);
+  const SideCubic &left = sides.left, &right = sides.right;
   const double lo = x[k] - 0.5 * h, hi = x[k + 1] + 0.5 * h;
   const auto slopes =
       RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); }, lo, hi);
@@ -301,30 +305,23 @@ std::optional<LiftBreak> SidesMeet(const std::vector<double>& x, const std::vect
 // the two sides' cubics fit their readings kBreakOverSmooth times better than one cubic fits
 // them all.
 bool SidesFitApart(const std::vector<double>& x, const std::vector<double>& y, long k,
-                   double sigma_m, double tail) {
+                   const Sides& sides, double sigma_m, double tail) {
   const long p = kBreakFitPoints;
   const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
-  double left_ss = 0.0, right_ss = 0.0, joint_ss = 0.0;
-  FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
-  FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
+  double joint_ss = 0.0;
   FitSide(x, y, k - p + 1, k + p + 1, c, h, &joint_ss);
-  const double sides = std::sqrt((left_ss + right_ss) / (2 * p - 8));
   const double joint = std::sqrt(joint_ss / (2 * p - 4));
-  return kBreakOverSmooth * sides < joint && joint > tail * sigma_m;
+  return kBreakOverSmooth * sides.rms_m < joint && joint > tail * sigma_m;
 }
 
 // How near a reading a break over interval k is put at it (kBreakSnapFraction,
 // kBreakSnapResiduals).
-double SnapDistance(const std::vector<double>& x, const std::vector<double>& y, long k,
-                    double sigma_m, const LiftBreak& b) {
-  const long p = kBreakFitPoints;
-  const double h = x[k + 1] - x[k], c = 0.5 * (x[k] + x[k + 1]);
+double SnapDistance(const std::vector<double>& x, long k, const Sides& sides, double sigma_m,
+                    const LiftBreak& b) {
+  const double h = x[k + 1] - x[k];
   double snap = kBreakSnapFraction * h;
   if (b.order != 2 || !(std::abs(b.jump) > 0.0)) return snap;
-  double left_ss = 0.0, right_ss = 0.0;
-  FitSide(x, y, k - p + 1, k + 1, c, h, &left_ss);
-  FitSide(x, y, k + 1, k + p + 1, c, h, &right_ss);
-  const double fit_m = std::max(sigma_m, std::sqrt((left_ss + right_ss) / (2 * p - 8)));
+  const double fit_m = std::max(sigma_m, sides.rms_m);
   const double lift_says = std::sqrt(2.0 * kBreakSnapResiduals * fit_m / std::abs(b.jump));
   return std::min(std::max(snap, lift_says), 0.25 * h);
 }
@@ -355,15 +352,15 @@ std::vector<LiftBreak> FindBreaks(const std::vector<double>& x, const std::vecto
     r = e + 1;
     k = BestInterval(x, y, k);
     if (k - p + 1 < 0 || k + p >= n) continue;
-    std::optional<LiftBreak> met = SidesMeet(x, y, k, sigma_m, stats.tail());
-    if (!met || !SidesFitApart(x, y, k, sigma_m, stats.tail())) continue;
+    const Sides sides = FitSides(x, y, k);
+    std::optional<LiftBreak> met = SidesMeet(x, y, k, sides, sigma_m, stats.tail());
+    if (!met || !SidesFitApart(x, y, k, sides, sigma_m, stats.tail())) continue;
     LiftBreak b = *met;
     // An s'' jump is measured alike by the lines of s2 and by the cubics; a jump of s''' (a
     // kink of s'', which the lines see as J₃·h and the cubics as nothing) is no break here.
     if (b.order == 2 && !(std::abs(b.jump - jump[k]) <= kBreakJumpAgreement * std::abs(jump[k])))
       continue;
-    const double h = x[k + 1] - x[k];
-    const double snap = SnapDistance(x, y, k, sigma_m, b);
+    const double snap = SnapDistance(x, k, sides, sigma_m, b);
     b.index = static_cast<size_t>(k);
     if (std::abs(b.crank_rad - x[k]) <= snap) {
       b.crank_rad = x[k];

@@ -30,14 +30,8 @@ SideQuintic FitQuintic(const std::vector<double>& x, const std::vector<double>& 
   SideQuintic q;
   q.c = c;
   q.h = std::max(std::abs(x[from] - c), std::abs(x[to - 1] - c));
-  Eigen::MatrixXd v(to - from, 6);
-  Eigen::VectorXd r(to - from);
-  for (size_t i = from; i < to; ++i) {
-    const double u = (x[i] - c) / q.h;
-    double power = 1.0;
-    for (int k = 0; k < 6; ++k, power *= u) v(i - from, k) = power;
-    r(i - from) = y[i];
-  }
+  const Eigen::MatrixXd v = SideBasis<5>(x, from, to, c, q.h);
+  const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, static_cast<Eigen::Index>(to - from));
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(v);
   q.a = qr.solve(r);
   // s''(c) = 2 a_2 / h²: its weights are row 2 of the pseudo-inverse, (VᵀV)⁻¹Vᵀ.

@@ -187,20 +187,26 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
   return law;
 }
 
+// Piece `piece` of `pieces` (BuildPiece with its PieceTrim); a first or last piece records
+// whether its fit left its seat reading out (LiftLawNodes::seat_left_out).
+PiecewisePolynomial BuildPart(const std::vector<double>& x, const std::vector<double>& y,
+                              const LiftLawOptions& options, size_t piece, size_t pieces,
+                              LiftLawNodes* nodes) {
+  const LocalTrim trim = PieceTrim(x, y, options, piece, pieces);
+  bool trimmed = false;
+  PiecewisePolynomial part = BuildPiece(x, y, options.spline, nodes, trim, &trimmed);
+  if (piece == 0) nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
+  if (piece + 1 == pieces) nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
+  return part;
+}
+
 // The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
 // strictly inside) and joined at the breaks, where s'' (and s' by the pieces' error) jump: C⁰
 // for the interpolating kinds; a local fit's two ends are each piece's own estimate there (its
 // readings within the break's uncertainty left out), apart by a few printed digits.
 PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
                                 const LiftLawOptions& options, LiftLawNodes* nodes) {
-  if (options.breaks_rad.empty()) {
-    const LocalTrim trim = PieceTrim(x, y, options, 0, 1);
-    bool trimmed = false;
-    PiecewisePolynomial law = BuildPiece(x, y, options.spline, nodes, trim, &trimmed);
-    nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
-    nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
-    return law;
-  }
+  if (options.breaks_rad.empty()) return BuildPart(x, y, options, 0, 1, nodes);
   std::vector<size_t> cuts{0};
   for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
     const double at = options.breaks_rad[b];
@@ -233,11 +239,7 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
           std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
           "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
     }
-    const LocalTrim trim = PieceTrim(px, py, options, p, cuts.size() - 1);
-    bool trimmed = false;
-    PiecewisePolynomial part = BuildPiece(px, py, options.spline, nodes, trim, &trimmed);
-    if (p == 0) nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
-    if (p + 2 == cuts.size()) nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
+    const PiecewisePolynomial part = BuildPart(px, py, options, p, cuts.size() - 1, nodes);
     breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
     rows += part.coefficients().rows();
     parts.push_back(part.coefficients());
@@ -295,7 +297,9 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
   // between it and the next reading, and the open lift begins there, not at the reading (the
   // law carried back to it overstates a 2-3 cubic's s'' by 4 % at 1.5° steps).
   // The end node there, its band kept, moves with it (it was the law carried to the reading).
-  if (options.spline.kind == SplineKind::kLocal && x.size() > 2 && !nodes->ready.empty()) {
+  // (seat_left_out is set only by a local fit that applied its trims: 14 readings or more, and
+  // its nodes.)
+  if (nodes->seat_left_out[0] || nodes->seat_left_out[1]) {
     auto [front, back] =
         std::minmax_element(nodes->ready.begin(), nodes->ready.end(),
                             [](const LocalNode& a, const LocalNode& b) { return a.x < b.x; });

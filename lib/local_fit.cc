@@ -96,12 +96,17 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
   const double b = 1.2 * reach;  // every reading of the window has a positive weight
   Eigen::MatrixXd v(k, kTerms);  // the basis (θ − t)/b powers, each row times √weight
   Eigen::VectorXd root_w(k);
+  // Binned points: their rows of bin means of u^c, kept for the residuals.
+  Eigen::MatrixXd binned(p.moments.empty() ? 0 : k, kTerms);
   for (Eigen::Index r = 0; r < k; ++r) {
     const double u = (p.x[lo + r] - t) / b;
     const double a = 1.0 - std::abs(u * u * u);
     root_w(r) = std::sqrt(p.count[lo + r] * a * a * a);  // tricube, times the count
     const std::array<double, kTerms> row = MeanPowers(p, lo + r, u, b);
     for (int c = 0; c < kTerms; ++c) v(r, c) = root_w(r) * row[c];
+    if (binned.rows() > 0) {
+      for (int c = 0; c < kTerms; ++c) binned(r, c) = row[c];
+    }
   }
   // The weights of β_0 … β_5 on the weighted readings, V (VᵀV)⁻¹ e_d: by QR where few
   // readings make VᵀV ill-conditioned (a one-sided window of 7), by its Cholesky factor above.
@@ -140,11 +145,10 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
   for (Eigen::Index i = 0; i < k; ++i) {
     const double u = (p.x[lo + i] - t) / b;
     double fitted = 0.0;
-    if (p.moments.empty()) {
+    if (binned.rows() == 0) {
       for (int c = kTerms - 1; c >= 0; --c) fitted = fitted * u + beta(c);
     } else {
-      const std::array<double, kTerms> row = MeanPowers(p, lo + i, u, b);
-      for (int c = 0; c < kTerms; ++c) fitted += beta(c) * row[c];
+      for (int c = 0; c < kTerms; ++c) fitted += beta(c) * binned(i, c);
     }
     const double r = p.y[lo + i] - fitted;
     e.largest_residual = std::max(e.largest_residual, std::abs(r));

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 namespace needle {
 
@@ -26,6 +27,19 @@ struct SidePolynomial {
     return v / std::pow(h, order);
   }
 };
+
+/// The basis u^k, k = 0 … Degree, u = (θ − c)/h, at readings [from, to) of x: a row a reading.
+template <int Degree>
+Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, double c,
+                          double h) {
+  Eigen::MatrixXd v(to - from, Degree + 1);
+  for (size_t i = from; i < to; ++i) {
+    const double u = (x[i] - c) / h;
+    double power = 1.0;
+    for (int k = 0; k <= Degree; ++k, power *= u) v(i - from, k) = power;
+  }
+  return v;
+}
 
 /// A root of f on [lo, hi] by sampling (64 steps) and bisection; nullopt when f keeps its sign.
 template <class F>
