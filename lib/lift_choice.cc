@@ -29,13 +29,16 @@ std::string DegreeList(const std::vector<double>& rad) {
 }
 
 // Σe² and the count of the normalised fourth divided differences e = D/√Σw² over the windows
-// of five consecutive entries of `idx` (readings of (x, y)) that span none of `cuts`.
+// of five consecutive entries of `idx` (readings of (x, y)) that span none of `cuts`; with
+// `lag`, Σ e_i e_{i+1} over neighbouring windows both counted.
 void AddResiduals(const std::vector<double>& x, const std::vector<double>& y,
                   const std::vector<size_t>& idx, const std::vector<double>& cuts, double* sum,
-                  long* count) {
+                  long* count, double* lag = nullptr) {
+  double previous = 0.0;  // the window before's e, 0 when it was not counted
   for (size_t i = 0; i + 4 < idx.size(); ++i) {
     const double from = x[idx[i]], to = x[idx[i + 4]];
     if (std::any_of(cuts.begin(), cuts.end(), [&](double b) { return b > from && b < to; })) {
+      previous = 0.0;
       continue;
     }
     double d = 0.0, w2 = 0.0;
@@ -49,6 +52,9 @@ void AddResiduals(const std::vector<double>& x, const std::vector<double>& y,
     }
     *sum += d * d / w2;
     ++*count;
+    const double e = d / std::sqrt(w2);
+    if (lag) *lag += previous * e;
+    previous = e;
   }
 }
 
@@ -90,6 +96,7 @@ TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& 
   // rounding (a harmonic exported to 9 decimals from an angle off its grid read as measured).
   const size_t from = y[first] <= 0.0 && first < last ? first + 1 : first;
   const size_t to = y[last] <= 0.0 && last > from ? last - 1 : last;
+  r.rounding_sigma_m = std::hypot(r.rounding_sigma_m, AngleRoundingSigma(x, y, from, to));
   std::vector<size_t> all, even, odd;
   for (size_t i = from; i <= to; ++i) {
     all.push_back(i);
@@ -97,12 +104,14 @@ TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& 
   }
   double sum = 0.0, half_sum = 0.0;
   long count = 0, half_count = 0;
-  AddResiduals(x, y, all, cuts, &sum, &count);
+  double lag = 0.0;
+  AddResiduals(x, y, all, cuts, &sum, &count, &lag);
   AddResiduals(x, y, even, cuts, &half_sum, &half_count);
   AddResiduals(x, y, odd, cuts, &half_sum, &half_count);
   r.residual_m = count ? std::sqrt(sum / count) : 0.0;
   const double half = half_count ? std::sqrt(half_sum / half_count) : 0.0;
   r.halving_ratio = r.residual_m > 0.0 ? half / r.residual_m : 0.0;
+  r.lag_correlation = sum > 0.0 ? lag / sum : 0.0;
   if (r.printed_m && last > first) {
     long flat = 0;
     for (size_t i = first; i < last; ++i) {
@@ -112,7 +121,9 @@ TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& 
   }
   // A smooth residual (the law's own, growing ~16× when the table is halved) is an exact table's;
   // a white one at the rounding's level a rounded table's; a white one above it a measurement's.
-  const bool white = half_count >= 3 && r.residual_m > 0.0 && r.halving_ratio < kWhiteHalvingRatio;
+  const bool white = half_count >= 3 && r.residual_m > 0.0 &&
+                     r.halving_ratio < kWhiteHalvingRatio &&
+                     r.lag_correlation < kWhiteLagCorrelation;
   r.sigma_m = r.rounding_sigma_m;
   if (!white) {
     r.kind = TableKind::kExact;
@@ -325,7 +336,12 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   std::ostringstream what;
   what.precision(3);
   what << TableKindName(r.kind) << (r.staircase ? " (a staircase)" : "") << " table (" << points
-       << "): residual " << Mm(r.residual_m) << " mm, x" << r.halving_ratio << " when halved, "
+       << "): residual " << Mm(r.residual_m) << " mm, x" << r.halving_ratio << " when halved";
+  if (r.kind == TableKind::kExact && r.halving_ratio > 0.0 &&
+      r.halving_ratio < kWhiteHalvingRatio && r.lag_correlation >= kWhiteLagCorrelation) {
+    what << " but smooth (neighbours correlated " << r.lag_correlation << ")";
+  }
+  what << ", "
        << (r.printed_m ? "printed to " + Mm(*r.printed_m) + " mm" : std::string("digits unknown"));
   const std::string stated = o.kind ? "stated in the case; " : "";
   if (r.kind == TableKind::kMeasured) return ReadMeasured(given, o, std::move(c), at);

@@ -8,6 +8,8 @@
 #include <limits>
 #include <sstream>
 
+#include "lib/units.h"
+
 namespace needle {
 namespace {
 
@@ -190,6 +192,49 @@ std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
     if (fits) return q * 1e-3;
   }
   return std::nullopt;
+}
+
+double AngleRoundingSigma(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                          size_t to) {
+  const size_t n = x.size();
+  if (n < 3 || y.size() != n) return 0.0;
+  static const std::array<double, 13> kDigit = {1,    1e-1, 1e-2, 1e-3,  1e-4,  1e-5, 1e-6,
+                                                1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+  std::vector<double> digit_rad(n, 0.0);  // 0: digits beyond 1e-12 deg, none that matter
+  for (size_t i = 0; i < n; ++i) {
+    for (double q : kDigit) {
+      const double r = x[i] / kDeg / q;
+      if (std::abs(r - std::round(r)) <= 1e-6 * std::max(1.0, 1e-9 * std::abs(r))) {
+        digit_rad[i] = q * kDeg;
+        break;
+      }
+    }
+  }
+  // The rounding's error as fourth differences see it: a uniform grid's rounding errors follow
+  // the step's residue modulo the digit, correlated from reading to reading, below q/√12.
+  std::vector<double> row(n);
+  for (size_t i = 0; i < n; ++i) row[i] = static_cast<double>(i);
+  const double uneven_rad = EstimateNoise(row, x);
+  double sum = 0.0;
+  long count = 0;
+  for (size_t i = std::max<size_t>(from, 1); i <= std::min(to, n - 2); ++i) {
+    const double step = 0.5 * (x[i + 1] - x[i - 1]);
+    if (!(step > 0.0)) continue;
+    // The finest of five neighbours' digits: an angle printed with a trailing zero ("%.10g" of
+    // 123.45678 for 123.4567800) shows a coarser one than it was rounded to.
+    double digit = digit_rad[i];
+    for (size_t k = i >= 2 ? i - 2 : 0; k <= std::min(i + 2, n - 1); ++k) {
+      digit = std::min(digit, digit_rad[k]);
+    }
+    // A digit at the step's own scale is a computed grid's (0.1° steps print 0.1°): exact.
+    if (digit < kAngleDigitOfStep * step) {
+      const double slope = (y[i + 1] - y[i - 1]) / (x[i + 1] - x[i - 1]);
+      const double sd = std::min(digit / std::sqrt(12.0), uneven_rad);
+      sum += slope * slope * sd * sd;
+    }
+    ++count;
+  }
+  return count > 0 ? std::sqrt(sum / count) : 0.0;
 }
 
 double EstimateNoiseBetweenBreaks(const std::vector<double>& x, const std::vector<double>& y,

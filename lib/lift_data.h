@@ -171,6 +171,12 @@ std::string TableKindName(TableKind kind);
 /// Halved, a smooth law's normalised fourth differences grow 2⁴ = 16 times, white noise's not at
 /// all: a residual growing less than this is white (noise at least 4× the law's own residual).
 constexpr double kWhiteHalvingRatio = 4.0;
+/// White noise's neighbouring fourth differences share four readings: their correlation is
+/// −56/70 = −0.8 wherever the noise is, even in one part of the table or in one outlier. A smooth
+/// law the readings do not resolve (a C∞ bump's feet at 1°, s'' rising from nothing within a
+/// step or two) has a residual that hardly shrinks when halved but varies slowly: +0.7. A
+/// residual is white only when this correlation is below this.
+constexpr double kWhiteLagCorrelation = 0.0;
 /// A white residual up to this many times the rounding's σ (q/√12) is the rounding.
 constexpr double kRoundingNoiseFactor = 2.0;
 
@@ -178,10 +184,12 @@ constexpr double kRoundingNoiseFactor = 2.0;
 struct TableReading {
   TableKind kind = TableKind::kExact;
   double sigma_m = 0.0;             ///< σ of a reading: the rounding's, or the measurement's, m
-  double rounding_sigma_m = 0.0;    ///< q/√12 (or 1e-13 of the largest lift, q unknown), m
+  double rounding_sigma_m = 0.0;    ///< q/√12 (or 1e-13 of the largest lift, q unknown) with
+                                    ///< the angles' printing (AngleRoundingSigma), m
   std::optional<double> printed_m;  ///< q, the printed resolution (stated or read), m
   double residual_m = 0.0;          ///< RMS normalised fourth difference between the cuts, m
   double halving_ratio = 0.0;       ///< the same on every other reading, over it
+  double lag_correlation = 0.0;     ///< Σ e_i e_{i+1} / Σ e_i² of neighbouring windows
   bool staircase = false;           ///< most steps between readings are at most q
 };
 
@@ -233,6 +241,23 @@ LiftBreak RefineBreak(const std::vector<double>& crank_rad, const std::vector<do
 /// The rounding of the readings, m: the largest 10^-k mm (k = 0…12) of which every lift in mm is
 /// a multiple (to 1e-6 of it); nullopt when none is (lifts not written in decimal mm).
 std::optional<double> PrintedResolution(const std::vector<double>& lift_m);
+
+/// An angle whose printed digit is below this share of the grid's step was rounded to it; a
+/// digit at the step's own scale (0.1° steps printing 0.1°) is a computed grid's, exact.
+constexpr double kAngleDigitOfStep = 1e-3;
+
+/// The lift noise, m, that printing the angles makes in readings from … to of (x, y): a reading
+/// taken at θ and printed at θ + δ misses the law at the printed angle by s'·δ, δ uniform over
+/// the angle's printed digit q_θ (the finest among it and its four nearest neighbours of the
+/// largest 10^-k deg, k = 0…12, of which each is a multiple) where q_θ is below
+/// kAngleDigitOfStep of the step, else 0, and at most the grid's unevenness as fourth
+/// differences see it (σ̂ of θ against the row index: a uniform grid's rounding errors follow the
+/// step's residue modulo the digit, correlated, below q_θ/√12); RMS over the readings. (Angles
+/// printed "%.10g", 7 decimals from 100°, on a harmonic 6 mm rise over 60° of crank: 7e-10 mm,
+/// 2.5× a 9-decimal table's lift rounding.) A cam-degree column doubled to crank degrees reads
+/// as half its digit.
+double AngleRoundingSigma(const std::vector<double>& crank_rad, const std::vector<double>& lift_m,
+                          size_t from, size_t to);
 
 /// σ̂ of the readings from sixth divided differences (blind to quintics), leaving out every
 /// window that is flat or holds one of `breaks_rad` strictly inside; m, 0 when none is left.

@@ -461,6 +461,105 @@ TEST(LiftReadingTest, AReadingBelowTheSeatIsNoise) {
   ExpectWithin(d, 0.05, "a reading -0.001 mm at 1e-3 mm");
 }
 
+// A dense export whose angles are printed to ten significant digits ("%.10g": 7 decimals from
+// 100°) misses its law at the printed angle by s'·δ: 7e-10 mm RMS on a harmonic 6 mm rise over
+// 60° of crank, 2.5× the 9-decimal lift rounding's σ, and white. From a new user's trial: such a
+// table was read as measured (its breaks "not used") and smoothed, a_max 3.4 % high, the truth
+// outside the band. The angles' printing is part of the rounding (AngleRoundingSigma).
+TEST(LiftReadingTest, AnglesPrintedToTenDigitsAreRounding) {
+  const Law law{6.0, 60.0, 20.0, 60.0, Harmonic};
+  LiftTable t;
+  const long n = 30000;
+  for (long i = 0; i < n; ++i) {
+    const double deg = -10.0 + 160.0 * i / (n - 1);
+    char angle[64], lift[64];
+    std::snprintf(angle, sizeof angle, "%.10g", deg);
+    std::snprintf(lift, sizeof lift, "%.9f", law.At(deg, 0));
+    t.crank_rad.push_back(std::atof(angle) * kDeg);
+    t.lift_m.push_back(std::atof(lift) * 1e-3);
+  }
+  const Read r = ReadExport(law, t);
+  ASSERT_TRUE(r.choice.reading) << r.choice.reason;
+  EXPECT_EQ(r.choice.reading->kind, TableKind::kRounded) << r.choice.reason;
+  ExpectWithin(r, 0.01, "angles to 10 digits");
+  EXPECT_LT(std::abs(r.max_error), 1e-3) << r.choice.reason;
+  EXPECT_LT(std::abs(r.min_error), 1e-3) << r.choice.reason;
+  // A computed grid's angles are exact, whatever their digits: no noise from them (1e-18 m of
+  // the degrees' conversion).
+  const LiftTable grid = Export(law, 0.5, 0.0, 10.0);
+  EXPECT_LT(AngleRoundingSigma(grid.crank_rad, grid.lift_m, 0, grid.crank_rad.size() - 1), 1e-15);
+}
+
+// A C∞ bump, s = H exp(1 − 1/(1 − u²)) over u = −1…1, whose s'' rises from nothing to its peak
+// within a few degrees of each foot: at 1° steps the table does not resolve it, its residual
+// hardly shrinks when halved and looked white, 4e-4 mm against a 3e-10 mm rounding, so it was
+// read as measured (noise 4e-4 mm) and smoothed, from a new user's trial. Its neighbouring
+// windows' residuals are correlated +0.7 (white noise's −0.8, kWhiteLagCorrelation): exact.
+double BumpRise(double xi, int d) {
+  const double u = 1.0 - xi, v = 1.0 - u * u;
+  if (xi <= 0.0 || v <= 0.0) return 0.0;
+  const double g = std::exp(1.0 - 1.0 / v);
+  if (!d) return g;
+  const double p1 = -2.0 * u / (v * v), p2 = -2.0 / (v * v) - 8.0 * u * u / (v * v * v);
+  return g * (p1 * p1 + p2);
+}
+
+TEST(LiftReadingTest, AResidualHeldInAFewReadingsIsTheLaws) {
+  const Law law{3.0, 40.0, 0.0, 40.0, BumpRise};
+  const Read r = ReadExport(law, Export(law, 1.0, 0.0, 10.0));
+  ASSERT_TRUE(r.choice.reading) << r.choice.reason;
+  EXPECT_EQ(r.choice.reading->kind, TableKind::kExact) << r.choice.reason;
+  EXPECT_GT(r.choice.reading->lag_correlation, 0.5) << r.choice.reason;
+  EXPECT_FALSE(r.choice.measured) << r.choice.reason;
+  EXPECT_LT(std::abs(r.max_error), 0.02) << r.choice.reason;
+  EXPECT_LT(std::abs(r.min_error), 0.01) << r.choice.reason;
+  EXPECT_TRUE(r.max_in_band && r.min_in_band) << r.choice.reason;
+  // The same law with 1 µm of noise is still measured.
+  const LiftLawChoice noisy = ChooseLiftLaw(Export(law, 1.0, 1e-4, 10.0, 1e-3, 3), {});
+  ASSERT_TRUE(noisy.reading) << noisy.reason;
+  EXPECT_EQ(noisy.reading->kind, TableKind::kMeasured) << noisy.reason;
+}
+
+// Noise need not be everywhere (a reviewer's cases): chatter over part of the lift, two spikes
+// over a fine noise, and a computed grid whose step changes (1° to 0.1°, its angles' digits at
+// the step's own scale: no rounding of them) are each still measured, their seats clean.
+TEST(LiftReadingTest, NoiseInPartOfTheTableIsStillMeasured) {
+  const Law law{6.0, 60.0, 20.0, 60.0, Harmonic};
+  auto table = [&](double step_deg, auto noise_mm) {
+    LiftTable t;
+    for (double deg = -10.0; deg <= 150.0 + 1e-9; deg += step_deg) {
+      const double mm = law.At(deg, 0) > 0.0 ? law.At(deg, 0) + noise_mm(deg) : 0.0;
+      t.crank_rad.push_back(deg * kDeg);
+      t.lift_m.push_back(std::round(std::max(mm, 0.0) * 1e6) * 1e-9);  // to 1e-6 mm
+    }
+    return t;
+  };
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const LiftTable chatter =
+      table(0.1, [&](double deg) { return deg > 85 && deg < 110 ? 5e-3 * normal(rng) : 0.0; });
+  const LiftTable spikes = table(0.1, [&](double deg) {
+    const bool spike = std::abs(deg - 30.0) < 0.05 || std::abs(deg - 120.0) < 0.05;
+    return 2e-4 * normal(rng) + (spike ? 0.05 : 0.0);
+  });
+  LiftTable graded;
+  for (double deg = -10.0; deg <= 150.0 + 1e-9; deg += deg < 30.0 - 1e-9 ? 1.0 : 0.1) {
+    graded.crank_rad.push_back(deg * kDeg);
+    const double mm = law.At(deg, 0) > 0.0 ? law.At(deg, 0) + 5e-4 * normal(rng) : 0.0;
+    graded.lift_m.push_back(std::round(std::max(mm, 0.0) * 1e6) * 1e-9);
+  }
+  for (const auto& [t, what] :
+       {std::pair{chatter, "chatter over 85-110 deg"}, std::pair{spikes, "two spikes"},
+        std::pair{graded, "1 to 0.1 deg"}}) {
+    const LiftLawChoice c = ChooseLiftLaw(t, {});
+    ASSERT_TRUE(c.reading) << what << ": " << c.reason;
+    EXPECT_EQ(c.reading->kind, TableKind::kMeasured) << what << ": " << c.reason;
+    EXPECT_LT(c.reading->lag_correlation, -0.5) << what << ": " << c.reason;
+  }
+  EXPECT_EQ(AngleRoundingSigma(graded.crank_rad, graded.lift_m, 0, graded.crank_rad.size() - 1),
+            0.0);
+}
+
 }  // namespace
 }  // namespace needle
 
