@@ -150,13 +150,21 @@ std::vector<const LiftBreak*> SeekBreaks(const LiftTable& given, double sigma_m,
   // their s'' shrinks as the bins' width^2.5): each coarser level adds the breaks the finer ones
   // did not find, located again on the readings and known to within its bin's width.
   std::vector<LiftBreak> found = FindBreaks(x, given.lift_m, sigma_m);
-  if (found.empty() && x.size() <= kJunctionsAtMost) {  // a coarse table's, by quintics
+  // A coarse table's junctions by quintics. Beside breaks found (a degree-2 B-spline's knot
+  // where s'' is largest, missed among seven found: a_max 28 % high), only where the quintics'
+  // readings reach neither a break found nor the seat, whose jumps would make one (a 2-3 cubic's
+  // return 5 steps from its foot).
+  if (x.size() <= kJunctionsAtMost) {
+    const size_t n_found = found.size();
     for (const LiftBreak& b : FindJunctions(x, given.lift_m, sigma_m)) {
       const double h = x[std::min(b.index + 1, x.size() - 1)] - x[b.index];
-      const bool known = std::any_of(found.begin(), found.end(), [&](const LiftBreak& f) {
-        return std::abs(f.crank_rad - b.crank_rad) <= 2.0 * h;
-      });
-      if (!known) found.push_back(b);
+      const double clear = n_found > 0 ? kJunctionSide * h : 2.0 * h;
+      const bool known = std::any_of(
+          found.begin(), found.begin() + n_found,
+          [&](const LiftBreak& f) { return std::abs(f.crank_rad - b.crank_rad) <= clear; });
+      const bool at_seat =
+          n_found > 0 && (b.crank_rad - x[first] <= clear || x[last] - b.crank_rad <= clear);
+      if (!known && !at_seat) found.push_back(b);
     }
   }
   for (size_t per = 2; x.size() / per >= kBreakLeastBins; per *= 2) {

@@ -118,6 +118,8 @@ std::vector<LiftOutlier> FindOutliers(const std::vector<double>& crank_rad,
 /// Breaks are also sought on means of bins of 2, 4, 8, … consecutive readings while there are at
 /// least this many bins (ChooseLiftLaw): the noise of neighbouring readings' s'' grows as 1/h².
 constexpr size_t kBreakLeastBins = 60;
+/// The readings of each side's quintic in FindJunctions.
+constexpr int kJunctionSide = 7;
 /// FindJunctions is run on tables of at most this many readings (a coarse table's; a dense
 /// one's junctions show among bins).
 constexpr size_t kJunctionsAtMost = 5000;

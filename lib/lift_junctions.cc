@@ -12,7 +12,7 @@
 namespace needle {
 namespace {
 
-constexpr int kSide = 7;  // readings of each side's quintic: one more than it needs
+constexpr int kSide = kJunctionSide;  // readings of each side's quintic: one more than it needs
 // A neighbour whose |D| is at least this share of the largest's: the junction lies between them
 // (at a reading, its neighbours see about half of it).
 constexpr double kBetweenShare = 0.75;

@@ -420,7 +420,7 @@ TEST(LiftReadingTest, TheOpenLiftBeginsWhereTheLawLeavesTheSeat) {
   ExpectExactAndInBand(r, true);
   const LiftLaw fitted(r.choice.table, r.choice.law);
   EXPECT_NEAR(fitted.start_rad() / kDeg, 0.0, 1e-3);
-  EXPECT_NEAR(fitted.end_rad() / kDeg, 140.0, 1e-3);
+  EXPECT_NEAR(fitted.end_rad() / kDeg, 140.0, 1e-3) << r.choice.reason;
 }
 
 // A double-harmonic rise into a dwell (s'' jumps from −π² H/β² to 0 at 110°), exported at 1.5°
@@ -518,6 +518,51 @@ TEST(LiftReadingTest, AResidualHeldInAFewReadingsIsTheLaws) {
   const LiftLawChoice noisy = ChooseLiftLaw(Export(law, 1.0, 1e-4, 10.0, 1e-3, 3), {});
   ASSERT_TRUE(noisy.reading) << noisy.reason;
   EXPECT_EQ(noisy.reading->kind, TableKind::kMeasured) << noisy.reason;
+}
+
+// A C¹ piecewise quadratic, a degree-2 B-spline's lift (4 mm over 110°, s'' stepping at eight
+// knots 5–19° apart), exported at 0.5° to 9 decimals, from a new user's trial: FindBreaks found
+// seven knots, and the quintics (FindJunctions), sought only when it found none, never looked
+// for the eighth, at 105°, where s'' is largest; a_max came out 28 % high. The quintics now seek
+// the junctions beside the breaks found on every coarse table.
+TEST(LiftReadingTest, JunctionsAreSoughtBesideTheBreaksFound) {
+  const std::vector<double> knots = {0, 12, 20, 35, 47, 55, 71, 90, 105, 110};  // deg
+  const std::vector<double> s2 = {0.005,
+                                  0.007717391304347825,
+                                  -0.00021470746108427177,
+                                  -0.006543209876543211,
+                                  -0.01333333333333333,
+                                  -0.0015476190476190485,
+                                  0.0010968597965501984,
+                                  0.0020392156862745108,
+                                  0.008};  // mm/deg², each piece's
+  auto lift_mm = [&](double deg) {
+    double s = 0.0, v = 0.0;
+    for (size_t j = 0; j + 1 < knots.size(); ++j) {
+      const double d = std::min(deg, knots[j + 1]) - knots[j];
+      if (d <= 0.0) break;
+      s += v * d + 0.5 * s2[j] * d * d;
+      v += s2[j] * d;
+    }
+    return std::max(s, 0.0);
+  };
+  LiftTable t;
+  for (long i = 0; i <= 260; ++i) {
+    const double deg = -10.0 + 0.5 * i;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.9f", lift_mm(deg));
+    t.crank_rad.push_back(deg * kDeg);
+    t.lift_m.push_back(std::atof(text) * 1e-3);
+  }
+  const LiftLawChoice c = ChooseLiftLaw(t, {});
+  ASSERT_FALSE(c.corner) << c.reason;
+  EXPECT_TRUE(std::any_of(c.breaks_found.begin(), c.breaks_found.end(), [](const LiftBreak& b) {
+    return std::abs(b.crank_rad / kDeg - 105.0) < 0.01;
+  })) << c.reason;
+  const LiftLaw fitted(c.table, c.law);
+  const double per_deg2 = 1e-3 / (kDeg * kDeg);  // mm/deg² in m/rad²
+  EXPECT_NEAR(fitted.Max(2).value / (0.008 * per_deg2), 1.0, 1e-3) << c.reason;
+  EXPECT_NEAR(fitted.Min(2).value / (s2[4] * per_deg2), 1.0, 1e-3) << c.reason;
 }
 
 // Noise need not be everywhere (a reviewer's cases): chatter over part of the lift, two spikes
