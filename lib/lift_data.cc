@@ -178,13 +178,22 @@ double EstimateNoise(const std::vector<double>& x, const std::vector<double>& y)
   return PseudoResidualRms(x, y, 4, {});  // fourth divided differences: blind to cubics
 }
 
+namespace {
+
+// Whether `value` is a multiple of the digit q (to 1e-6 of it): printed to q.
+bool PrintedTo(double value, double q) {
+  const double r = value / q;
+  return std::abs(r - std::round(r)) <= 1e-6 * std::max(1.0, 1e-9 * std::abs(r));
+}
+
+}  // namespace
+
 std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
   for (int k = 0; k <= 12; ++k) {
     const double q = std::pow(10.0, -k);  // mm
     bool fits = true;
     for (double v : lift_m) {
-      const double r = v * 1e3 / q;
-      if (std::abs(r - std::round(r)) > 1e-6 * std::max(1.0, 1e-9 * std::abs(r))) {
+      if (!PrintedTo(v * 1e3, q)) {
         fits = false;
         break;
       }
@@ -203,8 +212,7 @@ double AngleRoundingSigma(const std::vector<double>& x, const std::vector<double
   std::vector<double> digit_rad(n, 0.0);  // 0: digits beyond 1e-12 deg, none that matter
   for (size_t i = 0; i < n; ++i) {
     for (double q : kDigit) {
-      const double r = x[i] / kDeg / q;
-      if (std::abs(r - std::round(r)) <= 1e-6 * std::max(1.0, 1e-9 * std::abs(r))) {
+      if (PrintedTo(x[i] / kDeg, q)) {
         digit_rad[i] = q * kDeg;
         break;
       }
