@@ -134,11 +134,13 @@ std::vector<std::string> UnitSuffixes(Dimension dimension) {
   return out;
 }
 
+SiConversion SiConversionOf(Dimension dimension, const std::string& unit) {
+  // T[K] = t[°C] + 273.15
+  return {Factor(dimension, unit), dimension == Dimension::kTemperature && unit == "C"};
+}
+
 double ToSi(Dimension dimension, const std::string& unit, double value) {
-  const double factor = Factor(dimension, unit);
-  if (dimension == Dimension::kTemperature && unit == "C")
-    return value + 273.15;  // T[K] = t[°C] + 273.15
-  return value * factor;
+  return SiConversionOf(dimension, unit)(value);
 }
 
 double FromSi(Dimension dimension, const std::string& unit, double value_si) {

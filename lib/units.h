@@ -57,6 +57,15 @@ std::vector<std::string> UnitSuffixes(Dimension dimension);
 /// when the unit is not one of UnitSuffixes(dimension). Temperatures in C gain 273.15.
 double ToSi(Dimension dimension, const std::string& unit, double value);
 
+/// ToSi for many values of one unit, the unit looked up once: (*this)(v) is ToSi's bits.
+struct SiConversion {
+  double factor = 1.0;   ///< SI per unit
+  bool celsius = false;  ///< a temperature in C: v + 273.15 instead
+  double operator()(double value) const { return celsius ? value + 273.15 : value * factor; }
+};
+/// The conversion of `unit` of `dimension` (throws as ToSi).
+SiConversion SiConversionOf(Dimension dimension, const std::string& unit);
+
 /// Converts an SI value back to `unit` (inverse of ToSi).
 double FromSi(Dimension dimension, const std::string& unit, double value_si);
 

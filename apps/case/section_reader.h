@@ -116,13 +116,14 @@ class SectionReader {
     const toml::node& node = *table_->get(key->first);
     const toml::array* array = node.as_array();
     if (!array) Fail(key->first, "expected an array of numbers");
+    const SiConversion to_si = SiConversionOf(dimension, key->second);
     std::vector<double> out;
     out.reserve(array->size());
     for (size_t i = 0; i < array->size(); ++i) {
       // The entry's key ("lift_mm[3]") is built only for a message.
       const double v =
           ToNumber(*array->get(i), [&] { return key->first + "[" + std::to_string(i) + "]"; });
-      out.push_back(ToSi(dimension, key->second, v));
+      out.push_back(to_si(v));
     }
     read_.push_back({key->first, last_declared_, 0.0, true, out});
     return out;

@@ -141,6 +141,37 @@ TEST(NeedleCliTest, BadInputIsOneLineExitTwoAndNoOutputFile) {
   std::filesystem::remove_all(dir);
 }
 
+// A file argument of 4 MiB or more restarts the program with glibc's heap in huge pages
+// (needle_main.cc): the same answer, the same one-line refusal, the same exit status.
+TEST(NeedleCliTest, ALargeFileGivesTheAnswerOfASmallOne) {
+  const std::string dir = "/tmp/needle_cli_large_" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  const std::string good = dir + "/good.toml", bad = dir + "/bad.toml";
+  const std::string padding = "# " + std::string(5 << 20, 'x') + "\n";
+  {
+    std::ofstream f(good);
+    f << padding << testing::Slurp(Case("basu-cam4.toml"));
+  }
+  {
+    std::ofstream f(bad);
+    f << padding << "[engine]\nspeed_rpm = 400\n[lift]\ncrank_deg = [0, 5, 5, 10]\n"
+      << "lift_mm = [0, 1, 2, 0]\n";
+  }
+  ASSERT_GE(std::filesystem::file_size(good), 4u << 20);
+  const auto small = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --json");
+  const auto large = RunNeedle("kinematics " + good + " --json");
+  EXPECT_EQ(large.status, 0);
+  EXPECT_EQ(large.err, "");
+  EXPECT_EQ(nlohmann::json::parse(large.out)["max_acceleration_m_s2"],
+            nlohmann::json::parse(small.out)["max_acceleration_m_s2"]);
+  const auto refused = RunNeedle("kinematics " + bad);
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_EQ(refused.err, "needle: " + bad +
+                             ": [lift] crank_deg: angles must increase strictly, but entry 2 (5) "
+                             "follows entry 1 (5)\n");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(NeedleCliTest, BadOptionsExitTwo) {
   const auto spline = RunNeedle("kinematics " + Case("basu-cam4.toml") + " --spline cubic");
   EXPECT_EQ(spline.status, 2);
