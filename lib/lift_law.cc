@@ -47,8 +47,9 @@ std::string Deg(double rad) {
 void CheckReadings(const LiftTable& table, double allowance_m, double sigmas) {
   for (size_t i = 0; i < table.lift_m.size(); ++i) {
     if (table.lift_m[i] < -allowance_m) {
-      std::string what = "entry " + std::to_string(i) + " of the lifts is negative (" +
-                         Mm(table.lift_m[i]) +
+      // The angle too: a CSV's reader finds the reading by it, not by its index.
+      std::string what = "entry " + std::to_string(i) + " of the lifts, at " +
+                         Deg(table.crank_rad[i]) + " deg, is negative (" + Mm(table.lift_m[i]) +
                          " mm): lift is measured from the seat and cannot be below it";
       if (allowance_m > 0.0) {
         std::ostringstream n;

@@ -271,9 +271,9 @@ TEST(MeasuredTableTest, NegativeReadingsWithinTheNoiseAreAccepted) {
     FAIL() << "a seat 0.05 mm below zero was accepted";
   } catch (const CaseError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("measured.csv: [lift]: entry 4 of the lifts is negative ("),
-              std::string::npos)
+    EXPECT_NE(what.find("measured.csv: [lift]: entry 4 of the lifts, at "), std::string::npos)
         << what;
+    EXPECT_NE(what.find(" deg, is negative ("), std::string::npos) << what;
     EXPECT_NE(what.find("by more than the noise allows (4 sigma = "), std::string::npos) << what;
   }
 }

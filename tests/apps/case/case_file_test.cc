@@ -171,8 +171,8 @@ TEST(CaseFileTest, BadValues) {
             "t.toml: [lift] lift_mm[2]: is NaN; expected a finite number");
   // An exact table takes no reading below the seat (measured data: tests/lib/lift_data_test.cc).
   EXPECT_EQ(LawError(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, -2, 1, 0]")),
-            "t.toml: [lift]: entry 2 of the lifts is negative (-2 mm): lift is measured from the "
-            "seat and cannot be below it");
+            "t.toml: [lift]: entry 2 of the lifts, at 10 deg, is negative (-2 mm): lift is "
+            "measured from the seat and cannot be below it");
   EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, 2, 1]")),
             "t.toml: [lift] lift_mm: has 4 values but crank_deg has 5");
   EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, \"2\", 1, 0]")),
