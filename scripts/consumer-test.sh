@@ -11,6 +11,8 @@ cmake -S tests/consumer -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer" cases/basu-example1.toml
 "$work/consumer/consumer_before_rename" cases/basu-example1.toml
+# The installed command hands `fit` and `serve` to libexec/needle/needle-fit-serve.
+"$work/prefix/bin/needle" fit --help | grep -q -- --trace
 # The Python package, when the build has it: imported from the prefix alone, needle.distributed
 # beside the compiled module, its command line answering.
 python=$(sed -n "s/^_\?Python3_EXECUTABLE:[A-Z]*=//p" "$build/CMakeCache.txt" | head -1)

@@ -21,8 +21,7 @@
 namespace needle {
 
 CLI::App* AddFitCommand(CLI::App& app, FitCommandOptions& o) {
-  CLI::App* cmd = app.add_subcommand(
-      "fit", "Fit the case's unknowns to measured lift traces: values with 95 % intervals, n_dyn");
+  CLI::App* cmd = app.add_subcommand("fit", kFitCommandSummary);
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
   cmd->add_option("--trace", o.traces,
                   "measured trace, CSV of crank_deg and lift_mm (or lift_um), optional time_s; "

@@ -33,6 +33,10 @@ struct FitCommandOptions {
   OutputFormat format = OutputFormat::kText;
 };
 
+/// The command's one-line description (`needle --help`).
+inline constexpr char kFitCommandSummary[] =
+    "Fit the case's unknowns to measured lift traces: values with 95 % intervals, n_dyn";
+
 CLI::App* AddFitCommand(CLI::App& app, FitCommandOptions& options);
 int RunFitCommand(const FitCommandOptions& options);
 

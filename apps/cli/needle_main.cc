@@ -1,13 +1,11 @@
 // The `needle` command: a thin layer over the libraries. Exit status: 0 success,
 // 1 a check that fails, 2 bad input (case file, options) — one line on stderr, 3 an internal
-// error.
+// error. Built twice (apps/CMakeLists.txt): `needle`, which hands `fit` and `serve` to
+// `needle-fit-serve`, and that program (NEEDLE_FIT_SERVE), which runs every command.
 #include <CLI/CLI.hpp>
 #if defined(__GLIBC__)
 #include <malloc.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #endif
-#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <iostream>
@@ -22,6 +20,7 @@
 #include "apps/cli/dynamics_command.h"
 #include "apps/cli/fit_command.h"
 #include "apps/cli/kinematics_command.h"
+#include "apps/cli/program_start.h"
 #include "apps/cli/serve_command.h"
 #include "apps/cli/size_command.h"
 #include "apps/cli/spring_command.h"
@@ -46,36 +45,26 @@ Command Register(CLI::App& app, CLI::App* (*add)(CLI::App&, Options&), int (*run
   return {sub, [options, run] { return run(*options); }};
 }
 
-#if defined(__GLIBC__)
-constexpr char kHugePages[] = "glibc.malloc.hugetlb=1";
-
-// A dense table's reading (a file argument of 4 MiB or more: some 2e5 rows and up) touches a
-// few hundred MB of fresh heap, and on 4 kB pages each first touch is a fault: 1e6 rows, 40,000
-// to 57,000 faults and a third of the run. glibc puts its heap in transparent huge pages when
-// GLIBC_TUNABLES asks (read once, at start), so the program starts itself again with it set
-// (~20 ms, against 0.3-0.4 s saved). A user's own GLIBC_TUNABLES is left alone; a failed exec
-// runs on as it is.
-void RestartWithHugePages(int argc, char** argv) {
-  if (const char* set = std::getenv("GLIBC_TUNABLES")) {
-    if (std::strcmp(set, kHugePages) == 0) ::unsetenv("GLIBC_TUNABLES");  // ours: not to children
-    return;
-  }
-  bool large = false;
-  for (int i = 2; i < argc && !large; ++i) {
-    struct stat st;
-    large = ::stat(argv[i], &st) == 0 && S_ISREG(st.st_mode) && st.st_size >= (4 << 20);
-  }
-  if (!large || ::setenv("GLIBC_TUNABLES", kHugePages, 0) != 0) return;
-  ::execv("/proc/self/exe", argv);
-  ::unsetenv("GLIBC_TUNABLES");
+#if !defined(NEEDLE_FIT_SERVE)
+// A command run by needle-fit-serve: named in `needle --help`, its arguments left to that
+// program (main hands it over before parsing; the callback is for a parse that gets here).
+Command Elsewhere(CLI::App& app, const char* name, const char* summary, char** argv) {
+  CLI::App* sub = app.add_subcommand(name, summary);
+  sub->allow_extras();
+  sub->prefix_command();
+  return {sub, [argv] { return needle::RunInFitServe(argv); }};
 }
 #endif
 
 }  // namespace
 
 int main(int argc, char** argv) {
+#if !defined(NEEDLE_FIT_SERVE)
+  if (argc > 1 && (std::strcmp(argv[1], "fit") == 0 || std::strcmp(argv[1], "serve") == 0))
+    return needle::RunInFitServe(argv);
+#endif
 #if defined(__GLIBC__)
-  RestartWithHugePages(argc, argv);
+  needle::RestartWithHugePages(argc, argv);
   // A dense table's reading allocates and frees vectors of its length again and again; glibc
   // hands freed top-of-heap memory and large blocks back to the kernel at once, and each new
   // vector pays its page faults afresh (1e6 rows: 81,000 faults, half of `kinematics`' 1.8 s).
@@ -87,19 +76,24 @@ int main(int argc, char** argv) {
   CLI::App app{"needle: cam-driven needle valves — kinematics, spring sizing, dynamics"};
   app.require_subcommand(1);
   const std::vector<Command> commands = {
-      Register(app, needle::AddCheckCommand, needle::RunCheckCommand),
-      Register(app, needle::AddCompareCommand, needle::RunCompareCommand),
-      Register(app, needle::AddKinematicsCommand, needle::RunKinematicsCommand),
-      Register(app, needle::AddSpringCommand, needle::RunSpringCommand),
-      Register(app, needle::AddSizeCommand, needle::RunSizeCommand),
-      Register(app, needle::AddDesignCommand, needle::RunDesignCommand),
-      Register(app, needle::AddSimulateCommand, needle::RunSimulateCommand),
-      Register(app, needle::AddOverspeedCommand, needle::RunOverspeedCommand),
-      Register(app, needle::AddSynthCommand, needle::RunSynthCommand),
-      Register(app, needle::AddProfileCommand, needle::RunProfileCommand),
-      Register(app, needle::AddToleranceCommand, needle::RunToleranceCommand),
-      Register(app, needle::AddServeCommand, needle::RunServeCommand),
-      Register(app, needle::AddFitCommand, needle::RunFitCommand),
+    Register(app, needle::AddCheckCommand, needle::RunCheckCommand),
+    Register(app, needle::AddCompareCommand, needle::RunCompareCommand),
+    Register(app, needle::AddKinematicsCommand, needle::RunKinematicsCommand),
+    Register(app, needle::AddSpringCommand, needle::RunSpringCommand),
+    Register(app, needle::AddSizeCommand, needle::RunSizeCommand),
+    Register(app, needle::AddDesignCommand, needle::RunDesignCommand),
+    Register(app, needle::AddSimulateCommand, needle::RunSimulateCommand),
+    Register(app, needle::AddOverspeedCommand, needle::RunOverspeedCommand),
+    Register(app, needle::AddSynthCommand, needle::RunSynthCommand),
+    Register(app, needle::AddProfileCommand, needle::RunProfileCommand),
+    Register(app, needle::AddToleranceCommand, needle::RunToleranceCommand),
+#if defined(NEEDLE_FIT_SERVE)
+    Register(app, needle::AddServeCommand, needle::RunServeCommand),
+    Register(app, needle::AddFitCommand, needle::RunFitCommand),
+#else
+    Elsewhere(app, "serve", needle::kServeCommandSummary, argv),
+    Elsewhere(app, "fit", needle::kFitCommandSummary, argv),
+#endif
   };
   // An unknown first word is named as such, with the commands there are (CLI11 would say only
   // "A subcommand is required").

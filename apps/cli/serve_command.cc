@@ -8,8 +8,7 @@
 namespace needle {
 
 CLI::App* AddServeCommand(CLI::App& app, ServeCommandOptions& o) {
-  CLI::App* cmd = app.add_subcommand(
-      "serve", "The design page: the case live in a browser, recomputed on every change");
+  CLI::App* cmd = app.add_subcommand("serve", kServeCommandSummary);
   cmd->add_option("CASE", o.case_path, "case file (TOML)")->required();
   cmd->add_option("--port", o.port, "TCP port (default 8080; 0: any free port)")
       ->check(CLI::Range(0, 65535));

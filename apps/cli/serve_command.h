@@ -21,6 +21,10 @@ struct ServeCommandOptions {
   OutputFormat format = OutputFormat::kText;
 };
 
+/// The command's one-line description (`needle --help`).
+inline constexpr char kServeCommandSummary[] =
+    "The design page: the case live in a browser, recomputed on every change";
+
 CLI::App* AddServeCommand(CLI::App& app, ServeCommandOptions& options);
 int RunServeCommand(const ServeCommandOptions& options);
 

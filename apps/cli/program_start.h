@@ -1,0 +1,19 @@
+#pragma once
+/// @file
+/// How the `needle` program starts, before any command parses its options: two hand-overs to
+/// another process image (execv), each for speed, neither changing what a command computes.
+
+namespace needle {
+
+/// A file argument of 4 MiB or more (a dense lift table): the program starts itself again with
+/// GLIBC_TUNABLES=glibc.malloc.hugetlb=1, glibc's heap in transparent huge pages. Returns at
+/// once otherwise, when GLIBC_TUNABLES is set already (ours is then unset, not passed to
+/// children), or when the exec fails (the run goes on as it is). glibc only; a no-op elsewhere.
+void RestartWithHugePages(int argc, char** argv);
+
+/// `needle fit` and `needle serve`: runs needle-fit-serve with the same arguments, found beside
+/// this program (the build tree), else in libexec/needle (an install). Returns only when neither
+/// could be started, having printed one line: exit 3 (an installation's fault).
+int RunInFitServe(char** argv);
+
+}  // namespace needle
