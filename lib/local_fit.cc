@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -44,6 +45,11 @@ namespace {
 constexpr int kTerms = kLocalDegree + 1;
 constexpr Eigen::Index kQrBelow = 40;  // windows up to this many readings are solved by QR
 constexpr double kNodeSpacing = 0.5;   // nodes half a window's width apart
+// A shifted window is taken for a junction's side when its |s⁽⁵⁾| is below this share of every
+// misfitting window's, or when every misfitting window misses by this many times the rounding's
+// bound (ShiftedNodeAt).
+constexpr double kSmoother = 0.1;
+constexpr double kGrossMisfit = 1000.0;
 
 // Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
 using Points = BinMeans;
@@ -69,6 +75,7 @@ struct Estimate {
   double width = 0.0;  // the window's span, rad
   // The fit's residuals: the largest |s_i − fit(θ_i)| (m) and Σ c_i (s_i − fit(θ_i))² (m²).
   double largest_residual = 0.0, residual_square_sum = 0.0;
+  double fifth = 0.0;  // |s⁽⁵⁾| of the fitted polynomial, m/rad⁵ (its roughness)
 };
 
 // The mean over point i's bin of u^c = ((θ − t)/b)^c, c = 0 … 5, u its mean's: u^c itself for a
@@ -142,6 +149,7 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
   Eigen::VectorXd ws(k);
   for (Eigen::Index i = 0; i < k; ++i) ws(i) = root_w(i) * p.y[lo + i];
   const Eigen::VectorXd beta = g.transpose() * ws;
+  e.fifth = 120.0 * std::abs(beta(5)) / (b * b * b * b * b);
   for (Eigen::Index i = 0; i < k; ++i) {
     const double u = (p.x[lo + i] - t) / b;
     double fitted = 0.0;
@@ -204,7 +212,8 @@ bool Grow(const Points& p, double t, Side side, size_t size, size_t* lo, size_t*
 // chosen; nullopt when the side has fewer than sizes[from] points.
 std::optional<LocalNode> NodeAt(const Points& p, double t, double sigma, bool quantized,
                                 const std::vector<size_t>& sizes, Side side, size_t from,
-                                size_t* chosen_size, bool* misfit_ended = nullptr) {
+                                size_t* chosen_size, bool* misfit_ended = nullptr,
+                                bool* narrowest_misfits = nullptr) {
   const auto at = std::lower_bound(p.x.begin(), p.x.end(), t);
   size_t lo = at - p.x.begin(), hi = lo;
   if (side == Side::kLeft) lo = hi = at != p.x.end() && *at == t ? lo + 1 : lo;
@@ -219,8 +228,10 @@ std::optional<LocalNode> NodeAt(const Points& p, double t, double sigma, bool qu
     const bool misfits = Misfits(e, hi - lo, sigma, quantized);
     // A neighbour's window too wide here: start again from the narrowest.
     if (misfits && tried.empty() && from > 0) {
-      return NodeAt(p, t, sigma, quantized, sizes, side, 0, chosen_size, misfit_ended);
+      return NodeAt(p, t, sigma, quantized, sizes, side, 0, chosen_size, misfit_ended,
+                    narrowest_misfits);
     }
+    if (narrowest_misfits && tried.empty() && j == 0) *narrowest_misfits = misfits;
     tried.push_back(e);
     const bool ends = misfits && tried.size() > 1;
     if (misfit_ended) *misfit_ended = agrees && ends;
@@ -248,27 +259,84 @@ std::optional<LocalNode> NodeAt(const Points& p, double t, double sigma, bool qu
   return node;
 }
 
+// Where the narrowest window of the nearest readings misfits them (a junction of s''' lies
+// inside it that no break marks: a modified trapezoid's ends of constant acceleration, on a
+// coarse exact table), the narrowest windows that hold t shifted either way, and of those whose
+// polynomial fits its readings the smoothest, the least |s⁽⁵⁾| (Harten's ENO choice of stencil),
+// when the junction shows: that window smoother than every misfitting one by kSmoother, or every
+// misfitting one missing by kGrossMisfit roundings (a junction's s''' jump J makes each window
+// across it miss by some J h³). Its readings then lie on one side of the junction, and the fit
+// is that side's law. (A residual alone cannot choose: 7 readings leave a quintic one degree of
+// freedom, which an odd-symmetric stretch, the cosine between a modified trapezoid's plateaus,
+// fits to round-off whatever its s'' at the ends; a window across a junction symmetric about it
+// has no fifth power either; and a smooth law that no quintic fits to the rounding, a
+// C-infinity bump, has a window now and then that does, one-sided and worse than the nearest,
+// its neighbours missing by tens of roundings.) Its band's step is the largest change of s'' to
+// the other windows that fit, or to the nearest one when no other does (how far the junction's
+// place could move the value). nullopt when no shifted window is chosen.
+std::optional<LocalNode> ShiftedNodeAt(const Points& p, double t, double sigma,
+                                       const LocalNode& nearest, size_t size) {
+  const size_t n = p.x.size();
+  if (n < size) return std::nullopt;
+  std::optional<Estimate> best;
+  std::vector<double> fitting;  // s'' of every window that fits
+  double least_misfit_fifth = std::numeric_limits<double>::infinity();
+  double least_misfit = std::numeric_limits<double>::infinity();  // residual, m
+  // (A node at a reading may lie a rounding off it: the window starting or ending there holds it.)
+  const double slack = 1e-9 * (p.x[n - 1] - p.x[0]);
+  for (size_t lo = 0; lo + size <= n; ++lo) {
+    if (p.x[lo] > t + slack) break;
+    if (p.x[lo + size - 1] < t - slack) continue;
+    const Estimate e = FitAt(p, t, lo, lo + size, true);
+    if (Misfits(e, size, sigma, true)) {
+      least_misfit_fifth = std::min(least_misfit_fifth, e.fifth);
+      least_misfit = std::min(least_misfit, e.largest_residual);
+      continue;
+    }
+    fitting.push_back(e.s[2]);
+    if (!best || e.fifth < best->fifth) best = e;
+  }
+  if (!best) return std::nullopt;
+  const bool smoother = best->fifth < kSmoother * least_misfit_fifth;
+  const bool gross = least_misfit > kGrossMisfit * 2.0 * std::sqrt(3.0) * sigma;  // Misfits' bound
+  if (!smoother && !gross) return std::nullopt;
+  LocalNode node = nearest;  // its place and spacing width
+  for (int d = 0; d < 3; ++d) node.s[d] = best->s[d];
+  node.window = static_cast<int>(size);
+  double step = fitting.size() > 1 ? 0.0 : std::abs(best->s[2] - nearest.s[2]);
+  for (double other : fitting) step = std::max(step, std::abs(other - best->s[2]));
+  node.band2 = 1.96 * sigma * best->sd2 + step;
+  return node;
+}
+
 // The node at t: the nearest readings' window, or where that window ended on a misfit (a
 // junction the breaks did not find lies within its reach), a one-sided window that grows wider
 // and has the narrower band. `last` holds each side's chosen size, the next node's start.
 LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
                      const std::vector<size_t>& sizes, std::array<size_t, 3>* last) {
-  auto on = [&](int k, bool* misfit_ended) {
+  auto on = [&](int k, bool* misfit_ended, bool* narrowest_misfits) {
     const size_t from = (*last)[k] >= 2 ? (*last)[k] - 2 : 0;
-    std::optional<LocalNode> node =
-        NodeAt(p, t, sigma, quantized, sizes, kSides[k], from, &(*last)[k], misfit_ended);
+    std::optional<LocalNode> node = NodeAt(p, t, sigma, quantized, sizes, kSides[k], from,
+                                           &(*last)[k], misfit_ended, narrowest_misfits);
     if (!node && from > 0) {
-      node = NodeAt(p, t, sigma, quantized, sizes, kSides[k], 0, &(*last)[k], misfit_ended);
+      node = NodeAt(p, t, sigma, quantized, sizes, kSides[k], 0, &(*last)[k], misfit_ended,
+                    narrowest_misfits);
     }
     return node;
   };
-  bool misfit_ended = false;
-  LocalNode best = *on(0, &misfit_ended);  // the nearest side always has the points
+  bool misfit_ended = false, narrowest_misfits = false;
+  LocalNode best = *on(0, &misfit_ended, &narrowest_misfits);  // the nearest side has the points
+  // An exact or rounded table (the rounding's model) whose narrowest window misfits here.
+  if (quantized && narrowest_misfits && best.window == static_cast<int>(sizes[0])) {
+    if (const std::optional<LocalNode> shifted = ShiftedNodeAt(p, t, sigma, best, sizes[0])) {
+      return *shifted;
+    }
+  }
   if (!misfit_ended) return best;
   const double spacing_width = best.width;
   std::optional<LocalNode> sides[2];
   for (int k = 1; k < 3; ++k) {
-    sides[k - 1] = on(k, nullptr);
+    sides[k - 1] = on(k, nullptr, nullptr);
     const std::optional<LocalNode>& node = sides[k - 1];
     if (node && node->window > best.window && node->band2 < best.band2) {
       best = *node;

@@ -17,7 +17,10 @@
 /// for white noise): it reaches past a junction no break marks (s''' jumps). Where the nearest
 /// readings' window ends on such a misfit, the node also tries the readings on each side of it
 /// alone and keeps the one-sided window that grows wider with a narrower band (LPA-ICI,
-/// Katkovnik 2006). An exact table (σ ≈ 0) keeps the narrowest
+/// Katkovnik 2006). Where even the narrowest window misfits on an exact or rounded table, the
+/// narrowest windows shifted to hold the node off-centre are tried (ENO), and the smoothest that
+/// fits is taken where the junction shows (local_fit.cc, ShiftedNodeAt). An exact table (σ ≈ 0)
+/// keeps the narrowest
 /// window, a quintic through 7 readings (error O(h⁴) in s''); a rounded or measured one is
 /// smoothed exactly as much as its σ asks. Windows never reach past the readings given, so a
 /// piece between two junctions is fitted from its own data, one-sided at its ends.
