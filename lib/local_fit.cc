@@ -272,8 +272,9 @@ std::optional<LocalNode> NodeAt(const Points& p, double t, double sigma, bool qu
 // has no fifth power either; and a smooth law that no quintic fits to the rounding, a
 // C-infinity bump, has a window now and then that does, one-sided and worse than the nearest,
 // its neighbours missing by tens of roundings.) Its band's step is the largest change of s'' to
-// the other windows that fit, or to the nearest one when no other does (how far the junction's
-// place could move the value). nullopt when no shifted window is chosen.
+// the nearest window and to the other windows that fit (how far the junction's place could move
+// the value: the band holds what the nearest window read; BestNodeAt widens it to hold the node
+// as read without the shift, band and all). nullopt when no shifted window is chosen.
 std::optional<LocalNode> ShiftedNodeAt(const Points& p, double t, double sigma,
                                        const LocalNode& nearest, size_t size) {
   const size_t n = p.x.size();
@@ -303,7 +304,7 @@ std::optional<LocalNode> ShiftedNodeAt(const Points& p, double t, double sigma,
   LocalNode node = nearest;  // its place and spacing width
   for (int d = 0; d < 3; ++d) node.s[d] = best->s[d];
   node.window = static_cast<int>(size);
-  double step = fitting.size() > 1 ? 0.0 : std::abs(best->s[2] - nearest.s[2]);
+  double step = std::abs(best->s[2] - nearest.s[2]);
   for (double other : fitting) step = std::max(step, std::abs(other - best->s[2]));
   node.band2 = 1.96 * sigma * best->sd2 + step;
   return node;
@@ -326,13 +327,19 @@ LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
   };
   bool misfit_ended = false, narrowest_misfits = false;
   LocalNode best = *on(0, &misfit_ended, &narrowest_misfits);  // the nearest side has the points
-  // An exact or rounded table (the rounding's model) whose narrowest window misfits here.
+  // An exact or rounded table (the rounding's model) whose narrowest window misfits here: a
+  // shifted window's value, with a band that also holds the node's as read without it.
+  std::optional<LocalNode> shifted;
   if (quantized && narrowest_misfits && best.window == static_cast<int>(sizes[0])) {
-    if (const std::optional<LocalNode> shifted = ShiftedNodeAt(p, t, sigma, best, sizes[0])) {
-      return *shifted;
-    }
+    shifted = ShiftedNodeAt(p, t, sigma, best, sizes[0]);
   }
-  if (!misfit_ended) return best;
+  const auto chosen = [&shifted](const LocalNode& node) {
+    if (!shifted) return node;
+    LocalNode out = *shifted;
+    out.band2 = std::max(out.band2, std::abs(node.s[2] - out.s[2]) + node.band2);
+    return out;
+  };
+  if (!misfit_ended) return chosen(best);
   const double spacing_width = best.width;
   std::optional<LocalNode> sides[2];
   for (int k = 1; k < 3; ++k) {
@@ -351,7 +358,7 @@ LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
       best.band2 = std::max(best.band2, std::abs(node->s[2] - best.s[2]) + node->band2);
     }
   }
-  return best;
+  return chosen(best);
 }
 
 }  // namespace

@@ -9,10 +9,11 @@ trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 cmake -S tests/consumer -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
+# The installed command hands `fit` and `serve` to libexec/needle/needle-fit-serve (before the
+# consumer's line, which ctest's PASS_REGULAR_EXPRESSION reads whatever the exit status).
+"$work/prefix/bin/needle" fit --help | grep -q -- --trace
 "$work/consumer/consumer" cases/basu-example1.toml
 "$work/consumer/consumer_before_rename" cases/basu-example1.toml
-# The installed command hands `fit` and `serve` to libexec/needle/needle-fit-serve.
-"$work/prefix/bin/needle" fit --help | grep -q -- --trace
 # The Python package, when the build has it: imported from the prefix alone, needle.distributed
 # beside the compiled module, its command line answering.
 python=$(sed -n "s/^_\?Python3_EXECUTABLE:[A-Z]*=//p" "$build/CMakeCache.txt" | head -1)

@@ -6,9 +6,10 @@
 namespace needle {
 
 /// A file argument of 4 MiB or more (a dense lift table): the program starts itself again with
-/// GLIBC_TUNABLES=glibc.malloc.hugetlb=1, glibc's heap in transparent huge pages. Returns at
-/// once otherwise, when GLIBC_TUNABLES is set already (ours is then unset, not passed to
-/// children), or when the exec fails (the run goes on as it is). glibc only; a no-op elsewhere.
+/// GLIBC_TUNABLES=glibc.malloc.hugetlb=1, glibc's heap in transparent huge pages, once (the
+/// restarted program unsets it, and its mark, before any child). Returns at once otherwise:
+/// GLIBC_TUNABLES set by the user, a privileged run, /proc/self/exe not needle (valgrind, the
+/// dynamic loader), or a failed exec (the run goes on as it is). glibc only; a no-op elsewhere.
 void RestartWithHugePages(int argc, char** argv);
 
 /// `needle fit` and `needle serve`: runs needle-fit-serve with the same arguments, found beside
