@@ -172,8 +172,11 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
 // sum somewhat larger: pure noise misfits about 1–3 % of single windows). A window that reaches
 // past a junction the breaks did not find (s''' jumps where s'' does not) misfits there long before
 // its s'' moves out of the narrower windows' noise (docs/lift-data.md, "Reading a table").
+// The rounding's bound q/2 = √3 σ, twice over: the largest residual a rounded window may show.
+double RoundingMisfitBound(double sigma) { return 2.0 * std::sqrt(3.0) * sigma; }
+
 bool Misfits(const Estimate& e, size_t readings, double sigma, bool quantized) {
-  if (quantized) return e.largest_residual > 2.0 * std::sqrt(3.0) * sigma;
+  if (quantized) return e.largest_residual > RoundingMisfitBound(sigma);
   const double dof = static_cast<double>(readings) - kTerms;
   return e.residual_square_sum > (dof + 3.0 * std::sqrt(2.0 * dof) + 2.0) * sigma * sigma;
 }
@@ -299,7 +302,7 @@ std::optional<LocalNode> ShiftedNodeAt(const Points& p, double t, double sigma,
   }
   if (!best) return std::nullopt;
   const bool smoother = best->fifth < kSmoother * least_misfit_fifth;
-  const bool gross = least_misfit > kGrossMisfit * 2.0 * std::sqrt(3.0) * sigma;  // Misfits' bound
+  const bool gross = least_misfit > kGrossMisfit * RoundingMisfitBound(sigma);
   if (!smoother && !gross) return std::nullopt;
   LocalNode node = nearest;  // its place and spacing width
   for (int d = 0; d < 3; ++d) node.s[d] = best->s[d];

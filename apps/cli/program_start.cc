@@ -52,8 +52,9 @@ void RestartWithHugePages(int argc, char** argv) {
     struct stat st;
     large = ::stat(argv[i], &st) == 0 && S_ISREG(st.st_mode) && st.st_size >= (4 << 20);
   }
-  const std::filesystem::path self = OwnExecutable();
-  if (!large || self.empty()) return;
+  if (!large) return;
+  const std::filesystem::path self = OwnExecutable();  // read only when needed: not every start's
+  if (self.empty()) return;
   if (::setenv(kRestarted, "1", 1) != 0 || ::setenv("GLIBC_TUNABLES", kHugePages, 1) != 0) {
     ::unsetenv(kRestarted);
     return;
