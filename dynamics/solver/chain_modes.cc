@@ -17,6 +17,13 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
   if (stiffness_.info() != Eigen::Success || !(train.SegmentRateNm() > 0.0)) {
     throw std::invalid_argument("method \"exact\": the coil chain needs a spring rate above 0");
   }
+  sparse_K_ = K_.sparseView();
+  sparse_C_ = C_.sparseView();
+  sparse_stiffness_.compute(sparse_K_);
+  if (sparse_stiffness_.info() != Eigen::Success) {
+    throw std::invalid_argument("method \"exact\": the coil chain needs a spring rate above 0");
+  }
+  damped_ = !C_.isZero(0.0);
   Decompose();
 }
 
@@ -119,6 +126,48 @@ Eigen::MatrixXd ChainModes::Particular(const double* f, int degree) const {
     a.col(j) = stiffness_.solve(r);
   }
   return a.leftCols(degree + 1);
+}
+
+double ChainModes::FreeIntegral(Eigen::MatrixXd q, double T, const Eigen::VectorXd& z0,
+                                const Eigen::VectorXd& z1) const {
+  const int n = dofs_;
+  // The ends' M h′, M h and C h, which every level's boundary terms read.
+  const Eigen::VectorXd Mv0 = mass_.cwiseProduct(z0.tail(n)), Mv1 = mass_.cwiseProduct(z1.tail(n));
+  const Eigen::VectorXd Mh0 = mass_.cwiseProduct(z0.head(n)), Mh1 = mass_.cwiseProduct(z1.head(n));
+  const Eigen::VectorXd Ch0 = sparse_C_ * z0.head(n), Ch1 = sparse_C_ * z1.head(n);
+  int degree = static_cast<int>(q.cols()) - 1;
+  while (degree >= 0 && q.col(degree).isZero(0.0)) --degree;
+  double total = 0.0;
+  Eigen::VectorXd rT(n), r1T(n);
+  for (; degree >= 0; --degree) {
+    const Eigen::MatrixXd r = sparse_stiffness_.solve(q.leftCols(degree + 1));
+    // r(T) and r′(T) by Horner; r(0) = r₀, r′(0) = r₁.
+    rT = r.col(degree);
+    r1T.setZero();
+    for (int j = degree; j >= 1; --j) {
+      r1T = r1T * T + j * r.col(j);
+      rT = rT * T + r.col(j - 1);
+    }
+    total -= rT.dot(Mv1) - r.col(0).dot(Mv0);
+    total -= rT.dot(Ch1) - r.col(0).dot(Ch0);
+    if (degree == 0) break;
+    total += r1T.dot(Mh1) - r.col(1).dot(Mh0);
+    // q ← C r′ − M r″, one degree lower.
+    Eigen::MatrixXd next(n, degree);
+    for (int j = 0; j < degree; ++j) {
+      next.col(j) = (j + 1.0) * (sparse_C_ * r.col(j + 1));
+      if (j + 2 <= degree)
+        next.col(j) -= ((j + 2.0) * (j + 1.0)) * mass_.cwiseProduct(r.col(j + 2));
+    }
+    q = std::move(next);
+  }
+  return total;
+}
+
+double ChainModes::FreeEnergy(const Eigen::VectorXd& z) const {
+  const int n = dofs_;
+  return 0.5 * z.tail(n).dot(mass_.cwiseProduct(z.tail(n))) +
+         0.5 * z.head(n).dot(sparse_K_ * z.head(n));
 }
 
 }  // namespace needle

@@ -17,9 +17,18 @@
 ///
 ///     K a_j + C (j+1) a_{j+1} + M (j+2)(j+1) a_{j+2} = f_j e₀,   from the top degree down.
 ///
+/// The audit's integrals of a free motion h (M h″ + C h′ + K h = 0, no forcing) against a
+/// polynomial vector q close by parts, as the one-mass form's do (closed_form.h): with r = K⁻¹q,
+///
+///     ∫₀ᵀ qᵀh dτ = −[rᵀM h′]₀ᵀ + [r′ᵀM h]₀ᵀ − [rᵀC h]₀ᵀ + ∫₀ᵀ (C r′ − M r″)ᵀ h dτ,
+///
+/// whose last integral is of a polynomial one degree lower: it ends at q's degree. K and C are
+/// tridiagonal, so each level costs O(N) a coefficient.
+///
 /// A train holds at most four such modes (cam, seat, both, none): the stepper keeps them.
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <vector>
 
 #include "dynamics/model/needle_train.h"
@@ -57,6 +66,16 @@ class ChainModes {
   /// The particular solution's coefficients, N × (degree + 1), for the needle's forcing
   /// coefficients f_j (N/s^j, j = 0 … degree): column j is a_j (m/s^j), node 0 the needle.
   Eigen::MatrixXd Particular(const double* f, int degree) const;
+  /// ∫₀ᵀ q(τ)ᵀ h(τ) dτ for a free motion h of the chain in this mode, from its states
+  /// z = [h, h′] at τ = 0 and T (2N entries each, m and m/s); q is N × (degree + 1), column j
+  /// the coefficient of τ^j (N/s^j: the integral is in J).
+  double FreeIntegral(Eigen::MatrixXd q, double T, const Eigen::VectorXd& z0,
+                      const Eigen::VectorXd& z1) const;
+  /// The free motion's energy ½ h′ᵀM h′ + ½ hᵀK h at z = [h, h′], J: its fall over a piece is
+  /// the work of every dashpot of the mode on it, ∫ h′ᵀC h′ dτ.
+  double FreeEnergy(const Eigen::VectorXd& z) const;
+  /// Whether any dashpot acts in this mode (C ≠ 0).
+  bool Damped() const { return damped_; }
 
  private:
   // M, K and C of the chain in `mode` (the constructor's first part).
@@ -71,6 +90,11 @@ class ChainModes {
   Eigen::MatrixXd K_, C_;
   Eigen::VectorXd mass_;
   Eigen::LLT<Eigen::MatrixXd> stiffness_;
+  // K and C as sparse (tridiagonal) matrices, and K's factors, for FreeIntegral.
+  Eigen::SparseMatrix<double> sparse_K_, sparse_C_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>
+      sparse_stiffness_;
+  bool damped_ = false;
   Eigen::VectorXcd lambda_;
   Eigen::VectorXd weight_;
   Eigen::MatrixXcd vectors_, inverse_;

@@ -7,49 +7,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "dynamics/solver/piece_polynomial.h"
 #include "lib/units.h"
 
 namespace needle {
-namespace {
-
 using Poly = ClosedFormPiece::Poly;
-
-// The index of the highest nonzero coefficient (0 for a constant or zero polynomial). The
-// loops below start there: Horner over leading zeros adds exact zeros, so the results are the
-// same bits as over all kMaxDegree + 1 coefficients.
-int Degree(const Poly& p) {
-  int d = ClosedFormPiece::kMaxDegree;
-  while (d > 0 && p[d] == 0.0) --d;
-  return d;
-}
-
-// Horner from the coefficient of degree `degree` (Degree(p), known) down.
-double Eval(const Poly& p, int degree, double x) {
-  int k = degree;
-  double v = p[k];
-  while (--k >= 0) v = v * x + p[k];
-  return v;
-}
-
-double Eval(const Poly& p, double x) { return Eval(p, Degree(p), x); }
-
-Poly Derivative(const Poly& p) {
-  Poly d{};
-  for (int k = 1, n = Degree(p); k <= n; ++k) d[k - 1] = k * p[k];
-  return d;
-}
-
-// The coefficients of q(s) = p(a + s) (Taylor shift, by repeated synthetic division; a = 0
-// adds exact zeros, and is left out).
-Poly Shift(Poly p, double a) {
-  const int n = a == 0.0 ? 0 : Degree(p);
-  for (int i = 0; i < n; ++i) {
-    for (int k = n - 1; k >= i; --k) p[k] += a * p[k + 1];
-  }
-  return p;
-}
-
-}  // namespace
+using piece_polynomial::Degree;
+using piece_polynomial::Eval;
+using piece_polynomial::IsZero;
+using piece_polynomial::ProductIntegral;
+using piece_polynomial::Shift;
 
 ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode,
                                  double segment_angle_rad, double t0, const TrainState& x0,
@@ -71,7 +38,7 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
   double wk = 1.0;
   for (int k = 0; k <= kMaxDegree; ++k, wk *= train.omega()) u_[k] *= wk;
 
-  du_ = needle::Derivative(u_);
+  du_ = piece_polynomial::Derivative(u_);
   f_[0] = -p.preload_N + p.gas_force_N;
   if (mode.cam) {
     const double kc = train.cam_law().ForceStiffness(), cc = train.cam_law().ForceDamping();
@@ -115,7 +82,7 @@ ClosedFormPiece::ClosedFormPiece(const NeedleTrain& train, const ContactMode& mo
 }
 
 void ClosedFormPiece::SetStart() {
-  dp_ = needle::Derivative(p_);
+  dp_ = piece_polynomial::Derivative(p_);
   degree_p_ = Degree(p_);
   degree_dp_ = Degree(dp_);
   degree_u_ = Degree(u_);
@@ -181,7 +148,7 @@ std::array<double, 2> ClosedFormPiece::PositionVelocity(double tau) const {
 std::array<double, 3> ClosedFormPiece::Motion(double t) const {
   const double tau = t - t0_;
   const auto [y, v] = PositionVelocity(tau);
-  if (chain_) return {y, v, Eval(needle::Derivative(dp_), tau) + ChainAt(tau).ha};
+  if (chain_) return {y, v, Eval(piece_polynomial::Derivative(dp_), tau) + ChainAt(tau).ha};
   return {y, v, (Eval(f_, tau) - c_ * v - K_ * y) / m_};
 }
 
@@ -200,9 +167,12 @@ double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
 
 TrainState ClosedFormPiece::State(double t) const {
   if (chain_) {
-    // The chain's W and D by the 10-point rule on parts of at most LongestStep().
     if (t <= t0_) return x0_;
-    return StateByQuadrature(t, static_cast<int>(std::ceil((t - t0_) / longest_step_)));
+    TrainState x = ChainState(t - t0_);  // fills dz_, the homogeneous part's change
+    const AuditTerms a = ChainAudit(t - t0_, chain_h0_ + dz_);
+    x[2] = x0_[2] + a.work_J;
+    x[3] = x0_[3] + a.dissipated_J;
+    return x;
   }
   const std::array<double, 3> now = Motion(t);
   TrainState x = {now[0], now[1], x0_[2], x0_[3]};
@@ -237,35 +207,12 @@ TrainState ClosedFormPiece::StateByQuadrature(double t, int parts) const {
   return x;
 }
 
-namespace {
-
-// ∫₀ᵀ a(τ) b(τ) dτ.
-double ProductIntegral(const Poly& a, const Poly& b, double T) {
-  const int n = ClosedFormPiece::kMaxDegree;
-  double sum = 0.0;
-  for (int d = Degree(a) + Degree(b); d >= 0;
-       --d) {  // Σ_d (Σ_{i+j=d} a_i b_j) T^{d+1}/(d+1), by Horner
-    double c = 0.0;
-    for (int i = std::max(0, d - n); i <= std::min(d, n); ++i) c += a[i] * b[d - i];
-    sum = sum * T + c / (d + 1);
-  }
-  return sum * T;
-}
-
-bool IsZero(const Poly& p) {
-  for (double v : p)
-    if (v != 0.0) return false;
-  return true;
-}
-
-}  // namespace
-
 double ClosedFormPiece::HomogeneousIntegral(const Poly& q, double T, double h1, double hv1) const {
   // J(q) = ∫₀ᵀ q h dτ for h of m h'' + c h' + K h = 0: with h = −(m h'' + c h')/K and
   // integration by parts, J(q) = −(m([q h'] − [q' h] + J(q'')) + c([q h] − J(q')))/K, which ends
   // at the polynomial's degree.
   if (IsZero(q)) return 0.0;
-  const Poly q1 = needle::Derivative(q), q2 = needle::Derivative(q1);
+  const Poly q1 = piece_polynomial::Derivative(q), q2 = piece_polynomial::Derivative(q1);
   const double qT = Eval(q, T), q1T = Eval(q1, T);
   const double qh1 = qT * hv1 - q[0] * V0_;   // [q h']
   const double q1h = q1T * h1 - q1[0] * Y0_;  // [q' h]
@@ -289,7 +236,8 @@ ClosedFormPiece::AuditTerms ClosedFormPiece::Audit(double T, double y1, double v
   const auto at = [&](const Poly& q) { return Eval(q, T); };
   // ∫ q h' dτ.
   const auto with_rate = [&](const Poly& q) {
-    return at(q) * h1 - q[0] * Y0_ - HomogeneousIntegral(needle::Derivative(q), T, h1, hv1);
+    return at(q) * h1 - q[0] * Y0_ -
+           HomogeneousIntegral(piece_polynomial::Derivative(q), T, h1, hv1);
   };
   AuditTerms out;
   const double H0 = 0.5 * m_ * V0_ * V0_ + 0.5 * K_ * Y0_ * Y0_;

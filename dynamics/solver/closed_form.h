@@ -36,8 +36,8 @@
 /// the needle's entries of the chain's vectors (chain_modes.h): P from the chain's recurrence,
 /// h(τ) = Re Σ_k α_k e^{λ_k τ} over its modes. Its bounds come from the modal sum, each term
 /// decaying (Re λ_k ≤ 0): |h⁽ʲ⁾(τ)| ≤ Σ_k |α_k| |λ_k|ʲ e^{Re λ_k τ_a} for τ ≥ τ_a. Its audit
-/// integrals W and D are taken by the 10-point rule on parts no longer than LongestStep() (the
-/// chain's dashpots make its ∫ c ṡ² a sum over pairs of modes).
+/// integrals close the same way with vectors (ChainAudit): ∫ h′ᵀC h′ = H(0) − H(τ) from the
+/// whole chain's free energy H = ½h′ᵀM h′ + ½hᵀK h, and ∫ qᵀh by parts (ChainModes::FreeIntegral).
 
 #include <Eigen/Dense>
 #include <array>
@@ -77,7 +77,7 @@ class ClosedFormPiece {
   /// exact for the lifts and velocities).
   TrainState State(double t) const;
   /// The same with W and D by 10-point Gauss–Legendre on `parts` equal parts of [t₀, t] (the
-  /// rule for K = 0; tests compare the closed form with it).
+  /// rule for K = 0 and no chain; tests compare the closed form with it).
   TrainState StateByQuadrature(double t, int parts) const;
   /// y, ẏ, ÿ at t.
   std::array<double, 3> Motion(double t) const;
@@ -115,6 +115,10 @@ class ClosedFormPiece {
   }
   /// The same with the form's polynomial in s = t − t_a (FormPolynomial) given.
   FormRange Range(const LinearForm& form, const Poly& q, double t_a, double t_b) const;
+  /// A coil chain over [t_a, t_b], t₀ ≤ t_a ≤ t_b: upper bounds on its largest segment
+  /// compression (m) and on the spring's force on the needle P₀ + k s₁ + c ṡ₁ (N), each from the
+  /// particular solution's polynomials and the modal sum (terms that never grow).
+  std::array<double, 2> ChainUpperBounds(double t_a, double t_b) const;
   /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds
   /// (one mass only: a chain's needle trades energy with its coils; std::logic_error there).
   double HomogeneousEnergy(double t) const;
@@ -142,6 +146,8 @@ class ClosedFormPiece {
   };
   // W and D over [t₀, t₀ + T] in closed form, given y and ẏ at its end (K > 0).
   AuditTerms Audit(double T, double y1, double v1) const;
+  // The same for the coil chain, from the whole chain's homogeneous part z1 = [h, h′] at T.
+  AuditTerms ChainAudit(double T, const Eigen::VectorXd& z1) const;
   // ∫₀ᵀ q(τ) h(τ) dτ for the homogeneous part h, which is h1, hv1 (h, h') at T.
   double HomogeneousIntegral(const Poly& q, double T, double h1, double hv1) const;
   // h, h' at t (one-entry cache: bounds and ranges ask at the same t_a).
@@ -201,10 +207,14 @@ class ClosedFormPiece {
   const ChainModes* chain_ = nullptr;
   Eigen::MatrixXd chain_p_;
   Eigen::VectorXcd chain_c_, alpha_;
+  Eigen::VectorXd chain_h0_;  // the start's homogeneous part [h(0), h′(0)], 2N
   bool chain_rest_ = false;
   Eigen::MatrixXd chain_real_;         // [Re(V diag(w c)), −Im(V diag(w c))]
   mutable Eigen::VectorXd grow_, dz_;  // [Re; Im] of e^{λτ} − 1, and the state's change
   mutable ChainNeedle chain_at_;
+  // |ΔV_jk w_k c_k|: each mode's amplitude in segment j's compression (row j − 1), and in the
+  // first segment's force k s₁ + c ṡ₁ (row N); made at the first ChainUpperBounds.
+  mutable Eigen::MatrixXd chain_amplitudes_;
 };
 
 }  // namespace needle

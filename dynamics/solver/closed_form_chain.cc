@@ -1,10 +1,13 @@
 // The coil chain's side of ClosedFormPiece (closed_form.h, chain_modes.h): the particular
 // solution of every node, the modal coefficients of the start's homogeneous part, the needle's
 // modal sum and its bounds, and the whole chain's state along the piece.
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 #include "dynamics/solver/closed_form.h"
+#include "dynamics/solver/piece_polynomial.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -30,6 +33,7 @@ void ClosedFormPiece::StartChain() {
     h0[n + i] = x0_[3 + coils + i] - chain_p_(i, 1);
   }
   chain_rest_ = (h0.array() == 0.0).all();
+  chain_h0_ = h0;
   chain_c_ = (chain_->Inverse() * h0.cast<std::complex<double>>())
                  .cwiseProduct(chain_->Weight().cast<std::complex<double>>());
   alpha_ = chain_->Vectors().row(0).transpose().cwiseProduct(chain_c_);
@@ -113,6 +117,151 @@ void ClosedFormPiece::ChainStart(double t) const {
     s.e2 += size * l * l;
     s.b3 += size * l * l * l;
   }
+}
+
+std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) const {
+  const int n = chain_->Dofs();
+  const double k = train_.SegmentRateNm(), c = train_.SegmentDampingNsm();
+  const Eigen::VectorXcd& lambda = chain_->Lambda();
+  const Eigen::Index m = lambda.size();
+  if (chain_amplitudes_.size() == 0) {
+    // Node i's free motion Re Σ_k vc_ik e^{λ_k τ}, vc = V diag(w c) = chain_real_'s Re − i Im.
+    const auto vc = [&](int i, Eigen::Index j) {
+      return i == n ? std::complex<double>()
+                    : std::complex<double>(chain_real_(i, j), -chain_real_(i, m + j));
+    };
+    chain_amplitudes_.resize(n + 1, m);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      for (int s = 1; s <= n; ++s) chain_amplitudes_(s - 1, j) = std::abs(vc(s - 1, j) - vc(s, j));
+      chain_amplitudes_(n, j) = std::abs((vc(0, j) - vc(1, j)) * (k + c * lambda[j]));
+    }
+  }
+  const double tau = t_a - t0_, span = t_b - t_a;
+  Eigen::VectorXd decay(m);
+  for (Eigen::Index j = 0; j < m; ++j) decay[j] = std::exp(lambda[j].real() * tau);
+  const Eigen::VectorXd modal = chain_amplitudes_ * decay;
+  // A polynomial's largest value over [τ_a, τ_a + span]: its value at τ_a and its Taylor
+  // terms' sizes there.
+  const auto upper = [&](const Poly& q) {
+    const Poly s = piece_polynomial::Shift(q, tau);
+    double hi = s[0], size = std::abs(s[0]), power = 1.0;
+    for (int j = 1; j <= kMaxDegree; ++j) {
+      power *= span;
+      hi += std::abs(s[j]) * power;
+      size += std::abs(s[j]) * power;
+    }
+    return std::array<double, 2>{hi, size};
+  };
+  // Round-off: the samples are sums of terms of these sizes.
+  constexpr double kSlack = 1e-12;
+  double compression = -std::numeric_limits<double>::infinity(), spring = 0.0;
+  for (int s = 1; s <= n; ++s) {
+    Poly d{};
+    for (int j = 0; j <= kMaxDegree; ++j)
+      d[j] = chain_p_(s - 1, j) - (s < n ? chain_p_(s, j) : 0.0);
+    const std::array<double, 2> b = upper(d);
+    compression = std::max(compression, b[0] + modal[s - 1] + kSlack * (b[1] + modal[s - 1]));
+    if (s == 1) {
+      Poly f{};  // k s₁ + c ṡ₁ of the particular solution
+      for (int j = 0; j <= kMaxDegree; ++j)
+        f[j] = k * d[j] + (j < kMaxDegree ? c * (j + 1) * d[j + 1] : 0.0);
+      const std::array<double, 2> bf = upper(f);
+      const double preload = train_.parameters().preload_N;
+      spring = preload + bf[0] + modal[n] + kSlack * (std::abs(preload) + bf[1] + modal[n]);
+    }
+  }
+  return {compression, spring};
+}
+
+ClosedFormPiece::AuditTerms ClosedFormPiece::ChainAudit(double T, const Eigen::VectorXd& z1) const {
+  using piece_polynomial::Eval;
+  using piece_polynomial::ProductIntegral;
+  // Audit()'s terms with the chain's vectors: q = P + h, h free (M h″ + C h′ + K h = 0), its
+  // needle entries h₀ (h₀(0) = Y₀, h₀′(0) = V₀). Ẇ = F_c u̇ in cam mode; Ḋ = Σ_j c ṡ_j² over the
+  // segments, c ġ² for each pushing contact, and the jump of a contact's conservative part:
+  //   the products of h′ sum to ∫ h′ᵀC h′ = H(0) − H(T);
+  //   the cross terms to 2 ∫ gᵀh′ = 2([gᵀh] − ∫ g′ᵀh), g = C_seg P′ − c_c (u̇ − P₀′) e₀ [cam]
+  //   + c_s P₀′ e₀ [seat];  ∫ qᵀh by ChainModes::FreeIntegral;  polynomial products exactly.
+  const int n = chain_->Dofs();
+  const int d = kMaxDegree;
+  const double c = train_.SegmentDampingNsm();
+  const ContactLaw& cam = train_.cam_law();
+  const ContactLaw& seat = train_.seat_law();
+  const double kc = cam.ForceStiffness(), cc = cam.ForceDamping();
+  const double ks = seat.ForceStiffness(), cs = seat.ForceDamping();
+  // P′ of every node (N × (d + 1)), and the segments' rates of it, ΔP′_j = P′_{j−1} − P′_j
+  // (row j − 1; node N is the fixed end).
+  Eigen::MatrixXd dP = Eigen::MatrixXd::Zero(n, d + 1), seg(n, d + 1);
+  for (int j = 1; j <= d; ++j) dP.col(j - 1) = j * chain_p_.col(j);
+  for (int j = 0; j < n; ++j) {
+    seg.row(j) = dP.row(j);
+    if (j + 1 < n) seg.row(j) -= dP.row(j + 1);
+  }
+  // g and the polynomial products.
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(n, d + 1);
+  double products = 0.0;
+  if (c != 0.0) {
+    for (int j = 0; j < n; ++j) {
+      Poly s{};
+      for (int k = 0; k <= d; ++k) s[k] = seg(j, k);
+      products += c * ProductIntegral(s, s, T);
+      g.row(j) += c * seg.row(j);
+      if (j > 0) g.row(j) -= c * seg.row(j - 1);
+    }
+  }
+  Poly rel{};  // u̇ − P₀′
+  for (int k = 0; k <= d; ++k) rel[k] = du_[k] - dp_[k];
+  if (mode_.cam && cc != 0.0) {
+    products += cc * ProductIntegral(rel, rel, T);
+    for (int k = 0; k <= d; ++k) g(0, k) -= cc * rel[k];
+  }
+  if (mode_.seat && cs != 0.0) {
+    products += cs * ProductIntegral(dp_, dp_, T);
+    for (int k = 0; k <= d; ++k) g(0, k) += cs * dp_[k];
+  }
+  const auto at = [&](const Eigen::MatrixXd& q, double tau) {
+    Eigen::VectorXd v = q.col(d);
+    for (int k = d - 1; k >= 0; --k) v = v * tau + q.col(k);
+    return v;
+  };
+  const auto derivative = [&](const Eigen::MatrixXd& q) {
+    Eigen::MatrixXd r = Eigen::MatrixXd::Zero(n, d + 1);
+    for (int k = 1; k <= d; ++k) r.col(k - 1) = k * q.col(k);
+    return r;
+  };
+  const Eigen::VectorXd& z0 = chain_h0_;
+  AuditTerms out;
+  out.dissipated_J = products;
+  if (chain_->Damped()) out.dissipated_J += chain_->FreeEnergy(z0) - chain_->FreeEnergy(z1);
+  if (!g.isZero(0.0)) {
+    const double boundary = at(g, T).dot(z1.head(n)) - g.col(0).dot(z0.head(n));
+    out.dissipated_J += 2.0 * (boundary - chain_->FreeIntegral(derivative(g), T, z0, z1));
+  }
+  // The contacts' conservative parts across their kinks, from the gaps at the ends.
+  const double y1 = Eval(p_, T) + z1[0];
+  const double gc0 = u_[0] - x0_[0], gc1 = Eval(u_, T) - y1;
+  const double gs0 = -x0_[0], gs1 = -y1;
+  const auto sq = [](double x) { return x * x; };
+  if (mode_.cam) {
+    // W = ∫ F_c u̇ = ∫ (k_c (u − P₀) + c_c rel) u̇ − k_c ∫ u̇ h₀ − c_c ∫ u̇ h₀′, with
+    // ∫ u̇ h₀′ = [u̇ h₀] − ∫ ü h₀.
+    Poly force{};
+    for (int k = 0; k <= d; ++k) force[k] = kc * (u_[k] - p_[k]) + cc * rel[k];
+    const Poly ddu = piece_polynomial::Derivative(du_);
+    Eigen::MatrixXd q = Eigen::MatrixXd::Zero(n, d + 1);
+    for (int k = 0; k <= d; ++k) q(0, k) = kc * du_[k] - cc * ddu[k];
+    out.work_J = ProductIntegral(force, du_, T) - cc * (Eval(du_, T) * z1[0] - du_[0] * Y0_) -
+                 chain_->FreeIntegral(q, T, z0, z1);
+    out.dissipated_J += 0.5 * kc * (sq(std::min(gc1, 0.0)) - sq(std::min(gc0, 0.0)));
+  } else {
+    out.dissipated_J -= 0.5 * kc * (sq(std::max(gc1, 0.0)) - sq(std::max(gc0, 0.0)));
+  }
+  if (mode_.seat) {
+    out.dissipated_J += 0.5 * ks * (sq(std::min(gs1, 0.0)) - sq(std::min(gs0, 0.0)));
+  } else {
+    out.dissipated_J -= 0.5 * ks * (sq(std::max(gs1, 0.0)) - sq(std::max(gs0, 0.0)));
+  }
+  return out;
 }
 
 }  // namespace needle

@@ -151,7 +151,10 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
   const bool all = !(reported && liftoff_only_);
   // The lift's extremes; the spring force P₀ + k y and (one mass) the segment compression y
   // grow with the lift, so they follow the largest lift.
-  if (train_.Coils() > 0) return true;
+  // A chain's segment compression and spring force do not follow the lift: by their bounds.
+  if (train_.Coils() > 0 &&
+      (!(r.compression_hi <= max_segment_compression_m_) || !(r.spring_hi <= max_spring_)))
+    return true;
   if (seated_ && r.y_hi > std::max(secondary_lift_, kSeparationLift_m)) return true;
   if (!lift_covered && (r.y_hi > max_lift_ || (all && r.y_lo < min_lift_))) return true;
   if (lift_covered && !(train_.parameters().rate_N_m >= 0.0)) return true;
@@ -172,7 +175,7 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
 }
 
 bool Recorder::SampleMayChange(double y, std::optional<double> covering, double u_hi, double fc_lo,
-                               double fc_hi, double fs) const {
+                               double fc_hi, double fs, const StretchRanges& stretch) const {
   // The sample as a stretch of one point; the covering sample stands for its lift where the lift
   // passes a record the same way (and the spring force and segment compression, which follow
   // the lift, with it: MayChange refuses the cover where k < 0).
@@ -180,7 +183,8 @@ bool Recorder::SampleMayChange(double y, std::optional<double> covering, double 
   const bool beyond = y > max_lift_ || (all && y < min_lift_);
   const bool covered = beyond && covering && !(y > max_lift_ && !(y < *covering)) &&
                        !(all && y < min_lift_ && !(y > *covering));
-  return MayChange({y, y, u_hi, fc_lo, fc_hi, fs}, covered, true);
+  return MayChange({y, y, u_hi, fc_lo, fc_hi, fs, stretch.compression_hi, stretch.spring_hi},
+                   covered, true);
 }
 
 bool Recorder::InLift(double crank_rad) const {

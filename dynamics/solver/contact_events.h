@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -113,6 +114,10 @@ struct StretchRanges {
   double u_hi = 0.0;                ///< cam input, m
   double fc_lo = 0.0, fc_hi = 0.0;  ///< applied cam force, N
   double fs_hi = 0.0;               ///< applied seat force, N
+  /// A coil chain's largest segment compression, m, and the spring's force on the needle, N:
+  /// upper bounds (+∞: not bounded; one mass: not read, both follow the lift).
+  double compression_hi = std::numeric_limits<double>::infinity();
+  double spring_hi = std::numeric_limits<double>::infinity();
 };
 
 /// What a run records. Observers keep output apart from integration: the event driver calls
@@ -177,9 +182,10 @@ class Recorder {
   /// u_hi, the applied cam force within [fc_lo, fc_hi] and the seat force fs. With `covering`,
   /// the lift the driver records next after the stretch: a sample whose lift it passes the same
   /// way (y below it where y sets a new largest lift, above it where a new least) leaves the
-  /// same record behind, and counts as changing nothing there.
+  /// same record behind, and counts as changing nothing there. A chain's sample takes the
+  /// stretch's bounds on its compression and spring force (StretchRanges).
   bool SampleMayChange(double y, std::optional<double> covering, double u_hi, double fc_lo,
-                       double fc_hi, double fs) const;
+                       double fc_hi, double fs, const StretchRanges& stretch) const;
 
   const std::vector<Episode>& episodes() const { return episodes_; }
   const std::vector<Impact>& impacts() const { return impacts_; }

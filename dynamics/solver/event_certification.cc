@@ -17,9 +17,6 @@
 namespace needle {
 namespace internal {
 
-// RecordExtremes samples a stretch at this many intervals.
-constexpr int kStretchSamples = 16;
-
 std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i, int s, double a,
                                              double wa, double b, double wb) {
   if (!(b > a)) return std::nullopt;
@@ -117,6 +114,11 @@ StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, doubl
     const double k = train_.seat_law().ForceStiffness(), c = train_.seat_law().ForceDamping();
     r.fs_hi = piece.Range(LinearForm{-k, -c, 0.0, 0.0, 0.0}, t0, t1).hi;
   }
+  if (piece.Chain()) {
+    const std::array<double, 2> chain = piece.ChainUpperBounds(t0, t1);
+    r.compression_hi = chain[0];
+    r.spring_hi = chain[1];
+  }
   return r;
 }
 
@@ -195,29 +197,34 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   const double max_fc = recorder_.max_contact_force_N(), max_fs = recorder_.max_seat_force_N();
   const double min_fc = recorder_.min_contact_force_during_lift_N();
   const double max_compression = recorder_.max_segment_compression_m();
-  // The three forces at x, each signed so that its extreme is a minimum, and (which = 3) a
-  // chain's largest segment compression (the least coil gap, where the run reports it), negated.
   const bool chain = train_.Coils() > 0;
-  const bool chain_gap = chain && train_.parameters().coil_travel_m > 0.0;
-  const auto extreme = [&](int which, double t, const TrainState& x) {
-    if (which == 3) return -train_.LargestSegmentCompression(x);
-    const Contacts c = train_.Evaluate(x, t, phase);
-    const double fc = train_.AppliedCamForce(c, phase);
-    return which == 0 ? -fc : which == 1 ? -train_.AppliedSeatForce(c, phase) : fc;
-  };
+  // A chain's least coil gap is located only where its bound reaches past the record.
+  const bool chain_gap = chain && train_.parameters().coil_travel_m > 0.0 &&
+                         !(ranges.compression_hi <= max_compression);
   // The sample screen: the seat force from y and ẏ alone (the train's own bits); the cam force
   // from the piece's input, within kAllowance of the cam's scale (the two inputs differ by
   // round-off, some 1e-16 of it).
   constexpr double kAllowance = 1e-9;
   const ContactLaw& cam = train_.cam_law();
   const ContactLaw& seat = train_.seat_law();
-  std::array<double, n + 1> ts;
-  std::array<std::array<double, n + 1>, 4> f;
+  StretchSamples samples;
+  std::array<double, n + 1>& ts = samples.ts;
+  std::array<std::array<double, n + 1>, 4>& f = samples.f;
   for (int k = 0; k <= n; ++k) {
     ts[k] = t0 + (t1 - t0) * k / n;
-    const TrainState x = Motion(ts[k]);
-    f[3][k] = chain_gap ? extreme(3, ts[k], x) : 0.0;
-    if (screen && k > 0 && k < n) {
+    const bool inside = k > 0 && k < n;
+    // A chain's screened sample needs the needle's lift and speed alone; its coils only where
+    // the sample is recorded or its compression located.
+    const bool needle_only = chain && screen && inside && !chain_gap;
+    TrainState x;
+    if (needle_only) {
+      const std::array<double, 2> yv = piece.LiftAndSpeed(ts[k]);
+      x = {yv[0], yv[1]};
+    } else {
+      x = Motion(ts[k]);
+    }
+    f[3][k] = chain_gap ? ExtremeValue(3, ts[k], x) : 0.0;
+    if (screen && inside) {
       const std::array<double, 2> in = piece.Input(ts[k]);
       const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;
       double fc = 0.0, fc_allowance = 0.0;
@@ -229,7 +236,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
       }
       const double u_hi = in[0] + kAllowance * (std::abs(in[0]) + lift_scale_);
       const bool quiet = !recorder_.SampleMayChange(x[0], covering, u_hi, fc - fc_allowance,
-                                                    fc + fc_allowance, fs) &&
+                                                    fc + fc_allowance, fs, ranges) &&
                          (fc + fc_allowance <= 0.0 || fc - fc_allowance >= min_fc);
       if (quiet) {  // neither a record nor the least contact force's bracket
         f[0][k] = -fc;
@@ -238,6 +245,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
         continue;
       }
     }
+    if (needle_only) x = Motion(ts[k]);
     const Contacts c = train_.Evaluate(x, ts[k], phase);
     const double fc = train_.AppliedCamForce(c, phase);
     f[0][k] = -fc;
@@ -247,9 +255,25 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   }
   const std::array<double, 4> record = {-max_fc, -max_fs, min_fc, -max_compression};
   // A lift-off run locates only the least contact force (Recorder::set_liftoff_only).
-  const int last = chain_gap && !recorder_.liftoff_only() ? 4 : 3;
-  for (int which = recorder_.liftoff_only() ? 2 : 0; which < last; ++which) {
-    const auto& v = f[which];
+  LocateExtremes(samples, record, recorder_.liftoff_only() ? 2 : 0,
+                 chain_gap && !recorder_.liftoff_only() ? 4 : 3);
+}
+
+double EventDriver::ExtremeValue(int which, double t, const TrainState& x) const {
+  const Phase& phase = system_.phase;
+  if (which == 3) return -train_.LargestSegmentCompression(x);
+  const Contacts c = train_.Evaluate(x, t, phase);
+  const double fc = train_.AppliedCamForce(c, phase);
+  return which == 0 ? -fc : which == 1 ? -train_.AppliedSeatForce(c, phase) : fc;
+}
+
+void EventDriver::LocateExtremes(const StretchSamples& samples, const std::array<double, 4>& record,
+                                 int first, int last) {
+  constexpr int n = kStretchSamples;
+  const bool chain = train_.Coils() > 0;
+  const std::array<double, n + 1>& ts = samples.ts;
+  for (int which = first; which < last; ++which) {
+    const auto& v = samples.f[which];
     const int k = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
     // Only a new record inside the step, and for the least contact force one while pushing.
     // A chain's extreme may also lie between an end sample and its neighbour: its stretches
@@ -271,9 +295,9 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     const double base = ts[lo], width = ts[hi] - ts[lo];
     const auto at = [&](double d) { return base + d * width; };
     const auto best = boost::math::tools::brent_find_minima(
-        [&](double d) { return extreme(which, at(d), Motion(at(d))); }, 0.0, 1.0,
+        [&](double d) { return ExtremeValue(which, at(d), Motion(at(d))); }, 0.0, 1.0,
         std::numeric_limits<double>::digits / 2, iterations);
-    recorder_.Sample(at(best.first), Motion(at(best.first)), phase);
+    recorder_.Sample(at(best.first), Motion(at(best.first)), system_.phase);
   }
 }
 

@@ -166,6 +166,40 @@ TEST(ChainModesTest, TheModalBoundsHoldAlongAPiece) {
   }
 }
 
+// The chain's bounds on its largest segment compression and on the spring's force on the needle
+// (ClosedFormPiece::ChainUpperBounds, which let the record leave a stretch's samples out) hold
+// at 2000 points of stretches of one and of three steps, and are not wild guesses.
+TEST(ChainModesTest, TheCompressionAndSpringForceBoundsHold) {
+  const SurgeChain chain;
+  const NeedleTrain& train = chain.train;
+  for (const ContactMode mode :
+       {ContactMode{true, false}, ContactMode{false, false}, ContactMode{false, true}}) {
+    const ChainModes modes(train, mode);
+    const double th = chain.Angle(), t0 = train.Time(th);
+    const ClosedFormPiece piece(train, mode, th, t0, chain.Start(mode), &modes);
+    for (const double ta : {0.0, 2e-4}) {
+      for (const double steps : {1.0, 3.0}) {
+        const double a = t0 + ta, b = a + steps * piece.LongestStep();
+        const std::array<double, 2> bound = piece.ChainUpperBounds(a, b);
+        double compression = -1e300, spring = -1e300;
+        for (int i = 0; i <= 2000; ++i) {
+          const double t = a + (b - a) * i / 2000.0;
+          const TrainState x = piece.MotionState(t);
+          compression = std::max(compression, train.LargestSegmentCompression(x));
+          spring = std::max(spring, train.Evaluate(x, t, Phase{mode}).spring_N);
+        }
+        EXPECT_LE(compression, bound[0]) << mode.cam << mode.seat << " " << ta << " " << steps;
+        EXPECT_LE(spring, bound[1]) << mode.cam << mode.seat << " " << ta << " " << steps;
+        // Not wild guesses: the compression's within 3 times what the stretch reaches, or than
+        // the coils' own ringing (0.02 m/s over a coil period: 10 µm) on the seat (the modal
+        // sum's terms at their full size: this start, off every mode, rings in all of them).
+        EXPECT_LT(bound[0] - compression, 3.0 * std::max(compression, 1e-5)) << ta;
+        EXPECT_LT(bound[1] - spring, 0.05 * spring) << mode.cam << mode.seat << " " << ta;
+      }
+    }
+  }
+}
+
 // Along a piece, ẏ, ÿ and the coils' rates are those the train's right-hand side gives at the
 // piece's own state (centred differences of the closed form against NeedleTrain::Derivative), on
 // the cam in its rise (a forcing polynomial of degree 5) and in flight; and the piece starts on
@@ -195,6 +229,47 @@ TEST(ChainModesTest, APieceSolvesTheTrainsOwnEquations) {
         EXPECT_NEAR(rate, dxdt[i], 1e-5 * scale) << "entry " << i << " at " << dt;
       }
       EXPECT_NEAR(piece.Motion(t)[2], dxdt[1], 1e-9 * std::abs(dxdt[1]) + 1e-6) << dt;
+    }
+  }
+}
+
+// The audit's W and D in closed form (ClosedFormPiece::ChainAudit) against the 10-point rule on
+// 400 parts of the train's own Ẇ and Ḋ, over a third of and a whole step of the fastest mode:
+// on the cam (the cam works), in flight, on the seat; with the coils damped and undamped. The
+// gaps keep their signs and the cam stays on its segment (the rule would meet a kink there).
+TEST(ChainModesTest, TheChainsAuditInClosedFormIsTheQuadratures) {
+  for (const double zeta : {0.01, 0.0}) {
+    SurgeChain chain;
+    chain.s.train.surge_damping_ratio = zeta;
+    const NeedleTrain train(*chain.s.cam, chain.s.train, chain.omega,
+                            DefaultRunWindow(chain.s).start_rad);
+    for (const ContactMode mode :
+         {ContactMode{true, false}, ContactMode{false, false}, ContactMode{false, true}}) {
+      const ChainModes modes(train, mode);
+      const double th = chain.Angle(), t0 = train.Time(th);
+      TrainState x0 = chain.Start(mode);
+      const double u = chain.s.cam->U(th), u_rate = chain.omega * chain.s.cam->Slope(th);
+      // Into the cam and closing on it; off it and opening; into the seat and closing.
+      if (mode.cam) x0[1] = u_rate - 0.002;
+      if (!mode.cam && !mode.seat) x0[0] = u + 2e-4, x0[1] = u_rate + 0.2;
+      if (mode.seat) x0[1] = -0.002;
+      const ClosedFormPiece piece(train, mode, th, t0, x0, &modes);
+      const auto signs = [&](double t) {
+        const double y = piece.Motion(t)[0];
+        return std::array<int, 2>{piece.Input(t)[0] - y > 0.0, -y > 0.0};
+      };
+      for (const double span : {0.3, 1.0}) {
+        const double t1 = t0 + span * piece.LongestStep();
+        for (int i = 0; i <= 1000; ++i) ASSERT_EQ(signs(t0 + (t1 - t0) * i / 1000), signs(t0));
+        ASSERT_NEAR(piece.Input(t1)[0], chain.s.cam->U(train.Angle(t1)), 1e-12);
+        const TrainState closed = piece.State(t1), quad = piece.StateByQuadrature(t1, 400);
+        const double scale = std::max({std::abs(quad[2]), std::abs(quad[3]), 1e-9});
+        EXPECT_NEAR(closed[2], quad[2], 1e-10 * scale) << mode.cam << mode.seat << " " << zeta;
+        EXPECT_NEAR(closed[3], quad[3], 1e-10 * scale) << mode.cam << mode.seat << " " << zeta;
+        if (mode.cam) EXPECT_GT(std::abs(quad[2]), 1e-6) << span;  // the cam works
+        if (zeta > 0.0 || mode.cam || mode.seat) EXPECT_GT(std::abs(quad[3]), 1e-9) << span;
+        for (int i = 4; i < train.StateSize(); ++i) EXPECT_EQ(closed[i], quad[i]) << i;
+      }
     }
   }
 }
