@@ -68,7 +68,8 @@ class ChainModes {
   Eigen::MatrixXd Particular(const double* f, int degree) const;
   /// ∫₀ᵀ q(τ)ᵀ h(τ) dτ for a free motion h of the chain in this mode, from its states
   /// z = [h, h′] at τ = 0 and T (2N entries each, m and m/s); q is N × (degree + 1), column j
-  /// the coefficient of τ^j (N/s^j: the integral is in J).
+  /// the coefficient of τ^j (N/s^(j+1): a force rate, the integral in J; or any unit, the
+  /// integral that unit times m·s).
   double FreeIntegral(Eigen::MatrixXd q, double T, const Eigen::VectorXd& z0,
                       const Eigen::VectorXd& z1) const;
   /// The free motion's energy ½ h′ᵀM h′ + ½ hᵀK h at z = [h, h′], J: its fall over a piece is

@@ -223,7 +223,7 @@ double ClosedFormPiece::HomogeneousIntegral(const Poly& q, double T, double h1, 
 }
 
 ClosedFormPiece::AuditTerms ClosedFormPiece::Audit(double T, double y1, double v1) const {
-  if (chain_) throw std::logic_error("closed form: a chain's audit is the quadrature's");
+  if (chain_) throw std::logic_error("closed form: a chain's audit is ChainAudit's");
   // y = P + h, h homogeneous (h(0) = Y₀, h'(0) = V₀). Ẇ = F_c u̇ in cam mode; Ḋ = c ġ² for each
   // pushing contact plus the jump of its conservative part, (F − k g⁺) ġ:
   //   ∫ c_total h'² = H(0) − H(T), H = ½ m h'² + ½ K h²  (the homogeneous part's energy);

@@ -135,8 +135,9 @@ class ClosedFormPiece {
   bool ForcingConstant() const;
   /// The static (particular) lift where the input is constant, m.
   double RestLift() const { return p_[0]; }
-  /// The longest step in which the 10-point rule is exact to round-off: half an oscillation
-  /// (π over the largest of √(K/m) and the decay rates), s; +∞ for K = c = 0.
+  /// Half an oscillation (π over the largest of √(K/m) and the decay rates; a chain's fastest
+  /// mode), s; +∞ for K = c = 0: the longest step in which the 10-point rule is exact to
+  /// round-off (K = 0), and the stepper's cap on a piece (the record's 16 samples a stretch).
   double LongestStep() const { return longest_step_; }
   double start_time() const { return t0_; }
 

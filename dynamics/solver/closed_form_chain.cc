@@ -138,7 +138,10 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
   }
   const double tau = t_a - t0_, span = t_b - t_a;
   Eigen::VectorXd decay(m);
-  for (Eigen::Index j = 0; j < m; ++j) decay[j] = std::exp(lambda[j].real() * tau);
+  // A term's largest size on the stretch: at its start, or (a real part above 0 by round-off
+  // in a nearly undamped mode) at its end.
+  for (Eigen::Index j = 0; j < m; ++j)
+    decay[j] = std::exp(std::max(lambda[j].real() * tau, lambda[j].real() * (t_b - t0_)));
   const Eigen::VectorXd modal = chain_amplitudes_ * decay;
   // A polynomial's largest value over [τ_a, τ_a + span]: its value at τ_a and its Taylor
   // terms' sizes there.

@@ -114,7 +114,9 @@ StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, doubl
     const double k = train_.seat_law().ForceStiffness(), c = train_.seat_law().ForceDamping();
     r.fs_hi = piece.Range(LinearForm{-k, -c, 0.0, 0.0, 0.0}, t0, t1).hi;
   }
-  if (piece.Chain()) {
+  // A chain's bounds screen its record only where work may be left out (else: +∞, every
+  // sample taken, every piece capped, as SimulationOptions::leave_out = false promises).
+  if (piece.Chain() && o_.leave_out) {
     const std::array<double, 2> chain = piece.ChainUpperBounds(t0, t1);
     r.compression_hi = chain[0];
     r.spring_hi = chain[1];
@@ -219,7 +221,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     TrainState x;
     if (needle_only) {
       const std::array<double, 2> yv = piece.LiftAndSpeed(ts[k]);
-      x = {yv[0], yv[1]};
+      x = {system_.RoundTrip(0, yv[0]), system_.RoundTrip(1, yv[1])};  // Motion()'s bits
     } else {
       x = Motion(ts[k]);
     }
