@@ -7,11 +7,13 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <string>
+#include <system_error>
 
 #include "apps/case/case_file.h"
 #include "apps/case/plausible_ranges.h"
@@ -19,22 +21,28 @@
 
 namespace needle {
 
-/// A decimal number as typed: digits with a sign, a point and an exponent, each optional.
-inline bool IsDecimal(const std::string& s) {
-  static const std::regex decimal(R"([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)");
-  return std::regex_match(s, decimal);
+/// The value of a decimal number as typed, digits with a sign, a point and an exponent, each
+/// optional; nullopt for anything else ("0x10", "inf", "nan", "1e", " 5") and beyond a double.
+/// std::from_chars in its general format reads no hexadecimal and no '+' (taken off first); a
+/// regular expression took a sixth of a short command's instructions to compile.
+inline std::optional<double> DecimalValue(const std::string& s) {
+  const char* first = s.data();
+  const char* const last = first + s.size();
+  if (last - first > 1 && *first == '+' &&
+      (std::isdigit(static_cast<unsigned char>(first[1])) || first[1] == '.'))
+    ++first;
+  double v = NAN;
+  const auto [end, error] = std::from_chars(first, last, v, std::chars_format::general);
+  if (error != std::errc() || end != last || !std::isfinite(v)) return std::nullopt;
+  return v;
 }
 
 /// A number in [lo, hi] (`what` names the quantity and unit, e.g. "a speed in rpm").
 inline CLI::Validator NumberIn(double lo, double hi, const std::string& what) {
   return CLI::Validator(
       [lo, hi, what](std::string& s) -> std::string {
-        double v = NAN;
-        try {
-          if (IsDecimal(s)) v = std::stod(s);
-        } catch (const std::out_of_range&) {  // beyond a double: refused below
-        }
-        if (std::isfinite(v) && v >= lo && v <= hi) return {};
+        const std::optional<double> v = DecimalValue(s);
+        if (v && *v >= lo && *v <= hi) return {};
         return RangeRule(lo, hi, what, s);
       },
       what, "");

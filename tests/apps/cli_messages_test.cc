@@ -57,8 +57,20 @@ TEST(CliMessagesTest, NumbersAreDecimalAsTyped) {
   ExpectRefused(
       "tolerance " + ex2 + " --seed 0x1",
       OptionRule("--seed", "expected a whole number in [0, 18446744073709551615], got 0x1"));
+  // Neither infinities nor NaN, nor numbers beyond a double either way, nor a malformed sign,
+  // exponent or space.
+  for (const std::string v : {"inf", "nan", "1e999", "1e-999", "+-400", "4e2e1", "4e", "' 400'"}) {
+    const std::string shown = v == "' 400'" ? " 400" : v;
+    ExpectRefused("kinematics " + cam4 + " --rpm " + v,
+                  OptionRule("--rpm", "expected a speed in rpm in [1, 50000], got " + shown));
+  }
   // Decimal forms pass, a whole number's leading zeros included: 010 is ten.
   EXPECT_EQ(RunNeedle("kinematics " + cam4 + " --rpm 4e2 --step 1.5").status, 0);
+  for (const std::string v : {"+4e2", ".4e3", "400.", "0400"}) {
+    const auto r = RunNeedle("kinematics " + cam4 + " --rpm " + v + " --json");
+    ASSERT_EQ(r.status, 0) << v << ": " << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["speed_rpm"], 400.0) << v;
+  }
   const auto zeros = RunNeedle("tolerance " + ex2 + " --samples 02 --seed 010 --threads 1 --json");
   ASSERT_EQ(zeros.status, 0) << zeros.err;
   const auto j = nlohmann::json::parse(zeros.out);
