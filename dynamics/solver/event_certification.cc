@@ -261,6 +261,19 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
                  chain_gap && !recorder_.liftoff_only() ? 4 : 3);
 }
 
+TrainState EventDriver::SearchState(int which, double t) {
+  const ClosedFormPiece* piece = stepper_->ClosedForm();
+  if (which == 3 || !piece || !piece->Chain()) return Motion(t);
+  // A chain's forces: linear contact laws (method exact) read the needle's lift and speed and
+  // the cam alone, Motion()'s bits; the coils' O(N·m) state is left at 0 (so is the spring
+  // force Evaluate computes from it, which no force here reads).
+  const std::array<double, 2> yv = piece->LiftAndSpeed(t);
+  TrainState x(train_.StateSize(), 0.0);
+  x[0] = system_.RoundTrip(0, yv[0]);
+  x[1] = system_.RoundTrip(1, yv[1]);
+  return x;
+}
+
 double EventDriver::ExtremeValue(int which, double t, const TrainState& x) const {
   const Phase& phase = system_.phase;
   if (which == 3) return -train_.LargestSegmentCompression(x);
@@ -297,7 +310,7 @@ void EventDriver::LocateExtremes(const StretchSamples& samples, const std::array
     const double base = ts[lo], width = ts[hi] - ts[lo];
     const auto at = [&](double d) { return base + d * width; };
     const auto best = boost::math::tools::brent_find_minima(
-        [&](double d) { return ExtremeValue(which, at(d), Motion(at(d))); }, 0.0, 1.0,
+        [&](double d) { return ExtremeValue(which, at(d), SearchState(which, at(d))); }, 0.0, 1.0,
         std::numeric_limits<double>::digits / 2, iterations);
     recorder_.Sample(at(best.first), Motion(at(best.first)), system_.phase);
   }
