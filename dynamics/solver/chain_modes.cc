@@ -13,14 +13,10 @@ namespace needle {
 ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     : dofs_(train.Coils() + 1) {
   Assemble(train, mode);
-  stiffness_.compute(K_);
-  if (stiffness_.info() != Eigen::Success || !(train.SegmentRateNm() > 0.0)) {
-    throw std::invalid_argument("method \"exact\": the coil chain needs a spring rate above 0");
-  }
   sparse_K_ = K_.sparseView();
   sparse_C_ = C_.sparseView();
-  sparse_stiffness_.compute(sparse_K_);
-  if (sparse_stiffness_.info() != Eigen::Success) {
+  stiffness_.compute(sparse_K_);
+  if (stiffness_.info() != Eigen::Success || !(train.SegmentRateNm() > 0.0)) {
     throw std::invalid_argument("method \"exact\": the coil chain needs a spring rate above 0");
   }
   damped_ = !C_.isZero(0.0);
@@ -140,7 +136,7 @@ double ChainModes::FreeIntegral(Eigen::MatrixXd q, double T, const Eigen::Vector
   double total = 0.0;
   Eigen::VectorXd rT(n), r1T(n);
   for (; degree >= 0; --degree) {
-    const Eigen::MatrixXd r = sparse_stiffness_.solve(q.leftCols(degree + 1));
+    const Eigen::MatrixXd r = stiffness_.solve(q.leftCols(degree + 1));
     // r(T) and r′(T) by Horner; r(0) = r₀, r′(0) = r₁.
     rT = r.col(degree);
     r1T.setZero();

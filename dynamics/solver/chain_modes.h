@@ -90,11 +90,11 @@ class ChainModes {
   int dofs_;
   Eigen::MatrixXd K_, C_;
   Eigen::VectorXd mass_;
-  Eigen::LLT<Eigen::MatrixXd> stiffness_;
-  // K and C as sparse (tridiagonal) matrices, and K's factors, for FreeIntegral.
+  // K and C as sparse (tridiagonal) matrices, and K's Cholesky factor (Particular and
+  // FreeIntegral solve with it: O(N) a column).
   Eigen::SparseMatrix<double> sparse_K_, sparse_C_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>
-      sparse_stiffness_;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>
+      stiffness_;
   bool damped_ = false;
   Eigen::VectorXcd lambda_;
   Eigen::VectorXd weight_;

@@ -147,13 +147,12 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
   // terms' sizes there.
   const auto upper = [&](const Poly& q) {
     const Poly s = piece_polynomial::Shift(q, tau);
-    double hi = s[0], size = std::abs(s[0]), power = 1.0;
+    double terms = 0.0, power = 1.0;
     for (int j = 1; j <= kMaxDegree; ++j) {
       power *= span;
-      hi += std::abs(s[j]) * power;
-      size += std::abs(s[j]) * power;
+      terms += std::abs(s[j]) * power;
     }
-    return std::array<double, 2>{hi, size};
+    return std::array<double, 2>{s[0] + terms, std::abs(s[0]) + terms};
   };
   // Round-off: the samples are sums of terms of these sizes.
   constexpr double kSlack = 1e-12;

@@ -218,13 +218,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     // A chain's screened sample needs the needle's lift and speed alone; its coils only where
     // the sample is recorded or its compression located.
     const bool needle_only = chain && screen && inside && !chain_gap;
-    TrainState x;
-    if (needle_only) {
-      const std::array<double, 2> yv = piece.LiftAndSpeed(ts[k]);
-      x = {system_.RoundTrip(0, yv[0]), system_.RoundTrip(1, yv[1])};  // Motion()'s bits
-    } else {
-      x = Motion(ts[k]);
-    }
+    TrainState x = needle_only ? ForceState(ts[k]) : Motion(ts[k]);
     f[3][k] = chain_gap ? ExtremeValue(3, ts[k], x) : 0.0;
     if (screen && inside) {
       const std::array<double, 2> in = piece.Input(ts[k]);
@@ -261,9 +255,9 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
                  chain_gap && !recorder_.liftoff_only() ? 4 : 3);
 }
 
-TrainState EventDriver::SearchState(int which, double t) {
+TrainState EventDriver::ForceState(double t) {
   const ClosedFormPiece* piece = stepper_->ClosedForm();
-  if (which == 3 || !piece || !piece->Chain()) return Motion(t);
+  if (!piece || !piece->Chain()) return Motion(t);
   // A chain's forces: linear contact laws (method exact) read the needle's lift and speed and
   // the cam alone, Motion()'s bits; the coils' O(N·m) state is left at 0 (so is the spring
   // force Evaluate computes from it, which no force here reads).
@@ -310,8 +304,10 @@ void EventDriver::LocateExtremes(const StretchSamples& samples, const std::array
     const double base = ts[lo], width = ts[hi] - ts[lo];
     const auto at = [&](double d) { return base + d * width; };
     const auto best = boost::math::tools::brent_find_minima(
-        [&](double d) { return ExtremeValue(which, at(d), SearchState(which, at(d))); }, 0.0, 1.0,
-        std::numeric_limits<double>::digits / 2, iterations);
+        [&](double d) {
+          return ExtremeValue(which, at(d), which == 3 ? Motion(at(d)) : ForceState(at(d)));
+        },
+        0.0, 1.0, std::numeric_limits<double>::digits / 2, iterations);
     recorder_.Sample(at(best.first), Motion(at(best.first)), system_.phase);
   }
 }

@@ -282,9 +282,9 @@ class EventDriver {
   // At x: the three forces, each signed so that its extreme is a minimum, and (which = 3) a
   // chain's largest segment compression (the least coil gap, where the run reports it), negated.
   double ExtremeValue(int which, double t, const TrainState& x) const;
-  // The state ExtremeValue(which, t, ·) needs at t: Motion(t), or a chain's needle alone for
-  // its forces (which < 3).
-  TrainState SearchState(int which, double t);
+  // The state the cam and seat forces read at t: Motion(t), or a chain piece's needle alone
+  // (Motion()'s bits for y and ẏ, the coils at 0), which is all linear contact laws read.
+  TrainState ForceState(double t);
   // Where a sampled value, which = first … last − 1, passes its record (`record`, signed as
   // ExtremeValue) inside the stretch or next to a chain's end sample: its minimum located by
   // Brent's method between the samples around it, and recorded.
