@@ -386,20 +386,26 @@ std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
     lo = std::max(lo, sign * n.s[2] - n.band2);
     hi = std::max(hi, sign * n.s[2] + n.band2);
   }
+  if (kind_ == SplineKind::kLocal) hi = std::max(hi, KinkPeakBetweenNodes(nodes(), sign));
   if (!largest) return ExtremumBand{-hi, -lo};
   return ExtremumBand{lo, hi};
 }
 
 LocalNode LiftLaw::ExtremeNode(bool largest) const {
   const Extremum e = largest ? Max(2) : Min(2);
-  LocalNode at;
-  at.x = e.crank_rad;
-  for (int k = 0; k < 3; ++k) at.s[k] = spline_.Evaluate(e.crank_rad, k);
+  LocalNode at = NodeAt(e.crank_rad);
   at.s[2] = e.value;
+  return at;
+}
+
+LocalNode LiftLaw::NodeAt(double crank_rad) const {
+  LocalNode at;
+  at.x = crank_rad;
+  for (int k = 0; k < 3; ++k) at.s[k] = spline_.Evaluate(crank_rad, k);
   double nearest = std::numeric_limits<double>::infinity();
   for (const LocalNode& n : nodes()) {
-    if (std::abs(n.x - e.crank_rad) < nearest) {
-      nearest = std::abs(n.x - e.crank_rad);
+    if (std::abs(n.x - crank_rad) < nearest) {
+      nearest = std::abs(n.x - crank_rad);
       at.band2 = n.band2;
     }
   }

@@ -123,12 +123,16 @@ class LiftLaw {
   Extremum Min(int order) const;
   /// The 95 % band of the largest (`largest`) or smallest s'' over the open lift, m/rad²: the
   /// extreme of the nodes' bands (lib/local_fit.h, lib/spline_band.h), and always holding
-  /// Max(2) (Min(2)); none for a law without nodes (pchip, makima, a table too short or too
-  /// long for an interpolating spline's band).
+  /// Max(2) (Min(2)), its unsafe end reaching a local fit's peak on a kink between nodes
+  /// (KinkPeakBetweenNodes); none for a law without nodes (pchip, makima, a table too short or
+  /// too long for an interpolating spline's band).
   std::optional<ExtremumBand> AccelerationBand(bool largest) const;
   /// The largest (smallest) s'' as a node: where it is, s, s', s'' there, and the half-width of
   /// the node nearest it (the extreme may lie between nodes). Meaningful only with nodes.
   LocalNode ExtremeNode(bool largest) const;
+  /// The law at `crank_rad` as a node: s, s', s'' there and the half-width of the node nearest
+  /// it (a quantity read from s'' may be most unsafe between nodes). Meaningful only with nodes.
+  LocalNode NodeAt(double crank_rad) const;
   /// The nodes inside the open lift that carry the band of s'' (empty when there is none). An
   /// interpolating spline's are computed when first asked (26 splines a piece: a scene that
   /// reads no band never pays for them); thread-safe.

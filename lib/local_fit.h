@@ -96,6 +96,18 @@ struct LocalTrim {
 LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, double sigma_m,
                   bool quantized = false, LocalTrim trim = {});
 
+/// A peak of s'' at a kink (s''' jumps: a B-spline's knot, a junction no break marks) between two
+/// nodes rises above both, and the law between them rounds it off. A kink shows in the nodes'
+/// second differences: those whose stencils straddle it (of the interval's two nodes) stand above
+/// those beside them, which a smooth peak's do not (they change slowly), by kKinkContrast. There
+/// the secant through the two nodes before the interval and the one through the two after it meet
+/// inside it, above both its nodes, and the peak may reach that point (exactly, for an s'' that is
+/// linear on each side of the kink; above it where s'' is concave on each side). Returns the
+/// largest such point of sign·s'' plus the larger half-width of the interval's nodes, −∞ where
+/// none. Nodes with the same angle are two pieces' ends at a break: consecutive nodes are on one
+/// piece when their angles increase strictly.
+double KinkPeakBetweenNodes(const std::vector<LocalNode>& nodes, double sign);
+
 /// The C² quintic Hermite interpolant of the nodes' (s, s', s'').
 PiecewisePolynomial QuinticHermite(const std::vector<LocalNode>& nodes);
 
