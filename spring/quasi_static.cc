@@ -44,11 +44,39 @@ ForceMinimum Minimize(const LiftLaw& law, const std::function<double(double)>& f
   return {best, best_x};
 }
 
-// The law's nodes and its largest deceleration (which may lie between them), each with its band.
-std::vector<LocalNode> BandNodes(const LiftLaw& law) {
+// The law's nodes, its largest deceleration and the law at `at` (the most unsafe point of the
+// quantity banded: both may lie between nodes), each with its band.
+std::vector<LocalNode> BandNodes(const LiftLaw& law, double at) {
   std::vector<LocalNode> nodes = law.nodes();
   nodes.push_back(law.ExtremeNode(false));
+  if (at >= law.start_rad() && at <= law.end_rad()) nodes.push_back(law.NodeAt(at));
   return nodes;
+}
+
+// The least spring reserve at ω = 1 rad/s, g(θ) = (P₀ + k s − F_g)/(m |s''|) where s'' < 0
+// (n_qs = (60/2π)·√(min g)), and where.
+ForceMinimum MinSpringReserve(const LiftLaw& law, const RigidTrain& train) {
+  return Minimize(
+      law, [&](double th) { return train.SpringReserve(law.Lift(th), law.Derivative(th, 2)); });
+}
+
+// n_qs of the least spring reserve g: +∞ where none decelerates, 0 where g ≤ 0.
+double RpmOfReserve(double g) {
+  if (!std::isfinite(g)) return kInf;
+  if (g <= 0.0) return 0.0;
+  return 60.0 / (2.0 * kPi) * std::sqrt(g);  // ω → rpm
+}
+
+// −h(θ) minimised ⇔ h(θ) = S m (fω)² |s''| − k s + F_g maximised where s'' < 0: minus the
+// preload required, and where.
+ForceMinimum MinMinusRequired(const LiftLaw& law, const RigidTrain& train, double w,
+                              double safety_factor) {
+  return Minimize(law, [&](double th) {
+    const double s2 = law.Derivative(th, 2);
+    if (!(s2 < 0.0)) return kInf;
+    return -(safety_factor * train.mass_kg * w * w * -s2 - train.rate_N_m * law.Lift(th) +
+             train.gas_force_N);
+  });
 }
 
 }  // namespace
@@ -77,47 +105,30 @@ ForceMinimum MinQuasiStaticForce(const LiftLaw& law, const RigidTrain& train, do
 double QuasiStaticLiftoffRpm(const LiftLaw& law, const RigidTrain& train) {
   RequireAcceleration(law);
   train.Validate();
-  // g(θ) = (P₀ + k s − F_g)/(m |s''|) where s'' < 0 (the spring reserve at ω = 1 rad/s);
-  // n_qs = (60/2π)·√(min g).
-  const auto g = [&](double th) {
-    return train.SpringReserve(law.Lift(th), law.Derivative(th, 2));
-  };
-  const ForceMinimum m = Minimize(law, g);
-  if (!std::isfinite(m.force_N)) return kInf;
-  if (m.force_N <= 0.0) return 0.0;
-  return 60.0 / (2.0 * kPi) * std::sqrt(m.force_N);  // ω → rpm
+  return RpmOfReserve(MinSpringReserve(law, train).force_N);
 }
 
 double RequiredPreloadN(const LiftLaw& law, const RigidTrain& train, double omega,
                         double safety_factor, double overspeed_factor) {
   RequireAcceleration(law);
   train.Validate();
-  const double w = overspeed_factor * omega;
-  // −h(θ) minimised ⇔ h(θ) = S m (fω)² |s''| − k s + F_g maximised where s'' < 0.
-  const auto minus_h = [&](double th) {
-    const double s2 = law.Derivative(th, 2);
-    if (!(s2 < 0.0)) return kInf;
-    return -(safety_factor * train.mass_kg * w * w * -s2 - train.rate_N_m * law.Lift(th) +
-             train.gas_force_N);
-  };
-  const ForceMinimum m = Minimize(law, minus_h);
+  const ForceMinimum m = MinMinusRequired(law, train, overspeed_factor * omega, safety_factor);
   if (!std::isfinite(m.force_N)) return std::max(0.0, train.gas_force_N);
   return std::max(0.0, -m.force_N);
 }
 
 std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const RigidTrain& train) {
   if (law.nodes().empty()) return std::nullopt;
-  const double n_qs = QuasiStaticLiftoffRpm(law, train);
+  RequireAcceleration(law);
+  train.Validate();
+  const ForceMinimum m = MinSpringReserve(law, train);
+  const double n_qs = RpmOfReserve(m.force_N);
   double low = kInf, high = kInf;  // min of the reserve at the band's two ends
-  const std::vector<LocalNode> nodes = BandNodes(law);
-  for (const LocalNode& n : nodes) {
+  for (const LocalNode& n : BandNodes(law, m.crank_rad)) {
     low = std::min(low, train.SpringReserve(n.s[0], n.s[2] - n.band2));
     high = std::min(high, train.SpringReserve(n.s[0], n.s[2] + n.band2));
   }
-  auto rpm = [](double reserve) {
-    return reserve <= 0.0 ? 0.0 : 60.0 / (2.0 * kPi) * std::sqrt(reserve);
-  };
-  return ExtremumBand{std::min(rpm(low), n_qs), std::max(rpm(high), n_qs)};
+  return ExtremumBand{std::min(RpmOfReserve(low), n_qs), std::max(RpmOfReserve(high), n_qs)};
 }
 
 std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrain& train,
@@ -126,7 +137,8 @@ std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrai
   if (law.nodes().empty()) return std::nullopt;
   const double w = overspeed_factor * omega;
   double required = RequiredPreloadN(law, train, omega, safety_factor, overspeed_factor);
-  const std::vector<LocalNode> nodes = BandNodes(law);
+  const std::vector<LocalNode> nodes =
+      BandNodes(law, MinMinusRequired(law, train, w, safety_factor).crank_rad);
   for (const LocalNode& n : nodes) {
     const double s2 = n.s[2] - n.band2;  // the deceleration's unsafe end
     if (s2 < 0.0) {

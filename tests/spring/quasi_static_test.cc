@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "lib/cam_laws.h"
+#include "lib/lift_data.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -103,6 +105,27 @@ TEST(QuasiStaticTest, RejectsC1SplinesAndBadTrains) {
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "mass must be positive, got 0.000000 kg");
   }
+}
+
+// n_qs's band was the nodes' alone: where the spring reserve is least between two nodes, both
+// its ends could lie above the true n_qs (the bench's modified trapezoid at 0.25° to 9
+// decimals: [1205.41, 1209.51] against the closed form's 1205.364 rpm). The law at that point,
+// with the nearest node's half-width, is one of the band's points now.
+TEST(QuasiStaticTest, TheLiftoffBandHoldsTheReservesMinimumBetweenNodes) {
+  const LiftTable t =
+      ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/modtrap-exact-0.25deg.csv",
+                  EngineCycle::kFourStroke);
+  const LiftLawChoice c = ChooseLiftLaw(t, {});
+  ASSERT_EQ(c.law.spline.kind, SplineKind::kLocal) << c.reason;
+  const LiftLaw law(c.table, c.law);
+  const RigidTrain train{0.5, 600.0, 30e3, 0.0};
+  const double n_qs = QuasiStaticLiftoffRpm(law, train);
+  EXPECT_NEAR(n_qs, 1205.364, 0.2);
+  const auto band = QuasiStaticLiftoffBand(law, train);
+  ASSERT_TRUE(band);
+  EXPECT_LE(band->low, 1205.364);
+  EXPECT_GE(band->high, 1205.364);
+  EXPECT_LT(band->high - band->low, 0.01 * n_qs);  // narrow: an exact table
 }
 
 }  // namespace
