@@ -32,17 +32,13 @@ LiftTable BasuNormalCurve(double max_lift_m) {
 
 namespace {
 
-std::string Mm(double m) {
+std::string Shown(double value) {  // as a stream writes it, 6 digits
   std::ostringstream out;
-  out << m * 1e3;
+  out << value;
   return out.str();
 }
-
-std::string Deg(double rad) {
-  std::ostringstream out;
-  out << rad / kDeg;
-  return out.str();
-}
+std::string Mm(double m) { return Shown(m * 1e3); }
+std::string Deg(double rad) { return Shown(rad / kDeg); }
 
 void CheckReadings(const LiftTable& table, double allowance_m, double sigmas) {
   for (size_t i = 0; i < table.lift_m.size(); ++i) {
@@ -382,11 +378,12 @@ std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
   // extreme may lie between nodes; else its unsafe end could be the estimate itself).
   double lo = -std::numeric_limits<double>::infinity();
   double hi = sign * e.s[2] + e.band2;
-  for (const LocalNode& n : nodes()) {
+  std::vector<LocalNode> all = KinkNodes(largest);
+  all.insert(all.end(), nodes().begin(), nodes().end());
+  for (const LocalNode& n : all) {
     lo = std::max(lo, sign * n.s[2] - n.band2);
     hi = std::max(hi, sign * n.s[2] + n.band2);
   }
-  if (kind_ == SplineKind::kLocal) hi = std::max(hi, KinkPeakBetweenNodes(nodes(), sign));
   if (!largest) return ExtremumBand{-hi, -lo};
   return ExtremumBand{lo, hi};
 }
@@ -398,17 +395,23 @@ LocalNode LiftLaw::ExtremeNode(bool largest) const {
   return at;
 }
 
+std::vector<LocalNode> LiftLaw::KinkNodes(bool largest) const {
+  if (kind_ != SplineKind::kLocal) return {};
+  std::vector<LocalNode> kinks = KinkPeaks(nodes(), largest ? 1.0 : -1.0);
+  for (LocalNode& k : kinks) {
+    const double law = spline_.Evaluate(k.x, 2), peak = k.s[2];
+    for (int d = 0; d < 3; ++d) k.s[d] = spline_.Evaluate(k.x, d);
+    k.s[2] = 0.5 * (law + peak);  // its band spans the law's s'' there and the peak
+    k.band2 += 0.5 * std::abs(peak - law);
+  }
+  return kinks;
+}
+
 LocalNode LiftLaw::NodeAt(double crank_rad) const {
   LocalNode at;
   at.x = crank_rad;
   for (int k = 0; k < 3; ++k) at.s[k] = spline_.Evaluate(crank_rad, k);
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const LocalNode& n : nodes()) {
-    if (std::abs(n.x - crank_rad) < nearest) {
-      nearest = std::abs(n.x - crank_rad);
-      at.band2 = n.band2;
-    }
-  }
+  at.band2 = NearestHalfWidth(nodes(), crank_rad);
   return at;
 }
 

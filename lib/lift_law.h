@@ -124,12 +124,18 @@ class LiftLaw {
   /// The 95 % band of the largest (`largest`) or smallest s'' over the open lift, m/rad²: the
   /// extreme of the nodes' bands (lib/local_fit.h, lib/spline_band.h), and always holding
   /// Max(2) (Min(2)), its unsafe end reaching a local fit's peak on a kink between nodes
-  /// (KinkPeakBetweenNodes); none for a law without nodes (pchip, makima, a table too short or
-  /// too long for an interpolating spline's band).
+  /// (KinkNodes); none for a law without nodes (pchip, makima, a table too short or too long
+  /// for an interpolating spline's band).
   std::optional<ExtremumBand> AccelerationBand(bool largest) const;
   /// The largest (smallest) s'' as a node: where it is, s, s', s'' there, and the half-width of
   /// the node nearest it (the extreme may lie between nodes). Meaningful only with nodes.
   LocalNode ExtremeNode(bool largest) const;
+  /// A local fit's peaks of s'' (the largest, or the smallest) on kinks between its nodes
+  /// (lib/local_fit.h KinkPeaks) as nodes whose band spans the law's s'' there and the peak:
+  /// s'' their mean, the half-width half their distance plus the interval's nodes'. Empty for
+  /// the other kinds (an interpolating spline's nodes, one a reading, are too far apart on a
+  /// sparse table to tell a kink from a smooth peak).
+  std::vector<LocalNode> KinkNodes(bool largest) const;
   /// The law at `crank_rad` as a node: s, s', s'' there and the half-width of the node nearest
   /// it (a quantity read from s'' may be most unsafe between nodes). Meaningful only with nodes.
   LocalNode NodeAt(double crank_rad) const;

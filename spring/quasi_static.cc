@@ -44,12 +44,14 @@ ForceMinimum Minimize(const LiftLaw& law, const std::function<double(double)>& f
   return {best, best_x};
 }
 
-// The law's nodes, its largest deceleration and the law at `at` (the most unsafe point of the
-// quantity banded: both may lie between nodes), each with its band.
-std::vector<LocalNode> BandNodes(const LiftLaw& law, double at) {
+// The law's nodes, its largest deceleration, its deceleration peaks on kinks and the law where
+// the quantity banded is most unsafe (`worst`, when the law decelerates): all but the nodes may
+// lie between nodes. Each with its band.
+std::vector<LocalNode> BandNodes(const LiftLaw& law, const ForceMinimum& worst) {
   std::vector<LocalNode> nodes = law.nodes();
   nodes.push_back(law.ExtremeNode(false));
-  if (at >= law.start_rad() && at <= law.end_rad()) nodes.push_back(law.NodeAt(at));
+  for (const LocalNode& kink : law.KinkNodes(false)) nodes.push_back(kink);
+  if (std::isfinite(worst.force_N)) nodes.push_back(law.NodeAt(worst.crank_rad));
   return nodes;
 }
 
@@ -77,6 +79,13 @@ ForceMinimum MinMinusRequired(const LiftLaw& law, const RigidTrain& train, doubl
     return -(safety_factor * train.mass_kg * w * w * -s2 - train.rate_N_m * law.Lift(th) +
              train.gas_force_N);
   });
+}
+
+// The preload required from MinMinusRequired's result: F_g alone where the law never
+// decelerates; never below 0.
+double RequiredOf(const ForceMinimum& m, const RigidTrain& train) {
+  if (!std::isfinite(m.force_N)) return std::max(0.0, train.gas_force_N);
+  return std::max(0.0, -m.force_N);
 }
 
 }  // namespace
@@ -112,9 +121,7 @@ double RequiredPreloadN(const LiftLaw& law, const RigidTrain& train, double omeg
                         double safety_factor, double overspeed_factor) {
   RequireAcceleration(law);
   train.Validate();
-  const ForceMinimum m = MinMinusRequired(law, train, overspeed_factor * omega, safety_factor);
-  if (!std::isfinite(m.force_N)) return std::max(0.0, train.gas_force_N);
-  return std::max(0.0, -m.force_N);
+  return RequiredOf(MinMinusRequired(law, train, overspeed_factor * omega, safety_factor), train);
 }
 
 std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const RigidTrain& train) {
@@ -124,7 +131,7 @@ std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const Rig
   const ForceMinimum m = MinSpringReserve(law, train);
   const double n_qs = RpmOfReserve(m.force_N);
   double low = kInf, high = kInf;  // min of the reserve at the band's two ends
-  for (const LocalNode& n : BandNodes(law, m.crank_rad)) {
+  for (const LocalNode& n : BandNodes(law, m)) {
     low = std::min(low, train.SpringReserve(n.s[0], n.s[2] - n.band2));
     high = std::min(high, train.SpringReserve(n.s[0], n.s[2] + n.band2));
   }
@@ -135,11 +142,12 @@ std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrai
                                              double omega, double safety_factor,
                                              double overspeed_factor) {
   if (law.nodes().empty()) return std::nullopt;
+  RequireAcceleration(law);
+  train.Validate();
   const double w = overspeed_factor * omega;
-  double required = RequiredPreloadN(law, train, omega, safety_factor, overspeed_factor);
-  const std::vector<LocalNode> nodes =
-      BandNodes(law, MinMinusRequired(law, train, w, safety_factor).crank_rad);
-  for (const LocalNode& n : nodes) {
+  const ForceMinimum m = MinMinusRequired(law, train, w, safety_factor);
+  double required = RequiredOf(m, train);
+  for (const LocalNode& n : BandNodes(law, m)) {
     const double s2 = n.s[2] - n.band2;  // the deceleration's unsafe end
     if (s2 < 0.0) {
       required = std::max(required, safety_factor * train.mass_kg * w * w * -s2 -

@@ -954,10 +954,11 @@ TEST(MeasuredTableBandTest, KnownLimitABandShortOfAJumpThatSmoothingFlattens) {
 namespace needle {
 namespace {
 
-// A rise whose s'' is the cycloidal law's, 2π sin 2πξ, drawn linearly between knots t that are
-// not evenly spaced (as a cubic B-spline's s'' is): s''' jumps at each knot. With slopes m_k
-// between the knots, s'' = Σ c_k (ξ − t_k)₊, c_k = m_k − m_{k−1}, so s = Σ c_k (ξ − t_k)₊³ / 6,
-// divided by its value at ξ = 1 (knots antisymmetric about ½, so s'(1) = 0).
+// A rise whose s'' is linear between knots t that are not evenly spaced (as a cubic B-spline's
+// s'' is), through the cycloidal law's 2π sin 2πξ at the knots before the scaling below: s'''
+// jumps at each knot. With slopes m_k between the knots, s'' = Σ c_k (ξ − t_k)₊,
+// c_k = m_k − m_{k−1}, so s = Σ c_k (ξ − t_k)₊³ / 6, divided by its value at ξ = 1 (knots
+// symmetric about ½, so s'(1) = 0).
 using Knots = std::array<double, 9>;
 std::function<double(double, int)> PiecewiseLinearAcceleration(const Knots& t) {
   std::array<double, 8> c{};

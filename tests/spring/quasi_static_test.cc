@@ -107,17 +107,21 @@ TEST(QuasiStaticTest, RejectsC1SplinesAndBadTrains) {
   }
 }
 
+// A table of tests/data read as `needle` reads a CSV with no settings.
+LiftLaw ReadByDefault(const std::string& name) {
+  const LiftTable t =
+      ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/" + name, EngineCycle::kFourStroke);
+  const LiftLawChoice c = ChooseLiftLaw(t, {});
+  return LiftLaw(c.table, c.law);
+}
+
 // n_qs's band was the nodes' alone: where the spring reserve is least between two nodes, both
 // its ends could lie above the true n_qs (the bench's modified trapezoid at 0.25° to 9
 // decimals: [1205.41, 1209.51] against the closed form's 1205.364 rpm). The law at that point,
 // with the nearest node's half-width, is one of the band's points now.
 TEST(QuasiStaticTest, TheLiftoffBandHoldsTheReservesMinimumBetweenNodes) {
-  const LiftTable t =
-      ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/modtrap-exact-0.25deg.csv",
-                  EngineCycle::kFourStroke);
-  const LiftLawChoice c = ChooseLiftLaw(t, {});
-  ASSERT_EQ(c.law.spline.kind, SplineKind::kLocal) << c.reason;
-  const LiftLaw law(c.table, c.law);
+  const LiftLaw law = ReadByDefault("modtrap-exact-0.25deg.csv");
+  ASSERT_EQ(law.kind(), SplineKind::kLocal);
   const RigidTrain train{0.5, 600.0, 30e3, 0.0};
   const double n_qs = QuasiStaticLiftoffRpm(law, train);
   EXPECT_NEAR(n_qs, 1205.364, 0.2);
@@ -126,6 +130,27 @@ TEST(QuasiStaticTest, TheLiftoffBandHoldsTheReservesMinimumBetweenNodes) {
   EXPECT_LE(band->low, 1205.364);
   EXPECT_GE(band->high, 1205.364);
   EXPECT_LT(band->high - band->low, 0.01 * n_qs);  // narrow: an exact table
+}
+
+// A deceleration peak on a kink between a local fit's nodes reached the printed a_min band
+// (LiftLaw::KinkNodes) but not the verdicts' figures: n_qs's band and the preload's unsafe end
+// read the nodes, the largest deceleration and the law's most unsafe point, all short of the
+// peak. tests/data/kinked-acceleration-0.5deg.csv: s'' linear between uneven knots, 9 decimals;
+// with 0.5 kg on 600 N + 30 N/mm the closed form's n_qs is 2268.633 rpm, and at 2000 rpm the
+// preload it needs (S = 1, f = 1) 453.803 N (2e6 points).
+TEST(QuasiStaticTest, TheVerdictsFiguresReachADecelerationPeakOnAKink) {
+  const LiftLaw law = ReadByDefault("kinked-acceleration-0.5deg.csv");
+  ASSERT_EQ(law.kind(), SplineKind::kLocal);
+  ASSERT_FALSE(law.KinkNodes(false).empty());
+  const RigidTrain train{0.5, 600.0, 30e3, 0.0};
+  const auto band = QuasiStaticLiftoffBand(law, train);
+  ASSERT_TRUE(band);
+  EXPECT_LE(band->low, 2268.633);
+  EXPECT_GE(band->high, 2268.633);
+  const auto unsafe = RequiredPreloadUnsafeN(law, train, OmegaFromRpm(2000), 1.0, 1.0);
+  ASSERT_TRUE(unsafe);
+  EXPECT_GE(*unsafe, 453.803);
+  EXPECT_LT(RequiredPreloadN(law, train, OmegaFromRpm(2000), 1.0, 1.0), 453.803);  // the law's
 }
 
 }  // namespace
