@@ -378,12 +378,12 @@ std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
   // extreme may lie between nodes; else its unsafe end could be the estimate itself).
   double lo = -std::numeric_limits<double>::infinity();
   double hi = sign * e.s[2] + e.band2;
-  std::vector<LocalNode> all = KinkNodes(largest);
-  all.insert(all.end(), nodes().begin(), nodes().end());
-  for (const LocalNode& n : all) {
+  const auto take = [&](const LocalNode& n) {
     lo = std::max(lo, sign * n.s[2] - n.band2);
     hi = std::max(hi, sign * n.s[2] + n.band2);
-  }
+  };
+  for (const LocalNode& n : nodes()) take(n);
+  for (const LocalNode& n : KinkNodes(largest)) take(n);
   if (!largest) return ExtremumBand{-hi, -lo};
   return ExtremumBand{lo, hi};
 }
@@ -399,10 +399,10 @@ std::vector<LocalNode> LiftLaw::KinkNodes(bool largest) const {
   if (kind_ != SplineKind::kLocal) return {};
   std::vector<LocalNode> kinks = KinkPeaks(nodes(), largest ? 1.0 : -1.0);
   for (LocalNode& k : kinks) {
-    const double law = spline_.Evaluate(k.x, 2), peak = k.s[2];
+    const double peak = k.s[2];
     for (int d = 0; d < 3; ++d) k.s[d] = spline_.Evaluate(k.x, d);
-    k.s[2] = 0.5 * (law + peak);  // its band spans the law's s'' there and the peak
-    k.band2 += 0.5 * std::abs(peak - law);
+    k.band2 += 0.5 * std::abs(peak - k.s[2]);  // the band spans the law's s'' there and the peak
+    k.s[2] = 0.5 * (k.s[2] + peak);
   }
   return kinks;
 }
