@@ -4,11 +4,76 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace needle {
+namespace {
+
+// A complex tridiagonal matrix's LU factors with partial pivoting, as LAPACK's zgttrf and
+// zgttrs make and use them (Eigen has no banded solver; the chain needs one O(N) solve a mode).
+class TridiagonalLU {
+ public:
+  using Complex = std::complex<double>;
+  // The matrix with diagonal `d`, subdiagonal `l` (l[i] = T(i+1, i)) and superdiagonal `u`
+  // (u[i] = T(i, i+1)); a pivot of 0 is taken as `tiny` (inverse iteration's rule).
+  TridiagonalLU(std::vector<Complex> d, std::vector<Complex> l, std::vector<Complex> u, double tiny)
+      : d_(std::move(d)),
+        l_(std::move(l)),
+        u_(std::move(u)),
+        u2_(d_.size(), 0.0),
+        swap_(d_.size(), false) {
+    const int n = static_cast<int>(d_.size());
+    for (int i = 0; i + 1 < n; ++i) {
+      if (std::abs(d_[i]) >= std::abs(l_[i])) {  // no interchange: eliminate l[i]
+        if (d_[i] == 0.0) d_[i] = tiny;
+        l_[i] /= d_[i];
+        d_[i + 1] -= l_[i] * u_[i];
+      } else {  // rows i and i + 1 interchanged
+        const Complex fact = d_[i] / l_[i];
+        d_[i] = l_[i];
+        l_[i] = fact;
+        const Complex temp = u_[i];
+        u_[i] = d_[i + 1];
+        d_[i + 1] = temp - fact * d_[i + 1];
+        if (i + 2 < n) {
+          u2_[i] = u_[i + 1];
+          u_[i + 1] = -fact * u_[i + 1];
+        }
+        swap_[i] = true;
+      }
+    }
+    if (n > 0 && d_[n - 1] == 0.0) d_[n - 1] = tiny;
+  }
+  // b ← T⁻¹ b.
+  void Solve(Eigen::VectorXcd& b) const {
+    const int n = static_cast<int>(d_.size());
+    for (int i = 0; i + 1 < n; ++i) {
+      if (!swap_[i]) {
+        b[i + 1] -= l_[i] * b[i];
+      } else {
+        const Complex temp = b[i];
+        b[i] = b[i + 1];
+        b[i + 1] = temp - l_[i] * b[i];
+      }
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      Complex s = b[i];
+      if (i + 1 < n) s -= u_[i] * b[i + 1];
+      if (i + 2 < n) s -= u2_[i] * b[i + 2];
+      b[i] = s / d_[i];
+    }
+  }
+
+ private:
+  std::vector<Complex> d_, l_, u_, u2_;
+  std::vector<bool> swap_;
+};
+
+}  // namespace
 
 ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     : dofs_(train.Coils() + 1) {
@@ -56,10 +121,10 @@ void ChainModes::Assemble(const NeedleTrain& train, const ContactMode& mode) {
 
 void ChainModes::Decompose() {
   const int n = dofs_;
-  // A in balanced coordinates: z̃ = S z with S = diag(M^½, M^½/s), s = √‖M^-½ K M^-½‖∞, so
-  // that Ã = S A S⁻¹ = [[0, s I], [−K̃/s, −C̃]] holds entries of one size (A's own span k_c/m
-  // against 1, some 1e8, costs the eigenvectors digits); then V = S⁻¹ Ṽ, V⁻¹ = Ṽ⁻¹ S.
-  const Eigen::VectorXd root_mass = mass_.cwiseSqrt(), inv_root = root_mass.cwiseInverse();
+  // The eigenvalues of A in balanced coordinates: z̃ = S z with S = diag(M^½, M^½/s),
+  // s = √‖M^-½ K M^-½‖∞, so that Ã = S A S⁻¹ = [[0, s I], [−K̃/s, −C̃]] holds entries of one size
+  // (A's own span k_c/m against 1, some 1e8, would cost the eigenvalues digits).
+  const Eigen::VectorXd inv_root = mass_.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd Kt = inv_root.asDiagonal() * K_ * inv_root.asDiagonal();
   const Eigen::MatrixXd Ct = inv_root.asDiagonal() * C_ * inv_root.asDiagonal();
   const double scale = std::sqrt(Kt.cwiseAbs().rowwise().sum().maxCoeff());
@@ -67,56 +132,90 @@ void ChainModes::Decompose() {
   A.topRightCorner(n, n) = scale * Eigen::MatrixXd::Identity(n, n);
   A.bottomLeftCorner(n, n) = -Kt / scale;
   A.bottomRightCorner(n, n) = -Ct;
-  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A);
+  // Eigenvalues only: each vector comes from the tridiagonal T(λ) in O(N) (QuadraticMode).
+  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A, /*computeEigenvectors=*/false);
   if (eigen.info() != Eigen::Success) {
     throw std::invalid_argument("method \"exact\": the coil chain's modes did not converge");
   }
-  const Eigen::MatrixXcd Vt = eigen.eigenvectors();
-  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(Vt);
-  // A mode at or near critical damping makes Ṽ (nearly) singular: its modal sum would lose the
-  // digits the bounds and the audit need.
-  if (!(lu.rcond() >= kLeastConditioning)) {
-    throw std::invalid_argument(
-        "method \"exact\": a mode of the coil chain is at or near critical damping (its "
-        "eigenvectors' reciprocal condition " +
-        std::to_string(lu.rcond()) + " < 1e-8); take dopri5");
-  }
-  Eigen::VectorXd S(2 * n);
-  S << root_mass, root_mass / scale;
-  KeepOnePerPair(eigen.eigenvalues(),
-                 S.cwiseInverse().cast<std::complex<double>>().asDiagonal() * Vt,
-                 lu.inverse() * S.cast<std::complex<double>>().asDiagonal(), C_.isZero(0.0));
+  KeepOnePerPair(eigen.eigenvalues(), C_.isZero(0.0));
 }
 
-void ChainModes::KeepOnePerPair(const Eigen::VectorXcd& all, const Eigen::MatrixXcd& V,
-                                const Eigen::MatrixXcd& Vinv, bool undamped) {
+void ChainModes::KeepOnePerPair(const Eigen::VectorXcd& all, bool undamped) {
   // One of each conjugate pair (EigenSolver gives them as exact conjugates, side by side).
   std::vector<int> keep;
   for (int i = 0; i < all.size(); ++i) {
     if (all[i].imag() >= 0.0) keep.push_back(i);
   }
-  const int m = static_cast<int>(keep.size());
+  const int m = static_cast<int>(keep.size()), n = dofs_;
   lambda_.resize(m);
   weight_.resize(m);
-  vectors_.resize(V.rows(), m);
-  inverse_.resize(m, V.cols());
+  vectors_.resize(2 * n, m);
+  inverse_.resize(m, 2 * n);
   for (int r = 0; r < m; ++r) {
     const int i = keep[r];
     // Undamped (no dashpot pushes, ζ_s = 0): every λ is imaginary; round-off's real part, of
     // either sign, is dropped, so that no term of the modal sum grows (the bounds need it).
     lambda_[r] = undamped ? std::complex<double>(0.0, all[i].imag()) : all[i];
     weight_[r] = all[i].imag() > 0.0 ? 2.0 : 1.0;
-    vectors_.col(r) = V.col(i);
-    inverse_.row(r) = Vinv.row(i);
+    QuadraticMode(r);
     fastest_ = std::max(fastest_, std::abs(all[i]));
   }
+}
+
+void ChainModes::QuadraticMode(int r) {
+  using Complex = std::complex<double>;
+  const Complex lambda = lambda_[r];
+  const Eigen::VectorXcd phi = NullVector(lambda);
+  // A's right vector z = [φ, λφ]; its left one, T(λ) = λ²M + λC + K being symmetric, is
+  // y = [(λM + C)φ, Mφ], with yᵀz = φᵀ(2λM + C)φ (no conjugates): V⁻¹'s row is yᵀ/(yᵀz).
+  const Eigen::VectorXcd m_phi = mass_.cast<Complex>().cwiseProduct(phi);
+  const Eigen::VectorXcd c_phi = sparse_C_.cast<Complex>() * phi;
+  const Complex d = phi.cwiseProduct(2.0 * lambda * m_phi + c_phi).sum();
+  // A mode at or near critical damping (a double λ) makes yᵀz vanish against its terms' sizes:
+  // its modal sum would lose the digits the bounds and the audit need.
+  const Eigen::VectorXd size = phi.cwiseAbs();
+  const double terms =
+      size.dot(2.0 * std::abs(lambda) * mass_.cwiseProduct(size) + C_.cwiseAbs() * size);
+  const double conditioning = terms > 0.0 ? std::abs(d) / terms : 0.0;
+  if (!(conditioning >= kLeastConditioning)) {
+    throw std::invalid_argument(
+        "method \"exact\": a mode of the coil chain is at or near critical damping (its "
+        "eigenvectors' reciprocal condition " +
+        std::to_string(conditioning) + " < 1e-8); take dopri5");
+  }
+  vectors_.col(r) << phi, lambda * phi;
+  inverse_.row(r) << ((lambda * m_phi + c_phi) / d).transpose(), (m_phi / d).transpose();
+}
+
+Eigen::VectorXcd ChainModes::NullVector(std::complex<double> lambda) const {
+  using Complex = std::complex<double>;
+  const int n = dofs_;
+  // T(λ) = λ²M + λC + K, tridiagonal and symmetric: its diagonal and off-diagonal.
+  std::vector<Complex> diag(n), off(std::max(n - 1, 0));
+  double norm = 0.0;
+  for (int i = 0; i < n; ++i) {
+    diag[i] = lambda * lambda * mass_[i] + lambda * C_(i, i) + K_(i, i);
+    if (i + 1 < n) off[i] = lambda * C_(i, i + 1) + K_(i, i + 1);
+    norm = std::max(norm, std::abs(diag[i]) + 2.0 * (i + 1 < n ? std::abs(off[i]) : 0.0));
+  }
+  // Inverse iteration with λ, an eigenvalue to round-off: T(λ) is singular to round-off, and
+  // two solves from a vector of ones give its null vector (a zero pivot taken as ε‖T‖).
+  const TridiagonalLU lu(diag, off, off, std::numeric_limits<double>::epsilon() * norm);
+  Eigen::VectorXcd x = Eigen::VectorXcd::Ones(n);
+  for (int iteration = 0; iteration < 2; ++iteration) {
+    lu.Solve(x);
+    Eigen::Index top = 0;
+    x.cwiseAbs().maxCoeff(&top);
+    x /= x[top];
+  }
+  return x;
 }
 
 Eigen::MatrixXd ChainModes::Particular(const double* f, int degree) const {
   const int n = dofs_;
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, degree + 3);  // two zero columns above the top
   for (int j = degree; j >= 0; --j) {
-    Eigen::VectorXd r = -(j + 1.0) * (C_ * a.col(j + 1)) -
+    Eigen::VectorXd r = -(j + 1.0) * (sparse_C_ * a.col(j + 1)) -
                         ((j + 2.0) * (j + 1.0)) * mass_.cwiseProduct(a.col(j + 2));
     r[0] += f[j];
     a.col(j) = stiffness_.solve(r);

@@ -12,7 +12,10 @@
 /// In first-order form z = [q, q̇], ż = A z + f(τ) [0, e₀/m], A = [[0, I], [−M⁻¹K, −M⁻¹C]]. Its
 /// free motion is z_h(τ) = V e^{Λτ} V⁻¹ z_h(0) from A's eigen decomposition (complex: the exact
 /// first-order propagator, for any damping, proportional to the segments' rates or not, as the
-/// contacts' dashpots make it). K is positive definite (the chain is held at its fixed end), so
+/// contacts' dashpots make it). A's eigenvalues come from Hessenberg QR alone; its vectors from
+/// the tridiagonal T(λ) = λ²M + λC + K: z = [φ, λφ] with T(λ)φ = 0 (inverse iteration, O(N)),
+/// and, T being symmetric, V⁻¹'s row [((λM + C)φ)ᵀ, (Mφ)ᵀ] / φᵀ(2λM + C)φ, O(N) too (no O(N³)
+/// vectors or inverse). K is positive definite (the chain is held at its fixed end), so
 /// the polynomial particular solution comes from K⁻¹ by the recurrence
 ///
 ///     K a_j + C (j+1) a_{j+1} + M (j+2)(j+1) a_{j+2} = f_j e₀,   from the top degree down.
@@ -81,11 +84,15 @@ class ChainModes {
  private:
   // M, K and C of the chain in `mode` (the constructor's first part).
   void Assemble(const NeedleTrain& train, const ContactMode& mode);
-  // The balanced first-order matrix's eigen decomposition, checked for conditioning.
+  // The balanced first-order matrix's eigenvalues, then each mode's vectors (QuadraticMode).
   void Decompose();
-  // λ, V's columns and V⁻¹'s rows of one member of each conjugate pair.
-  void KeepOnePerPair(const Eigen::VectorXcd& all, const Eigen::MatrixXcd& V,
-                      const Eigen::MatrixXcd& Vinv, bool undamped);
+  // λ of one member of each conjugate pair, with its column of V and row of V⁻¹.
+  void KeepOnePerPair(const Eigen::VectorXcd& all, bool undamped);
+  // Mode r's column of V and row of V⁻¹ from λ_r and T(λ_r)'s null vector; checked for
+  // conditioning.
+  void QuadraticMode(int r);
+  // The null vector φ of T(λ) = λ²M + λC + K (λ an eigenvalue), its largest entry 1.
+  Eigen::VectorXcd NullVector(std::complex<double> lambda) const;
 
   int dofs_;
   Eigen::MatrixXd K_, C_;
