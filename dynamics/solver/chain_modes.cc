@@ -121,10 +121,10 @@ void ChainModes::Assemble(const NeedleTrain& train, const ContactMode& mode) {
 
 void ChainModes::Decompose() {
   const int n = dofs_;
-  // The eigenvalues of A in balanced coordinates: z̃ = S z with S = diag(M^½, M^½/s),
-  // s = √‖M^-½ K M^-½‖∞, so that Ã = S A S⁻¹ = [[0, s I], [−K̃/s, −C̃]] holds entries of one size
-  // (A's own span k_c/m against 1, some 1e8, would cost the eigenvalues digits).
-  const Eigen::VectorXd inv_root = mass_.cwiseSqrt().cwiseInverse();
+  // A in balanced coordinates: z̃ = S z with S = diag(M^½, M^½/s), s = √‖M^-½ K M^-½‖∞, so
+  // that Ã = S A S⁻¹ = [[0, s I], [−K̃/s, −C̃]] holds entries of one size (A's own span k_c/m
+  // against 1, some 1e8, costs the eigenvalues and vectors digits); then V = S⁻¹ Ṽ, V⁻¹ = Ṽ⁻¹ S.
+  const Eigen::VectorXd root_mass = mass_.cwiseSqrt(), inv_root = root_mass.cwiseInverse();
   const Eigen::MatrixXd Kt = inv_root.asDiagonal() * K_ * inv_root.asDiagonal();
   const Eigen::MatrixXd Ct = inv_root.asDiagonal() * C_ * inv_root.asDiagonal();
   const double scale = std::sqrt(Kt.cwiseAbs().rowwise().sum().maxCoeff());
@@ -132,75 +132,129 @@ void ChainModes::Decompose() {
   A.topRightCorner(n, n) = scale * Eigen::MatrixXd::Identity(n, n);
   A.bottomLeftCorner(n, n) = -Kt / scale;
   A.bottomRightCorner(n, n) = -Ct;
-  // Eigenvalues only: each vector comes from the tridiagonal T(λ) in O(N) (QuadraticMode).
-  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A, /*computeEigenvectors=*/false);
+  const bool undamped = C_.isZero(0.0);
+  // Eigenvalues only, each mode's vectors from the tridiagonal T(λ) in O(N) (QuadraticMode)...
+  {
+    const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A, /*computeEigenvectors=*/false);
+    if (eigen.info() != Eigen::Success) {
+      throw std::invalid_argument("method \"exact\": the coil chain's modes did not converge");
+    }
+    const std::vector<int> keep = KeepOnePerPair(eigen.eigenvalues(), undamped);
+    vectors_.resize(2 * n, static_cast<Eigen::Index>(keep.size()));
+    inverse_.resize(static_cast<Eigen::Index>(keep.size()), 2 * n);
+    bool all = true;
+    for (int r = 0; all && r < static_cast<int>(keep.size()); ++r) all = QuadraticMode(r);
+    if (all) return;
+  }
+  // ... unless a mode is near another (near critical damping, where V⁻¹'s rows made one by one
+  // lose digits as 1/conditioning²): A's eigenvectors and their inverse, O(N³).
+  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A);
   if (eigen.info() != Eigen::Success) {
     throw std::invalid_argument("method \"exact\": the coil chain's modes did not converge");
   }
-  KeepOnePerPair(eigen.eigenvalues(), C_.isZero(0.0));
+  const Eigen::MatrixXcd Vt = eigen.eigenvectors();
+  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(Vt);
+  // A mode at or near critical damping makes Ṽ (nearly) singular: its modal sum would lose the
+  // digits the bounds and the audit need.
+  if (!(lu.rcond() >= kLeastConditioning)) {
+    throw std::invalid_argument(
+        "method \"exact\": a mode of the coil chain is at or near critical damping (its "
+        "eigenvectors' reciprocal condition " +
+        std::to_string(lu.rcond()) + " < 1e-8); take dopri5");
+  }
+  Eigen::VectorXd S(2 * n);
+  S << root_mass, root_mass / scale;
+  const Eigen::MatrixXcd V = S.cwiseInverse().cast<std::complex<double>>().asDiagonal() * Vt;
+  const Eigen::MatrixXcd Vinv = lu.inverse() * S.cast<std::complex<double>>().asDiagonal();
+  const std::vector<int> keep = KeepOnePerPair(eigen.eigenvalues(), undamped);
+  vectors_.resize(2 * n, static_cast<Eigen::Index>(keep.size()));
+  inverse_.resize(static_cast<Eigen::Index>(keep.size()), 2 * n);
+  for (size_t r = 0; r < keep.size(); ++r) {
+    vectors_.col(static_cast<Eigen::Index>(r)) = V.col(keep[r]);
+    inverse_.row(static_cast<Eigen::Index>(r)) = Vinv.row(keep[r]);
+  }
+  // Near critical damping even these lose digits (as ε over the modes' distance): the kept
+  // modes' sum Σ_k w_k Re(V_k V⁻¹_k) must be the identity, in balanced units, to kInverseError.
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  for (Eigen::Index k = 0; k < lambda_.size(); ++k)
+    sum.noalias() += weight_[k] * (vectors_.col(k) * inverse_.row(k)).real();
+  const double error = (S.asDiagonal() * sum * S.cwiseInverse().asDiagonal() -
+                        Eigen::MatrixXd::Identity(2 * n, 2 * n))
+                           .cwiseAbs()
+                           .maxCoeff();
+  if (!(error <= kInverseError)) {
+    throw std::invalid_argument(
+        "method \"exact\": a mode of the coil chain is at or near critical damping (its modal "
+        "sum inverts to " +
+        std::to_string(error) + ", beyond 1e-10); take dopri5");
+  }
 }
 
-void ChainModes::KeepOnePerPair(const Eigen::VectorXcd& all, bool undamped) {
+std::vector<int> ChainModes::KeepOnePerPair(const Eigen::VectorXcd& all, bool undamped) {
   // One of each conjugate pair (EigenSolver gives them as exact conjugates, side by side).
   std::vector<int> keep;
   for (int i = 0; i < all.size(); ++i) {
     if (all[i].imag() >= 0.0) keep.push_back(i);
   }
-  const int m = static_cast<int>(keep.size()), n = dofs_;
+  const int m = static_cast<int>(keep.size());
   lambda_.resize(m);
   weight_.resize(m);
-  vectors_.resize(2 * n, m);
-  inverse_.resize(m, 2 * n);
+  fastest_ = 0.0;
   for (int r = 0; r < m; ++r) {
     const int i = keep[r];
     // Undamped (no dashpot pushes, ζ_s = 0): every λ is imaginary; round-off's real part, of
     // either sign, is dropped, so that no term of the modal sum grows (the bounds need it).
     lambda_[r] = undamped ? std::complex<double>(0.0, all[i].imag()) : all[i];
     weight_[r] = all[i].imag() > 0.0 ? 2.0 : 1.0;
-    QuadraticMode(r);
     fastest_ = std::max(fastest_, std::abs(all[i]));
   }
+  return keep;
 }
 
-void ChainModes::QuadraticMode(int r) {
+bool ChainModes::QuadraticMode(int r) {
   using Complex = std::complex<double>;
   const Complex lambda = lambda_[r];
-  const Eigen::VectorXcd phi = NullVector(lambda);
+  double norm = 0.0;
+  const Eigen::VectorXcd phi = NullVector(lambda, &norm);
   // A's right vector z = [φ, λφ]; its left one, T(λ) = λ²M + λC + K being symmetric, is
   // y = [(λM + C)φ, Mφ], with yᵀz = φᵀ(2λM + C)φ (no conjugates): V⁻¹'s row is yᵀ/(yᵀz).
   const Eigen::VectorXcd m_phi = mass_.cast<Complex>().cwiseProduct(phi);
   const Eigen::VectorXcd c_phi = sparse_C_.cast<Complex>() * phi;
   const Complex d = phi.cwiseProduct(2.0 * lambda * m_phi + c_phi).sum();
-  // A mode at or near critical damping (a double λ) makes yᵀz vanish against its terms' sizes:
-  // its modal sum would lose the digits the bounds and the audit need.
+  // yᵀz against its terms' sizes: near 0 where λ is near another (near critical damping),
+  // and there the rows made one by one are no inverse of V to the digits the bounds and the
+  // audit need. And T(λ)φ = 0 to round-off, or inverse iteration did not converge.
   const Eigen::VectorXd size = phi.cwiseAbs();
   const double terms =
-      size.dot(2.0 * std::abs(lambda) * mass_.cwiseProduct(size) + C_.cwiseAbs() * size);
-  const double conditioning = terms > 0.0 ? std::abs(d) / terms : 0.0;
-  if (!(conditioning >= kLeastConditioning)) {
-    throw std::invalid_argument(
-        "method \"exact\": a mode of the coil chain is at or near critical damping (its "
-        "eigenvectors' reciprocal condition " +
-        std::to_string(conditioning) + " < 1e-8); take dopri5");
+      size.dot(2.0 * std::abs(lambda) * mass_.cwiseProduct(size) + sparse_C_.cwiseAbs() * size);
+  const Eigen::VectorXcd residual =
+      (lambda * lambda) * m_phi + lambda * c_phi + sparse_K_.cast<Complex>() * phi;
+  if (!(std::abs(d) >= kQuadraticConditioning * terms) ||
+      !(residual.cwiseAbs().maxCoeff() <= kNullResidual * norm)) {
+    return false;
   }
   vectors_.col(r) << phi, lambda * phi;
   inverse_.row(r) << ((lambda * m_phi + c_phi) / d).transpose(), (m_phi / d).transpose();
+  return true;
 }
 
-Eigen::VectorXcd ChainModes::NullVector(std::complex<double> lambda) const {
+Eigen::VectorXcd ChainModes::NullVector(std::complex<double> lambda, double* norm) const {
   using Complex = std::complex<double>;
   const int n = dofs_;
-  // T(λ) = λ²M + λC + K, tridiagonal and symmetric: its diagonal and off-diagonal.
+  // T(λ) = λ²M + λC + K, tridiagonal and symmetric: its diagonal and off-diagonal, and ‖T‖∞.
   std::vector<Complex> diag(n), off(std::max(n - 1, 0));
-  double norm = 0.0;
+  *norm = 0.0;
   for (int i = 0; i < n; ++i) {
     diag[i] = lambda * lambda * mass_[i] + lambda * C_(i, i) + K_(i, i);
     if (i + 1 < n) off[i] = lambda * C_(i, i + 1) + K_(i, i + 1);
-    norm = std::max(norm, std::abs(diag[i]) + 2.0 * (i + 1 < n ? std::abs(off[i]) : 0.0));
+  }
+  for (int i = 0; i < n; ++i) {
+    *norm = std::max(*norm, std::abs(diag[i]) + (i > 0 ? std::abs(off[i - 1]) : 0.0) +
+                                (i + 1 < n ? std::abs(off[i]) : 0.0));
   }
   // Inverse iteration with λ, an eigenvalue to round-off: T(λ) is singular to round-off, and
   // two solves from a vector of ones give its null vector (a zero pivot taken as ε‖T‖).
-  const TridiagonalLU lu(diag, off, off, std::numeric_limits<double>::epsilon() * norm);
+  const TridiagonalLU lu(diag, off, off, std::numeric_limits<double>::epsilon() * *norm);
   Eigen::VectorXcd x = Eigen::VectorXcd::Ones(n);
   for (int iteration = 0; iteration < 2; ++iteration) {
     lu.Solve(x);

@@ -15,7 +15,9 @@
 /// contacts' dashpots make it). A's eigenvalues come from Hessenberg QR alone; its vectors from
 /// the tridiagonal T(λ) = λ²M + λC + K: z = [φ, λφ] with T(λ)φ = 0 (inverse iteration, O(N)),
 /// and, T being symmetric, V⁻¹'s row [((λM + C)φ)ᵀ, (Mφ)ᵀ] / φᵀ(2λM + C)φ, O(N) too (no O(N³)
-/// vectors or inverse). K is positive definite (the chain is held at its fixed end), so
+/// vectors or inverse). Where a λ is near another (near critical damping) those rows lose digits
+/// as the square of its conditioning: there A's dense eigenvectors and their inverse are taken.
+/// K is positive definite (the chain is held at its fixed end), so
 /// the polynomial particular solution comes from K⁻¹ by the recurrence
 ///
 ///     K a_j + C (j+1) a_{j+1} + M (j+2)(j+1) a_{j+2} = f_j e₀,   from the top degree down.
@@ -43,6 +45,15 @@ class ChainModes {
   /// The least reciprocal condition of the eigenvectors taken: below it a mode is at or near
   /// critical damping (a defective A), and its modal sum loses the digits the run needs.
   static constexpr double kLeastConditioning = 1e-8;
+  /// A mode's |φᵀ(2λM + C)φ| over its terms' sizes below this (a λ near another: V⁻¹'s rows made
+  /// one by one would lose digits as its square) takes the dense O(N³) vectors and inverse.
+  static constexpr double kQuadraticConditioning = 1e-3;
+  /// ‖T(λ)φ‖∞ over ‖T(λ)‖∞ (φ's largest entry 1) above this: inverse iteration did not converge
+  /// (the dense path then).
+  static constexpr double kNullResidual = 1e-10;
+  /// The dense path's Σ_k w_k Re(V_k V⁻¹_k) off the identity, in balanced units, above this: the
+  /// chain is refused as near critical damping (its modal sum would lose the audit's digits).
+  static constexpr double kInverseError = 1e-10;
 
   /// The chain of `train` (Coils() > 0, linear contact laws, no coil clash) in `mode`. Throws
   /// std::invalid_argument, with the reason, when K is not positive definite (a spring without
@@ -84,15 +95,16 @@ class ChainModes {
  private:
   // M, K and C of the chain in `mode` (the constructor's first part).
   void Assemble(const NeedleTrain& train, const ContactMode& mode);
-  // The balanced first-order matrix's eigenvalues, then each mode's vectors (QuadraticMode).
+  // The balanced first-order matrix's eigenvalues, then each mode's vectors (QuadraticMode), or
+  // where a mode is near another the dense eigenvectors and inverse, checked for conditioning.
   void Decompose();
-  // λ of one member of each conjugate pair, with its column of V and row of V⁻¹.
-  void KeepOnePerPair(const Eigen::VectorXcd& all, bool undamped);
-  // Mode r's column of V and row of V⁻¹ from λ_r and T(λ_r)'s null vector; checked for
-  // conditioning.
-  void QuadraticMode(int r);
-  // The null vector φ of T(λ) = λ²M + λC + K (λ an eigenvalue), its largest entry 1.
-  Eigen::VectorXcd NullVector(std::complex<double> lambda) const;
+  // λ and weight of one member of each conjugate pair, and fastest_; the members kept.
+  std::vector<int> KeepOnePerPair(const Eigen::VectorXcd& all, bool undamped);
+  // Mode r's column of V and row of V⁻¹ from λ_r and T(λ_r)'s null vector; false where the
+  // mode is too near another (kQuadraticConditioning) or the null vector is not one.
+  bool QuadraticMode(int r);
+  // The null vector φ of T(λ) = λ²M + λC + K (λ an eigenvalue), its largest entry 1; ‖T‖∞.
+  Eigen::VectorXcd NullVector(std::complex<double> lambda, double* norm) const;
 
   int dofs_;
   Eigen::MatrixXd K_, C_;
