@@ -16,6 +16,9 @@ constexpr int kSide = kJunctionSide;  // readings of each side's quintic: one mo
 // A neighbour whose |D| is at least this share of the largest's: the junction lies between them
 // (at a reading, its neighbours see about half of it).
 constexpr double kBetweenShare = 0.75;
+// The split at the largest |D| is kept unless another within p readings fits this many times
+// better (CleanSplit): a clean split's misfit is the rounding's, one across a junction the jump's.
+constexpr double kCleanSplitGain = 100.0;
 // JumpConfirmed judges only where the quintics' noise is below this share of the jump.
 constexpr double kConfirmNoiseShare = 0.1;
 
@@ -42,6 +45,110 @@ SideQuintic FitQuintic(const std::vector<double>& x, const std::vector<double>& 
   return q;
 }
 
+// The sum of squared residuals of the quintic fitted to readings [from, to), m².
+double Misfit(const std::vector<double>& x, const std::vector<double>& y, size_t from, size_t to) {
+  const SideQuintic q = FitQuintic(x, y, from, to, x[from]);
+  double sum = 0.0;
+  for (size_t i = from; i < to; ++i) sum += (y[i] - q.Value(x[i], 0)) * (y[i] - q.Value(x[i], 0));
+  return sum;
+}
+
+// The readings where the table leaves and meets the seat (the last reading of lift 0 before the
+// first above it, and the first after the last): a quintic's readings straddle neither.
+struct Seat {
+  long first = 0, last = 0;
+  bool Straddled(long from, long to) const {  // readings [from, to)
+    return (from < first && to - 1 > first) || (from < last && to - 1 > last);
+  }
+};
+
+// The misfit of the split between readings j and j + 1: the sum of squared residuals of the
+// quintics through readings j − p + 1 … j and j + 1 … j + p, m² (+∞ where they do not fit in
+// or straddle the seat's junction).
+double SplitMisfit(const std::vector<double>& x, const std::vector<double>& y, long j, long p,
+                   long n, const Seat& seat) {
+  if (j - p + 1 < 0 || j + 1 + p > n || seat.Straddled(j - p + 1, j + 1) ||
+      seat.Straddled(j + 1, j + 1 + p)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return Misfit(x, y, static_cast<size_t>(j - p + 1), static_cast<size_t>(j + 1)) +
+         Misfit(x, y, static_cast<size_t>(j + 1), static_cast<size_t>(j + 1 + p));
+}
+
+// The clean splits near reading k, cleanest first: j within p of k whose two sides' quintics fit
+// kCleanSplitGain times better than the split the largest |D| chose (`at_k`) and than one quintic
+// through both sides' readings (a junction lies between them). Where the largest |D| is not a
+// junction's own (a second junction a few readings away, or a quintic across one whose s'' at
+// its end strays further than the jump), the junctions lie between the sides of such splits:
+// there the fits are the law's own. (Seven readings leave a quintic one residual: an s'' jump at
+// a window's middle reading fits exactly. ConfirmedSplit's test of where the slopes meet sorts
+// those out.)
+std::vector<long> CleanSplits(const std::vector<double>& x, const std::vector<double>& y, long k,
+                              long p, long n, double at_k, const Seat& seat) {
+  std::vector<std::pair<double, long>> clean;
+  for (long j = k - p; j <= k + p - 1; ++j) {
+    const double r = SplitMisfit(x, y, j, p, n, seat);
+    if (!(kCleanSplitGain * r < at_k)) continue;
+    const double whole =
+        Misfit(x, y, static_cast<size_t>(j - p + 1), static_cast<size_t>(j + 1 + p));
+    if (!(kCleanSplitGain * r < whole)) continue;  // no junction between the two sides
+    clean.emplace_back(r, j);
+  }
+  std::sort(clean.begin(), clean.end());
+  std::vector<long> out;
+  for (const auto& [r, j] : clean) out.push_back(j);
+  return out;
+}
+
+// The junction at reading k (between = false) or between readings k and k + 1: where the slopes
+// of the quintics through the p readings on each side meet (snapped to a reading within
+// kBreakSnapFraction of a step), with the jump of their s'' there; `met`: whether they meet
+// between the two readings.
+LiftBreak Located(const std::vector<double>& x, const std::vector<double>& y, long k, long p,
+                  bool between, bool* met = nullptr) {
+  const SideQuintic left = FitQuintic(x, y, k - p + 1, k + 1, x[k]);
+  const SideQuintic right =
+      between ? FitQuintic(x, y, k + 1, k + 1 + p, x[k + 1]) : FitQuintic(x, y, k, k + p, x[k]);
+  const double h = x[k + 1] - x[k];
+  LiftBreak b;
+  b.order = 2;
+  b.index = static_cast<size_t>(k);
+  if (between) {
+    const auto at = RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); },
+                           x[k] - 0.5 * h, x[k + 1] + 0.5 * h);
+    b.crank_rad = at.value_or(0.5 * (x[k] + x[k + 1]));
+    if (met)
+      *met = at && *at >= x[k] - kBreakSnapFraction * h && *at <= x[k + 1] + kBreakSnapFraction * h;
+    if (std::abs(b.crank_rad - x[k]) <= kBreakSnapFraction * h) b.crank_rad = x[k];
+    if (std::abs(b.crank_rad - x[k + 1]) <= kBreakSnapFraction * h) {
+      b.crank_rad = x[k + 1];
+      b.index = static_cast<size_t>(k + 1);
+    }
+  } else {
+    b.crank_rad = x[k];
+  }
+  b.jump = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
+  b.lift_m = b.crank_rad == x[b.index]
+                 ? y[b.index]
+                 : 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
+  return b;
+}
+
+// A junction between readings k and k + 1 located on a clean split (CleanSplits): kept where the
+// two sides' slopes meet between the two readings (a smooth law's split, whose quintics agree
+// to their extrapolation error, may have them meet anywhere or nowhere) with a jump at least a
+// quarter of the |D| seen and above its noise (a kink of s'' locates to none).
+std::optional<LiftBreak> ConfirmedSplit(const std::vector<double>& x, const std::vector<double>& y,
+                                        long k, long p, long n, double seen, double noise) {
+  bool met = false;
+  const LiftBreak b = Located(x, y, k, p, true, &met);
+  if (!met || !(std::abs(b.jump) >= 0.25 * std::abs(seen)) ||
+      !(std::abs(b.jump) > TailSigmas(n, kBreakSigmas) * noise)) {
+    return std::nullopt;
+  }
+  return b;
+}
+
 }  // namespace
 
 std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::vector<double>& y,
@@ -64,6 +171,9 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
     noise[i] = sigma_m * std::sqrt(sum);
   }
   const double tail = TailSigmas(n, kBreakSigmas);
+  Seat seat{0, n - 1};
+  while (seat.first + 1 < n && y[seat.first + 1] == 0.0) ++seat.first;
+  while (seat.last > 0 && y[seat.last - 1] == 0.0) --seat.last;
   std::vector<long> flagged;
   for (long i = p - 1; i + p <= n; ++i) {
     // The smooth level: the median |D| of the readings p+1 … p+6 away (clear of the windows that
@@ -104,32 +214,37 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
       --k;
     }
     for (long i = std::max(0L, k - p + 1); i <= std::min(n - 1, k + p); ++i) open[i] = false;
-    const SideQuintic left = FitQuintic(x, y, k - p + 1, k + 1, x[k]);
-    const SideQuintic right =
-        between ? FitQuintic(x, y, k + 1, k + 1 + p, x[k + 1]) : FitQuintic(x, y, k, k + p, x[k]);
-    const double h = x[k + 1] - x[k];
-    LiftBreak b;
-    b.order = 2;
-    b.index = static_cast<size_t>(k);
-    if (between) {
-      const auto at = RootIn([&](double t) { return right.Value(t, 1) - left.Value(t, 1); },
-                             x[k] - 0.5 * h, x[k + 1] + 0.5 * h);
-      b.crank_rad = at.value_or(0.5 * (x[k] + x[k + 1]));
-      if (std::abs(b.crank_rad - x[k]) <= kBreakSnapFraction * h) b.crank_rad = x[k];
-      if (std::abs(b.crank_rad - x[k + 1]) <= kBreakSnapFraction * h) {
-        b.crank_rad = x[k + 1];
-        b.index = static_cast<size_t>(k + 1);
+    // The split the largest |D| chose, or far cleaner ones near it that confirm a jump
+    // (CleanSplits, ConfirmedSplit).
+    const double at_k =
+        Misfit(x, y, static_cast<size_t>(k - p + 1), static_cast<size_t>(k + 1)) +
+        (between ? Misfit(x, y, static_cast<size_t>(k + 1), static_cast<size_t>(k + 1 + p))
+                 : Misfit(x, y, static_cast<size_t>(k), static_cast<size_t>(k + p)));
+    // Two clusters may meet at one junction: one break.
+    const auto add = [&](const LiftBreak& b) {
+      const double h = x[b.index + 1 < x.size() ? b.index + 1 : b.index] - x[b.index];
+      if (std::none_of(found.begin(), found.end(), [&](const LiftBreak& f) {
+            return std::abs(f.crank_rad - b.crank_rad) < 0.5 * h;
+          })) {
+        found.push_back(b);
       }
-    } else {
-      b.crank_rad = x[k];
+    };
+    // Each clean split that confirms a jump, at most one within p readings (its windows hold
+    // no other's junction).
+    std::vector<long> taken;
+    for (const long j : CleanSplits(x, y, k, p, n, at_k, seat)) {
+      if (std::any_of(taken.begin(), taken.end(), [&](long t) { return std::abs(t - j) < p; }))
+        continue;
+      if (const std::optional<LiftBreak> b = ConfirmedSplit(x, y, j, p, n, d[k], noise[j])) {
+        taken.push_back(j);
+        add(*b);
+      }
     }
-    b.jump = right.Value(b.crank_rad, 2) - left.Value(b.crank_rad, 2);
-    b.lift_m = b.crank_rad == x[b.index]
-                   ? y[b.index]
-                   : 0.5 * (left.Value(b.crank_rad, 0) + right.Value(b.crank_rad, 0));
-    // The located jump is the jump seen (within a quarter).
-    if (!(std::abs(b.jump - d[k]) <= 0.25 * std::abs(d[k]))) continue;
-    found.push_back(b);
+    if (!taken.empty()) continue;
+    // Else the split the largest |D| chose: the located jump is the jump seen (within a
+    // quarter).
+    const LiftBreak b = Located(x, y, k, p, between);
+    if (std::abs(b.jump - d[k]) <= 0.25 * std::abs(d[k])) add(b);
   }
   std::sort(found.begin(), found.end(),
             [](const LiftBreak& a, const LiftBreak& b) { return a.crank_rad < b.crank_rad; });

@@ -600,6 +600,46 @@ TEST(LiftReadingTest, JunctionsAreSoughtBesideTheBreaksFound) {
   EXPECT_NEAR(fitted.Min(2).value / (s2[4] * per_deg2), 1.0, 1e-3) << c.reason;
 }
 
+// Two s'' jumps three degrees apart, neither on the grid (a 2-3 cubic rise of 0.6 mm over 31°, a
+// 3° dwell and the same return), exported to 9 decimals at 0.3° and 0.35°, from the rise's first
+// point and with 5° of base circle, from a new user's trial: the quintics (FindJunctions) put the
+// junctions half a degree late, on readings, with their jumps' signs reversed (a_min 128 % high,
+// n_qs's band 20–35 % below the truth). The largest |D| near a junction is not its own where a
+// quintic across it strays, or a second junction is a few readings away: the junction is now
+// sought between the two sides of the cleanest split near it.
+TEST(LiftReadingTest, TwoJunctionsAFewReadingsApartAreEachLocated) {
+  const Law law{0.6, 31.0, 3.0, 31.0, Cubic23};
+  for (const double step : {0.3, 0.35}) {
+    for (const double pad : {0.0, 5.0}) {
+      const std::string what = std::to_string(step) + " deg, padded " + std::to_string(pad);
+      const Read r = ReadExport(law, Export(law, step, 0.0, pad));
+      for (const double at : {31.0, 34.0}) {
+        EXPECT_TRUE(std::any_of(
+            r.choice.breaks_found.begin(), r.choice.breaks_found.end(),
+            [&](const LiftBreak& b) { return std::abs(b.crank_rad / kDeg - at) < 0.01; }))
+            << what << ": no junction at " << at << " deg; " << r.choice.reason;
+      }
+      // Both extremes are the jumps' ends, exact to 1e-4 (a junction found 1e-5° off moves its
+      // side's end value by some 1e-6: the band, as narrow, may stop that short of it).
+      EXPECT_LT(std::abs(r.max_error), 1e-4) << what << "; " << r.choice.reason;
+      EXPECT_LT(std::abs(r.min_error), 1e-4) << what << "; " << r.choice.reason;
+    }
+  }
+  // The bench's harmonic rise of 3 mm over 24°, 6° dwell, return over 30°, at 1° to 9 decimals:
+  // one cluster of large |D| around both junctions (six readings apart, on the grid), read as
+  // one junction at 14° (a_min's band 13 % wide): each of its clean splits now gives its own.
+  const Law shm{3.0, 24.0, 6.0, 30.0, Harmonic};
+  const Read r = ReadExport(shm, Export(shm, 1.0, 0.0));
+  for (const double at : {24.0, 30.0}) {
+    EXPECT_TRUE(
+        std::any_of(r.choice.breaks_found.begin(), r.choice.breaks_found.end(),
+                    [&](const LiftBreak& b) { return std::abs(b.crank_rad / kDeg - at) < 0.01; }))
+        << "no junction at " << at << " deg; " << r.choice.reason;
+  }
+  EXPECT_LT(std::abs(r.max_error), 0.01) << r.choice.reason;  // at the seat, the target
+  EXPECT_LT(std::abs(r.min_error), 1e-3) << r.choice.reason;  // the rise's end: was 3.1e-3
+}
+
 // Noise need not be everywhere (a reviewer's cases): chatter over part of the lift, two spikes
 // over a fine noise, and a computed grid whose step changes (1° to 0.1°, its angles' digits at
 // the step's own scale: no rounding of them) are each still measured, their seats clean.
