@@ -140,13 +140,20 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
       if (piece->HomogeneousEnergy(hi) > 4.0 * rest_energy) return std::nullopt;
     }
   }
-  if (!(hi > lo))
-    return recorder_.AtRest(hi, Motion(hi), phase) ? std::optional<double>(hi) : std::nullopt;
+  // At rest at t (Recorder::AtRest); a chain's closed form reads the needle's speed first, in
+  // O(modes), and its whole state only where that may be at rest.
+  const ClosedFormPiece* piece = stepper_->ClosedForm();
+  const bool chain = piece && piece->Chain();
+  const auto at_rest = [&](double t) {
+    if (chain && !(std::abs(ForceState(t)[1]) <= kRestSpeed_m_s)) return false;
+    return recorder_.AtRest(t, Motion(t), phase);
+  };
+  if (!(hi > lo)) return at_rest(hi) ? std::optional<double>(hi) : std::nullopt;
   constexpr int kSamples = 64;
   double moving = lo;
   for (int k = 0; k <= kSamples; ++k) {
     const double tk = lo + (hi - lo) * k / kSamples;
-    if (!recorder_.AtRest(tk, Motion(tk), phase)) {
+    if (!at_rest(tk)) {
       moving = tk;
       continue;
     }
@@ -154,7 +161,7 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
     double a = moving, b = tk;  // moving at a, at rest at b
     for (int i = 0; i < 60 && b - a > 1e-12 * (1.0 + std::abs(b)); ++i) {
       const double m = 0.5 * (a + b);
-      (recorder_.AtRest(m, Motion(m), phase) ? b : a) = m;
+      (at_rest(m) ? b : a) = m;
     }
     return b;
   }
