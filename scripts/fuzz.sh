@@ -12,9 +12,11 @@ case "$loader" in
   ""|case|engine|synth|csv) ;;
   *) echo "fuzz.sh: LOADER: expected case, engine, synth or csv, got '$loader'" >&2; exit 2 ;;
 esac
-# The root project with NEEDLE_FUZZ: the real libraries, instrumented, and the fuzz target.
+# The root project with NEEDLE_FUZZ: the real libraries, instrumented, and the fuzz target, at
+# -O1 -g as libFuzzer's documentation builds them: 268 s against -O2's 305 s on 2 cores, and
+# 10,561 runs in 5 s against 10,982 on the bundled corpus (a CI run waits on this build).
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DNEEDLE_FUZZ=ON \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target case_loader_fuzz >/dev/null
 corpus=$(mktemp -d)
 cp cases/*.toml cases/*.csv tests/data/*.csv "$corpus"/

@@ -4,6 +4,7 @@ A client to a scheduler or to a local cluster, the scheduler's time per task and
 chosen from it, and the progress line on stderr.
 """
 
+import logging
 import math
 import os
 import sys
@@ -36,6 +37,10 @@ def connect(scheduler, workers, timeout):
         try:
             client.wait_for_workers(1, timeout=timeout)
         except (OSError, TimeoutError):
+            # wait_for_workers leaves a future of Dask's own holding the timeout: asyncio logs it
+            # on stderr when it is collected ("Future exception was never retrieved", seen on a
+            # loaded machine), after the one line this error is. It is this error: not logged.
+            logging.getLogger("asyncio").setLevel(logging.CRITICAL)
             client.close()
             raise BadInput(f"--scheduler {scheduler}: the scheduler has no worker after "
                            f"{timeout:g} s (start dask-worker {scheduler} on the workers' "
