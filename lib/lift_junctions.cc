@@ -17,7 +17,7 @@ constexpr int kSide = kJunctionSide;  // readings of each side's quintic: one mo
 // (at a reading, its neighbours see about half of it).
 constexpr double kBetweenShare = 0.75;
 // The split at the largest |D| is kept unless another within p readings fits this many times
-// better (CleanSplit): a clean split's misfit is the rounding's, one across a junction the jump's.
+// better (CleanSplits): a clean split's misfit is the rounding's, one across a junction the jump's.
 constexpr double kCleanSplitGain = 100.0;
 // JumpConfirmed judges only where the quintics' noise is below this share of the jump.
 constexpr double kConfirmNoiseShare = 0.1;
@@ -49,7 +49,10 @@ SideQuintic FitQuintic(const std::vector<double>& x, const std::vector<double>& 
 double Misfit(const std::vector<double>& x, const std::vector<double>& y, size_t from, size_t to) {
   const SideQuintic q = FitQuintic(x, y, from, to, x[from]);
   double sum = 0.0;
-  for (size_t i = from; i < to; ++i) sum += (y[i] - q.Value(x[i], 0)) * (y[i] - q.Value(x[i], 0));
+  for (size_t i = from; i < to; ++i) {
+    const double r = y[i] - q.Value(x[i], 0);
+    sum += r * r;
+  }
   return sum;
 }
 
