@@ -61,6 +61,21 @@ struct FormBounds {
   double slope_at_start = 0.0;   ///< w'(t_a)
 };
 
+/// A coil chain's motion near t_c as polynomials in s = t − t_c (ClosedFormPiece::ChainTaylorAt):
+/// a search over a short bracket evaluates O(N·D) a point where the closed form costs
+/// O(N·m) with m exponentials and sines.
+struct ChainTaylor {
+  static constexpr int kMaxDegree = 20;
+  bool valid = false;  ///< false where the remainder may exceed the modal sum's round-off
+  double t_c = 0.0;    ///< s
+  /// Rows: the lifts of the nodes held (node 0 the needle), then the needle's speed; column j
+  /// the coefficient of s^j (m/s^j, m/s^(j+1)).
+  Eigen::MatrixXd coef;
+  /// The train's state at t: the needle's lift and speed, the coils' lifts where held; the
+  /// coils' velocities, W and D at 0 (what a force or a compression does not read).
+  TrainState At(double t, size_t state_size) const;
+};
+
 class ClosedFormPiece {
  public:
   static constexpr int kMaxDegree = 8;  ///< of P (cam pieces up to quintic, integrated twice)
@@ -119,6 +134,12 @@ class ClosedFormPiece {
   /// compression (m) and on the spring's force on the needle P₀ + k s₁ + c ṡ₁ (N), each from the
   /// particular solution's polynomials and the modal sum (terms that never grow).
   std::array<double, 2> ChainUpperBounds(double t_a, double t_b) const;
+  /// A coil chain's Taylor polynomials about t_c ≥ t₀: the needle's lift and speed, and with
+  /// `coils` the coils' lifts (a segment's compression), of the least degree D whose remainder over
+  /// |s| ≤ reach, at most ρ^(D+1)/(D+1)! e^ρ of each mode's size with ρ = |λ_k| reach, is below
+  /// 2⁻⁵³ (ρ ≤ π/16, a bracket of two of a stretch's 16 samples: D = 11); not valid above
+  /// ChainTaylor::kMaxDegree. The value at t_c is the closed form's own.
+  ChainTaylor ChainTaylorAt(double t_c, double reach, bool coils) const;
   /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds
   /// (one mass only: a chain's needle trades energy with its coils; std::logic_error there).
   double HomogeneousEnergy(double t) const;

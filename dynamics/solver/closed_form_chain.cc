@@ -11,6 +11,16 @@
 #include "lib/units.h"
 
 namespace needle {
+namespace {
+
+// |z| as √(x² + y²) where that neither overflows nor underflows (a few ulps against
+// std::abs's hypot, 6× its cost; the bounds it feeds carry kSlack), else std::abs.
+double Magnitude(std::complex<double> z) {
+  const double norm = std::norm(z);
+  return norm > 1e-290 && norm < 1e290 ? std::sqrt(norm) : std::abs(z);
+}
+
+}  // namespace
 
 void ClosedFormPiece::StartChain() {
   // The needle's row of the chain: its mass, and K₀₀ and C₀₀ (for the accessors only).
@@ -92,6 +102,76 @@ TrainState ClosedFormPiece::ChainState(double tau) const {
   return x;
 }
 
+ChainTaylor ClosedFormPiece::ChainTaylorAt(double t_c, double reach, bool coils) const {
+  using piece_polynomial::Derivative;
+  using piece_polynomial::Shift;
+  ChainTaylor out;
+  out.t_c = t_c;
+  const Eigen::VectorXcd& lambda = chain_->Lambda();
+  const Eigen::Index m = lambda.size();
+  // The least degree D whose remainder of e^{λs} over |s| ≤ reach, at most ρ^{D+1}/(D+1)! e^ρ,
+  // is below 2⁻⁵³; no less than the particular solution's degree (exact in D then).
+  const double rho = chain_->Fastest() * reach;
+  double remainder = std::exp(rho);
+  int D = 0;
+  while (D < ChainTaylor::kMaxDegree && (D < degree_p_ || !(remainder * rho / (D + 1) <= 0x1p-53)))
+    remainder *= rho / ++D;
+  if (!(remainder * rho / (D + 1) <= 0x1p-53)) return out;
+  const double tau = t_c - t0_;
+  const int n = chain_->Dofs(), nodes = coils ? n : 1;
+  // e^{λ_k τ} λ_k^j / j!, [Re; Im] in rows k and m + k, column j − 1.
+  Eigen::MatrixXd e(2 * m, D);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    std::complex<double> z = std::exp(lambda[k] * tau);
+    for (int j = 1; j <= D; ++j) {
+      z *= lambda[k] / static_cast<double>(j);
+      e(k, j - 1) = z.real();
+      e(m + k, j - 1) = z.imag();
+    }
+  }
+  // Rows 0 … nodes − 1 the nodes' lifts, row `nodes` the needle's speed; the modal sum's
+  // derivatives Re Σ_k vc_ik e^{λτ} λ^j / j! (one product), then the particular solution's.
+  out.coef.setZero(nodes + 1, D + 1);
+  out.coef.block(0, 1, nodes, D).noalias() = chain_real_.topRows(nodes) * e;
+  out.coef.row(nodes).tail(D).noalias() = chain_real_.row(n) * e;
+  if (coils) {
+    const TrainState x = ChainState(tau);
+    out.coef(0, 0) = x[0];
+    for (int i = 1; i < n; ++i) out.coef(i, 0) = x[3 + i];
+    out.coef(nodes, 0) = x[1];
+  } else {
+    const std::array<double, 2> yv = PositionVelocity(tau);
+    out.coef(0, 0) = yv[0];
+    out.coef(1, 0) = yv[1];
+  }
+  for (int i = 0; i < nodes; ++i) {
+    Poly p{};
+    for (int j = 0; j <= kMaxDegree; ++j) p[j] = chain_p_(i, j);
+    const Poly sp = Shift(p, tau);
+    for (int j = 1; j <= std::min(D, kMaxDegree); ++j) out.coef(i, j) += sp[j];
+  }
+  const Poly sv = Shift(dp_, tau);
+  for (int j = 1; j <= std::min(D, kMaxDegree); ++j) out.coef(nodes, j) += sv[j];
+  out.valid = true;
+  return out;
+}
+
+TrainState ChainTaylor::At(double t, size_t state_size) const {
+  const double s = t - t_c;
+  const Eigen::Index nodes = coef.rows() - 1;
+  const int degree = static_cast<int>(coef.cols()) - 1;
+  const auto value = [&](Eigen::Index r) {
+    double v = coef(r, degree);
+    for (int j = degree - 1; j >= 0; --j) v = v * s + coef(r, j);
+    return v;
+  };
+  TrainState x(state_size, 0.0);
+  x[0] = value(0);
+  x[1] = value(nodes);
+  for (Eigen::Index i = 1; i < nodes; ++i) x[3 + i] = value(i);
+  return x;
+}
+
 bool ClosedFormPiece::HomogeneousZero() const {
   return chain_ ? chain_rest_ : Y0_ == 0.0 && V0_ == 0.0;
 }
@@ -132,8 +212,8 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
     };
     chain_amplitudes_.resize(n + 1, m);
     for (Eigen::Index j = 0; j < m; ++j) {
-      for (int s = 1; s <= n; ++s) chain_amplitudes_(s - 1, j) = std::abs(vc(s - 1, j) - vc(s, j));
-      chain_amplitudes_(n, j) = std::abs((vc(0, j) - vc(1, j)) * (k + c * lambda[j]));
+      for (int s = 1; s <= n; ++s) chain_amplitudes_(s - 1, j) = Magnitude(vc(s - 1, j) - vc(s, j));
+      chain_amplitudes_(n, j) = Magnitude((vc(0, j) - vc(1, j)) * (k + c * lambda[j]));
     }
   }
   const double tau = t_a - t0_, span = t_b - t_a;

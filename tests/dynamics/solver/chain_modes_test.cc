@@ -264,6 +264,46 @@ TEST(ChainModesTest, TheCompressionAndSpringForceBoundsHold) {
   }
 }
 
+// The Taylor polynomials a bracket's search reads (ClosedFormPiece::ChainTaylorAt): over a
+// bracket of two of a stretch's 16 samples they are the closed form's lifts and needle speed to
+// its round-off, at t_c to the bit, in every contact mode; a reach of several oscillations of
+// the fastest mode is refused.
+TEST(ChainModesTest, TheTaylorPolynomialsAreTheClosedFormOverABracket) {
+  const SurgeChain chain;
+  const NeedleTrain& train = chain.train;
+  for (const ContactMode mode : {ContactMode{true, false}, ContactMode{false, false},
+                                 ContactMode{false, true}, ContactMode{true, true}}) {
+    const ChainModes modes(train, mode);
+    const double th = chain.Angle(), t0 = train.Time(th);
+    const ClosedFormPiece piece(train, mode, th, t0, chain.Start(mode), &modes);
+    const double reach = piece.LongestStep() / 16.0;  // ρ = π/16
+    for (const double tc : {t0, t0 + 3e-4}) {
+      for (const bool coils : {false, true}) {
+        const ChainTaylor taylor = piece.ChainTaylorAt(tc, reach, coils);
+        ASSERT_TRUE(taylor.valid);
+        EXPECT_LE(taylor.coef.cols(), 13);  // degree 11 at ρ = π/16, or P's
+        const TrainState at_c = taylor.At(tc, train.StateSize()), x_c = piece.MotionState(tc);
+        EXPECT_EQ(at_c[0], x_c[0]);
+        EXPECT_EQ(at_c[1], x_c[1]);
+        for (int i = -10; i <= 10; ++i) {
+          const double t = std::max(t0, tc + reach * i / 10.0);
+          const TrainState a = taylor.At(t, train.StateSize()), x = piece.MotionState(t);
+          EXPECT_NEAR(a[0], x[0], 1e-14 * std::abs(x[0]) + 1e-18) << i;
+          EXPECT_NEAR(a[1], x[1], 1e-13 * std::abs(x[1]) + 1e-15) << i;
+          for (int c = 1; c <= train.Coils(); ++c) {
+            if (coils) {
+              EXPECT_NEAR(a[3 + c], x[3 + c], 1e-14 * std::abs(x[3 + c]) + 1e-18) << i << c;
+            } else {
+              EXPECT_EQ(a[3 + c], 0.0);
+            }
+          }
+        }
+      }
+    }
+    EXPECT_FALSE(piece.ChainTaylorAt(t0 + 1e-3, 4.0 * piece.LongestStep(), false).valid);
+  }
+}
+
 // What the bounds leave out cannot change the run: the bundled chain with the record screened
 // and pieces run on (leave_out) against every sample taken and every piece capped, two
 // revolutions (the second starts on the seat) at 520 rpm (lash, seating) and 900 rpm (a jump):
