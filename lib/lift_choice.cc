@@ -16,6 +16,15 @@ std::string Mm(double m) {
   return out.str();
 }
 
+// "1e-05 in (0.000254 mm)" or "1e-04 mm": a table's printed digit in its own unit.
+std::string PrintedDigit(double q_m) {
+  if (!InchDigit(q_m)) return Mm(q_m) + " mm";
+  std::ostringstream out;
+  out.precision(3);
+  out << q_m / (kInchMm * 1e-3) << " in (" << Mm(q_m) << " mm)";
+  return out.str();
+}
+
 std::string DegreeList(const std::vector<double>& rad) {
   std::string where;
   for (size_t k = 0; k < rad.size() && k < 8; ++k) {
@@ -350,7 +359,8 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
     what << " but smooth (neighbours correlated " << r.lag_correlation << ")";
   }
   what << ", "
-       << (r.printed_m ? "printed to " + Mm(*r.printed_m) + " mm" : std::string("digits unknown"));
+       << (r.printed_m ? "printed to " + PrintedDigit(*r.printed_m)
+                       : std::string("digits unknown"));
   const std::string stated = o.kind ? "stated in the case; " : "";
   if (r.kind == TableKind::kMeasured) return ReadMeasured(given, o, std::move(c), at);
   // A reading below the seat by more than a printed digit is no export of a law (whose lift is

@@ -150,7 +150,8 @@ CsvColumns ReadHeader(const std::vector<std::string>& f, const std::string& path
       if (c.lift >= 0) CsvFail(path, line, k + 1, "two lift columns; keep one");
       c.lift = k;
       c.lift_name = name;
-      c.lift_scale = name == "lift_in" ? 25.4e-3 : ToSi(Dimension::kLength, name.substr(5), 1.0);
+      c.lift_scale =
+          name == "lift_in" ? kInchMm * 1e-3 : ToSi(Dimension::kLength, name.substr(5), 1.0);
     } else if (with_time && (name == "time_s" || name == "time_ms")) {
       if (c.time >= 0) CsvFail(path, line, k + 1, "two time columns; keep one");
       c.time = k;

@@ -197,18 +197,27 @@ bool PrintedTo(double value, double q) {
 }  // namespace
 
 std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
+  // The digits 10^-k of a unit, coarsest first: 1 in, 1 mm, 0.1 in, 0.1 mm, … (a table in inches
+  // to 5 decimals is a multiple of 1e-6 mm too, and of 2.54e-4 mm first).
   for (int k = 0; k <= 12; ++k) {
-    const double q = std::pow(10.0, -k);  // mm
-    bool fits = true;
-    for (double v : lift_m) {
-      if (!PrintedTo(v * 1e3, q)) {
-        fits = false;
-        break;
+    for (const double unit_mm : {kInchMm, 1.0}) {
+      const double q = std::pow(10.0, -k);  // in the unit
+      bool fits = true;
+      for (double v : lift_m) {
+        if (!PrintedTo(v * 1e3 / unit_mm, q)) {
+          fits = false;
+          break;
+        }
       }
+      if (fits) return q * unit_mm * 1e-3;
     }
-    if (fits) return q * 1e-3;
   }
   return std::nullopt;
+}
+
+bool InchDigit(double q_m) {
+  const double k = -std::log10(q_m / (kInchMm * 1e-3));
+  return std::abs(k - std::round(k)) < 1e-9;
 }
 
 double AngleRoundingSigma(const std::vector<double>& x, const std::vector<double>& y, size_t from,

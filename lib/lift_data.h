@@ -240,9 +240,16 @@ bool JumpConfirmed(const std::vector<double>& crank_rad, const std::vector<doubl
 LiftBreak RefineBreak(const std::vector<double>& crank_rad, const std::vector<double>& lift_m,
                       const LiftBreak& found, double width_rad);
 
-/// The rounding of the readings, m: the largest 10^-k mm (k = 0…12) of which every lift in mm is
-/// a multiple (to 1e-6 of it); nullopt when none is (lifts not written in decimal mm).
+/// An inch in mm (a lift table's lift_in column).
+constexpr double kInchMm = 25.4;
+
+/// The rounding of the readings, m: the largest 10^-k mm or 10^-k in (k = 0…12) of which every
+/// lift is a multiple (to 1e-6 of it); nullopt when none is (lifts not written in decimal mm or
+/// inches).
 std::optional<double> PrintedResolution(const std::vector<double>& lift_m);
+
+/// Whether the digit q (m) is 10^-k in rather than 10^-k mm.
+bool InchDigit(double q_m);
 
 /// An angle whose printed digit is below this share of the grid's step was rounded to it; a
 /// digit at the step's own scale (0.1° steps printing 0.1°) is a computed grid's, exact.

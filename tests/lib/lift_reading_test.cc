@@ -168,6 +168,40 @@ TEST(LiftReadingTest, PublishedShmValveCamFromItsExport) {
   EXPECT_LT(std::abs(rounded.min_error), 0.05);
 }
 
+// A table in inches is printed to 10^-k in, not to a decimal digit of the mm: a harmonic rise,
+// a 60° dwell and a harmonic return (8 mm) as lift_in to 9 and to 5 decimals, 0.2° steps (a new
+// user's trial: the 9-decimal table was read as printed to 1e-10 mm, so as measured, and
+// smoothed: a_max +6.2 %, the truth outside its band).
+TEST(LiftReadingTest, ATableInInchesIsReadToItsOwnDigit) {
+  const Law law{8.0, 40.0, 60.0, 50.0, Harmonic};
+  for (const int decimals : {9, 5}) {
+    std::string csv = "crank_deg,lift_in\n";
+    for (int i = 0; i <= 750; ++i) {
+      char row[96];
+      std::snprintf(row, sizeof row, "%.1f,%.*f\n", 0.2 * i, decimals,
+                    law.At(0.2 * i, 0) / kInchMm);
+      csv += row;
+    }
+    const LiftTable t = ParseLiftCsv(csv, "in.csv", EngineCycle::kTwoStroke);
+    const std::optional<double> q = PrintedResolution(t.lift_m);
+    ASSERT_TRUE(q.has_value());
+    EXPECT_NEAR(*q, std::pow(10.0, -decimals) * kInchMm * 1e-3, 1e-9 * *q);
+    const Read r = ReadExport(law, t);
+    EXPECT_FALSE(r.choice.measured) << r.choice.reason;
+    const std::string digit =
+        decimals == 9 ? "printed to 1e-09 in (2.54e-08 mm)" : "printed to 1e-05 in (0.000254 mm)";
+    EXPECT_NE(r.choice.reason.find(digit), std::string::npos) << r.choice.reason;
+    if (decimals == 9) {
+      EXPECT_LT(std::abs(r.max_error), 1e-3) << r.choice.reason;
+      EXPECT_LT(std::abs(r.min_error), 1e-3) << r.choice.reason;
+    } else {  // 2.54e-4 mm, a 1e-3 mm export's class
+      EXPECT_LT(std::abs(r.max_error), 0.05) << r.choice.reason;
+      EXPECT_LT(std::abs(r.min_error), 0.05) << r.choice.reason;
+    }
+    EXPECT_TRUE(r.max_in_band && r.min_in_band) << r.choice.reason;
+  }
+}
+
 TEST(LiftReadingTest, ExactExportsWithinOnePercent) {
   for (const Law* law : {&kHarmonic, &kCycloidal, &kPoly345}) {
     for (double step : {0.1, 0.5, 1.0}) {
