@@ -19,6 +19,9 @@ constexpr double kBetweenShare = 0.75;
 // The split at the largest |D| is kept unless another within p readings fits this many times
 // better (CleanSplits): a clean split's misfit is the rounding's, one across a junction the jump's.
 constexpr double kCleanSplitGain = 100.0;
+// KinkBetween: the sides' slopes at a kink of s'' agree to this share of |D| over a step (an
+// exact 3-4-5 top: 1e-5; a C∞ bump's foot, no kink: 0.025).
+constexpr double kKinkSlopeShare = 0.05;
 // JumpConfirmed judges only where the quintics' noise is below this share of the jump.
 constexpr double kConfirmNoiseShare = 0.1;
 
@@ -137,14 +140,37 @@ LiftBreak Located(const std::vector<double>& x, const std::vector<double>& y, lo
   return b;
 }
 
+// Whether the quintics through the p readings on each side of the split between readings k and
+// k + 1 meet at a kink of s'' (s''' jumps) that makes the |D| seen: where s''_right − s''_left
+// has its root between them, their slopes agree (to kKinkSlopeShare of |D| over a step; they
+// touch there, a double root Located does not find) and their s''' differ by at least half of
+// |D| over a step. (A smooth law too fast for one quintic across both sides, a C∞ bump's foot,
+// also meets there with one slope, but one s''': 0.1 of |D| over a step.)
+bool KinkBetween(const std::vector<double>& x, const std::vector<double>& y, long k, long p,
+                 double seen) {
+  const SideQuintic left = FitQuintic(x, y, k - p + 1, k + 1, x[k]);
+  const SideQuintic right = FitQuintic(x, y, k + 1, k + 1 + p, x[k + 1]);
+  const double h = x[k + 1] - x[k];
+  const auto at = RootIn([&](double t) { return right.Value(t, 2) - left.Value(t, 2); },
+                         x[k] - kBreakSnapFraction * h, x[k + 1] + kBreakSnapFraction * h);
+  if (!at) return false;
+  const double slopes = std::abs(right.Value(*at, 1) - left.Value(*at, 1));
+  const double jerk = std::abs(right.Value(*at, 3) - left.Value(*at, 3));
+  return slopes <= kKinkSlopeShare * std::abs(seen) * h && jerk * h >= 0.5 * std::abs(seen);
+}
+
 // A junction between readings k and k + 1 located on a clean split (CleanSplits): kept where the
 // two sides' slopes meet between the two readings (a smooth law's split, whose quintics agree
 // to their extrapolation error, may have them meet anywhere or nowhere) with a jump at least a
-// quarter of the |D| seen and above its noise (a kink of s'' locates to none).
+// quarter of the |D| seen and above its noise. A kink of s'' (KinkBetween) locates to none and
+// sets `kink`.
 std::optional<LiftBreak> ConfirmedSplit(const std::vector<double>& x, const std::vector<double>& y,
-                                        long k, long p, long n, double seen, double noise) {
+                                        long k, long p, long n, double seen, double noise,
+                                        bool* kink) {
   bool met = false;
   const LiftBreak b = Located(x, y, k, p, true, &met);
+  if (!(met && std::abs(b.jump) >= 0.25 * std::abs(seen)) && KinkBetween(x, y, k, p, seen))
+    *kink = true;
   if (!met || !(std::abs(b.jump) >= 0.25 * std::abs(seen)) ||
       !(std::abs(b.jump) > TailSigmas(n, kBreakSigmas) * noise)) {
     return std::nullopt;
@@ -232,18 +258,18 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
         found.push_back(b);
       }
     };
-    // Each clean split that confirms a jump, at most one within p readings (its windows hold
-    // no other's junction).
+    // Each clean split that confirms a jump, one within p readings (its windows hold no other's).
     std::vector<long> taken;
+    bool kink = false;
     for (const long j : CleanSplits(x, y, k, p, n, at_k, seat)) {
       if (std::any_of(taken.begin(), taken.end(), [&](long t) { return std::abs(t - j) < p; }))
         continue;
-      if (const std::optional<LiftBreak> b = ConfirmedSplit(x, y, j, p, n, d[k], noise[j])) {
+      if (const auto b = ConfirmedSplit(x, y, j, p, n, d[k], noise[j], &kink)) {
         taken.push_back(j);
         add(*b);
       }
     }
-    if (!taken.empty()) continue;
+    if (!taken.empty() || kink) continue;  // a kink of s'' (KinkBetween) is no junction
     // Else the split the largest |D| chose: the located jump is the jump seen (within a
     // quarter).
     const LiftBreak b = Located(x, y, k, p, between);
