@@ -259,8 +259,12 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
     if (lines) lines->push_back(line);
     last_line = line;
   }
-  if (c.count == 0)
-    CsvFail(path, line, 0, "no header; expected crank_deg (or cam_deg) and lift_mm");
+  if (c.count == 0) {
+    const std::string expected =
+        "expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, lift_in)";
+    if (line == 0) throw CaseError(path + ": the file is empty; " + expected);  // no line 0
+    CsvFail(path, line, 0, "no header; " + expected);
+  }
   if (t.crank_rad.size() < 2) {
     CsvFail(path, line, 0,
             "has " + std::to_string(t.crank_rad.size()) +

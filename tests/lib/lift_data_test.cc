@@ -615,7 +615,12 @@ TEST(LiftCsvTest, BadTables) {
   EXPECT_EQ(CsvError("deg,lift_mm\n1,0\n"),
             "m.csv:1:1: unknown column 'deg'; expected a header of crank_deg (or cam_deg) and "
             "lift_mm (or lift_um, lift_in)");
-  EXPECT_EQ(CsvError(""), "m.csv:0: no header; expected crank_deg (or cam_deg) and lift_mm");
+  EXPECT_EQ(CsvError(""),
+            "m.csv: the file is empty; expected a header of crank_deg (or cam_deg) and lift_mm "
+            "(or lift_um, lift_in)");
+  EXPECT_EQ(CsvError("# a comment\n"),
+            "m.csv:1: no header; expected a header of crank_deg (or cam_deg) and lift_mm (or "
+            "lift_um, lift_in)");
 }
 
 // Spreadsheet exports (tests/data/README.md says how they were made): Calc in an English
