@@ -197,8 +197,9 @@ bool PrintedTo(double value, double q) {
 }  // namespace
 
 std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
-  // The digits 10^-k of a unit, coarsest first: 1 in, 1 mm, 0.1 in, 0.1 mm, … (a table in inches
-  // to 5 decimals is a multiple of 1e-6 mm too, and of 2.54e-4 mm first).
+  // The digits 10^-k of each unit, the inch's first at each k: 1 in, 1 mm, 0.1 in, 0.1 mm, … (a
+  // table in inches to 5 decimals is a multiple of 1e-6 mm too, and of 2.54e-4 mm first; a mm
+  // table is read in inches only where every lift is a multiple of 127·10^-k mm).
   for (int k = 0; k <= 12; ++k) {
     for (const double unit_mm : {kInchMm, 1.0}) {
       const double q = std::pow(10.0, -k);  // in the unit

@@ -93,6 +93,15 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     throw std::invalid_argument("method \"exact\": the coil chain needs a spring rate above 0");
   }
   damped_ = !C_.isZero(0.0);
+  // The responses w_d to the needle's forcing τ^d/d! (Particular).
+  responses_ = Eigen::MatrixXd::Zero(dofs_, kResponseDegree + 1);
+  for (int d = 0; d <= kResponseDegree; ++d) {
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(dofs_);
+    if (d == 0) r[0] = 1.0;
+    if (d >= 1) r -= sparse_C_ * responses_.col(d - 1);
+    if (d >= 2) r -= mass_.cwiseProduct(responses_.col(d - 2));
+    responses_.col(d) = stiffness_.solve(r);
+  }
   Decompose();
 }
 
@@ -275,6 +284,18 @@ Eigen::VectorXcd ChainModes::NullVector(std::complex<double> lambda, double* nor
 
 Eigen::MatrixXd ChainModes::Particular(const double* f, int degree) const {
   const int n = dofs_;
+  if (degree <= kResponseDegree) {
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, degree + 1);
+    for (int i = 0; i <= degree; ++i) {
+      if (f[i] == 0.0) continue;
+      double factor = f[i];  // f_i i!/j!, from j = i down
+      for (int j = i; j >= 0; --j) {
+        a.col(j) += factor * responses_.col(i - j);
+        factor *= j;
+      }
+    }
+    return a;
+  }
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, degree + 3);  // two zero columns above the top
   for (int j = degree; j >= 0; --j) {
     Eigen::VectorXd r = -(j + 1.0) * (sparse_C_ * a.col(j + 1)) -

@@ -79,7 +79,11 @@ class ChainModes {
   double Fastest() const { return fastest_; }
   /// The particular solution's coefficients, N × (degree + 1), for the needle's forcing
   /// coefficients f_j (N/s^j, j = 0 … degree): column j is a_j (m/s^j), node 0 the needle.
+  /// a_j = Σ_{i ≥ j} f_i (i!/j!) w_{i−j} from the chain's own responses w_d (K w₀ = e₀,
+  /// K w_d + C w_{d−1} + M w_{d−2} = 0), made once: O(N·degree²), no solve.
   Eigen::MatrixXd Particular(const double* f, int degree) const;
+  /// The degree up to which Particular reads the responses w_d (above it, it solves).
+  static constexpr int kResponseDegree = 8;
   /// ∫₀ᵀ q(τ)ᵀ h(τ) dτ for a free motion h of the chain in this mode, from its states
   /// z = [h, h′] at τ = 0 and T (2N entries each, m and m/s); q is N × (degree + 1), column j
   /// the coefficient of τ^j (N/s^(j+1): a force rate, the integral in J; or any unit, the
@@ -115,6 +119,7 @@ class ChainModes {
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>
       stiffness_;
   bool damped_ = false;
+  Eigen::MatrixXd responses_;  // w_0 … w_kResponseDegree, N × (kResponseDegree + 1)
   Eigen::VectorXcd lambda_;
   Eigen::VectorXd weight_;
   Eigen::MatrixXcd vectors_, inverse_;

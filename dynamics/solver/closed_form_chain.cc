@@ -103,7 +103,6 @@ TrainState ClosedFormPiece::ChainState(double tau) const {
 }
 
 ChainTaylor ClosedFormPiece::ChainTaylorAt(double t_c, double reach, bool coils) const {
-  using piece_polynomial::Derivative;
   using piece_polynomial::Shift;
   ChainTaylor out;
   out.t_c = t_c;
