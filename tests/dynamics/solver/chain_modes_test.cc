@@ -66,11 +66,24 @@ struct SurgeChain {
     }
     return x0;
   }
+  // f(mode, piece, t0) for the piece in each of `modes` from Start(mode) at Angle(), time t0.
+  template <class F>
+  void ForEachPiece(std::initializer_list<ContactMode> modes, F f) const {
+    for (const ContactMode& mode : modes) {
+      const ChainModes chain_modes(train, mode);
+      const double th = Angle(), t0 = train.Time(th);
+      f(mode, ClosedFormPiece(train, mode, th, t0, Start(mode), &chain_modes), t0);
+    }
+  }
   Case c;
   Scene s;
   double omega;
   NeedleTrain train;
 };
+
+constexpr std::initializer_list<ContactMode> kEveryMode = {
+    ContactMode{true, false}, ContactMode{false, false}, ContactMode{false, true},
+    ContactMode{true, true}};
 
 // V Λ V⁻¹ over both members of each pair, against ∂f/∂x of the train's own right-hand side
 // (NeedleTrain::Jacobian: the same equations, written out a second time, by rows).
@@ -200,31 +213,29 @@ TEST(ChainModesTest, TwoMassesInFlightRingAtTheTextbookFrequencies) {
 // cam, in flight and on the seat of the bundled chain.
 TEST(ChainModesTest, TheModalBoundsHoldAlongAPiece) {
   const SurgeChain chain;
-  for (const ContactMode mode :
-       {ContactMode{true, false}, ContactMode{false, false}, ContactMode{false, true}}) {
-    const ChainModes modes(chain.train, mode);
-    const double th = chain.Angle(), t0 = chain.train.Time(th);
-    const ClosedFormPiece piece(chain.train, mode, th, t0, chain.Start(mode), &modes);
-    const LinearForm lift{1.0, 0.0, 0.0, 0.0, 0.0};
-    for (const double ta : {0.0, 2e-4}) {
-      const double a = t0 + ta, b = a + 3.0 * piece.LongestStep();
-      const FormBounds bounds = piece.Bounds(lift, a, b);
-      const FormRange range = piece.Range(lift, a, b);
-      EXPECT_NEAR(bounds.slope_at_start, piece.Motion(a)[1], 1e-9 * bounds.slope_bound);
-      double slope = 0.0, curvature = 0.0;
-      for (int i = 0; i <= 2000; ++i) {
-        const std::array<double, 3> m = piece.Motion(a + (b - a) * i / 2000.0);
-        slope = std::max(slope, std::abs(m[1]));
-        curvature = std::max(curvature, std::abs(m[2]));
-        EXPECT_GE(m[0], range.lo) << i;
-        EXPECT_LE(m[0], range.hi) << i;
-      }
-      EXPECT_LE(slope, bounds.slope_bound) << mode.cam << mode.seat << " " << ta;
-      EXPECT_LE(curvature, bounds.curvature_bound) << mode.cam << mode.seat << " " << ta;
-      // Bounds, not wild guesses: within a few times what the piece reaches.
-      EXPECT_GT(slope, 0.01 * bounds.slope_bound) << mode.cam << mode.seat << " " << ta;
-    }
-  }
+  chain.ForEachPiece(
+      {ContactMode{true, false}, ContactMode{false, false}, ContactMode{false, true}},
+      [](const ContactMode& mode, const ClosedFormPiece& piece, double t0) {
+        const LinearForm lift{1.0, 0.0, 0.0, 0.0, 0.0};
+        for (const double ta : {0.0, 2e-4}) {
+          const double a = t0 + ta, b = a + 3.0 * piece.LongestStep();
+          const FormBounds bounds = piece.Bounds(lift, a, b);
+          const FormRange range = piece.Range(lift, a, b);
+          EXPECT_NEAR(bounds.slope_at_start, piece.Motion(a)[1], 1e-9 * bounds.slope_bound);
+          double slope = 0.0, curvature = 0.0;
+          for (int i = 0; i <= 2000; ++i) {
+            const std::array<double, 3> m = piece.Motion(a + (b - a) * i / 2000.0);
+            slope = std::max(slope, std::abs(m[1]));
+            curvature = std::max(curvature, std::abs(m[2]));
+            EXPECT_GE(m[0], range.lo) << i;
+            EXPECT_LE(m[0], range.hi) << i;
+          }
+          EXPECT_LE(slope, bounds.slope_bound) << mode.cam << mode.seat << " " << ta;
+          EXPECT_LE(curvature, bounds.curvature_bound) << mode.cam << mode.seat << " " << ta;
+          // Bounds, not wild guesses: within a few times what the piece reaches.
+          EXPECT_GT(slope, 0.01 * bounds.slope_bound) << mode.cam << mode.seat << " " << ta;
+        }
+      });
 }
 
 // The chain's bounds on its largest segment compression and on the spring's force on the needle
@@ -233,35 +244,32 @@ TEST(ChainModesTest, TheModalBoundsHoldAlongAPiece) {
 TEST(ChainModesTest, TheCompressionAndSpringForceBoundsHold) {
   const SurgeChain chain;
   const NeedleTrain& train = chain.train;
-  for (const ContactMode mode : {ContactMode{true, false}, ContactMode{false, false},
-                                 ContactMode{false, true}, ContactMode{true, true}}) {
-    const ChainModes modes(train, mode);
-    const double th = chain.Angle(), t0 = train.Time(th);
-    const ClosedFormPiece piece(train, mode, th, t0, chain.Start(mode), &modes);
-    for (const double ta : {0.0, 2e-4}) {
-      for (const double steps : {1.0, 3.0}) {
-        const double a = t0 + ta, b = a + steps * piece.LongestStep();
-        const std::array<double, 2> bound = piece.ChainUpperBounds(a, b);
-        double compression = -1e300, spring = -1e300;
-        for (int i = 0; i <= 2000; ++i) {
-          const double t = a + (b - a) * i / 2000.0;
-          const TrainState x = piece.MotionState(t);
-          compression = std::max(compression, train.LargestSegmentCompression(x));
-          spring = std::max(spring, train.Evaluate(x, t, Phase{mode}).spring_N);
+  chain.ForEachPiece(
+      kEveryMode, [&](const ContactMode& mode, const ClosedFormPiece& piece, double t0) {
+        for (const double ta : {0.0, 2e-4}) {
+          for (const double steps : {1.0, 3.0}) {
+            const double a = t0 + ta, b = a + steps * piece.LongestStep();
+            const std::array<double, 2> bound = piece.ChainUpperBounds(a, b);
+            double compression = -1e300, spring = -1e300;
+            for (int i = 0; i <= 2000; ++i) {
+              const double t = a + (b - a) * i / 2000.0;
+              const TrainState x = piece.MotionState(t);
+              compression = std::max(compression, train.LargestSegmentCompression(x));
+              spring = std::max(spring, train.Evaluate(x, t, Phase{mode}).spring_N);
+            }
+            EXPECT_LE(compression, bound[0]) << mode.cam << mode.seat << " " << ta << " " << steps;
+            EXPECT_LE(spring, bound[1]) << mode.cam << mode.seat << " " << ta << " " << steps;
+            // Not wild guesses: the compression's within 3 times what the stretch reaches, or than
+            // the coils' own ringing (0.02 m/s over a coil period: 10 µm) on the seat (the modal
+            // sum's terms at their full size: this start, off every mode, rings in all of them).
+            // (Cam and seat both pushing, this start is the seat's, 5 mm into the cam: it rings
+            // at 5 mm, and only the bounds' validity is asked.)
+            if (mode.cam && mode.seat) continue;
+            EXPECT_LT(bound[0] - compression, 3.0 * std::max(compression, 1e-5)) << ta;
+            EXPECT_LT(bound[1] - spring, 0.05 * spring) << mode.cam << mode.seat << " " << ta;
+          }
         }
-        EXPECT_LE(compression, bound[0]) << mode.cam << mode.seat << " " << ta << " " << steps;
-        EXPECT_LE(spring, bound[1]) << mode.cam << mode.seat << " " << ta << " " << steps;
-        // Not wild guesses: the compression's within 3 times what the stretch reaches, or than
-        // the coils' own ringing (0.02 m/s over a coil period: 10 µm) on the seat (the modal
-        // sum's terms at their full size: this start, off every mode, rings in all of them).
-        // (Cam and seat both pushing, this start is the seat's, 5 mm into the cam: it rings
-        // at 5 mm, and only the bounds' validity is asked.)
-        if (mode.cam && mode.seat) continue;
-        EXPECT_LT(bound[0] - compression, 3.0 * std::max(compression, 1e-5)) << ta;
-        EXPECT_LT(bound[1] - spring, 0.05 * spring) << mode.cam << mode.seat << " " << ta;
-      }
-    }
-  }
+      });
 }
 
 // The Taylor polynomials a bracket's search reads (ClosedFormPiece::ChainTaylorAt): over a
@@ -271,37 +279,34 @@ TEST(ChainModesTest, TheCompressionAndSpringForceBoundsHold) {
 TEST(ChainModesTest, TheTaylorPolynomialsAreTheClosedFormOverABracket) {
   const SurgeChain chain;
   const NeedleTrain& train = chain.train;
-  for (const ContactMode mode : {ContactMode{true, false}, ContactMode{false, false},
-                                 ContactMode{false, true}, ContactMode{true, true}}) {
-    const ChainModes modes(train, mode);
-    const double th = chain.Angle(), t0 = train.Time(th);
-    const ClosedFormPiece piece(train, mode, th, t0, chain.Start(mode), &modes);
-    const double reach = piece.LongestStep() / 16.0;  // ρ = π/16
-    for (const double tc : {t0, t0 + 3e-4}) {
-      for (const bool coils : {false, true}) {
-        const ChainTaylor taylor = piece.ChainTaylorAt(tc, reach, coils);
-        ASSERT_TRUE(taylor.valid);
-        EXPECT_LE(taylor.coef.cols(), 13);  // degree 11 at ρ = π/16, or P's
-        const TrainState at_c = taylor.At(tc, train.StateSize()), x_c = piece.MotionState(tc);
-        EXPECT_EQ(at_c[0], x_c[0]);
-        EXPECT_EQ(at_c[1], x_c[1]);
-        for (int i = -10; i <= 10; ++i) {
-          const double t = std::max(t0, tc + reach * i / 10.0);
-          const TrainState a = taylor.At(t, train.StateSize()), x = piece.MotionState(t);
-          EXPECT_NEAR(a[0], x[0], 1e-14 * std::abs(x[0]) + 1e-18) << i;
-          EXPECT_NEAR(a[1], x[1], 1e-13 * std::abs(x[1]) + 1e-15) << i;
-          for (int c = 1; c <= train.Coils(); ++c) {
-            if (coils) {
-              EXPECT_NEAR(a[3 + c], x[3 + c], 1e-14 * std::abs(x[3 + c]) + 1e-18) << i << c;
-            } else {
-              EXPECT_EQ(a[3 + c], 0.0);
+  chain.ForEachPiece(
+      kEveryMode, [&](const ContactMode& mode, const ClosedFormPiece& piece, double t0) {
+        const double reach = piece.LongestStep() / 16.0;  // ρ = π/16
+        for (const double tc : {t0, t0 + 3e-4}) {
+          for (const bool coils : {false, true}) {
+            const ChainTaylor taylor = piece.ChainTaylorAt(tc, reach, coils);
+            ASSERT_TRUE(taylor.valid);
+            EXPECT_LE(taylor.coef.cols(), 13);  // degree 11 at ρ = π/16, or P's
+            const TrainState at_c = taylor.At(tc, train.StateSize()), x_c = piece.MotionState(tc);
+            EXPECT_EQ(at_c[0], x_c[0]);
+            EXPECT_EQ(at_c[1], x_c[1]);
+            for (int i = -10; i <= 10; ++i) {
+              const double t = std::max(t0, tc + reach * i / 10.0);
+              const TrainState a = taylor.At(t, train.StateSize()), x = piece.MotionState(t);
+              EXPECT_NEAR(a[0], x[0], 1e-14 * std::abs(x[0]) + 1e-18) << i;
+              EXPECT_NEAR(a[1], x[1], 1e-13 * std::abs(x[1]) + 1e-15) << i;
+              for (int c = 1; c <= train.Coils(); ++c) {
+                if (coils) {
+                  EXPECT_NEAR(a[3 + c], x[3 + c], 1e-14 * std::abs(x[3 + c]) + 1e-18) << i << c;
+                } else {
+                  EXPECT_EQ(a[3 + c], 0.0);
+                }
+              }
             }
           }
         }
-      }
-    }
-    EXPECT_FALSE(piece.ChainTaylorAt(t0 + 1e-3, 4.0 * piece.LongestStep(), false).valid);
-  }
+        EXPECT_FALSE(piece.ChainTaylorAt(t0 + 1e-3, 4.0 * piece.LongestStep(), false).valid);
+      });
 }
 
 // What the bounds leave out cannot change the run: the bundled chain with the record screened
