@@ -201,8 +201,8 @@ std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
   // table in inches to 5 decimals is a multiple of 1e-6 mm too, and of 2.54e-4 mm first; a mm
   // table is read in inches only where every lift is a multiple of 127·10^-k mm).
   for (int k = 0; k <= 12; ++k) {
+    const double q = std::pow(10.0, -k);  // in the unit
     for (const double unit_mm : {kInchMm, 1.0}) {
-      const double q = std::pow(10.0, -k);  // in the unit
       bool fits = true;
       for (double v : lift_m) {
         if (!PrintedTo(v * 1e3 / unit_mm, q)) {

@@ -118,21 +118,9 @@ ChainTaylor ClosedFormPiece::ChainTaylorAt(double t_c, double reach, bool coils)
   if (!(remainder * rho / (D + 1) <= 0x1p-53)) return out;
   const double tau = t_c - t0_;
   const int n = chain_->Dofs(), nodes = coils ? n : 1;
-  // e^{λ_k τ} λ_k^j / j!, [Re; Im] in rows k and m + k, column j − 1.
-  Eigen::MatrixXd e(2 * m, D);
-  for (Eigen::Index k = 0; k < m; ++k) {
-    std::complex<double> z = std::exp(lambda[k] * tau);
-    for (int j = 1; j <= D; ++j) {
-      z *= lambda[k] / static_cast<double>(j);
-      e(k, j - 1) = z.real();
-      e(m + k, j - 1) = z.imag();
-    }
-  }
-  // Rows 0 … nodes − 1 the nodes' lifts, row `nodes` the needle's speed; the modal sum's
-  // derivatives Re Σ_k vc_ik e^{λτ} λ^j / j! (one product), then the particular solution's.
+  // Rows 0 … nodes − 1 the nodes' lifts, row `nodes` the needle's speed. Column 0 the closed
+  // form's values at τ (which leave e^{λ_k τ} − 1 in grow_).
   out.coef.setZero(nodes + 1, D + 1);
-  out.coef.block(0, 1, nodes, D).noalias() = chain_real_.topRows(nodes) * e;
-  out.coef.row(nodes).tail(D).noalias() = chain_real_.row(n) * e;
   if (coils) {
     const TrainState x = ChainState(tau);
     out.coef(0, 0) = x[0];
@@ -143,6 +131,20 @@ ChainTaylor ClosedFormPiece::ChainTaylorAt(double t_c, double reach, bool coils)
     out.coef(0, 0) = yv[0];
     out.coef(1, 0) = yv[1];
   }
+  // e^{λ_k τ} λ_k^j / j!, [Re; Im] in rows k and m + k, column j − 1.
+  Eigen::MatrixXd e(2 * m, D);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    std::complex<double> z(1.0 + grow_[k], grow_[m + k]);
+    for (int j = 1; j <= D; ++j) {
+      z *= lambda[k] / static_cast<double>(j);
+      e(k, j - 1) = z.real();
+      e(m + k, j - 1) = z.imag();
+    }
+  }
+  // The modal sum's derivatives Re Σ_k vc_ik e^{λτ} λ^j / j! (one product), then the
+  // particular solution's.
+  out.coef.block(0, 1, nodes, D).noalias() = chain_real_.topRows(nodes) * e;
+  out.coef.row(nodes).tail(D).noalias() = chain_real_.row(n) * e;
   for (int i = 0; i < nodes; ++i) {
     Poly p{};
     for (int j = 0; j <= kMaxDegree; ++j) p[j] = chain_p_(i, j);
