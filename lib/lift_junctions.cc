@@ -110,11 +110,9 @@ std::vector<long> CleanSplits(const std::vector<double>& x, const std::vector<do
 // of the quintics through the p readings on each side meet (snapped to a reading within
 // kBreakSnapFraction of a step), with the jump of their s'' there; `met`: whether they meet
 // between the two readings.
-LiftBreak Located(const std::vector<double>& x, const std::vector<double>& y, long k, long p,
-                  bool between, bool* met = nullptr) {
-  const SideQuintic left = FitQuintic(x, y, k - p + 1, k + 1, x[k]);
-  const SideQuintic right =
-      between ? FitQuintic(x, y, k + 1, k + 1 + p, x[k + 1]) : FitQuintic(x, y, k, k + p, x[k]);
+LiftBreak Located(const std::vector<double>& x, const std::vector<double>& y, long k,
+                  const SideQuintic& left, const SideQuintic& right, bool between,
+                  bool* met = nullptr) {
   const double h = x[k + 1] - x[k];
   LiftBreak b;
   b.order = 2;
@@ -140,16 +138,23 @@ LiftBreak Located(const std::vector<double>& x, const std::vector<double>& y, lo
   return b;
 }
 
-// Whether the quintics through the p readings on each side of the split between readings k and
-// k + 1 meet at a kink of s'' (s''' jumps) that makes the |D| seen: where s''_right − s''_left
-// has its root between them, their slopes agree (to kKinkSlopeShare of |D| over a step; they
-// touch there, a double root Located does not find) and their s''' differ by at least half of
-// |D| over a step. (A smooth law too fast for one quintic across both sides, a C∞ bump's foot,
-// also meets there with one slope, but one s''': 0.1 of |D| over a step.)
-bool KinkBetween(const std::vector<double>& x, const std::vector<double>& y, long k, long p,
-                 double seen) {
+// The same from the quintics through the p readings on each side.
+LiftBreak Located(const std::vector<double>& x, const std::vector<double>& y, long k, long p,
+                  bool between) {
   const SideQuintic left = FitQuintic(x, y, k - p + 1, k + 1, x[k]);
-  const SideQuintic right = FitQuintic(x, y, k + 1, k + 1 + p, x[k + 1]);
+  const SideQuintic right =
+      between ? FitQuintic(x, y, k + 1, k + 1 + p, x[k + 1]) : FitQuintic(x, y, k, k + p, x[k]);
+  return Located(x, y, k, left, right, between);
+}
+
+// Whether the quintics on each side of the split between readings k and k + 1 meet at a kink of s''
+// (s''' jumps) that makes the |D| seen: where s''_right − s''_left has its root between them, their
+// slopes agree (to kKinkSlopeShare of |D| over a step; they touch there, a double root Located does
+// not find) and their s''' differ by at least half of |D| over a step. (A smooth law too fast for
+// one quintic across both sides, a C∞ bump's foot, also meets there with one slope, but one s''':
+// 0.1 of |D| over a step.)
+bool KinkBetween(const std::vector<double>& x, long k, const SideQuintic& left,
+                 const SideQuintic& right, double seen) {
   const double h = x[k + 1] - x[k];
   const auto at = RootIn([&](double t) { return right.Value(t, 2) - left.Value(t, 2); },
                          x[k] - kBreakSnapFraction * h, x[k + 1] + kBreakSnapFraction * h);
@@ -167,14 +172,15 @@ bool KinkBetween(const std::vector<double>& x, const std::vector<double>& y, lon
 std::optional<LiftBreak> ConfirmedSplit(const std::vector<double>& x, const std::vector<double>& y,
                                         long k, long p, long n, double seen, double noise,
                                         bool* kink) {
+  const SideQuintic left = FitQuintic(x, y, k - p + 1, k + 1, x[k]);
+  const SideQuintic right = FitQuintic(x, y, k + 1, k + 1 + p, x[k + 1]);
   bool met = false;
-  const LiftBreak b = Located(x, y, k, p, true, &met);
-  if (!(met && std::abs(b.jump) >= 0.25 * std::abs(seen)) && KinkBetween(x, y, k, p, seen))
-    *kink = true;
-  if (!met || !(std::abs(b.jump) >= 0.25 * std::abs(seen)) ||
-      !(std::abs(b.jump) > TailSigmas(n, kBreakSigmas) * noise)) {
+  const LiftBreak b = Located(x, y, k, left, right, true, &met);
+  if (!met || !(std::abs(b.jump) >= 0.25 * std::abs(seen))) {
+    if (KinkBetween(x, k, left, right, seen)) *kink = true;
     return std::nullopt;
   }
+  if (!(std::abs(b.jump) > TailSigmas(n, kBreakSigmas) * noise)) return std::nullopt;
   return b;
 }
 
