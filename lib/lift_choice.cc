@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "lib/lift_data.h"
+#include "lib/output.h"
 
 namespace needle {
 namespace {
@@ -19,10 +20,7 @@ std::string Mm(double m) {
 // "1e-05 in (0.000254 mm)" or "1e-04 mm": a table's printed digit in its own unit.
 std::string PrintedDigit(double q_m) {
   if (!InchDigit(q_m)) return Mm(q_m) + " mm";
-  std::ostringstream out;
-  out.precision(3);
-  out << q_m / (kInchMm * 1e-3) << " in (" << Mm(q_m) << " mm)";
-  return out.str();
+  return Significant(q_m / (kInchMm * 1e-3), 3) + " in (" + Mm(q_m) + " mm)";
 }
 
 std::string DegreeList(const std::vector<double>& rad) {

@@ -4,22 +4,16 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "lib/output.h"
+
 namespace needle {
 namespace {
-
-// x to 3 significant digits (std::to_string's fixed 6 decimals print 1e-9 as 0.000000).
-std::string Scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", x);
-  return text;
-}
 
 // A complex tridiagonal matrix's LU factors with partial pivoting, as LAPACK's zgttrf and
 // zgttrs make and use them (Eigen has no banded solver; the chain needs one O(N) solve a mode).
@@ -177,7 +171,7 @@ void ChainModes::Decompose() {
     throw std::invalid_argument(
         "method \"exact\": a mode of the coil chain is at or near critical damping (its "
         "eigenvectors' reciprocal condition " +
-        Scientific(lu.rcond()) + " < 1e-8); take dopri5");
+        Significant(lu.rcond(), 3) + " < 1e-8); take dopri5");
   }
   Eigen::VectorXd S(2 * n);
   S << root_mass, root_mass / scale;
@@ -203,7 +197,7 @@ void ChainModes::Decompose() {
     throw std::invalid_argument(
         "method \"exact\": a mode of the coil chain is at or near critical damping (its modal "
         "sum inverts to " +
-        Scientific(error) + ", beyond 1e-10); take dopri5");
+        Significant(error, 3) + ", beyond 1e-10); take dopri5");
   }
 }
 
