@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/reading_kinks.h"
 #include "lib/spline_band.h"
 #include "lib/units.h"
 
@@ -172,6 +173,7 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
     LocalFit fit = FitLocal(x, y, options.sigma, options.quantized, trim);
     if (trimmed) *trimmed = fit.trimmed;
     AddLocalFitBias(x, y, options, &fit, trim);
+    if (options.quantized) AddReadingKinks(x, y, options.sigma, trim, &fit);
     return keep(std::move(fit));
   }
   if (options.kind == SplineKind::kSmoothing) {

@@ -172,9 +172,6 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized) 
 // sum somewhat larger: pure noise misfits about 1–3 % of single windows). A window that reaches
 // past a junction the breaks did not find (s''' jumps where s'' does not) misfits there long before
 // its s'' moves out of the narrower windows' noise (docs/lift-data.md, "Reading a table").
-// The rounding's bound q/2 = √3 σ, twice over: the largest residual a rounded window may show.
-double RoundingMisfitBound(double sigma) { return 2.0 * std::sqrt(3.0) * sigma; }
-
 bool Misfits(const Estimate& e, size_t readings, double sigma, bool quantized) {
   if (quantized) return e.largest_residual > RoundingMisfitBound(sigma);
   const double dof = static_cast<double>(readings) - kTerms;

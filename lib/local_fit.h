@@ -34,6 +34,7 @@
 /// the cost is O(n).
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "lib/piecewise_polynomial.h"
@@ -48,6 +49,10 @@ constexpr int kLocalMinimumPoints = kLocalDegree + 2;
 constexpr double kLepskiSigmas = 2.5;
 /// Above this many readings a piece is averaged in bins first (O(n) overall).
 constexpr int kLocalMaxNodes = 1500;
+
+/// The largest residual a polynomial fitted to rounded readings may show when it is the law's:
+/// the rounding's bound q/2 = √3 σ, twice over (the fit adds its own error).
+inline double RoundingMisfitBound(double sigma) { return 2.0 * std::sqrt(3.0) * sigma; }
 
 /// Means of consecutive readings in bins (a dense table's, before a fit): angle, lift and count,
 /// and each bin's spread: the central moments mean (θ − x̄)^j, j = 2 … 5, rad^j, that a fit

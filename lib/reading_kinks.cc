@@ -1,0 +1,251 @@
+// Kinks of s'' read from the readings next to each extreme of a local fit (lib/reading_kinks.h).
+#include "lib/reading_kinks.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "lib/side_polynomial.h"
+
+namespace needle {
+namespace {
+
+// The sides' degrees, tried in turn: a cubic B-spline's pieces, then any quintic law's.
+constexpr int kSideDegrees[] = {3, 5};
+// The longest side, readings.
+constexpr size_t kLongestSide = 64;
+// The sides' s''' differ by more than this many times the bound of their error...
+constexpr double kJerkBounds = 3.0;
+// ...and by at least this share of |s''(ξ)| over the shorter side's span (a kink that bends s''
+// by a few percent of itself there; a smooth law's sides differ by their error alone).
+constexpr double kJerkShare = 0.05;
+// A side moved across a kink misfits by at least this many rounding bounds (KinkOf).
+constexpr double kShiftMisfit = 8.0;
+// ξ lies in the gap or within this share of a step of either reading (a kink at a reading).
+constexpr double kRootReach = 0.25;
+// The rounding's bound on one reading's error, in σ: q/2 = √3 σ.
+const double kRoundingBound = std::sqrt(3.0);
+
+// A polynomial of degree `degree` fitted by least squares to readings [from, to), in
+// u = (θ − c)/h, and the weights of its derivatives on those readings.
+struct Side {
+  size_t from = 0, to = 0;
+  int degree = 0;
+  double c = 0.0, h = 1.0;
+  Eigen::VectorXd a;
+  Eigen::MatrixXd weights;  // (VᵀV)⁻¹Vᵀ: a = weights · y
+
+  // The row of the basis's `order`th derivative at t.
+  Eigen::RowVectorXd Basis(double t, int order) const {
+    const double u = (t - c) / h;
+    Eigen::RowVectorXd b = Eigen::RowVectorXd::Zero(a.size());
+    for (Eigen::Index m = order; m < a.size(); ++m) {
+      double falling = 1.0;
+      for (int j = 0; j < order; ++j) falling *= static_cast<double>(m - j);
+      b(m) = falling * std::pow(u, static_cast<double>(m - order)) / std::pow(h, order);
+    }
+    return b;
+  }
+  double Value(double t, int order) const { return Basis(t, order) * a; }
+  // Σ|g_i| of the derivative's weights g on the readings.
+  double WeightSum(double t, int order) const {
+    return (Basis(t, order) * weights).cwiseAbs().sum();
+  }
+  double Span(const std::vector<double>& x) const { return x[to - 1] - x[from]; }
+};
+
+// The side through readings [from, to), or nullopt where it leaves a residual above `bounds`
+// times the rounding's (RoundingMisfitBound).
+std::optional<Side> FitSide(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                            size_t to, int degree, double sigma, double bounds = 1.0) {
+  Side s;
+  s.from = from;
+  s.to = to;
+  s.degree = degree;
+  s.c = x[from];
+  s.h = x[to - 1] - x[from];
+  const Eigen::Index n = static_cast<Eigen::Index>(to - from);
+  Eigen::MatrixXd v(n, degree + 1);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double u = (x[from + static_cast<size_t>(i)] - s.c) / s.h;
+    double power = 1.0;
+    for (int k = 0; k <= degree; ++k, power *= u) v(i, k) = power;
+  }
+  const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);
+  s.weights = (v.transpose() * v).ldlt().solve(v.transpose());
+  s.a = s.weights * r;
+  if ((v * s.a - r).cwiseAbs().maxCoeff() > bounds * RoundingMisfitBound(sigma))
+    return std::nullopt;
+  return s;
+}
+
+// The longest side of readings that ends at reading `end` (left: [end − p + 1, end]) or begins
+// there (right: [end, end + p)), within [lo, hi) and kLongestSide readings, that fits; nullopt
+// when the shortest does not. Doubling, then bisection (a longer side misfits once it reaches
+// the next kink).
+std::optional<Side> LongestSide(const std::vector<double>& x, const std::vector<double>& y,
+                                size_t end, bool left, size_t lo, size_t hi, int degree,
+                                double sigma) {
+  const size_t room = std::min(kLongestSide, left ? end + 1 - lo : hi - end);
+  const auto fit = [&](size_t p) {
+    return left ? FitSide(x, y, end + 1 - p, end + 1, degree, sigma)
+                : FitSide(x, y, end, end + p, degree, sigma);
+  };
+  size_t good = static_cast<size_t>(degree) + 2;
+  if (good > room) return std::nullopt;
+  std::optional<Side> best = fit(good);
+  if (!best) return std::nullopt;
+  size_t bad = room + 1;
+  while (good < room) {  // doubling
+    const size_t p = std::min(room, 2 * good);
+    std::optional<Side> s = fit(p);
+    if (!s) {
+      bad = p;
+      break;
+    }
+    good = p;
+    best = std::move(s);
+  }
+  while (bad - good > 1) {  // bisection
+    const size_t p = (good + bad) / 2;
+    std::optional<Side> s = fit(p);
+    if (s) {
+      good = p;
+      best = std::move(s);
+    } else {
+      bad = p;
+    }
+  }
+  return best;
+}
+
+// The kink between readings j and j + 1 from its two sides, or nullopt where they do not meet
+// there as a kink that peaks in `sign`; readings [lo, hi) are the piece's.
+std::optional<LocalNode> KinkOf(const std::vector<double>& x, const std::vector<double>& y,
+                                size_t j, const Side& l, const Side& r, double sigma, double sign,
+                                size_t lo, size_t hi) {
+  const double step = x[j + 1] - x[j];
+  const auto at = RootIn([&](double t) { return r.Value(t, 2) - l.Value(t, 2); },
+                         x[j] - kRootReach * step, x[j + 1] + kRootReach * step);
+  if (!at) return std::nullopt;
+  const double xi = *at;
+  const auto bound = [&](int order) {  // of the difference of the sides' derivative
+    return kRoundingBound * sigma * (l.WeightSum(xi, order) + r.WeightSum(xi, order));
+  };
+  const auto diff = [&](int order) { return std::abs(r.Value(xi, order) - l.Value(xi, order)); };
+  if (diff(0) > kJerkBounds * bound(0) || diff(1) > kJerkBounds * bound(1)) return std::nullopt;
+  const double jerk_l = l.Value(xi, 3), jerk_r = r.Value(xi, 3);
+  const double s2 = 0.5 * (l.Value(xi, 2) + r.Value(xi, 2));
+  const double span = std::min(l.Span(x), r.Span(x));
+  if (!(diff(3) > kJerkBounds * bound(3) && diff(3) * span >= kJerkShare * std::abs(s2)))
+    return std::nullopt;
+  // A top: sign·s'' rises into ξ and falls after it (to the sides' error).
+  const double e3l = kRoundingBound * sigma * l.WeightSum(xi, 3);
+  const double e3r = kRoundingBound * sigma * r.WeightSum(xi, 3);
+  if (!(sign * jerk_l >= -e3l && sign * jerk_r <= e3r)) return std::nullopt;
+  // The readings place it (lib/reading_kinks.h): δ = (6q/J)^⅓ under a step.
+  const double q = std::sqrt(12.0) * sigma;
+  if (!(std::cbrt(6.0 * q / diff(3)) < step)) return std::nullopt;
+  // And each side, moved `shift` readings on across ξ, misfits by kShiftMisfit bounds: a kink
+  // of this jump J shows as J δ³/6 at δ = 3 (6q/J)^⅓ past it, 27 q, less what the fit takes up
+  // (a cubic B-spline's knots, read to 9 decimals: 200 to 10⁵ bounds). A smooth law's side
+  // misfits little more a few readings on (1 to 4 bounds: a 4-5-6-7 rise every 1.5° to 1e-4 mm,
+  // whose sides each fit the rounding and differ in s''' by their bias, beyond its error).
+  const size_t shift =
+      static_cast<size_t>(std::ceil(std::max(2.0, 3.0 * std::cbrt(6.0 * q / diff(3)) / step)));
+  if (l.to + shift > hi || r.from < lo + shift ||
+      FitSide(x, y, l.from + shift, l.to + shift, l.degree, sigma, kShiftMisfit) ||
+      FitSide(x, y, r.from - shift, r.to - shift, r.degree, sigma, kShiftMisfit)) {
+    return std::nullopt;
+  }
+  LocalNode k;
+  k.x = xi;
+  for (int d = 0; d < 2; ++d) k.s[d] = 0.5 * (l.Value(xi, d) + r.Value(xi, d));
+  k.s[2] = s2;
+  k.band2 = 0.5 * bound(2);
+  k.window = static_cast<int>((l.to - l.from) + (r.to - r.from));
+  k.width = l.Span(x) + r.Span(x) + step;
+  return k;
+}
+
+// The kinks peaking in `sign` between readings [lo, hi) that a fit of `law` rounds off and that
+// reach the extreme node's band (`extreme`: a kink that is only a local top, as the s'' = 0
+// between a 3-4-5 rise and its return, is left to the fit).
+std::vector<LocalNode> KinksIn(const std::vector<double>& x, const std::vector<double>& y,
+                               size_t lo, size_t hi, double sigma, double sign,
+                               const PiecewisePolynomial& law, const LocalNode& extreme,
+                               size_t from, size_t to) {
+  std::vector<LocalNode> kinks;
+  for (size_t j = lo; j + 1 < hi; ++j) {
+    for (const int degree : kSideDegrees) {
+      const std::optional<Side> l = LongestSide(x, y, j, true, from, to, degree, sigma);
+      if (!l) continue;
+      const std::optional<Side> r = LongestSide(x, y, j + 1, false, from, to, degree, sigma);
+      if (!r) continue;
+      std::optional<LocalNode> k = KinkOf(x, y, j, *l, *r, sigma, sign, from, to);
+      if (!k || !(sign * k->s[2] > sign * law.Evaluate(k->x, 2)) ||
+          !(sign * k->s[2] >= sign * extreme.s[2] - extreme.band2)) {
+        continue;
+      }
+      // One kink at a reading is seen from the gaps on both sides: keep the tighter.
+      if (!kinks.empty() && k->x - kinks.back().x < x[j + 1] - x[j]) {
+        if (k->band2 < kinks.back().band2) kinks.back() = *k;
+      } else {
+        kinks.push_back(*k);
+      }
+      break;
+    }
+  }
+  return kinks;
+}
+
+}  // namespace
+
+std::vector<LocalNode> ReadingKinks(const std::vector<double>& x, const std::vector<double>& y,
+                                    double sigma_m, const LocalFit& fit, LocalTrim trim) {
+  std::vector<LocalNode> kinks;
+  const auto& nodes = fit.nodes;
+  if (x.size() != y.size() || x.size() > static_cast<size_t>(kLocalMaxNodes) || nodes.size() < 3 ||
+      !(sigma_m > 0.0)) {
+    return kinks;
+  }
+  // The fit's readings (FitLocal's trim, dropped where it applied none).
+  size_t from = 0, to = x.size();
+  if (fit.trimmed) {
+    from = std::lower_bound(x.begin(), x.end(), x.front() + trim.front_rad) - x.begin();
+    to = std::upper_bound(x.begin(), x.end(), x.back() - trim.back_rad) - x.begin();
+  }
+  for (const double sign : {1.0, -1.0}) {
+    size_t e = 0;  // the extreme node
+    for (size_t i = 1; i < nodes.size(); ++i)
+      if (sign * nodes[i].s[2] > sign * nodes[e].s[2]) e = i;
+    const double a = nodes[e >= 2 ? e - 2 : 0].x;
+    const double b = nodes[std::min(nodes.size() - 1, e + 2)].x;
+    const size_t lo = std::max<size_t>(
+        from, static_cast<size_t>(std::lower_bound(x.begin(), x.end(), a) - x.begin()));
+    const size_t hi = std::min<size_t>(
+        to, static_cast<size_t>(std::upper_bound(x.begin(), x.end(), b) - x.begin()));
+    for (const LocalNode& k : KinksIn(x, y, lo, hi, sigma_m, sign, fit.law, nodes[e], from, to))
+      kinks.push_back(k);
+  }
+  std::sort(kinks.begin(), kinks.end(),
+            [](const LocalNode& p, const LocalNode& q) { return p.x < q.x; });
+  return kinks;
+}
+
+void AddReadingKinks(const std::vector<double>& x, const std::vector<double>& y, double sigma,
+                     LocalTrim trim, LocalFit* fit) {
+  const std::vector<LocalNode> kinks = ReadingKinks(x, y, sigma, *fit, trim);
+  if (kinks.empty()) return;
+  for (const LocalNode& k : kinks) {
+    const auto near = [&](const LocalNode& n) { return std::abs(n.x - k.x) < 0.25 * n.width; };
+    fit->nodes.erase(std::remove_if(fit->nodes.begin(), fit->nodes.end(), near), fit->nodes.end());
+    fit->nodes.push_back(k);
+  }
+  std::stable_sort(fit->nodes.begin(), fit->nodes.end(),
+                   [](const LocalNode& a, const LocalNode& b) { return a.x < b.x; });
+  fit->law = QuinticHermite(fit->nodes);
+}
+
+}  // namespace needle
