@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "lib/side_polynomial.h"
@@ -20,6 +21,8 @@ constexpr double kJerkBounds = 3.0;
 // ...and by at least this share of |s''(ξ)| over the shorter side's span (a kink that bends s''
 // by a few percent of itself there; a smooth law's sides differ by their error alone).
 constexpr double kJerkShare = 0.05;
+// No limit on a fit's residual.
+constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 // A side moved across a kink misfits by at least this many rounding bounds (KinkOf).
 constexpr double kShiftMisfit = 8.0;
 // ξ lies in the gap or within this share of a step of either reading (a kink at a reading).
@@ -28,13 +31,14 @@ constexpr double kRootReach = 0.25;
 const double kRoundingBound = std::sqrt(3.0);
 
 // A polynomial of degree `degree` fitted by least squares to readings [from, to), in
-// u = (θ − c)/h, and the weights of its derivatives on those readings.
+// u = (θ − c)/h, and what the weights of its derivatives on those readings are made from.
 struct Side {
   size_t from = 0, to = 0;
   int degree = 0;
   double c = 0.0, h = 1.0;
   Eigen::VectorXd a;
-  Eigen::MatrixXd weights;  // (VᵀV)⁻¹Vᵀ: a = weights · y
+  Eigen::MatrixXd v;                  // the basis on the readings, a row each
+  Eigen::LDLT<Eigen::MatrixXd> gram;  // of VᵀV: a = (VᵀV)⁻¹Vᵀy
 
   // The row of the basis's `order`th derivative at t.
   Eigen::RowVectorXd Basis(double t, int order) const {
@@ -48,9 +52,10 @@ struct Side {
     return b;
   }
   double Value(double t, int order) const { return Basis(t, order) * a; }
-  // Σ|g_i| of the derivative's weights g on the readings.
+  // Σ|g_i| of the derivative's weights g = V (VᵀV)⁻¹ bᵀ on the readings.
   double WeightSum(double t, int order) const {
-    return (Basis(t, order) * weights).cwiseAbs().sum();
+    const Eigen::VectorXd b = Basis(t, order).transpose();
+    return (v * gram.solve(b)).cwiseAbs().sum();
   }
   double Span(const std::vector<double>& x) const { return x[to - 1] - x[from]; }
 };
@@ -66,16 +71,16 @@ std::optional<Side> FitSide(const std::vector<double>& x, const std::vector<doub
   s.c = x[from];
   s.h = x[to - 1] - x[from];
   const Eigen::Index n = static_cast<Eigen::Index>(to - from);
-  Eigen::MatrixXd v(n, degree + 1);
+  s.v.resize(n, degree + 1);
   for (Eigen::Index i = 0; i < n; ++i) {
     const double u = (x[from + static_cast<size_t>(i)] - s.c) / s.h;
     double power = 1.0;
-    for (int k = 0; k <= degree; ++k, power *= u) v(i, k) = power;
+    for (int k = 0; k <= degree; ++k, power *= u) s.v(i, k) = power;
   }
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);
-  s.weights = (v.transpose() * v).ldlt().solve(v.transpose());
-  s.a = s.weights * r;
-  if ((v * s.a - r).cwiseAbs().maxCoeff() > bounds * RoundingMisfitBound(sigma))
+  s.gram.compute(s.v.transpose() * s.v);
+  s.a = s.gram.solve(s.v.transpose() * r);
+  if ((s.v * s.a - r).cwiseAbs().maxCoeff() > bounds * RoundingMisfitBound(sigma))
     return std::nullopt;
   return s;
 }
@@ -118,6 +123,32 @@ std::optional<Side> LongestSide(const std::vector<double>& x, const std::vector<
     }
   }
   return best;
+}
+
+// Whether a kink may lie between readings j and j + 1, from the fewest readings: the degree + 2
+// on each side each fit a polynomial of `degree`, and one of degree + 2 through both misfits (a
+// smooth law's fits, where a cubic through both may not: a dense exact table's every gap). A
+// kink the readings place shows there: its jump J makes J δ³/6 ≥ q within a step. The sides are
+// then sought in full (LongestSide).
+bool KinkBetween(const std::vector<double>& x, const std::vector<double>& y, size_t j, int degree,
+                 double sigma, size_t lo, size_t hi) {
+  const size_t m = static_cast<size_t>(degree) + 2;
+  if (j + 1 < lo + m || j + 1 + m > hi) return false;
+  return !FitSide(x, y, j + 1 - m, j + 1 + m, degree + 2, sigma) &&
+         FitSide(x, y, j + 1 - m, j + 1, degree, sigma) &&
+         FitSide(x, y, j + 1, j + 1 + m, degree, sigma);
+}
+
+// s''(ξ) from the half of each side's readings nearest ξ (at least degree + 2), nullopt where
+// they leave no fewer.
+std::optional<double> HalfSidesPeak(const std::vector<double>& x, const std::vector<double>& y,
+                                    const Side& l, const Side& r, double xi, double sigma) {
+  const size_t least = static_cast<size_t>(l.degree) + 2;
+  const size_t pl = std::max(least, (l.to - l.from) / 2), pr = std::max(least, (r.to - r.from) / 2);
+  if (pl >= l.to - l.from && pr >= r.to - r.from) return std::nullopt;
+  const auto hl = FitSide(x, y, l.to - pl, l.to, l.degree, sigma, kNoLimit);
+  const auto hr = FitSide(x, y, r.from, r.from + pr, r.degree, sigma, kNoLimit);
+  return 0.5 * (hl->Value(xi, 2) + hr->Value(xi, 2));
 }
 
 // The kink between readings j and j + 1 from its two sides, or nullopt where they do not meet
@@ -163,7 +194,11 @@ std::optional<LocalNode> KinkOf(const std::vector<double>& x, const std::vector<
   k.x = xi;
   for (int d = 0; d < 2; ++d) k.s[d] = 0.5 * (l.Value(xi, d) + r.Value(xi, d));
   k.s[2] = s2;
-  k.band2 = 0.5 * bound(2);
+  // Its error: the rounding's through the sides, and their truncation's (a smooth law's part,
+  // or a smaller kink, that the rounding hides in each side), twice the change of s''(ξ) from
+  // sides of half as many readings: the whole of a truncation error that halves with the sides
+  // (one falling faster is overstated). A 9-decimal B-spline's sides agree to 1e-8 of s''.
+  k.band2 = 0.5 * bound(2) + 2.0 * std::abs(s2 - HalfSidesPeak(x, y, l, r, xi, sigma).value_or(s2));
   k.window = static_cast<int>((l.to - l.from) + (r.to - r.from));
   k.width = l.Span(x) + r.Span(x) + step;
   return k;
@@ -179,6 +214,7 @@ std::vector<LocalNode> KinksIn(const std::vector<double>& x, const std::vector<d
   std::vector<LocalNode> kinks;
   for (size_t j = lo; j + 1 < hi; ++j) {
     for (const int degree : kSideDegrees) {
+      if (!KinkBetween(x, y, j, degree, sigma, from, to)) continue;
       const std::optional<Side> l = LongestSide(x, y, j, true, from, to, degree, sigma);
       if (!l) continue;
       const std::optional<Side> r = LongestSide(x, y, j + 1, false, from, to, degree, sigma);
@@ -220,8 +256,8 @@ std::vector<LocalNode> ReadingKinks(const std::vector<double>& x, const std::vec
     size_t e = 0;  // the extreme node
     for (size_t i = 1; i < nodes.size(); ++i)
       if (sign * nodes[i].s[2] > sign * nodes[e].s[2]) e = i;
-    const double a = nodes[e >= 2 ? e - 2 : 0].x;
-    const double b = nodes[std::min(nodes.size() - 1, e + 2)].x;
+    const double a = nodes[e >= 1 ? e - 1 : 0].x;
+    const double b = nodes[std::min(nodes.size() - 1, e + 1)].x;
     const size_t lo = std::max<size_t>(
         from, static_cast<size_t>(std::lower_bound(x.begin(), x.end(), a) - x.begin()));
     const size_t hi = std::min<size_t>(

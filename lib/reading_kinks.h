@@ -7,12 +7,14 @@
 /// both sides by laws that meet there with equal s, s', s''. Every window of the local fit that
 /// holds ξ averages across it and rounds the peak off (a cubic B-spline with knots 8° apart, read
 /// every 1.5°, comes out 2.5 % low in |a|; every 0.5° to 1e-3 mm, 7 % low). Near each extreme of
-/// s'' the readings are split at every gap, each side fitted by the longest run of readings that a
-/// polynomial of degree d (3, then 5) fits to the rounding (no residual above q = √12 σ, the
-/// local fit's own test): where the two sides' s'' meet in the gap, with s and s' agreeing to
-/// their error, and s''' differing by more than its error, the kink is there and its s'' is
-/// exact but for the sides' error, q/2 Σ|g_i| (g_i the weights of s''(ξ) on the readings; the
-/// rounding's bound, taken as 95 %).
+/// s'' the readings are split at every gap where a polynomial of degree d + 2 misfits the d + 2
+/// readings on each side while each side's fit one of degree d (3, then 5); each side is then
+/// fitted by the longest run of readings that a polynomial of degree d fits to the rounding (no
+/// residual above q = √12 σ, the local fit's own test). Where the two sides' s'' meet in the gap,
+/// with s and s' agreeing to their error, and s''' differing by more than its error (KinkOf has
+/// the rules), the kink is there, and its s'' exact but for the sides' error: the rounding's,
+/// q/2 Σ|g_i| (g_i the weights of s''(ξ) on the readings; its bound, taken as 95 %), and their
+/// truncation's, the change from sides of half as many readings.
 
 #include <vector>
 
@@ -20,15 +22,15 @@
 
 namespace needle {
 
-/// The kinks of s'' near the fit's largest and least s'' (within two nodes of either node) that
-/// peak beyond the fit there (a V whose top its windows round off) and reach the extreme node's
-/// band, by angle, each as a node: x = ξ, s, s', s'' the sides' there, band2 their error, window
-/// the readings of both sides. Only kinks the readings place: one of s''' jump J shows in a side
-/// that reaches δ past it as J δ³/6, so no other of its size hides inside a side where
-/// δ = (6q/J)^⅓ is under a step (a 9-decimal table's; 1e-3 mm every 0.5°: δ ≈ 2°, and the sides
-/// may each hold one). (x, y): one piece's readings of an exact or rounded table (σ the
-/// rounding's, q/√12), at most kLocalMaxNodes of them, less those `trim` leaves out of the fit's
-/// windows; none otherwise.
+/// The kinks of s'' near the fit's largest and least s'' (between the nodes beside either's node)
+/// that peak beyond the fit there (a V whose top its windows round off) and reach the extreme
+/// node's band, by angle, each as a node: x = ξ, s, s', s'' the sides' there, band2 their error,
+/// window the readings of both sides. Only kinks the readings place: one of s''' jump J shows in a
+/// side that reaches δ past it as J δ³/6, so no other of its size hides inside a side where δ =
+/// (6q/J)^⅓ is under a step (a 9-decimal table's; 1e-3 mm every 0.5°: δ ≈ 2°, and the sides may
+/// each hold one). (x, y): one piece's readings of an exact or rounded table (σ the rounding's,
+/// q/√12), at most kLocalMaxNodes of them, less those `trim` leaves out of the fit's windows; none
+/// otherwise.
 std::vector<LocalNode> ReadingKinks(const std::vector<double>& x, const std::vector<double>& y,
                                     double sigma_m, const LocalFit& fit, LocalTrim trim = {});
 
