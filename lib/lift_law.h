@@ -131,7 +131,7 @@ class LiftLaw {
   /// the node nearest it (the extreme may lie between nodes). Meaningful only with nodes.
   LocalNode ExtremeNode(bool largest) const;
   /// A local fit's peaks of s'' (the largest, or the smallest) on kinks between its nodes
-  /// (lib/local_fit.h KinkPeaks) as nodes whose band spans the law's s'' there and the peak:
+  /// (lib/reading_kinks.h KinkPeaks) as nodes whose band spans the law's s'' there and the peak:
   /// s'' their mean, the half-width half their distance plus the interval's nodes'. Empty for
   /// the other kinds (an interpolating spline's nodes, one a reading, are too far apart on a
   /// sparse table to tell a kink from a smooth peak).

@@ -361,6 +361,47 @@ LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
   return chosen(best);
 }
 
+// Where the law between two nodes misses a reading of an exact or rounded table (each reading
+// its own bin) by far more than the nodes' error allows, kRefineMisfits times their s'' bands
+// over the interval (band2 L²/8) plus four rounding bounds, a node at the reading it misses most,
+// when it lies at least a quarter of the interval from both nodes; until none is missed (at most
+// one node a reading). Nodes stand half a window apart, and the last one before a piece's end as
+// far as 1.5 of that: a window that fit a whole 3-4-5 rise (a quintic: 110° wide) left 76°
+// between its node and the piece's end, across the dwell's start, and the law between them never
+// went down to the rise's deceleration (a_min 15 % short, its band too: 0.4 mm off the readings).
+void AddNodesWhereTheLawMisses(const Points& p, double sigma, const std::vector<size_t>& sizes,
+                               LocalFit* fit) {
+  constexpr double kRefineMisfits = 16.0;
+  if (!p.moments.empty()) return;
+  for (size_t round = 0; round < p.x.size(); ++round) {
+    double worst = 0.0;
+    std::optional<size_t> at;
+    auto& nodes = fit->nodes;
+    for (size_t k = 0; k + 1 < nodes.size(); ++k) {
+      const double a = nodes[k].x, b = nodes[k + 1].x, span = b - a;
+      if (!(span > 0.0)) continue;
+      const double allowed =
+          4.0 * RoundingMisfitBound(sigma) +
+          kRefineMisfits * std::max(nodes[k].band2, nodes[k + 1].band2) * span * span / 8.0;
+      const auto first = std::lower_bound(p.x.begin(), p.x.end(), a + 0.25 * span);
+      for (auto it = first; it != p.x.end() && *it <= b - 0.25 * span; ++it) {
+        const size_t i = static_cast<size_t>(it - p.x.begin());
+        const double miss = std::abs(p.y[i] - fit->law.Evaluate(p.x[i], 0)) / allowed;
+        if (miss > 1.0 && miss > worst) {
+          worst = miss;
+          at = i;
+        }
+      }
+    }
+    if (!at) return;
+    std::array<size_t, 3> last{};
+    const LocalNode node = BestNodeAt(p, p.x[*at], sigma, true, sizes, &last);
+    const auto later = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
+    nodes.insert(std::upper_bound(nodes.begin(), nodes.end(), node, later), node);
+    fit->law = QuinticHermite(nodes);
+  }
+}
+
 }  // namespace
 
 PiecewisePolynomial QuinticHermite(const std::vector<LocalNode>& nodes) {
@@ -420,59 +461,8 @@ LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, do
     if (t > x.back() - 0.5 * step || next >= p.x.size()) t = x.back();
   }
   fit.law = QuinticHermite(fit.nodes);
+  if (quantized) AddNodesWhereTheLawMisses(p, sigma_m, sizes, &fit);
   return fit;
-}
-
-std::vector<LocalNode> KinkPeaks(const std::vector<LocalNode>& nodes, double sign) {
-  constexpr double kKinkContrast = 4.0;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  std::vector<const LocalNode*> n;
-  for (const LocalNode& node : nodes) n.push_back(&node);
-  std::stable_sort(n.begin(), n.end(),
-                   [](const LocalNode* a, const LocalNode* b) { return a->x < b->x; });
-  const auto y = [&](size_t i) { return sign * n[i]->s[2]; };
-  const auto x = [&](size_t i) { return n[i]->x; };
-  // Half the second divided difference of s'' (about |s''''|/2) from the three nodes around i,
-  // NaN where they are not on one piece.
-  const auto second = [&](size_t i) {
-    if (i == 0 || i + 1 >= n.size() || !(x(i - 1) < x(i) && x(i) < x(i + 1))) return kNaN;
-    const double left = (y(i) - y(i - 1)) / (x(i) - x(i - 1));
-    const double right = (y(i + 1) - y(i)) / (x(i + 1) - x(i));
-    return std::abs(right - left) / (x(i + 1) - x(i - 1));
-  };
-  std::vector<LocalNode> peaks;
-  for (size_t a = 1; a + 2 < n.size(); ++a) {
-    const size_t b = a + 1;
-    const double da = second(a), db = second(b);
-    if (!(da >= 0.0 && db >= 0.0)) continue;  // the four nodes are not on one piece
-    // The interval's nodes hold the narrowest windows (a local fit's on an exact table, where a
-    // misfit stops them growing): wider ones are spaced too far apart to tell a kink from a
-    // smooth peak.
-    if (n[a]->window > kLocalMinimumPoints || n[b]->window > kLocalMinimumPoints) continue;
-    const double before = a >= 2 ? second(a - 1) : kNaN, after = second(b + 1);
-    const double beside = std::fmax(before, after);  // the one that is there
-    if (!(std::min(da, db) > kKinkContrast * beside)) continue;
-    // And above the nodes' own noise: each of the two bends off the line through its
-    // neighbours by more than twice the largest half-width among the three.
-    const auto bends = [&](size_t i) {
-      const double t = (x(i) - x(i - 1)) / (x(i + 1) - x(i - 1));
-      const double off = std::abs(y(i) - (1.0 - t) * y(i - 1) - t * y(i + 1));
-      return off > 2.0 * std::max({n[i - 1]->band2, n[i]->band2, n[i + 1]->band2});
-    };
-    if (!bends(a) || !bends(b)) continue;
-    const double left = (y(a) - y(a - 1)) / (x(a) - x(a - 1));   // slope into the interval
-    const double right = (y(b + 1) - y(b)) / (x(b + 1) - x(b));  // and out of it
-    if (!(left > right)) continue;
-    const double at = (y(b) - y(a) + left * x(a) - right * x(b)) / (left - right);
-    const double top = y(a) + left * (at - x(a));
-    if (!(at > x(a) && at < x(b) && top > std::max(y(a), y(b)))) continue;  // no peak inside
-    LocalNode peak;
-    peak.x = at;
-    peak.s[2] = sign * top;
-    peak.band2 = std::max(n[a]->band2, n[b]->band2);
-    peaks.push_back(peak);
-  }
-  return peaks;
 }
 
 double NearestHalfWidth(const std::vector<LocalNode>& nodes, double x) {

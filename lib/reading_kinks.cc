@@ -284,4 +284,56 @@ void AddReadingKinks(const std::vector<double>& x, const std::vector<double>& y,
   fit->law = QuinticHermite(fit->nodes);
 }
 
+std::vector<LocalNode> KinkPeaks(const std::vector<LocalNode>& nodes, double sign) {
+  constexpr double kKinkContrast = 4.0;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  std::vector<const LocalNode*> n;
+  for (const LocalNode& node : nodes) n.push_back(&node);
+  std::stable_sort(n.begin(), n.end(),
+                   [](const LocalNode* a, const LocalNode* b) { return a->x < b->x; });
+  const auto y = [&](size_t i) { return sign * n[i]->s[2]; };
+  const auto x = [&](size_t i) { return n[i]->x; };
+  // Half the second divided difference of s'' (about |s''''|/2) from the three nodes around i,
+  // NaN where they are not on one piece.
+  const auto second = [&](size_t i) {
+    if (i == 0 || i + 1 >= n.size() || !(x(i - 1) < x(i) && x(i) < x(i + 1))) return kNaN;
+    const double left = (y(i) - y(i - 1)) / (x(i) - x(i - 1));
+    const double right = (y(i + 1) - y(i)) / (x(i + 1) - x(i));
+    return std::abs(right - left) / (x(i + 1) - x(i - 1));
+  };
+  std::vector<LocalNode> peaks;
+  for (size_t a = 1; a + 2 < n.size(); ++a) {
+    const size_t b = a + 1;
+    const double da = second(a), db = second(b);
+    if (!(da >= 0.0 && db >= 0.0)) continue;  // the four nodes are not on one piece
+    // The interval's nodes hold the narrowest windows (a local fit's on an exact table, where a
+    // misfit stops them growing): wider ones are spaced too far apart to tell a kink from a
+    // smooth peak.
+    if (n[a]->window > kLocalMinimumPoints || n[b]->window > kLocalMinimumPoints) continue;
+    const double before = a >= 2 ? second(a - 1) : kNaN, after = second(b + 1);
+    const double beside = std::fmax(before, after);  // the one that is there
+    if (!(std::min(da, db) > kKinkContrast * beside)) continue;
+    // And above the nodes' own noise: each of the two bends off the line through its
+    // neighbours by more than twice the largest half-width among the three.
+    const auto bends = [&](size_t i) {
+      const double t = (x(i) - x(i - 1)) / (x(i + 1) - x(i - 1));
+      const double off = std::abs(y(i) - (1.0 - t) * y(i - 1) - t * y(i + 1));
+      return off > 2.0 * std::max({n[i - 1]->band2, n[i]->band2, n[i + 1]->band2});
+    };
+    if (!bends(a) || !bends(b)) continue;
+    const double left = (y(a) - y(a - 1)) / (x(a) - x(a - 1));   // slope into the interval
+    const double right = (y(b + 1) - y(b)) / (x(b + 1) - x(b));  // and out of it
+    if (!(left > right)) continue;
+    const double at = (y(b) - y(a) + left * x(a) - right * x(b)) / (left - right);
+    const double top = y(a) + left * (at - x(a));
+    if (!(at > x(a) && at < x(b) && top > std::max(y(a), y(b)))) continue;  // no peak inside
+    LocalNode peak;
+    peak.x = at;
+    peak.s[2] = sign * top;
+    peak.band2 = std::max(n[a]->band2, n[b]->band2);
+    peaks.push_back(peak);
+  }
+  return peaks;
+}
+
 }  // namespace needle

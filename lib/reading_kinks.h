@@ -1,7 +1,9 @@
 #pragma once
 /// @file
 /// Internal to lib/'s local fit (lift_law.cc's pieces): a peak of s'' at a kink (s''' jumps: a
-/// B-spline's knot, a junction of two laws that no break marks), found from the readings.
+/// B-spline's knot, a junction of two laws that no break marks), found from the readings
+/// (ReadingKinks, which the law passes through) or from the nodes (KinkPeaks, which the band
+/// reaches).
 ///
 /// A smooth law's s'' peaks smoothly; a kinked one's peaks at the kink, s''(ξ) reached from
 /// both sides by laws that meet there with equal s, s', s''. Every window of the local fit that
@@ -39,5 +41,20 @@ std::vector<LocalNode> ReadingKinks(const std::vector<double>& x, const std::vec
 /// s'' over the square of their spacing), its law made anew through them.
 void AddReadingKinks(const std::vector<double>& x, const std::vector<double>& y, double sigma_m,
                      LocalTrim trim, LocalFit* fit);
+
+/// A peak of s'' at a kink (s''' jumps: a B-spline's knot, a junction no break marks) between two
+/// nodes rises above both, and the law between them rounds it off. A kink shows in the nodes'
+/// second differences: those of the interval's two nodes, whose stencils straddle it, stand above
+/// those beside them by kKinkContrast (a smooth peak's change slowly), and each of the two bends
+/// off its neighbours' line by more than twice their half-widths; both nodes are of the narrowest
+/// windows (kLocalMinimumPoints readings: an exact table's). There the secant through the
+/// interval's left node and the one before it and the secant through its right node and the one
+/// after it meet inside the interval above both its nodes, and the peak may reach that point
+/// (exactly, for an s'' linear on each side of the kink; above it where s'' is concave on each
+/// side). Returns each such point (of the largest sign·s'') as a node: x, s[2] the point's s'',
+/// band2 the larger half-width of the interval's nodes (s, s' left 0 for the caller). Nodes with
+/// the same angle are two pieces' ends at a break: four consecutive nodes are on one piece when
+/// their angles increase strictly, so a kink in a piece's first or last interval is not seen.
+std::vector<LocalNode> KinkPeaks(const std::vector<LocalNode>& nodes, double sign);
 
 }  // namespace needle
