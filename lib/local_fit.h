@@ -29,7 +29,9 @@
 /// into s'' over the square of the spacing), carry s, s', s'' and a 95 % half-width of s'' (1.96
 /// standard deviations plus the largest change from the narrower windows of at least half its
 /// size, the truncation's scale);
-/// between nodes the law is the quintic Hermite interpolant of (s, s', s''), C². A table of more
+/// between nodes the law is the quintic Hermite interpolant of (s, s', s''), C². On an exact or
+/// rounded table a node is added where that law misses a reading by far more than its nodes'
+/// error allows (local_fit.cc, AddNodesWhereTheLawMisses). A table of more
 /// than kLocalMaxNodes readings is first averaged in bins of consecutive readings (σ/√count each):
 /// the cost is O(n).
 

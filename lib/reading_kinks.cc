@@ -68,8 +68,8 @@ std::optional<Side> FitSide(const std::vector<double>& x, const std::vector<doub
   s.from = from;
   s.to = to;
   s.degree = degree;
-  s.c = x[from];
-  s.h = x[to - 1] - x[from];
+  s.c = 0.5 * (x[from] + x[to - 1]);  // u in [-1, 1]: VᵀV far better conditioned than on [0, 1]
+  s.h = 0.5 * (x[to - 1] - x[from]);
   const Eigen::Index n = static_cast<Eigen::Index>(to - from);
   s.v.resize(n, degree + 1);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -274,8 +274,12 @@ void AddReadingKinks(const std::vector<double>& x, const std::vector<double>& y,
                      LocalTrim trim, LocalFit* fit) {
   const std::vector<LocalNode> kinks = ReadingKinks(x, y, sigma, *fit, trim);
   if (kinks.empty()) return;
+  // The piece's first and last nodes stay: its law starts and ends at its readings' ends.
+  const double first = fit->nodes.front().x, last = fit->nodes.back().x;
   for (const LocalNode& k : kinks) {
-    const auto near = [&](const LocalNode& n) { return std::abs(n.x - k.x) < 0.25 * n.width; };
+    const auto near = [&](const LocalNode& n) {
+      return n.x != first && n.x != last && std::abs(n.x - k.x) < 0.25 * n.width;
+    };
     fit->nodes.erase(std::remove_if(fit->nodes.begin(), fit->nodes.end(), near), fit->nodes.end());
     fit->nodes.push_back(k);
   }

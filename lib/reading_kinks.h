@@ -31,8 +31,8 @@ namespace needle {
 /// side that reaches δ past it as J δ³/6, so no other of its size hides inside a side where δ =
 /// (6q/J)^⅓ is under a step (a 9-decimal table's; 1e-3 mm every 0.5°: δ ≈ 2°, and the sides may
 /// each hold one). (x, y): one piece's readings of an exact or rounded table (σ the rounding's,
-/// q/√12), at most kLocalMaxNodes of them, less those `trim` leaves out of the fit's windows; none
-/// otherwise.
+/// q/√12), at most kLocalMaxNodes of them (none otherwise); those `trim` leaves out of the fit's
+/// windows are left out here too.
 std::vector<LocalNode> ReadingKinks(const std::vector<double>& x, const std::vector<double>& y,
                                     double sigma_m, const LocalFit& fit, LocalTrim trim = {});
 

@@ -1123,9 +1123,9 @@ void ExpectExactAndInBand(const Law& law, double step_deg, std::initializer_list
 }
 
 // A cubic B-spline cam: s'' linear between knots 10° apart, its peaks at knots. Read every
-// 1.5° to 9 decimals (knots between readings and 6.7 readings apart), every window of the local
-// fit held a knot and rounded the peak off: in a user's trial (knots 8° apart) a_min 2.5 % short
-// and outside its band, and `needle spring` passed a preload 1 % below the law's need. The
+// 1.5° to 9 decimals (knots 6.7 readings apart, on readings or between them), every window of the
+// local fit held a knot and rounded the peak off: in a user's trial (knots 8° apart) a_min 2.5 %
+// short and outside its band, and `needle spring` passed a preload 1 % below the law's need. The
 // readings on each side of the knot are each one cubic, to their 9th decimal: the peak is theirs.
 TEST(LiftReadingTest, ACubicBSplinePeakAtAKnotIsTheReadingsOwn) {
   const Knots even{0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0};
@@ -1135,9 +1135,11 @@ TEST(LiftReadingTest, ACubicBSplinePeakAtAKnotIsTheReadingsOwn) {
 
 // A smooth peak read coarsely is no kink: a 4-5-6-7 rise over 40° straight into its return over
 // 70°, every 1.5° to 1e-4 mm. Cubics through the readings on each side of the peak each fit the
-// rounding and differ in s''' by their bias, beyond its error; moved two readings on, each still
-// fits to 1-4 times the rounding (a kink's misfit by 200 to 1e5 times), and no kink is taken
-// (one was: a_max 17 % high; a 4-5-6-7 with no dwell at 1.5° to 1e-5 in, a_min 27 % high).
+// rounding and differ in s''' by their bias, beyond its error. Two tests keep the kink out, each
+// alone (the test fails with both off: a_max 17 % high; a 4-5-6-7 with no dwell at 1.5° to 1e-5
+// in, a_min 27 % high): a quintic through the 5 readings on each side of the gap fits them
+// (ReadingKinks' KinkBetween), and each side moved a few readings on still fits to 1-4 times
+// the rounding (a kink's misfit by 200 to 1e5 times).
 double Poly4567(double xi, int d) {
   const double x2 = xi * xi;
   return d ? x2 * (420 - 1680 * xi + 2100 * x2 - 840 * x2 * xi)
@@ -1149,7 +1151,7 @@ TEST(LiftReadingTest, ACoarselyReadSmoothPeakIsNoKink) {
   const Law asymmetric{1.0, 40.0, 0.0, 70.0, Poly4567};
   ExpectWithin(ReadExport(asymmetric, Export(asymmetric, 1.5, 1e-4)), 0.02, "40/70 to 1e-4 mm");
   const Law even{0.5, 30.0, 0.0, 30.0, Poly4567};
-  ExpectWithin(ReadExport(even, Export(even, 1.5, 0.00254)), 0.05, "30/30 to 1e-5 in");
+  ExpectWithin(ReadExport(even, Export(even, 1.5, 0.000254)), 0.05, "30/30 to 1e-5 in");
 }
 
 // A 3-4-5 rise over 120° is one quintic: a window of the local fit grew over all of it (159
