@@ -130,8 +130,8 @@ std::optional<Side> LongestSide(const std::vector<double>& x, const std::vector<
 // smooth law's fits, where a cubic through both may not: a dense exact table's every gap). A
 // kink the readings place shows there: its jump J makes J δ³/6 ≥ q within a step. The sides are
 // then sought in full (LongestSide).
-bool KinkBetween(const std::vector<double>& x, const std::vector<double>& y, size_t j, int degree,
-                 double sigma, size_t lo, size_t hi) {
+bool KinkMayLieBetween(const std::vector<double>& x, const std::vector<double>& y, size_t j,
+                       int degree, double sigma, size_t lo, size_t hi) {
   const size_t m = static_cast<size_t>(degree) + 2;
   if (j + 1 < lo + m || j + 1 + m > hi) return false;
   return !FitSide(x, y, j + 1 - m, j + 1 + m, degree + 2, sigma) &&
@@ -214,7 +214,7 @@ std::vector<LocalNode> KinksIn(const std::vector<double>& x, const std::vector<d
   std::vector<LocalNode> kinks;
   for (size_t j = lo; j + 1 < hi; ++j) {
     for (const int degree : kSideDegrees) {
-      if (!KinkBetween(x, y, j, degree, sigma, from, to)) continue;
+      if (!KinkMayLieBetween(x, y, j, degree, sigma, from, to)) continue;
       const std::optional<Side> l = LongestSide(x, y, j, true, from, to, degree, sigma);
       if (!l) continue;
       const std::optional<Side> r = LongestSide(x, y, j + 1, false, from, to, degree, sigma);

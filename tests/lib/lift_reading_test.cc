@@ -1138,7 +1138,7 @@ TEST(LiftReadingTest, ACubicBSplinePeakAtAKnotIsTheReadingsOwn) {
 // rounding and differ in s''' by their bias, beyond its error. Two tests keep the kink out, each
 // alone (the test fails with both off: a_max 17 % high; a 4-5-6-7 with no dwell at 1.5° to 1e-5
 // in, a_min 27 % high): a quintic through the 5 readings on each side of the gap fits them
-// (ReadingKinks' KinkBetween), and each side moved a few readings on still fits to 1-4 times
+// (ReadingKinks' KinkMayLieBetween), and each side moved a few readings on still fits to 1-4 times
 // the rounding (a kink's misfit by 200 to 1e5 times).
 double Poly4567(double xi, int d) {
   const double x2 = xi * xi;
