@@ -29,6 +29,17 @@ constexpr double kShiftMisfit = 8.0;
 constexpr double kRootReach = 0.25;
 // The rounding's bound on one reading's error, in σ: q/2 = √3 σ.
 const double kRoundingBound = std::sqrt(3.0);
+// KinkInSquares: a septic through both sides misfits by this many times the residual of a cubic
+// kinked at ξ, each per degree of freedom (a cubic B-spline's knot read every 0.25-1.5° to
+// 1e-4 or 1e-3 mm: 4 to 100; a cycloidal, 3-4-5 or 4-5-6-7 peak: the kinked cubic misfits)...
+constexpr double kSquaresRatio = 4.0;
+// ...and by this many times the rounding's variance per degree of freedom.
+constexpr double kSquaresOverRounding = 3.0;
+// The least readings of both sides for KinkInSquares (a septic's 8 and as many again).
+constexpr size_t kSquaresLeast = 16;
+// Gaps within this many readings of the fit's own top are tried without KinkMayLieBetween (a
+// rounded table's knot, a cubic B-spline's at 1e-3 mm: within 6 of it in a trial of 200 laws).
+constexpr size_t kTopReach = 6;
 
 // A polynomial of degree `degree` fitted by least squares to readings [from, to), in
 // u = (θ − c)/h, and what the weights of its derivatives on those readings are made from.
@@ -151,11 +162,35 @@ std::optional<double> HalfSidesPeak(const std::vector<double>& x, const std::vec
   return 0.5 * (hl->Value(xi, 2) + hr->Value(xi, 2));
 }
 
+// Whether the readings of both cubic sides tell a kink by their squares where no reading alone
+// does (a rounded table's: each side, moved across it, still fits the rounding): a cubic
+// kinked in the gap (at its best ξ within half a step of the gap) leaves far less than a septic
+// through them all, which misfits beyond the rounding. A smooth law's sides, each one cubic to
+// the rounding, meet with s, s' apart by their error: kinked at one ξ they misfit, and the septic
+// fits (a cycloidal peak every 0.25-1.5° to 1e-3 mm: 20 to 50 times the rounding per degree of
+// freedom against 0.3 to 2).
+bool KinkInSquares(const std::vector<double>& x, const std::vector<double>& y, size_t j,
+                   const Side& l, const Side& r, double sigma) {
+  if (l.degree != 3 || r.to - l.from < kSquaresLeast) return false;
+  constexpr int kScan = 40;
+  const double step = x[j + 1] - x[j];
+  double kinked = std::numeric_limits<double>::infinity();
+  for (int t = 0; t <= kScan; ++t) {
+    const double at = x[j] - 0.5 * step + 2.0 * step * t / kScan;
+    kinked = std::min(kinked, KinkedSquares(x, y, l.from, r.to, 3, {at}));
+  }
+  const double n = static_cast<double>(r.to - l.from);
+  const double septic = KinkedSquares(x, y, l.from, r.to, 7, {}) / (n - 8);
+  return septic > kSquaresRatio * kinked / (n - 5) && septic > kSquaresOverRounding * sigma * sigma;
+}
+
 // The kink between readings j and j + 1 from its two sides, or nullopt where they do not meet
-// there as a kink that peaks in `sign`; readings [lo, hi) are the piece's.
+// there as a kink that peaks in `sign`; readings [lo, hi) are the piece's. The readings show it
+// (`by_shape`: KinkMayLieBetween saw it, it is placed and its sides misfit moved across it), or
+// the sum of their squares does (KinkInSquares).
 std::optional<LocalNode> KinkOf(const std::vector<double>& x, const std::vector<double>& y,
                                 size_t j, const Side& l, const Side& r, double sigma, double sign,
-                                size_t lo, size_t hi) {
+                                size_t lo, size_t hi, bool by_shape) {
   const double step = x[j + 1] - x[j];
   const auto at = RootIn([&](double t) { return r.Value(t, 2) - l.Value(t, 2); },
                          x[j] - kRootReach * step, x[j + 1] + kRootReach * step);
@@ -177,7 +212,7 @@ std::optional<LocalNode> KinkOf(const std::vector<double>& x, const std::vector<
   if (!(sign * jerk_l >= -e3l && sign * jerk_r <= e3r)) return std::nullopt;
   // The readings place it (lib/reading_kinks.h): δ = (6q/J)^⅓ under a step.
   const double q = std::sqrt(12.0) * sigma;
-  if (!(std::cbrt(6.0 * q / diff(3)) < step)) return std::nullopt;
+  by_shape = by_shape && std::cbrt(6.0 * q / diff(3)) < step;
   // And each side, moved `shift` readings on across ξ, misfits by kShiftMisfit bounds: a kink
   // of this jump J shows as J δ³/6 at δ = 3 (6q/J)^⅓ past it, 27 q, less what the fit takes up
   // (a cubic B-spline's knots, read to 9 decimals: 200 to 10⁵ bounds). A smooth law's side
@@ -185,11 +220,11 @@ std::optional<LocalNode> KinkOf(const std::vector<double>& x, const std::vector<
   // whose sides each fit the rounding and differ in s''' by their bias, beyond its error).
   const size_t shift =
       static_cast<size_t>(std::ceil(std::max(2.0, 3.0 * std::cbrt(6.0 * q / diff(3)) / step)));
-  if (l.to + shift > hi || r.from < lo + shift ||
-      FitSide(x, y, l.from + shift, l.to + shift, l.degree, sigma, kShiftMisfit) ||
-      FitSide(x, y, r.from - shift, r.to - shift, r.degree, sigma, kShiftMisfit)) {
-    return std::nullopt;
-  }
+  const bool shown = by_shape && l.to + shift <= hi && r.from >= lo + shift &&
+                     !FitSide(x, y, l.from + shift, l.to + shift, l.degree, sigma, kShiftMisfit) &&
+                     !FitSide(x, y, r.from - shift, r.to - shift, r.degree, sigma, kShiftMisfit);
+  // Or, where no reading shows it, the sum of their squares does.
+  if (!shown && !KinkInSquares(x, y, j, l, r, sigma)) return std::nullopt;
   LocalNode k;
   k.x = xi;
   for (int d = 0; d < 2; ++d) k.s[d] = 0.5 * (l.Value(xi, d) + r.Value(xi, d));
@@ -212,14 +247,19 @@ std::vector<LocalNode> KinksIn(const std::vector<double>& x, const std::vector<d
                                const PiecewisePolynomial& law, const LocalNode& extreme,
                                size_t from, size_t to) {
   std::vector<LocalNode> kinks;
+  size_t top = lo;  // the reading where the fit peaks
+  for (size_t j = lo; j < hi; ++j)
+    if (sign * law.Evaluate(x[j], 2) > sign * law.Evaluate(x[top], 2)) top = j;
   for (size_t j = lo; j + 1 < hi; ++j) {
+    const bool near_top = j + kTopReach >= top && j <= top + kTopReach;
     for (const int degree : kSideDegrees) {
-      if (!KinkMayLieBetween(x, y, j, degree, sigma, from, to)) continue;
+      const bool may = KinkMayLieBetween(x, y, j, degree, sigma, from, to);
+      if (!may && !(near_top && degree == 3)) continue;
       const std::optional<Side> l = LongestSide(x, y, j, true, from, to, degree, sigma);
       if (!l) continue;
       const std::optional<Side> r = LongestSide(x, y, j + 1, false, from, to, degree, sigma);
       if (!r) continue;
-      std::optional<LocalNode> k = KinkOf(x, y, j, *l, *r, sigma, sign, from, to);
+      std::optional<LocalNode> k = KinkOf(x, y, j, *l, *r, sigma, sign, from, to, may);
       if (!k || !(sign * k->s[2] > sign * law.Evaluate(k->x, 2)) ||
           !(sign * k->s[2] >= sign * extreme.s[2] - extreme.band2)) {
         continue;

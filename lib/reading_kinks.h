@@ -16,7 +16,10 @@
 /// with s and s' agreeing to their error, and s''' differing by more than its error (KinkOf has
 /// the rules), the kink is there, and its s'' exact but for the sides' error: the rounding's,
 /// q/2 Σ|g_i| (g_i the weights of s''(ξ) on the readings; its bound, taken as 95 %), and their
-/// truncation's, the change from sides of half as many readings.
+/// truncation's, the change from sides of half as many readings. On a rounded table no reading may
+/// show a kink (each side, moved across it, still fits the rounding); there, within a few
+/// readings of the fit's own top, the sum of squares tells it: a cubic kinked in the gap fits
+/// both sides' readings to the rounding, and a septic through them does not.
 
 #include <vector>
 
@@ -27,12 +30,12 @@ namespace needle {
 /// The kinks of s'' near the fit's largest and least s'' (between the nodes beside either's node)
 /// that peak beyond the fit there (a V whose top its windows round off) and reach the extreme
 /// node's band, by angle, each as a node: x = ξ, s, s', s'' the sides' there, band2 their error,
-/// window the readings of both sides. Only kinks the readings place: one of s''' jump J shows in a
-/// side that reaches δ past it as J δ³/6, so no other of its size hides inside a side where δ =
-/// (6q/J)^⅓ is under a step (a 9-decimal table's; 1e-3 mm every 0.5°: δ ≈ 2°, and the sides may
-/// each hold one). (x, y): one piece's readings of an exact or rounded table (σ the rounding's,
-/// q/√12), at most kLocalMaxNodes of them (none otherwise); those `trim` leaves out of the fit's
-/// windows are left out here too.
+/// window the readings of both sides. Only kinks the readings place (or their squares tell, as
+/// above): one of s''' jump J shows in a side that reaches δ past it as J δ³/6, so no other of
+/// its size hides inside a side where δ = (6q/J)^⅓ is under a step (a 9-decimal table's; 1e-3 mm
+/// every 0.5°: δ ≈ 2°, and the sides may each hold one). (x, y): one piece's readings of an exact
+/// or rounded table (σ the rounding's, q/√12), at most kLocalMaxNodes of them (none otherwise);
+/// those `trim` leaves out of the fit's windows are left out here too.
 std::vector<LocalNode> ReadingKinks(const std::vector<double>& x, const std::vector<double>& y,
                                     double sigma_m, const LocalFit& fit, LocalTrim trim = {});
 

@@ -1,9 +1,12 @@
 #pragma once
 /// @file
-/// Internal to lib/'s break search (lift_breaks.cc, lift_junctions.cc): a polynomial fitted to
-/// the readings on one side of a break, and the root finder that meets two of them.
+/// Internal to lib/'s break search (lift_breaks.cc, lift_junctions.cc) and kink search
+/// (reading_kinks.cc): a polynomial fitted to the readings on one side of a break, the root
+/// finder that meets two of them, and the residuals of polynomials kinked at given angles.
 
 #include <Eigen/Core>
+#include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -39,6 +42,38 @@ Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, 
     for (int k = 0; k <= Degree; ++k, power *= u) v(i - from, k) = power;
   }
   return v;
+}
+
+/// The residuals of readings [from, to) of (x, y), m, fitted by a polynomial of `degree` in
+/// u = (θ − c)/h and, at each ξ of `kinks_rad`, the truncated powers (θ − ξ)ᵏ₊, k = 3 …
+/// `kink_degree`: polynomials of degree `degree` that meet at each ξ with equal s, s' and s'' (a
+/// kink of s'', s''' and above jumping). `kink_degree` ≤ `degree`.
+inline Eigen::VectorXd KinkedResiduals(const std::vector<double>& x, const std::vector<double>& y,
+                                       size_t from, size_t to, int degree,
+                                       const std::vector<double>& kinks_rad, int kink_degree = 3) {
+  const double c = 0.5 * (x[from] + x[to - 1]), h = 0.5 * (x[to - 1] - x[from]);
+  const int per_kink = kink_degree - 2;
+  const Eigen::Index n = static_cast<Eigen::Index>(to - from);
+  Eigen::MatrixXd v(n, degree + 1 + per_kink * static_cast<int>(kinks_rad.size()));
+  const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double u = (x[from + static_cast<size_t>(i)] - c) / h;
+    double power = 1.0;
+    int col = 0;
+    for (int k = 0; k <= degree; ++k, power *= u) v(i, col++) = power;
+    for (const double kink : kinks_rad) {
+      const double past = std::max(0.0, u - (kink - c) / h);
+      for (int k = 0; k < per_kink; ++k) v(i, col++) = std::pow(past, 3 + k);
+    }
+  }
+  return v * v.colPivHouseholderQr().solve(r) - r;
+}
+
+/// Their sum of squares, m².
+inline double KinkedSquares(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                            size_t to, int degree, const std::vector<double>& kinks_rad,
+                            int kink_degree = 3) {
+  return KinkedResiduals(x, y, from, to, degree, kinks_rad, kink_degree).squaredNorm();
 }
 
 /// A root of f on [lo, hi] by sampling (64 steps) and bisection; nullopt when f keeps its sign.
