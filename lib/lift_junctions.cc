@@ -2,6 +2,7 @@
 // to the readings on either side of a reading disagree on s''.
 #include <Eigen/Dense>
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -24,6 +25,10 @@ constexpr double kCleanSplitGain = 100.0;
 constexpr double kKinkSlopeShare = 0.05;
 // JumpConfirmed judges only where the quintics' noise is below this share of the jump.
 constexpr double kConfirmNoiseShare = 0.1;
+// SmoothAcross: a kink sought within this many steps of the junction found...
+constexpr double kKinkReachSteps = 3.0;
+// ...fits its readings to this many times the rounding's variance per degree of freedom.
+constexpr double kSmoothSquares = 3.0;
 
 // A quintic fitted to readings [from, to) by least squares, in u = (θ − c)/h, and the weights of
 // its s'' at c on those readings.
@@ -184,6 +189,37 @@ std::optional<LiftBreak> ConfirmedSplit(const std::vector<double>& x, const std:
   return b;
 }
 
+// Whether the readings within kSide of junction b are two quintics that meet at one ξ within
+// kKinkReachSteps of it with equal s, s' and s'' (KinkedSquares), to the rounding: a kink of s''
+// (a cubic B-spline's knot; the quintics of FindJunctions across it stray at their ends, and the
+// split the largest |D| chose stood two readings past it), no s'' jump. A jump misfits them by
+// D h²/2 a reading on, beyond any rounding FindJunctions' noise test lets through. ξ is sampled
+// every quarter step, then found by Brent's minimum beside the best sample (on a 9-decimal
+// table a sample a 16th of a step off the knot misfits by far more than the rounding).
+bool SmoothAcross(const std::vector<double>& x, const std::vector<double>& y, const LiftBreak& b,
+                  double sigma_m) {
+  const long n = static_cast<long>(x.size()), k = static_cast<long>(b.index);
+  const long from = std::max(0L, k - kSide + 1), to = std::min(n, k + kSide + 1);
+  constexpr long kParameters = 9;  // a quintic and three truncated powers
+  if (to - from < kParameters + 3 || k + 1 >= n) return false;
+  const double h = x[k + 1] - x[k], quarter = 0.25 * h;
+  const auto squares = [&](double at) {
+    return KinkedSquares(x, y, static_cast<size_t>(from), static_cast<size_t>(to), 5, {at}, 5);
+  };
+  const double lo = std::max(x[from], b.crank_rad - kKinkReachSteps * h);
+  const double hi = std::min(x[to - 1], b.crank_rad + kKinkReachSteps * h);
+  double least = std::numeric_limits<double>::infinity(), best = b.crank_rad;
+  for (double at = lo; at <= hi; at += quarter) {
+    if (const double v = squares(at); v < least) least = v, best = at;
+  }
+  const double refined =
+      boost::math::tools::brent_find_minima(squares, std::max(lo, best - quarter),
+                                            std::min(hi, best + quarter), 40)
+          .second;
+  return std::min(least, refined) <=
+         kSmoothSquares * sigma_m * sigma_m * static_cast<double>(to - from - kParameters);
+}
+
 }  // namespace
 
 std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::vector<double>& y,
@@ -257,6 +293,7 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
                  : Misfit(x, y, static_cast<size_t>(k), static_cast<size_t>(k + p)));
     // Two clusters may meet at one junction: one break.
     const auto add = [&](const LiftBreak& b) {
+      if (SmoothAcross(x, y, b, sigma_m)) return;
       const double h = x[b.index + 1 < x.size() ? b.index + 1 : b.index] - x[b.index];
       if (std::none_of(found.begin(), found.end(), [&](const LiftBreak& f) {
             return std::abs(f.crank_rad - b.crank_rad) < 0.5 * h;
