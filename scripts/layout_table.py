@@ -25,7 +25,10 @@ EXT = {".h", ".cc", ".py", ".txt"}
 def Rows():
     rows = []
     for top in TOPS:
-        folders = sorted({p.parent for p in (ROOT / top).rglob("*") if p.suffix in EXT})
+        # npm's packages (apps/serve/web/node_modules, installed by setup.sh --tests) are no
+        # source: the table is the same with or without them.
+        folders = sorted({p.parent for p in (ROOT / top).rglob("*")
+                          if p.suffix in EXT and "node_modules" not in p.parts})
         for folder in folders:
             files = sorted(p for p in folder.iterdir() if p.is_file() and p.suffix in EXT)
             if not files:
