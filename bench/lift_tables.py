@@ -91,6 +91,25 @@ def poly4567(x):
             420 * x**2 - 1680 * x**3 + 2100 * x**4 - 840 * x**5)
 
 
+def cubic_bspline(x):
+    """A cubic B-spline law (a CAD export's): f'' piecewise linear between 9 equal knots, through
+    the cycloidal's 2 pi sin(2 pi x) at each, so f''' jumps at every knot and f'' peaks at one
+    (x = 1/4: a V the readings' windows round off). f = sum c_k (x - t_k)+^3 / 6, scaled so that
+    f(1) = 1 (the knots are symmetric about 1/2, so f'(1) = 0)."""
+    t = np.linspace(0.0, 1.0, 9)
+    slopes = 2 * np.pi * np.diff(np.sin(2 * np.pi * t)) / np.diff(t)
+    c = np.diff(np.concatenate(([0.0], slopes)))
+    x = np.asarray(x, dtype=float)
+
+    def sums(xx):
+        u = np.maximum(0.0, np.subtract.outer(xx, t[:-1]))
+        return (u**3 / 6) @ c, (u**2 / 2) @ c, u @ c
+
+    top = float(sums(np.array([1.0]))[0][0])
+    f, f1, f2 = sums(x)
+    return f / top, f1 / top, f2 / top
+
+
 def _antisymmetric(half):
     """A law from its first half, f(x) = 1 - f(1 - x) beyond x = 1/2 (so f'' is odd about 1/2),
     scaled so that f(1/2) = 1/2; `half` is the unscaled law on [0, 1/2] with peak f'' = 1."""
@@ -262,6 +281,7 @@ def make_laws():
         ("poly4567", "4-5-6-7 polynomial", poly4567),
         ("modsine", "modified sine", modified_sine),
         ("modtrap", "modified trapezoid", modified_trapezoid),
+        ("bspline", "cubic B-spline (9 equal knots)", cubic_bspline),
     ]:
         laws.append(Law(key=key, title=f"{title}: 3 mm rise over 24 deg crank, dwell 6, return over 30",
                         pieces=rise_dwell_return(prof, 3.0, -12.0, 24.0, 6.0, 30.0), **needle))
@@ -367,9 +387,10 @@ class Table:
 
 
 def full_suite():
-    laws = ["shm", "cycloidal", "poly345", "poly4567", "modsine", "modtrap", "shm-valve", "arc-cam"]
+    laws = ["shm", "cycloidal", "poly345", "poly4567", "modsine", "modtrap", "shm-valve", "arc-cam",
+            "bspline"]
     tables = []
-    for law in laws:                                   # 8 laws x 3 printings x 5 steps x 2 = 240
+    for law in laws:                                   # 9 laws x 3 printings x 5 steps x 2 = 270
         for kind in ("exact9", "r1e-4", "r1e-3"):
             for step in (0.05, 0.1, 0.25, 0.5, 1.0):
                 for pad in (False, True):
