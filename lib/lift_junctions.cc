@@ -195,7 +195,8 @@ std::optional<LiftBreak> ConfirmedSplit(const std::vector<double>& x, const std:
 // split the largest |D| chose stood two readings past it), no s'' jump. A jump misfits them by
 // D h²/2 a reading on, beyond any rounding FindJunctions' noise test lets through. ξ is sampled
 // every quarter step, then found by Brent's minimum beside the best sample (on a 9-decimal
-// table a sample a 16th of a step off the knot misfits by far more than the rounding).
+// table a sample a 16th of a step off the knot misfits by far more than the rounding). The
+// window may reach the seat: a junction there is SeekBreaks' to drop or keep.
 bool SmoothAcross(const std::vector<double>& x, const std::vector<double>& y, const LiftBreak& b,
                   double sigma_m) {
   const long n = static_cast<long>(x.size()), k = static_cast<long>(b.index);
@@ -212,10 +213,10 @@ bool SmoothAcross(const std::vector<double>& x, const std::vector<double>& y, co
   for (double at = lo; at <= hi; at += quarter) {
     if (const double v = squares(at); v < least) least = v, best = at;
   }
-  const double refined =
-      boost::math::tools::brent_find_minima(squares, std::max(lo, best - quarter),
-                                            std::min(hi, best + quarter), 40)
-          .second;
+  const double refined = boost::math::tools::brent_find_minima(
+                             squares, std::max(lo, best - quarter), std::min(hi, best + quarter),
+                             std::numeric_limits<double>::digits / 2)
+                             .second;
   return std::min(least, refined) <=
          kSmoothSquares * sigma_m * sigma_m * static_cast<double>(to - from - kParameters);
 }
@@ -293,7 +294,6 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
                  : Misfit(x, y, static_cast<size_t>(k), static_cast<size_t>(k + p)));
     // Two clusters may meet at one junction: one break.
     const auto add = [&](const LiftBreak& b) {
-      if (SmoothAcross(x, y, b, sigma_m)) return;
       const double h = x[b.index + 1 < x.size() ? b.index + 1 : b.index] - x[b.index];
       if (std::none_of(found.begin(), found.end(), [&](const LiftBreak& f) {
             return std::abs(f.crank_rad - b.crank_rad) < 0.5 * h;
@@ -308,6 +308,12 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
       if (std::any_of(taken.begin(), taken.end(), [&](long t) { return std::abs(t - j) < p; }))
         continue;
       if (const auto b = ConfirmedSplit(x, y, j, p, n, d[k], noise[j], &kink)) {
+        // A kink of s'' that the readings around it show (SmoothAcross) is none either; it
+        // takes no room from the splits beside it.
+        if (SmoothAcross(x, y, *b, sigma_m)) {
+          kink = true;
+          continue;
+        }
         taken.push_back(j);
         add(*b);
       }
@@ -316,7 +322,7 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
     // Else the split the largest |D| chose: the located jump is the jump seen (within a
     // quarter).
     const LiftBreak b = Located(x, y, k, p, between);
-    if (std::abs(b.jump - d[k]) <= 0.25 * std::abs(d[k])) add(b);
+    if (std::abs(b.jump - d[k]) <= 0.25 * std::abs(d[k]) && !SmoothAcross(x, y, b, sigma_m)) add(b);
   }
   std::sort(found.begin(), found.end(),
             [](const LiftBreak& a, const LiftBreak& b) { return a.crank_rad < b.crank_rad; });

@@ -38,7 +38,8 @@ constexpr double kSquaresOverRounding = 3.0;
 // The least readings of both sides for KinkInSquares (a septic's 8 and as many again).
 constexpr size_t kSquaresLeast = 16;
 // Gaps within this many readings of the fit's own top are tried without KinkMayLieBetween (a
-// rounded table's knot, a cubic B-spline's at 1e-3 mm: within 6 of it in a trial of 200 laws).
+// rounded table's knot, a cubic B-spline's at 1e-3 mm: within 6 of it in a trial of 200 laws);
+// the others only where it passes, by the readings' shape and then by their squares.
 constexpr size_t kTopReach = 6;
 
 // A polynomial of degree `degree` fitted by least squares to readings [from, to), in
@@ -164,8 +165,10 @@ std::optional<double> HalfSidesPeak(const std::vector<double>& x, const std::vec
 
 // Whether the readings of both cubic sides tell a kink by their squares where no reading alone
 // does (a rounded table's: each side, moved across it, still fits the rounding): a cubic
-// kinked in the gap (at its best ξ within half a step of the gap) leaves far less than a septic
-// through them all, which misfits beyond the rounding. A smooth law's sides, each one cubic to
+// kinked in the gap (at its best ξ within half a step of the gap) leaves a quarter or less of
+// what a septic through them all leaves, per degree of freedom, and the septic misfits beyond
+// the rounding (the kinked cubic itself need not fit to the rounding: B-spline knots in a trial
+// left it 1 to 8 σ²). A smooth law's sides, each one cubic to
 // the rounding, meet with s, s' apart by their error: kinked at one ξ they misfit, and the septic
 // fits (a cycloidal peak every 0.25-1.5° to 1e-3 mm: 20 to 50 times the rounding per degree of
 // freedom against 0.3 to 2).
@@ -218,11 +221,14 @@ std::optional<LocalNode> KinkOf(const std::vector<double>& x, const std::vector<
   // (a cubic B-spline's knots, read to 9 decimals: 200 to 10⁵ bounds). A smooth law's side
   // misfits little more a few readings on (1 to 4 bounds: a 4-5-6-7 rise every 1.5° to 1e-4 mm,
   // whose sides each fit the rounding and differ in s''' by their bias, beyond its error).
-  const size_t shift =
-      static_cast<size_t>(std::ceil(std::max(2.0, 3.0 * std::cbrt(6.0 * q / diff(3)) / step)));
-  const bool shown = by_shape && l.to + shift <= hi && r.from >= lo + shift &&
-                     !FitSide(x, y, l.from + shift, l.to + shift, l.degree, sigma, kShiftMisfit) &&
-                     !FitSide(x, y, r.from - shift, r.to - shift, r.degree, sigma, kShiftMisfit);
+  bool shown = false;
+  if (by_shape) {
+    const size_t shift =
+        static_cast<size_t>(std::ceil(std::max(2.0, 3.0 * std::cbrt(6.0 * q / diff(3)) / step)));
+    shown = l.to + shift <= hi && r.from >= lo + shift &&
+            !FitSide(x, y, l.from + shift, l.to + shift, l.degree, sigma, kShiftMisfit) &&
+            !FitSide(x, y, r.from - shift, r.to - shift, r.degree, sigma, kShiftMisfit);
+  }
   // Or, where no reading shows it, the sum of their squares does.
   if (!shown && !KinkInSquares(x, y, j, l, r, sigma)) return std::nullopt;
   LocalNode k;

@@ -17,9 +17,10 @@
 /// the rules), the kink is there, and its s'' exact but for the sides' error: the rounding's,
 /// q/2 Σ|g_i| (g_i the weights of s''(ξ) on the readings; its bound, taken as 95 %), and their
 /// truncation's, the change from sides of half as many readings. On a rounded table no reading may
-/// show a kink (each side, moved across it, still fits the rounding); there, within a few
-/// readings of the fit's own top, the sum of squares tells it: a cubic kinked in the gap fits
-/// both sides' readings to the rounding, and a septic through them does not.
+/// show a kink (each side, moved across it, still fits the rounding); there the sum of squares
+/// tells it: a cubic kinked in the gap leaves far less of both sides' readings than a septic
+/// through them, which misfits beyond the rounding (tried at the gaps above, and within a few
+/// readings of the fit's own top at every gap).
 
 #include <vector>
 

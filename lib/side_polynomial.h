@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/QR>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -51,8 +52,11 @@ Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, 
 inline Eigen::VectorXd KinkedResiduals(const std::vector<double>& x, const std::vector<double>& y,
                                        size_t from, size_t to, int degree,
                                        const std::vector<double>& kinks_rad, int kink_degree = 3) {
-  const double c = 0.5 * (x[from] + x[to - 1]), h = 0.5 * (x[to - 1] - x[from]);
   const int per_kink = kink_degree - 2;
+  assert(to >= from + 2 && per_kink >= 1);
+  assert(to - from >=
+         static_cast<size_t>(degree + 1 + per_kink * static_cast<int>(kinks_rad.size())));
+  const double c = 0.5 * (x[from] + x[to - 1]), h = 0.5 * (x[to - 1] - x[from]);
   const Eigen::Index n = static_cast<Eigen::Index>(to - from);
   Eigen::MatrixXd v(n, degree + 1 + per_kink * static_cast<int>(kinks_rad.size()));
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);

@@ -28,7 +28,7 @@ def Rows():
         # npm's packages (apps/serve/web/node_modules, installed by setup.sh --tests) are no
         # source: the table is the same with or without them.
         folders = sorted({p.parent for p in (ROOT / top).rglob("*")
-                          if p.suffix in EXT and "node_modules" not in p.parts})
+                          if p.suffix in EXT and "node_modules" not in p.relative_to(ROOT).parts})
         for folder in folders:
             files = sorted(p for p in folder.iterdir() if p.is_file() and p.suffix in EXT)
             if not files:
