@@ -221,6 +221,25 @@ bool SmoothAcross(const std::vector<double>& x, const std::vector<double>& y, co
          kSmoothSquares * sigma_m * sigma_m * static_cast<double>(to - from - kParameters);
 }
 
+// The smooth level at reading i: the median |D| of the readings p+1 … p+6 away (clear of the
+// windows that hold a junction at i), on the side where it is least (the other may hold a
+// junction); +∞ where neither side has 3.
+double SmoothLevel(const std::vector<double>& d, long i, long p) {
+  const long n = static_cast<long>(d.size());
+  double smooth = std::numeric_limits<double>::infinity();
+  for (long sign : {-1L, 1L}) {
+    std::vector<double> side;
+    for (long j = p + 1; j <= p + 6; ++j) {
+      const long at = i + sign * j;
+      if (at >= p - 1 && at + p <= n) side.push_back(std::abs(d[at]));
+    }
+    if (side.size() < 3) continue;
+    std::nth_element(side.begin(), side.begin() + side.size() / 2, side.end());
+    smooth = std::min(smooth, side[side.size() / 2]);
+  }
+  return smooth;
+}
+
 }  // namespace
 
 std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::vector<double>& y,
@@ -248,19 +267,7 @@ std::vector<LiftBreak> FindJunctions(const std::vector<double>& x, const std::ve
   while (seat.last > 0 && y[seat.last - 1] == 0.0) --seat.last;
   std::vector<long> flagged;
   for (long i = p - 1; i + p <= n; ++i) {
-    // The smooth level: the median |D| of the readings p+1 … p+6 away (clear of the windows that
-    // hold a junction at i), on the side where it is least (the other may hold a junction).
-    double smooth = std::numeric_limits<double>::infinity();
-    for (long sign : {-1L, 1L}) {
-      std::vector<double> side;
-      for (long j = p + 1; j <= p + 6; ++j) {
-        const long at = i + sign * j;
-        if (at >= p - 1 && at + p <= n) side.push_back(std::abs(d[at]));
-      }
-      if (side.size() < 3) continue;
-      std::nth_element(side.begin(), side.begin() + side.size() / 2, side.end());
-      smooth = std::min(smooth, side[side.size() / 2]);
-    }
+    const double smooth = SmoothLevel(d, i, p);
     if (!std::isfinite(smooth)) continue;
     if (std::abs(d[i]) > kBreakOverSmooth * smooth && std::abs(d[i]) > tail * noise[i]) {
       flagged.push_back(i);
