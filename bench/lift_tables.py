@@ -91,23 +91,28 @@ def poly4567(x):
             420 * x**2 - 1680 * x**3 + 2100 * x**4 - 840 * x**5)
 
 
-def cubic_bspline(x):
-    """A cubic B-spline law (a CAD export's): f'' piecewise linear between 9 equal knots, through
-    the cycloidal's 2 pi sin(2 pi x) at each, so f''' jumps at every knot and f'' peaks at one
-    (x = 1/4: a V the readings' windows round off). f = sum c_k (x - t_k)+^3 / 6, scaled so that
-    f(1) = 1 (the knots are symmetric about 1/2, so f'(1) = 0)."""
-    t = np.linspace(0.0, 1.0, 9)
+def bspline_profile(t):
+    """A cubic B-spline law (a CAD export's) on knots t (0 = t_0 < ... < t_m = 1, symmetric
+    about 1/2): f'' piecewise linear between them, through the cycloidal's 2 pi sin(2 pi x) at
+    each, so f''' jumps at every knot and f'' peaks at one (a V the readings' windows round off).
+    f = sum c_k (x - t_k)+^3 / 6, scaled so that f(1) = 1 (symmetric knots: f'(1) = 0)."""
+    t = np.asarray(t, dtype=float)
     slopes = 2 * np.pi * np.diff(np.sin(2 * np.pi * t)) / np.diff(t)
     c = np.diff(np.concatenate(([0.0], slopes)))
-    x = np.asarray(x, dtype=float)
 
     def sums(xx):
-        u = np.maximum(0.0, np.subtract.outer(xx, t[:-1]))
+        u = np.maximum(0.0, np.subtract.outer(np.asarray(xx, dtype=float), t[:-1]))
         return (u**3 / 6) @ c, (u**2 / 2) @ c, u @ c
 
     top = float(sums(np.array([1.0]))[0][0])
-    f, f1, f2 = sums(x)
-    return f / top, f1 / top, f2 / top
+
+    def law(x):
+        f, f1, f2 = sums(x)
+        return f / top, f1 / top, f2 / top
+    return law
+
+
+cubic_bspline = bspline_profile(np.linspace(0.0, 1.0, 9))  # 9 equal knots, f'' peaks at x = 1/4
 
 
 def _antisymmetric(half):

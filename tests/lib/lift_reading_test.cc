@@ -1169,9 +1169,9 @@ TEST(LiftReadingTest, ALawThatMissesItsReadingsBetweenNodesGetsANodeThere) {
 // A cubic B-spline cam exported to 1e-4 mm: every 0.5°, knots 2-8° apart, both peaks of s'' at
 // knots. Rounded, no reading shows the knot (each cubic side, moved a few readings across it,
 // still fits the rounding), and every window of the fit rounded the peak off: a_max 2.0 % and
-// a_min 2.4 % short, the truth beyond both bands' unsafe ends (in a trial of 200 such laws at
-// 0.25-1.5°, to 9 decimals, 1e-4 and 1e-3 mm, 120 of 400 extremes were). The sum of squares tells
-// it (KinkInSquares): a cubic kinked at the knot leaves the rounding's residual through both
+// a_min 2.4 % short, the truth beyond both bands' unsafe ends (bench/bspline_trial.py, 200 such
+// laws at 0.25-1.5°, to 9 decimals, 1e-4 and 1e-3 mm: 97 of 400 extremes were). The sum of squares
+// tells it (KinkInSquares): a cubic kinked at the knot leaves the rounding's residual through both
 // sides, and a septic through them misfits beyond it. (With the squares' test always passing,
 // the smooth laws of ExactExportsWithinOnePercent and others take false kinks.)
 TEST(LiftReadingTest, ARoundedCubicBSplinesKnotIsToldByItsSquares) {
