@@ -83,12 +83,7 @@ std::optional<Side> FitSide(const std::vector<double>& x, const std::vector<doub
   s.c = 0.5 * (x[from] + x[to - 1]);  // u in [-1, 1]: VᵀV far better conditioned than on [0, 1]
   s.h = 0.5 * (x[to - 1] - x[from]);
   const Eigen::Index n = static_cast<Eigen::Index>(to - from);
-  s.v.resize(n, degree + 1);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double u = (x[from + static_cast<size_t>(i)] - s.c) / s.h;
-    double power = 1.0;
-    for (int k = 0; k <= degree; ++k, power *= u) s.v(i, k) = power;
-  }
+  s.v = PowerBasis(x, from, to, s.c, s.h, degree);
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);
   s.gram.compute(s.v.transpose() * s.v);
   s.a = s.gram.solve(s.v.transpose() * r);
@@ -168,10 +163,9 @@ std::optional<double> HalfSidesPeak(const std::vector<double>& x, const std::vec
 // kinked in the gap (at its best ξ within half a step of the gap) leaves a quarter or less of
 // what a septic through them all leaves, per degree of freedom, and the septic misfits beyond
 // the rounding (the kinked cubic itself need not fit to the rounding: B-spline knots in a trial
-// left it 1 to 8 σ²). A smooth law's sides, each one cubic to
-// the rounding, meet with s, s' apart by their error: kinked at one ξ they misfit, and the septic
-// fits (a cycloidal peak every 0.25-1.5° to 1e-3 mm: 20 to 50 times the rounding per degree of
-// freedom against 0.3 to 2).
+// left it 1 to 8 σ²). A smooth law's sides, each one cubic to the rounding, meet with s, s' apart
+// by their error: kinked at one ξ they misfit, and the septic fits (a cycloidal peak every
+// 0.25-1.5° to 1e-3 mm: 20 to 50 times the rounding per degree of freedom against 0.3 to 2).
 bool KinkInSquares(const std::vector<double>& x, const std::vector<double>& y, size_t j,
                    const Side& l, const Side& r, double sigma) {
   if (l.degree != 3 || r.to - l.from < kSquaresLeast) return false;

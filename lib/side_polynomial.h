@@ -32,52 +32,50 @@ struct SidePolynomial {
   }
 };
 
-/// The basis u^k, k = 0 … Degree, u = (θ − c)/h, at readings [from, to) of x: a row a reading.
-template <int Degree>
-Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, double c,
-                          double h) {
-  Eigen::MatrixXd v(to - from, Degree + 1);
+/// The basis u^k, k = 0 … `degree`, u = (θ − c)/h, at readings [from, to) of x: a row a reading.
+inline Eigen::MatrixXd PowerBasis(const std::vector<double>& x, size_t from, size_t to, double c,
+                                  double h, int degree) {
+  Eigen::MatrixXd v(to - from, degree + 1);
   for (size_t i = from; i < to; ++i) {
     const double u = (x[i] - c) / h;
     double power = 1.0;
-    for (int k = 0; k <= Degree; ++k, power *= u) v(i - from, k) = power;
+    for (int k = 0; k <= degree; ++k, power *= u) v(i - from, k) = power;
   }
   return v;
 }
 
-/// The residuals of readings [from, to) of (x, y), m, fitted by a polynomial of `degree` in
-/// u = (θ − c)/h and, at each ξ of `kinks_rad`, the truncated powers (θ − ξ)ᵏ₊, k = 3 …
-/// `kink_degree`: polynomials of degree `degree` that meet at each ξ with equal s, s' and s'' (a
-/// kink of s'', s''' and above jumping). `kink_degree` ≤ `degree`.
-inline Eigen::VectorXd KinkedResiduals(const std::vector<double>& x, const std::vector<double>& y,
-                                       size_t from, size_t to, int degree,
-                                       const std::vector<double>& kinks_rad, int kink_degree = 3) {
+/// The same of a degree known at compile time.
+template <int Degree>
+Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, double c,
+                          double h) {
+  return PowerBasis(x, from, to, c, h, Degree);
+}
+
+/// The sum of squared residuals of readings [from, to) of (x, y), m², fitted by a polynomial of
+/// `degree` in u = (θ − c)/h (c, h: the readings' middle and half-span) and, at each ξ of
+/// `kinks_rad`, the truncated powers (θ − ξ)ᵏ₊, k = 3 … `kink_degree`: polynomials of degree
+/// `degree` that meet at each ξ with equal s, s' and s'' (a kink of s'', s''' and above jumping).
+/// `kink_degree` ≤ `degree`.
+inline double KinkedSquares(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                            size_t to, int degree, const std::vector<double>& kinks_rad,
+                            int kink_degree = 3) {
   const int per_kink = kink_degree - 2;
-  assert(to >= from + 2 && per_kink >= 1);
-  assert(to - from >=
-         static_cast<size_t>(degree + 1 + per_kink * static_cast<int>(kinks_rad.size())));
+  const int columns = degree + 1 + per_kink * static_cast<int>(kinks_rad.size());
+  assert(to >= from + 2 && per_kink >= 1 && to - from >= static_cast<size_t>(columns));
   const double c = 0.5 * (x[from] + x[to - 1]), h = 0.5 * (x[to - 1] - x[from]);
   const Eigen::Index n = static_cast<Eigen::Index>(to - from);
-  Eigen::MatrixXd v(n, degree + 1 + per_kink * static_cast<int>(kinks_rad.size()));
-  const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);
+  Eigen::MatrixXd v(n, columns);
+  v.leftCols(degree + 1) = PowerBasis(x, from, to, c, h, degree);
   for (Eigen::Index i = 0; i < n; ++i) {
     const double u = (x[from + static_cast<size_t>(i)] - c) / h;
-    double power = 1.0;
-    int col = 0;
-    for (int k = 0; k <= degree; ++k, power *= u) v(i, col++) = power;
+    int col = degree + 1;
     for (const double kink : kinks_rad) {
       const double past = std::max(0.0, u - (kink - c) / h);
       for (int k = 0; k < per_kink; ++k) v(i, col++) = std::pow(past, 3 + k);
     }
   }
-  return v * v.colPivHouseholderQr().solve(r) - r;
-}
-
-/// Their sum of squares, m².
-inline double KinkedSquares(const std::vector<double>& x, const std::vector<double>& y, size_t from,
-                            size_t to, int degree, const std::vector<double>& kinks_rad,
-                            int kink_degree = 3) {
-  return KinkedResiduals(x, y, from, to, degree, kinks_rad, kink_degree).squaredNorm();
+  const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);
+  return (v * v.colPivHouseholderQr().solve(r) - r).squaredNorm();
 }
 
 /// A root of f on [lo, hi] by sampling (64 steps) and bisection; nullopt when f keeps its sign.
