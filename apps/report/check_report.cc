@@ -157,12 +157,19 @@ void CheckReportWriter::RatedRun(const SpringCheckResult& spring, const Simulati
   const RigidTrain& rigid = spring.train;
   Series force{"force", {}}, motion{"motion", {}}, impacts{"impacts", {}}, shade{"shade", {}};
   const double omega = OmegaFromRpm(rpm);
-  for (size_t k = 0; k < r.series.size(); k += std::max<size_t>(1, r.series.size() / 3000)) {
-    const SeriesPoint& p = r.series[k];
+  for (const SeriesPoint& p : r.series) {
     const bool in = p.crank_rad >= law.start_rad() && p.crank_rad <= law.end_rad();
     force.rows.push_back({p.crank_rad / kDeg, p.contact_force_N,
                           in ? QuasiStaticForce(law, rigid, omega, p.crank_rad) : NAN});
     motion.rows.push_back({p.crank_rad / kDeg, p.lift_m * 1e3, p.cam_m * 1e3});
+  }
+  // Drawn from a run of rows a pixel column each (LineEnvelope: every peak and drop of the
+  // whole series kept, an impact's force spike too, where every n-th point could miss it).
+  if (!r.series.empty()) {
+    const double from_deg = r.series.front().crank_rad / kDeg;
+    const double to_deg = r.series.back().crank_rad / kDeg;
+    for (Series* s : {&force, &motion})
+      s->rows = LineEnvelope(s->rows, from_deg, to_deg, kFigureWidthPx);
   }
   for (const Impact& i : r.impacts) {
     impacts.rows.push_back(

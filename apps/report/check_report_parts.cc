@@ -177,11 +177,11 @@ void AddSurgeFigure(Report& report, size_t place, const LiftLaw& law, const Chec
       if (th >= from_rad && th <= to_rad) into->rows.push_back({th / kDeg, p.contact_force_N});
     }
   }
-  // Drawn from two runs of rows a pixel column (LineEnvelope: the curves as the whole
-  // series draws them; the chain's run has some 20 000 points in the window, and gnuplot's
-  // time grows with them).
+  // Drawn from a run of rows a pixel column (LineEnvelope: the curves as the whole series draws
+  // them; the chain's run has some 20 000 points in the window, and gnuplot's time grows with
+  // them).
   for (Series* s : {&chain, &massless})
-    s->rows = LineEnvelope(s->rows, from_rad / kDeg, to_rad / kDeg, 2 * kFigureWidthPx);
+    s->rows = LineEnvelope(s->rows, from_rad / kDeg, to_rad / kDeg, kFigureWidthPx);
   // Runs stopped on a budget before the lift have nothing to draw (the check fails them as
   // undecided): the figure is left out, saying why.
   const bool drawn = !chain.rows.empty() || !massless.rows.empty();

@@ -256,6 +256,15 @@ void Report::AddHtml(const std::string& html) {
   open_.push_back(false);
 }
 
+void Rows::push_back(const double* row, size_t width) {
+  if (width_ == 0) width_ = width;
+  if (width != width_) {
+    throw std::logic_error("Rows::push_back: a row of " + std::to_string(width) +
+                           " numbers in rows of " + std::to_string(width_));
+  }
+  values_.insert(values_.end(), row, row + width);
+}
+
 void Rows::push_back(std::initializer_list<double> row) {
   if (width_ == 0) width_ = row.size();
   if (row.size() != width_) {
@@ -266,37 +275,43 @@ void Rows::push_back(std::initializer_list<double> row) {
 }
 
 Rows LineEnvelope(const Rows& rows, double x_from, double x_to, int columns) {
-  if (rows.width() != 2 || !std::isfinite(x_from) || !std::isfinite(x_to) || !(x_to > x_from) ||
+  const size_t width = rows.width();
+  if (width < 2 || !std::isfinite(x_from) || !std::isfinite(x_to) || !(x_to > x_from) ||
       columns < 1)
     return rows;
   const double per_x = columns / (x_to - x_from);
-  const auto finite = [&rows](size_t i) {
-    return std::isfinite(rows.row(i)[0]) && std::isfinite(rows.row(i)[1]);
+  // Which of a row's numbers are finite, a bit each: a run shares its pattern (a curve with a
+  // gap keeps the rows at the gap's ends).
+  const auto pattern = [&rows, width](size_t i) {
+    unsigned bits = 0;
+    for (size_t j = 0; j < width; ++j) bits |= std::isfinite(rows.row(i)[j]) ? 1u << j : 0u;
+    return bits;
   };
   const auto column = [&](size_t i) { return std::floor((rows.row(i)[0] - x_from) * per_x); };
   Rows out;
-  const auto keep = [&](size_t i) { out.push_back({rows.row(i)[0], rows.row(i)[1]}); };
+  std::vector<size_t> kept;
   for (size_t i = 0; i < rows.size();) {
-    if (!finite(i)) {
-      keep(i++);
-      continue;
-    }
-    const double c = column(i);
-    size_t end = i + 1, low = i, high = i;
-    for (; end < rows.size() && finite(end) && column(end) == c; ++end) {
-      if (rows.row(end)[1] < rows.row(low)[1]) low = end;
-      if (rows.row(end)[1] > rows.row(high)[1]) high = end;
-    }
-    keep(i);
-    const size_t last = end - 1;
-    size_t previous = i;  // each kept once, in order
-    for (size_t k : {std::min(low, high), std::max(low, high), last}) {
-      if (k > previous) {
-        keep(k);
-        previous = k;
+    const unsigned bits = pattern(i);
+    if (!(bits & 1u)) {  // no x: kept as it is
+      kept = {i++};
+    } else {
+      const double c = column(i);
+      std::vector<size_t> low(width, i), high(width, i);
+      size_t end = i + 1;
+      for (; end < rows.size() && pattern(end) == bits && column(end) == c; ++end) {
+        for (size_t j = 1; j < width; ++j) {
+          if (!(bits & (1u << j))) continue;
+          if (rows.row(end)[j] < rows.row(low[j])[j]) low[j] = end;
+          if (rows.row(end)[j] > rows.row(high[j])[j]) high[j] = end;
+        }
       }
+      kept = {i, end - 1};
+      for (size_t j = 1; j < width; ++j) kept.insert(kept.end(), {low[j], high[j]});
+      std::sort(kept.begin(), kept.end());
+      kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+      i = end;
     }
-    i = end;
+    for (size_t k : kept) out.push_back(rows.row(k), width);
   }
   return out;
 }

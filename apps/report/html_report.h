@@ -58,6 +58,8 @@ class Rows {
   /// Appends one row; throws std::logic_error when it is not as wide as the first. (Named as a
   /// std::vector's, which its callers filled before.)
   void push_back(std::initializer_list<double> row);
+  /// Appends the `width` numbers at `row` (another Rows' row).
+  void push_back(const double* row, size_t width);
   bool empty() const { return values_.empty(); }
   size_t size() const { return width_ ? values_.size() / width_ : 0; }
   size_t width() const { return width_; }
@@ -71,12 +73,13 @@ class Rows {
 /// A figure's width in the report, px.
 constexpr int kFigureWidthPx = 860;
 
-/// The rows a line plot of `rows` (x in the first column, y in the second, in drawing order)
-/// needs at `columns` columns over x in [x_from, x_to]: of each run of rows in one column, the
-/// first, the lowest, the highest and the last, in their order (M4: Jugel et al., "M4: a
-/// visualization-oriented time series data aggregation", VLDB 2014). At two columns a pixel the
-/// curve is drawn to within a pixel of the whole series' (a run of rows is at most half a pixel
-/// wide). Rows not two wide, or with a number that is not finite, are kept as they are.
+/// The rows a line plot of `rows` (x in the first column, a curve's y in each other, in drawing
+/// order) needs at `columns` columns over x in [x_from, x_to]: of each run of rows in one
+/// column, the first, the last, and each curve's lowest and highest, in their order (M4: Jugel
+/// et al., "M4: a visualization-oriented time series data aggregation", VLDB 2014). At a column
+/// a pixel or more the curves are drawn to within a pixel of the whole series'. A run also
+/// shares which numbers are finite (a curve's gap keeps the rows at its ends); rows without a
+/// finite x are kept as they are, and rows narrower than two returned whole.
 Rows LineEnvelope(const Rows& rows, double x_from, double x_to, int columns);
 
 /// One data series for a figure: columns of numbers written to a temporary file.

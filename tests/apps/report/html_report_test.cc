@@ -194,6 +194,48 @@ TEST(LineEnvelopeTest, EachColumnKeepsItsFirstLowestHighestAndLast) {
   }
 }
 
+// Rows of two curves (the report's force figure: the dynamic force, and the quasi-static one only
+// inside the lift, NaN outside): each curve's extent in each column is kept, and a curve's gap
+// keeps the rows at its ends.
+TEST(LineEnvelopeTest, EveryCurveOfARowKeepsItsExtentAndItsGaps) {
+  Rows rows;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double x = 10.0 * i / (n - 1);
+    rows.push_back({x, std::sin(53.0 * x), x > 3.0 && x < 7.0 ? std::cos(71.0 * x) : NAN});
+  }
+  const int columns = 100;
+  const Rows out = LineEnvelope(rows, 0.0, 10.0, columns);
+  EXPECT_LE(out.size(), 6u * (columns + 2));
+  for (size_t curve = 1; curve <= 2; ++curve) {
+    std::vector<double> lo_a(columns + 1, INFINITY), hi_a(columns + 1, -INFINITY);
+    std::vector<double> lo_b = lo_a, hi_b = hi_a;
+    const auto extents = [&](const Rows& r, std::vector<double>& lo, std::vector<double>& hi) {
+      for (size_t i = 0; i < r.size(); ++i) {
+        const double y = r.row(i)[curve];
+        if (!std::isfinite(y)) continue;
+        const int c = static_cast<int>(std::floor(r.row(i)[0] * (columns / 10.0)));
+        lo[c] = std::min(lo[c], y);
+        hi[c] = std::max(hi[c], y);
+      }
+    };
+    extents(rows, lo_a, hi_a);
+    extents(out, lo_b, hi_b);
+    EXPECT_EQ(lo_a, lo_b) << "curve " << curve;
+    EXPECT_EQ(hi_a, hi_b) << "curve " << curve;
+  }
+  // The second curve's gap: the last row before it and the first inside it are both kept.
+  size_t first_in = 0;
+  while (!std::isfinite(rows.row(first_in)[2])) ++first_in;
+  bool before = false, inside = false;
+  for (size_t k = 0; k < out.size(); ++k) {
+    before = before || out.row(k)[0] == rows.row(first_in - 1)[0];
+    inside = inside || out.row(k)[0] == rows.row(first_in)[0];
+  }
+  EXPECT_TRUE(before);
+  EXPECT_TRUE(inside);
+}
+
 TEST(LineEnvelopeTest, RowsItCannotJudgeAreKeptAsTheyAre) {
   Rows gap;
   for (double x : {0.0, 0.1, 0.2}) gap.push_back({x, x});
@@ -205,9 +247,9 @@ TEST(LineEnvelopeTest, RowsItCannotJudgeAreKeptAsTheyAre) {
   EXPECT_TRUE(std::isnan(out.row(2)[0]));
   EXPECT_EQ(out.row(3)[0], 0.3);
   EXPECT_EQ(out.row(4)[0], 0.5);
-  Rows wide;
-  for (double x : {0.0, 0.1, 0.2, 0.3}) wide.push_back({x, x, x});
-  EXPECT_EQ(LineEnvelope(wide, 0.0, 1.0, 1).size(), 4u);  // three columns: not a line's rows
+  Rows narrow;
+  for (double x : {0.0, 0.1, 0.2, 0.3}) narrow.push_back({x});
+  EXPECT_EQ(LineEnvelope(narrow, 0.0, 1.0, 1).size(), 4u);        // one number a row: no curve
   EXPECT_EQ(LineEnvelope(gap, 1.0, 1.0, 10).size(), gap.size());  // no x range
 }
 
