@@ -1,6 +1,7 @@
 #include "apps/study/check_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <future>
 #include <system_error>
@@ -87,14 +88,15 @@ SurgeStudy StudySurge(const BoundCase& c, const CheckResult& r, Scene scene,
   t.surge_damping_ratio = s.damping_ratio;
   t.coil_travel_m = h.length_preload_m - h.solid_length_m;
   t.coil_clash = c.spring->coil_clash;
-  std::optional<SimulationResult> before;
+  // The last run's two figures the study compares (its series is not copied).
+  std::optional<std::array<double, 2>> before;
   for (int n : {5, 10, 20, 40}) {
     t.coil_masses = n;
     SimulationResult run = Simulate(scene, r.speed_rpm, rated);
     s.masses = n;
     if (before) {
-      const double force = std::abs(run.min_contact_force_ratio - before->min_contact_force_ratio);
-      const double peak = std::abs(run.max_spring_force_N / before->max_spring_force_N - 1.0);
+      const double force = std::abs(run.min_contact_force_ratio - (*before)[0]);
+      const double peak = std::abs(run.max_spring_force_N / (*before)[1] - 1.0);
       s.change = std::isfinite(force) ? std::max(force, peak) : INFINITY;
       s.converged = s.change < kSurgeConvergence;
     }
@@ -102,7 +104,7 @@ SurgeStudy StudySurge(const BoundCase& c, const CheckResult& r, Scene scene,
     if (s.converged ||
         (s.rated.status != RunStatus::kComplete && s.rated.status != RunStatus::kStopped))
       break;  // done, or undecided
-    before = s.rated;
+    before = {s.rated.min_contact_force_ratio, s.rated.max_spring_force_N};
   }
   s.overspeed = Simulate(scene, r.overspeed_rpm, over);
   return s;

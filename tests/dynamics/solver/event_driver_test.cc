@@ -3,9 +3,12 @@
 // method, and the energy audit closes across the impacts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "dynamics/solver/integrator.h"
 #include "tests/dynamics/test_laws.h"
@@ -167,6 +170,53 @@ TEST(EventDriverTest, AStretchMayChangeTheRecordOnlyPastItsExtremes) {
 // Extremes include the event points and the window's edges (issue 51: the least contact force
 // missed its value at the 1 µm lift edge, 531.9 N reported against 501.37 N there; an episode's
 // largest gap missed its value at the end event, 0.0017110 mm true, 0.00011 reported).
+// The series comes out in time order as a stable sort leaves it: points recorded after later
+// ones (an extreme located inside a step, after the step's samples) move back past those only,
+// a point at a time already held stays after it, and a series far out of order too.
+TEST(EventDriverTest, TheSeriesIsPutInTimeOrderAsAStableSortPutsIt) {
+  const LiftLaw law = FarLaw();
+  const CamInput cam(law, 0.5e-3, RampKind::kLinear, 0.1);
+  TrainParameters p;
+  p.mass_kg = 1.0;
+  p.preload_N = 10.0;
+  p.seat_stiffness_N_m = 1e4;
+  const NeedleTrain train(cam, p, 1.0, 0.0);
+  const Phase seat{ContactMode{false, true}};
+  // Each point's lift tells it apart (and its place in the input).
+  const auto recorded = [&](const std::vector<double>& times) {
+    Recorder r(train, true);
+    r.Start(0.0, {-2e-3, 0.0, 0.0, 0.0}, seat);
+    for (size_t i = 0; i < times.size(); ++i)
+      r.Sample(times[i], {-1e-3 + 1e-6 * static_cast<double>(i), 0.0, 0.0, 0.0}, seat);
+    r.Finish(1.0, {-1e-3, 0.0, 0.0, 0.0}, seat);
+    return r.series();
+  };
+  const auto expected = [&](const std::vector<double>& times) {
+    std::vector<std::pair<double, double>> v{{0.0, -2e-3}};
+    for (size_t i = 0; i < times.size(); ++i)
+      v.push_back({times[i], -1e-3 + 1e-6 * static_cast<double>(i)});
+    std::stable_sort(v.begin(), v.end(), [](auto& a, auto& b) { return a.first < b.first; });
+    v.push_back({1.0, -1e-3});
+    return v;
+  };
+  std::vector<double> steps;  // steps of three samples and an end, an extreme located after
+  for (int k = 0; k < 50; ++k) {
+    const double t0 = 0.01 * (k + 1);
+    for (double f : {0.25, 0.5, 0.75, 1.0}) steps.push_back(t0 + 0.01 * f);
+    steps.push_back(t0 + 0.01 * (k % 2 ? 0.6 : 0.5));  // one between, one at a sample's time
+  }
+  std::vector<double> reversed(steps.rbegin(), steps.rend());  // the fallback's
+  for (const std::vector<double>& times : {steps, reversed}) {
+    const std::vector<SeriesPoint> got = recorded(times);
+    const auto want = expected(times);
+    ASSERT_EQ(got.size(), want.size());
+    for (size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got[i].time_s, want[i].first) << i;
+      EXPECT_EQ(got[i].lift_m, want[i].second) << i;
+    }
+  }
+}
+
 TEST(EventDriverTest, TheLeastForceAndTheLargestGapIncludeTheEdgeAndTheEndEvent) {
   const LiftLaw law = FarLaw();  // 1 mm over 1.0 … 1.4 rad
   TrainParameters p;
