@@ -132,16 +132,25 @@ TEST(EventDriverTest, ANeedleRingingDownOnItsSeatTakesFewPieces) {
   EXPECT_LT(train.EnergyResidual(x0, stats[0].final_state, stats[0].final_time), 1e-12);
 }
 
+// A 1 kg needle on a 1e4 N/m seat, 10 N of preload, the cam far off (the Recorder's tests).
+struct SeatedTrain {
+  static TrainParameters Parameters() {
+    TrainParameters p;
+    p.mass_kg = 1.0;
+    p.preload_N = 10.0;
+    p.seat_stiffness_N_m = 1e4;
+    return p;
+  }
+  const LiftLaw law = FarLaw();
+  const CamInput cam{law, 0.5e-3, RampKind::kLinear, 0.1};
+  const NeedleTrain train{cam, Parameters(), 1.0, 0.0};
+};
+
 // Recorder::MayChange: a stretch may change the record exactly where one of its ranges reaches
 // past an extreme recorded so far, or a series is kept.
 TEST(EventDriverTest, AStretchMayChangeTheRecordOnlyPastItsExtremes) {
-  const LiftLaw law = FarLaw();
-  const CamInput cam(law, 0.5e-3, RampKind::kLinear, 0.1);
-  TrainParameters p;
-  p.mass_kg = 1.0;
-  p.preload_N = 10.0;
-  p.seat_stiffness_N_m = 1e4;
-  const NeedleTrain train(cam, p, 1.0, 0.0);
+  const SeatedTrain seated;
+  const NeedleTrain& train = seated.train;
   Recorder r(train, false);
   const Phase seat{ContactMode{false, true}};
   r.Start(0.0, {-2e-3, 0.0, 0.0, 0.0}, seat);  // 20 N on the seat
@@ -167,20 +176,12 @@ TEST(EventDriverTest, AStretchMayChangeTheRecordOnlyPastItsExtremes) {
   EXPECT_TRUE(series.MayChange(inside));
 }
 
-// Extremes include the event points and the window's edges (issue 51: the least contact force
-// missed its value at the 1 µm lift edge, 531.9 N reported against 501.37 N there; an episode's
-// largest gap missed its value at the end event, 0.0017110 mm true, 0.00011 reported).
 // The series comes out in time order as a stable sort leaves it: points recorded after later
 // ones (an extreme located inside a step, after the step's samples) move back past those only,
 // a point at a time already held stays after it, and a series far out of order too.
 TEST(EventDriverTest, TheSeriesIsPutInTimeOrderAsAStableSortPutsIt) {
-  const LiftLaw law = FarLaw();
-  const CamInput cam(law, 0.5e-3, RampKind::kLinear, 0.1);
-  TrainParameters p;
-  p.mass_kg = 1.0;
-  p.preload_N = 10.0;
-  p.seat_stiffness_N_m = 1e4;
-  const NeedleTrain train(cam, p, 1.0, 0.0);
+  const SeatedTrain seated;
+  const NeedleTrain& train = seated.train;
   const Phase seat{ContactMode{false, true}};
   // Each point's lift tells it apart (and its place in the input).
   const auto recorded = [&](const std::vector<double>& times) {
@@ -217,6 +218,9 @@ TEST(EventDriverTest, TheSeriesIsPutInTimeOrderAsAStableSortPutsIt) {
   }
 }
 
+// Extremes include the event points and the window's edges (issue 51: the least contact force
+// missed its value at the 1 µm lift edge, 531.9 N reported against 501.37 N there; an episode's
+// largest gap missed its value at the end event, 0.0017110 mm true, 0.00011 reported).
 TEST(EventDriverTest, TheLeastForceAndTheLargestGapIncludeTheEdgeAndTheEndEvent) {
   const LiftLaw law = FarLaw();  // 1 mm over 1.0 … 1.4 rad
   TrainParameters p;
