@@ -338,9 +338,14 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
     inside = SeekBreaks(given, std::max(EstimateNoiseRobust(x, y), rounding), kind, &c);
     if (c.corner) return c;  // refused by the caller
   }
+  // Dwells: a local fit's pieces meet them where they reach the dwell's lift.
+  std::vector<LiftDwell> dwells;
+  if (o.find_breaks && kind == SplineKind::kLocal && q)
+    dwells = SeekDwells(x, y, first, last, *q, kind, &inside);
   std::vector<double> at;
   for (const LiftBreak* b : inside) at.push_back(b->crank_rad);
   std::vector<double> cuts = at;  // the open lift's ends are junctions too (the seat)
+  for (const LiftDwell& d : dwells) cuts.insert(cuts.end(), {d.from_rad, d.to_rad});
   cuts.push_back(x[first]);
   cuts.push_back(x[last]);
   c.reading = ReadTable(x, y, first, last, cuts, o.resolution_m);
@@ -376,6 +381,13 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   const bool pieces_fit = kind == SplineKind::kNotAKnot || kind == SplineKind::kNatural ||
                           kind == SplineKind::kQuintic || kind == SplineKind::kLocal;
   std::string breaks = "ends at " + DegreeList({x[first], x[last]}) + " deg (the seat)";
+  if (!dwells.empty()) {
+    std::vector<double> spans;
+    for (const LiftDwell& d : dwells) spans.insert(spans.end(), {d.from_rad, d.to_rad});
+    breaks = std::to_string(dwells.size()) + (dwells.size() == 1 ? " dwell" : " dwells") +
+             " (readings at one lift from " + DegreeList(spans) +
+             " deg; the pieces beside meet each where they reach its lift), " + breaks;
+  }
   if (!at.empty()) {
     std::string found =
         std::to_string(at.size()) + " breaks found (s'' jumps at " + DegreeList(at) + " deg";
@@ -396,6 +408,7 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
           found + ", not used: \"" + SplineKindName(kind) + "\" cannot be built apart; " + breaks;
     }
   }
+  AddDwells(dwells, &c.law);
   c.reason = stated + what.str() + "; noise " + Mm(c.noise_m) + " mm (" + c.noise_source + "); " +
              breaks + ": " + SplineKindName(kind) + " fit of each piece from its own readings";
   return c;

@@ -217,6 +217,39 @@ struct LiftBreak {
 std::vector<LiftBreak> FindBreaks(const std::vector<double>& crank_rad,
                                   const std::vector<double>& lift_m, double sigma_m);
 
+/// Dwells of an exact or rounded table inside its open lift, readings [first, last]: runs of at
+/// least kDwellLeastReadings equal readings above 0, the readings beside each lower (a top) or
+/// higher, where one quintic fitted by least squares to the run and kDwellSide readings on each
+/// side misfits some reading by more than kDwellMisfits printed digits q (√12 `sigma_m`): a
+/// smooth top rounded flat fits (at most 1.14 q on 1349 such runs of harmonic, cycloidal, 3-4-5,
+/// 4-5-6-7, modified sine and trapezoid and cubic B-spline tops, 0.05-10 mm, 0.05-2°, to 1e-3 mm,
+/// 1e-4 mm or 9 decimals), a dwell between two s'' jumps does not; and where s'' jumps at one
+/// of its ends at least (a dwell its sides meet with s'' at 0 is read across as before: the
+/// pieces' one-sided ends overshot a trapezoidal law's ramp there). Increasing.
+std::vector<LiftDwell> FindDwells(const std::vector<double>& crank_rad,
+                                  const std::vector<double>& lift_m, size_t first, size_t last,
+                                  double sigma_m);
+/// The dwells a local fit of an exact or rounded table reads (ChooseLiftLaw): FindDwells' on its
+/// printed digit q, but those whose junctions were both found among `inside` (within a reading
+/// inside the run or two outside: the dwell's piece between them is its lift already) and those
+/// whose sides would keep fewer readings than a `kind` fit needs; the breaks found within two
+/// readings of a dwell kept are dropped from `inside` (its ends are its junctions).
+std::vector<LiftDwell> SeekDwells(const std::vector<double>& crank_rad,
+                                  const std::vector<double>& lift_m, size_t first, size_t last,
+                                  double q, SplineKind kind, std::vector<const LiftBreak*>* inside);
+/// `law` with `dwells`: each one's ends among its breaks (readings, not estimates), in order.
+void AddDwells(const std::vector<LiftDwell>& dwells, LiftLawOptions* law);
+/// FindDwells' least run, its readings either side, and its misfit in printed digits.
+constexpr size_t kDwellLeastReadings = 3;
+constexpr size_t kDwellSide = 4;
+constexpr double kDwellMisfits = 3.0;
+/// The readings of a dwell's side that tell whether s'' jumps where it meets the dwell, and the
+/// misfit ratio and the least s''(ξ), in h/β², that say it does (lib/lift_dwells.cc
+/// JumpsIntoDwell).
+constexpr size_t kJumpReadings = 8;
+constexpr double kJumpSquares = 4.0;
+constexpr double kJumpScale = 2.0;
+
 /// Junctions of an exact table too coarse for FindBreaks' lines of s'' (a harmonic rise over 30
 /// readings): at each reading the quintics fitted to the 7 readings ending there and the 7
 /// beginning there give s''; where they differ by kBreakOverSmooth times the median difference

@@ -2,16 +2,18 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "lib/lift_pieces.h"
 #include "lib/reading_kinks.h"
-#include "lib/spline_band.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -32,6 +34,10 @@ LiftTable BasuNormalCurve(double max_lift_m) {
 }
 
 namespace {
+
+using lift_pieces::BuildPieces;
+using lift_pieces::Foot;
+using lift_pieces::MoveNode;
 
 std::string Shown(double value) {  // as a stream writes it, 6 digits
   std::ostringstream out;
@@ -87,171 +93,6 @@ std::optional<double> FirstAbove(const PiecewisePolynomial& p, double level, boo
   return std::nullopt;
 }
 
-// How much of a piece's seat end (its first reading, `front`, or its last) a local fit leaves
-// out: a zero the lift leaves from (or returns to) between it and the next reading, where the
-// quintic through the next kLocalMinimumPoints readings misses that zero by more than twice the
-// rounding's bound on the two: that reading is the base circle's, not the law's. 0 where it
-// fits (the law starts on it) or the end is no seat.
-double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, double sigma,
-                bool front) {
-  const size_t n = x.size(), k = kLocalMinimumPoints;
-  if (n < 2 * k + 1) return 0.0;
-  const size_t seat = front ? 0 : n - 1;
-  if (y[seat] > 0.0) return 0.0;
-  Eigen::MatrixXd v(k, kLocalDegree + 1);
-  Eigen::VectorXd b(k);
-  const double h = std::abs(x[front ? 1 : n - 2] - x[seat]);
-  for (size_t r = 0; r < k; ++r) {
-    const size_t i = front ? 1 + r : n - 2 - r;
-    const double t = (x[i] - x[seat]) / h;
-    double power = 1.0;
-    for (int c = 0; c <= kLocalDegree; ++c, power *= t) v(r, c) = power;
-    b(r) = y[i];
-  }
-  // Its value at the seat, Σ g_i y_i, and that value's rounding bound √3 σ Σ|g_i| (the
-  // extrapolation amplifies it), plus the seat reading's own.
-  const Eigen::RowVectorXd g = v.completeOrthogonalDecomposition().pseudoInverse().row(0);
-  const double bound = std::sqrt(3.0) * sigma * (g.cwiseAbs().sum() + 1.0);
-  // Half a step: the trim leaves the seat reading out and keeps its neighbour whatever the
-  // round-off of x.back() − trim.
-  return std::abs(g.dot(b) - y[seat]) > 2.0 * bound ? 0.5 * h : 0.0;
-}
-
-// Where `law` leaves the seat between the seat reading at `seat` and the next at `next` (either
-// side of it): where it crosses zero, or else touches it (its least value there).
-double Foot(const PiecewisePolynomial& law, double seat, double next) {
-  const auto s = [&](double t) { return law.Evaluate(t); };
-  const auto zero_between = [&](double from, double to) {
-    boost::uintmax_t iterations = 100;
-    const auto [l, r] = boost::math::tools::toms748_solve(
-        s, std::min(from, to), std::max(from, to), boost::math::tools::eps_tolerance<double>(52),
-        iterations);
-    return 0.5 * (l + r);
-  };
-  if (s(seat) <= 0.0 && s(next) > 0.0) return zero_between(seat, next);
-  const auto [lo, hi] = std::minmax(seat, next);
-  const double least = boost::math::tools::brent_find_minima(s, lo, hi, 52).first;
-  // A dip below the seat: the law leaves it where it comes back up through zero.
-  return s(least) < 0.0 && s(next) > 0.0 ? zero_between(least, next) : least;
-}
-
-// `node`, put at `to` with the law's s, s' and s'' there.
-void MoveNode(const PiecewisePolynomial& law, double to, LocalNode* node) {
-  node->x = to;
-  for (int k = 0; k < 3; ++k) node->s[k] = law.Evaluate(to, k);
-}
-
-// A local fit's trims of one piece (x, y): a found break's readings nearer than its uncertainty
-// belong to either side's law; so does a seat reading at the open lift's first or last end
-// (SeatTrim): the rise begins anywhere up to the next reading; and a reading added at a break,
-// its lift an estimate (break_estimated). None for the other kinds.
-LocalTrim PieceTrim(const std::vector<double>& x, const std::vector<double>& y,
-                    const LiftLawOptions& options, size_t piece, size_t pieces) {
-  if (options.spline.kind != SplineKind::kLocal) return {};
-  const double u = options.break_uncertainty_rad, sigma = options.spline.sigma;
-  // An estimated break reading: the least trim that leaves it out (the next reading is a
-  // grid step on).
-  const auto estimated = [&](size_t b) {
-    const bool e = b < options.break_estimated.size() && options.break_estimated[b];
-    return std::max(u, e ? 1e-9 * (x.back() - x.front()) : 0.0);
-  };
-  return {piece == 0 ? SeatTrim(x, y, sigma, true) : estimated(piece - 1),
-          piece + 1 == pieces ? SeatTrim(x, y, sigma, false) : estimated(piece)};
-}
-
-// The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing
-// spline's or an interpolating spline's: lib/spline_band.h), are added to `nodes`.
-PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<double>& y,
-                               const SplineOptions& options, LiftLawNodes* nodes,
-                               LocalTrim trim = {}, bool* trimmed = nullptr) {
-  auto keep = [&](LocalFit fit) {
-    nodes->ready.insert(nodes->ready.end(), fit.nodes.begin(), fit.nodes.end());
-    return std::move(fit.law);
-  };
-  if (options.kind == SplineKind::kLocal) {
-    CheckSplineInputs(x, y, options);
-    LocalFit fit = FitLocal(x, y, options.sigma, options.quantized, trim);
-    if (trimmed) *trimmed = fit.trimmed;
-    AddLocalFitBias(x, y, options, &fit, trim);
-    if (options.quantized) AddReadingKinks(x, y, options.sigma, trim, &fit);
-    return keep(std::move(fit));
-  }
-  if (options.kind == SplineKind::kSmoothing) {
-    CheckSplineInputs(x, y, options);
-    return keep(BuildSmoothingFit(x, y, options));
-  }
-  PiecewisePolynomial law = BuildSpline(x, y, options);
-  nodes->deferred.push_back(
-      [x, y, options, law] { return InterpolationNodes(x, y, options, law); });
-  return law;
-}
-
-// Piece `piece` of `pieces` (BuildPiece with its PieceTrim); a first or last piece records
-// whether its fit left its seat reading out (LiftLawNodes::seat_left_out).
-PiecewisePolynomial BuildPart(const std::vector<double>& x, const std::vector<double>& y,
-                              const LiftLawOptions& options, size_t piece, size_t pieces,
-                              LiftLawNodes* nodes) {
-  const LocalTrim trim = PieceTrim(x, y, options, piece, pieces);
-  bool trimmed = false;
-  PiecewisePolynomial part = BuildPiece(x, y, options.spline, nodes, trim, &trimmed);
-  if (piece == 0) nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
-  if (piece + 1 == pieces) nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
-  return part;
-}
-
-// The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
-// strictly inside) and joined at the breaks, where s'' (and s' by the pieces' error) jump: C⁰
-// for the interpolating kinds; a local fit's two ends are each piece's own estimate there (its
-// readings within the break's uncertainty left out), apart by a few printed digits.
-PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<double>& y,
-                                const LiftLawOptions& options, LiftLawNodes* nodes) {
-  if (options.breaks_rad.empty()) return BuildPart(x, y, options, 0, 1, nodes);
-  std::vector<size_t> cuts{0};
-  for (size_t b = 0; b < options.breaks_rad.size(); ++b) {
-    const double at = options.breaks_rad[b];
-    const auto it = std::find_if(x.begin(), x.end(), [&](double xi) {
-      return std::abs(xi - at) <= 1e-9 * std::max(1.0, std::abs(at));
-    });
-    if (it == x.end() || it == x.begin() || it == x.end() - 1) {
-      throw std::invalid_argument(
-          "break " + std::to_string(b) + " (" + Deg(at) +
-          "°) must be an angle of the table strictly inside the open lift (" + Deg(x.front()) +
-          "° to " + Deg(x.back()) + "°)");
-    }
-    const size_t i = static_cast<size_t>(it - x.begin());
-    if (i <= cuts.back()) {
-      throw std::invalid_argument("break " + std::to_string(b) + " (" + Deg(at) +
-                                  "°) must come after the one before it");
-    }
-    cuts.push_back(i);
-  }
-  cuts.push_back(x.size() - 1);
-  std::vector<double> breaks{x.front()};
-  std::vector<Eigen::MatrixXd> parts;
-  Eigen::Index rows = 0;
-  for (size_t p = 0; p + 1 < cuts.size(); ++p) {
-    const std::vector<double> px(x.begin() + cuts[p], x.begin() + cuts[p + 1] + 1);
-    const std::vector<double> py(y.begin() + cuts[p], y.begin() + cuts[p + 1] + 1);
-    if (static_cast<int>(px.size()) < MinimumPoints(options.spline.kind)) {
-      throw std::invalid_argument(
-          "the piece " + Deg(px.front()) + "° to " + Deg(px.back()) + "° between breaks has " +
-          std::to_string(px.size()) + " points; \"" + SplineKindName(options.spline.kind) +
-          "\" needs at least " + std::to_string(MinimumPoints(options.spline.kind)));
-    }
-    const PiecewisePolynomial part = BuildPart(px, py, options, p, cuts.size() - 1, nodes);
-    breaks.insert(breaks.end(), part.breaks().begin() + 1, part.breaks().end());
-    rows += part.coefficients().rows();
-    parts.push_back(part.coefficients());
-  }
-  Eigen::MatrixXd c(rows, parts.front().cols());
-  Eigen::Index row = 0;
-  for (const Eigen::MatrixXd& part : parts) {
-    c.block(row, 0, part.rows(), part.cols()) = part;
-    row += part.rows();
-  }
-  return PiecewisePolynomial(std::move(breaks), std::move(c), 0);
-}
-
 // The spline of the table and the open lift it detects (file comment of lift_law.h): for
 // measured data the whole table's fit and its crossings of the closed level; for an exact table
 // the fit of its open part, from the last zero before the rise to the first zero after the fall.
@@ -303,12 +144,13 @@ PiecewisePolynomial FitOpenLift(const LiftTable& table, const LiftLawOptions& op
         std::minmax_element(nodes->ready.begin(), nodes->ready.end(),
                             [](const LocalNode& a, const LocalNode& b) { return a.x < b.x; });
     const size_t n = x.size();
+    const auto lift = [&law](double t) { return law.Evaluate(t); };
     if (nodes->seat_left_out[0]) {
-      *open_rad = Foot(law, x[0], x[1]);
+      *open_rad = Foot(lift, x[0], x[1]);
       MoveNode(law, *open_rad, &*front);
     }
     if (nodes->seat_left_out[1]) {
-      *close_rad = Foot(law, x[n - 1], x[n - 2]);
+      *close_rad = Foot(lift, x[n - 1], x[n - 2]);
       MoveNode(law, *close_rad, &*back);
     }
   }

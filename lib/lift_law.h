@@ -46,6 +46,14 @@ struct ExtremumBand {
 };
 
 /// How a lift law is built from its table. Every field has a default.
+/// A dwell inside the open lift (lib/lift_data.h FindDwells): the table's readings from
+/// from_rad to to_rad, all at lift_m, the readings beside it lower (a top) or higher.
+struct LiftDwell {
+  double from_rad = 0.0, to_rad = 0.0;  ///< its first and last reading, rad
+  double lift_m = 0.0;                  ///< its lift, m
+  bool top = true;                      ///< the readings beside it lower
+};
+
 struct LiftLawOptions {
   /// The spline and its options.
   SplineOptions spline;
@@ -72,6 +80,10 @@ struct LiftLawOptions {
   /// between readings: the sides' cubics' mean there), left out of a local fit's windows, each
   /// piece's end there its own; empty: none.
   std::vector<bool> break_estimated;
+  /// Dwells, each one's first and last reading among breaks_rad: the law is the dwell's lift
+  /// from where the piece before it reaches that lift (between the dwell's first reading and
+  /// the one before) to where the piece after it leaves it. A local fit's only.
+  std::vector<LiftDwell> dwells;
 };
 
 /// Internal to LiftLaw: a fit's nodes, ready (a local fit's, a smoothing spline's) or deferred

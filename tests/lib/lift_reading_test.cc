@@ -1204,5 +1204,68 @@ TEST(LiftReadingTest, AKnotOfACubicBSplineIsNoJunction) {
   }
 }
 
+// A double-harmonic rise into an 8° dwell and a return (s'' jumps at both of the dwell's ends,
+// the deceleration's peak at the first), exported every 2° off the law's grid: four readings of
+// the dwell, each junction between two readings. Read as one smooth piece across the dwell (a
+// break found in its middle), the law rose to 2.545 mm there and a_max came out +336 % (a new
+// user's trial); read as a dwell, the pieces beside it meet its lift where they reach it.
+TEST(LiftReadingTest, ADwellBetweenTwoJumpsIsReadAsOne) {
+  const Law law{2.5, 30.0, 8.0, 45.0, DoubleHarmonic};
+  const LiftTable t = Export(law, 2.0, 0.0, 15.3);
+  const Read r = ReadExport(law, t);
+  ASSERT_EQ(r.choice.law.dwells.size(), 1u) << r.choice.reason;
+  EXPECT_NEAR(r.choice.law.dwells[0].from_rad / kDeg, 30.7, 1e-9);
+  EXPECT_NEAR(r.choice.law.dwells[0].to_rad / kDeg, 36.7, 1e-9);
+  const LiftLaw fitted(r.choice.table, r.choice.law);
+  EXPECT_LE(fitted.Max(0).value, 2.5e-3 + 1e-12) << "the dwell's lift is the top";
+  EXPECT_LT(std::abs(r.max_error), 0.01) << r.choice.reason;
+  EXPECT_TRUE(r.max_in_band) << r.choice.reason;
+  EXPECT_TRUE(r.min_in_band) << "a_min off by " << r.min_error << "; " << r.choice.reason;
+  // Where the law leaves the dwell: at the return's foot, within a tenth of a step of 38°.
+  const double end = (law.rise_deg + law.dwell_deg) * kDeg;
+  EXPECT_NEAR(fitted.Lift(end + 0.2 * kDeg), law.At(38.2, 0) * 1e-3, 2e-7);
+}
+
+// A smooth top rounded flat over a few readings is no dwell (FindDwells: one quintic through
+// the run and the readings beside it fits to the rounding); nor is a dwell its sides meet with
+// s'' at 0 (a cubic B-spline's, whose last knot interval read every 1.5° misfits a quintic with
+// s''(ξ) = 0 15 000 times one with s''(ξ) free, that free s'' 0.02 h/β² of the random trial's
+// law 102: read as a dwell, its a_min band left the truth out); a dwell's run between jumps is
+// one.
+TEST(LiftReadingTest, ASmoothTopRoundedFlatIsNoDwell) {
+  const Law smooth{0.3, 60.0, 0.0, 60.0, Harmonic};  // flat to 1e-3 mm over ±1.5° of its top
+  const LiftTable a = Export(smooth, 0.5, 1e-3);
+  size_t run = 0;
+  for (size_t i = 1; i < a.lift_m.size(); ++i)
+    run += a.lift_m[i] == 0.3e-3 && a.lift_m[i - 1] == 0.3e-3;
+  ASSERT_GE(run, 3u);  // a flat run the search looks at
+  EXPECT_TRUE(
+      FindDwells(a.crank_rad, a.lift_m, 0, a.lift_m.size() - 1, 1e-6 / std::sqrt(12.0)).empty());
+  // The same top every 0.25° to 1e-4 mm: three readings flat, its sides meeting them with s'' at
+  // its peak (a jump's shape, were it a dwell); the quintic through them fits.
+  const LiftTable fine = Export(smooth, 0.25, 1e-4);
+  run = 0;
+  for (size_t i = 1; i < fine.lift_m.size(); ++i)
+    run += fine.lift_m[i] == 0.3e-3 && fine.lift_m[i - 1] == 0.3e-3;
+  ASSERT_EQ(run, 2u);  // pairs of equal readings: three in a row
+  EXPECT_TRUE(
+      FindDwells(fine.crank_rad, fine.lift_m, 0, fine.lift_m.size() - 1, 1e-7 / std::sqrt(12.0))
+          .empty());
+  const Knots knots{0.0, 0.232661, 0.295145, 0.424877, 0.5, 0.575123, 0.704855, 0.767339, 1.0};
+  const Law knotted{4.030737, 25.328906, 5.871267, 64.007705, PiecewiseLinearAcceleration(knots)};
+  const LiftTable c = Export(knotted, 1.5, 0.0, 10.0);
+  EXPECT_TRUE(
+      FindDwells(c.crank_rad, c.lift_m, 0, c.lift_m.size() - 1, 1e-9 / std::sqrt(12.0)).empty());
+  const Law dwell{2.5, 30.0, 8.0, 45.0, DoubleHarmonic};
+  const LiftTable b = Export(dwell, 1.0, 1e-4, 0.5);
+  const std::vector<LiftDwell> d =
+      FindDwells(b.crank_rad, b.lift_m, 0, b.lift_m.size() - 1, 1e-7 / std::sqrt(12.0));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_TRUE(d[0].top);
+  EXPECT_EQ(d[0].lift_m, 2.5e-3);
+  EXPECT_NEAR(d[0].from_rad / kDeg, 30.5, 1e-9);  // its first and last reading on the dwell
+  EXPECT_NEAR(d[0].to_rad / kDeg, 37.5, 1e-9);
+}
+
 }  // namespace
 }  // namespace needle
