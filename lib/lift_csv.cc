@@ -1,5 +1,6 @@
 // Lift tables from CSV files (lib/lift_data.h).
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -140,7 +141,12 @@ CsvColumns ReadHeader(const std::vector<std::string>& f, const std::string& path
   CsvColumns c;
   c.count = static_cast<int>(f.size());
   for (int k = 0; k < c.count; ++k) {
-    const std::string& name = f[k];
+    // Names as a spreadsheet may case them (Crank_Deg); an empty last one is a trailing
+    // separator's, its column read by none (every row ends with the same empty field).
+    std::string name = f[k];
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (name.empty() && k + 1 == c.count && k > 0) continue;
     if (name == "crank_deg" || name == "cam_deg") {
       if (c.angle >= 0) CsvFail(path, line, k + 1, "two angle columns; keep one");
       c.angle = k;
@@ -159,11 +165,11 @@ CsvColumns ReadHeader(const std::vector<std::string>& f, const std::string& path
       c.time_scale = name == "time_ms" ? 1e-3 : 1.0;
     } else if (name == "crank" || name == "cam" || name == "lift" || name == "angle") {
       CsvFail(path, line, k + 1,
-              "column '" + name + "' needs a unit: " +
+              "column '" + f[k] + "' needs a unit: " +
                   (name == "lift" ? "lift_mm, lift_um or lift_in" : "crank_deg or cam_deg"));
     } else {
       CsvFail(path, line, k + 1,
-              "unknown column '" + name +
+              "unknown column '" + f[k] +
                   "'; expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, "
                   "lift_in)" +
                   (with_time ? std::string(", and optionally time_s (or time_ms)") : ""));
@@ -216,8 +222,13 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
   CsvColumns c;
   LiftTable t;
   std::vector<std::string_view> f;
-  for (size_t at = 0; at < all.size();) {  // the lines, as std::getline splits them
-    const size_t end = std::min(all.find('\n', at), all.size());
+  // The lines, as std::getline splits them; a file whose lines end in CR alone (classic Mac
+  // OS, some loggers) at each CR.
+  const char eol =
+      all.find('\n') == std::string_view::npos && all.find('\r') != std::string_view::npos ? '\r'
+                                                                                           : '\n';
+  for (size_t at = 0; at < all.size();) {
+    const size_t end = std::min(all.find(eol, at), all.size());
     const std::string_view raw = all.substr(at, end - at);
     at = end + 1;
     ++line;

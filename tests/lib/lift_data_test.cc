@@ -688,6 +688,27 @@ TEST(LiftCsvTest, SpreadsheetSeparators) {
             "m.csv:2:2: '1,2,3' is not a number (column lift_mm)");
 }
 
+// Exports a new user's trial refused: lines ended by CR alone ("unknown column
+// 'lift_mm\r-15.0'"), a separator after every field ("unknown column ''"), and a header as a
+// spreadsheet cases it (Crank_Deg). Each reads as the plain table does.
+TEST(LiftCsvTest, SpreadsheetLineEndsTrailingSeparatorsAndCasedNames) {
+  const LiftTable plain =
+      ParseLiftCsv("crank_deg,lift_mm\n-15.0,0\n0,1.25\n15,0\n", "m.csv", EngineCycle::kFourStroke);
+  for (const std::string text : {"crank_deg,lift_mm\r-15.0,0\r0,1.25\r15,0\r",
+                                 "crank_deg,lift_mm,\n-15.0,0,\n0,1.25,\n15,0,\n",
+                                 "Crank_Deg,LIFT_MM\r\n-15.0,0\r\n0,1.25\r\n15,0\r\n"}) {
+    SCOPED_TRACE(text);
+    const LiftTable t = ParseLiftCsv(text, "m.csv", EngineCycle::kFourStroke);
+    EXPECT_EQ(t.crank_rad, plain.crank_rad);
+    EXPECT_EQ(t.lift_m, plain.lift_m);
+  }
+  // A trailing separator on the header alone leaves a column the rows lack.
+  EXPECT_EQ(CsvError("crank_deg,lift_mm,\n0,0\n1,0.5\n"), "m.csv:2: expected 3 fields, got 2");
+  EXPECT_EQ(CsvError("crank_deg,,lift_mm\n0,,0\n1,,0.5\n"),
+            "m.csv:1:2: unknown column ''; expected a header of crank_deg (or cam_deg) and lift_mm "
+            "(or lift_um, lift_in)");
+}
+
 // The fast reader (std::from_chars) and strtod read every number form alike: a sign '+', a
 // leading or trailing point, exponents, hex and a zero; and an underflow is refused as before.
 TEST(LiftCsvTest, NumberFormsReadAsStrtodReadsThem) {
