@@ -42,6 +42,21 @@ std::string ShortJumpNote(const SimulationResult& run) {
          " deg that n_dyn counts: any jump fails at the rated speed)";
 }
 
+std::vector<std::string> TableEndFailures(const LiftLaw& law, double top_m) {
+  std::vector<std::string> failures;
+  for (const bool end : {false, true}) {
+    const double th = end ? law.end_rad() : law.start_rad(), s = law.Lift(th);
+    if (top_m > 0.0 && s > kOpenEndFraction * top_m) {
+      failures.push_back(std::string("lift table: undecided, it ") + (end ? "ends" : "starts") +
+                         " at " + Fixed(s * 1e3, 3) + " mm (" + Fixed(100 * s / top_m, 1) +
+                         " % of its largest lift) at " + Fixed(th / kDeg, 2) +
+                         " deg, not on the seat: the " + (end ? "closing" : "opening") +
+                         " is not in it; extend the table to where the lift is zero");
+    }
+  }
+  return failures;
+}
+
 bool SurgeShowsHarm(const LimitRow& force, const LimitRow& jump, const LimitRow& stress,
                     const LimitRow& gap) {
   return force.verdict == "fail" || jump.verdict == "fail" || stress.verdict == "fail" ||
@@ -118,17 +133,8 @@ namespace {
 // lash, the seating, a lift-off near the end) to the ramps' extrapolation: the check passed a
 // table cut at half its lift (issue 51's trial). Undecided, with what to change.
 void CheckTableEnds(const LiftLaw& law, CheckResult& r) {
-  const auto fail = [&r](const std::string& what) { r.failing.push_back(what); };
-  const double top = r.kinematics.max_lift_m;
-  for (const bool end : {false, true}) {
-    const double th = end ? law.end_rad() : law.start_rad(), s = law.Lift(th);
-    if (top > 0.0 && s > kOpenEndFraction * top) {
-      fail(std::string("lift table: undecided, it ") + (end ? "ends" : "starts") + " at " +
-           Fixed(s * 1e3, 3) + " mm (" + Fixed(100 * s / top, 1) + " % of its largest lift) at " +
-           Fixed(th / kDeg, 2) + " deg, not on the seat: the " + (end ? "closing" : "opening") +
-           " is not in it; extend the table to where the lift is zero");
-    }
-  }
+  for (std::string& line : TableEndFailures(law, r.kinematics.max_lift_m))
+    r.failing.push_back(std::move(line));
 }
 
 // "the case has no [needle] and [spring] sections": what a part of the check lacks.
