@@ -132,6 +132,7 @@ char Separator(const std::string& header, const std::string& path, int line) {
 // from each column's unit to SI.
 struct CsvColumns {
   int angle = -1, lift = -1, time = -1, count = 0;
+  bool empty_last = false;  // a trailing separator's empty last column
   double angle_scale = 0.0, lift_scale = 0.0, time_scale = 0.0;
   std::string angle_name, lift_name, time_name;
 };
@@ -146,7 +147,10 @@ CsvColumns ReadHeader(const std::vector<std::string>& f, const std::string& path
     std::string name = f[k];
     std::transform(name.begin(), name.end(), name.begin(),
                    [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    if (name.empty() && k + 1 == c.count && k > 0) continue;
+    if (name.empty() && k + 1 == c.count && k > 0) {
+      c.empty_last = true;
+      continue;
+    }
     if (name == "crank_deg" || name == "cam_deg") {
       if (c.angle >= 0) CsvFail(path, line, k + 1, "two angle columns; keep one");
       c.angle = k;
@@ -216,19 +220,28 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
     CsvFail(path, 1, 0,
             "the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8");
   }
-  const std::string_view all = std::string_view(text).substr(bom ? 3 : 0);
+  const std::string_view text_all = std::string_view(text).substr(bom ? 3 : 0);
   int line = 0, last_line = 0;
   char separator = ',';
   CsvColumns c;
   LiftTable t;
   std::vector<std::string_view> f;
-  // The lines, as std::getline splits them; a file whose lines end in CR alone (classic Mac
-  // OS, some loggers) at each CR.
-  const char eol =
-      all.find('\n') == std::string_view::npos && all.find('\r') != std::string_view::npos ? '\r'
-                                                                                           : '\n';
+  // The lines, as std::getline splits them; a line ends at LF, CRLF or a CR alone (classic Mac
+  // OS, some loggers; a file of such lines with one LF at its end too).
+  std::string unified;
+  std::string_view all = text_all;
+  if (all.find('\r') != std::string_view::npos) {
+    unified.reserve(all.size());
+    for (size_t k = 0; k < all.size(); ++k) {
+      if (all[k] != '\r')
+        unified.push_back(all[k]);
+      else if (k + 1 == all.size() || all[k + 1] != '\n')
+        unified.push_back('\n');
+    }
+    all = unified;
+  }
   for (size_t at = 0; at < all.size();) {
-    const size_t end = std::min(all.find(eol, at), all.size());
+    const size_t end = std::min(all.find('\n', at), all.size());
     const std::string_view raw = all.substr(at, end - at);
     at = end + 1;
     ++line;
@@ -245,6 +258,12 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
     if (static_cast<int>(f.size()) != c.count) {
       CsvFail(path, line, 0,
               "expected " + std::to_string(c.count) + " fields, got " + std::to_string(f.size()));
+    }
+    if (c.empty_last && !Trim(f.back()).empty()) {
+      CsvFail(path, line, c.count,
+              "'" + std::string(f.back()) +
+                  "' under the header's empty last column (a trailing separator); name the "
+                  "column or leave the field empty");
     }
     double v[3] = {0.0, 0.0, 0.0};
     const int cols[3] = {c.angle, c.lift, c.time};

@@ -232,7 +232,7 @@ std::vector<LiftDwell> FindDwells(const std::vector<double>& crank_rad,
 /// The dwells a local fit of an exact or rounded table reads (ChooseLiftLaw): FindDwells' on its
 /// printed digit q, but those whose junctions were both found among `inside` (within a reading
 /// inside the run or two outside: the dwell's piece between them is its lift already) and those
-/// whose sides would keep fewer readings than a `kind` fit needs; the breaks found within two
+/// whose sides would keep fewer than kDwellSideReadings readings; the breaks found within two
 /// readings of a dwell kept are dropped from `inside` (its ends are its junctions).
 std::vector<LiftDwell> SeekDwells(const std::vector<double>& crank_rad,
                                   const std::vector<double>& lift_m, size_t first, size_t last,
@@ -243,6 +243,9 @@ void AddDwells(const std::vector<LiftDwell>& dwells, LiftLawOptions* law);
 constexpr size_t kDwellLeastReadings = 3;
 constexpr size_t kDwellSide = 4;
 constexpr double kDwellMisfits = 3.0;
+/// The least readings of each side SeekDwells takes a dwell with: enough for DwellTrim (lib/
+/// lift_pieces.cc) to leave the dwell's reading out of the side's fit.
+constexpr size_t kDwellSideReadings = 2 * kLocalMinimumPoints + 2;
 /// The readings of a dwell's side that tell whether s'' jumps where it meets the dwell, and the
 /// misfit ratio and the least s''(ξ), in h/β², that say it does (lib/lift_dwells.cc
 /// JumpsIntoDwell).

@@ -40,8 +40,8 @@ bool QuinticMisfits(const std::vector<double>& x, const std::vector<double>& y, 
 // 000 times the first, its s''(ξ) 0.02 to 1.1 h/β²).
 bool JumpsIntoDwell(const std::vector<double>& x, const std::vector<double>& y, size_t nearest,
                     size_t end, size_t far, double level, double sigma) {
-  const bool before = nearest < end;
-  if (before ? nearest + 1 < kJumpReadings : nearest + kJumpReadings > y.size()) return false;
+  const bool before = nearest < end;  // the side's readings [far, nearest], or [nearest, far]
+  if (before ? nearest + 1 < far + kJumpReadings : nearest + kJumpReadings > far + 1) return false;
   const size_t from = before ? nearest + 1 - kJumpReadings : nearest;
   const double step = x[end] - x[nearest];
   double free = std::numeric_limits<double>::infinity(), flat = free, jump = 0.0;
@@ -105,15 +105,16 @@ std::vector<LiftDwell> SeekDwells(const std::vector<double>& x, const std::vecto
     const size_t j =
         static_cast<size_t>(std::lower_bound(x.begin(), x.end(), d.to_rad) - x.begin());
     const double lo = x[std::max(first, i - std::min<size_t>(2, i))], hi = x[std::min(last, j + 2)];
-    // Junctions found at both its ends (within a reading inside it, two outside) hold it
-    // already: the dwell's piece between them is its lift (a trapezoidal law's dwell, its s''
-    // ramping to 0 just before: pieces cut at its readings overshot there by 30 %).
+    // Junctions found at both its ends (each at its end reading or up to two outside; one
+    // inside the run is none of them) hold it already: the dwell's piece between them is its
+    // lift (a trapezoidal law's dwell, its s'' ramping to 0 just before: pieces cut at its
+    // readings overshot there by 30 %).
     const auto found_near = [&](double from, double to) {
       return std::any_of(inside->begin(), inside->end(), [&](const LiftBreak* b) {
         return b->crank_rad >= from && b->crank_rad <= to;
       });
     };
-    if (found_near(lo, x[std::min(i + 1, j)]) && found_near(x[std::max(j - 1, i)], hi)) continue;
+    if (found_near(lo, d.from_rad) && found_near(d.to_rad, hi)) continue;
     std::vector<const LiftBreak*> rest;
     for (const LiftBreak* b : *inside)
       if (b->crank_rad < lo || b->crank_rad > hi) rest.push_back(b);
@@ -127,9 +128,11 @@ std::vector<LiftDwell> SeekDwells(const std::vector<double>& x, const std::vecto
     const auto readings = [&](double from, double to) {
       return std::count_if(x.begin(), x.end(), [&](double t) { return t >= from && t <= to; });
     };
-    if (readings(before, d.from_rad) < MinimumPoints(kind) ||
-        readings(d.to_rad, after) < MinimumPoints(kind))
-      continue;
+    // Each side long enough for its fit to leave the dwell's reading out (DwellTrim): a shorter
+    // one was forced through it, overshot the dwell and met it with a corner.
+    const auto least =
+        static_cast<std::ptrdiff_t>(std::max<size_t>(kDwellSideReadings, MinimumPoints(kind)));
+    if (readings(before, d.from_rad) < least || readings(d.to_rad, after) < least) continue;
     *inside = rest;
     kept.push_back(d);
   }
@@ -140,7 +143,7 @@ void AddDwells(const std::vector<LiftDwell>& dwells, LiftLawOptions* law) {
   if (dwells.empty()) return;
   std::vector<std::pair<double, bool>> all;
   for (size_t k = 0; k < law->breaks_rad.size(); ++k)
-    all.push_back({law->breaks_rad[k], law->break_estimated[k]});
+    all.push_back({law->breaks_rad[k], k < law->break_estimated.size() && law->break_estimated[k]});
   for (const LiftDwell& d : dwells) all.insert(all.end(), {{d.from_rad, false}, {d.to_rad, false}});
   std::sort(all.begin(), all.end());
   law->breaks_rad.clear();

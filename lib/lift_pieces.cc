@@ -72,7 +72,8 @@ double SeatTrim(const std::vector<double>& x, const std::vector<double>& y, doub
 // the readings as level − y) or below it, where the law's own extrapolation error counts too (an
 // exact table's law, not a polynomial, misses its next reading by far more than its rounding):
 // the dwell's reading is left out where it misses it by more than twice the rounding's bound
-// plus four times the same quintic's miss of the reading before it, on the law.
+// plus four times the miss of the reading before it by the quintic through the readings before
+// that, on the law.
 double DwellTrim(const std::vector<double>& x, const std::vector<double>& y, double sigma,
                  bool front, double level, double sign) {
   const size_t n = x.size(), k = kLocalMinimumPoints;
@@ -218,7 +219,7 @@ struct BuiltPiece {
 
 // The dwell `p` is, at its lift between where the pieces beside it reach the lift: each ends
 // at the dwell's reading, or, where its fit left that reading out (the dwell's, not its own:
-// SeatTrim), where its law reaches the lift between that reading and the one before (Foot).
+// DwellTrim), where its law reaches the lift between that reading and the one before (Foot).
 // Their laws are cut there and their end nodes moved there.
 void JoinDwell(const std::vector<double>& x, const std::vector<size_t>& cuts, size_t p,
                std::vector<BuiltPiece>& parts, LiftLawNodes* nodes) {

@@ -276,9 +276,9 @@ void Rows::push_back(std::initializer_list<double> row) {
 
 Rows LineEnvelope(const Rows& rows, double x_from, double x_to, int columns) {
   const size_t width = rows.width();
-  if (width < 2 || !std::isfinite(x_from) || !std::isfinite(x_to) || !(x_to > x_from) ||
-      columns < 1)
-    return rows;
+  if (width < 2 || width > 32 || !std::isfinite(x_from) || !std::isfinite(x_to) ||
+      !(x_to > x_from) || columns < 1)
+    return rows;  // (a row's finite numbers are a bit each of 32)
   const double per_x = columns / (x_to - x_from);
   // Which of a row's numbers are finite, a bit each: a run shares its pattern (a curve with a
   // gap keeps the rows at the gap's ends).

@@ -694,14 +694,20 @@ TEST(LiftCsvTest, SpreadsheetSeparators) {
 TEST(LiftCsvTest, SpreadsheetLineEndsTrailingSeparatorsAndCasedNames) {
   const LiftTable plain =
       ParseLiftCsv("crank_deg,lift_mm\n-15.0,0\n0,1.25\n15,0\n", "m.csv", EngineCycle::kFourStroke);
-  for (const std::string text : {"crank_deg,lift_mm\r-15.0,0\r0,1.25\r15,0\r",
-                                 "crank_deg,lift_mm,\n-15.0,0,\n0,1.25,\n15,0,\n",
-                                 "Crank_Deg,LIFT_MM\r\n-15.0,0\r\n0,1.25\r\n15,0\r\n"}) {
+  for (const std::string text :
+       {"crank_deg,lift_mm\r-15.0,0\r0,1.25\r15,0\r",
+        "crank_deg,lift_mm,\n-15.0,0,\n0,1.25,\n15,0,\n",
+        "Crank_Deg,LIFT_MM\r\n-15.0,0\r\n0,1.25\r\n15,0\r\n",
+        "crank_deg,lift_mm\r-15.0,0\r0,1.25\r15,0\n"}) {  // CR lines, one LF at the end
     SCOPED_TRACE(text);
     const LiftTable t = ParseLiftCsv(text, "m.csv", EngineCycle::kFourStroke);
     EXPECT_EQ(t.crank_rad, plain.crank_rad);
     EXPECT_EQ(t.lift_m, plain.lift_m);
   }
+  // A value under the empty last column is no trailing separator's.
+  EXPECT_EQ(CsvError("crank_deg,lift_mm,\n0,0,\n1,0.5,99\n"),
+            "m.csv:3:3: '99' under the header's empty last column (a trailing separator); name "
+            "the column or leave the field empty");
   // A trailing separator on the header alone leaves a column the rows lack.
   EXPECT_EQ(CsvError("crank_deg,lift_mm,\n0,0\n1,0.5\n"), "m.csv:2: expected 3 fields, got 2");
   EXPECT_EQ(CsvError("crank_deg,,lift_mm\n0,,0\n1,,0.5\n"),
