@@ -1,5 +1,6 @@
 // The performance targets' table of needle-bench (RunTargets, bench_common.h).
 #include <fcntl.h>
+#include <sched.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -144,7 +145,8 @@ std::string TargetSpline(int repeats) {
   return md.str();
 }
 
-// The targets' row: `needle check` of Example 1 with its report, end to end.
+// The targets' rows: `needle check` of Example 1 with its report, end to end, on every core and
+// on one (issue 53's goal: the child spawned with this process's affinity narrowed to one CPU).
 std::string TargetCheck(int repeats) {
   std::ostringstream md;
   const std::filesystem::path needle =
@@ -152,8 +154,6 @@ std::string TargetCheck(int repeats) {
   char pattern[] = "/tmp/needle-bench-check-XXXXXX";
   const char* made = mkdtemp(pattern);
   const std::string out = made ? made : "";
-  std::vector<double> ms;
-  int code = 0;
   // Run as a shell runs it (posix_spawn, no shell of its own), its output to /dev/null.
   const std::string case_path = CaseDir() + "basu-example1.toml";
   std::vector<std::string> args = {needle.string(), "check", case_path, "--out", out};
@@ -164,37 +164,59 @@ std::string TargetCheck(int repeats) {
   posix_spawn_file_actions_init(&quiet);
   posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
-  for (int r = 0; r < 3 * repeats && code == 0 && made && std::filesystem::exists(needle); ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    pid_t pid = 0;
-    int status = 0;
-    if (posix_spawn(&pid, argv[0], &quiet, nullptr, argv.data(), environ) != 0 ||
-        waitpid(pid, &status, 0) != pid) {
-      code = -1;
-      break;
+  cpu_set_t all;
+  const bool affinity = sched_getaffinity(0, sizeof all, &all) == 0;
+  for (const bool one_core : {false, true}) {
+    if (one_core) {
+      cpu_set_t one;
+      CPU_ZERO(&one);
+      for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
+        if (CPU_ISSET(cpu, &all)) {
+          CPU_SET(cpu, &one);
+          break;
+        }
+      }
+      if (!affinity || sched_setaffinity(0, sizeof one, &one) != 0) break;
     }
-    ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::vector<double> ms;
+    int code = 0;
+    for (int r = 0; r < 3 * repeats && code == 0 && made && std::filesystem::exists(needle); ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      pid_t pid = 0;
+      int status = 0;
+      if (posix_spawn(&pid, argv[0], &quiet, nullptr, argv.data(), environ) != 0 ||
+          waitpid(pid, &status, 0) != pid) {
+        code = -1;
+        break;
+      }
+      ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    if (one_core) sched_setaffinity(0, sizeof all, &all);
+    std::sort(ms.begin(), ms.end());
+    const std::string where =
+        one_core ? std::string("on one core, its threads and gnuplot sharing it")
+                 : "its surge study beside its sweep and gnuplot beside both, on " +
+                       std::to_string(std::thread::hardware_concurrency()) + " cores";
+    // A check that passes exits 0: anything else is no measurement.
+    if (ms.empty() || code != 0) {
+      md << "| `needle check basu-example1` with its report, end to end, " << where
+         << " | not measured ("
+         << (ms.empty() ? "no needle beside needle-bench, or no temporary folder"
+                        : "it exited " + std::to_string(code))
+         << ") | ≤ 50 ms | — |\n";
+    } else {
+      const double median_ms = ms[ms.size() / 2];
+      md << "| `needle check basu-example1` with its report, end to end (the program's wall time, "
+            "started as a shell starts it; "
+         << where << "; median of " << ms.size() << ") | " << Num(median_ms) << " ms | ≤ 50 ms"
+         << (one_core ? " (issue 53's goal)" : "") << " | " << TargetVerdict(median_ms, 50.0)
+         << " |\n";
+    }
   }
   posix_spawn_file_actions_destroy(&quiet);
   if (made) std::filesystem::remove_all(out);
-  std::sort(ms.begin(), ms.end());
-  // A check that passes exits 0: anything else is no measurement.
-  if (ms.empty() || code != 0) {
-    md << "| `needle check basu-example1` with its report, end to end | not measured ("
-       << (ms.empty() ? "no needle beside needle-bench, or no temporary folder"
-                      : "it exited " + std::to_string(code))
-       << ") | ≤ 50 ms | — |\n";
-  } else {
-    const double median_ms = ms[ms.size() / 2];
-    md << "| `needle check basu-example1` with its report, end to end (the program's wall time, "
-          "started as a shell starts it; its surge study beside its sweep and gnuplot beside "
-          "both, "
-          "on "
-       << std::thread::hardware_concurrency() << " cores; median of " << ms.size() << ") | "
-       << Num(median_ms) << " ms | ≤ 50 ms | " << TargetVerdict(median_ms, 50.0) << " |\n";
-  }
   return md.str();
 }
 
