@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -361,14 +362,10 @@ LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
   return chosen(best);
 }
 
-// Where the law between two nodes misses a reading of an exact or rounded table (each reading
-// its own bin) by far more than the nodes' error allows, kRefineMisfits times their s'' bands
-// over the interval (band2 L²/8) plus four rounding bounds, a node at the reading it misses most,
-// when it lies at least a quarter of the interval from both nodes; until none is missed (at most
-// one node a reading). Nodes stand half a window apart, and the last one before a piece's end as
-// far as 1.5 of that: a window that fit a whole 3-4-5 rise (a quintic: 110° wide) left 76°
-// between its node and the piece's end, across the dwell's start, and the law between them never
-// went down to the rise's deceleration (a_min 15 % short, its band too: 0.4 mm off the readings).
+// Where the law between two nodes misses a reading of an exact or rounded table by more than
+// kRefineMisfits times their s'' bands over the interval (band2 L²/8) plus four rounding bounds,
+// a node at the reading it misses most, a quarter of the interval or more from both, until none
+// is (a 3-4-5 rise, one quintic, left 76° between two nodes: a_min 15 % short; docs/lift-data.md).
 void AddNodesWhereTheLawMisses(const Points& p, double sigma, const std::vector<size_t>& sizes,
                                LocalFit* fit) {
   constexpr double kRefineMisfits = 16.0;
@@ -399,6 +396,29 @@ void AddNodesWhereTheLawMisses(const Points& p, double sigma, const std::vector<
     const auto later = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
     nodes.insert(std::upper_bound(nodes.begin(), nodes.end(), node, later), node);
     fit->law = QuinticHermite(nodes);
+  }
+}
+
+// A node at the law's largest and smallest s'' where it lies a quarter of the interval or more
+// from both nodes (a 3-4-5 rise, one quintic: nodes 10° apart, the Hermite's a_min 6.9 % short).
+void AddNodesAtExtremes(const Points& p, double sigma, const std::vector<size_t>& sizes,
+                        LocalFit* fit) {
+  auto& nodes = fit->nodes;
+  const auto later = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
+  for (int round = 0, added = 1; round < 4 && added; ++round) {
+    added = 0;
+    for (const double sign : {1.0, -1.0}) {
+      LocalNode node{ExtremeOf(fit->law, 2, sign).first};
+      const auto right = std::upper_bound(nodes.begin(), nodes.end(), node, later);
+      if (right == nodes.begin() || right == nodes.end()) continue;
+      const double a = (right - 1)->x, b = right->x, x = node.x, q = 0.25 * (b - a);
+      if (!(x - a > q && b - x > q) || x < p.x.front() || x > p.x.back()) continue;
+      std::array<size_t, 3> last{};
+      node = BestNodeAt(p, x, sigma, true, sizes, &last);
+      nodes.insert(std::upper_bound(nodes.begin(), nodes.end(), node, later), node);
+      fit->law = QuinticHermite(nodes);
+      added = 1;
+    }
   }
 }
 
@@ -462,6 +482,7 @@ LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, do
   }
   fit.law = QuinticHermite(fit.nodes);
   if (quantized) AddNodesWhereTheLawMisses(p, sigma_m, sizes, &fit);
+  if (quantized) AddNodesAtExtremes(p, sigma_m, sizes, &fit);
   return fit;
 }
 

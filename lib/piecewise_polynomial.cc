@@ -1,7 +1,9 @@
 #include "lib/piecewise_polynomial.h"
 
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -91,6 +93,22 @@ PiecewisePolynomial PiecewisePolynomial::Restrict(double a, double b) const {
     }
   }
   return PiecewisePolynomial(std::move(x), std::move(c), continuity_);
+}
+
+std::pair<double, double> ExtremeOf(const PiecewisePolynomial& p, int order, double sign) {
+  const std::vector<double>& b = p.breaks();
+  double best = -std::numeric_limits<double>::infinity(), at = b.front(), width = 0.0;
+  for (size_t i = 0; i + 1 < b.size(); ++i) {
+    for (int k = 0; k <= 8; ++k) {
+      const double t = b[i] + (b[i + 1] - b[i]) * k / 8.0;
+      const double v = sign * p.Evaluate(t, order);
+      if (v > best) best = v, at = t, width = (b[i + 1] - b[i]) / 8.0;
+    }
+  }
+  const double lo = std::max(b.front(), at - width), hi = std::min(b.back(), at + width);
+  const auto r = boost::math::tools::brent_find_minima(
+      [&](double t) { return -sign * p.Evaluate(t, order); }, lo, hi, 40);
+  return -r.second > best ? std::pair{r.first, -sign * r.second} : std::pair{at, sign * best};
 }
 
 }  // namespace needle

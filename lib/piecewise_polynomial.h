@@ -8,6 +8,7 @@
 /// p^(d)(x) = Σ_{k≥d} k!/(k−d)! c_{i,k} (x − x_i)^{k−d}.
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 namespace needle {
@@ -46,5 +47,10 @@ class PiecewisePolynomial {
   Eigen::MatrixXd coefficients_;
   int continuity_;
 };
+
+/// The largest (sign 1) or smallest (sign −1) value of p^(order) over [x_0, x_N] and where it is:
+/// the best of nine samples of each piece, refined by Brent's method within an eighth of its
+/// piece. (LiftLaw::Extrema is exact to machine precision; this is a quick locator.)
+std::pair<double, double> ExtremeOf(const PiecewisePolynomial& p, int order, double sign);
 
 }  // namespace needle

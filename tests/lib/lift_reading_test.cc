@@ -1267,5 +1267,18 @@ TEST(LiftReadingTest, ASmoothTopRoundedFlatIsNoDwell) {
   EXPECT_NEAR(d[0].to_rad / kDeg, 37.5, 1e-9);
 }
 
+// A 3-4-5 rise straight into a 3-4-5 return twice as long, read every 0.25° to 1e-3 mm: one
+// quintic over the rise, so its nodes stood 10° apart, and the deceleration's peak came from the
+// quintic Hermite between two of them, 6.9 % short, its band (the nearest node's) 0.5 % wide: a
+// new user's `needle spring` passed a preload 3 % below the law's need. A node of its own at
+// each extreme of s'' that lies between nodes reads it from the readings there.
+TEST(LiftReadingTest, AnExtremeBetweenNodesGetsANodeOfItsOwn) {
+  const Law law{2.0, 20.0, 0.0, 40.0, Poly345};
+  const Read r = ReadExport(law, Export(law, 0.25, 1e-3, 6.0));
+  EXPECT_TRUE(r.min_in_band) << "a_min off by " << r.min_error << "; " << r.choice.reason;
+  EXPECT_LT(std::abs(r.min_error), 0.05) << r.choice.reason;
+  EXPECT_TRUE(r.max_in_band) << "a_max off by " << r.max_error << "; " << r.choice.reason;
+}
+
 }  // namespace
 }  // namespace needle
