@@ -54,16 +54,14 @@ bool JumpsIntoDwell(const std::vector<double>& x, const std::vector<double>& y, 
       for (int p = 0; p < 4; ++p) u(i, p) = std::pow(t, p + 2);
       r(i) = y[from + i] - level;
     }
-    const auto squares = [&](Eigen::Index col) {
-      const Eigen::MatrixXd b = u.middleCols(col, 3);
-      return (b * b.colPivHouseholderQr().solve(r) - r).squaredNorm();
-    };
-    const double with_jump = squares(0);
+    const Eigen::MatrixXd with = u.leftCols(3), without = u.rightCols(3);
+    const Eigen::VectorXd a = with.colPivHouseholderQr().solve(r);  // a₂, a₃, a₄
+    const double with_jump = (with * a - r).squaredNorm();
     if (with_jump < free) {
       free = with_jump;
-      jump = 2.0 * u.leftCols(3).colPivHouseholderQr().solve(r)[0] / (step * step);
+      jump = 2.0 * a[0] / (step * step);
     }
-    flat = std::min(flat, squares(1));
+    flat = std::min(flat, (without * without.colPivHouseholderQr().solve(r) - r).squaredNorm());
   }
   const double dof = static_cast<double>(kJumpReadings) - 4.0;  // three coefficients and ξ
   const double span = x[end] - x[far], height = std::abs(level - y[far]);
