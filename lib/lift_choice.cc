@@ -1,5 +1,5 @@
-// The choice of a lift table's reading (ChooseLiftLaw, lib/lift_data.h): what the table holds
-// (ReadTable), its breaks, and the law built on it.
+// The choice of a lift table's reading (ChooseLiftLaw, lib/lift_data.h): its breaks, what the table
+// holds (ReadTable, lib/table_kind.cc), and the law built on it.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -35,36 +35,6 @@ std::string DegreeList(const std::vector<double>& rad) {
   return where;
 }
 
-// Σe² and the count of the normalised fourth divided differences e = D/√Σw² over the windows
-// of five consecutive entries of `idx` (readings of (x, y)) that span none of `cuts`; with
-// `lag`, Σ e_i e_{i+1} over neighbouring windows both counted.
-void AddResiduals(const std::vector<double>& x, const std::vector<double>& y,
-                  const std::vector<size_t>& idx, const std::vector<double>& cuts, double* sum,
-                  long* count, double* lag = nullptr) {
-  double previous = 0.0;  // the window before's e, 0 when it was not counted
-  for (size_t i = 0; i + 4 < idx.size(); ++i) {
-    const double from = x[idx[i]], to = x[idx[i + 4]];
-    if (std::any_of(cuts.begin(), cuts.end(), [&](double b) { return b > from && b < to; })) {
-      previous = 0.0;
-      continue;
-    }
-    double d = 0.0, w2 = 0.0;
-    for (int j = 0; j <= 4; ++j) {
-      double p = 1.0;
-      for (int l = 0; l <= 4; ++l) {
-        if (l != j) p *= x[idx[i + j]] - x[idx[i + l]];
-      }
-      d += y[idx[i + j]] / p;
-      w2 += 1.0 / (p * p);
-    }
-    *sum += d * d / w2;
-    ++*count;
-    const double e = d / std::sqrt(w2);
-    if (lag) *lag += previous * e;
-    previous = e;
-  }
-}
-
 // The open lift of an exact table: from the last zero before the rise to the first after the
 // fall (LiftLaw's rule).
 std::pair<size_t, size_t> OpenReadings(const std::vector<double>& y) {
@@ -73,77 +43,6 @@ std::pair<size_t, size_t> OpenReadings(const std::vector<double>& y) {
   while (last > first && y[last] <= 0.0 && y[last - 1] <= 0.0) --last;
   return {first, last};
 }
-
-}  // namespace
-
-std::string TableKindName(TableKind kind) {
-  switch (kind) {
-    case TableKind::kExact:
-      return "exact";
-    case TableKind::kRounded:
-      return "rounded";
-    case TableKind::kMeasured:
-      return "measured";
-  }
-  return "?";
-}
-
-TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& y, size_t first,
-                       size_t last, const std::vector<double>& cuts,
-                       std::optional<double> resolution_m) {
-  TableReading r;
-  r.printed_m = resolution_m ? resolution_m : PrintedResolution(y);
-  double largest = 0.0;
-  for (double v : y) largest = std::max(largest, std::abs(v));
-  r.rounding_sigma_m =
-      r.printed_m ? *r.printed_m / std::sqrt(12.0) : kExactRelativeFloor * std::max(largest, 1e-9);
-  // The seat's readings (the last zero before the rise, the first after the fall) are left
-  // out: the rise may begin anywhere up to the next reading, and a window holding both sides of
-  // that junction (an s'' jump between readings, off the cut) would read as noise above the
-  // rounding (a harmonic exported to 9 decimals from an angle off its grid read as measured).
-  const size_t from = y[first] <= 0.0 && first < last ? first + 1 : first;
-  const size_t to = y[last] <= 0.0 && last > from ? last - 1 : last;
-  r.rounding_sigma_m = std::hypot(r.rounding_sigma_m, AngleRoundingSigma(x, y, from, to));
-  std::vector<size_t> all, even, odd;
-  for (size_t i = from; i <= to; ++i) {
-    all.push_back(i);
-    ((i - from) % 2 ? odd : even).push_back(i);
-  }
-  double sum = 0.0, half_sum = 0.0;
-  long count = 0, half_count = 0;
-  double lag = 0.0;
-  AddResiduals(x, y, all, cuts, &sum, &count, &lag);
-  AddResiduals(x, y, even, cuts, &half_sum, &half_count);
-  AddResiduals(x, y, odd, cuts, &half_sum, &half_count);
-  r.residual_m = count ? std::sqrt(sum / count) : 0.0;
-  const double half = half_count ? std::sqrt(half_sum / half_count) : 0.0;
-  r.halving_ratio = r.residual_m > 0.0 ? half / r.residual_m : 0.0;
-  r.lag_correlation = sum > 0.0 ? lag / sum : 0.0;
-  if (r.printed_m && last > first) {
-    long flat = 0;
-    for (size_t i = first; i < last; ++i) {
-      flat += std::abs(y[i + 1] - y[i]) <= *r.printed_m * (1.0 + 1e-6);
-    }
-    r.staircase = 2 * flat > static_cast<long>(last - first);
-  }
-  // A smooth residual (the law's own, growing ~16× when the table is halved) is an exact table's;
-  // a white one at the rounding's level a rounded table's; a white one above it a measurement's.
-  const bool white = half_count >= 3 && r.residual_m > 0.0 &&
-                     r.halving_ratio < kWhiteHalvingRatio &&
-                     r.lag_correlation < kWhiteLagCorrelation;
-  r.sigma_m = r.rounding_sigma_m;
-  if (!white) {
-    r.kind = TableKind::kExact;
-  } else if (r.residual_m <= kRoundingNoiseFactor * r.rounding_sigma_m) {
-    r.kind = TableKind::kRounded;
-  } else {
-    r.kind = TableKind::kMeasured;
-    r.sigma_m = r.residual_m;
-  }
-  return r;
-}
-
-namespace {
 
 // The breaks of `given` found inside its open lift, each piece keeping the readings a `kind`
 // spline needs; the first corner clear of the seat goes to c->corner.

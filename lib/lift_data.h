@@ -190,7 +190,8 @@ struct TableReading {
                                     ///< the angles' printing (AngleRoundingSigma), m
   std::optional<double> printed_m;  ///< q, the printed resolution (stated or read), m
   double residual_m = 0.0;          ///< RMS normalised fourth difference between the cuts, m
-  double halving_ratio = 0.0;       ///< the same on every other reading, over it
+  double halving_ratio = 0.0;       ///< the same on every other reading, over it (of the
+                                    ///< pieces between cuts long enough to hold a halved window)
   double lag_correlation = 0.0;     ///< Σ e_i e_{i+1} / Σ e_i² of neighbouring windows
   bool staircase = false;           ///< most steps between readings are at most q
 };
