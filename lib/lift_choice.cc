@@ -1,11 +1,15 @@
 // The choice of a lift table's reading (ChooseLiftLaw, lib/lift_data.h): its breaks, what the table
 // holds (ReadTable, lib/table_kind.cc), and the law built on it.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "lib/lift_data.h"
 #include "lib/output.h"
+#include "lib/piecewise_polynomial.h"
+#include "lib/spline.h"
 
 namespace needle {
 namespace {
@@ -33,6 +37,45 @@ std::string DegreeList(const std::vector<double>& rad) {
   }
   if (rad.size() > 8) where += ", …";
   return where;
+}
+
+// The dwell at the top of a sparse table: its first and last reading, a run of at least
+// kDwellLeastReadings readings printed equal at the table's largest lift, the only readings
+// there, with at least kSparseDwellSide readings on each side of it (each side's clamped cubic
+// needs a curve to bend). A smooth top rounds to equal readings only where the steps are far
+// finer than a sparse table's (a harmonic top of 3 mm over 24° to 1e-3 mm: 2 readings at 0.25°).
+std::optional<std::array<size_t, 2>> TopDwell(const std::vector<double>& y) {
+  constexpr size_t kSparseDwellSide = 4;
+  if (y.empty()) return std::nullopt;
+  const double top = *std::max_element(y.begin(), y.end());
+  const auto first = std::find(y.begin(), y.end(), top);
+  const auto after = std::find_if(first, y.end(), [&](double v) { return v != top; });
+  if (!(top > 0.0) || std::find(after, y.end(), top) != y.end()) return std::nullopt;
+  const size_t a = static_cast<size_t>(first - y.begin()),
+               b = static_cast<size_t>(after - y.begin());
+  if (b - a < kDwellLeastReadings || a + 1 < kSparseDwellSide ||
+      y.size() - b + 1 < kSparseDwellSide)
+    return std::nullopt;
+  return std::array<size_t, 2>{a, b - 1};
+}
+
+// Whether s'' jumps where the rise or the return meets the top dwell: the side's own clamped
+// cubic (tangent to the seat and to the dwell) ends on an s'' of at least a quarter of the whole
+// table's clamped cubic's largest |s''| (a harmonic or double-harmonic rise: all of it; a
+// cycloidal, 3-4-5 or modified-sine one meets its dwell with s'' = 0, and the one cubic through
+// the table, tighter banded, is kept).
+bool JumpsIntoTopDwell(const std::vector<double>& x, const std::vector<double>& y,
+                       const std::array<size_t, 2>& top, const SplineOptions& clamped) {
+  constexpr double kSparseDwellJump = 0.25;
+  const PiecewisePolynomial whole = BuildSpline(x, y, clamped);
+  const double peak = std::max(ExtremeOf(whole, 2, 1.0).second, -ExtremeOf(whole, 2, -1.0).second);
+  const auto side = [&](size_t from, size_t to, bool end) {
+    const std::vector<double> sx(x.begin() + from, x.begin() + to + 1);
+    const std::vector<double> sy(y.begin() + from, y.begin() + to + 1);
+    return std::abs(BuildSpline(sx, sy, clamped).Evaluate(end ? sx.back() : sx.front(), 2));
+  };
+  return std::max(side(0, top[0], true), side(top[1], x.size() - 1, false)) >
+         kSparseDwellJump * peak;
 }
 
 // The open lift of an exact table: from the last zero before the rise to the first after the
@@ -373,6 +416,17 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
     c.law.spline.start_slope = c.law.spline.end_slope = 0.0;
     c.reason = "sparse exact table (" + points +
                ") closed at both ends: clamped cubic at rest at the seat";
+    const std::optional<std::array<size_t, 2>> top = TopDwell(c.table.lift_m);
+    if (top && JumpsIntoTopDwell(c.table.crank_rad, c.table.lift_m, *top, c.law.spline)) {
+      // Each piece clamped too: the rise and the return tangent to the dwell, the dwell flat.
+      const auto& x = c.table.crank_rad;
+      c.law.breaks_rad = {x[(*top)[0]], x[(*top)[1]]};
+      c.reason = "sparse exact table (" + points +
+                 ") closed at both ends, with a dwell at its top (" +
+                 std::to_string((*top)[1] + 1 - (*top)[0]) + " readings at " +
+                 Mm(c.table.lift_m[(*top)[0]]) + " mm from " + DegreeList(c.law.breaks_rad) +
+                 " deg): clamped cubics at rest at the seat and at the dwell, each piece apart";
+    }
   } else if (c.table.crank_rad.size() < 4) {  // too few for not-a-knot's four
     c.law.spline.kind = SplineKind::kNatural;
     c.reason = "sparse exact table (" + points +

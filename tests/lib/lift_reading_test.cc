@@ -1300,5 +1300,38 @@ TEST(LiftReadingTest, ACoarseHarmonicRiseIsAnExactTableWithTheTruthInItsBand) {
   }
 }
 
+// A sparse table (19 readings, every 2°) of a double-harmonic rise (its peak deceleration at
+// its end) of 3 mm over 10° into a dwell
+// of 4° and back: one clamped cubic through it smeared the s'' jump where the rise meets the
+// dwell, its a_min −7766 ± 2012 m/s² at 1000 rpm against the law's −10659, the truth beyond the
+// band's unsafe end (n_qs 948 [845, 1102] against 822). Its rise, dwell and return are now
+// clamped cubics apart, each tangent to the dwell: a_min on the safe side of the truth.
+TEST(LiftReadingTest, ASparseTablesTopDwellSplitsItsCubic) {
+  const Law law{3.0, 10.0, 4.0, 10.0, DoubleHarmonic};
+  const LiftTable t = Export(law, 2.0, 0.0, 6.0);
+  ASSERT_LT(t.crank_rad.size(), static_cast<size_t>(kDenseTablePoints));
+  const LiftLawChoice choice = ChooseLiftLaw(t, {});
+  EXPECT_NE(choice.reason.find("with a dwell at its top"), std::string::npos) << choice.reason;
+  ASSERT_EQ(choice.law.breaks_rad.size(), 2u) << choice.reason;
+  EXPECT_NEAR(choice.law.breaks_rad[0], 10.0 * kDeg, 1e-12);
+  EXPECT_NEAR(choice.law.breaks_rad[1], 14.0 * kDeg, 1e-12);
+  const LiftLaw fitted(choice.table, choice.law);
+  EXPECT_NEAR(fitted.Max(0).value, 3e-3, 1e-9) << "the dwell is flat at its lift";
+  const double truth = law.Extremes().first;  // mm/rad², the rise's end
+  const auto band = fitted.AccelerationBand(false);
+  ASSERT_TRUE(band);
+  EXPECT_LE(band->low * 1e3, truth) << "the truth beyond the unsafe end; " << choice.reason;
+  EXPECT_LT(std::abs(fitted.Min(2).value * 1e3 / truth - 1.0), 0.1) << choice.reason;
+}
+
+// A cycloidal rise meets its dwell with s'' = 0: one clamped cubic through the sparse table, as
+// before, its band the tighter.
+TEST(LiftReadingTest, ASparseTablesSmoothDwellKeepsOneCubic) {
+  const Law law{3.0, 10.0, 4.0, 10.0, Cycloidal};
+  const LiftLawChoice choice = ChooseLiftLaw(Export(law, 2.0, 0.0, 6.0), {});
+  EXPECT_TRUE(choice.law.breaks_rad.empty()) << choice.reason;
+  EXPECT_EQ(choice.law.spline.kind, SplineKind::kClamped);
+}
+
 }  // namespace
 }  // namespace needle
