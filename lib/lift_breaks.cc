@@ -278,10 +278,13 @@ std::optional<LiftBreak> SidesMeet(const std::vector<double>& x, const std::vect
         RootIn([&](double t) { return right.Value(t, 0) - left.Value(t, 0); }, lo, hi);
     b.crank_rad = lifts.value_or(c);
     b.jump = right.Value(b.crank_rad, 1) - left.Value(b.crank_rad, 1);
-    // A corner's slope jump exceeds what the law's own s'' turns the slope by over the step
-    // (a coarse table of a law whose s''' jumps: sides that miss by 0.5 % of the peak velocity).
+    // A corner's slope jump exceeds what the law's own s'' turns the slope by over two steps (a
+    // coarse table of a law whose s''' jumps: sides that miss by 0.5 % of the peak velocity; a
+    // dwell shorter than two steps, its s'' jumping to 0 and back: a harmonic rise of 108° into a
+    // 3° dwell at 3° steps, its sides' slopes 1.03 h|s''| apart, was refused as a corner).
     const double turn =
-        h * std::max(std::abs(left.Value(b.crank_rad, 2)), std::abs(right.Value(b.crank_rad, 2)));
+        2.0 * h *
+        std::max(std::abs(left.Value(b.crank_rad, 2)), std::abs(right.Value(b.crank_rad, 2)));
     if (!(std::abs(b.jump) > turn)) return std::nullopt;
     // A corner keeps its size when the sides' cubics take twice the readings; the slopes'
     // disagreement across a kink of s'' (a smooth exact law's junction of s''') grows ~4×.

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <random>
 #include <sstream>
 
@@ -911,6 +912,40 @@ TEST(CadTableTest, CornersAreRefused) {
     EXPECT_NE(what.find("correct the readings there"), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
+}
+
+// A harmonic rise of 9.877 mm over 108.17° into a dwell of 2.99° and back, read every 3° to
+// 1e-4 mm with 9° of seat each side (a new user's trial): its dwell holds one reading, and the
+// sides' cubics around it, the rise's s'' jumping to 0 and back within two steps, had slopes
+// 1.03 h|s''| apart: "the lift has a corner at 109.667 deg". A valid smooth table is read; its
+// extremes' bands do not fall short of the law's on the unsafe side.
+TEST(CadTableTest, ADwellShorterThanTwoStepsIsNoCorner) {
+  const double h = 9.877314865, rise = 108.174776268, dwell = 2.990323883;
+  const double end = 2 * rise + dwell;
+  const auto lift_mm = [&](double deg) {
+    if (deg <= 0.0 || deg >= end) return 0.0;
+    const double up = std::min(deg, end - deg);
+    return up >= rise ? h : 0.5 * h * (1.0 - std::cos(kPi * up / rise));
+  };
+  const auto dir = std::filesystem::temp_directory_path() / "needle_short_dwell";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream csv(dir / "short_dwell.csv");
+    csv << "crank_deg,lift_mm\n" << std::fixed;
+    for (int i = 0; i < 80; ++i) {
+      const double deg = -9.0 + 3.0 * i;
+      csv << std::setprecision(0) << deg << ',' << std::setprecision(4) << lift_mm(deg) << '\n';
+    }
+  }
+  const LiftLawChoice choice =
+      CaseLiftChoice(CaseFromLiftCsv((dir / "short_dwell.csv").string(), EngineCycle::kTwoStroke));
+  ASSERT_FALSE(choice.corner) << choice.reason;
+  const LiftLaw fitted(choice.table, choice.law);
+  const double peak = 0.5 * h * 1e-3 * std::pow(kPi / (rise * kDeg), 2);  // |s''|, m/rad²
+  const auto bmax = fitted.AccelerationBand(true), bmin = fitted.AccelerationBand(false);
+  ASSERT_TRUE(bmax && bmin);
+  EXPECT_GE(bmax->high, peak) << choice.reason;
+  EXPECT_LE(bmin->low, -peak) << choice.reason;
 }
 
 }  // namespace
