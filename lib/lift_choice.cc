@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "lib/lift_data.h"
+#include "lib/local_fit.h"
 #include "lib/output.h"
 #include "lib/piecewise_polynomial.h"
 #include "lib/spline.h"
@@ -76,6 +77,30 @@ bool JumpsIntoTopDwell(const std::vector<double>& x, const std::vector<double>& 
   };
   return std::max(side(0, top[0], true), side(top[1], x.size() - 1, false)) >
          kSparseDwellJump * peak;
+}
+
+// "; the piece from A to B deg holds N readings: …" for each piece between the cuts (inside
+// readings first … last; a dwell's own is flat, not fitted) of fewer than twice a local fit's
+// narrowest window: its windows cannot grow, and its band holds the quartic's difference from the
+// quintic (lib/local_fit.h), wide where the table reads the law coarsely.
+std::string ShortPieces(const std::vector<double>& x, size_t first, size_t last,
+                        std::vector<double> cuts, const std::vector<LiftDwell>& dwells) {
+  std::sort(cuts.begin(), cuts.end());
+  std::string out;
+  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const auto lo = std::lower_bound(x.begin() + first, x.begin() + last + 1, cuts[k]);
+    const auto hi = std::upper_bound(x.begin() + first, x.begin() + last + 1, cuts[k + 1]);
+    const long n = static_cast<long>(hi - lo);
+    const bool dwell = std::any_of(dwells.begin(), dwells.end(), [&](const LiftDwell& d) {
+      return d.from_rad == cuts[k] && d.to_rad == cuts[k + 1];
+    });
+    if (n < 2 * kLocalMinimumPoints && cuts[k + 1] > cuts[k] && !dwell) {
+      out += "; the piece from " + DegreeList({cuts[k]}) + " to " + DegreeList({cuts[k + 1]}) +
+             " deg holds " + std::to_string(n) +
+             " readings: its band holds the truncation a quartic sees (a finer table narrows it)";
+    }
+  }
+  return out;
 }
 
 // The open lift of an exact table: from the last zero before the rise to the first after the
@@ -353,6 +378,7 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   AddDwells(dwells, &c.law);
   c.reason = stated + what.str() + "; noise " + Mm(c.noise_m) + " mm (" + c.noise_source + "); " +
              breaks + ": " + SplineKindName(kind) + " fit of each piece from its own readings";
+  if (kind == SplineKind::kLocal) c.reason += ShortPieces(x, first, last, cuts, dwells);
   return c;
 }
 

@@ -1293,6 +1293,11 @@ TEST(LiftReadingTest, ACoarseHarmonicRiseIsAnExactTableWithTheTruthInItsBand) {
     const Read r = ReadExport(law, Export(law, 1.5, q_mm, 6.0));
     EXPECT_FALSE(r.choice.measured) << r.choice.reason;
     EXPECT_TRUE(r.choice.outliers.empty()) << r.choice.reason;
+    // The reason says why the band is wide.
+    EXPECT_NE(
+        r.choice.reason.find(" deg holds 7 readings: its band holds the truncation a quartic"),
+        std::string::npos)
+        << r.choice.reason;
     EXPECT_LT(std::abs(r.max_error), 0.05) << r.choice.reason;
     EXPECT_LT(std::abs(r.min_error), 0.05) << r.choice.reason;
     EXPECT_TRUE(r.max_in_band) << "a_max off by " << r.max_error << "; " << r.choice.reason;
