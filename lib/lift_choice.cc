@@ -80,8 +80,8 @@ bool JumpsIntoTopDwell(const std::vector<double>& x, const std::vector<double>& 
 }
 
 // "; the piece from A to B deg holds N readings: …" for each piece between the cuts (inside
-// readings first … last; a dwell's own is flat, not fitted) of fewer than twice a local fit's
-// narrowest window: its windows cannot grow, and its band holds the quartic's difference from the
+// readings first … last; a dwell's own is flat, not fitted) of fewer than kLocalFewReadings:
+// its windows cannot grow, and its band holds the quartic's difference from the
 // quintic (lib/local_fit.h), wide where the table reads the law coarsely.
 std::string ShortPieces(const std::vector<double>& x, size_t first, size_t last,
                         std::vector<double> cuts, const std::vector<LiftDwell>& dwells) {
@@ -94,7 +94,7 @@ std::string ShortPieces(const std::vector<double>& x, size_t first, size_t last,
     const bool dwell = std::any_of(dwells.begin(), dwells.end(), [&](const LiftDwell& d) {
       return d.from_rad == cuts[k] && d.to_rad == cuts[k + 1];
     });
-    if (n < 2 * kLocalMinimumPoints && cuts[k + 1] > cuts[k] && !dwell) {
+    if (n < kLocalFewReadings && cuts[k + 1] > cuts[k] && !dwell) {
       out += "; the piece from " + DegreeList({cuts[k]}) + " to " + DegreeList({cuts[k + 1]}) +
              " deg holds " + std::to_string(n) +
              " readings: its band holds the truncation a quartic sees (a finer table narrows it)";

@@ -24,9 +24,6 @@ constexpr double kNodeSpacing = 0.5;   // nodes half a window's width apart
 // bound (ShiftedNodeAt).
 constexpr double kSmoother = 0.1;
 constexpr double kGrossMisfit = 1000.0;
-// A piece of fewer readings than this has its windows' truncation measured by the quartic on the
-// same readings (NodeAt).
-constexpr size_t kFewReadings = 2 * kLocalMinimumPoints;
 
 // Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
 using Points = BinMeans;
@@ -238,7 +235,7 @@ std::optional<LocalNode> NodeAt(const Points& p, double t, double sigma, bool qu
   // narrower ones hardly do. A lower degree does, the quartic on the same readings, whose s''
   // differs from the quintic's by the quintic's error and more (a harmonic rise of 7 readings at
   // 1.5° and its break's: quintic −2.5 %, quartic +20 %; the windows of 7 and 8 differ by 0.9 %).
-  if (p.x.size() < kFewReadings && chosen_hi - chosen_lo >= kTerms) {
+  if (p.x.size() < static_cast<size_t>(kLocalFewReadings) && chosen_hi - chosen_lo >= kTerms) {
     step = std::max(
         step, std::abs(e.s[2] - FitAt(p, t, chosen_lo, chosen_hi, quantized, kTerms - 1).s[2]));
   }

@@ -47,6 +47,9 @@ namespace needle {
 constexpr int kLocalDegree = 5;
 /// Readings in the narrowest window: two more than the degree needs.
 constexpr int kLocalMinimumPoints = kLocalDegree + 2;
+/// A piece of fewer readings than this has its windows' truncation measured by the quartic on
+/// the same readings (no window can grow much wider; the reason names such a piece).
+constexpr int kLocalFewReadings = 2 * kLocalMinimumPoints;
 /// Lepski's agreement level, in standard deviations of the narrower window's s''.
 constexpr double kLepskiSigmas = 2.5;
 /// Above this many readings a piece is averaged in bins first (O(n) overall).

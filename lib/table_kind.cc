@@ -44,6 +44,13 @@ void AddResiduals(const std::vector<double>& x, const std::vector<double>& y,
 struct PieceResiduals {
   double sum = 0.0, half_sum = 0.0, lag = 0.0;
   long count = 0, half_count = 0;
+  void Add(const PieceResiduals& p) {
+    sum += p.sum;
+    half_sum += p.half_sum;
+    lag += p.lag;
+    count += p.count;
+    half_count += p.half_count;
+  }
 };
 
 // The residuals of readings [from, to], piece by piece between the cuts: those of every piece,
@@ -64,9 +71,11 @@ Residuals PieceByPiece(const std::vector<double>& x, const std::vector<double>& 
   for (size_t k = 0; k <= ends.size(); ++k) {
     const double lo = k == 0 ? -std::numeric_limits<double>::infinity() : ends[k - 1];
     const double hi = k == ends.size() ? std::numeric_limits<double>::infinity() : ends[k];
+    // The piece's readings, both ends' cut readings included (x increases).
+    const size_t a = std::lower_bound(x.begin() + from, x.begin() + to + 1, lo) - x.begin();
+    const size_t z = std::upper_bound(x.begin() + from, x.begin() + to + 1, hi) - x.begin();
     std::vector<size_t> all, even, odd;
-    for (size_t i = from; i <= to; ++i) {
-      if (x[i] < lo || x[i] > hi) continue;
+    for (size_t i = a; i < z; ++i) {
       all.push_back(i);
       ((i - from) % 2 ? odd : even).push_back(i);
     }
@@ -74,14 +83,8 @@ Residuals PieceByPiece(const std::vector<double>& x, const std::vector<double>& 
     AddResiduals(x, y, all, cuts, &p.sum, &p.count, &p.lag);
     AddResiduals(x, y, even, cuts, &p.half_sum, &p.half_count);
     AddResiduals(x, y, odd, cuts, &p.half_sum, &p.half_count);
-    for (PieceResiduals* into : {&every, p.half_count > 0 ? &kept : nullptr}) {
-      if (!into) continue;
-      into->sum += p.sum;
-      into->half_sum += p.half_sum;
-      into->lag += p.lag;
-      into->count += p.count;
-      into->half_count += p.half_count;
-    }
+    every.Add(p);
+    if (p.half_count > 0) kept.Add(p);
   }
   return {every, kept.half_count > 0 ? kept : every};
 }
