@@ -31,7 +31,9 @@
 /// size, the truncation's scale);
 /// between nodes the law is the quintic Hermite interpolant of (s, s', s''), C². On an exact or
 /// rounded table a node is added where that law misses a reading by far more than its nodes'
-/// error allows (local_fit.cc, AddNodesWhereTheLawMisses). A table of more
+/// error allows (local_fit.cc, AddNodesWhereTheLawMisses), and where its s'' peaks between two
+/// nodes, unless the law then strays past the three nodes' bands (their bands then reach the
+/// stray: AddNodesAtExtremes). A table of more
 /// than kLocalMaxNodes readings is first averaged in bins of consecutive readings (σ/√count each):
 /// the cost is O(n).
 
