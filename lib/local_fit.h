@@ -32,8 +32,9 @@
 /// between nodes the law is the quintic Hermite interpolant of (s, s', s''), C². On an exact or
 /// rounded table a node is added where that law misses a reading by far more than its nodes'
 /// error allows (local_fit.cc, AddNodesWhereTheLawMisses), and where its s'' peaks between two
-/// nodes, unless the law then strays past the three nodes' bands (their bands then reach the
-/// stray: AddNodesAtExtremes). A table of more
+/// nodes, unless the law then strays past the three nodes' s'' and bands by more than a band (the
+/// node is then left out and its neighbours' bands reach the stray: AddNodesAtExtremes). A table
+/// of more
 /// than kLocalMaxNodes readings is first averaged in bins of consecutive readings (σ/√count each):
 /// the cost is O(n).
 

@@ -284,9 +284,10 @@ TEST(LiftReadingTest, ModifiedSineKinksAreNoJunctions) {
 
 // A node added at the law's extreme beside a node of a much wider window (the modified sine's
 // rise to 1e-4 mm: windows of 159 and 42 readings) brings values that differ by their noise and
-// bias over a spacing far below either window's width, and the law's s'' swung between them:
-// a_max +7.5 % at 0.5°, a_min -47 % and -54 % at 0.1° and 0.5° (the lift bench's rows and this
-// export from 0°). Such a node is left out, its neighbours' bands reaching the swing.
+// bias over a spacing far below either window's width, and the law's s'' swung between them.
+// The lift bench's export from −12° read a_max 7.5 % above the closed form's at 0.5°, a_min 47 %
+// below it (more negative) at 0.1°; this export from 0° read a_min 54 % below it at 0.5°. Such a
+// node is left out, its neighbours' bands reaching the swing.
 TEST(LiftReadingTest, ANodeAddedAtAnExtremeDoesNotMakeTheLawSwing) {
   for (const double step : {0.5, 0.1}) {
     const Read r = ReadExport(kModifiedSine, Export(kModifiedSine, step, 1e-4));
