@@ -1,6 +1,7 @@
 #include "lib/kinematics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -22,12 +23,14 @@ Kinematics::Kinematics(const LiftLaw& law, double speed_rpm)
 KinematicsPoint Kinematics::At(double crank_rad) const {
   KinematicsPoint p;
   p.crank_rad = crank_rad;
-  p.time_s = (crank_rad - law_.start_rad()) / omega_;       // t = (θ − θ_open)/ω
-  p.lift_m = law_.Lift(crank_rad);                          // s
-  p.velocity_m_s = omega_ * law_.Derivative(crank_rad, 1);  // v = ω s'
+  p.time_s = (crank_rad - law_.start_rad()) / omega_;  // t = (θ − θ_open)/ω
+  std::array<double, 4> s{};
+  law_.Derivatives(crank_rad, law_.HasAcceleration() ? 4 : 2, s.data());
+  p.lift_m = s[0];                 // s
+  p.velocity_m_s = omega_ * s[1];  // v = ω s'
   if (law_.HasAcceleration()) {
-    p.acceleration_m_s2 = omega_ * omega_ * law_.Derivative(crank_rad, 2);   // a = ω² s''
-    p.jerk_m_s3 = omega_ * omega_ * omega_ * law_.Derivative(crank_rad, 3);  // j = ω³ s'''
+    p.acceleration_m_s2 = omega_ * omega_ * s[2];   // a = ω² s''
+    p.jerk_m_s3 = omega_ * omega_ * omega_ * s[3];  // j = ω³ s'''
   }
   return p;
 }

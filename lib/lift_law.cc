@@ -194,6 +194,14 @@ double LiftLaw::Derivative(double crank_rad, int order) const {
   return spline_.Evaluate(crank_rad, order);
 }
 
+void LiftLaw::Derivatives(double crank_rad, int count, double* out) const {
+  if (crank_rad < open_rad_ || crank_rad > close_rad_) {
+    std::fill(out, out + count, 0.0);  // closed outside
+    return;
+  }
+  spline_.EvaluateUpTo(crank_rad, count, out);
+}
+
 double LiftLaw::MeanLift() const { return spline_.Integral() / (end_rad() - start_rad()); }
 
 const std::vector<LocalNode>& LiftLaw::nodes() const {

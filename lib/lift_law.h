@@ -114,6 +114,8 @@ class LiftLaw {
   /// dᵏs/dθᵏ in m/radᵏ, k = 0..3; 0 outside [θ_0, θ_N]. For k = 2, 3 only meaningful when
   /// HasAcceleration() (C¹ kinds have a second derivative that jumps at the knots).
   double Derivative(double crank_rad, int order) const;
+  /// Derivative(crank_rad, k) into out[k] for k = 0 … count − 1, bit for bit, in one lookup.
+  void Derivatives(double crank_rad, int count, double* out) const;
   /// True when s'' is continuous (all kinds but pchip and makima), between the breaks if any.
   bool HasAcceleration() const { return needle::HasAcceleration(kind_); }
 

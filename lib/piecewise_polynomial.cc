@@ -1,6 +1,7 @@
 #include "lib/piecewise_polynomial.h"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <limits>
@@ -35,20 +36,51 @@ int PiecewisePolynomial::Piece(double x) const {
   return std::clamp(i, 0, n - 1);
 }
 
-double PiecewisePolynomial::Evaluate(double x, int derivative) const {
-  const int k_max = degree();
-  if (derivative < 0) throw std::invalid_argument("PiecewisePolynomial: negative derivative order");
-  if (derivative > k_max) return 0.0;
-  const int i = Piece(x);
-  const double t = x - breaks_[i];
+namespace {
+// k!/(k−d)! for k < kFallingDegrees, d < kFallingOrders (0 where k < d): the products Horner
+// would form, exact.
+constexpr int kFallingDegrees = 8, kFallingOrders = 4;
+constexpr std::array<std::array<double, kFallingOrders>, kFallingDegrees> Fallings() {
+  std::array<std::array<double, kFallingOrders>, kFallingDegrees> f{};
+  for (int k = 0; k < kFallingDegrees; ++k) {
+    for (int d = 0; d < kFallingOrders; ++d) {
+      double falling = 1.0;
+      for (int j = 0; j < d; ++j) falling *= (k - j);
+      f[k][d] = falling;
+    }
+  }
+  return f;
+}
+constexpr auto kFalling = Fallings();
+}  // namespace
+
+double PiecewisePolynomial::Horner(int i, double t, int derivative) const {
   // Horner on the d-th derivative: Σ_{k≥d} k!/(k−d)! c_k t^{k−d}.
   double value = 0.0;
-  for (int k = k_max; k >= derivative; --k) {
+  const bool tabled = degree() < kFallingDegrees && derivative < kFallingOrders;
+  for (int k = degree(); k >= derivative; --k) {
     double falling = 1.0;  // k!/(k−d)!
-    for (int j = 0; j < derivative; ++j) falling *= (k - j);
+    if (tabled) {
+      falling = kFalling[k][derivative];
+    } else {
+      for (int j = 0; j < derivative; ++j) falling *= (k - j);
+    }
     value = value * t + falling * coefficients_(i, k);
   }
   return value;
+}
+
+double PiecewisePolynomial::Evaluate(double x, int derivative) const {
+  if (derivative < 0) throw std::invalid_argument("PiecewisePolynomial: negative derivative order");
+  if (derivative > degree()) return 0.0;
+  const int i = Piece(x);
+  return Horner(i, x - breaks_[i], derivative);
+}
+
+void PiecewisePolynomial::EvaluateUpTo(double x, int count, double* out) const {
+  const int i = Piece(x);
+  const double t = x - breaks_[i];
+  for (int d = 0; d < count; ++d) out[d] = d > degree() ? 0.0 : Horner(i, t, d);
 }
 
 double PiecewisePolynomial::Integral() const {

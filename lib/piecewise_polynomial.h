@@ -24,6 +24,10 @@ class PiecewisePolynomial {
   /// p^(derivative)(x), derivative 0..K. Outside [x_0, x_N] the end pieces are extended.
   double Evaluate(double x, int derivative = 0) const;
 
+  /// p^(d)(x) into out[d] for d = 0 … count − 1 (count ≥ 0), each as Evaluate(x, d) gives it,
+  /// bit for bit, from one lookup of the piece.
+  void EvaluateUpTo(double x, int count, double* out) const;
+
   /// Index i of the piece with x_i ≤ x < x_{i+1} (0 below x_0, N−1 at and above x_N).
   int Piece(double x) const;
 
@@ -43,6 +47,9 @@ class PiecewisePolynomial {
   int continuity() const { return continuity_; }
 
  private:
+  // Piece i's d-th derivative at t = x − x_i (0 ≤ d ≤ K).
+  double Horner(int i, double t, int derivative) const;
+
   std::vector<double> breaks_;
   Eigen::MatrixXd coefficients_;
   int continuity_;

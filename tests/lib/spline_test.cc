@@ -53,6 +53,39 @@ std::vector<double> Sample(const std::vector<double>& x, double (*f)(double, int
   return y;
 }
 
+// One lookup for s, s', s'', s''' (Kinematics::At's row) gives what four calls of Evaluate give,
+// bit for bit, at and between the breaks and past both ends: quintics (the falling factorials
+// read from a table) and a degree-9 polynomial (formed as before), and 0 past the degree.
+TEST(SplineTest, EvaluateUpToIsEvaluateBitForBit) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (const int degree : {1, 3, 5, 9}) {
+    const std::vector<double> breaks = {-0.3, 0.1, 0.45, 1.2};
+    Eigen::MatrixXd c(3, degree + 1);
+    for (Eigen::Index i = 0; i < c.size(); ++i) c.data()[i] = u(rng);
+    const PiecewisePolynomial p(breaks, c, 0);
+    for (double x : {-0.5, -0.3, -0.11, 0.1, 0.2373, 0.45, 0.9, 1.2, 1.7}) {
+      double out[6];
+      p.EvaluateUpTo(x, 6, out);
+      const int i = p.Piece(x);
+      const double t = x - breaks[i];
+      for (int d = 0; d < 6; ++d) {
+        EXPECT_EQ(out[d], p.Evaluate(x, d)) << "degree " << degree << ", x " << x << ", d " << d;
+        double sum = 0.0, scale = 0.0;  // Σ k!/(k−d)! c_k t^(k−d), term by term
+        for (int k = d; k <= degree; ++k) {
+          double falling = 1.0;
+          for (int j = 0; j < d; ++j) falling *= k - j;
+          const double term = falling * c(i, k) * std::pow(t, k - d);
+          sum += term;
+          scale += std::abs(term);
+        }
+        EXPECT_NEAR(out[d], sum, 1e-13 * scale) << "degree " << degree << ", x " << x;
+      }
+      if (degree < 5) EXPECT_EQ(out[5], 0.0);
+    }
+  }
+}
+
 TEST(SplineTest, NotAKnotReproducesCubicExactly) {
   const auto x = Knots(9);
   SplineOptions o;
