@@ -278,14 +278,7 @@ std::pair<Extremum, Extremum> LiftLaw::Extrema(int order) const {
   const int degree = spline_.degree();
   // The polynomial of piece i (its `k`th derivative), also at its right end.
   auto piece_value = [&](size_t i, double t, int k) {
-    const double dt = t - x[i];
-    double v = 0.0;
-    for (int m = degree; m >= k; --m) {
-      double falling = 1.0;
-      for (int j = 0; j < k; ++j) falling *= (m - j);
-      v = v * dt + falling * c(static_cast<Eigen::Index>(i), m);
-    }
-    return v;
+    return spline_.OnPiece(static_cast<int>(i), t, k);
   };
   // The least and largest value at the pieces' ends: an interior candidate of a piece whose
   // values all lie strictly between them can be neither extreme, and its roots are not sought.

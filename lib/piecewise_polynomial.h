@@ -31,6 +31,12 @@ class PiecewisePolynomial {
   /// Index i of the piece with x_i ≤ x < x_{i+1} (0 below x_0, N−1 at and above x_N).
   int Piece(double x) const;
 
+  /// Piece i's polynomial (extended past its ends), its `derivative`th derivative at x (0 past
+  /// the degree): Evaluate(x, d) is OnPiece(Piece(x), x, d), bit for bit.
+  double OnPiece(int i, double x, int derivative) const {
+    return Horner(i, x - breaks_[i], derivative);
+  }
+
   /// ∫_{x_0}^{x_N} p(x) dx, exact.
   double Integral() const;
 

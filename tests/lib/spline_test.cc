@@ -71,6 +71,7 @@ TEST(SplineTest, EvaluateUpToIsEvaluateBitForBit) {
       const double t = x - breaks[i];
       for (int d = 0; d < 6; ++d) {
         EXPECT_EQ(out[d], p.Evaluate(x, d)) << "degree " << degree << ", x " << x << ", d " << d;
+        EXPECT_EQ(out[d], p.OnPiece(i, x, d)) << "degree " << degree << ", x " << x << ", d " << d;
         double sum = 0.0, scale = 0.0;  // Σ k!/(k−d)! c_k t^(k−d), term by term
         for (int k = d; k <= degree; ++k) {
           double falling = 1.0;
