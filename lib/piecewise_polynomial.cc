@@ -37,17 +37,18 @@ int PiecewisePolynomial::Piece(double x) const {
 }
 
 namespace {
-// k!/(k−d)! for k < kFallingDegrees, d < kFallingOrders (0 where k < d): the products Horner
-// would form, exact.
+// k!/(k−d)! (0 where k < d), multiplied out as Horner forms it: exact.
+constexpr double Falling(int k, int d) {
+  double falling = 1.0;
+  for (int j = 0; j < d; ++j) falling *= (k - j);
+  return falling;
+}
+// Falling(k, d) for k < kFallingDegrees, d < kFallingOrders, formed once.
 constexpr int kFallingDegrees = 8, kFallingOrders = 4;
 constexpr std::array<std::array<double, kFallingOrders>, kFallingDegrees> Fallings() {
   std::array<std::array<double, kFallingOrders>, kFallingDegrees> f{};
   for (int k = 0; k < kFallingDegrees; ++k) {
-    for (int d = 0; d < kFallingOrders; ++d) {
-      double falling = 1.0;
-      for (int j = 0; j < d; ++j) falling *= (k - j);
-      f[k][d] = falling;
-    }
+    for (int d = 0; d < kFallingOrders; ++d) f[k][d] = Falling(k, d);
   }
   return f;
 }
@@ -55,16 +56,11 @@ constexpr auto kFalling = Fallings();
 }  // namespace
 
 double PiecewisePolynomial::Horner(int i, double t, int derivative) const {
-  // Horner on the d-th derivative: Σ_{k≥d} k!/(k−d)! c_k t^{k−d}.
+  // Horner on the d-th derivative: Σ_{k≥d} k!/(k−d)! c_k t^{k−d} (0 past the degree).
   double value = 0.0;
   const bool tabled = degree() < kFallingDegrees && derivative < kFallingOrders;
   for (int k = degree(); k >= derivative; --k) {
-    double falling = 1.0;  // k!/(k−d)!
-    if (tabled) {
-      falling = kFalling[k][derivative];
-    } else {
-      for (int j = 0; j < derivative; ++j) falling *= (k - j);
-    }
+    const double falling = tabled ? kFalling[k][derivative] : Falling(k, derivative);
     value = value * t + falling * coefficients_(i, k);
   }
   return value;
@@ -80,7 +76,7 @@ double PiecewisePolynomial::Evaluate(double x, int derivative) const {
 void PiecewisePolynomial::EvaluateUpTo(double x, int count, double* out) const {
   const int i = Piece(x);
   const double t = x - breaks_[i];
-  for (int d = 0; d < count; ++d) out[d] = d > degree() ? 0.0 : Horner(i, t, d);
+  for (int d = 0; d < count; ++d) out[d] = Horner(i, t, d);
 }
 
 double PiecewisePolynomial::Integral() const {
