@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/local_join.h"
 #include "lib/reading_kinks.h"
 #include "lib/spline_band.h"
 #include "lib/units.h"
@@ -250,6 +251,37 @@ void JoinDwell(const std::vector<double>& x, const std::vector<size_t>& cuts, si
   parts[p].law = PiecewisePolynomial({from, to}, level, 0);
 }
 
+// A local fit's two end nodes' bands at each break where neither side is a dwell and the break's
+// place is a reading's (no uncertainty, not estimated): they reach one fit of both sides with s
+// and s' shared (JoinAtBreak). The laws stay as fitted.
+void JoinBreaks(const std::vector<double>& x, const std::vector<double>& y,
+                const std::vector<size_t>& cuts, const LiftLawOptions& options,
+                const std::vector<BuiltPiece>& parts, LiftLawNodes* nodes) {
+  if (options.spline.kind != SplineKind::kLocal || options.break_uncertainty_rad > 0.0) return;
+  const auto x_less = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
+  const auto readings = [&](size_t k) {
+    return std::pair(std::vector<double>(x.begin() + cuts[k], x.begin() + cuts[k + 1] + 1),
+                     std::vector<double>(y.begin() + cuts[k], y.begin() + cuts[k + 1] + 1));
+  };
+  for (size_t p = 0; p + 1 < parts.size(); ++p) {
+    const BuiltPiece &before = parts[p], &after = parts[p + 1];
+    if (before.dwell || after.dwell || before.node_to == before.node_from ||
+        after.node_to == after.node_from)
+      continue;
+    if (p < options.break_estimated.size() && options.break_estimated[p]) continue;
+    const auto node = [&](size_t from, size_t to) {
+      return std::pair(nodes->ready.begin() + static_cast<std::ptrdiff_t>(from),
+                       nodes->ready.begin() + static_cast<std::ptrdiff_t>(to));
+    };
+    const auto [b0, b1] = node(before.node_from, before.node_to);
+    const auto [a0, a1] = node(after.node_from, after.node_to);
+    const auto [xl, yl] = readings(p);
+    const auto [xr, yr] = readings(p + 1);
+    JoinAtBreak(xl, yl, xr, yr, options.spline.sigma, options.spline.quantized,
+                &*std::max_element(b0, b1, x_less), &*std::min_element(a0, a1, x_less));
+  }
+}
+
 }  // namespace
 
 // The spline through (x, y), built apart on each piece between options.breaks_rad (each an x_i
@@ -293,6 +325,7 @@ PiecewisePolynomial BuildPieces(const std::vector<double>& x, const std::vector<
   }
   for (size_t p = 0; p < pieces; ++p)
     if (parts[p].dwell) JoinDwell(x, cuts, p, parts, nodes);
+  JoinBreaks(x, y, cuts, options, parts, nodes);
   std::vector<double> breaks{x.front()};
   Eigen::Index rows = 0;
   for (const BuiltPiece& part : parts) {

@@ -13,6 +13,8 @@
 #include <tuple>
 #include <utility>
 
+#include "lib/local_window.h"
+
 namespace needle {
 namespace {
 
@@ -25,8 +27,9 @@ constexpr double kNodeSpacing = 0.5;   // nodes half a window's width apart
 constexpr double kSmoother = 0.1;
 constexpr double kGrossMisfit = 1000.0;
 
-// Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
-using Points = BinMeans;
+}  // namespace
+
+namespace local_window {
 
 // Readings [from, to) as fitted: themselves, or above kLocalMaxNodes the means of bins.
 Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, size_t from,
@@ -41,16 +44,7 @@ Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, 
                 {}};
 }
 
-// The estimates of s, s', s'' at t from the points [lo, hi), and the standard deviation of s''
-// per unit σ.
-struct Estimate {
-  double s[3] = {};
-  double sd2 = 0.0;
-  double width = 0.0;  // the window's span, rad
-  // The fit's residuals: the largest |s_i − fit(θ_i)| (m) and Σ c_i (s_i − fit(θ_i))² (m²).
-  double largest_residual = 0.0, residual_square_sum = 0.0;
-  double fifth = 0.0;  // |s⁽⁵⁾| of the fitted polynomial, m/rad⁵ (its roughness)
-};
+namespace {
 
 // The mean over point i's bin of u^c = ((θ − t)/b)^c, c = 0 … 5, u its mean's: u^c itself for a
 // single reading, else Σ_j C(c, j) u^(c−j) μ_j with μ_j the bin's central moments over b^j.
@@ -70,8 +64,9 @@ std::array<double, kTerms> MeanPowers(const Points& p, size_t i, double u, doubl
   return row;
 }
 
-Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized,
-               int terms = kTerms) {
+}  // namespace
+
+Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized, int terms) {
   const Eigen::Index k = static_cast<Eigen::Index>(hi - lo);
   double reach = 0.0;
   for (size_t i = lo; i < hi; ++i) reach = std::max(reach, std::abs(p.x[i] - t));
@@ -152,6 +147,16 @@ bool Misfits(const Estimate& e, size_t readings, double sigma, bool quantized) {
   const double dof = static_cast<double>(readings) - kTerms;
   return e.residual_square_sum > (dof + 3.0 * std::sqrt(2.0 * dof) + 2.0) * sigma * sigma;
 }
+
+}  // namespace local_window
+
+namespace {
+
+using local_window::Estimate;
+using local_window::FitAt;
+using local_window::FittedPoints;
+using local_window::Misfits;
+using local_window::Points;
 
 // The window sizes Lepski's rule tries: 7, 9, 11, … (×1.25, distinct), up to n.
 std::vector<size_t> WindowSizes(size_t n) {

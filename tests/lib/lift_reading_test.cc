@@ -765,6 +765,22 @@ TEST(LiftReadingTest, NoiseInPartOfTheTableIsStillMeasured) {
             0.0);
 }
 
+// Helper 2's sweep: a harmonic rise of 2 mm over 80° straight into a harmonic return over 30°
+// (the peak deceleration at the return's start, the top), every 2° to 1e-4 mm. Each side's end
+// node from its own readings reads the return's start −1.7 % short, and its band stopped 0.2 %
+// short of the truth: a spring 0.7 % short of its need passed. The band now reaches what one fit
+// of both sides with s and s' shared reads there (JoinAtBreak, −0.4 %); the value stays the
+// node's own (a junction between readings would make the shared slope wrong).
+TEST(LiftReadingTest, TheBandAtABreakReachesBothSidesReadWithOneSlope) {
+  const Law law{2.0, 80.0, 0.0, 30.0, Harmonic};
+  const Read r = ReadExport(law, Export(law, 2.0, 1e-4, 12.0));
+  ASSERT_EQ(r.choice.law.breaks_rad.size(), 1u) << r.choice.reason;
+  EXPECT_NEAR(r.choice.law.breaks_rad[0] / kDeg, 80.0, 1e-9) << r.choice.reason;
+  EXPECT_NEAR(r.min_error, -0.017, 0.002) << r.choice.reason;
+  EXPECT_TRUE(r.min_in_band) << r.min_error << " " << r.choice.reason;
+  EXPECT_LT(r.min_band_width, 0.1) << r.choice.reason;
+}
+
 }  // namespace
 }  // namespace needle
 

@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// Internal to lib/'s local fit (local_fit.cc, local_join.cc): one window's weighted
+/// least-squares fit and its misfit test (lib/local_fit.h has the model).
+
+#include <cstddef>
+#include <vector>
+
+#include "lib/local_fit.h"
+
+namespace needle {
+namespace local_window {
+
+/// Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
+using Points = BinMeans;
+
+/// The estimates of s, s', s'' at t from the points [lo, hi), and the standard deviation of s''
+/// per unit σ.
+struct Estimate {
+  double s[3] = {};
+  double sd2 = 0.0;
+  double width = 0.0;  ///< the window's span, rad
+  /// The fit's residuals: the largest |s_i − fit(θ_i)| (m) and Σ c_i (s_i − fit(θ_i))² (m²).
+  double largest_residual = 0.0, residual_square_sum = 0.0;
+  double fifth = 0.0;  ///< |s⁽⁵⁾| of the fitted polynomial, m/rad⁵ (its roughness)
+};
+
+/// Readings [from, to) as fitted: themselves, or above kLocalMaxNodes the means of bins.
+Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                    size_t to);
+
+/// The polynomial of `terms` coefficients (the local degree's by default) fitted at t to the
+/// points [lo, hi) with tricube weights; `quantized`: the noise of s'' as the rounding's bound.
+Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized,
+               int terms = kLocalDegree + 1);
+
+/// Whether the window's polynomial misses its `readings` readings by more than their noise can
+/// (σ per reading; `quantized`: the rounding's bound, else white noise's χ² range).
+bool Misfits(const Estimate& e, size_t readings, double sigma, bool quantized);
+
+}  // namespace local_window
+}  // namespace needle
