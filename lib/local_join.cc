@@ -61,7 +61,8 @@ bool JoinWindows(const std::vector<double>& xl, const std::vector<double>& yl,
   // The joint polynomials must fit the readings as a window's must (Misfits: a residual within
   // the rounding's bound, or white noise's chi-square range, on its 2 + 2 x 4 terms): else the
   // law is no C1 pair of quintics there (the break placed a reading off the junction, an s'''
-  // jump beside it: a modified trapezoid's), and each side keeps its own window.
+  // jump beside it: a modified trapezoid's): this pair is rejected and JoinAtBreak tries
+  // narrower ones.
   local_window::Estimate fit;
   const Eigen::VectorXd beta = g.transpose() * root_w.cwiseProduct(ys);
   const Eigen::VectorXd fitted = v * beta;
