@@ -218,6 +218,14 @@ struct BuiltPiece {
   const LiftDwell* dwell = nullptr;
 };
 
+// Piece b's last (first) node in LiftLawNodes::ready, by angle; b has nodes.
+LocalNode* EndNode(const BuiltPiece& b, bool last, LiftLawNodes* nodes) {
+  const auto first = nodes->ready.begin() + static_cast<std::ptrdiff_t>(b.node_from);
+  const auto end = nodes->ready.begin() + static_cast<std::ptrdiff_t>(b.node_to);
+  const auto x_less = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
+  return &*(last ? std::max_element(first, end, x_less) : std::min_element(first, end, x_less));
+}
+
 // The dwell `p` is, at its lift between where the pieces beside it reach the lift: each ends
 // at the dwell's reading, or, where its fit left that reading out (the dwell's, not its own:
 // DwellTrim), where its law reaches the lift between that reading and the one before (Foot).
@@ -238,14 +246,8 @@ void JoinDwell(const std::vector<double>& x, const std::vector<size_t>& cuts, si
     before.law = before.law.Restrict(before.law.breaks().front(), from);
   if (to > after.law.breaks().front())
     after.law = after.law.Restrict(to, after.law.breaks().back());
-  const auto end_node = [&](const BuiltPiece& b, bool last) {
-    const auto first = nodes->ready.begin() + static_cast<std::ptrdiff_t>(b.node_from);
-    const auto end = nodes->ready.begin() + static_cast<std::ptrdiff_t>(b.node_to);
-    const auto x_less = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
-    return last ? std::max_element(first, end, x_less) : std::min_element(first, end, x_less);
-  };
-  if (before.node_to > before.node_from) MoveNode(before.law, from, &*end_node(before, true));
-  if (after.node_to > after.node_from) MoveNode(after.law, to, &*end_node(after, false));
+  if (before.node_to > before.node_from) MoveNode(before.law, from, EndNode(before, true, nodes));
+  if (after.node_to > after.node_from) MoveNode(after.law, to, EndNode(after, false, nodes));
   Eigen::MatrixXd level = Eigen::MatrixXd::Zero(1, before.law.coefficients().cols());
   level(0, 0) = d.lift_m;
   parts[p].law = PiecewisePolynomial({from, to}, level, 0);
@@ -258,7 +260,6 @@ void JoinBreaks(const std::vector<double>& x, const std::vector<double>& y,
                 const std::vector<size_t>& cuts, const LiftLawOptions& options,
                 const std::vector<BuiltPiece>& parts, LiftLawNodes* nodes) {
   if (options.spline.kind != SplineKind::kLocal || options.break_uncertainty_rad > 0.0) return;
-  const auto x_less = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
   const auto readings = [&](size_t k) {
     return std::pair(std::vector<double>(x.begin() + cuts[k], x.begin() + cuts[k + 1] + 1),
                      std::vector<double>(y.begin() + cuts[k], y.begin() + cuts[k + 1] + 1));
@@ -269,16 +270,10 @@ void JoinBreaks(const std::vector<double>& x, const std::vector<double>& y,
         after.node_to == after.node_from)
       continue;
     if (p < options.break_estimated.size() && options.break_estimated[p]) continue;
-    const auto node = [&](size_t from, size_t to) {
-      return std::pair(nodes->ready.begin() + static_cast<std::ptrdiff_t>(from),
-                       nodes->ready.begin() + static_cast<std::ptrdiff_t>(to));
-    };
-    const auto [b0, b1] = node(before.node_from, before.node_to);
-    const auto [a0, a1] = node(after.node_from, after.node_to);
     const auto [xl, yl] = readings(p);
     const auto [xr, yr] = readings(p + 1);
     JoinAtBreak(xl, yl, xr, yr, options.spline.sigma, options.spline.quantized,
-                &*std::max_element(b0, b1, x_less), &*std::min_element(a0, a1, x_less));
+                EndNode(before, true, nodes), EndNode(after, false, nodes));
   }
 }
 

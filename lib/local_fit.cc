@@ -66,6 +66,14 @@ std::array<double, kTerms> MeanPowers(const Points& p, size_t i, double u, doubl
 
 }  // namespace
 
+Eigen::MatrixXd QrWeights(const Eigen::MatrixXd& v, int terms) {
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(v);
+  const Eigen::MatrixXd r = qr.matrixQR().topRows(terms).triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd z =
+      r.transpose().triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(terms, terms));
+  return qr.householderQ() * (Eigen::MatrixXd::Identity(v.rows(), terms) * z);
+}
+
 Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized, int terms) {
   const Eigen::Index k = static_cast<Eigen::Index>(hi - lo);
   double reach = 0.0;
@@ -89,11 +97,7 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized, 
   // readings make VᵀV ill-conditioned (a one-sided window of 7), by its Cholesky factor above.
   Eigen::MatrixXd g;
   if (k <= kQrBelow) {
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(v);
-    const Eigen::MatrixXd r = qr.matrixQR().topRows(terms).triangularView<Eigen::Upper>();
-    const Eigen::MatrixXd z =
-        r.transpose().triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(terms, terms));
-    g = qr.householderQ() * (Eigen::MatrixXd::Identity(k, terms) * z);
+    g = QrWeights(v, terms);
   } else {
     const Eigen::MatrixXd vtv = v.transpose() * v;
     g = v * vtv.ldlt().solve(Eigen::MatrixXd::Identity(terms, terms));
@@ -110,9 +114,7 @@ Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized, 
       sum_abs += std::abs(wi);
     }
     e.s[d] = scale * value;
-    // Rounding is no white noise: each reading's (a bin's) error is at most q/2 = √3 σ, the
-    // estimate's at most √3 σ Σ|g|, which stands for 1.96 standard deviations.
-    if (d == 2) e.sd2 = scale * (quantized ? std::sqrt(3.0) * sum_abs / 1.96 : std::sqrt(var));
+    if (d == 2) e.sd2 = scale * NoisePerSigma(sum_abs, var, quantized);
     scale *= (d + 1) / b;
   }
   // The residuals, from the whole polynomial β = gᵀ W s (the test of Misfits).

@@ -41,11 +41,7 @@ bool JoinWindows(const std::vector<double>& xl, const std::vector<double>& yl,
       v(r, 2 + (on_left ? 0 : kOwn) + c) = root_w(r) * power;
     }
   }
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(v);
-  const Eigen::MatrixXd upper = qr.matrixQR().topRows(kColumns).triangularView<Eigen::Upper>();
-  const Eigen::MatrixXd z = upper.transpose().triangularView<Eigen::Lower>().solve(
-      Eigen::MatrixXd::Identity(kColumns, kColumns));
-  const Eigen::MatrixXd g = qr.householderQ() * (Eigen::MatrixXd::Identity(k, kColumns) * z);
+  const Eigen::MatrixXd g = local_window::QrWeights(v, kColumns);
   // Each estimate, and for s'' its standard deviation per unit σ (FitAt's rule).
   const auto estimate = [&](int column, double scale, double* sd) {
     double value = 0.0, var = 0.0, sum_abs = 0.0;
@@ -55,7 +51,7 @@ bool JoinWindows(const std::vector<double>& xl, const std::vector<double>& yl,
       var += w * w;
       sum_abs += std::abs(w);
     }
-    if (sd) *sd = scale * (quantized ? std::sqrt(3.0) * sum_abs / 1.96 : std::sqrt(var));
+    if (sd) *sd = scale * local_window::NoisePerSigma(sum_abs, var, quantized);
     return scale * value;
   };
   // The joint polynomials must fit the readings as a window's must (Misfits: a residual within
@@ -80,16 +76,18 @@ bool JoinWindows(const std::vector<double>& xl, const std::vector<double>& yl,
   // there one s' is wrong), and its band reaches the joint fit's s'' with that fit's noise and
   // what the node's own band held beyond its own window's noise (truncation, the half-density
   // fit's bias, ...).
-  const auto widen = [&](LocalNode* node, const local_window::Points& p, size_t lo, size_t hi,
-                         double s2, double sd) {
-    const double own_noise = 1.96 * sigma_m * local_window::FitAt(p, t, lo, hi, quantized).sd2;
+  const auto widen = [&](LocalNode* node, const std::vector<double>& x,
+                         const std::vector<double>& y, size_t lo, size_t hi, double s2, double sd) {
+    const local_window::Points own = local_window::FittedPoints(x, y, lo, hi);
+    const double own_noise =
+        1.96 * sigma_m * local_window::FitAt(own, t, 0, hi - lo, quantized).sd2;
     const double beyond = std::max(0.0, node->band2 - own_noise);
     node->band2 = std::max(node->band2, std::abs(s2 - node->s[2]) + 1.96 * sigma_m * sd + beyond);
   };
   const size_t own_l = static_cast<size_t>(left->window),
                own_r = static_cast<size_t>(right->window);
-  widen(left, local_window::FittedPoints(xl, yl, 0, nl), nl - own_l, nl, s2_l, sd_l);
-  widen(right, local_window::FittedPoints(xr, yr, 0, xr.size()), 0, own_r, s2_r, sd_r);
+  widen(left, xl, yl, nl - own_l, nl, s2_l, sd_l);
+  widen(right, xr, yr, 0, own_r, s2_r, sd_r);
   return true;
 }
 

@@ -3,6 +3,8 @@
 /// Internal to lib/'s local fit (local_fit.cc, local_join.cc): one window's weighted
 /// least-squares fit and its misfit test (lib/local_fit.h has the model).
 
+#include <Eigen/Dense>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -33,6 +35,17 @@ Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, 
 /// points [lo, hi) with tricube weights; `quantized`: the noise of s'' as the rounding's bound.
 Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized,
                int terms = kLocalDegree + 1);
+
+/// The weights V (VᵀV)⁻¹ of a least-squares fit's coefficients on its weighted rows V (rows ×
+/// terms), by QR: VᵀV is ill-conditioned for a one-sided window of a few readings.
+Eigen::MatrixXd QrWeights(const Eigen::MatrixXd& v, int terms);
+
+/// An estimate's noise per unit σ from its weights on the readings, Σ|w| and Σ w²/count:
+/// rounding is no white noise, each reading's error at most q/2 = √3 σ and the estimate's at most
+/// √3 σ Σ|w|, which stands for 1.96 standard deviations (`quantized`); else √(Σ w²/count).
+inline double NoisePerSigma(double sum_abs, double sum_squares, bool quantized) {
+  return quantized ? std::sqrt(3.0) * sum_abs / 1.96 : std::sqrt(sum_squares);
+}
 
 /// Whether the window's polynomial misses its `readings` readings by more than their noise can
 /// (σ per reading; `quantized`: the rounding's bound, else white noise's χ² range).
