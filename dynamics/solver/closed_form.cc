@@ -355,10 +355,10 @@ double ClosedFormPiece::HomogeneousEnergy(double t) const {
   return 0.5 * m_ * h[1] * h[1] + 0.5 * K_ * h[0] * h[0];
 }
 
-bool ClosedFormPiece::InputConstant() const {
-  for (int k = 1; k <= kMaxDegree; ++k)
-    if (u_[k] != 0.0) return false;
-  return true;
+int ClosedFormPiece::InputDegree() const {
+  for (int k = kMaxDegree; k > 0; --k)
+    if (u_[k] != 0.0) return k;
+  return 0;
 }
 
 bool ClosedFormPiece::ForcingConstant() const {

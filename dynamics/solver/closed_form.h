@@ -147,7 +147,9 @@ class ClosedFormPiece {
   double stiffness() const { return K_; }
   double mass() const { return m_; }
   double damping() const { return c_; }
-  bool InputConstant() const;
+  bool InputConstant() const { return InputDegree() == 0; }
+  /// The degree of the cam input's polynomial on the piece (0: constant, 1: a ramp).
+  int InputDegree() const;
   /// At rest for good: no homogeneous part (y₀ and ẏ₀ are the particular solution's, exactly),
   /// a constant forcing and input, so that y and ẏ keep their starting bits at every t.
   bool Frozen() const { return HomogeneousZero() && ForcingConstant() && InputConstant(); }

@@ -228,10 +228,13 @@ class EventDriver {
                               std::optional<double> covering, const EventSigns& signs,
                               bool* lift_covered);
   // The end of a closed-form piece from t past its cap, up to `limit` and the run's end t_end_:
-  // the limit where the stretch cannot change the record (Recorder::MayChange), the cam input
-  // is constant on it (a needle resting on its seat, or hanging in its play) and every witness's
-  // range keeps its sign over it (no crossing, certified without halving), else the cap.
+  // on a constant or linear cam input, the farthest of t + 2ᵏ (cap − t) (k ≥ 1) and that end
+  // whose stretch from t is Quiet (a needle resting on its seat or hanging in its play, the
+  // base circle or a ramp under it), else the cap.
   double LongestQuiet(const ClosedFormPiece& piece, double t, double cap, double limit) const;
+  // Whether [t, end] of the piece cannot change the record (Recorder::MayChange) and every
+  // witness's range keeps its sign over it (no crossing, certified without halving).
+  bool Quiet(const ClosedFormPiece& piece, double t, double end) const;
 
   // A budget stops the run with the work done so far (its statistics go with the message).
   [[noreturn]] void OverBudget(const char* what, double budget, double at, IntegrationStats& stats);
