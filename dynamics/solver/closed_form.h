@@ -41,6 +41,7 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <vector>
 
 #include "dynamics/model/needle_train.h"
 #include "dynamics/solver/chain_modes.h"
@@ -88,6 +89,12 @@ class ClosedFormPiece {
   ClosedFormPiece(const NeedleTrain& train, const ContactMode& mode, double segment_angle_rad,
                   double t0, const TrainState& x0, const ChainModes* chain = nullptr);
 
+  /// A coil chain's samples at `count` equally spaced times ts[0] < … < ts[count − 1] (t₀ ≤
+  /// ts[0]): their modes' e^{λ_k τ} − 1 made once, from one e^{λ_k Δ} per mode and the
+  /// recurrence g_j = g_{j−1} + ρ + g_{j−1} ρ (ρ = e^{λ_k Δ} − 1), for MotionState, Motion and
+  /// LiftAndSpeed at exactly those times (some 1e-15 of a mode's size from the sine and
+  /// exponential at each). Nothing for one mass.
+  void ChainSampleTimes(const double* ts, int count) const;
   /// The state [y, ẏ, W, D] at t, and the coils' lifts and velocities of a chain (any t ≥ t₀;
   /// exact for the lifts and velocities).
   TrainState State(double t) const;
@@ -236,6 +243,9 @@ class ClosedFormPiece {
   Eigen::MatrixXd chain_real_;         // [Re(V diag(w c)), −Im(V diag(w c))]
   mutable Eigen::VectorXd grow_, dz_;  // [Re; Im] of e^{λτ} − 1, and the state's change
   mutable ChainNeedle chain_at_;
+  // ChainSampleTimes': the samples' τ and their [Re; Im] of e^{λτ} − 1 (2m × count).
+  mutable std::vector<double> sample_tau_;
+  mutable Eigen::MatrixXd sample_grow_;
   // |ΔV_jk w_k c_k|: each mode's amplitude in segment j's compression (row j − 1), and in the
   // first segment's force k s₁ + c ṡ₁ (row N); made at the first ChainUpperBounds.
   mutable Eigen::MatrixXd chain_amplitudes_;

@@ -20,6 +20,15 @@ double Magnitude(std::complex<double> z) {
   return norm > 1e-290 && norm < 1e290 ? std::sqrt(norm) : std::abs(z);
 }
 
+// e^{λτ} − 1 = (e^{aτ} − 1 − 2 e^{aτ} sin²(bτ/2)) + i e^{aτ} sin(bτ): no cancellation where
+// the mode is slow against τ.
+std::complex<double> ExpMinusOne(std::complex<double> lambda, double tau) {
+  const double a = lambda.real(), b = lambda.imag();
+  const double em1 = std::expm1(a * tau), e = 1.0 + em1;
+  const double sin_half = std::sin(0.5 * b * tau), cos_half = std::cos(0.5 * b * tau);
+  return {em1 - 2.0 * e * sin_half * sin_half, 2.0 * e * sin_half * cos_half};
+}
+
 }  // namespace
 
 void ClosedFormPiece::StartChain() {
@@ -56,19 +65,42 @@ void ClosedFormPiece::StartChain() {
   dz_.resize(2 * n);
 }
 
+void ClosedFormPiece::ChainSampleTimes(const double* ts, int count) const {
+  if (!chain_ || count < 2) return;
+  const Eigen::VectorXcd& lambda = chain_->Lambda();
+  const Eigen::Index m = lambda.size();
+  sample_tau_.resize(count);
+  for (int j = 0; j < count; ++j) sample_tau_[j] = ts[j] - t0_;
+  const double step = (sample_tau_[count - 1] - sample_tau_[0]) / (count - 1);
+  sample_grow_.resize(2 * m, count);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const std::complex<double> rho = ExpMinusOne(lambda[k], step);
+    std::complex<double> g = ExpMinusOne(lambda[k], sample_tau_[0]);
+    for (int j = 0; j < count; ++j) {
+      if (j > 0) g += rho + g * rho;
+      sample_grow_(k, j) = g.real();
+      sample_grow_(m + k, j) = g.imag();
+    }
+  }
+}
+
 const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
   if (tau == chain_at_.tau) return chain_at_;
   const Eigen::VectorXcd& lambda = chain_->Lambda();
   const Eigen::Index m = lambda.size();
+  // One of ChainSampleTimes' times: its column.
+  Eigen::Index column = -1;
+  if (const size_t count = sample_tau_.size(); count > 1) {
+    const double step = (sample_tau_.back() - sample_tau_.front()) / (count - 1);
+    const double j = std::round((tau - sample_tau_.front()) / step);
+    if (j >= 0.0 && j < count && sample_tau_[static_cast<size_t>(j)] == tau)
+      column = static_cast<Eigen::Index>(j);
+  }
   double dh = 0.0, dhv = 0.0, ha = 0.0;
   for (Eigen::Index k = 0; k < m; ++k) {
-    // e^{λτ} − 1 = (e^{aτ} − 1 − 2 e^{aτ} sin²(bτ/2)) + i e^{aτ} sin(bτ): no cancellation where
-    // the mode is slow against τ.
-    const double a = lambda[k].real(), b = lambda[k].imag();
-    const double em1 = std::expm1(a * tau), e = 1.0 + em1;
-    const double sin_half = std::sin(0.5 * b * tau), cos_half = std::cos(0.5 * b * tau);
-    const std::complex<double> g(em1 - 2.0 * e * sin_half * sin_half,
-                                 2.0 * e * sin_half * cos_half);
+    const std::complex<double> g =
+        column >= 0 ? std::complex<double>(sample_grow_(k, column), sample_grow_(m + k, column))
+                    : ExpMinusOne(lambda[k], tau);
     grow_[k] = g.real();
     grow_[m + k] = g.imag();
     const std::complex<double> al = alpha_[k] * lambda[k];

@@ -237,8 +237,9 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   StretchSamples samples;
   std::array<double, n + 1>& ts = samples.ts;
   std::array<std::array<double, n + 1>, 4>& f = samples.f;
+  for (int k = 0; k <= n; ++k) ts[k] = t0 + (t1 - t0) * k / n;
+  piece.ChainSampleTimes(ts.data(), n + 1);
   for (int k = 0; k <= n; ++k) {
-    ts[k] = t0 + (t1 - t0) * k / n;
     const bool inside = k > 0 && k < n;
     // A chain's screened sample needs the needle's lift and speed alone; its coils only where
     // the sample is recorded or its compression located.
