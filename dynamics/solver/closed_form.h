@@ -41,6 +41,7 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "dynamics/model/needle_train.h"
@@ -92,8 +93,11 @@ class ClosedFormPiece {
   /// A coil chain's samples at `count` equally spaced times ts[0] < … < ts[count − 1] (t₀ ≤
   /// ts[0]): their modes' e^{λ_k τ} − 1 made once, from one e^{λ_k Δ} per mode and the
   /// recurrence g_j = g_{j−1} + ρ + g_{j−1} ρ (ρ = e^{λ_k Δ} − 1), for MotionState, Motion and
-  /// LiftAndSpeed at exactly those times (some 1e-15 of a mode's size from the sine and
-  /// exponential at each). Nothing for one mass.
+  /// LiftAndSpeed at exactly those times. They are the values at τ₀ + jΔ, each some ulps of t
+  /// from its sample's rounded time: the same as the closed form to 1e-13 of the homogeneous
+  /// part's size near the start (test TheSamplesByRecurrenceAreTheClosedFormsStates), to
+  /// |λ_k| ulp(t) of a mode's size late in a run (4e-12 at t = 4 s for |λ| = 1e4/s: an ulp's
+  /// shift of the time). count < 2 forgets them. Nothing for one mass.
   void ChainSampleTimes(const double* ts, int count) const;
   /// The state [y, ẏ, W, D] at t, and the coils' lifts and velocities of a chain (any t ≥ t₀;
   /// exact for the lifts and velocities).
@@ -108,6 +112,10 @@ class ClosedFormPiece {
   TrainState MotionState(double t) const;
   /// Whether the piece carries a coil chain.
   bool Chain() const { return chain_ != nullptr; }
+  /// A chain's homogeneous part at its largest: max over the nodes of Σ_k |V_ik w_k c_k|, for
+  /// the lifts (m) and the velocities (m/s), which bound |h_i(τ)| and |h_i′(τ)| at every τ ≥ 0
+  /// (each mode decays). Made once a piece.
+  std::array<double, 2> ChainStartRinging() const;
   /// y and ẏ at t (Motion's first two, without ÿ).
   std::array<double, 2> LiftAndSpeed(double t) const { return PositionVelocity(t - t0_); }
   /// The cam input u and its rate u̇ at t on the piece's own polynomials (the train's own
@@ -245,7 +253,9 @@ class ClosedFormPiece {
   mutable ChainNeedle chain_at_;
   // ChainSampleTimes': the samples' τ and their [Re; Im] of e^{λτ} − 1 (2m × count).
   mutable std::vector<double> sample_tau_;
+  mutable double sample_step_ = 0.0;
   mutable Eigen::MatrixXd sample_grow_;
+  mutable std::optional<std::array<double, 2>> ringing_;  // ChainStartRinging's, once made
   // |ΔV_jk w_k c_k|: each mode's amplitude in segment j's compression (row j − 1), and in the
   // first segment's force k s₁ + c ṡ₁ (row N); made at the first ChainUpperBounds.
   mutable Eigen::MatrixXd chain_amplitudes_;

@@ -66,15 +66,17 @@ void ClosedFormPiece::StartChain() {
 }
 
 void ClosedFormPiece::ChainSampleTimes(const double* ts, int count) const {
+  sample_tau_.clear();
+  chain_at_ = ChainNeedle{};  // a τ ChainAt kept may be one of them, from the other formula
   if (!chain_ || count < 2) return;
   const Eigen::VectorXcd& lambda = chain_->Lambda();
   const Eigen::Index m = lambda.size();
   sample_tau_.resize(count);
   for (int j = 0; j < count; ++j) sample_tau_[j] = ts[j] - t0_;
-  const double step = (sample_tau_[count - 1] - sample_tau_[0]) / (count - 1);
+  sample_step_ = (sample_tau_[count - 1] - sample_tau_[0]) / (count - 1);
   sample_grow_.resize(2 * m, count);
   for (Eigen::Index k = 0; k < m; ++k) {
-    const std::complex<double> rho = ExpMinusOne(lambda[k], step);
+    const std::complex<double> rho = ExpMinusOne(lambda[k], sample_step_);
     std::complex<double> g = ExpMinusOne(lambda[k], sample_tau_[0]);
     for (int j = 0; j < count; ++j) {
       if (j > 0) g += rho + g * rho;
@@ -84,6 +86,22 @@ void ClosedFormPiece::ChainSampleTimes(const double* ts, int count) const {
   }
 }
 
+std::array<double, 2> ClosedFormPiece::ChainStartRinging() const {
+  if (ringing_) return *ringing_;
+  const int n = chain_->Dofs();
+  const Eigen::Index m = chain_c_.size();
+  std::array<double, 2> most{0.0, 0.0};
+  for (int i = 0; i < 2 * n; ++i) {
+    double sum = 0.0;
+    for (Eigen::Index k = 0; k < m; ++k)
+      sum += Magnitude({chain_real_(i, k), chain_real_(i, m + k)});
+    double& to = most[i < n ? 0 : 1];
+    to = std::max(to, sum);
+  }
+  ringing_ = most;
+  return most;
+}
+
 const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
   if (tau == chain_at_.tau) return chain_at_;
   const Eigen::VectorXcd& lambda = chain_->Lambda();
@@ -91,8 +109,7 @@ const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
   // One of ChainSampleTimes' times: its column.
   Eigen::Index column = -1;
   if (const size_t count = sample_tau_.size(); count > 1) {
-    const double step = (sample_tau_.back() - sample_tau_.front()) / (count - 1);
-    const double j = std::round((tau - sample_tau_.front()) / step);
+    const double j = std::round((tau - sample_tau_.front()) / sample_step_);
     if (j >= 0.0 && j < count && sample_tau_[static_cast<size_t>(j)] == tau)
       column = static_cast<Eigen::Index>(j);
   }

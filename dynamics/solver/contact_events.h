@@ -115,8 +115,8 @@ struct StretchRanges {
   double fc_lo = 0.0, fc_hi = 0.0;  ///< applied cam force, N
   double fs_hi = 0.0;               ///< applied seat force, N
   /// A coil chain's largest segment compression, m, and the spring's force on the needle, N:
-  /// upper bounds less a round-off allowance (EventDriver::Ranges) (+∞: not bounded; one mass:
-  /// not read, both follow the lift).
+  /// upper bounds (+∞: not bounded; one mass: not read, both follow the lift). For the record a
+  /// chain at rest up to round-off has every range narrowed (EventDriver::RestAllowance).
   double compression_hi = std::numeric_limits<double>::infinity();
   double spring_hi = std::numeric_limits<double>::infinity();
 };

@@ -103,36 +103,50 @@ StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, doubl
   r.y_lo = y.lo;
   r.y_hi = y.hi;
   r.u_hi = piece.Range(LinearForm{0.0, 0.0, 1.0, 0.0, 0.0}, t0, t1).hi;
-  // A chain's record moving within round-off of the cam's scale (1e-12 of it, as the lift's in
-  // SettledRanges) is no change: its ranges are narrowed by that much. (A chain at rest on its
-  // seat rings at some 1e-19 m, its start and its pieces' particular solutions agreeing only to
-  // round-off: where one mass is frozen, its every piece would be sampled and capped.)
-  const bool chain = piece.Chain() && o_.leave_out;
-  const auto roundoff = [&](double k, double c) {
-    return chain ? 1e-12 * (std::abs(k) * lift_scale_ + std::abs(c) * rate_scale_) : 0.0;
-  };
-  r.y_lo += roundoff(1.0, 0.0);
-  r.y_hi -= roundoff(1.0, 0.0);
   // The applied forces of linear laws: k g + c ġ in mode, with g_c = u − y, g_s = −y.
   if (phase.mode.cam) {
     const double k = train_.cam_law().ForceStiffness(), c = train_.cam_law().ForceDamping();
     const FormRange f = piece.Range(LinearForm{-k, -c, k, c, 0.0}, t0, t1);
-    r.fc_lo = f.lo + roundoff(k, c);
-    r.fc_hi = f.hi - roundoff(k, c);
+    r.fc_lo = f.lo;
+    r.fc_hi = f.hi;
   }
   if (phase.mode.seat) {
     const double k = train_.seat_law().ForceStiffness(), c = train_.seat_law().ForceDamping();
-    r.fs_hi = piece.Range(LinearForm{-k, -c, 0.0, 0.0, 0.0}, t0, t1).hi - roundoff(k, c);
+    r.fs_hi = piece.Range(LinearForm{-k, -c, 0.0, 0.0, 0.0}, t0, t1).hi;
   }
   // A chain's bounds screen its record only where work may be left out (else: +∞, every
   // sample taken, every piece capped, as SimulationOptions::leave_out = false promises).
-  if (chain) {
-    const std::array<double, 2> bound = piece.ChainUpperBounds(t0, t1);
-    const TrainParameters& p = train_.parameters();
-    r.compression_hi = bound[0] - roundoff(1.0, 0.0);
-    r.spring_hi = bound[1] - roundoff(p.rate_N_m, 0.0) - 1e-12 * std::abs(p.preload_N);
+  if (piece.Chain() && o_.leave_out) {
+    const std::array<double, 2> chain = piece.ChainUpperBounds(t0, t1);
+    r.compression_hi = chain[0];
+    r.spring_hi = chain[1];
   }
   return r;
+}
+
+void EventDriver::RestAllowance(const ClosedFormPiece& piece, StretchRanges& r) const {
+  // A chain at rest up to round-off: a constant forcing (the cam does not push, or pushes from
+  // a constant input), every node within 1e-12 of the cam's scale (and its rate's) of the
+  // particular solution for good (ChainStartRinging). It rings there at some 1e-19 m, its start and
+  // its pieces' particular solutions agreeing only to round-off; where one mass is frozen, without
+  // this allowance its every piece would be sampled and capped.
+  if (!piece.Chain() || !o_.leave_out || !piece.ForcingConstant()) return;
+  const double lift_roundoff = 1e-12 * lift_scale_, rate_roundoff = 1e-12 * rate_scale_;
+  const std::array<double, 2> ringing = piece.ChainStartRinging();
+  if (!(ringing[0] <= lift_roundoff && ringing[1] <= rate_roundoff)) return;
+  // What that ringing can move: a record within it is no change.
+  const auto moved = [&](double k, double c) {
+    return std::abs(k) * lift_roundoff + std::abs(c) * rate_roundoff;
+  };
+  const ContactLaw& cam = train_.cam_law();
+  const ContactLaw& seat = train_.seat_law();
+  r.y_lo += moved(1.0, 0.0);
+  r.y_hi -= moved(1.0, 0.0);
+  r.fc_lo += moved(cam.ForceStiffness(), cam.ForceDamping());
+  r.fc_hi -= moved(cam.ForceStiffness(), cam.ForceDamping());
+  r.fs_hi -= moved(seat.ForceStiffness(), seat.ForceDamping());
+  r.compression_hi -= 2.0 * moved(1.0, 0.0);
+  r.spring_hi -= 2.0 * moved(train_.SegmentRateNm(), train_.SegmentDampingNsm());
 }
 
 double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double cap,
@@ -140,12 +154,12 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
   const double end = std::min(limit, t_end_);
   // A piece on a curved stretch of the cam keeps its cap: over many caps the audit's integrals
   // of its polynomials lose digits (the stiff train's energy residual 3e-13 → 1.5e-12).
-  if (piece.InputDegree() > 1) return cap;
+  if (piece.InputDegree() > 1 || !(cap > t)) return cap;
   // Stretches from t, twice the cap's length, then doubled, and at last to the end: the ranges
   // of a longer stretch hold a shorter one's, so the first that is not quiet ends the search.
   double quiet = cap;
   for (double span = 2.0 * (cap - t); quiet < end; span *= 2.0) {
-    const double to = t + span < end ? t + span : end;
+    const double to = std::min(t + span, end);
     if (!Quiet(piece, t, to)) break;
     quiet = to;
   }
@@ -155,7 +169,9 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
 bool EventDriver::Quiet(const ClosedFormPiece& piece, double t, double end) const {
   const StretchRanges ranges = Ranges(piece, t, end);
   // What the run reports (a lift-off run keeps only that: Recorder::set_liftoff_only).
-  if (!(o_.leave_out && Frozen(piece, t, end)) && recorder_.MayChange(ranges, false, true))
+  StretchRanges record = ranges;
+  RestAllowance(piece, record);
+  if (!(o_.leave_out && Frozen(piece, t, end)) && recorder_.MayChange(record, false, true))
     return false;
   // Every witness's range over the whole stretch keeps the sign it has at t: the certified
   // search then ends at its first test, without halving a long interval.
@@ -176,6 +192,7 @@ StretchRanges EventDriver::SettledRanges(const ClosedFormPiece& piece, double t0
                                          bool* lift_covered) {
   constexpr int n = kStretchSamples;
   StretchRanges ranges = Ranges(piece, t0, t1);
+  RestAllowance(piece, ranges);
   // No witness leaves its sign inside the stretch (the certified search found none before its
   // end): off the seat (its gap g_s = −y at or below zero) the lift is at least 0, and below
   // (above) 1 µm where witness 4 says so; within round-off of the cam's scale.
@@ -275,6 +292,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     f[2][k] = fc;
     if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase, c);
   }
+  piece.ChainSampleTimes(nullptr, 0);  // the stretch's own: later times take the closed form
   const std::array<double, 4> record = {-max_fc, -max_fs, min_fc, -max_compression};
   // A lift-off run locates only the least contact force (Recorder::set_liftoff_only).
   LocateExtremes(samples, record, recorder_.liftoff_only() ? 2 : 0,

@@ -221,6 +221,10 @@ class EventDriver {
   bool Frozen(const ClosedFormPiece& piece, double t0, double t1) const;
   // The ranges of what the record sees over [t0, t1] of a closed-form piece.
   StretchRanges Ranges(const ClosedFormPiece& piece, double t0, double t1) const;
+  // For the record only (Recorder::MayChange): a chain at rest up to round-off (a constant
+  // forcing, its homogeneous part within 1e-12 of the cam's scale) has its ranges narrowed by
+  // what that ringing can move, a record moving within it being no change.
+  void RestAllowance(const ClosedFormPiece& piece, StretchRanges& r) const;
   // Ranges() narrowed by what RecordExtremes knows of the stretch: the witnesses' `signs` bound
   // the lift, and a lift that rises (falls) throughout, from a sample the record holds to the
   // `covering` one, sets no extreme before that sample does (then *lift_covered).
