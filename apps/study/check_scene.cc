@@ -107,7 +107,15 @@ SurgeStudy StudySurge(const BoundCase& c, const CheckResult& r, Scene scene,
   std::optional<std::array<double, 2>> before;
   for (int n : {5, 10, 20, 40}) {
     t.coil_masses = n;
-    SimulationResult run = Simulate(scene, r.speed_rpm, rated);
+    // The first N's series is the report's only where the study ends there, undecided (it
+    // cannot converge at its first N): then it is run again with its series.
+    SimulationOptions first = rated;
+    first.record_series = false;
+    SimulationResult run = Simulate(scene, r.speed_rpm, before ? rated : first);
+    if (!before && series && run.status != RunStatus::kComplete &&
+        run.status != RunStatus::kStopped) {
+      run = Simulate(scene, r.speed_rpm, rated);
+    }
     s.masses = n;
     if (before) {
       const double force = std::abs(run.min_contact_force_ratio - (*before)[0]);

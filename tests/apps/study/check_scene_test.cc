@@ -407,6 +407,26 @@ TEST(CheckSceneSurgeTest, TheCoilsSurgeFailsByItsEffectAndADetunedSpringPasses) 
   EXPECT_EQ(Row(d, "surge_spring_stress").verdict, "pass");
 }
 
+// The report's surge figure is the last chain run's series: Example 1's study converges at 10
+// coil masses and keeps that run's series; its first run (5 masses) is made without one, except
+// where the study ends there undecided (a step budget stops it): then that run is made again
+// with its series, for the figure.
+TEST(CheckSceneSurgeTest, TheSurgeFigureHasTheSeriesOfTheRunTheStudyEndsOn) {
+  BoundCase c = Bind(LoadCase(kCases + "basu-example1.toml"));
+  CheckOptions o;
+  o.record_series = true;
+  const CheckResult r = CheckScene(c, o);
+  ASSERT_TRUE(r.surge) << r.surge_reason;
+  EXPECT_EQ(r.surge->masses, 10);
+  EXPECT_FALSE(r.surge->rated.series.empty());
+  c.run.integrator.max_steps = 300;
+  const CheckResult b = CheckScene(c, o);
+  ASSERT_TRUE(b.surge) << b.surge_reason;
+  EXPECT_EQ(b.surge->masses, 5);
+  EXPECT_EQ(b.surge->rated.status, RunStatus::kBudget);
+  EXPECT_FALSE(b.surge->rated.series.empty());
+}
+
 // The frequency screen below 13 is a warning where the coils' dynamics show no harm: Example 2's
 // spring wound with 37 coils (f_1 42 Hz, f_1/f_cam 12.6 at 400 rpm) under its 1.2 kg needle
 // loses 6 % of its contact force to surge and nothing else (its fatigue factor 1.62 passes); the
