@@ -126,10 +126,10 @@ StretchRanges EventDriver::Ranges(const ClosedFormPiece& piece, double t0, doubl
 
 void EventDriver::RestAllowance(const ClosedFormPiece& piece, StretchRanges& r) const {
   // A chain at rest up to round-off: a constant forcing (the cam does not push, or pushes from
-  // a constant input), every node within 1e-12 of the cam's scale (and its rate's) of the
-  // particular solution for good (ChainStartRinging). It rings there at some 1e-19 m, its start and
-  // its pieces' particular solutions agreeing only to round-off; where one mass is frozen, without
-  // this allowance its every piece would be sampled and capped.
+  // a constant input) and a homogeneous part within 1e-12 of the cam's scale (and of its rate's)
+  // at every node and every τ (ChainStartRinging). Its start and its pieces' particular
+  // solutions agree only to round-off, so it rings there at some 1e-19 m: where one mass is
+  // frozen, without this allowance its every piece would be sampled and capped.
   if (!piece.Chain() || !o_.leave_out || !piece.ForcingConstant()) return;
   const double lift_roundoff = 1e-12 * lift_scale_, rate_roundoff = 1e-12 * rate_scale_;
   const std::array<double, 2> ringing = piece.ChainStartRinging();
