@@ -109,9 +109,9 @@ SurgeStudy StudySurge(const BoundCase& c, const CheckResult& r, Scene scene,
     t.coil_masses = n;
     // The first N's series is the report's only where the study ends there, undecided (it
     // cannot converge at its first N): then it is run again with its series.
-    SimulationOptions first = rated;
-    first.record_series = false;
-    SimulationResult run = Simulate(scene, r.speed_rpm, before ? rated : first);
+    SimulationOptions at_n = rated;
+    if (!before) at_n.record_series = false;
+    SimulationResult run = Simulate(scene, r.speed_rpm, at_n);
     if (!before && series && run.status != RunStatus::kComplete &&
         run.status != RunStatus::kStopped) {
       run = Simulate(scene, r.speed_rpm, rated);

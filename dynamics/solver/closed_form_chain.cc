@@ -66,9 +66,10 @@ void ClosedFormPiece::StartChain() {
 }
 
 void ClosedFormPiece::ChainSampleTimes(const double* ts, int count) const {
+  if (!chain_) return;
   sample_tau_.clear();
   chain_at_ = ChainNeedle{};  // a τ ChainAt kept may be one of them, from the other formula
-  if (!chain_ || count < 2) return;
+  if (count < 2) return;
   const Eigen::VectorXcd& lambda = chain_->Lambda();
   const Eigen::Index m = lambda.size();
   sample_tau_.resize(count);

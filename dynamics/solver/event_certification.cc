@@ -131,7 +131,8 @@ void EventDriver::RestAllowance(const ClosedFormPiece& piece, StretchRanges& r) 
   // solutions agree only to round-off, so it rings there at some 1e-19 m: where one mass is
   // frozen, without this allowance its every piece would be sampled and capped.
   if (!piece.Chain() || !o_.leave_out || !piece.ForcingConstant()) return;
-  const double lift_roundoff = 1e-12 * lift_scale_, rate_roundoff = 1e-12 * rate_scale_;
+  const double lift_roundoff = kRoundoffFraction * lift_scale_;
+  const double rate_roundoff = kRoundoffFraction * rate_scale_;
   const std::array<double, 2> ringing = piece.ChainStartRinging();
   if (!(ringing[0] <= lift_roundoff && ringing[1] <= rate_roundoff)) return;
   // What that ringing can move: a record within it is no change.
@@ -158,15 +159,17 @@ double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double 
   // Stretches from t, twice the cap's length, then doubled, and at last to the end: the ranges
   // of a longer stretch hold a shorter one's, so the first that is not quiet ends the search.
   double quiet = cap;
+  std::optional<EventValues> now;
   for (double span = 2.0 * (cap - t); quiet < end; span *= 2.0) {
     const double to = std::min(t + span, end);
-    if (!Quiet(piece, t, to)) break;
+    if (!Quiet(piece, t, to, now)) break;
     quiet = to;
   }
   return quiet;
 }
 
-bool EventDriver::Quiet(const ClosedFormPiece& piece, double t, double end) const {
+bool EventDriver::Quiet(const ClosedFormPiece& piece, double t, double end,
+                        std::optional<EventValues>& now) const {
   const StretchRanges ranges = Ranges(piece, t, end);
   // What the run reports (a lift-off run keeps only that: Recorder::set_liftoff_only).
   StretchRanges record = ranges;
@@ -177,12 +180,12 @@ bool EventDriver::Quiet(const ClosedFormPiece& piece, double t, double end) cons
   // search then ends at its first test, without halving a long interval.
   const bool lifted = ranges.y_lo > kSeparationLift_m;
   if (lifted != (ranges.y_hi > kSeparationLift_m)) return false;  // the gate may change
-  const EventValues now = Events(train_, system_.phase, piece.State(t), t);
-  for (int i = 0; i < static_cast<int>(now.size()); ++i) {
+  if (!now) now = Events(train_, system_.phase, piece.State(t), t);
+  for (int i = 0; i < static_cast<int>(now->size()); ++i) {
     const std::optional<LinearForm> form = WitnessForm(train_, system_.phase, i, lifted);
     if (!form) return false;
     const FormRange range = piece.Range(*form, t, end);
-    if (!(SignOf(now[i]) > 0 ? range.lo > 0.0 : range.hi <= 0.0)) return false;
+    if (!(SignOf((*now)[i]) > 0 ? range.lo > 0.0 : range.hi <= 0.0)) return false;
   }
   return true;
 }
@@ -197,7 +200,7 @@ StretchRanges EventDriver::SettledRanges(const ClosedFormPiece& piece, double t0
   // end): off the seat (its gap g_s = −y at or below zero) the lift is at least 0, and below
   // (above) 1 µm where witness 4 says so; within round-off of the cam's scale.
   if (o_.leave_out) {
-    const double roundoff = 1e-12 * lift_scale_;
+    const double roundoff = kRoundoffFraction * lift_scale_;
     const std::optional<LinearWitnesses> seat = train_.seat_law().Linear();
     if (seat && seat->gap_g > 0.0 && seat->gap_rate == 0.0 && signs[kSeatGap] < 0)
       ranges.y_lo = std::max(ranges.y_lo, -roundoff);
@@ -211,7 +214,8 @@ StretchRanges EventDriver::SettledRanges(const ClosedFormPiece& piece, double t0
   if (covering) {
     const double y0 = Motion(t0)[0];
     const FormRange rate = piece.Range(LinearForm{0.0, 1.0, 0.0, 0.0, 0.0}, t0, t1);
-    const double step = (t1 - t0) / n, roundoff = 1e-12 * (std::abs(*covering) + lift_scale_);
+    const double step = (t1 - t0) / n;
+    const double roundoff = kRoundoffFraction * (std::abs(*covering) + lift_scale_);
     if (rate.lo * step > roundoff && !(y0 < recorder_.min_lift_m())) {
       *lift_covered = true;
       ranges.y_lo = std::max(ranges.y_lo, y0);

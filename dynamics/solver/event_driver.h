@@ -237,8 +237,10 @@ class EventDriver {
   // base circle or a ramp under it), else the cap.
   double LongestQuiet(const ClosedFormPiece& piece, double t, double cap, double limit) const;
   // Whether [t, end] of the piece cannot change the record (Recorder::MayChange) and every
-  // witness's range keeps its sign over it (no crossing, certified without halving).
-  bool Quiet(const ClosedFormPiece& piece, double t, double end) const;
+  // witness's range keeps its sign over it (no crossing, certified without halving). `now`: the
+  // witnesses at t, made at the first stretch that needs them and kept for the longer ones.
+  bool Quiet(const ClosedFormPiece& piece, double t, double end,
+             std::optional<EventValues>& now) const;
 
   // A budget stops the run with the work done so far (its statistics go with the message).
   [[noreturn]] void OverBudget(const char* what, double budget, double at, IntegrationStats& stats);
@@ -315,6 +317,9 @@ class EventDriver {
   size_t jump_checked_ = 0;  // episodes closed and shorter than o_.stop_jump_rad
   double t_end_ = 0.0;       // the run's window (pieces are not stretched past it)
   double lift_scale_ = 0.0;  // the cam input's scale, m (method "exact")
+  // Of the cam's scale (and its rate's): what the record's samples cannot tell from their own
+  // round-off (SettledRanges' lift, a chain at rest: RestAllowance).
+  static constexpr double kRoundoffFraction = 1e-12;
   double rate_scale_ = 0.0;  // its rate's, m/s
   // While a certified search runs: the witness as a linear form on the piece (Value).
   const LinearForm* value_form_ = nullptr;
