@@ -326,7 +326,7 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
        << "): residual " << Mm(r.residual_m) << " mm, x" << r.halving_ratio << " when halved";
   if (r.kind == TableKind::kExact && r.halving_ratio > 0.0 &&
       r.halving_ratio < kWhiteHalvingRatio && r.lag_correlation >= kWhiteLagCorrelation) {
-    what << " but smooth (neighbours correlated " << r.lag_correlation << ")";
+    what << " but not white (neighbours correlated " << r.lag_correlation << ", noise's -0.8)";
   }
   what << ", "
        << (r.printed_m ? "printed to " + PrintedDigit(*r.printed_m)

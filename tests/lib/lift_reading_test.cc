@@ -566,6 +566,22 @@ double DoubleHarmonic(double xi, int d) {
            : 0.5 * ((1 - std::cos(kPi * xi)) - 0.25 * (1 - std::cos(2 * kPi * xi)));
 }
 
+// A cycloidal rise of 10.5° read every 3° (four readings) into a double-harmonic return of
+// 82.5°, to 1e-3 mm: the rise's residual hardly shrinks when halved and alternates in sign
+// (neighbours correlated −0.43, white noise's −0.8), and with the threshold at 0 the table was
+// read as measured and refused, its first reading "an outlier" at 148 robust σ. Exact now, the
+// truth (the cycloid's ±2π h/β²) inside both bands, which say how little four readings hold.
+TEST(LiftReadingTest, ARiseInFourReadingsIsNoMeasurement) {
+  const Law law{1.12, 10.5, 0.0, 82.5, Cycloidal, DoubleHarmonic};
+  const LiftLawChoice c = ChooseLiftLaw(Export(law, 3.0, 1e-3), {});
+  EXPECT_FALSE(c.measured) << c.reason;
+  EXPECT_TRUE(c.outliers.empty()) << c.reason;
+  EXPECT_NE(c.reason.find("but not white"), std::string::npos) << c.reason;
+  const Read r = ReadExport(law, Export(law, 3.0, 1e-3));
+  EXPECT_TRUE(r.max_in_band) << r.max_error << " " << r.max_band_width;
+  EXPECT_TRUE(r.min_in_band) << r.min_error << " " << r.min_band_width;
+}
+
 TEST(LiftReadingTest, AnEstimatedBreakReadingIsNoReading) {
   const Law law{9.0, 110.0, 20.0, 110.0, DoubleHarmonic};
   const Read r = ReadExport(law, Export(law, 1.5, 0.0, 0.75));
