@@ -327,6 +327,9 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   if (r.kind == TableKind::kExact && r.halving_ratio > 0.0 &&
       r.halving_ratio < kWhiteHalvingRatio && r.lag_correlation >= kWhiteLagCorrelation) {
     what << " but not white (neighbours correlated " << r.lag_correlation << ", noise's -0.8)";
+  } else if (r.kind == TableKind::kExact && r.halving_ratio > 0.0 &&
+             r.halving_ratio < kWhiteHalvingRatio && r.windows < kWhiteLeastWindows) {
+    what << " but over " << r.windows << " windows, too few to tell noise";
   }
   what << ", "
        << (r.printed_m ? "printed to " + PrintedDigit(*r.printed_m)

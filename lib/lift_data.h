@@ -183,6 +183,10 @@ constexpr double kWhiteHalvingRatio = 4.0;
 /// tables (1-5 µm, steps 0.1-1°): −0.65 to −0.82. A residual is white only when this
 /// correlation is below this.
 constexpr double kWhiteLagCorrelation = -0.5;
+/// ... over at least this many windows: on fewer the correlation is too uncertain (±0.35 on 8)
+/// to tell −0.8 from a coarse rise's −0.5 (two exports of 30 readings, a return over 5° in two
+/// of them, read −0.52 on 7 and 8 windows, as measured, one of them refused).
+constexpr long kWhiteLeastWindows = 12;
 /// A white residual up to this many times the rounding's σ (q/√12) is the rounding.
 constexpr double kRoundingNoiseFactor = 2.0;
 
@@ -197,6 +201,7 @@ struct TableReading {
   double halving_ratio = 0.0;       ///< the same on every other reading, over it (of the
                                     ///< pieces between cuts long enough to hold a halved window)
   double lag_correlation = 0.0;     ///< Σ e_i e_{i+1} / Σ e_i² of neighbouring windows
+  long windows = 0;                 ///< the windows of five readings the residual is over
   bool staircase = false;           ///< most steps between readings are at most q
 };
 

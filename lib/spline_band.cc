@@ -17,12 +17,12 @@ constexpr double kBand95 = 1.96;
 constexpr double kRichardsonDivisor = 3.0;
 
 // A sparse table (fewer than kDenseTablePoints readings) resolves a rise in a handful of
-// readings, short of the h² regime: its error is taken to fall as h^1.58, so the spline at twice
-// the spacing differs from it by (3 − 1) times its error. (On 996 random closed-form exports of
-// 10-29 readings (a fresh-context helper's trial: ten kinds of law, 9 decimals to 1e-3 mm), the
-// truth lay beyond a band's unsafe end at 3.4 % of the extremes with the divisor 3, 2.1 % with 2 (a
-// 95 % band's 2.5 %), 0.5 % with 1, whose bands are twice as wide.)
-constexpr double kSparseRichardsonDivisor = 2.0;
+// readings, short of the h² regime: its error is taken to fall as h^1.32 only, so the spline at
+// twice the spacing differs from it by (2.5 − 1) times its error. On bench/export_trial.py's
+// 3000 random exports (seed 1; 757 sparse), the truth lay beyond a band's unsafe end at 5.2 %
+// of the sparse extremes with the divisor 3, 3.4 % with 2, 2.1 % with 1.5 (a 95 % band's 2.5
+// %), 1.1 % with 1.
+constexpr double kSparseRichardsonDivisor = 1.5;
 
 // Readings between the ones of one probing comb: 24, where a quintic's response has fallen to
 // 0.43^12 ≈ 4e-5 of its peak (and a cubic's to 0.27^12 ≈ 1e-7).

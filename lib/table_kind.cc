@@ -128,6 +128,7 @@ TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& 
   const double whole = compared.count ? std::sqrt(compared.sum / compared.count) : 0.0;
   r.halving_ratio = whole > 0.0 ? half / whole : 0.0;
   r.lag_correlation = every.sum > 0.0 ? every.lag / every.sum : 0.0;
+  r.windows = every.count;
   if (r.printed_m && last > first) {
     long flat = 0;
     for (size_t i = first; i < last; ++i) {
@@ -137,7 +138,7 @@ TableReading ReadTable(const std::vector<double>& x, const std::vector<double>& 
   }
   // A smooth residual (the law's own, growing ~16× when the table is halved) is an exact table's;
   // a white one at the rounding's level a rounded table's; a white one above it a measurement's.
-  const bool white = half_count >= 3 && r.residual_m > 0.0 &&
+  const bool white = half_count >= 3 && r.windows >= kWhiteLeastWindows && r.residual_m > 0.0 &&
                      r.halving_ratio < kWhiteHalvingRatio &&
                      r.lag_correlation < kWhiteLagCorrelation;
   r.sigma_m = r.rounding_sigma_m;

@@ -234,5 +234,22 @@ TEST(CliMessagesTest, ACamAngleComesWithItsCrankAngle) {
   std::filesystem::remove_all(dir);
 }
 
+// A preload that meets the fitted lift's need but not its band's unsafe end fails as undecided;
+// its margin line said "margin 22.2 % -> FAIL", a positive margin failing with no word why. It
+// gives both margins now (basu-cam4-light-spring: 12 readings at 5°).
+TEST(CliMessagesTest, AnUndecidedPreloadGivesBothMargins) {
+  const auto r = RunNeedle("spring " + Case("basu-cam4-light-spring.toml"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("; margin of the case's spring 22.2 % of the fitted lift, -1.4 % at its "
+                       "acceleration band's unsafe end -> FAIL\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("inertia sizing: undecided within the table's accuracy: the preload 300.0 "
+                       "N meets the required 245.5 N of the fitted lift, not the 304.4 N at its "
+                       "acceleration band's unsafe end"),
+            std::string::npos)
+      << r.out;
+}
+
 }  // namespace
 }  // namespace needle
