@@ -395,6 +395,7 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
   }
   LiftLawChoice c;
   c.law.spline = o.spline;
+  c.law.spline.sparse_table = !dense;
   c.law.open_rad = o.open_rad;
   c.law.close_rad = o.close_rad;
   c.law.breaks_rad = o.breaks_rad;

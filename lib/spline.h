@@ -58,6 +58,9 @@ struct SplineOptions {
   double sigma = 1e-5 / 3.4641016151377544;
   /// `local` only: σ is the readings' rounding (q/√12), not white noise (lib/local_fit.h).
   bool quantized = false;
+  /// The table is a sparse one (under kDenseTablePoints readings, lib/lift_data.h): an
+  /// interpolating spline's band takes its truncation to fall slower than h² (lib/spline_band.h).
+  bool sparse_table = false;
   /// `smoothing` only: how λ is chosen.
   SmoothingRule smoothing_rule = SmoothingRule::kDiscrepancy;
 

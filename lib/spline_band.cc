@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lib/lift_data.h"
-
 namespace needle {
 namespace {
 
@@ -16,12 +14,12 @@ constexpr double kBand95 = 1.96;
 // overstated): the spline at twice the spacing differs from it by (4 − 1) times its error.
 constexpr double kRichardsonDivisor = 3.0;
 
-// A sparse table (fewer than kDenseTablePoints readings) resolves a rise in a handful of
+// A sparse table (options.sparse_table: fewer than 30 readings) resolves a rise in a handful of
 // readings, short of the h² regime: its error is taken to fall as h^1.32 only, so the spline at
 // twice the spacing differs from it by (2.5 − 1) times its error. On bench/export_trial.py's
 // 3000 random exports (seed 1; 757 sparse), the truth lay beyond a band's unsafe end at 5.2 %
 // of the sparse extremes with the divisor 3, 3.4 % with 2, 2.1 % with 1.5 (a 95 % band's 2.5
-// %), 1.1 % with 1.
+// %), 1.1 % with 1; on seed 2, held out, 5.9 %, 3.2 %, 1.8 %, 1.0 %.
 constexpr double kSparseRichardsonDivisor = 1.5;
 
 // Readings between the ones of one probing comb: 24, where a quintic's response has fallen to
@@ -82,8 +80,7 @@ std::vector<LocalNode> InterpolationNodes(const std::vector<double>& x,
     for (size_t j = 0; j < n; ++j) sum_g2[j] += std::pow(g.Evaluate(x[j], 2), 2);
   }
   // The truncation: the splines through each half of the readings.
-  const double divisor =
-      n < static_cast<size_t>(kDenseTablePoints) ? kSparseRichardsonDivisor : kRichardsonDivisor;
+  const double divisor = options.sparse_table ? kSparseRichardsonDivisor : kRichardsonDivisor;
   std::vector<double> truncation(n, 0.0);
   for (size_t first : {0u, 1u}) {
     std::vector<double> hx, hy;

@@ -7,9 +7,11 @@
 /// s''(x_j) = Σ_i g_ji s_i, so the rounding's σ makes s''(x_j) uncertain by σ‖g_j‖; its
 /// truncation error, O(h²) in s'' for a cubic, is estimated from the same spline through every
 /// other reading (both ends kept): twice the spacing makes four times the error, so the error
-/// at the table's spacing is |s''_half − s''|/3 (Richardson; the larger of the two halves).
+/// at the table's spacing is |s''_half − s''|/3 (Richardson; the larger of the two halves). A
+/// sparse table (SplineOptions::sparse_table) is short of the h² regime: its error is taken to
+/// fall as h^1.32, |s''_half − s''|/1.5.
 ///
-///     band_j = 1.96 σ ‖g_j‖ + max over halves |s''_half(x_j) − s''(x_j)| / 3.
+///     band_j = 1.96 σ ‖g_j‖ + max over halves |s''_half(x_j) − s''(x_j)| / (3, or 1.5 sparse).
 ///
 /// A smoothing spline (measured data) at the knots of its largest and smallest s'': for its λ
 /// the fit is linear in the readings, γ = A⁻¹Qᵀy (lib/smoothing_spline.cc), so

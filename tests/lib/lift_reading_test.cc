@@ -361,10 +361,10 @@ TEST(LiftReadingTest, DenseSmoothTableHasNoCorner) {
   ExpectWithin(ReadExport(law, t), 0.02, "2e5 rows to 9 decimals");
 }
 
-// A sparse table (29 readings, a harmonic rise of 7 intervals) is short of the h² regime its
-// spline's Richardson estimate assumes: with the error taken to fall as h² the truth, −7102
-// m/s² at 1000 rpm, lay 2.5 % past the band's unsafe end (−6925 m/s²); it falls only as fast as
-// h^1.32 is assumed now (lib/spline_band.cc, kSparseRichardsonDivisor).
+// A sparse table (29 readings, a harmonic rise over 7.2 steps) is short of the h² regime its
+// spline's Richardson estimate assumes: with the error taken to fall as h² the truth, −7073
+// m/s² at 1000 rpm (h π²/2β² ω²), lay 3.1 % past the band's unsafe end (−6854 m/s²); it falls
+// only as fast as h^1.32 is assumed now (lib/spline_band.cc, kSparseRichardsonDivisor).
 TEST(LiftReadingTest, ASparseTablesBandHoldsTheTruth) {
   const Law law{4.644, 10.8, 7.6, 23.6, Harmonic};
   const Read r = ReadExport(law, Export(law, 1.5, 0.0));
