@@ -27,7 +27,7 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
         "inertia sizing: undecided: the lift table never decelerates (a lift that "
         "returns to its seat must), so it does not hold the lift's top; give the whole "
         "lift");
-  } else if (!r.preload_ok && r.train.preload_N >= r.required_preload_N) {
+  } else if (UndecidedWithinAccuracy(r)) {
     out.push_back("inertia sizing: undecided within the table's accuracy: the preload " +
                   Fixed(r.train.preload_N, 1) + " N meets the required " +
                   Fixed(r.required_preload_N, 1) + " N of the fitted lift, not the " +
@@ -100,6 +100,10 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
   r.liftoff_rpm_quasi_static_band = QuasiStaticLiftoffBand(law, r.train);
   r.required_preload_unsafe_N =
       RequiredPreloadUnsafeN(law, r.train, omega, spring.safety_factor, spring.overspeed_factor);
+  if (r.required_preload_unsafe_N && *r.required_preload_unsafe_N > 0.0) {
+    r.preload_margin_unsafe_percent =
+        100.0 * (r.train.preload_N - *r.required_preload_unsafe_N) / *r.required_preload_unsafe_N;
+  }
   // Decelerating beyond round-off: a millionth of the scale ω² L/Θ² of a lift L over the open
   // duration Θ (a straight table's fitted s'' is a round-off's −1e-16 of it).
   const double span_rad = sum.close_rad - sum.open_rad;
@@ -134,6 +138,10 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
   r.pass = r.failures.empty();
   if (std::optional<std::string> slip = PreloadSlip(r)) r.warnings.push_back(*slip);
   return r;
+}
+
+bool UndecidedWithinAccuracy(const SpringCheckResult& r) {
+  return r.decelerates && !r.preload_ok && r.train.preload_N >= r.required_preload_N;
 }
 
 std::optional<std::string> PreloadSlip(const SpringCheckResult& r) {
@@ -188,6 +196,7 @@ std::vector<Field> SpringCheckFields(const SpringCheckResult& r) {
       {"required_preload", kN, r.required_preload_N, 1},
       {"required_preload", kKgForce, r.required_preload_N, 2},
       {"preload_margin", kPercent, FiniteOrNone(r.preload_margin_percent), 1},
+      {"preload_margin_unsafe", kPercent, r.preload_margin_unsafe_percent, 1},
       {"gas_force", kN, r.gas_force_N, 1},
       TextField("gas_source", r.gas_source),
       FlagField("combustion_ok", r.combustion_ok),

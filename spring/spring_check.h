@@ -39,6 +39,9 @@ struct SpringCheckResult {
   /// sizing is judged there, and undecided where the preload lies between the two.
   std::optional<double> required_preload_unsafe_N;
   double preload_margin_percent = 0.0;  ///< +∞ when nothing is required
+  /// 100·(P₀ − P₀,req at the unsafe end)/P₀,req there, %: the margin the verdict reads; none
+  /// without a band or where nothing is required there.
+  std::optional<double> preload_margin_unsafe_percent;
   bool preload_ok = false;
   /// Whether the lift decelerates anywhere (s'' < 0): a table that never does (it stops before
   /// the lift's top, or holds two readings) leaves the inertia sizing undecided, and failed.
@@ -62,6 +65,11 @@ struct SpringCheckResult {
 /// load's S·F_g, the inertia sizing's P₀,req) is most often a slip of unit: the warning names
 /// the ratio and, where dividing by it brings the preload within 3 times of that rule, the slip
 /// ("9.81×: kgf for N?", kN for N, lbf for N). nullopt below 3 times, or with no rule.
+/// Whether the inertia sizing is undecided within the table's accuracy: the lift decelerates
+/// and the preload meets the fitted lift's requirement but not the one at its acceleration
+/// band's unsafe end.
+bool UndecidedWithinAccuracy(const SpringCheckResult& r);
+
 std::optional<std::string> PreloadSlip(const SpringCheckResult& r);
 
 /// The failing sub-checks of `r`, one line each with its margin, from its sub-verdicts. With

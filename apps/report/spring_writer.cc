@@ -41,10 +41,8 @@ template <typename Unbounded>
 std::string PreloadMargin(const SpringCheckResult& check, const Unbounded& or_unbounded) {
   if (!check.decelerates) return "undecided (the table never decelerates)";
   std::string margin = or_unbounded("preload_margin_percent");
-  if (!check.preload_ok && check.required_preload_unsafe_N &&
-      check.train.preload_N >= check.required_preload_N) {
-    margin += " of the fitted lift, " +
-              Fixed(100.0 * (check.train.preload_N / *check.required_preload_unsafe_N - 1.0), 1) +
+  if (UndecidedWithinAccuracy(check) && check.preload_margin_unsafe_percent) {
+    margin += " of the fitted lift, " + Fixed(*check.preload_margin_unsafe_percent, 1) +
               " % at its acceleration band's unsafe end";
   }
   return margin;

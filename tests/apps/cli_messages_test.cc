@@ -235,8 +235,9 @@ TEST(CliMessagesTest, ACamAngleComesWithItsCrankAngle) {
 }
 
 // A preload that meets the fitted lift's need but not its band's unsafe end fails as undecided;
-// its margin line said "margin 22.2 % -> FAIL", a positive margin failing with no word why. It
-// gives both margins now (basu-cam4-light-spring: 12 readings at 5°).
+// its margin line gave the fitted lift's margin alone ("margin 22.2 % -> FAIL", a positive
+// margin failing with no word why). It gives both margins, in the JSON too
+// (basu-cam4-light-spring: 12 readings at 5°).
 TEST(CliMessagesTest, AnUndecidedPreloadGivesBothMargins) {
   const auto r = RunNeedle("spring " + Case("basu-cam4-light-spring.toml"));
   EXPECT_EQ(r.status, 1);
@@ -249,6 +250,11 @@ TEST(CliMessagesTest, AnUndecidedPreloadGivesBothMargins) {
                        "acceleration band's unsafe end"),
             std::string::npos)
       << r.out;
+  const auto json = nlohmann::json::parse(
+      RunNeedle("spring " + Case("basu-cam4-light-spring.toml") + " --json").out);
+  EXPECT_NEAR(json.at("preload_margin_percent").get<double>(), 22.2, 0.05);
+  EXPECT_NEAR(json.at("preload_margin_unsafe_percent").get<double>(), -1.4, 0.05);
+  EXPECT_FALSE(json.at("preload_ok").get<bool>());
 }
 
 }  // namespace
