@@ -387,6 +387,35 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
 
 }  // namespace
 
+std::string UnresolvedSides(const LiftTable& table) {
+  const std::vector<double>& y = table.lift_m;
+  const std::vector<double>& x = table.crank_rad;
+  if (y.size() < 3 || y.size() != x.size()) return "";
+  const auto top = std::max_element(y.begin(), y.end());
+  if (!(*top > 0.0)) return "";
+  const size_t peak = static_cast<size_t>(top - y.begin());
+  size_t last_peak = peak;
+  while (last_peak + 1 < y.size() && y[last_peak + 1] == *top) ++last_peak;
+  size_t rise = 0, fall = 0;  // readings above the seat before the top, after it
+  size_t from = peak, to = last_peak;
+  while (from > 0 && y[from - 1] > 0.0) --from, ++rise;
+  while (to + 1 < y.size() && y[to + 1] > 0.0) ++to, ++fall;
+  std::string out;
+  // From the seat reading before it to the top, or from the top to the seat reading after it.
+  const auto side = [&](const char* name, size_t count, size_t lo, size_t hi) {
+    if (count >= kResolvedSideReadings) return;
+    out += std::string(out.empty() ? "" : "; ") + "the " + name + " from " + DegreeList({x[lo]}) +
+           " to " + DegreeList({x[hi]}) + " deg holds " + std::to_string(count) +
+           (count == 1 ? " reading" : " readings") + " above the seat";
+  };
+  side("rise", rise, from > 0 ? from - 1 : from, peak);
+  side("return", fall, last_peak, std::min(to + 1, y.size() - 1));
+  if (out.empty()) return "";
+  return out +
+         ": too few to resolve its acceleration, which may lie beyond its band; export the "
+         "table finer there";
+}
+
 LiftLawChoice ChooseLiftLaw(const LiftTable& given, const LiftDataOptions& o) {
   const bool dense = static_cast<int>(given.crank_rad.size()) >= kDenseTablePoints;
   if (dense && !o.noise_m && o.breaks_rad.empty() &&

@@ -372,6 +372,17 @@ struct LiftLawChoice {
 /// Decides the spline, σ and the open-lift rule for `table` (see the file comment).
 LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& options);
 
+/// A side of the lift (the rise before its first largest reading, the return after its last)
+/// holding fewer than this many readings above the seat does not resolve its acceleration: a
+/// harmonic rise of 8° read every 3° (2 readings) gave a_max 5.4 m/s² against the law's 1113,
+/// its band [5.2, 483] (bench/export_trial.py: beyond the unsafe end at 5-6 % of the extremes of
+/// pieces under 4 steps, 2-2.7 % of the others).
+constexpr size_t kResolvedSideReadings = 3;
+/// A warning where the table's rise or return holds fewer than kResolvedSideReadings readings
+/// above the seat ("the return from 25.6 to 33.1 deg holds 2 readings above the seat: …");
+/// empty otherwise.
+std::string UnresolvedSides(const LiftTable& table);
+
 /// The choice as fields (lib/result_fields.h): the spline's reason, σ (mm) and its source,
 /// whether the table is measured, and the breaks found in the table (deg; only when some were).
 std::vector<Field> LiftChoiceFields(const LiftLawChoice& choice);

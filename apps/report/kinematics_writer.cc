@@ -34,6 +34,7 @@ nlohmann::json KinematicsJson(const KinematicsTable& table, const std::vector<Co
   j["points"] = c.lift.table.crank_rad.size();
   PutFields(j, KinematicsFields(table.summary));
   PutFields(j, LiftLawFields(table.law));
+  if (const std::string w = UnresolvedSides(table.choice.table); !w.empty()) j["unresolved"] = w;
   nlohmann::json list = nlohmann::json::array();
   for (size_t i = 0; i < rows.size(); ++i) {
     nlohmann::json row = RowObject(columns, rows_si[i]);
@@ -69,6 +70,8 @@ void KinematicsHead(std::ostream& out, const KinematicsTable& table) {
     out << "WARNING: the spline dips " << lt("undershoot_mm") << " below the seat at "
         << lt("undershoot_deg") << " inside the open lift; try another spline kind\n";
   }
+  if (const std::string w = UnresolvedSides(choice.table); !w.empty())
+    out << "WARNING: " << w << '\n';
   if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
     out << "WARNING: " << choice.outliers.size()
         << " outlier(s) of the lift table left out (outliers = \"drop\"; the spline's reason "
