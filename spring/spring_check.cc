@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "lib/lift_data.h"
 #include "lib/output.h"
 #include "lib/units.h"
 #include "spring/basu_formula.h"
@@ -27,6 +28,8 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
         "inertia sizing: undecided: the lift table never decelerates (a lift that "
         "returns to its seat must), so it does not hold the lift's top; give the whole "
         "lift");
+  } else if (!r.unresolved.empty() && r.train.preload_N >= r.required_preload_N) {
+    out.push_back("inertia sizing: undecided: " + r.unresolved);
   } else if (UndecidedWithinAccuracy(r)) {
     out.push_back("inertia sizing: undecided within the table's accuracy: the preload " +
                   Fixed(r.train.preload_N, 1) + " N meets the required " +
@@ -110,7 +113,8 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
   const double scale_m_s2 =
       span_rad > 0.0 ? omega * omega * sum.max_lift_m / (span_rad * span_rad) : 0.0;
   r.decelerates = *sum.min_acceleration_m_s2 < -1e-6 * scale_m_s2;
-  r.preload_ok = r.decelerates &&
+  r.unresolved = UnresolvedSides(law.table());
+  r.preload_ok = r.decelerates && r.unresolved.empty() &&
                  r.train.preload_N >= r.required_preload_unsafe_N.value_or(r.required_preload_N);
   const double S = spring.safety_factor;
   r.safety_factor = S;
@@ -141,7 +145,8 @@ SpringCheckResult CheckSpring(const NeedleParameters& needle, const SpringParame
 }
 
 bool UndecidedWithinAccuracy(const SpringCheckResult& r) {
-  return r.decelerates && !r.preload_ok && r.train.preload_N >= r.required_preload_N;
+  return r.decelerates && r.unresolved.empty() && !r.preload_ok &&
+         r.train.preload_N >= r.required_preload_N;
 }
 
 std::optional<std::string> PreloadSlip(const SpringCheckResult& r) {

@@ -46,6 +46,9 @@ struct SpringCheckResult {
   /// Whether the lift decelerates anywhere (s'' < 0): a table that never does (it stops before
   /// the lift's top, or holds two readings) leaves the inertia sizing undecided, and failed.
   bool decelerates = false;
+  /// UnresolvedSides of the lift table (lib/lift_data.h): a rise or return of too few readings
+  /// to resolve its acceleration leaves the inertia sizing undecided, and failed. Empty if none.
+  std::string unresolved;
   double gas_force_N = 0.0;                ///< F_g, the combustion load
   std::string gas_source;                  ///< where F_g comes from
   double combustion_margin_percent = 0.0;  ///< 100·(P₀ − S·F_g)/(S·F_g); +∞ when F_g ≤ 0
@@ -65,9 +68,9 @@ struct SpringCheckResult {
 /// load's S·F_g, the inertia sizing's P₀,req) is most often a slip of unit: the warning names
 /// the ratio and, where dividing by it brings the preload within 3 times of that rule, the slip
 /// ("9.81×: kgf for N?", kN for N, lbf for N). nullopt below 3 times, or with no rule.
-/// Whether the inertia sizing is undecided within the table's accuracy: the lift decelerates
-/// and the preload meets the fitted lift's requirement but not the one at its acceleration
-/// band's unsafe end.
+/// Whether the inertia sizing is undecided within the table's accuracy: the lift decelerates,
+/// every side of it is resolved, and the preload meets the fitted lift's requirement but not the
+/// one at its acceleration band's unsafe end.
 bool UndecidedWithinAccuracy(const SpringCheckResult& r);
 
 std::optional<std::string> PreloadSlip(const SpringCheckResult& r);

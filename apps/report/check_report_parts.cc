@@ -104,7 +104,8 @@ std::string SpringTable(const BoundCase& c, const CheckResult& result) {
                (std::isfinite(s.preload_margin_percent)
                     ? Fixed(s.preload_margin_percent, 1) + " %"
                     : std::string("unbounded (the rate alone suffices)")) +
-               (UndecidedWithinAccuracy(s) && s.preload_margin_unsafe_percent
+               (!s.unresolved.empty() ? std::string(" of a lift the table does not resolve")
+                : UndecidedWithinAccuracy(s) && s.preload_margin_unsafe_percent
                     ? " of the fitted lift, " + Fixed(*s.preload_margin_unsafe_percent, 1) +
                           " % at its acceleration band's unsafe end"
                     : std::string()) +

@@ -41,6 +41,7 @@ template <typename Unbounded>
 std::string PreloadMargin(const SpringCheckResult& check, const Unbounded& or_unbounded) {
   if (!check.decelerates) return "undecided (the table never decelerates)";
   std::string margin = or_unbounded("preload_margin_percent");
+  if (!check.unresolved.empty()) return margin + " of a lift the table does not resolve";
   if (UndecidedWithinAccuracy(check) && check.preload_margin_unsafe_percent) {
     margin += " of the fitted lift, " + Fixed(*check.preload_margin_unsafe_percent, 1) +
               " % at its acceleration band's unsafe end";

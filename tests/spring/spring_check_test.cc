@@ -129,6 +129,27 @@ TEST(SpringCheckTest, ATableThatNeverDeceleratesLeavesTheInertiaSizingUndecided)
   }
 }
 
+// A rise of two readings above the seat (a harmonic rise of 8.1° every 3°: a_max 5.4 m/s²
+// against the law's 1113) passed the inertia sizing on its band; the table does not resolve it,
+// so the sizing is undecided, and failed, however large the preload.
+TEST(SpringCheckTest, AnUnresolvedRiseLeavesTheInertiaSizingUndecided) {
+  const Case c = ParseCase(
+      "[engine]\nspeed_rpm = 1000\n[lift]\ncrank_deg = [0, 3, 6, 9, 12, 15, 18, 21, 24, 27, "
+      "30]\nlift_mm = [0, 0.1241, 0.3463, 0.4102, 0.4091, 0.4066, 0.3, 0.2, 0.1, 0.03, 0]\n"
+      "[needle]\nmass_kg = 0.05\n[spring]\npreload_N = 5000\nrate_N_mm = 5\n",
+      "t.toml");
+  const SpringCheckResult r = CheckSpring(c, MakeLiftLaw(c), c.engine.speed_rpm);
+  EXPECT_TRUE(r.decelerates);
+  EXPECT_GT(r.train.preload_N, r.required_preload_unsafe_N.value_or(0.0));
+  EXPECT_FALSE(r.preload_ok);
+  EXPECT_FALSE(r.pass);
+  ASSERT_EQ(r.failures.size(), 1u);
+  EXPECT_EQ(r.failures[0],
+            "inertia sizing: undecided: the rise from 0 to 9 deg holds 2 readings above the seat: "
+            "too few to resolve its acceleration, which may lie beyond its band; export the "
+            "table finer there");
+}
+
 // n_qs's band where every deceleration's band reaches zero: its upper end unbounded, given as
 // such (JSON null), not left out.
 TEST(SpringCheckTest, AnUnboundedNqsBandIsGiven) {
