@@ -396,8 +396,7 @@ std::string UnresolvedSides(const LiftTable& table) {
   const size_t peak = static_cast<size_t>(top - y.begin());
   size_t last_peak = peak;
   while (last_peak + 1 < y.size() && y[last_peak + 1] == *top) ++last_peak;
-  size_t rise = 0, fall = 0;  // readings above the seat before the top, after it
-  size_t from = peak, to = last_peak;
+  size_t rise = 0, fall = 0, from = peak, to = last_peak;  // readings above the seat each side
   while (from > 0 && y[from - 1] > 0.0) --from, ++rise;
   while (to + 1 < y.size() && y[to + 1] > 0.0) ++to, ++fall;
   std::string out;
@@ -408,8 +407,8 @@ std::string UnresolvedSides(const LiftTable& table) {
            " to " + DegreeList({x[hi]}) + " deg holds " + std::to_string(count) +
            (count == 1 ? " reading" : " readings") + " above the seat";
   };
-  side("rise", rise, from > 0 ? from - 1 : from, peak);
-  side("return", fall, last_peak, std::min(to + 1, y.size() - 1));
+  if (from > 0) side("rise", rise, from - 1, peak);
+  if (to + 1 < y.size()) side("return", fall, last_peak, to + 1);
   if (out.empty()) return "";
   return out +
          ": too few to resolve its acceleration, which may lie beyond its band; export the "

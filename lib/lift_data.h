@@ -378,9 +378,10 @@ LiftLawChoice ChooseLiftLaw(const LiftTable& table, const LiftDataOptions& optio
 /// its band [5.2, 483] (bench/export_trial.py: beyond the unsafe end at 5-6 % of the extremes of
 /// pieces under 4 steps, 2-2.7 % of the others).
 constexpr size_t kResolvedSideReadings = 3;
-/// A warning where the table's rise or return holds fewer than kResolvedSideReadings readings
-/// above the seat ("the return from 25.6 to 33.1 deg holds 2 readings above the seat: …");
-/// empty otherwise.
+/// A warning where the table's rise or return, from a seat reading to the top, holds fewer than
+/// kResolvedSideReadings readings above the seat ("the return from 25.6 to 33.1 deg holds 2
+/// readings above the seat: …"); empty otherwise. A side the table cuts (no seat reading
+/// beyond it) is not given, which is another matter, and not warned of.
 std::string UnresolvedSides(const LiftTable& table);
 
 /// The choice as fields (lib/result_fields.h): the spline's reason, σ (mm) and its source,

@@ -473,6 +473,10 @@ TEST(LiftReadingTest, ARiseInTwoReadingsIsSaidToBeUnresolved) {
   t.lift_m = {0, 0.1e-3, 0.2e-3, 0.3e-3, 0.4e-3, 0.3e-3, 0.2e-3, 0.1e-3, 0};
   t.crank_rad.resize(t.lift_m.size());
   EXPECT_EQ(UnresolvedSides(t), "");
+  // A table that begins at its top holds no rise: not one it fails to resolve.
+  t.lift_m = {0.4e-3, 0.3e-3, 0.2e-3, 0.1e-3, 0};
+  t.crank_rad.resize(t.lift_m.size());
+  EXPECT_EQ(UnresolvedSides(t), "");
 }
 
 TEST(LiftReadingTest, MeasuredTablesAreToldByTheirResidual) {
