@@ -149,6 +149,15 @@ bool UndecidedWithinAccuracy(const SpringCheckResult& r) {
          r.train.preload_N >= r.required_preload_N;
 }
 
+std::string PreloadMarginNote(const SpringCheckResult& r) {
+  if (!r.unresolved.empty()) return " of a lift the table does not resolve";
+  if (UndecidedWithinAccuracy(r) && r.preload_margin_unsafe_percent) {
+    return " of the fitted lift, " + Fixed(*r.preload_margin_unsafe_percent, 1) +
+           " % at its acceleration band's unsafe end";
+  }
+  return "";
+}
+
 std::optional<std::string> PreloadSlip(const SpringCheckResult& r) {
   std::string rule;
   double largest = 0.0;

@@ -64,15 +64,20 @@ struct SpringCheckResult {
   bool pass = false;
 };
 
-/// A preload above 3 times the largest rule that asks for one (Basu's formula, the combustion
-/// load's S·F_g, the inertia sizing's P₀,req) is most often a slip of unit: the warning names
-/// the ratio and, where dividing by it brings the preload within 3 times of that rule, the slip
-/// ("9.81×: kgf for N?", kN for N, lbf for N). nullopt below 3 times, or with no rule.
 /// Whether the inertia sizing is undecided within the table's accuracy: the lift decelerates,
 /// every side of it is resolved, and the preload meets the fitted lift's requirement but not the
 /// one at its acceleration band's unsafe end.
 bool UndecidedWithinAccuracy(const SpringCheckResult& r);
 
+/// What the preload's margin over the fitted lift's need leaves out: " of a lift the table does
+/// not resolve" (UnresolvedSides), or where the sizing is undecided within the table's accuracy
+/// " of the fitted lift, -1.4 % at its acceleration band's unsafe end"; empty otherwise.
+std::string PreloadMarginNote(const SpringCheckResult& r);
+
+/// A preload above 3 times the largest rule that asks for one (Basu's formula, the combustion
+/// load's S·F_g, the inertia sizing's P₀,req) is most often a slip of unit: the warning names
+/// the ratio and, where dividing by it brings the preload within 3 times of that rule, the slip
+/// ("9.81×: kgf for N?", kN for N, lbf for N). nullopt below 3 times, or with no rule.
 std::optional<std::string> PreloadSlip(const SpringCheckResult& r);
 
 /// The failing sub-checks of `r`, one line each with its margin, from its sub-verdicts. With

@@ -104,12 +104,7 @@ std::string SpringTable(const BoundCase& c, const CheckResult& result) {
                (std::isfinite(s.preload_margin_percent)
                     ? Fixed(s.preload_margin_percent, 1) + " %"
                     : std::string("unbounded (the rate alone suffices)")) +
-               (!s.unresolved.empty() ? std::string(" of a lift the table does not resolve")
-                : UndecidedWithinAccuracy(s) && s.preload_margin_unsafe_percent
-                    ? " of the fitted lift, " + Fixed(*s.preload_margin_unsafe_percent, 1) +
-                          " % at its acceleration band's unsafe end"
-                    : std::string()) +
-               " " + Verdict(s.preload_ok));
+               PreloadMarginNote(s) + " " + Verdict(s.preload_ok));
   if (s.helical) {
     const HelicalSpringCheck& h = *s.helical;
     t << Row("helical: shear stress at full lift",

@@ -35,20 +35,6 @@ std::string FatigueLine(const BoundCase& c, const HelicalSpringCheck& h) {
          " (>= 1) -> " + PassFail(h.fatigue_ok) + "\n";
 }
 
-// The preload's margin: over the fitted lift's need, and where that passes but the verdict is
-// undecided within the table's accuracy, over the need at its acceleration band's unsafe end.
-template <typename Unbounded>
-std::string PreloadMargin(const SpringCheckResult& check, const Unbounded& or_unbounded) {
-  if (!check.decelerates) return "undecided (the table never decelerates)";
-  std::string margin = or_unbounded("preload_margin_percent");
-  if (!check.unresolved.empty()) return margin + " of a lift the table does not resolve";
-  if (UndecidedWithinAccuracy(check) && check.preload_margin_unsafe_percent) {
-    margin += " of the fitted lift, " + Fixed(*check.preload_margin_unsafe_percent, 1) +
-              " % at its acceleration band's unsafe end";
-  }
-  return margin;
-}
-
 }  // namespace
 
 CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
@@ -113,8 +99,10 @@ CommandOutput WriteSpring(const CaseSpringCheck& spring, bool json) {
     out << "required preload (S = " << Fixed(c.spring->safety_factor, 2) << " at "
         << Fixed(c.spring->overspeed_factor, 2) << " x " << Fixed(speed, 0)
         << " rpm): " << t("required_preload_N") << " = " << t("required_preload_kgf")
-        << "; margin of the case's spring " << PreloadMargin(check, or_unbounded) << " -> "
-        << PassFail(preload_ok) << '\n';
+        << "; margin of the case's spring "
+        << (check.decelerates ? or_unbounded("preload_margin_percent") + PreloadMarginNote(check)
+                              : std::string("undecided (the table never decelerates)"))
+        << " -> " << PassFail(preload_ok) << '\n';
     if (helical) {
       const std::vector<Field> hf = HelicalFields(*helical);
       const auto ht = [&](const char* key) { return FieldText(FieldAt(hf, key)); };
