@@ -246,8 +246,10 @@ std::vector<LiftDwell> FindDwells(const std::vector<double>& crank_rad,
 /// The dwells a local fit of an exact or rounded table reads (ChooseLiftLaw): FindDwells' on its
 /// printed digit q, but those whose junctions were both found among `inside` (within a reading
 /// inside the run or two outside: the dwell's piece between them is its lift already) and those
-/// whose sides would keep fewer than kDwellSideReadings readings; the breaks found within two
-/// readings of a dwell kept are dropped from `inside` (its ends are its junctions).
+/// whose sides would keep fewer than kDwellSideReadings readings, a break closer than that to a
+/// side whose s'' jumps into the dwell not counted (that junction, misplaced); the breaks found
+/// within two readings of a dwell kept, and those, are dropped from `inside` (its ends are its
+/// junctions).
 std::vector<LiftDwell> SeekDwells(const std::vector<double>& crank_rad,
                                   const std::vector<double>& lift_m, size_t first, size_t last,
                                   double q, SplineKind kind, std::vector<const LiftBreak*>* inside);

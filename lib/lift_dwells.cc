@@ -83,10 +83,10 @@ std::vector<LiftDwell> FindDwells(const std::vector<double>& x, const std::vecto
     const size_t from = i - std::min(kDwellSide, i - first), to = std::min(j + kDwellSide, last);
     if (j + 1 - i >= kDwellLeastReadings && y[i] > 0.0 && (top || bottom) &&
         to + 1 - from >= kDwellLeastReadings + 2 * kDwellSide &&
-        QuinticMisfits(x, y, from, to, allowed) &&
-        (JumpsIntoDwell(x, y, i - 1, i, first, y[i], sigma) ||
-         JumpsIntoDwell(x, y, j + 1, j, last, y[i], sigma))) {
-      dwells.push_back({x[i], x[j], y[i], top});
+        QuinticMisfits(x, y, from, to, allowed)) {
+      const bool in = JumpsIntoDwell(x, y, i - 1, i, first, y[i], sigma);
+      const bool out = JumpsIntoDwell(x, y, j + 1, j, last, y[i], sigma);
+      if (in || out) dwells.push_back({x[i], x[j], y[i], top, in, out});
     }
     i = j + 1;
   }
@@ -113,16 +113,6 @@ std::vector<LiftDwell> SeekDwells(const std::vector<double>& x, const std::vecto
       });
     };
     if (found_near(lo, d.from_rad) && found_near(d.to_rad, hi)) continue;
-    std::vector<const LiftBreak*> rest;
-    for (const LiftBreak* b : *inside)
-      if (b->crank_rad < lo || b->crank_rad > hi) rest.push_back(b);
-    // The pieces beside it, from the break or dwell before it and to the one after it.
-    double before = x[first], after = x[last];
-    for (const LiftBreak* b : rest) {
-      if (b->crank_rad < d.from_rad) before = std::max(before, b->crank_rad);
-      if (b->crank_rad > d.to_rad) after = std::min(after, b->crank_rad);
-    }
-    if (!kept.empty()) before = std::max(before, kept.back().to_rad);
     const auto readings = [&](double from, double to) {
       return std::count_if(x.begin(), x.end(), [&](double t) { return t >= from && t <= to; });
     };
@@ -130,6 +120,23 @@ std::vector<LiftDwell> SeekDwells(const std::vector<double>& x, const std::vecto
     // one was forced through it, overshot the dwell and met it with a corner.
     const auto least =
         static_cast<std::ptrdiff_t>(std::max<size_t>(kDwellSideReadings, MinimumPoints(kind)));
+    // A break found closer than that to a side whose s'' jumps into the dwell is that junction
+    // misplaced (a harmonic rise of 72.5° into a 5.3° dwell, read every 1°: found at 69°).
+    const auto misplaced = [&](const LiftBreak* b) {
+      return (d.jumps_before && b->crank_rad < d.from_rad &&
+              readings(b->crank_rad, d.from_rad) < least) ||
+             (d.jumps_after && b->crank_rad > d.to_rad && readings(d.to_rad, b->crank_rad) < least);
+    };
+    std::vector<const LiftBreak*> rest;
+    for (const LiftBreak* b : *inside)
+      if ((b->crank_rad < lo || b->crank_rad > hi) && !misplaced(b)) rest.push_back(b);
+    // The pieces beside it, from the break or dwell before it and to the one after it.
+    double before = x[first], after = x[last];
+    for (const LiftBreak* b : rest) {
+      if (b->crank_rad < d.from_rad) before = std::max(before, b->crank_rad);
+      if (b->crank_rad > d.to_rad) after = std::min(after, b->crank_rad);
+    }
+    if (!kept.empty()) before = std::max(before, kept.back().to_rad);
     if (readings(before, d.from_rad) < least || readings(d.to_rad, after) < least) continue;
     *inside = rest;
     kept.push_back(d);

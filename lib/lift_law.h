@@ -52,6 +52,8 @@ struct LiftDwell {
   double from_rad = 0.0, to_rad = 0.0;  ///< its first and last reading, rad
   double lift_m = 0.0;                  ///< its lift, m
   bool top = true;                      ///< the readings beside it lower
+  bool jumps_before = false;            ///< s'' jumps where the readings before it meet it
+  bool jumps_after = false;             ///< s'' jumps where the readings after it meet it
 };
 
 struct LiftLawOptions {

@@ -1335,6 +1335,21 @@ TEST(LiftReadingTest, ADwellBetweenTwoJumpsIsReadAsOne) {
   EXPECT_NEAR(fitted.Lift(end + 0.2 * kDeg), law.At(38.2, 0) * 1e-3, 2e-7);
 }
 
+// A harmonic rise of 72.51° into a dwell of 5.31° (five readings), read every 1° to 9
+// decimals. The break search put the rise's junction at 69° (it is at 72.51°), four readings
+// from the dwell: too few for the dwell's side, so the dwell was dropped and the misplaced break
+// used. a_min came out −313.5 against −270.3 m/s² at 1000 rpm (+16 %), its band [−344, −283]
+// short of the truth. A break that near a side whose s'' jumps into the dwell is that junction.
+TEST(LiftReadingTest, ABreakFoundBesideADwellsJumpIsItsJunction) {
+  const Law law{8.0, 72.51, 5.31, 78.94, Harmonic};
+  const Read r = ReadExport(law, Export(law, 1.0, 0.0));
+  ASSERT_EQ(r.choice.law.dwells.size(), 1u) << r.choice.reason;
+  EXPECT_NEAR(r.choice.law.dwells[0].from_rad / kDeg, 73.0, 1e-9);
+  EXPECT_NEAR(r.choice.law.dwells[0].to_rad / kDeg, 77.0, 1e-9);
+  ExpectWithin(r, 0.01, "harmonic into a 5.31 deg dwell every 1 deg");
+  EXPECT_TRUE(r.min_in_band) << "a_min off by " << r.min_error << "; " << r.choice.reason;
+}
+
 // A smooth top rounded flat over a few readings is no dwell (FindDwells: one quintic through
 // the run and the readings beside it fits to the rounding); nor is a dwell its sides meet with
 // s'' at 0 (a cubic B-spline's, whose last knot interval read every 1.5° misfits a quintic with
