@@ -245,7 +245,8 @@ std::vector<LiftDwell> FindDwells(const std::vector<double>& crank_rad,
                                   double sigma_m);
 /// The dwells a local fit of an exact or rounded table reads (ChooseLiftLaw): FindDwells' on its
 /// printed digit q, but those whose junctions were both found among `inside` (within a reading
-/// inside the run or two outside: the dwell's piece between them is its lift already) and those
+/// inside the run or two outside, or on a side whose s'' jumps into it only in the gap beside
+/// it: the dwell's piece between them is its lift already) and those
 /// whose sides would keep fewer than kDwellSideReadings readings, a break closer than that to a
 /// side whose s'' jumps into the dwell not counted (that junction, misplaced); the breaks found
 /// within two readings of a dwell kept, and those, are dropped from `inside` (its ends are its

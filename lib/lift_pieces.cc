@@ -136,10 +136,14 @@ LocalTrim PieceTrim(const std::vector<double>& x, const std::vector<double>& y,
     }
     return std::nullopt;
   };
-  return {
-      piece == 0 ? SeatTrim(x, y, sigma, true) : dwell_trim(true).value_or(estimated(piece - 1)),
-      piece + 1 == pieces ? SeatTrim(x, y, sigma, false)
-                          : dwell_trim(false).value_or(estimated(piece))};
+  const std::optional<double> dwell_front = dwell_trim(true), dwell_back = dwell_trim(false);
+  LocalTrim trim{
+      piece == 0 ? SeatTrim(x, y, sigma, true) : dwell_front.value_or(estimated(piece - 1)),
+      piece + 1 == pieces ? SeatTrim(x, y, sigma, false) : dwell_back.value_or(estimated(piece))};
+  // An end at a break placed to within u: its readings may be the next piece's.
+  if (u > 0.0 && ((piece > 0 && !dwell_front) || (piece + 1 < pieces && !dwell_back)))
+    trim.least = kTrimmedLeastReadings;
+  return trim;
 }
 
 // The spline of one piece; its nodes, which carry the band of s'' (a local fit's, a smoothing

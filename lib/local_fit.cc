@@ -467,7 +467,7 @@ LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, do
   // The readings the windows take: all but those within the trims of the ends.
   size_t from = std::lower_bound(x.begin(), x.end(), x.front() + trim.front_rad) - x.begin();
   size_t to = std::upper_bound(x.begin(), x.end(), x.back() - trim.back_rad) - x.begin();
-  if (!(to > from && to - from >= 2 * static_cast<size_t>(kLocalMinimumPoints))) {
+  if (!(to > from && to - from >= trim.least)) {
     from = 0;  // too few left: no trim
     to = x.size();
   }

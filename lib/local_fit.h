@@ -50,6 +50,13 @@ namespace needle {
 constexpr int kLocalDegree = 5;
 /// Readings in the narrowest window: two more than the degree needs.
 constexpr int kLocalMinimumPoints = kLocalDegree + 2;
+/// The least readings the trims of a piece beside a break placed only to within some angle may
+/// leave (LocalTrim::least): one window's and one more. Untrimmed, a short piece's fit followed
+/// the readings its breaks' uncertainty says may be the neighbours' (a harmonic top rounded flat
+/// to 1e-3 mm, its two junctions each found 1.2° off, left a piece of 12 readings, 8 after the
+/// trims: a_min came out −8799 against −438 m/s²). Other trims (a seat reading, a break's added
+/// reading) keep 2 kLocalMinimumPoints: a C∞ bump's foot trimmed to 8 readings read a_min 40 % off.
+constexpr size_t kTrimmedLeastReadings = kLocalMinimumPoints + 1;
 /// A piece of fewer readings than this has its windows' truncation measured by the quartic on
 /// the same readings (no window can grow much wider; the reason names such a piece).
 constexpr int kLocalFewReadings = 2 * kLocalMinimumPoints;
@@ -102,9 +109,13 @@ struct LocalFit {
 /// `trim`: readings within trim.front_rad of the first reading and trim.back_rad of the last
 /// are left out of every window (a break placed only to within that angle: which side's law
 /// they follow is not known), the nodes still reaching the piece's ends; no trim where it would
-/// leave fewer than 2 kLocalMinimumPoints readings.
+/// leave fewer than trim.least readings.
 struct LocalTrim {
   double front_rad = 0.0, back_rad = 0.0;
+  /// The least readings the trims may leave: 2 kLocalMinimumPoints, or kTrimmedLeastReadings
+  /// where an end is a break placed only to within some angle (its readings may be the next
+  /// piece's: better one window than a fit through them).
+  size_t least = 2 * static_cast<size_t>(kLocalMinimumPoints);
 };
 LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, double sigma_m,
                   bool quantized = false, LocalTrim trim = {});

@@ -1350,6 +1350,34 @@ TEST(LiftReadingTest, ABreakFoundBesideADwellsJumpIsItsJunction) {
   EXPECT_TRUE(r.min_in_band) << "a_min off by " << r.min_error << "; " << r.choice.reason;
 }
 
+// A harmonic rise of 56.99° into a dwell of 8.74°, read every 1° to 1e-3 mm: the top prints
+// flat over ten readings, which a quintic fits (no dwell), and its two junctions are found each
+// 1.2° off, to within 2°. The piece between them held 12 readings, 8 once those within the
+// breaks' uncertainty were left out: too few for the trims (14 then), so its fit followed the
+// rise's and return's readings at its ends: a_min −8799 against −437.6 m/s² at 1000 rpm, its
+// band [−22263, −605] not holding the truth.
+TEST(LiftReadingTest, AShortPieceLeavesOutTheReadingsItsBreaksMayOwn) {
+  const Law law{8.0, 56.9928602172218, 8.740802749916487, 73.30930392574379, Harmonic};
+  const Read r = ReadExport(law, Export(law, 1.0, 1e-3));
+  ExpectWithin(r, 0.05, "harmonic top rounded flat to 1e-3 mm every 1 deg");
+  EXPECT_TRUE(r.min_in_band) << "a_min off by " << r.min_error << "; " << r.choice.reason;
+  EXPECT_TRUE(r.max_in_band) << "a_max off by " << r.max_error << "; " << r.choice.reason;
+}
+
+// A harmonic rise of 48.10° into a dwell of 7.39° and a harmonic return, read every 1° to
+// 1e-4 mm: the rise's junction was found at the reading before the dwell (48°), the return's at
+// 57°, two readings past the dwell's last (55°; the junction is at 55.48°). Junctions found at
+// both ends were taken to hold the dwell already, but the piece between held two readings of the
+// return: a_min −1209 against −614 m/s² at 1000 rpm, the truth outside its band. On a side whose
+// s'' jumps into the dwell only a junction in the gap beside it holds the dwell.
+TEST(LiftReadingTest, AJunctionTwoReadingsPastADwellDoesNotHoldIt) {
+  const Law law{8.0, 48.09761773732974, 7.385311094221841, 52.74623364375252, Harmonic};
+  const Read r = ReadExport(law, Export(law, 1.0, 1e-4));
+  ASSERT_EQ(r.choice.law.dwells.size(), 1u) << r.choice.reason;
+  ExpectWithin(r, 0.02, "harmonic return two readings past a dwell, 1e-4 mm every 1 deg");
+  EXPECT_TRUE(r.min_in_band) << "a_min off by " << r.min_error << "; " << r.choice.reason;
+}
+
 // A smooth top rounded flat over a few readings is no dwell (FindDwells: one quintic through
 // the run and the readings beside it fits to the rounding); nor is a dwell its sides meet with
 // s'' at 0 (a cubic B-spline's, whose last knot interval read every 1.5° misfits a quintic with
