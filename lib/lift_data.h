@@ -244,13 +244,13 @@ std::vector<LiftDwell> FindDwells(const std::vector<double>& crank_rad,
                                   const std::vector<double>& lift_m, size_t first, size_t last,
                                   double sigma_m);
 /// The dwells a local fit of an exact or rounded table reads (ChooseLiftLaw): FindDwells' on its
-/// printed digit q, but those whose junctions were both found among `inside` (within a reading
-/// inside the run or two outside, or on a side whose s'' jumps into it only in the gap beside
-/// it: the dwell's piece between them is its lift already) and those
-/// whose sides would keep fewer than kDwellSideReadings readings, a break closer than that to a
-/// side whose s'' jumps into the dwell not counted (that junction, misplaced); the breaks found
-/// within two readings of a dwell kept, and those, are dropped from `inside` (its ends are its
-/// junctions).
+/// printed digit q, but those whose junctions were both found among `inside` (each at the run's
+/// end reading or up to two readings outside it; on a side whose s'' jumps into the dwell, only
+/// in the gap beside it: the dwell's piece between them is its lift already), and those whose
+/// sides would keep fewer than kDwellSideReadings readings. A break closer than that to a side
+/// whose s'' jumps into the dwell, jumping the same way, is that junction misplaced: not counted
+/// against the side. The breaks within two readings of a dwell kept, and the misplaced ones, are
+/// dropped from `inside` (its ends are its junctions).
 std::vector<LiftDwell> SeekDwells(const std::vector<double>& crank_rad,
                                   const std::vector<double>& lift_m, size_t first, size_t last,
                                   double q, SplineKind kind, std::vector<const LiftBreak*>* inside);

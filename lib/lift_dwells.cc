@@ -115,7 +115,7 @@ std::vector<LiftDwell> SeekDwells(const std::vector<double>& x, const std::vecto
     // On a side whose s'' jumps into the dwell, only in the gap beside it: one a reading or two
     // out leaves that side's readings off the dwell's lift in its piece (a harmonic return's
     // junction at 55.5° found at 57°, every 1° to 1e-4 mm: a_min −1209 against −614 m/s²).
-    const double near_lo = d.jumps_before ? x[i - std::min<size_t>(1, i)] : lo;
+    const double near_lo = d.jumps_before ? x[i - 1] : lo;  // i > first (FindDwells)
     const double near_hi = d.jumps_after ? x[std::min(last, j + 1)] : hi;
     if (found_near(near_lo, d.from_rad) && found_near(d.to_rad, near_hi)) continue;
     const auto readings = [&](double from, double to) {
@@ -125,12 +125,17 @@ std::vector<LiftDwell> SeekDwells(const std::vector<double>& x, const std::vecto
     // one was forced through it, overshot the dwell and met it with a corner.
     const auto least =
         static_cast<std::ptrdiff_t>(std::max<size_t>(kDwellSideReadings, MinimumPoints(kind)));
-    // A break found closer than that to a side whose s'' jumps into the dwell is that junction
-    // misplaced (a harmonic rise of 72.5° into a 5.3° dwell, read every 1°: found at 69°).
+    // A break found closer than that to a side whose s'' jumps into the dwell, and jumping as
+    // that junction does (s'' rises to the dwell's 0 into a top, falls from it out of one), is
+    // that junction misplaced (a harmonic rise of 72.5° into a 5.3° dwell, read every 1°: found
+    // at 69°).
+    const double into = d.top ? 1.0 : -1.0;  // the sign of the jump of s'' into the dwell
     const auto misplaced = [&](const LiftBreak* b) {
-      return (d.jumps_before && b->crank_rad < d.from_rad &&
+      if (b->order != 2) return false;
+      return (d.jumps_before && b->crank_rad < d.from_rad && into * b->jump > 0.0 &&
               readings(b->crank_rad, d.from_rad) < least) ||
-             (d.jumps_after && b->crank_rad > d.to_rad && readings(d.to_rad, b->crank_rad) < least);
+             (d.jumps_after && b->crank_rad > d.to_rad && into * b->jump < 0.0 &&
+              readings(d.to_rad, b->crank_rad) < least);
     };
     std::vector<const LiftBreak*> rest;
     for (const LiftBreak* b : *inside)
