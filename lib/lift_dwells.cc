@@ -106,20 +106,20 @@ std::vector<LiftDwell> SeekDwells(const std::vector<double>& x, const std::vecto
     // Junctions found at both its ends (each at its end reading or up to two outside; one
     // inside the run is none of them) hold it already: the dwell's piece between them is its
     // lift (a trapezoidal law's dwell, its s'' ramping to 0 just before: pieces cut at its
-    // readings overshot there by 30 %).
+    // readings overshot there by 30 %). On a side whose s'' jumps into the dwell, only one in
+    // the gap beside it: one a reading or two out leaves that side's readings off the dwell's
+    // lift in its piece (a harmonic return's junction at 55.5° found at 57°, every 1° to 1e-4
+    // mm: a_min −1209 against −614 m/s²).
     const auto found_near = [&](double from, double to) {
       return std::any_of(inside->begin(), inside->end(), [&](const LiftBreak* b) {
         return b->crank_rad >= from && b->crank_rad <= to;
       });
     };
-    // On a side whose s'' jumps into the dwell, only in the gap beside it: one a reading or two
-    // out leaves that side's readings off the dwell's lift in its piece (a harmonic return's
-    // junction at 55.5° found at 57°, every 1° to 1e-4 mm: a_min −1209 against −614 m/s²).
     const double near_lo = d.jumps_before ? x[i - 1] : lo;  // i > first (FindDwells)
-    const double near_hi = d.jumps_after ? x[std::min(last, j + 1)] : hi;
+    const double near_hi = d.jumps_after ? x[j + 1] : hi;   // j < last (FindDwells)
     if (found_near(near_lo, d.from_rad) && found_near(d.to_rad, near_hi)) continue;
-    const auto readings = [&](double from, double to) {
-      return std::count_if(x.begin(), x.end(), [&](double t) { return t >= from && t <= to; });
+    const auto readings = [&](double from, double to) {  // x is increasing
+      return std::upper_bound(x.begin(), x.end(), to) - std::lower_bound(x.begin(), x.end(), from);
     };
     // Each side long enough for its fit to leave the dwell's reading out (DwellTrim): a shorter
     // one was forced through it, overshot the dwell and met it with a corner.
