@@ -377,6 +377,7 @@ class Table:
     noise_um: float = 0.0
     seed: int = 0
     nqs: bool = True          # run `needle spring` for n_qs
+    to_seat: bool = False     # unpadded: go on to the first grid point on or past the lift's end
 
     @property
     def name(self):
@@ -437,6 +438,8 @@ def table_data(law, t):
         angle_decimals = 9
     else:                                        # a user's grid from the first point: the last
         n = int(math.floor((hi - lo) / t.step + 1e-9))  # row is the last grid point <= the end
+        if t.to_seat and lo + t.step * n < hi - 1e-9:   # or the first past it, on the seat
+            n += 1
         theta = lo + t.step * np.arange(n + 1)
         angle_decimals = next(d for d in range(10) if abs(round(t.step, d) - t.step) < 1e-12)
     s = law.lift(theta)
