@@ -41,7 +41,8 @@ bool JoinWindows(const std::vector<double>& xl, const std::vector<double>& yl,
       v(r, 2 + (on_left ? 0 : kOwn) + c) = root_w(r) * power;
     }
   }
-  const Eigen::MatrixXd g = local_window::QrWeights(v, kColumns);
+  Eigen::MatrixXd g(k, kColumns), factors = v;  // v is kept for the residuals
+  local_window::QrWeights(factors, kColumns, g);
   // Each estimate, and for s'' its standard deviation per unit σ (FitAt's rule).
   const auto estimate = [&](int column, double scale, double* sd) {
     double value = 0.0, var = 0.0, sum_abs = 0.0;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Internal to lib/'s local fit (local_fit.cc, local_join.cc): one window's weighted
-/// least-squares fit and its misfit test (lib/local_fit.h has the model).
+/// Internal to lib/'s local fit (local_fit.cc, local_join.cc; defined in local_window.cc): one
+/// window's weighted least-squares fit and its misfit test (lib/local_fit.h has the model).
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -36,9 +36,12 @@ Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, 
 Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized,
                int terms = kLocalDegree + 1);
 
-/// The weights V (VᵀV)⁻¹ of a least-squares fit's coefficients on its weighted rows V (rows ×
-/// terms), by QR: VᵀV is ill-conditioned for a one-sided window of a few readings.
-Eigen::MatrixXd QrWeights(const Eigen::MatrixXd& v, int terms);
+/// The weights G = V (VᵀV)⁻¹ = Q₁ R⁻ᵀ of a least-squares fit's coefficients on its weighted rows V
+/// (rows × terms, at most kQrMaxTerms), into g (rows × terms), by QR: VᵀV is ill-conditioned for a
+/// one-sided window of a few readings. V is overwritten by its factors (callers' storage: a
+/// window's on the stack).
+void QrWeights(Eigen::Ref<Eigen::MatrixXd> v, int terms, Eigen::Ref<Eigen::MatrixXd> g);
+inline constexpr int kQrMaxTerms = 2 * kLocalDegree;  // JoinWindows' 2 + 2 × 4
 
 /// An estimate's noise per unit σ from its weights on the readings, Σ|w| and Σ w²/count:
 /// rounding is no white noise, each reading's error at most q/2 = √3 σ and the estimate's at most

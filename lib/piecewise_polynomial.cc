@@ -76,7 +76,18 @@ double PiecewisePolynomial::Evaluate(double x, int derivative) const {
 void PiecewisePolynomial::EvaluateUpTo(double x, int count, double* out) const {
   const int i = Piece(x);
   const double t = x - breaks_[i];
-  for (int d = 0; d < count; ++d) out[d] = Horner(i, t, d);
+  if (degree() >= kFallingDegrees || count > kFallingOrders) {
+    for (int d = 0; d < count; ++d) out[d] = Horner(i, t, d);
+    return;
+  }
+  // Horner's sums as Horner() forms them, the piece's coefficients read once for all orders.
+  std::array<double, kFallingDegrees> c;
+  for (int k = 0; k <= degree(); ++k) c[k] = coefficients_(i, k);
+  for (int d = 0; d < count; ++d) {
+    double value = 0.0;
+    for (int k = degree(); k >= d; --k) value = value * t + kFalling[k][d] * c[k];
+    out[d] = value;
+  }
 }
 
 double PiecewisePolynomial::Integral() const {

@@ -22,7 +22,7 @@ void BM_SplineBuild(benchmark::State& state) {
   state.SetLabel(SplineKindName(o.kind));
   for (auto _ : state) benchmark::DoNotOptimize(LiftLaw(Cam4().lift.table, o));
 }
-BENCHMARK(BM_SplineBuild)->DenseRange(0, 6);
+BENCHMARK(BM_SplineBuild)->DenseRange(0, 7);
 
 void BM_Table1000(benchmark::State& state) {
   SplineOptions o = Cam4().lift.spline;
@@ -37,7 +37,7 @@ void BM_Table1000(benchmark::State& state) {
     }
   }
 }
-BENCHMARK(BM_Table1000)->DenseRange(0, 6);
+BENCHMARK(BM_Table1000)->DenseRange(0, 7);
 
 void BM_RightHandSide(benchmark::State& state) {
   const BoundCase c = Bind(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example2.toml"));

@@ -65,6 +65,13 @@ TEST(SplineTest, EvaluateUpToIsEvaluateBitForBit) {
     for (Eigen::Index i = 0; i < c.size(); ++i) c.data()[i] = u(rng);
     const PiecewisePolynomial p(breaks, c, 0);
     for (double x : {-0.5, -0.3, -0.11, 0.1, 0.2373, 0.45, 0.9, 1.2, 1.7}) {
+      // Four orders and two (Kinematics::At's rows: each order's Horner sum with the piece's
+      // coefficients read once), six (one Horner() per order).
+      double four[4], two[2];
+      p.EvaluateUpTo(x, 4, four);
+      p.EvaluateUpTo(x, 2, two);
+      for (int d = 0; d < 4; ++d) EXPECT_EQ(four[d], p.Evaluate(x, d)) << "x " << x << ", d " << d;
+      for (int d = 0; d < 2; ++d) EXPECT_EQ(two[d], p.Evaluate(x, d)) << "x " << x << ", d " << d;
       double out[6];
       p.EvaluateUpTo(x, 6, out);
       const int i = p.Piece(x);
@@ -82,7 +89,9 @@ TEST(SplineTest, EvaluateUpToIsEvaluateBitForBit) {
         }
         EXPECT_NEAR(out[d], sum, 1e-13 * scale) << "degree " << degree << ", x " << x;
       }
-      if (degree < 5) EXPECT_EQ(out[5], 0.0);
+      if (degree < 5) {
+        EXPECT_EQ(out[5], 0.0);
+      }
     }
   }
 }
