@@ -2,9 +2,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -97,6 +99,38 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     responses_.col(d) = stiffness_.solve(r);
   }
   Decompose();
+}
+
+std::shared_ptr<const ChainModes> ChainModes::Shared(const NeedleTrain& train,
+                                                     const ContactMode& mode) {
+  // What Assemble reads, and the mode: equal keys make equal chains, bit for bit.
+  struct Key {
+    int coils;
+    bool cam, seat;
+    std::array<double, 8> numbers;
+    bool operator==(const Key& o) const {
+      return coils == o.coils && cam == o.cam && seat == o.seat && numbers == o.numbers;
+    }
+  };
+  const Key key{
+      train.Coils(),
+      mode.cam,
+      mode.seat,
+      {train.SegmentRateNm(), train.SegmentDampingNsm(), train.CoilMassKg(), train.NeedleMassKg(),
+       train.cam_law().ForceStiffness(), train.cam_law().ForceDamping(),
+       train.seat_law().ForceStiffness(), train.seat_law().ForceDamping()}};
+  // The thread's chains, the last asked at the back.
+  thread_local std::vector<std::pair<Key, std::shared_ptr<const ChainModes>>> kept;
+  const auto found =
+      std::find_if(kept.begin(), kept.end(), [&](const auto& entry) { return entry.first == key; });
+  if (found != kept.end()) {
+    std::rotate(found, found + 1, kept.end());
+    return kept.back().second;
+  }
+  auto made = std::make_shared<const ChainModes>(train, mode);
+  if (kept.size() == kSharedKept) kept.erase(kept.begin());
+  kept.emplace_back(key, made);
+  return made;
 }
 
 void ChainModes::Assemble(const NeedleTrain& train, const ContactMode& mode) {

@@ -34,6 +34,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <memory>
 #include <vector>
 
 #include "dynamics/model/needle_train.h"
@@ -59,6 +60,14 @@ class ChainModes {
   /// std::invalid_argument, with the reason, when K is not positive definite (a spring without
   /// rate) or a mode is at or near critical damping (kLeastConditioning).
   ChainModes(const NeedleTrain& train, const ContactMode& mode);
+  /// The same, made once per thread for each set of the numbers it is made of (the coils, their
+  /// mass, rate and damping, the needle's mass, the contact laws' stiffness and damping, the
+  /// mode) and shared by the thread's later runs of such a chain: a run's passes, a sweep's
+  /// speeds, a study's samples whose spring and needle are not scattered. The kSharedKept
+  /// chains last asked are kept. Throws as the constructor (a refused chain is not kept).
+  static std::shared_ptr<const ChainModes> Shared(const NeedleTrain& train,
+                                                  const ContactMode& mode);
+  static constexpr int kSharedKept = 8;  // two trains' four contact modes
 
   /// N: the needle and the N − 1 coil masses.
   int Dofs() const { return dofs_; }

@@ -23,11 +23,11 @@ class ExactStepper final : public Stepper {
  public:
   ExactStepper(TrainSystem& system, bool audit) : system_(system), audit_(audit) {
     // A chain's modes in each of its four contact modes (the cam and the seat pushing or not),
-    // made before the run: a chain the closed form cannot carry is refused before it starts.
+    // made before the run (or kept from the thread's last runs of such a chain): a chain the
+    // closed form cannot carry is refused before it starts.
     if (system_.train().Coils() > 0) {
       for (int i = 0; i < 4; ++i)
-        modes_[i] =
-            std::make_unique<ChainModes>(system_.train(), ContactMode{(i & 1) != 0, (i & 2) != 0});
+        modes_[i] = ChainModes::Shared(system_.train(), ContactMode{(i & 1) != 0, (i & 2) != 0});
     }
   }
   void Initialize(const TrainState& z, double t, double /*dt*/) override {
@@ -85,7 +85,7 @@ class ExactStepper final : public Stepper {
   TrainState x_{};
   double t_ = 0.0, step_ = 0.0, stop_ = 0.0;
   std::optional<ClosedFormPiece> piece_;
-  std::array<std::unique_ptr<ChainModes>, 4> modes_;
+  std::array<std::shared_ptr<const ChainModes>, 4> modes_;
   std::function<double(const ClosedFormPiece&, double, double, double)> longest_;
 };
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <regex>
 #include <stdexcept>
@@ -136,6 +137,35 @@ TEST(ChainModesTest, TheModesGiveTheTrainsJacobianBack) {
 // masses, and a flight mode within 1e-12 of critical damping (ζ_s = 0.92224 in this chain: the
 // dense eigenvectors are taken there, and the chain refused as near critical when even they do
 // not invert to 1e-10).
+// ChainModes::Shared: one chain per set of its numbers and mode, on a thread; a train at another
+// speed (the chain does not read it) shares it, one with another needle mass or mode does not;
+// the kSharedKept chains last asked are kept, the one asked longest ago is made again; and a
+// shared chain is the chain the constructor makes, bit for bit.
+TEST(ChainModesTest, SharedModesAreMadeOncePerChainOnAThread) {
+  Chain c(6);
+  c.p.contact_damping_ratio = 0.0;  // (the contact's dashpot would read the needle's mass too)
+  const NeedleTrain train(c.cam, c.p, 60.0, 0.0), faster(c.cam, c.p, 90.0, 0.0);
+  const ContactMode cam{true, false};
+  const std::shared_ptr<const ChainModes> first = ChainModes::Shared(train, cam);
+  EXPECT_EQ(ChainModes::Shared(faster, cam), first);
+  EXPECT_NE(ChainModes::Shared(train, ContactMode{false, true}), first);
+  const ChainModes made(train, cam);
+  EXPECT_EQ(made.Lambda(), first->Lambda());
+  EXPECT_EQ(made.Vectors(), first->Vectors());
+  EXPECT_EQ(made.Inverse(), first->Inverse());
+  // kSharedKept other chains (other needle masses) asked since: `first` is made again.
+  for (int i = 0; i < ChainModes::kSharedKept; ++i) {
+    Chain other(6);
+    other.p.contact_damping_ratio = 0.0;
+    other.p.mass_kg = 0.8 + 0.01 * (i + 1);
+    const NeedleTrain heavier(other.cam, other.p, 60.0, 0.0);
+    EXPECT_NE(ChainModes::Shared(heavier, cam), first) << "needle mass " << other.p.mass_kg;
+  }
+  const std::shared_ptr<const ChainModes> again = ChainModes::Shared(train, cam);
+  EXPECT_NE(again, first);
+  EXPECT_EQ(again->Lambda(), first->Lambda());
+}
+
 TEST(ChainModesTest, TheModesAndTheirInverseRowsInvertEachOther) {
   struct Variant {
     int coils;
