@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "apps/report/result_writers.h"
+#include "lib/lift_data.h"
 #include "lib/output.h"
 #include "lib/units.h"
 
@@ -58,6 +59,12 @@ nlohmann::json GridJson(const SimulationResult& r, double speed_rpm) {
   return g;
 }
 
+// A rise or return the table does not resolve (UnresolvedSides: `what`): the runs read the law
+// fitted there.
+std::string UnresolvedWarning(const std::string& what) {
+  return "WARNING: the runs read the lift law fitted where " + what + "\n";
+}
+
 }  // namespace
 
 CommandOutput WriteSimulate(const CaseRun& run, bool json) {
@@ -68,6 +75,7 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
   result.status = r.liftoff() ? 1 : 0;
   const std::vector<Field> fields = SimulationFields(r);
   const auto text = [&fields](const char* key) { return ValueText(FieldAt(fields, key)); };
+  const std::string unresolved = UnresolvedSides(c.lift.choice.table);
   if (!run.series_si.empty()) {
     const std::vector<Column> columns = SeriesColumns();
     for (size_t i = 0; i < columns.size(); ++i)
@@ -103,11 +111,13 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
     j["status"] = RunStatusName(r.status);
     j["status_reason"] = r.status_reason;
     j["liftoff_rpm_quasi_static"] = Finite(run.liftoff_rpm_quasi_static);
+    if (!unresolved.empty()) j["unresolved"] = unresolved;
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
         << ")\n";
+    if (!unresolved.empty()) out << UnresolvedWarning(unresolved);
     if (!r.skipped) {
       out << "window " << text("window_start_deg") << " .. " << text("window_end_deg")
           << " deg; rtol " << run.rtol << "; " << text("steps") << " steps, "
@@ -156,6 +166,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
   const OverspeedOptions& opt = search.options;
   const OverspeedResult& r = search.result;
   const double n_qs = search.liftoff_rpm_quasi_static;
+  const std::string unresolved = UnresolvedSides(c.lift.choice.table);
   CommandOutput result;
   result.status = r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
   std::vector<std::vector<double>> rows_si;
@@ -172,6 +183,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
     j["cycles"] = opt.simulation.cycles;
     j["steady_state"] = opt.simulation.steady_state;
     j["rows"] = RecordList(r.rows, OverspeedRowFields);
+    if (!unresolved.empty()) j["unresolved"] = unresolved;
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
@@ -188,6 +200,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
                     "revolutions after the first)\n"
                   : "lift-off in any of them counts\n");
     }
+    if (!unresolved.empty()) out << UnresolvedWarning(unresolved);
     out << "quasi-static lift-off n_qs = "
         << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
         << "dynamic lift-off n_dyn = ";

@@ -299,6 +299,11 @@ void FinishVerdict(const BoundCase& c, CheckResult& r) {
                          "the sweep's steps, which it can miss; state the wire's damping (1 % is "
                          "typical)");
   }
+  // A rise or return the table does not resolve: the spring check leaves the sizing undecided;
+  // the runs read the law fitted there, and their rows say nothing of that unless told.
+  if (r.run && r.spring && !r.spring->unresolved.empty())
+    r.warnings.push_back("dynamics: the runs read the lift law fitted where " +
+                         r.spring->unresolved);
   // The spring check's failures first, as the surge verdict (JudgeLimits) left them.
   if (r.spring) {
     std::vector<std::string> lines;

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -59,6 +60,39 @@ TEST(NeedleCliTest, ToleranceStudyEndToEnd) {
                          ": [tolerance] preload_percent: 80 % is outside the plausible range [0, "
                          "50] % (docs/ranges.md)\n");
   std::filesystem::remove_all(dir);
+  std::filesystem::remove(path);
+}
+
+// A rise the table does not resolve (two readings above the seat): the runs read the law fitted
+// there, and simulate, overspeed and check say so (text and JSON), as kinematics and the spring
+// check do; a table that resolves its sides says nothing of it.
+TEST(NeedleCliTest, RunsOnAnUnresolvedRiseSaySo) {
+  const std::string path = testing::TempPath("unresolved.toml");
+  std::ofstream(path) << "[engine]\nspeed_rpm = 1000\n[lift]\ncrank_deg = [0, 3, 6, 9, 12, 15, "
+                         "18, 21, 24, 27, 30]\nlift_mm = [0, 0.1241, 0.3463, 0.4102, 0.4091, "
+                         "0.4066, 0.3, 0.2, 0.1, 0.03, 0]\n[needle]\nmass_kg = 0.05\n[spring]\n"
+                         "preload_N = 5000\nrate_N_mm = 5\n[train]\ncontact_stiffness_N_m = "
+                         "1e8\nseat_stiffness_N_m = 1e8\n";
+  const std::string unresolved =
+      "the rise from 0 to 9 deg holds 2 readings above the seat: too few to resolve its "
+      "acceleration, which may lie beyond its band; export the table finer there";
+  const std::string warning = "WARNING: the runs read the lift law fitted where " + unresolved;
+  for (const std::string command : {"simulate", "overspeed --from 1000 --to 1100"}) {
+    const auto text = RunNeedle(command + " " + path);
+    EXPECT_NE(text.out.find(warning + "\n"), std::string::npos) << command << ": " << text.out;
+    const auto json = RunNeedle(command + " " + path + " --json");
+    EXPECT_EQ(nlohmann::json::parse(json.out).value("unresolved", ""), unresolved) << command;
+  }
+  const std::string out = testing::TempPath("unresolved-report");
+  const auto check = RunNeedle("check " + path + " --out " + out + " --json");
+  const auto warnings = nlohmann::json::parse(check.out)["warnings"];
+  EXPECT_NE(std::find(warnings.begin(), warnings.end(),
+                      "dynamics: the runs read the lift law fitted where " + unresolved),
+            warnings.end())
+      << warnings.dump();
+  const auto resolved = RunNeedle("simulate " + Case("basu-example1.toml") + " --json");
+  EXPECT_FALSE(nlohmann::json::parse(resolved.out).contains("unresolved"));
+  std::filesystem::remove_all(out);
   std::filesystem::remove(path);
 }
 
