@@ -22,6 +22,7 @@ bool JoinWindows(const std::vector<double>& xl, const std::vector<double>& yl,
   const double t = xl.back();
   // The rows: the left window's readings up to the break, then the right one's after it.
   constexpr int kOwn = kTerms - 2, kColumns = 2 + 2 * kOwn;
+  static_assert(kColumns <= local_window::kQrMaxTerms, "QrWeights' square holds the columns");
   const Eigen::Index k = static_cast<Eigen::Index>(kl + kr - 1);
   const double bl = 1.2 * (t - xl[nl - kl]), br = 1.2 * (xr[kr - 1] - t), b = std::max(bl, br);
   Eigen::MatrixXd v = Eigen::MatrixXd::Zero(k, kColumns);

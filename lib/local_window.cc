@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace needle {
@@ -53,6 +55,9 @@ std::array<double, kTerms> MeanPowers(const Points& p, size_t i, double u, doubl
 }  // namespace
 
 void QrWeights(Eigen::Ref<Eigen::MatrixXd> v, int terms, Eigen::Ref<Eigen::MatrixXd> g) {
+  if (terms > kQrMaxTerms || v.cols() != terms || g.rows() != v.rows() || g.cols() != terms)
+    throw std::logic_error("QrWeights: a window of " + std::to_string(terms) + " terms (at most " +
+                           std::to_string(kQrMaxTerms) + ") and matching weights expected");
   using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kQrMaxTerms,
                                kQrMaxTerms>;
   const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(v);  // in place
@@ -64,6 +69,7 @@ void QrWeights(Eigen::Ref<Eigen::MatrixXd> v, int terms, Eigen::Ref<Eigen::Matri
 }
 
 Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized, int terms) {
+  if (terms > kTerms) throw std::logic_error("FitAt: at most kTerms terms (the stack's rows)");
   const Eigen::Index k = static_cast<Eigen::Index>(hi - lo);
   double reach = 0.0;
   for (size_t i = lo; i < hi; ++i) reach = std::max(reach, std::abs(p.x[i] - t));

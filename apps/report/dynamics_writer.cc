@@ -59,10 +59,10 @@ nlohmann::json GridJson(const SimulationResult& r, double speed_rpm) {
   return g;
 }
 
-// A rise or return the table does not resolve (UnresolvedSides: `what`): the runs read the law
-// fitted there.
-std::string UnresolvedWarning(const std::string& what) {
-  return "WARNING: the runs read the lift law fitted where " + what + "\n";
+// A rise or return the table does not resolve (UnresolvedSides: `what`): `runs` ("the run
+// reads", "the runs read") the law fitted there.
+std::string UnresolvedWarning(const char* runs, const std::string& what) {
+  return std::string("WARNING: ") + runs + " the lift law fitted where " + what + "\n";
 }
 
 }  // namespace
@@ -117,7 +117,7 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
         << ")\n";
-    if (!unresolved.empty()) out << UnresolvedWarning(unresolved);
+    if (!unresolved.empty()) out << UnresolvedWarning("the run reads", unresolved);
     if (!r.skipped) {
       out << "window " << text("window_start_deg") << " .. " << text("window_end_deg")
           << " deg; rtol " << run.rtol << "; " << text("steps") << " steps, "
@@ -200,7 +200,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
                     "revolutions after the first)\n"
                   : "lift-off in any of them counts\n");
     }
-    if (!unresolved.empty()) out << UnresolvedWarning(unresolved);
+    if (!unresolved.empty()) out << UnresolvedWarning("the runs read", unresolved);
     out << "quasi-static lift-off n_qs = "
         << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
         << "dynamic lift-off n_dyn = ";

@@ -30,7 +30,8 @@
 /// whose last integral is of a polynomial one degree lower: it ends at q's degree. K and C are
 /// tridiagonal, so each level costs O(N) a coefficient.
 ///
-/// A train holds at most four such modes (cam, seat, both, none): the stepper keeps them.
+/// A train holds at most four such modes (cam, seat, both, none): Shared keeps them for the
+/// thread's runs of such a chain.
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>

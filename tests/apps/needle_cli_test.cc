@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "run_command.h"
 
@@ -76,12 +77,19 @@ TEST(NeedleCliTest, RunsOnAnUnresolvedRiseSaySo) {
   const std::string unresolved =
       "the rise from 0 to 9 deg holds 2 readings above the seat: too few to resolve its "
       "acceleration, which may lie beyond its band; export the table finer there";
-  const std::string warning = "WARNING: the runs read the lift law fitted where " + unresolved;
-  for (const std::string command : {"simulate", "overspeed --from 1000 --to 1100"}) {
+  for (const auto& [command, runs] :
+       {std::pair<std::string, std::string>{"simulate", "the run reads"},
+        {"overspeed --from 1000 --to 1100", "the runs read"}}) {
+    const std::string warning = "WARNING: " + runs + " the lift law fitted where " + unresolved;
     const auto text = RunNeedle(command + " " + path);
     EXPECT_NE(text.out.find(warning + "\n"), std::string::npos) << command << ": " << text.out;
     const auto json = RunNeedle(command + " " + path + " --json");
     EXPECT_EQ(nlohmann::json::parse(json.out).value("unresolved", ""), unresolved) << command;
+    // A table that resolves its sides: no such word.
+    const auto resolved = RunNeedle(command + " " + Case("basu-example1.toml"));
+    EXPECT_EQ(resolved.out.find("WARNING"), std::string::npos) << command << ": " << resolved.out;
+    const auto resolved_json = RunNeedle(command + " " + Case("basu-example1.toml") + " --json");
+    EXPECT_FALSE(nlohmann::json::parse(resolved_json.out).contains("unresolved")) << command;
   }
   const std::string out = testing::TempPath("unresolved-report");
   const auto check = RunNeedle("check " + path + " --out " + out + " --json");
@@ -90,8 +98,6 @@ TEST(NeedleCliTest, RunsOnAnUnresolvedRiseSaySo) {
                       "dynamics: the runs read the lift law fitted where " + unresolved),
             warnings.end())
       << warnings.dump();
-  const auto resolved = RunNeedle("simulate " + Case("basu-example1.toml") + " --json");
-  EXPECT_FALSE(nlohmann::json::parse(resolved.out).contains("unresolved"));
   std::filesystem::remove_all(out);
   std::filesystem::remove(path);
 }

@@ -14,6 +14,7 @@
 #include <regex>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apps/case/case_scene.h"
@@ -131,19 +132,12 @@ TEST(ChainModesTest, TheModesGiveTheTrainsJacobianBack) {
   }
 }
 
-// V and the rows of V⁻¹ invert each other, Σ_k w_k Re(V_k W_k) = I to 1e-10 in balanced units
-// (lifts by √m, velocities by √m/ω_max), where the rows are made mode by mode (O(N) each) and
-// where that would lose digits: over-damped chains with real λ (weight 1), a damped pair, 40
-// masses, and a flight mode within 1e-12 of critical damping (ζ_s = 0.92224 in this chain: the
-// dense eigenvectors are taken there, and the chain refused as near critical when even they do
-// not invert to 1e-10).
-// ChainModes::Shared: one chain per set of its numbers and mode, on a thread; a train at another
-// speed (the chain does not read it) shares it, one with another needle mass or mode does not;
-// the kSharedKept chains last asked are kept, the one asked longest ago is made again; and a
-// shared chain is the chain the constructor makes, bit for bit.
+// ChainModes::Shared: one chain per set of its numbers and mode, on a thread. A train at another
+// speed (the chain does not read it) shares it; one that differs in any number the chain is made
+// of, or in the mode, does not; the kSharedKept chains last asked are kept (the one asked longest
+// ago is made again, whatever was made first); a shared chain is the constructor's, bit for bit.
 TEST(ChainModesTest, SharedModesAreMadeOncePerChainOnAThread) {
-  Chain c(6);
-  c.p.contact_damping_ratio = 0.0;  // (the contact's dashpot would read the needle's mass too)
+  const Chain c(6);
   const NeedleTrain train(c.cam, c.p, 60.0, 0.0), faster(c.cam, c.p, 90.0, 0.0);
   const ContactMode cam{true, false};
   const std::shared_ptr<const ChainModes> first = ChainModes::Shared(train, cam);
@@ -153,19 +147,46 @@ TEST(ChainModesTest, SharedModesAreMadeOncePerChainOnAThread) {
   EXPECT_EQ(made.Lambda(), first->Lambda());
   EXPECT_EQ(made.Vectors(), first->Vectors());
   EXPECT_EQ(made.Inverse(), first->Inverse());
-  // kSharedKept other chains (other needle masses) asked since: `first` is made again.
+  // Each number the chain is made of, changed alone: another chain. (kSharedKept of them: with
+  // `first` asked again after the first six, it is still kept after all eight; a cache that
+  // dropped the first made would have dropped it.)
+  const std::vector<std::pair<const char*, void (*)(TrainParameters&)>> changes = {
+      {"coil masses", [](TrainParameters& p) { p.coil_masses = 7; }},
+      {"spring mass", [](TrainParameters& p) { p.spring_mass_kg = 0.61; }},
+      {"spring rate", [](TrainParameters& p) { p.rate_N_m = 5.1e4; }},
+      {"surge damping", [](TrainParameters& p) { p.surge_damping_ratio = 0.06; }},
+      {"needle mass", [](TrainParameters& p) { p.mass_kg = 0.81; }},
+      {"contact stiffness", [](TrainParameters& p) { p.contact_stiffness_N_m = 2e8; }},
+      {"contact damping", [](TrainParameters& p) { p.contact_damping_ratio = 0.3; }},
+      {"seat damping", [](TrainParameters& p) { p.seat_damping_ratio = 0.3; }},
+  };
+  ASSERT_EQ(static_cast<int>(changes.size()), ChainModes::kSharedKept);
+  for (size_t i = 0; i < changes.size(); ++i) {
+    if (i == 6) {
+      EXPECT_EQ(ChainModes::Shared(train, cam), first);  // asked again: kept
+    }
+    Chain other(6);
+    changes[i].second(other.p);
+    const NeedleTrain changed(other.cam, other.p, 60.0, 0.0);
+    EXPECT_NE(ChainModes::Shared(changed, cam), first) << changes[i].first;
+  }
+  EXPECT_EQ(ChainModes::Shared(train, cam), first);  // asked 3 chains ago, of 8 kept
   for (int i = 0; i < ChainModes::kSharedKept; ++i) {
     Chain other(6);
-    other.p.contact_damping_ratio = 0.0;
-    other.p.mass_kg = 0.8 + 0.01 * (i + 1);
-    const NeedleTrain heavier(other.cam, other.p, 60.0, 0.0);
-    EXPECT_NE(ChainModes::Shared(heavier, cam), first) << "needle mass " << other.p.mass_kg;
+    other.p.mass_kg = 0.9 + 0.01 * i;
+    ChainModes::Shared(NeedleTrain(other.cam, other.p, 60.0, 0.0), cam);
   }
   const std::shared_ptr<const ChainModes> again = ChainModes::Shared(train, cam);
-  EXPECT_NE(again, first);
+  EXPECT_NE(again, first);  // 8 others asked since: made again
   EXPECT_EQ(again->Lambda(), first->Lambda());
 }
 
+// V and the rows of V⁻¹ invert each other, Σ_k w_k Re(V_k W_k) = I to 1e-10 in balanced units
+// (lifts by √m, velocities by √m/ω_max), where the rows are made mode by mode (O(N) each) and
+// where that would lose digits: over-damped chains with real λ (weight 1), a damped pair, 40
+// masses, and a flight mode within 1e-12 of critical damping (ζ_s = 0.92224 in this chain: the
+// dense eigenvectors are taken there, and the chain refused as near critical when even they do
+// not invert to 1e-10).
 TEST(ChainModesTest, TheModesAndTheirInverseRowsInvertEachOther) {
   struct Variant {
     int coils;
