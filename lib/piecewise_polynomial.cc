@@ -53,6 +53,19 @@ constexpr std::array<std::array<double, kFallingOrders>, kFallingDegrees> Fallin
   return f;
 }
 constexpr auto kFalling = Fallings();
+
+// out[d] = Σ_{k≥d} k!/(k−d)! c_k t^{k−d}, d < count ≤ kFallingOrders, each by Horner as Horner()
+// forms it (the same operations in the same order); kDegree ≥ 0 fixes the degree at compile
+// time (the loops unrolled), −1 takes `degree`.
+template <int kDegree>
+void HornerSums(const double* c, double t, int count, double* out, int degree = kDegree) {
+  if constexpr (kDegree >= 0) degree = kDegree;
+  for (int d = 0; d < count; ++d) {
+    double value = 0.0;
+    for (int k = degree; k >= d; --k) value = value * t + kFalling[k][d] * c[k];
+    out[d] = value;
+  }
+}
 }  // namespace
 
 double PiecewisePolynomial::Horner(int i, double t, int derivative) const {
@@ -80,13 +93,17 @@ void PiecewisePolynomial::EvaluateUpTo(double x, int count, double* out) const {
     for (int d = 0; d < count; ++d) out[d] = Horner(i, t, d);
     return;
   }
-  // Horner's sums as Horner() forms them, the piece's coefficients read once for all orders.
+  // Horner's sums as Horner() forms them, the piece's coefficients read once for all orders;
+  // the cubic's and the quintic's (every spline's but the smoothing one's) unrolled.
   std::array<double, kFallingDegrees> c;
   for (int k = 0; k <= degree(); ++k) c[k] = coefficients_(i, k);
-  for (int d = 0; d < count; ++d) {
-    double value = 0.0;
-    for (int k = degree(); k >= d; --k) value = value * t + kFalling[k][d] * c[k];
-    out[d] = value;
+  switch (degree()) {
+    case 3:
+      return HornerSums<3>(c.data(), t, count, out);
+    case 5:
+      return HornerSums<5>(c.data(), t, count, out);
+    default:
+      return HornerSums<-1>(c.data(), t, count, out, degree());
   }
 }
 
