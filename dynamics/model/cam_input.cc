@@ -6,9 +6,42 @@
 #include <string>
 #include <tuple>
 
+#include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
+namespace {
+
+// Why tangent ramps cannot take up the play: which end's slope is flat (its tangent would take
+// more than a crank revolution, `revolution`, from the end's lift s_end to −δ: a law at rest
+// there up to the table's noise, as most cam laws are) or of the wrong sign, and the way out
+// (ramp_deg; a clamped spline's ends are at rest by construction, the readings' own may not be).
+std::string TangentRefusal(const LiftLaw& law, double play_m, double revolution) {
+  const auto shape = [&](const char* end, double lift, double slope, double sign) {
+    if (std::abs(slope) * revolution <= lift + play_m)
+      return std::string("the ") + end + " is flat";
+    return std::string("the ") + end + (sign * slope > 0.0 ? "" : sign > 0 ? " falls" : " rises");
+  };
+  const double th0 = law.start_rad(), thn = law.end_rad();
+  const double s0 = law.spline().Evaluate(th0), sn = law.spline().Evaluate(thn);
+  const double slope0 = law.spline().Evaluate(th0, 1), slopen = law.spline().Evaluate(thn, 1);
+  std::string why = shape("start", s0, slope0, 1.0);
+  const std::string end = shape("end", sn, slopen, -1.0);
+  if (why == "the start") why.clear();  // rising, as it must
+  if (end != "the end") why += (why.empty() ? "" : " and ") + end;
+  // (+ 0.0: a slope of −0 printed as 0)
+  const auto mm_per_deg = [](double slope) { return Significant(slope * 1e3 * kDeg + 0.0, 3); };
+  return "tangent ramps need a rising start and a falling end, but the lift law's end slopes are " +
+         mm_per_deg(slope0) + " and " + mm_per_deg(slopen) + " mm/deg (" + why +
+         "): no tangent there reaches the base circle; give ramp_deg (a linear ramp over that "
+         "many degrees takes up the play)" +
+         (law.kind() == SplineKind::kClamped
+              ? ", or a spline whose ends follow the readings (not-a-knot) in place of the "
+                "clamped one, at rest by construction"
+              : "");
+}
+
+}  // namespace
 
 CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp_rad)
     : law_(law), top_(law.Max(0)), play_(play_m) {
@@ -28,12 +61,7 @@ CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp
       // A slope below 1e-9 of the mean one is zero up to roundoff (clamped at-rest ends).
       const double tiny = 1e-9 * (top_.value + play_m) / (thn - th0);
       if (!(slope0_ > tiny) || !(slopen_ < -tiny)) {
-        throw std::invalid_argument(
-            "tangent ramps need a rising start and a falling end, but the lift law's end slopes "
-            "are " +
-            std::to_string(slope0_ * 1e3 * kDeg) + " and " + std::to_string(slopen_ * 1e3 * kDeg) +
-            " mm/deg: a zero end slope cannot reach the base circle; use another spline kind "
-            "(e.g. not-a-knot or natural) or give ramp_deg");
+        throw std::invalid_argument(TangentRefusal(law, play_m, 2 * kPi));
       }
       rise_start_ = th0 - (s0_ + play_m) / slope0_;  // s0 + s0'(θ − θ0) = −δ
       fall_end_ = thn + (sn_ + play_m) / -slopen_;   // sn + sn'(θ − θN) = −δ
@@ -49,9 +77,10 @@ CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp
           throw std::invalid_argument(
               std::string("the tangent ramp at the lift's ") + name + " would take " +
               std::to_string(length / kDeg) + " deg to take up the play (end slope " +
-              std::to_string(slope * 1e3 * kDeg) +
-              " mm/deg), more than a crank revolution: the end slope is flat up to noise; give "
-              "ramp_deg, or a spline whose ends have a definite slope");
+              Significant(slope * 1e3 * kDeg, 3) +
+              " mm/deg), more than a crank revolution: the end slope is flat up to noise (a law "
+              "at rest there, as most cam laws are) or the play too large for it; give ramp_deg "
+              "(a linear ramp over that many degrees takes up the play)");
         }
       }
     } else {

@@ -523,7 +523,10 @@ TEST(NeedleCliDynamicsTest, BadTrainInputIsOneLineAndExitTwo) {
   EXPECT_NE(t.err.find("[train] ramp: tangent ramps need a rising start and a falling end"),
             std::string::npos)
       << t.err;
-  EXPECT_NE(t.err.find("or give ramp_deg"), std::string::npos);
+  EXPECT_NE(t.err.find("(the start is flat and the end is flat): no tangent there reaches the "
+                       "base circle; give ramp_deg"),
+            std::string::npos)
+      << t.err;
   std::remove(path.c_str());
   const auto empty = BadTrain("to_rpm = 2000", "to_rpm = 300", "overspeed");
   EXPECT_EQ(empty.status, 2);

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "lib/units.h"
 
@@ -83,10 +85,15 @@ TEST(CamInputTest, ZeroEndSlopeCannotReachTheBaseCircle) {
     FAIL();
   } catch (const std::invalid_argument& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("a zero end slope cannot reach the base circle; use another spline kind"),
+    EXPECT_EQ(m.rfind("tangent ramps need a rising start and a falling end, but the lift law's "
+                      "end slopes are ",
+                      0),
+              0u)
+        << m;
+    EXPECT_NE(m.find("(the start is flat and the end is flat): no tangent there reaches the base "
+                     "circle; give ramp_deg"),
               std::string::npos)
         << m;
-    EXPECT_NE(m.find("or give ramp_deg"), std::string::npos);
   }
   EXPECT_THROW(CamInput(law, -1e-3, RampKind::kLinear, 0.1), std::invalid_argument);
 }
@@ -96,6 +103,43 @@ TEST(CamInputTest, ZeroEndSlopeCannotReachTheBaseCircle) {
 
 namespace needle {
 namespace {
+
+// Tangent ramps refused say why, end by end: a law at rest at its ends (a clamped spline's, or
+// any whose tangent would take more than a crank revolution to reach −δ) is "flat" there; a
+// table that ends still rising has an end that "rises"; the way out is ramp_deg, and another
+// spline kind only where the clamped one put the ends at rest. (A new user's 3-4-5 law exported
+// to 9 decimals was told "a zero end slope" of slopes 7.9e-5 and +2.1e-5 mm/deg, and to use
+// not-a-knot, which it used.)
+TEST(CamInputTest, RefusedTangentRampsSayWhichEndAndWhy) {
+  const auto refusal = [](const LiftLaw& law) {
+    try {
+      CamInput cam(law, 0.1e-3, RampKind::kTangent, 0.0);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string flat = refusal(Law(SplineKind::kClamped));
+  EXPECT_NE(flat.find(" mm/deg (the start is flat and the end is flat): no tangent there reaches "
+                      "the base circle; give ramp_deg (a linear ramp over that many degrees takes "
+                      "up the play), or a spline whose ends follow the readings (not-a-knot) in "
+                      "place of the clamped one, at rest by construction"),
+            std::string::npos)
+      << flat;
+  LiftTable t;  // a quarter sine: rising from the seat, still rising at its last reading
+  for (int i = 0; i <= 4; ++i) {
+    t.crank_rad.push_back(0.1 * i);
+    t.lift_m.push_back(2e-3 * std::sin(kPi * 0.1 * i / 1.0));
+  }
+  SplineOptions o;
+  o.kind = SplineKind::kNotAKnot;
+  const std::string rises = refusal(LiftLaw(t, o));
+  EXPECT_NE(rises.find(" mm/deg (the end rises): no tangent there reaches the base circle; give "
+                       "ramp_deg (a linear ramp over that many degrees takes up the play)"),
+            std::string::npos)
+      << rises;
+  EXPECT_EQ(rises.find("not-a-knot"), std::string::npos) << rises;
+}
 
 // Issue 12: an end slope flat up to noise made the tangent ramp 42.5 million degrees long
 // (and the run window with it). A ramp longer than a crank revolution is refused, with the way
