@@ -18,7 +18,7 @@
 namespace needle {
 namespace {
 
-constexpr int kTerms = kLocalDegree + 1;
+using local_window::kTerms;
 constexpr double kNodeSpacing = 0.5;  // nodes half a window's width apart
 // A shifted window is taken for a junction's side when its |s⁽⁵⁾| is below this share of every
 // misfitting window's, or when every misfitting window misses by this many times the rounding's

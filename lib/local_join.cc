@@ -11,7 +11,7 @@
 namespace needle {
 namespace {
 
-constexpr int kTerms = kLocalDegree + 1;
+using local_window::kTerms;
 
 // JoinAtBreak on the last kl readings of (xl, yl) and the first kr of (xr, yr); false where the
 // joint polynomials misfit them.

@@ -12,7 +12,6 @@
 namespace needle {
 namespace {
 
-constexpr int kTerms = kLocalDegree + 1;
 constexpr Eigen::Index kQrBelow = 40;  // windows up to this many readings are solved by QR
 
 }  // namespace

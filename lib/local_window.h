@@ -13,6 +13,9 @@
 namespace needle {
 namespace local_window {
 
+/// A window polynomial's coefficients: degree kLocalDegree and one.
+inline constexpr int kTerms = kLocalDegree + 1;
+
 /// Readings as fitted: a reading, or the mean of a bin of `count` consecutive readings.
 using Points = BinMeans;
 
@@ -33,8 +36,7 @@ Points FittedPoints(const std::vector<double>& x, const std::vector<double>& y, 
 
 /// The polynomial of `terms` coefficients (the local degree's by default) fitted at t to the
 /// points [lo, hi) with tricube weights; `quantized`: the noise of s'' as the rounding's bound.
-Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized,
-               int terms = kLocalDegree + 1);
+Estimate FitAt(const Points& p, double t, size_t lo, size_t hi, bool quantized, int terms = kTerms);
 
 /// The weights G = V (VᵀV)⁻¹ = Q₁ R⁻ᵀ of a least-squares fit's coefficients on its weighted rows V
 /// (rows × terms, at most kQrMaxTerms), into g (rows × terms), by QR: VᵀV is ill-conditioned for a

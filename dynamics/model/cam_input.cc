@@ -12,23 +12,27 @@
 namespace needle {
 namespace {
 
-// Why tangent ramps cannot take up the play: which end's slope is flat (its tangent would take
-// more than a crank revolution, `revolution`, from the end's lift s_end to −δ: a law at rest
-// there up to the table's noise, as most cam laws are) or of the wrong sign, and the way out
-// (ramp_deg; a clamped spline's ends are at rest by construction, the readings' own may not be).
-std::string TangentRefusal(const LiftLaw& law, double play_m, double revolution) {
-  const auto shape = [&](const char* end, double lift, double slope, double sign) {
-    if (std::abs(slope) * revolution <= lift + play_m)
-      return std::string("the ") + end + " is flat";
-    return std::string("the ") + end + (sign * slope > 0.0 ? "" : sign > 0 ? " falls" : " rises");
+// A tangent ramp longer than a crank revolution comes from an end slope that is flat up to
+// noise (a dense measured table gave slopes of 1e-8 and ramps of 42.5 million degrees): no cam
+// has one. (Basu's Example 1 has a 109° ramp at its flat start: long, but a cam's.)
+constexpr double kLongestRamp_rad = 2 * kPi;
+
+// Why tangent ramps cannot take up the play δ from the law's end lifts s0, sn with slopes
+// slope0, slopen: which end is flat (its tangent would take more than kLongestRamp_rad to reach
+// −δ: a law at rest there up to the table's noise, as most cam laws are) or slopes the wrong
+// way, and the way out (ramp_deg; a clamped spline's ends are at rest by construction, the
+// readings' own may not be).
+std::string TangentRefusal(const LiftLaw& law, double play_m, double s0, double slope0, double sn,
+                           double slopen) {
+  // The fault of one end ("" where its slope takes the ramp to the base circle), `sign` the
+  // slope's sign it needs.
+  const auto fault = [&](const char* end, double lift, double slope, double sign) {
+    if (std::abs(slope) * kLongestRamp_rad <= lift + play_m) return std::string(end) + " is flat";
+    return sign * slope > 0.0 ? std::string() : std::string(end) + (sign > 0 ? " falls" : " rises");
   };
-  const double th0 = law.start_rad(), thn = law.end_rad();
-  const double s0 = law.spline().Evaluate(th0), sn = law.spline().Evaluate(thn);
-  const double slope0 = law.spline().Evaluate(th0, 1), slopen = law.spline().Evaluate(thn, 1);
-  std::string why = shape("start", s0, slope0, 1.0);
-  const std::string end = shape("end", sn, slopen, -1.0);
-  if (why == "the start") why.clear();  // rising, as it must
-  if (end != "the end") why += (why.empty() ? "" : " and ") + end;
+  const std::string start = fault("the start", s0, slope0, 1.0);
+  const std::string end = fault("the end", sn, slopen, -1.0);
+  const std::string why = start.empty() ? end : end.empty() ? start : start + " and " + end;
   // (+ 0.0: a slope of −0 printed as 0)
   const auto mm_per_deg = [](double slope) { return Significant(slope * 1e3 * kDeg + 0.0, 3); };
   return "tangent ramps need a rising start and a falling end, but the lift law's end slopes are " +
@@ -61,19 +65,15 @@ CamInput::CamInput(const LiftLaw& law, double play_m, RampKind ramp, double ramp
       // A slope below 1e-9 of the mean one is zero up to roundoff (clamped at-rest ends).
       const double tiny = 1e-9 * (top_.value + play_m) / (thn - th0);
       if (!(slope0_ > tiny) || !(slopen_ < -tiny)) {
-        throw std::invalid_argument(TangentRefusal(law, play_m, 2 * kPi));
+        throw std::invalid_argument(TangentRefusal(law, play_m, s0_, slope0_, sn_, slopen_));
       }
       rise_start_ = th0 - (s0_ + play_m) / slope0_;  // s0 + s0'(θ − θ0) = −δ
       fall_end_ = thn + (sn_ + play_m) / -slopen_;   // sn + sn'(θ − θN) = −δ
-      // A ramp longer than a crank revolution comes from an end slope that is flat up to
-      // noise (a dense measured table gave slopes of 1e-8 and ramps of 42.5 million degrees):
-      // no cam has one. Refused, with the way out. (Basu's Example 1 has a 109° ramp at its
-      // flat start: long, but a cam's.)
-      const double limit = 2 * kPi;
+      // A ramp longer than kLongestRamp_rad: refused, with the way out.
       for (const auto& [name, length, slope] :
            {std::tuple<const char*, double, double>{"start", th0 - rise_start_, slope0_},
             {"end", fall_end_ - thn, slopen_}}) {
-        if (length > limit) {
+        if (length > kLongestRamp_rad) {
           throw std::invalid_argument(
               std::string("the tangent ramp at the lift's ") + name + " would take " +
               std::to_string(length / kDeg) + " deg to take up the play (end slope " +
