@@ -85,11 +85,23 @@ inline void AddSpeedOption(CLI::App* cmd, std::optional<double>& speed_rpm,
   cmd->add_option("--rpm", speed_rpm, help)->check(SpeedRpm());
 }
 
+/// A method of the method table or "auto", checked when the option is read: before the case is
+/// loaded, so a wrong name is reported as the option's fault whatever the case holds.
+inline CLI::Validator KnownMethod() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        if (s == "auto" || ParseMethod(s)) return {};
+        return "unknown method \"" + s + "\"; expected " + MethodList();
+      },
+      "METHOD", "");
+}
+
 /// The dynamic commands' `--method` and `--rtol` (simulate, overspeed): each defaults to the
 /// case's [solver] (then auto and 1e-8); the tolerance is held to kRtolRange.
 inline void AddMethodOptions(CLI::App* cmd, std::optional<std::string>& method,
                              std::optional<double>& rtol) {
-  cmd->add_option("--method", method, MethodList() + " (default: [solver] method or auto)");
+  cmd->add_option("--method", method, MethodList() + " (default: [solver] method or auto)")
+      ->check(KnownMethod());
   cmd->add_option("--rtol", rtol, "relative tolerance (default: [solver] rtol or 1e-8)")
       ->check(InRange(kRtolRange, "a relative tolerance"));
 }

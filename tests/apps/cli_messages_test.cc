@@ -85,6 +85,44 @@ TEST(CliMessagesTest, ARefusedToleranceIsShownAsTyped) {
   ExpectRefused("overspeed " + light + " --rtol 1e-15", OptionRule("--rtol", rule));
 }
 
+// An unknown method is the option's fault, whatever the case holds: it was checked only when
+// the case had loaded, so a case the loader refused reported the case instead (helper-51's trial).
+TEST(CliMessagesTest, AnUnknownMethodIsTheOptionsFaultBeforeTheCase) {
+  const std::string rule =
+      "unknown method \"foo\"; expected auto, dopri5, rkf78, rosenbrock4, cvode-bdf, cvode-adams, "
+      "exact or baseline-dopri5";
+  ExpectRefused("simulate no-such-case.toml --method foo", OptionRule("--method", rule));
+  ExpectRefused("overspeed " + Case("basu-cam4-light-spring.toml") + " --method foo",
+                OptionRule("--method", rule));
+  const auto known =
+      RunNeedle("simulate " + Case("basu-cam4-light-spring.toml") + " --method auto --json");
+  EXPECT_EQ(known.status, 0) << known.err;
+}
+
+// A folder no file can be made in is refused before any work, even where access() says yes: as
+// root on sysfs the check ran its whole sweep and then failed to write its report (helper-51's
+// trial). The probe that tells leaves nothing behind in a folder that can be written.
+TEST(CliMessagesTest, AnUnwritableFolderIsRefusedBeforeTheRun) {
+  if (!std::filesystem::is_directory("/sys/kernel")) GTEST_SKIP() << "no /sys/kernel here";
+  const std::string ex1 = Case("basu-example1.toml");
+  ExpectRefused("check " + ex1 + " --out /sys/kernel",
+                "needle: --out: /sys/kernel/basu-example1.html: its folder /sys/kernel is not "
+                "writable\n");
+  ExpectRefused("simulate " + ex1 + " --csv /sys/kernel/run.csv",
+                "needle: --csv: /sys/kernel/run.csv: its folder /sys/kernel is not writable\n");
+  const std::string dir = ::testing::TempDir() + "probe-" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  const auto ok = RunNeedle("simulate " + ex1 + " --csv " + dir + "/run.csv");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    EXPECT_EQ(e.path().filename(), "run.csv");
+    ++files;
+  }
+  EXPECT_EQ(files, 1u);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CliMessagesTest, ConflictingOutputFormatsAreRefused) {
   const std::string cam4 = Case("basu-cam4.toml");
   const std::string one = "; expected one output format";
