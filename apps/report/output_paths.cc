@@ -1,5 +1,6 @@
 #include "apps/report/output_paths.h"
 
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -21,6 +22,19 @@ bool SameFile(const std::string& a, const std::string& b) {
   return fs::weakly_canonical(fs::absolute(a), ec) == fs::weakly_canonical(fs::absolute(b), ec);
 }
 
+// Whether a file can be made in `folder`, tried: access(W_OK) answers yes to root on a folder
+// no one can write (sysfs, a read-only mount), and the command then failed only at its end,
+// after its sweep (helper-51's trial with --out /sys/kernel). The probe is removed at once.
+bool CanCreateIn(const fs::path& folder) {
+  if (access(folder.c_str(), W_OK) != 0) return false;
+  std::string probe = (folder / ".needle-probe-XXXXXX").string();
+  const int fd = mkstemp(probe.data());
+  if (fd < 0) return false;
+  close(fd);
+  unlink(probe.c_str());
+  return true;
+}
+
 }  // namespace
 
 void CheckOutputPaths(const std::vector<OutputPath>& outputs,
@@ -38,8 +52,7 @@ void CheckOutputPaths(const std::vector<OutputPath>& outputs,
     fs::path folder = fs::path(o.path).parent_path();
     if (folder.empty()) folder = ".";
     if (!fs::is_directory(folder, ec)) fail("its folder " + folder.string() + " does not exist");
-    if (access(folder.c_str(), W_OK) != 0)
-      fail("its folder " + folder.string() + " is not writable");
+    if (!CanCreateIn(folder)) fail("its folder " + folder.string() + " is not writable");
     for (const std::string& in : inputs) {
       if (SameFile(o.path, in)) fail("is an input of this command; it would be overwritten");
     }
