@@ -168,21 +168,23 @@ CsvColumns ReadHeader(const std::vector<std::string>& f, const std::string& path
       c.time_name = name;
       c.time_scale = name == "time_ms" ? 1e-3 : 1.0;
     } else if (name == "crank" || name == "cam" || name == "lift" || name == "angle") {
-      CsvFail(path, line, k + 1,
-              "column '" + f[k] + "' needs a unit: " +
-                  (name == "lift" ? "lift_mm, lift_um or lift_in" : "crank_deg or cam_deg"));
+      CsvFail(
+          path, line, k + 1,
+          "column '" + f[k] + "' needs a unit: " +
+              (name == "lift" ? "lift_mm, lift_um, lift_in or lift_m" : "crank_deg or cam_deg"));
     } else {
       CsvFail(path, line, k + 1,
               "unknown column '" + f[k] +
                   "'; expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, "
-                  "lift_in)" +
+                  "lift_in, lift_m)" +
                   (with_time ? std::string(", and optionally time_s (or time_ms)") : ""));
     }
   }
   if (c.angle < 0)
     CsvFail(path, line, 0, "the header has no angle column; expected crank_deg or cam_deg");
   if (c.lift < 0)
-    CsvFail(path, line, 0, "the header has no lift column; expected lift_mm, lift_um or lift_in");
+    CsvFail(path, line, 0,
+            "the header has no lift column; expected lift_mm, lift_um, lift_in or lift_m");
   return c;
 }
 
@@ -291,7 +293,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
   }
   if (c.count == 0) {
     const std::string expected =
-        "expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, lift_in)";
+        "expected a header of crank_deg (or cam_deg) and lift_mm (or lift_um, lift_in, lift_m)";
     if (line == 0) throw CaseError(path + ": the file is empty; " + expected);  // no line 0
     CsvFail(path, line, 0, "no header; " + expected);
   }

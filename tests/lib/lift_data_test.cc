@@ -588,9 +588,9 @@ std::string CsvError(const std::string& text) {
 
 TEST(LiftCsvTest, BadTables) {
   EXPECT_EQ(CsvError("crank_deg\n1\n2\n"),
-            "m.csv:1: the header has no lift column; expected lift_mm, lift_um or lift_in");
+            "m.csv:1: the header has no lift column; expected lift_mm, lift_um, lift_in or lift_m");
   EXPECT_EQ(CsvError("crank_deg,lift\n1,0\n2,1\n"),
-            "m.csv:1:2: column 'lift' needs a unit: lift_mm, lift_um or lift_in");
+            "m.csv:1:2: column 'lift' needs a unit: lift_mm, lift_um, lift_in or lift_m");
   EXPECT_EQ(CsvError("# c\ncrank_deg,lift_mm\n1,0\n2,abc\n"),
             "m.csv:4:2: 'abc' is not a number (column lift_mm)");
   EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n"),
@@ -615,13 +615,13 @@ TEST(LiftCsvTest, BadTables) {
   EXPECT_EQ(CsvError("cam_deg,lift_mm\n-360,0\n360,999.9\n"), "(no error)");
   EXPECT_EQ(CsvError("deg,lift_mm\n1,0\n"),
             "m.csv:1:1: unknown column 'deg'; expected a header of crank_deg (or cam_deg) and "
-            "lift_mm (or lift_um, lift_in)");
+            "lift_mm (or lift_um, lift_in, lift_m)");
   EXPECT_EQ(CsvError(""),
             "m.csv: the file is empty; expected a header of crank_deg (or cam_deg) and lift_mm "
-            "(or lift_um, lift_in)");
+            "(or lift_um, lift_in, lift_m)");
   EXPECT_EQ(CsvError("# a comment\n"),
             "m.csv:1: no header; expected a header of crank_deg (or cam_deg) and lift_mm (or "
-            "lift_um, lift_in)");
+            "lift_um, lift_in, lift_m)");
 }
 
 // Spreadsheet exports (tests/data/README.md says how they were made): Calc in an English
@@ -713,7 +713,7 @@ TEST(LiftCsvTest, SpreadsheetLineEndsTrailingSeparatorsAndCasedNames) {
   EXPECT_EQ(CsvError("crank_deg,lift_mm,\n0,0\n1,0.5\n"), "m.csv:2: expected 3 fields, got 2");
   EXPECT_EQ(CsvError("crank_deg,,lift_mm\n0,,0\n1,,0.5\n"),
             "m.csv:1:2: unknown column ''; expected a header of crank_deg (or cam_deg) and lift_mm "
-            "(or lift_um, lift_in)");
+            "(or lift_um, lift_in, lift_m)");
 }
 
 // The fast reader (std::from_chars) and strtod read every number form alike: a sign '+', a
