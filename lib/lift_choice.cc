@@ -103,8 +103,7 @@ std::string ShortPieces(const std::vector<double>& x, size_t first, size_t last,
   return out;
 }
 
-// The open lift of an exact table: from the last zero before the rise to the first after the
-// fall (LiftLaw's rule).
+// An exact table's open lift, LiftLaw's: the last zero before the rise to the first after it.
 std::pair<size_t, size_t> OpenReadings(const std::vector<double>& y) {
   size_t first = 0, last = y.size() - 1;
   while (first + 1 < y.size() && y[first] <= 0.0 && y[first + 1] <= 0.0) ++first;
@@ -172,8 +171,8 @@ std::vector<const LiftBreak*> SeekBreaks(const LiftTable& given, double sigma_m,
       const bool at_seat =
           b.crank_rad - x[first] <= 2.0 * width || x[last] - b.crank_rad <= 2.0 * width;
       if (known || at_seat) continue;
+      b.uncertainty_rad = width;
       found.push_back(b);
-      c->break_uncertainty_rad = std::max(c->break_uncertainty_rad, width);
     }
   }
   std::sort(found.begin(), found.end(),
@@ -309,8 +308,10 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   std::vector<LiftDwell> dwells;
   if (o.find_breaks && kind == SplineKind::kLocal && q)
     dwells = SeekDwells(x, y, first, last, *q, kind, &inside);
-  std::vector<double> at;
+  std::vector<double> at;  // the breaks used; the widest bins' width among them (0: none binned)
   for (const LiftBreak* b : inside) at.push_back(b->crank_rad);
+  for (const LiftBreak* b : inside)
+    c.break_uncertainty_rad = std::max(c.break_uncertainty_rad, b->uncertainty_rad);
   std::vector<double> cuts = at;  // the open lift's ends are junctions too (the seat)
   for (const LiftDwell& d : dwells) cuts.insert(cuts.end(), {d.from_rad, d.to_rad});
   cuts.push_back(x[first]);

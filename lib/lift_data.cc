@@ -5,6 +5,7 @@
 #include <array>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -288,6 +289,30 @@ std::vector<Field> LiftChoiceFields(const LiftLawChoice& choice) {
     fields.back().decimals = 4;
   }
   return fields;
+}
+
+std::string BreakSteps(const LiftLaw& law, const LiftLawOptions& options) {
+  const double span = law.table_end_rad() - law.table_start_rad(), eps = 1e-9 * span;
+  const double top = *std::max_element(law.table().lift_m.begin(), law.table().lift_m.end());
+  const double digit = options.spline.quantized ? std::sqrt(12.0) * options.spline.sigma : 0.0;
+  const double allowed = std::max(digit, kBreakStepOfLift * top);
+  std::string out;
+  for (size_t k = 0; k < options.breaks_rad.size(); ++k) {
+    if (k >= options.break_estimated.size() || !options.break_estimated[k]) continue;
+    const double b = options.breaks_rad[k];
+    const double step = law.Lift(b + eps) - law.Lift(b - eps);
+    if (!(std::abs(step) > allowed)) continue;
+    std::ostringstream s;
+    s.precision(3);
+    s << (out.empty() ? "" : ", ") << std::abs(step) * 1e3 << " mm at " << std::setprecision(6)
+      << b / kDeg << " deg";
+    out += s.str();
+  }
+  if (out.empty()) return "";
+  return "steps by " + out +
+         ", where a break found lies between readings and the fits either side do not meet (a "
+         "cam's lift does not jump): a run takes the step for a jump of the cam; state [lift] "
+         "breaks_deg, or export the table finer there";
 }
 
 }  // namespace needle

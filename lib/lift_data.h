@@ -224,6 +224,9 @@ struct LiftBreak {
   double jump = 0.0;       ///< its jump, right minus left, m/rad^order
   double lift_m = 0.0;     ///< the lift there, m (the two sides' cubics, averaged)
   size_t index = 0;        ///< the reading at or just before it
+  /// How far it may lie from crank_rad, rad: 0 when found among the readings, the bins' width
+  /// when found among bins of several readings (lift_choice.cc SeekBreaks).
+  double uncertainty_rad = 0.0;
 };
 
 /// Breaks of a table (see above), increasing; `sigma_m` is the σ of its readings (the robust
@@ -359,8 +362,9 @@ struct LiftLawChoice {
   /// Breaks found in the table (FindBreaks), s'' jumps only; empty when stated or not sought.
   /// Those strictly inside the open lift are the law's breaks when the table is judged exact.
   std::vector<LiftBreak> breaks_found;
-  /// How far a break found may lie from where it is put, rad: 0 when found among the readings,
-  /// the widest bin's width when found among bins (kBreakLeastBins).
+  /// How far a break used may lie from where it is put, rad: 0 when each was found among the
+  /// readings, else the widest bins' width among those used (kBreakLeastBins); a break found and
+  /// then left out (too few readings beside it) does not count.
   double break_uncertainty_rad = 0.0;
   /// What a dense table was read to hold (ReadTable); none for a stated reading or a sparse table.
   std::optional<TableReading> reading;
@@ -415,5 +419,13 @@ LiftTable ReadLiftCsv(const std::string& path, EngineCycle cycle, std::vector<in
 /// As ReadLiftCsv, from text already in memory; `path` is used in messages only.
 LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineCycle cycle,
                        std::vector<int>* lines = nullptr, std::vector<double>* time_s = nullptr);
+
+/// A lift step larger than this fraction of the table's largest lift (or than its printed digit)
+/// at a break placed between readings is reported (BreakSteps): 0.3 um on a 3 mm lift.
+inline constexpr double kBreakStepOfLift = 1e-4;
+/// Where the law built with `options` steps in lift at a break found between readings (each side
+/// fitted from its own readings and extrapolated to it) by more than kBreakStepOfLift of the
+/// largest lift or the printed digit: "steps by 0.005 mm at 39.5656 deg, …", or empty.
+std::string BreakSteps(const LiftLaw& law, const LiftLawOptions& options);
 
 }  // namespace needle

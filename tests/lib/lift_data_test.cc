@@ -948,5 +948,38 @@ TEST(CadTableTest, ADwellShorterThanTwoStepsIsNoCorner) {
   EXPECT_LE(bmin->low, -peak) << choice.reason;
 }
 
+// A break found among bins and placed between readings: each side is fitted from its own
+// readings and extrapolated to it, and on a new user's table (a 3-4-5 rise, a dwell and a
+// modified-sine return, s'' continuous everywhere, rounded to 1e-3 mm) the two sides stepped by
+// 5 um there: runs took the step for a jump of the cam (lift-off at the rated speed, n_dyn 339
+// against the 9-decimal table's 3227 rpm). The step is reported, its size the law's own.
+TEST(LiftDataTest, AStepAtABreakBetweenReadingsIsReported) {
+  const LiftTable t =
+      ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/dwell-modsine-1e-3mm-0.5deg.csv",
+                  EngineCycle::kFourStroke);
+  const LiftLawChoice c = ChooseLiftLaw(t, {});
+  const LiftLaw law(c.table, c.law);
+  ASSERT_EQ(c.law.breaks_rad.size(), 1u);
+  ASSERT_EQ(c.law.break_estimated.size(), 1u);
+  EXPECT_TRUE(c.law.break_estimated[0]);
+  const double b = c.law.breaks_rad[0], eps = 1e-9;
+  const double step = law.Lift(b + eps) - law.Lift(b - eps);
+  EXPECT_NEAR(step, -4.99e-6, 0.05e-6);  // 5 printed digits
+  std::ostringstream where;
+  where << std::setprecision(3) << std::abs(step) * 1e3 << " mm at " << std::setprecision(6)
+        << b / kDeg << " deg, ";
+  EXPECT_EQ(BreakSteps(law, c.law).rfind("steps by " + where.str(), 0), 0u)
+      << BreakSteps(law, c.law);
+  // No step where the break is a reading (placed there, both sides meet it to round-off):
+  // the same law's table to 9 decimals has none found between readings.
+  LiftLawOptions at_reading = c.law;
+  at_reading.break_estimated = {false};
+  EXPECT_EQ(BreakSteps(law, at_reading), "");
+  // Within the allowance (a printed digit, or 1e-4 of the largest lift): not reported.
+  LiftLawOptions coarse = c.law;
+  coarse.spline.sigma = 2.0 * std::abs(step) / std::sqrt(12.0);
+  EXPECT_EQ(BreakSteps(law, coarse), "");
+}
+
 }  // namespace
 }  // namespace needle
