@@ -291,28 +291,73 @@ std::vector<Field> LiftChoiceFields(const LiftLawChoice& choice) {
   return fields;
 }
 
-std::string BreakSteps(const LiftLaw& law, const LiftLawOptions& options) {
+namespace {
+
+// Each break of `options` placed between readings (break_estimated) where `law` steps in lift
+// by more than the printed digit or kBreakStepOfLift of the largest lift: its index and step, m.
+std::vector<std::pair<size_t, double>> SteppingBreaks(const LiftLaw& law,
+                                                      const LiftLawOptions& options) {
   const double span = law.table_end_rad() - law.table_start_rad(), eps = 1e-9 * span;
   const double top = *std::max_element(law.table().lift_m.begin(), law.table().lift_m.end());
   const double digit = options.spline.quantized ? std::sqrt(12.0) * options.spline.sigma : 0.0;
   const double allowed = std::max(digit, kBreakStepOfLift * top);
-  std::string out;
+  std::vector<std::pair<size_t, double>> out;
   for (size_t k = 0; k < options.breaks_rad.size(); ++k) {
     if (k >= options.break_estimated.size() || !options.break_estimated[k]) continue;
     const double b = options.breaks_rad[k];
     const double step = law.Lift(b + eps) - law.Lift(b - eps);
-    if (!(std::abs(step) > allowed)) continue;
-    std::ostringstream s;
-    s.precision(3);
-    s << (out.empty() ? "" : ", ") << std::abs(step) * 1e3 << " mm at " << std::setprecision(6)
-      << b / kDeg << " deg";
-    out += s.str();
+    if (std::abs(step) > allowed) out.push_back({k, step});
   }
-  if (out.empty()) return "";
-  return "steps by " + out +
-         ", where a break found lies between readings and the fits either side do not meet (a "
-         "cam's lift does not jump): a run takes the step for a jump of the cam; state [lift] "
-         "breaks_deg, or export the table finer there";
+  return out;
+}
+
+// "0.00499 mm at 39.5656 deg, …" of SteppingBreaks.
+std::string StepList(const LiftLawOptions& options,
+                     const std::vector<std::pair<size_t, double>>& steps) {
+  std::ostringstream s;
+  for (size_t i = 0; i < steps.size(); ++i) {
+    s << (i ? ", " : "") << std::setprecision(3) << std::abs(steps[i].second) * 1e3 << " mm at "
+      << std::setprecision(6) << options.breaks_rad[steps[i].first] / kDeg << " deg";
+  }
+  return s.str();
+}
+
+// Drops breaks[k] of `o`, and its reading from `table` (a break between readings has one added,
+// its lift an estimate).
+void DropBreak(size_t k, LiftLawOptions* o, LiftTable* table) {
+  auto& x = table->crank_rad;
+  const auto at = std::find(x.begin(), x.end(), o->breaks_rad[k]);
+  if (at != x.end()) {
+    table->lift_m.erase(table->lift_m.begin() + (at - x.begin()));
+    x.erase(at);
+  }
+  o->breaks_rad.erase(o->breaks_rad.begin() + k);
+  o->break_estimated.erase(o->break_estimated.begin() + k);
+}
+
+}  // namespace
+
+std::shared_ptr<const LiftLaw> BuildChosenLaw(LiftLawChoice* choice) {
+  auto law = std::make_shared<const LiftLaw>(choice->table, choice->law);
+  LiftLawOptions& o = choice->law;
+  // Each build's stepping breaks dropped, until none steps (a piece merged with its neighbour
+  // may step at its other end: at most one build per break).
+  for (auto steps = SteppingBreaks(*law, o); !steps.empty(); steps = SteppingBreaks(*law, o)) {
+    choice->reason += "; the fits either side of a break between readings stepped by " +
+                      StepList(o, steps) +
+                      " (a cam's lift does not jump): one fit across it instead";
+    for (auto it = steps.rbegin(); it != steps.rend(); ++it)
+      DropBreak(it->first, &o, &choice->table);
+    // The uncertainty of the breaks kept (those found among bins, LiftBreak::uncertainty_rad).
+    o.break_uncertainty_rad = 0.0;
+    for (const LiftBreak& b : choice->breaks_found) {
+      if (std::find(o.breaks_rad.begin(), o.breaks_rad.end(), b.crank_rad) != o.breaks_rad.end())
+        o.break_uncertainty_rad = std::max(o.break_uncertainty_rad, b.uncertainty_rad);
+    }
+    choice->break_uncertainty_rad = o.break_uncertainty_rad;
+    law = std::make_shared<const LiftLaw>(choice->table, o);
+  }
+  return law;
 }
 
 }  // namespace needle

@@ -24,6 +24,7 @@
 /// it starts and ends at zero lift it gets the clamped cubic at rest at both ends (the evidence
 /// is in docs/lift-data.md and docs/validation.md: Basu's velocity tables), otherwise not-a-knot.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -421,11 +422,13 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
                        std::vector<int>* lines = nullptr, std::vector<double>* time_s = nullptr);
 
 /// A lift step larger than this fraction of the table's largest lift (or than its printed digit)
-/// at a break placed between readings is reported (BreakSteps): 0.3 um on a 3 mm lift.
+/// at a break placed between readings drops the break (BuildChosenLaw): 0.3 um on a 3 mm lift.
 inline constexpr double kBreakStepOfLift = 1e-4;
-/// Where the law built with `options` steps in lift at a break found between readings (each side
-/// fitted from its own readings and extrapolated to it) by more than kBreakStepOfLift of the
-/// largest lift or the printed digit: "steps by 0.005 mm at 39.5656 deg, …", or empty.
-std::string BreakSteps(const LiftLaw& law, const LiftLawOptions& options);
+/// The law on `choice` (its table and options). Where it steps in lift at a break found between
+/// readings (each side fitted from its own readings and extrapolated to it) by more than the
+/// printed digit or kBreakStepOfLift of the largest lift, the two sides do not meet as a cam's
+/// do: that break is dropped, with the reading added there, and the law built again (one fit
+/// across it), until none steps; the reason says so.
+std::shared_ptr<const LiftLaw> BuildChosenLaw(LiftLawChoice* choice);
 
 }  // namespace needle

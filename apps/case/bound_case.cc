@@ -116,7 +116,7 @@ namespace {
 void ChooseAndBuild(BoundLift& l) {
   try {
     l.choice = ChooseLift(l);
-    l.law = std::make_shared<const LiftLaw>(l.choice.table, l.choice.law);
+    l.law = BuildChosenLaw(&l.choice);
   } catch (const CaseError&) {
     throw;
   } catch (const std::exception& e) {

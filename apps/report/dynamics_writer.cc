@@ -76,7 +76,6 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
   const std::vector<Field> fields = SimulationFields(r);
   const auto text = [&fields](const char* key) { return ValueText(FieldAt(fields, key)); };
   const std::string unresolved = UnresolvedSides(c.lift.choice.table);
-  const std::string steps = BreakSteps(*c.lift.law, c.lift.choice.law);
   if (!run.series_si.empty()) {
     const std::vector<Column> columns = SeriesColumns();
     for (size_t i = 0; i < columns.size(); ++i)
@@ -113,14 +112,12 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
     j["status_reason"] = r.status_reason;
     j["liftoff_rpm_quasi_static"] = Finite(run.liftoff_rpm_quasi_static);
     if (!unresolved.empty()) j["unresolved"] = unresolved;
-    if (!steps.empty()) j["break_steps"] = "the run reads a fitted lift law that " + steps;
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
         << ")\n";
     if (!unresolved.empty()) out << UnresolvedWarning("the run reads", unresolved);
-    if (!steps.empty()) out << "WARNING: the run reads a fitted lift law that " << steps << '\n';
     if (!r.skipped) {
       out << "window " << text("window_start_deg") << " .. " << text("window_end_deg")
           << " deg; rtol " << run.rtol << "; " << text("steps") << " steps, "
@@ -170,7 +167,6 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
   const OverspeedResult& r = search.result;
   const double n_qs = search.liftoff_rpm_quasi_static;
   const std::string unresolved = UnresolvedSides(c.lift.choice.table);
-  const std::string steps = BreakSteps(*c.lift.law, c.lift.choice.law);
   CommandOutput result;
   result.status = r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
   std::vector<std::vector<double>> rows_si;
@@ -188,7 +184,6 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
     j["steady_state"] = opt.simulation.steady_state;
     j["rows"] = RecordList(r.rows, OverspeedRowFields);
     if (!unresolved.empty()) j["unresolved"] = unresolved;
-    if (!steps.empty()) j["break_steps"] = "the runs read a fitted lift law that " + steps;
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
@@ -206,7 +201,6 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
                   : "lift-off in any of them counts\n");
     }
     if (!unresolved.empty()) out << UnresolvedWarning("the runs read", unresolved);
-    if (!steps.empty()) out << "WARNING: the runs read a fitted lift law that " << steps << '\n';
     out << "quasi-static lift-off n_qs = "
         << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
         << "dynamic lift-off n_dyn = ";

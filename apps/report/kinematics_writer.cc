@@ -35,8 +35,6 @@ nlohmann::json KinematicsJson(const KinematicsTable& table, const std::vector<Co
   PutFields(j, KinematicsFields(table.summary));
   PutFields(j, LiftLawFields(table.law));
   if (const std::string w = UnresolvedSides(table.choice.table); !w.empty()) j["unresolved"] = w;
-  if (const std::string w = BreakSteps(table.law, table.choice.law); !w.empty())
-    j["break_steps"] = "the fitted lift law " + w;
   nlohmann::json list = nlohmann::json::array();
   for (size_t i = 0; i < rows.size(); ++i) {
     nlohmann::json row = RowObject(columns, rows_si[i]);
@@ -74,8 +72,6 @@ void KinematicsHead(std::ostream& out, const KinematicsTable& table) {
   }
   if (const std::string w = UnresolvedSides(choice.table); !w.empty())
     out << "WARNING: " << w << '\n';
-  if (const std::string w = BreakSteps(law, choice.law); !w.empty())
-    out << "WARNING: the fitted lift law " << w << '\n';
   if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
     out << "WARNING: " << choice.outliers.size()
         << " outlier(s) of the lift table left out (outliers = \"drop\"; the spline's reason "

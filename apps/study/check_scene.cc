@@ -304,10 +304,6 @@ void FinishVerdict(const BoundCase& c, CheckResult& r) {
   if (r.run && r.spring && !r.spring->unresolved.empty())
     r.warnings.push_back("dynamics: the runs read the lift law fitted where " +
                          r.spring->unresolved);
-  if (r.run) {
-    if (const std::string w = BreakSteps(*c.lift.law, c.lift.choice.law); !w.empty())
-      r.warnings.push_back("dynamics: the runs read a fitted lift law that " + w);
-  }
   // The spring check's failures first, as the surge verdict (JudgeLimits) left them.
   if (r.spring) {
     std::vector<std::string> lines;
