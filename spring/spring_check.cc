@@ -44,16 +44,25 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
   const bool helical_fails =
       r.helical && (!r.helical->stress_ok || !r.helical->clearance_ok || !r.helical->fatigue_ok ||
                     (!r.helical->surge_ok && surge_screen));
-  if (helical_fails) {
-    out.push_back(std::string("helical spring: ") +
-                  (!r.helical->stress_ok ? "shear stress above the allowable; " : "") +
-                  (!r.helical->clearance_ok ? "coil gaps below S_a; " : "") +
-                  (!r.helical->surge_ok && surge_screen ? "surge ratio below 13; " : "") +
-                  (!r.helical->fatigue_ok
-                       ? std::string("fatigue: the working stroke is outside the ") +
-                             CriterionInfo(r.helical->fatigue.criterion).title + " line (n_f " +
-                             Fixed(r.helical->fatigue.safety_factor, 2) + " < 1)"
-                       : ""));
+  if (helical_fails) {  // each item with its figures, "; " between
+    const HelicalSpringCheck& h = *r.helical;
+    std::vector<std::string> items;
+    if (!h.stress_ok)
+      items.push_back("shear stress " + Fixed(h.stress_full_lift_Pa * 1e-6, 0) +
+                      " MPa above the allowable " + Fixed(h.allowable_stress_Pa * 1e-6, 0) +
+                      " MPa");
+    if (!h.clearance_ok)
+      items.push_back("coil gaps " + Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm below S_a " +
+                      Fixed(h.min_clearance_m * 1e3, 2) + " mm");
+    if (!h.surge_ok && surge_screen)
+      items.push_back("surge ratio " + Fixed(h.surge_ratio, 1) + " below 13");
+    if (!h.fatigue_ok)
+      items.push_back(std::string("fatigue: the working stroke is outside the ") +
+                      CriterionInfo(h.fatigue.criterion).title + " line (n_f " +
+                      Fixed(h.fatigue.safety_factor, 2) + " < 1)");
+    std::string line = "helical spring: ";
+    for (size_t i = 0; i < items.size(); ++i) line += (i ? "; " : "") + items[i];
+    out.push_back(line);
   }
   return out;
 }
