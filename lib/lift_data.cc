@@ -360,4 +360,23 @@ std::shared_ptr<const LiftLaw> BuildChosenLaw(LiftLawChoice* choice) {
   return law;
 }
 
+std::string HeldOffSeat(const LiftTable& table) {
+  const std::vector<double>& y = table.lift_m;
+  if (y.empty()) return "";
+  const double top = *std::max_element(y.begin(), y.end());
+  std::ostringstream out;
+  for (const bool last : {false, true}) {
+    const double end = last ? y.back() : y.front();
+    size_t count = 0;
+    while (count < y.size() && (last ? y[y.size() - 1 - count] : y[count]) == end) ++count;
+    if (!(end > 0.0 && end <= kOpenEndFraction * top && count >= kHeldEndReadings)) continue;
+    out << (out.tellp() > 0 ? " and its " : "its ") << (last ? "last " : "first ") << count
+        << " readings are " << std::setprecision(6) << end * 1e3 << " mm";
+  }
+  if (out.tellp() == 0) return "";
+  return out.str() +
+         ", not 0: the cam holds the needle off its seat there (an offset in the readings? take "
+         "it off)";
+}
+
 }  // namespace needle

@@ -392,6 +392,18 @@ constexpr size_t kResolvedSideReadings = 3;
 /// beyond it) is not given, which is another matter, and not warned of.
 std::string UnresolvedSides(const LiftTable& table);
 
+/// A table whose first or last lift is above this fraction of its largest does not reach the
+/// seat there: the check is undecided (apps/study/check_scene.h TableEndFailures; a table cut
+/// just above zero is taken, its ramps bring it down).
+inline constexpr double kOpenEndFraction = 0.05;
+/// A flat end held above the seat needs this many equal readings (HeldOffSeat).
+inline constexpr size_t kHeldEndReadings = 2;
+/// Where the table begins or ends with kHeldEndReadings or more equal readings above zero, yet
+/// at most kOpenEndFraction of its largest lift (higher, the table is cut inside the lift, which
+/// TableEndFailures says): the cam holds the needle off its seat there, as readings carrying an
+/// offset do ("its first 13 readings are 0.012 mm, not 0: …"); empty otherwise.
+std::string HeldOffSeat(const LiftTable& table);
+
 /// The choice as fields (lib/result_fields.h): the spline's reason, σ (mm) and its source,
 /// whether the table is measured, and the breaks found in the table (deg; only when some were).
 std::vector<Field> LiftChoiceFields(const LiftLawChoice& choice);

@@ -66,6 +66,21 @@ std::string UnresolvedWarning(const char* runs, const std::string& what) {
   return std::string("WARNING: ") + runs + " the lift law fitted where " + what + "\n";
 }
 
+// The lift table's warnings: a rise or return it does not resolve, an end it holds off the seat
+// (lib/lift_data.h HeldOffSeat), as text lines (`runs` as UnresolvedWarning's) or JSON keys.
+std::string TableWarnings(const BoundCase& c, const char* runs) {
+  std::string out;
+  if (const std::string w = UnresolvedSides(c.lift.choice.table); !w.empty())
+    out += UnresolvedWarning(runs, w);
+  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty())
+    out += "WARNING: the lift table: " + w + "\n";
+  return out;
+}
+void PutTableWarnings(const BoundCase& c, nlohmann::json& j) {
+  if (const std::string w = UnresolvedSides(c.lift.choice.table); !w.empty()) j["unresolved"] = w;
+  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty()) j["held_off_seat"] = w;
+}
+
 }  // namespace
 
 CommandOutput WriteSimulate(const CaseRun& run, bool json) {
@@ -76,7 +91,6 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
   result.status = r.liftoff() ? 1 : 0;
   const std::vector<Field> fields = SimulationFields(r);
   const auto text = [&fields](const char* key) { return ValueText(FieldAt(fields, key)); };
-  const std::string unresolved = UnresolvedSides(c.lift.choice.table);
   if (!run.series_si.empty()) {
     const std::vector<Column> columns = SeriesColumns();
     for (size_t i = 0; i < columns.size(); ++i)
@@ -112,13 +126,13 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
     j["status"] = RunStatusName(r.status);
     j["status_reason"] = r.status_reason;
     j["liftoff_rpm_quasi_static"] = Finite(run.liftoff_rpm_quasi_static);
-    if (!unresolved.empty()) j["unresolved"] = unresolved;
+    PutTableWarnings(c, j);
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
         << ")\n";
-    if (!unresolved.empty()) out << UnresolvedWarning("the run reads", unresolved);
+    out << TableWarnings(c, "the run reads");
     if (!r.skipped) {
       out << "window " << text("window_start_deg") << " .. " << text("window_end_deg")
           << " deg; rtol " << run.rtol << "; " << text("steps") << " steps, "
@@ -173,7 +187,6 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
   const OverspeedOptions& opt = search.options;
   const OverspeedResult& r = search.result;
   const double n_qs = search.liftoff_rpm_quasi_static;
-  const std::string unresolved = UnresolvedSides(c.lift.choice.table);
   CommandOutput result;
   result.status = r.n_dyn_rpm && *r.n_dyn_rpm <= c.engine.speed_rpm ? 1 : 0;
   std::vector<std::vector<double>> rows_si;
@@ -190,7 +203,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
     j["cycles"] = opt.simulation.cycles;
     j["steady_state"] = opt.simulation.steady_state;
     j["rows"] = RecordList(r.rows, OverspeedRowFields);
-    if (!unresolved.empty()) j["unresolved"] = unresolved;
+    PutTableWarnings(c, j);
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
@@ -207,7 +220,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
                     "revolutions after the first)\n"
                   : "lift-off in any of them counts\n");
     }
-    if (!unresolved.empty()) out << UnresolvedWarning("the runs read", unresolved);
+    out << TableWarnings(c, "the runs read");
     out << "quasi-static lift-off n_qs = "
         << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
         << "dynamic lift-off n_dyn = ";

@@ -35,6 +35,7 @@ nlohmann::json KinematicsJson(const KinematicsTable& table, const std::vector<Co
   PutFields(j, KinematicsFields(table.summary));
   PutFields(j, LiftLawFields(table.law));
   if (const std::string w = UnresolvedSides(table.choice.table); !w.empty()) j["unresolved"] = w;
+  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty()) j["held_off_seat"] = w;
   nlohmann::json list = nlohmann::json::array();
   for (size_t i = 0; i < rows.size(); ++i) {
     nlohmann::json row = RowObject(columns, rows_si[i]);
@@ -72,6 +73,8 @@ void KinematicsHead(std::ostream& out, const KinematicsTable& table) {
   }
   if (const std::string w = UnresolvedSides(choice.table); !w.empty())
     out << "WARNING: " << w << '\n';
+  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty())
+    out << "WARNING: the lift table: " << w << '\n';
   if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
     out << "WARNING: " << choice.outliers.size()
         << " outlier(s) of the lift table left out (outliers = \"drop\"; the spline's reason "

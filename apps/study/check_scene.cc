@@ -8,6 +8,7 @@
 
 #include "apps/case/case_profile.h"
 #include "apps/study/limits_table.h"
+#include "lib/lift_data.h"
 #include "lib/output.h"
 #include "lib/threads.h"
 #include "lib/units.h"
@@ -54,6 +55,8 @@ std::vector<std::string> TableEndFailures(const LiftLaw& law, double top_m) {
                          " is not in it; extend the table to where the lift is zero");
     }
   }
+  if (const std::string held = HeldOffSeat(law.table()); !held.empty())
+    failures.push_back("lift table: undecided, " + held);
   return failures;
 }
 

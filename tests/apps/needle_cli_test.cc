@@ -4,12 +4,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <utility>
 
 #include "run_command.h"
@@ -89,6 +91,45 @@ TEST(NeedleCliTest, ABreakWhoseSidesStepMakesNoLiftOff) {
   ASSERT_EQ(run.status, 0) << run.out << run.err;
   EXPECT_FALSE(nlohmann::json::parse(run.out)["liftoff"].get<bool>());
   std::filesystem::remove(path);
+}
+
+// The same table with a constant offset (0.012 mm on every reading, as a gauge zeroed off the
+// seat gives): check judged a cam that holds the needle off its seat and failed on that cam's
+// least contact force alone; now the table itself is undecided, and the runs warn.
+TEST(NeedleCliTest, ReadingsHeldOffTheSeatAreUndecided) {
+  std::ifstream in(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/dwell-modsine-1e-3mm-0.5deg.csv");
+  const std::string csv = testing::TempPath("offset.csv");
+  std::ofstream out(csv);
+  for (std::string line; std::getline(in, line);) {
+    const size_t comma = line.find(',');
+    if (line.empty() || line[0] == '#' || !std::isdigit(line.back())) {
+      out << line << '\n';
+      continue;
+    }
+    char lift[32];
+    std::snprintf(lift, sizeof lift, "%.3f", std::stod(line.substr(comma + 1)) + 0.012);
+    out << line.substr(0, comma + 1) << lift << '\n';
+  }
+  out.close();
+  const std::string path = testing::TempPath("offset.toml");
+  std::ofstream(path) << "[engine]\nspeed_rpm = 1800\n[lift]\ncsv = \"" << csv
+                      << "\"\n[needle]\nmass_kg = 0.12\n[spring]\npreload_N = 500\nrate_N_mm = "
+                         "20\n[train]\ncontact_stiffness_N_m = 2e8\nplay_mm = 0.05\nramp_deg = 4\n";
+  const std::string held =
+      "its first 3 readings are 0.012 mm and its last 2 readings are 0.012 mm, not 0: the cam "
+      "holds the needle off its seat there (an offset in the readings? take it off)";
+  const auto check = RunNeedle("check " + path + " --json");
+  EXPECT_EQ(check.status, 1) << check.err;
+  const auto failing = nlohmann::json::parse(check.out)["failing"];
+  EXPECT_NE(std::find(failing.begin(), failing.end(), "lift table: undecided, " + held),
+            failing.end())
+      << failing;
+  const auto kin = nlohmann::json::parse(RunNeedle("kinematics " + path + " --json").out);
+  EXPECT_EQ(kin["held_off_seat"], held);
+  EXPECT_NE(RunNeedle("simulate " + path).out.find("WARNING: the lift table: " + held + "\n"),
+            std::string::npos);
+  std::filesystem::remove(path);
+  std::filesystem::remove(csv);
 }
 
 // A jump in which no gap opens (the contact force falls to zero, the largest gap -1.6e-7 mm) was

@@ -995,5 +995,34 @@ TEST(LiftDataTest, ABreakWhoseSidesStepIsDropped) {
   EXPECT_EQ(plain.law.breaks_rad, kept);
 }
 
+// A new user's readings carrying a constant offset (helper-52: the table above, 0.012 mm added
+// to every reading) were taken silently as a cam that never lets the needle close, and check
+// judged that cam. A flat end above the seat is said; the table as exported is not, nor a table
+// cut inside its lift (TableEndFailures' concern), nor one end cut on a slope.
+TEST(LiftDataTest, ReadingsHeldOffTheSeatAreSaid) {
+  const LiftTable t =
+      ReadLiftCsv(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/dwell-modsine-1e-3mm-0.5deg.csv",
+                  EngineCycle::kFourStroke);
+  EXPECT_EQ(HeldOffSeat(t), "");
+  LiftTable offset = t;
+  for (double& s : offset.lift_m) s = std::round((s + 0.012e-3) * 1e6) / 1e6;  // as printed
+  EXPECT_EQ(HeldOffSeat(offset),
+            "its first 3 readings are 0.012 mm and its last 2 readings are 0.012 mm, not 0: the "
+            "cam holds the needle off its seat there (an offset in the readings? take it off)");
+  LiftTable end = t;  // the seat at the start, the return's last readings held
+  end.lift_m.end()[-1] = end.lift_m.end()[-2] = 0.012e-3;
+  EXPECT_EQ(HeldOffSeat(end),
+            "its last 2 readings are 0.012 mm, not 0: the cam holds the needle off its seat there "
+            "(an offset in the readings? take it off)");
+  end.lift_m.back() = 0.011e-3;  // a slope: a table cut on the return
+  EXPECT_EQ(HeldOffSeat(end), "");
+  LiftTable cut = t;  // from 10 deg, 0.714 mm (40 % of the lift): cut inside the lift
+  while (cut.crank_rad.front() < 10.0 * kDeg - 1e-12) {
+    cut.crank_rad.erase(cut.crank_rad.begin());
+    cut.lift_m.erase(cut.lift_m.begin());
+  }
+  EXPECT_EQ(HeldOffSeat(cut), "");
+}
+
 }  // namespace
 }  // namespace needle
