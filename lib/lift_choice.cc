@@ -310,8 +310,7 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
     dwells = SeekDwells(x, y, first, last, *q, kind, &inside);
   std::vector<double> at;  // the breaks used; the widest bins' width among them (0: none binned)
   for (const LiftBreak* b : inside) at.push_back(b->crank_rad);
-  for (const LiftBreak* b : inside)
-    c.break_uncertainty_rad = std::max(c.break_uncertainty_rad, b->uncertainty_rad);
+  c.break_uncertainty_rad = BreakUncertainty(c.breaks_found, at);
   std::vector<double> cuts = at;  // the open lift's ends are junctions too (the seat)
   for (const LiftDwell& d : dwells) cuts.insert(cuts.end(), {d.from_rad, d.to_rad});
   cuts.push_back(x[first]);

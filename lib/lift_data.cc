@@ -337,6 +337,15 @@ void DropBreak(size_t k, LiftLawOptions* o, LiftTable* table) {
 
 }  // namespace
 
+double BreakUncertainty(const std::vector<LiftBreak>& found, const std::vector<double>& used_rad) {
+  double widest = 0.0;
+  for (const LiftBreak& b : found) {
+    if (std::find(used_rad.begin(), used_rad.end(), b.crank_rad) != used_rad.end())
+      widest = std::max(widest, b.uncertainty_rad);
+  }
+  return widest;
+}
+
 std::shared_ptr<const LiftLaw> BuildChosenLaw(LiftLawChoice* choice) {
   auto law = std::make_shared<const LiftLaw>(choice->table, choice->law);
   LiftLawOptions& o = choice->law;
@@ -348,12 +357,7 @@ std::shared_ptr<const LiftLaw> BuildChosenLaw(LiftLawChoice* choice) {
                       " (a cam's lift does not jump): one fit across it instead";
     for (auto it = steps.rbegin(); it != steps.rend(); ++it)
       DropBreak(it->first, &o, &choice->table);
-    // The uncertainty of the breaks kept (those found among bins, LiftBreak::uncertainty_rad).
-    o.break_uncertainty_rad = 0.0;
-    for (const LiftBreak& b : choice->breaks_found) {
-      if (std::find(o.breaks_rad.begin(), o.breaks_rad.end(), b.crank_rad) != o.breaks_rad.end())
-        o.break_uncertainty_rad = std::max(o.break_uncertainty_rad, b.uncertainty_rad);
-    }
+    o.break_uncertainty_rad = BreakUncertainty(choice->breaks_found, o.breaks_rad);
     choice->break_uncertainty_rad = o.break_uncertainty_rad;
     law = std::make_shared<const LiftLaw>(choice->table, o);
   }

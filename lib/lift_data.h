@@ -230,6 +230,10 @@ struct LiftBreak {
   double uncertainty_rad = 0.0;
 };
 
+/// How far the breaks used, `used_rad` (each an angle of `found`), may lie from where they are
+/// put, rad: the largest LiftBreak::uncertainty_rad among them (0: none found among bins).
+double BreakUncertainty(const std::vector<LiftBreak>& found, const std::vector<double>& used_rad);
+
 /// Breaks of a table (see above), increasing; `sigma_m` is the σ of its readings (the robust
 /// σ̂: a few jumps do not move it), m, ≥ 0.
 std::vector<LiftBreak> FindBreaks(const std::vector<double>& crank_rad,
