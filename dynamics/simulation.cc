@@ -231,7 +231,7 @@ Method ChosenMethod(const NeedleTrain& train, const SimulationOptions& o, double
     *reason = "asked for";
     return *m;
   }
-  throw std::invalid_argument("unknown method \"" + o.method + "\"; expected " + MethodList());
+  throw std::invalid_argument(MethodNameFault(o.method));
 }
 
 }  // namespace

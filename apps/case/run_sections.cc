@@ -83,11 +83,8 @@ SolverSection ReadSolver(SectionReader r) {
   SimulationOptions& o = s.run;
   IntegratorOptions& i = o.integrator;
   if (auto m = r.OptionalString("method")) {
-    if (*m != "auto" && !ParseMethod(*m)) {  // the names from the method table
-      std::string list = "auto";
-      for (Method known : AllMethods()) list += ", " + MethodName(known);
-      r.Fail("method", "expected one of " + list + "; got \"" + *m + "\"");
-    }
+    if (!MethodNameFault(*m).empty())  // the names from the method table
+      r.Fail("method", "expected one of " + MethodList() + "; got \"" + *m + "\"");
     o.method = *m;
   }
   if (auto rtol = r.OptionalNumber("rtol")) i.rtol = *rtol;

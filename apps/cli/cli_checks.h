@@ -88,12 +88,7 @@ inline void AddSpeedOption(CLI::App* cmd, std::optional<double>& speed_rpm,
 /// A method of the method table or "auto", checked when the option is read: before the case is
 /// loaded, so a wrong name is reported as the option's fault whatever the case holds.
 inline CLI::Validator KnownMethod() {
-  return CLI::Validator(
-      [](std::string& s) -> std::string {
-        if (s == "auto" || ParseMethod(s)) return {};
-        return "unknown method \"" + s + "\"; expected " + MethodList();
-      },
-      "METHOD", "");
+  return CLI::Validator([](std::string& s) { return MethodNameFault(s); }, "METHOD", "");
 }
 
 /// The dynamic commands' `--method` and `--rtol` (simulate, overspeed): each defaults to the

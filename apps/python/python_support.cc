@@ -154,8 +154,8 @@ std::optional<std::string> Text(const py::object& v, const std::string& key,
 
 std::optional<std::string> MethodKeyword(const py::object& v) {
   const auto m = Text(v, "method", "one of " + MethodList());
-  if (m && *m != "auto" && !ParseMethod(*m))
-    throw CaseError("method=" + Repr(v) + ": unknown method; expected one of " + MethodList());
+  if (const std::string fault = m ? MethodNameFault(*m) : ""; !fault.empty())
+    throw CaseError("method=" + Repr(v) + ": " + fault);
   return m;
 }
 

@@ -18,10 +18,8 @@ SimulationOptions Options(const BoundCase& c, const std::optional<std::string>& 
                           const std::optional<double>& rtol) {
   SimulationOptions o = c.run;
   if (method) {
-    if (*method != "auto" && !ParseMethod(*method)) {
-      throw CaseError("--method: unknown method \"" + *method + "\"; expected " + MethodList());
-    }
-
+    if (const std::string fault = MethodNameFault(*method); !fault.empty())
+      throw CaseError("--method: " + fault);
     o.method = *method;
   }
   if (rtol) {

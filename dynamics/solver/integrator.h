@@ -53,6 +53,10 @@ std::string MethodName(Method m);
 std::optional<Method> ParseMethod(const std::string& name);
 /// "auto, dopri5, rkf78, …" for messages.
 std::string MethodList();
+/// Why `name` names no method: "unknown method \"foo\"; expected auto, dopri5, … or
+/// baseline-dopri5"; empty for "auto" and each method's name. The one wording of every place a
+/// method is read (the options, the case, Python's keyword).
+std::string MethodNameFault(const std::string& name);
 /// Why method `m` does not take a rigid contact, from the method table, or nullopt when it does.
 std::optional<std::string> MethodRigidRefusal(Method m);
 /// Whether `m` solves each contact mode in closed form (the event driver then certifies its

@@ -115,6 +115,11 @@ std::string MethodList() {
   return out;
 }
 
+std::string MethodNameFault(const std::string& name) {
+  if (name == "auto" || ParseMethod(name)) return {};
+  return "unknown method \"" + name + "\"; expected " + MethodList();
+}
+
 std::unique_ptr<Stepper> MakeStepper(Method m, TrainSystem& system, const IntegratorOptions& o) {
   MakeBackend* const make = Row(m).make;
   return make ? make(system, o) : nullptr;

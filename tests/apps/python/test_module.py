@@ -101,7 +101,7 @@ def test_bad_options_raise_messages_naming_the_keyword():
     case = needle.load_case(os.path.join(ROOT, "cases", "basu-example1.toml"))
     with pytest.raises(needle.CaseError) as e:
         needle.simulate(case, method="euler")
-    assert str(e.value).startswith("method='euler': unknown method; expected one of auto, dopri5")
+    assert str(e.value).startswith("method='euler': unknown method \"euler\"; expected auto, dopri5")
     with pytest.raises(needle.CaseError) as e:
         needle.kinematics(case, rpm=float("nan"))
     assert str(e.value) == "rpm=nan: expected a speed in rpm in [1, 50000]"
