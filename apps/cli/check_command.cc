@@ -49,7 +49,7 @@ int RunCheckCommand(const CheckCommandOptions& o) {
   };
   CheckResult result;
   {
-    ProgressBar bar("overspeed", "speeds", o.json);
+    ProgressBar bar("overspeed", "speeds", o.json, true);
     options.progress = [&](int done, int total) { bar.Update(done, total); };
     result = CheckScene(c, options);
   }

@@ -38,7 +38,7 @@ int RunCompareCommand(const CompareCommandOptions& o) {
   }
   Comparison cmp;
   {
-    ProgressBar bar("compare", "runs", o.json);
+    ProgressBar bar("compare", "runs", o.json, true);
     BoundCase bound_a = Bind(a);  // A's problem first
     cmp = CompareCases(std::move(bound_a), Bind(b), o.speed_rpm,
                        [&](int done, int total) { bar.Update(done, total); });

@@ -63,7 +63,8 @@ CLI::App* AddOverspeedCommand(CLI::App& app, OverspeedCommandOptions& o) {
          "the rated speed)")
       ->check(SpeedRpm());
   AddMethodOptions(cmd, o.search.method, o.search.rtol);
-  cmd->add_option("--threads", o.search.threads, "threads (default and most: all cores)")
+  cmd->add_option("--threads", o.search.threads,
+                  "threads (default and 0: all cores, which is also the most)")
       ->transform(WholeIn(kThreadsRange, "a number of threads"));
   cmd->add_option("--step-rpm", o.search.step_rpm,
                   "scan step where the contact force gives no guidance (default 2.5 % of --from, "
@@ -77,7 +78,7 @@ int RunOverspeedCommand(const OverspeedCommandOptions& o) {
   const BoundCase c = Bind(LoadCase(o.case_path));
   CommandOutput r;
   {
-    ProgressBar bar("overspeed", "speeds", o.json);
+    ProgressBar bar("overspeed", "speeds", o.json, true);
     r = WriteOverspeed(
         OverspeedOfCase(c, o.search, [&](int done, int total) { bar.Update(done, total); }),
         o.json);

@@ -13,11 +13,12 @@ constexpr double kLineIntervalS = 5.0;
 
 }  // namespace
 
-ProgressBar::ProgressBar(std::string label, std::string unit, bool quiet)
+ProgressBar::ProgressBar(std::string label, std::string unit, bool quiet, bool estimated)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       bar_(isatty(STDOUT_FILENO) && isatty(STDERR_FILENO)),
-      lines_(!bar_ && !quiet) {}
+      lines_(!bar_ && !quiet),
+      estimated_(estimated) {}
 
 ProgressBar::~ProgressBar() {
   if (bar_) std::cerr << "\r" << std::string(label_.size() + 50, ' ') << "\r" << std::flush;
@@ -37,7 +38,8 @@ void ProgressBar::Update(int done, int total) {
   if (tenth <= last_tenth_ && since < kLineIntervalS) return;
   last_tenth_ = std::max(last_tenth_, tenth);
   last_line_ = now;
-  std::cerr << label_ << ": " << done << "/" << std::max(done, total) << " " << unit_ << '\n'
+  std::cerr << label_ << ": " << done << (estimated_ ? " of about " : "/") << std::max(done, total)
+            << " " << unit_ << '\n'
             << std::flush;
 }
 

@@ -33,7 +33,8 @@ CLI::App* AddToleranceCommand(CLI::App& app, ToleranceCommandOptions& o) {
   cmd->add_option("--first-sample", o.first_sample,
                   "index of the first sample (default 0): a shard of a larger study")
       ->transform(WholeIn(kFirstSampleRange, "a sample number"));
-  cmd->add_option("--threads", o.threads, "threads (default and most: all cores)")
+  cmd->add_option("--threads", o.threads,
+                  "threads (default and 0: all cores, which is also the most)")
       ->transform(WholeIn(kThreadsRange, "a number of threads"));
   cmd->add_option("--out", o.out_dir, "write the report with the histograms to this folder");
   cmd->add_flag("--json", o.json, "print one JSON object (every sample's inputs and outputs too)");

@@ -200,7 +200,7 @@ TEST(CheckReportTest, AnOutFolderThatCannotBeReachedIsBadInput) {
 // how far they are in a line now and then; under --json they are quiet, and stdout is the same.
 TEST(CheckReportTest, ProgressIsALineNowAndThenOutsideATerminal) {
   const std::string dir = TempDir("progress");
-  const std::regex line("overspeed: [0-9]+/[0-9]+ speeds");
+  const std::regex line("overspeed: [0-9]+ of about [0-9]+ speeds");
   const auto text = RunNeedle("check " + Case("basu-example1.toml") + " --out " + dir);
   ASSERT_EQ(text.status, 0) << text.err;
   std::istringstream lines(text.err);
