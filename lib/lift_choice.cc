@@ -350,7 +350,8 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   c.law.spline.quantized = true;       // exact or rounded: its error is the rounding's
   const bool pieces_fit = kind == SplineKind::kNotAKnot || kind == SplineKind::kNatural ||
                           kind == SplineKind::kQuintic || kind == SplineKind::kLocal;
-  std::string breaks = "ends at " + DegreeList({x[first], x[last]}) + " deg (the seat)";
+  std::string breaks = "ends at " + DegreeList({x[first], x[last]}) + " deg (" +
+                       (y[first] > 0.0 || y[last] > 0.0 ? "the table's" : "the seat") + ")";
   if (!dwells.empty()) {
     std::vector<double> spans;
     for (const LiftDwell& d : dwells) spans.insert(spans.end(), {d.from_rad, d.to_rad});

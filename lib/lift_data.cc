@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 
+#include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -364,23 +365,29 @@ std::shared_ptr<const LiftLaw> BuildChosenLaw(LiftLawChoice* choice) {
   return law;
 }
 
-std::string HeldOffSeat(const LiftTable& table) {
-  const std::vector<double>& y = table.lift_m;
-  if (y.empty()) return "";
-  const double top = *std::max_element(y.begin(), y.end());
-  std::ostringstream out;
+bool DipBeyondReadings(const LiftLawChoice& choice, const LiftLaw& law) {
+  const double rounding = choice.noise_source == "rounding" ? std::sqrt(3.0) * choice.noise_m : 0.0;
+  return law.undershoot_m() > std::max(rounding, law.closed_level_m());
+}
+
+std::string OffSeatEnds(const LiftLaw& law) {
+  std::vector<std::string> ends;
   for (const bool last : {false, true}) {
-    const double end = last ? y.back() : y.front();
-    size_t count = 0;
-    while (count < y.size() && (last ? y[y.size() - 1 - count] : y[count]) == end) ++count;
-    if (!(end > 0.0 && end <= kOpenEndFraction * top && count >= kHeldEndReadings)) continue;
-    out << (out.tellp() > 0 ? " and its " : "its ") << (last ? "last " : "first ") << count
-        << " readings are " << std::setprecision(6) << end * 1e3 << " mm";
+    const double at = last ? law.end_rad() : law.start_rad();
+    const std::vector<double>& y = law.table().lift_m;
+    // An exact table's reading there (its law may miss 0 by round-off); measured data's fit.
+    const double s = law.closed_level_m() > 0.0 ? law.Lift(at) : last ? y.back() : y.front();
+    if (at != (last ? law.table_end_rad() : law.table_start_rad()) || !(s > law.closed_level_m()))
+      continue;
+    int decimals = 3;  // two significant digits at least
+    while (decimals < 9 && s * 1e3 < 10.0 * std::pow(10.0, -decimals)) ++decimals;
+    ends.push_back(std::string(last ? "ends" : "starts") + " at " + Fixed(s * 1e3, decimals) +
+                   " mm (" + Fixed(at / kDeg, 2) + " deg)");
   }
-  if (out.tellp() == 0) return "";
-  return out.str() +
-         ", not 0: the cam holds the needle off its seat there (an offset in the readings? take "
-         "it off)";
+  if (ends.empty()) return "";
+  return "the lift table " + ends[0] + (ends.size() > 1 ? " and " + ends[1] : "") +
+         ", above the seat: the runs take it as cut there and carry the cam on from it "
+         "(docs/model.md section 3); if the readings carry an offset, take it off them";
 }
 
 }  // namespace needle

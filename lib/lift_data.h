@@ -400,13 +400,19 @@ std::string UnresolvedSides(const LiftTable& table);
 /// seat there: the check is undecided (apps/study/check_scene.h TableEndFailures; a table cut
 /// just above zero is taken, its ramps bring it down).
 inline constexpr double kOpenEndFraction = 0.05;
-/// A flat end held above the seat needs this many equal readings (HeldOffSeat).
-inline constexpr size_t kHeldEndReadings = 2;
-/// Where the table begins or ends with kHeldEndReadings or more equal readings above zero, yet
-/// at most kOpenEndFraction of its largest lift (higher, the table is cut inside the lift, which
-/// TableEndFailures says): the cam holds the needle off its seat there, as readings carrying an
-/// offset do ("its first 13 readings are 0.012 mm, not 0: …"); empty otherwise.
-std::string HeldOffSeat(const LiftTable& table);
+/// Where the law's open lift begins (ends) at the table's first (last) reading, above the seat
+/// there (an exact table's reading above 0; measured data's fit above its closed level, 3σ): the
+/// table stops above
+/// the seat, and the runs carry the cam on from that end (docs/model.md §3) — a table cut there,
+/// or readings carrying an offset, which the table cannot tell apart ("the lift table starts at
+/// 0.012 mm (-6.00 deg) and ends at 0.012 mm (70.00 deg), above the seat: …"); empty otherwise.
+std::string OffSeatEnds(const LiftLaw& law);
+
+/// Whether the law's dip below the seat (LiftLaw::undershoot_m) is more than the readings can
+/// hold: above half their printed digit (√3 σ) when rounded, above the closed level (3σ) for
+/// measured data. A dip within it is the rounding's or the noise's (a 3-4-5 rise exported to
+/// 1e-3 mm dipped 0.0003 mm at its first reading, and was told to try another spline kind).
+bool DipBeyondReadings(const LiftLawChoice& choice, const LiftLaw& law);
 
 /// The choice as fields (lib/result_fields.h): the spline's reason, σ (mm) and its source,
 /// whether the table is measured, and the breaks found in the table (deg; only when some were).

@@ -52,7 +52,7 @@ std::string SceneTable(const BoundCase& c, const LiftLaw& law, const LiftLawChoi
                                        : std::string(" (last zero before the rise to first zero "
                                                      "after the fall)")))
           << Row("injection period", Fixed(sum.injection_period_s * 1e3, 2) + " ms");
-  if (Shows(FieldAt(LiftLawFields(law), "undershoot_mm"))) {
+  if (Shows(FieldAt(LiftLawFields(law), "undershoot_mm")) && DipBeyondReadings(choice, law)) {
     summary << Row("WARNING", "the spline dips " + Fixed(law.undershoot_m() * 1e3, 4) +
                                   " mm below the seat at " + Fixed(law.undershoot_rad() / kDeg, 2) +
                                   "° inside the open lift; try another spline kind");

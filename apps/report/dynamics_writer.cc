@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "apps/report/result_writers.h"
-#include "lib/lift_data.h"
 #include "lib/output.h"
 #include "lib/units.h"
 
@@ -60,27 +59,6 @@ nlohmann::json GridJson(const SimulationResult& r, double speed_rpm) {
   return g;
 }
 
-// A rise or return the table does not resolve (UnresolvedSides: `what`): `runs` ("the run
-// reads", "the runs read") the law fitted there.
-std::string UnresolvedWarning(const char* runs, const std::string& what) {
-  return std::string("WARNING: ") + runs + " the lift law fitted where " + what + "\n";
-}
-
-// The lift table's warnings: a rise or return it does not resolve, an end it holds off the seat
-// (lib/lift_data.h HeldOffSeat), as text lines (`runs` as UnresolvedWarning's) or JSON keys.
-std::string TableWarnings(const BoundCase& c, const char* runs) {
-  std::string out;
-  if (const std::string w = UnresolvedSides(c.lift.choice.table); !w.empty())
-    out += UnresolvedWarning(runs, w);
-  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty())
-    out += "WARNING: the lift table: " + w + "\n";
-  return out;
-}
-void PutTableWarnings(const BoundCase& c, nlohmann::json& j) {
-  if (const std::string w = UnresolvedSides(c.lift.choice.table); !w.empty()) j["unresolved"] = w;
-  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty()) j["held_off_seat"] = w;
-}
-
 }  // namespace
 
 CommandOutput WriteSimulate(const CaseRun& run, bool json) {
@@ -126,13 +104,13 @@ CommandOutput WriteSimulate(const CaseRun& run, bool json) {
     j["status"] = RunStatusName(r.status);
     j["status_reason"] = r.status_reason;
     j["liftoff_rpm_quasi_static"] = Finite(run.liftoff_rpm_quasi_static);
-    PutTableWarnings(c, j);
+    PutLiftTableWarnings(j, c.lift.choice, *c.lift.law);
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
         << "speed " << Fixed(speed, 1) << " rpm; method " << r.method << " (" << r.method_reason
         << ")\n";
-    out << TableWarnings(c, "the run reads");
+    out << LiftTableWarnings(c.lift.choice, *c.lift.law, "the run reads");
     if (!r.skipped) {
       out << "window " << text("window_start_deg") << " .. " << text("window_end_deg")
           << " deg; rtol " << run.rtol << "; " << text("steps") << " steps, "
@@ -203,7 +181,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
     j["cycles"] = opt.simulation.cycles;
     j["steady_state"] = opt.simulation.steady_state;
     j["rows"] = RecordList(r.rows, OverspeedRowFields);
-    PutTableWarnings(c, j);
+    PutLiftTableWarnings(j, c.lift.choice, *c.lift.law);
     result.json = std::move(j);
   } else {
     out << (c.title.empty() ? c.path : c.title) << '\n'
@@ -220,7 +198,7 @@ CommandOutput WriteOverspeed(const CaseOverspeed& search, bool json) {
                     "revolutions after the first)\n"
                   : "lift-off in any of them counts\n");
     }
-    out << TableWarnings(c, "the runs read");
+    out << LiftTableWarnings(c.lift.choice, *c.lift.law, "the runs read");
     out << "quasi-static lift-off n_qs = "
         << (std::isfinite(n_qs) ? Fixed(n_qs, 1) + " rpm" : "none") << '\n'
         << "dynamic lift-off n_dyn = ";

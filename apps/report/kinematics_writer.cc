@@ -34,8 +34,7 @@ nlohmann::json KinematicsJson(const KinematicsTable& table, const std::vector<Co
   j["points"] = c.lift.table.crank_rad.size();
   PutFields(j, KinematicsFields(table.summary));
   PutFields(j, LiftLawFields(table.law));
-  if (const std::string w = UnresolvedSides(table.choice.table); !w.empty()) j["unresolved"] = w;
-  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty()) j["held_off_seat"] = w;
+  PutLiftTableWarnings(j, table.choice, table.law);
   nlohmann::json list = nlohmann::json::array();
   for (size_t i = 0; i < rows.size(); ++i) {
     nlohmann::json row = RowObject(columns, rows_si[i]);
@@ -67,14 +66,11 @@ void KinematicsHead(std::ostream& out, const KinematicsTable& table) {
     out << " (where the lift exceeds " << lt("closed_level_mm") << ", 3 sigma)";
   out << ", " << Fixed(speed, 1) << " rpm, injection period "
       << FieldText({"injection_period", display::kMs, sum.injection_period_s, 2}) << '\n';
-  if (Shows(FieldAt(law_fields, "undershoot_mm"))) {
+  if (Shows(FieldAt(law_fields, "undershoot_mm")) && DipBeyondReadings(choice, law)) {
     out << "WARNING: the spline dips " << lt("undershoot_mm") << " below the seat at "
         << lt("undershoot_deg") << " inside the open lift; try another spline kind\n";
   }
-  if (const std::string w = UnresolvedSides(choice.table); !w.empty())
-    out << "WARNING: " << w << '\n';
-  if (const std::string w = HeldOffSeat(c.lift.table); !w.empty())
-    out << "WARNING: the lift table: " << w << '\n';
+  out << LiftTableWarnings(choice, law);
   if (!choice.outliers.empty()) {  // left out: [lift] outliers = "drop"
     out << "WARNING: " << choice.outliers.size()
         << " outlier(s) of the lift table left out (outliers = \"drop\"; the spline's reason "

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lib/lift_data.h"
 #include "lib/output.h"
 #include "lib/result_fields.h"
 
@@ -96,6 +97,26 @@ nlohmann::json RecordList(const Items& items, const FieldsOf& fields_of) {
 /// FieldText of the field named `key` in `fields`.
 inline std::string TextAt(const std::vector<Field>& fields, const std::string& key) {
   return FieldText(FieldAt(fields, key));
+}
+
+/// The lift table's warnings, one "WARNING: …" line each: a rise or return it does not resolve
+/// (lib/lift_data.h UnresolvedSides; `runs`, e.g. "the run reads", who reads the law fitted
+/// there, or none) and an end above the seat (OffSeatEnds).
+inline std::string LiftTableWarnings(const LiftLawChoice& choice, const LiftLaw& law,
+                                     const char* runs = nullptr) {
+  std::string out;
+  if (const std::string w = UnresolvedSides(choice.table); !w.empty()) {
+    out += std::string("WARNING: ") +
+           (runs ? std::string(runs) + " the lift law fitted where " : "") + w + "\n";
+  }
+  if (const std::string w = OffSeatEnds(law); !w.empty()) out += "WARNING: " + w + "\n";
+  return out;
+}
+/// The same as JSON members: "unresolved" and "off_seat".
+inline void PutLiftTableWarnings(nlohmann::json& j, const LiftLawChoice& choice,
+                                 const LiftLaw& law) {
+  if (const std::string w = UnresolvedSides(choice.table); !w.empty()) j["unresolved"] = w;
+  if (const std::string w = OffSeatEnds(law); !w.empty()) j["off_seat"] = w;
 }
 
 }  // namespace needle

@@ -76,9 +76,7 @@ constexpr double kSurgeConvergence = 0.01;
 /// The failing lines of a table that does not reach the seat at an end (its lift there above
 /// kOpenEndFraction of `top_m`, its largest lift, m): "lift table: undecided, it starts at …".
 /// `needle check` and `needle spring` fail the table so (a follower's position exported for its
-/// lift, 15 mm at the seat, passed `needle spring` with a required preload of 0 N). Likewise a
-/// table held off the seat at a flat end (lib/lift_data.h HeldOffSeat: an offset of 0.012 mm
-/// in a new user's readings, which check judged as a cam that never lets the needle close).
+/// lift, 15 mm at the seat, passed `needle spring` with a required preload of 0 N).
 std::vector<std::string> TableEndFailures(const LiftLaw& law, double top_m);
 
 /// Options of CheckScene; every field has a default.

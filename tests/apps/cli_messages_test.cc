@@ -194,11 +194,17 @@ TEST(CliMessagesTest, ControlCharactersStayOffTheTerminal) {
 }
 
 // Basu's cam 1b's not-a-knot spline reaches -1e-16 mm at its last point: a warning that would
-// print "dips 0.0000 mm" is not given; cam 1a's 0.0075 mm is.
+// print "dips 0.0000 mm" is not given; cam 1a's 0.0075 mm is. Cam 1c's 0.0015 mm is within the
+// rounding of its readings, printed to 0.01 mm (half a digit: 0.005 mm), and is not either.
 TEST(CliMessagesTest, AWarningsNumberShows) {
   const auto b = RunNeedle("kinematics " + Case("basu-cam1b.toml"));
   ASSERT_EQ(b.status, 0) << b.err;
   EXPECT_EQ(b.out.find("dips"), std::string::npos) << b.out;
+  const auto c = RunNeedle("kinematics " + Case("basu-cam1c.toml"));
+  EXPECT_EQ(c.out.find("dips"), std::string::npos) << c.out;
+  const auto c_json =
+      nlohmann::json::parse(RunNeedle("kinematics " + Case("basu-cam1c.toml") + " --json").out);
+  EXPECT_NEAR(c_json["undershoot_mm"].get<double>(), 0.0015, 0.00005);
   const auto a = RunNeedle("kinematics " + Case("basu-cam1a.toml"));
   EXPECT_NE(a.out.find("WARNING: the spline dips 0.0075 mm below the seat at 34.43 deg inside the "
                        "open lift; try another spline kind\n"),
