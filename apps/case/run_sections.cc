@@ -83,7 +83,7 @@ SolverSection ReadSolver(SectionReader r) {
   SimulationOptions& o = s.run;
   IntegratorOptions& i = o.integrator;
   if (auto m = r.OptionalString("method")) {
-    if (!MethodNameFault(*m).empty())  // the names from the method table
+    if (!MethodNameFault(*m).empty())
       r.Fail("method", "expected one of " + MethodList() + "; got \"" + *m + "\"");
     o.method = *m;
   }

@@ -54,8 +54,9 @@ std::optional<Method> ParseMethod(const std::string& name);
 /// "auto, dopri5, rkf78, …" for messages.
 std::string MethodList();
 /// Why `name` names no method: "unknown method \"foo\"; expected auto, dopri5, … or
-/// baseline-dopri5"; empty for "auto" and each method's name. The one wording of every place a
-/// method is read (the options, the case, Python's keyword).
+/// baseline-dopri5"; empty for "auto" and each method's name. The one rule of every place a
+/// method is read (--method, Simulate, Python's method=, whose messages are this one; [solver]
+/// method, which words it as the case file's keys are: "expected one of …; got \"foo\"").
 std::string MethodNameFault(const std::string& name);
 /// Why method `m` does not take a rigid contact, from the method table, or nullopt when it does.
 std::optional<std::string> MethodRigidRefusal(Method m);
