@@ -147,7 +147,7 @@ void CheckTableEnds(const LiftLaw& law, CheckResult& r) {
     r.failing.push_back(std::move(line));
   const std::string off = OffSeatEnds(law);
   if (!off.empty() && TableEndFailures(law, r.kinematics.max_lift_m).empty())
-    r.warnings.push_back("lift table: " + off);
+    r.warnings.push_back(off);
 }
 
 // "the case has no [needle] and [spring] sections": what a part of the check lacks.
