@@ -5,9 +5,7 @@
 #include <array>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 
 #include "lib/output.h"
 #include "lib/units.h"
@@ -315,12 +313,12 @@ std::vector<std::pair<size_t, double>> SteppingBreaks(const LiftLaw& law,
 // "0.00499 mm at 39.5656 deg, …" of SteppingBreaks.
 std::string StepList(const LiftLawOptions& options,
                      const std::vector<std::pair<size_t, double>>& steps) {
-  std::ostringstream s;
+  std::string s;
   for (size_t i = 0; i < steps.size(); ++i) {
-    s << (i ? ", " : "") << std::setprecision(3) << std::abs(steps[i].second) * 1e3 << " mm at "
-      << std::setprecision(6) << options.breaks_rad[steps[i].first] / kDeg << " deg";
+    s += (i ? ", " : "") + Significant(std::abs(steps[i].second) * 1e3, 3) + " mm at " +
+         Significant(options.breaks_rad[steps[i].first] / kDeg, 6) + " deg";
   }
-  return s.str();
+  return s;
 }
 
 // Drops breaks[k] of `o`, and its reading from `table` (a break between readings has one added,
@@ -379,9 +377,7 @@ std::string OffSeatEnds(const LiftLaw& law) {
     const double s = law.closed_level_m() > 0.0 ? law.Lift(at) : last ? y.back() : y.front();
     if (at != (last ? law.table_end_rad() : law.table_start_rad()) || !(s > law.closed_level_m()))
       continue;
-    int decimals = 3;  // two significant digits at least
-    while (decimals < 9 && s * 1e3 < 10.0 * std::pow(10.0, -decimals)) ++decimals;
-    ends.push_back(std::string(last ? "ends" : "starts") + " at " + Fixed(s * 1e3, decimals) +
+    ends.push_back(std::string(last ? "ends" : "starts") + " at " + Significant(s * 1e3, 3) +
                    " mm (" + Fixed(at / kDeg, 2) + " deg)");
   }
   if (ends.empty()) return "";

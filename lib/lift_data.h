@@ -402,10 +402,10 @@ std::string UnresolvedSides(const LiftTable& table);
 inline constexpr double kOpenEndFraction = 0.05;
 /// Where the law's open lift begins (ends) at the table's first (last) reading, above the seat
 /// there (an exact table's reading above 0; measured data's fit above its closed level, 3σ): the
-/// table stops above
-/// the seat, and the runs carry the cam on from that end (docs/model.md §3) — a table cut there,
-/// or readings carrying an offset, which the table cannot tell apart ("the lift table starts at
-/// 0.012 mm (-6.00 deg) and ends at 0.012 mm (70.00 deg), above the seat: …"); empty otherwise.
+/// table stops above the seat, and the runs carry the cam on from that end (docs/model.md §3) —
+/// a table cut there, or readings carrying an offset, which the table cannot tell apart ("the
+/// lift table starts at 0.012 mm (-6.00 deg) and ends at 0.012 mm (70.00 deg), above the seat:
+/// …"); empty otherwise.
 std::string OffSeatEnds(const LiftLaw& law);
 
 /// Whether the law's dip below the seat (LiftLaw::undershoot_m) is more than the readings can

@@ -143,11 +143,10 @@ namespace {
 // table cut at half its lift (issue 51's trial). Undecided, with what to change. Cut lower, it
 // is taken as cut, and a warning says so (or an offset: lib/lift_data.h OffSeatEnds).
 void CheckTableEnds(const LiftLaw& law, CheckResult& r) {
-  for (std::string& line : TableEndFailures(law, r.kinematics.max_lift_m))
-    r.failing.push_back(std::move(line));
-  const std::string off = OffSeatEnds(law);
-  if (!off.empty() && TableEndFailures(law, r.kinematics.max_lift_m).empty())
+  std::vector<std::string> failures = TableEndFailures(law, r.kinematics.max_lift_m);
+  if (const std::string off = OffSeatEnds(law); !off.empty() && failures.empty())
     r.warnings.push_back(off);
+  for (std::string& line : failures) r.failing.push_back(std::move(line));
 }
 
 // "the case has no [needle] and [spring] sections": what a part of the check lacks.
