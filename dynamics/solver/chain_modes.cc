@@ -99,6 +99,22 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     responses_.col(d) = stiffness_.solve(r);
   }
   Decompose();
+  // The segments' differences of V's lift rows (the last segment ends at the fixed seat) and the
+  // first segment's force rate k + cλ on them (ChainUpperBounds).
+  const Eigen::Index m = lambda_.size();
+  const double k = train.SegmentRateNm(), c = train.SegmentDampingNsm();
+  differences_.resize(dofs_ + 1, 2 * m);
+  difference_sizes_.resize(dofs_ + 1, m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    for (int s = 0; s <= dofs_; ++s) {
+      const auto lift = [&](int i) { return i < dofs_ ? vectors_(i, j) : std::complex<double>(); };
+      const std::complex<double> d =
+          s < dofs_ ? lift(s) - lift(s + 1) : (lift(0) - lift(1)) * (k + c * lambda_[j]);
+      differences_(s, j) = d.real();
+      differences_(s, m + j) = -d.imag();
+      difference_sizes_(s, j) = std::abs(d);
+    }
+  }
 }
 
 std::shared_ptr<const ChainModes> ChainModes::Shared(const NeedleTrain& train,

@@ -85,6 +85,14 @@ class ChainModes {
   /// needle and coils 1 … N − 1) and V⁻¹'s rows (count × 2N).
   const Eigen::MatrixXcd& Vectors() const { return vectors_; }
   const Eigen::MatrixXcd& Inverse() const { return inverse_; }
+  /// Each mode's vector differenced along the segments, row s − 1 = V_{s−1} − V_s over the lift
+  /// rows (segment s's compression; V_N = 0, the fixed seat), and row N = (V_0 − V_1)(k + cλ_k)
+  /// (the first segment's force k s₁ + c ṡ₁), as the real (N + 1) × 2·count [Re D, −Im D]: a
+  /// free motion of modal coefficients c_k has segment s's compression Re Σ_k D_{s−1,k} c_k e^{λ_k
+  /// τ}.
+  const Eigen::MatrixXd& Differences() const { return differences_; }
+  /// |D_sk|, (N + 1) × count.
+  const Eigen::MatrixXd& DifferenceSizes() const { return difference_sizes_; }
   /// max |λ_k|, rad/s: the fastest mode.
   double Fastest() const { return fastest_; }
   /// The particular solution's coefficients, N × (degree + 1), for the needle's forcing
@@ -133,6 +141,7 @@ class ChainModes {
   Eigen::VectorXcd lambda_;
   Eigen::VectorXd weight_;
   Eigen::MatrixXcd vectors_, inverse_;
+  Eigen::MatrixXd differences_, difference_sizes_;
   double fastest_ = 0.0;
 };
 

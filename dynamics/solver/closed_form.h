@@ -147,7 +147,9 @@ class ClosedFormPiece {
   FormRange Range(const LinearForm& form, const Poly& q, double t_a, double t_b) const;
   /// A coil chain over [t_a, t_b], t₀ ≤ t_a ≤ t_b: upper bounds on its largest segment
   /// compression (m) and on the spring's force on the needle P₀ + k s₁ + c ṡ₁ (N), each from the
-  /// particular solution's polynomials and the modal sum (terms that never grow).
+  /// particular solution's polynomials and the modal sum (terms that never grow): the lesser of
+  /// the terms at their full size and, over a stretch short against some modes, their values at
+  /// t_a with the slow modes' Taylor bounds (a sample interval's bound follows the chain).
   std::array<double, 2> ChainUpperBounds(double t_a, double t_b) const;
   /// A coil chain's Taylor polynomials about t_c ≥ t₀: the needle's lift and speed, and with
   /// `coils` the coils' lifts (a segment's compression), of the least degree D whose remainder over
@@ -256,9 +258,6 @@ class ClosedFormPiece {
   mutable double sample_step_ = 0.0;
   mutable Eigen::MatrixXd sample_grow_;
   mutable std::optional<std::array<double, 2>> ringing_;  // ChainStartRinging's, once made
-  // |ΔV_jk w_k c_k|: each mode's amplitude in segment j's compression (row j − 1), and in the
-  // first segment's force k s₁ + c ṡ₁ (row N); made at the first ChainUpperBounds.
-  mutable Eigen::MatrixXd chain_amplitudes_;
 };
 
 }  // namespace needle

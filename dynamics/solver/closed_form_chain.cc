@@ -255,52 +255,75 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
   const double k = train_.SegmentRateNm(), c = train_.SegmentDampingNsm();
   const Eigen::VectorXcd& lambda = chain_->Lambda();
   const Eigen::Index m = lambda.size();
-  if (chain_amplitudes_.size() == 0) {
-    // Node i's free motion Re Σ_k vc_ik e^{λ_k τ}, vc = V diag(w c) = chain_real_'s Re − i Im.
-    const auto vc = [&](int i, Eigen::Index j) {
-      return i == n ? std::complex<double>()
-                    : std::complex<double>(chain_real_(i, j), -chain_real_(i, m + j));
-    };
-    chain_amplitudes_.resize(n + 1, m);
-    for (Eigen::Index j = 0; j < m; ++j) {
-      for (int s = 1; s <= n; ++s) chain_amplitudes_(s - 1, j) = Magnitude(vc(s - 1, j) - vc(s, j));
-      chain_amplitudes_(n, j) = Magnitude((vc(0, j) - vc(1, j)) * (k + c * lambda[j]));
-    }
-  }
   const double tau = t_a - t0_, span = t_b - t_a;
-  Eigen::VectorXd decay(m);
-  // A term's largest size on the stretch: at its start, or (a real part above 0 by round-off
-  // in a nearly undamped mode) at its end.
-  for (Eigen::Index j = 0; j < m; ++j)
-    decay[j] = std::exp(std::max(lambda[j].real() * tau, lambda[j].real() * (t_b - t0_)));
-  const Eigen::VectorXd modal = chain_amplitudes_ * decay;
-  // A polynomial's largest value over [τ_a, τ_a + span]: its value at τ_a and its Taylor
-  // terms' sizes there.
-  const auto upper = [&](const Poly& q) {
-    const Poly s = piece_polynomial::Shift(q, tau);
-    double terms = 0.0, power = 1.0;
-    for (int j = 1; j <= kMaxDegree; ++j) {
-      power *= span;
-      terms += std::abs(s[j]) * power;
+  // Row r's modal part Re Σ_j B_rj e^{λ_j s} from t_a, B_rj = D_rj c_j e^{λ_j τ_a} (D: the
+  // chain's Differences, c: this start's modal coefficients; 0 ≤ s ≤ span). Each term is bounded
+  // two ways: whole, by |B| (its size never grows, but by round-off in a nearly undamped mode:
+  // g ≥ 1); or from t_a, for a mode slow against the stretch (|λ| span ≤ 1), by Re B + s Re(Bλ)
+  // + |B| |λs|²/2 g (Taylor's remainder), else (|λ| span > 1) by its whole size again.
+  // Columns: [whole size, remainder] of |D|, and [start, slope] ([Re; Im]) of D.
+  Eigen::Matrix<double, Eigen::Dynamic, 2> sizes(m, 2), terms(2 * m, 2);
+  bool any_slow = false;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const double a = lambda[j].real(), l = Magnitude(lambda[j]);
+    const double size =
+        Magnitude(chain_c_[j]) * std::exp(a * tau) * (a > 0.0 ? std::exp(a * span) : 1.0);
+    const bool slow = l * span <= 1.0;
+    any_slow = any_slow || slow;
+    sizes(j, 0) = size;
+    sizes(j, 1) = slow ? size * 0.5 * l * l * span * span : size;
+    if (!slow) {
+      terms.row(j) << 0.0, 0.0;
+      terms.row(m + j) << 0.0, 0.0;
+      continue;
     }
-    return std::array<double, 2>{s[0] + terms, std::abs(s[0]) + terms};
-  };
+    const double phase = lambda[j].imag() * tau;
+    const std::complex<double> start =
+        chain_c_[j] * std::exp(a * tau) * std::complex<double>(std::cos(phase), std::sin(phase));
+    const std::complex<double> slope = start * lambda[j];
+    terms.row(j) << start.real(), slope.real();
+    terms.row(m + j) << start.imag(), slope.imag();
+  }
+  // Four matrix-vector products (column-major, O(N·count) each).
+  Eigen::Matrix<double, Eigen::Dynamic, 2> modal(n + 1, 2), from_start(n + 1, 2);
+  for (int col = 0; col < 2; ++col) {
+    modal.col(col).noalias() = chain_->DifferenceSizes() * sizes.col(col);
+    // A stretch that no mode is slow against (a long one): by the whole terms alone.
+    if (any_slow) from_start.col(col).noalias() = chain_->Differences() * terms.col(col);
+  }
   // Round-off: the samples are sums of terms of these sizes.
   constexpr double kSlack = 1e-12;
+  // Row r's bound with its polynomial q (the particular solution's part): the lesser of
+  // max q + Σ|B| and q(τ_a) + Σ_slow Re B + max(0, span (q′(τ_a) + Σ_slow Re Bλ)) + q's higher
+  // terms + the remainders.
+  const auto bound = [&](const Poly& q, Eigen::Index r) {
+    const Poly s = piece_polynomial::Shift(q, tau);
+    double higher = 0.0, power = span;
+    for (int j = 2; j <= kMaxDegree; ++j) {
+      power *= span;
+      higher += std::abs(s[j]) * power;
+    }
+    const double linear = std::abs(s[1]) * span;
+    double best = s[0] + linear + higher + modal(r, 0);
+    if (any_slow) {
+      best =
+          std::min(best, s[0] + from_start(r, 0) + std::max(0.0, span * (s[1] + from_start(r, 1))) +
+                             higher + modal(r, 1));
+    }
+    return best + kSlack * (std::abs(s[0]) + linear + higher + modal(r, 0) + modal(r, 1));
+  };
   double compression = -std::numeric_limits<double>::infinity(), spring = 0.0;
   for (int s = 1; s <= n; ++s) {
     Poly d{};
     for (int j = 0; j <= kMaxDegree; ++j)
       d[j] = chain_p_(s - 1, j) - (s < n ? chain_p_(s, j) : 0.0);
-    const std::array<double, 2> b = upper(d);
-    compression = std::max(compression, b[0] + modal[s - 1] + kSlack * (b[1] + modal[s - 1]));
+    compression = std::max(compression, bound(d, s - 1));
     if (s == 1) {
       Poly f{};  // k s₁ + c ṡ₁ of the particular solution
       for (int j = 0; j <= kMaxDegree; ++j)
         f[j] = k * d[j] + (j < kMaxDegree ? c * (j + 1) * d[j + 1] : 0.0);
-      const std::array<double, 2> bf = upper(f);
       const double preload = train_.parameters().preload_N;
-      spring = preload + bf[0] + modal[n] + kSlack * (std::abs(preload) + bf[1] + modal[n]);
+      spring = preload + bound(f, n) + kSlack * std::abs(preload);
     }
   }
   return {compression, spring};

@@ -323,6 +323,43 @@ TEST(ChainModesTest, TheCompressionAndSpringForceBoundsHold) {
       });
 }
 
+// Over a stretch of one sample interval (a sixteenth of a step) the bounds follow what the
+// stretch reaches, in every mode, at the piece's start and later (the modes decayed): above it
+// by less than the stretch's own change plus 3 % of the coils' ringing, where the modal sum's
+// terms at their full size (a bound from the terms alone) are above it by some of the ringing
+// itself. The record then leaves out the samples of every stretch that stays below it.
+TEST(ChainModesTest, TheBoundsOfAShortStretchFollowItsStart) {
+  const SurgeChain chain;
+  const NeedleTrain& train = chain.train;
+  chain.ForEachPiece(
+      kEveryMode, [&](const ContactMode& mode, const ClosedFormPiece& piece, double t0) {
+        const double ringing = piece.ChainStartRinging()[0];
+        for (const double ta : {0.0, 2e-4, 2.0 * piece.LongestStep()}) {
+          const double a = t0 + ta, b = a + piece.LongestStep() / 16.0;
+          const std::array<double, 2> bound = piece.ChainUpperBounds(a, b);
+          double lo = 1e300, hi = -1e300, spring_lo = 1e300, spring_hi = -1e300;
+          for (int i = 0; i <= 200; ++i) {
+            const double t = a + (b - a) * i / 200.0;
+            const TrainState x = piece.MotionState(t);
+            const double s = train.LargestSegmentCompression(x);
+            const double f = train.Evaluate(x, t, Phase{mode}).spring_N;
+            lo = std::min(lo, s);
+            hi = std::max(hi, s);
+            spring_lo = std::min(spring_lo, f);
+            spring_hi = std::max(spring_hi, f);
+          }
+          const std::string where =
+              std::to_string(mode.cam) + std::to_string(mode.seat) + " " + std::to_string(ta);
+          EXPECT_LE(hi, bound[0]) << where;
+          EXPECT_LE(spring_hi, bound[1]) << where;
+          EXPECT_LT(bound[0] - hi, (hi - lo) + 0.03 * ringing) << where;
+          EXPECT_LT(bound[1] - spring_hi,
+                    (spring_hi - spring_lo) + 0.03 * ringing * train.SegmentRateNm())
+              << where;
+        }
+      });
+}
+
 // The Taylor polynomials a bracket's search reads (ClosedFormPiece::ChainTaylorAt): over a
 // bracket of two of a stretch's 16 samples they are the closed form's lifts and needle speed to
 // its round-off, at t_c to the bit, in every contact mode; a reach of several oscillations of
