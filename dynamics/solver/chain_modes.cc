@@ -99,10 +99,14 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
     responses_.col(d) = stiffness_.solve(r);
   }
   Decompose();
-  // The segments' differences of V's lift rows (the last segment ends at the fixed seat) and the
-  // first segment's force rate k + cλ on them (ChainUpperBounds).
+  // V as a real matrix and its entries' sizes; the segments' differences of V's lift rows (the last
+  // segment ends at the fixed seat) and the first segment's force rate k + cλ on them
+  // (ChainUpperBounds).
   const Eigen::Index m = lambda_.size();
   const double k = train.SegmentRateNm(), c = train.SegmentDampingNsm();
+  vectors_real_.resize(2 * dofs_, 2 * m);
+  vectors_real_ << vectors_.real(), -vectors_.imag();
+  vector_sizes_ = vectors_.cwiseAbs();
   differences_.resize(dofs_ + 1, 2 * m);
   difference_sizes_.resize(dofs_ + 1, m);
   for (Eigen::Index j = 0; j < m; ++j) {

@@ -85,6 +85,10 @@ class ChainModes {
   /// needle and coils 1 … N − 1) and V⁻¹'s rows (count × 2N).
   const Eigen::MatrixXcd& Vectors() const { return vectors_; }
   const Eigen::MatrixXcd& Inverse() const { return inverse_; }
+  /// V as the real 2N × 2·count [Re V, −Im V]: Re(V u) = [Re V, −Im V] [Re u; Im u].
+  const Eigen::MatrixXd& VectorsReal() const { return vectors_real_; }
+  /// |V_ik|, 2N × count.
+  const Eigen::MatrixXd& VectorSizes() const { return vector_sizes_; }
   /// Each mode's vector differenced along the segments, row s − 1 = V_{s−1} − V_s over the lift
   /// rows (segment s's compression; V_N = 0, the fixed seat), and row N = (V_0 − V_1)(k + cλ_k)
   /// (the first segment's force k s₁ + c ṡ₁), as the real (N + 1) × 2·count [Re D, −Im D]: a
@@ -141,7 +145,7 @@ class ChainModes {
   Eigen::VectorXcd lambda_;
   Eigen::VectorXd weight_;
   Eigen::MatrixXcd vectors_, inverse_;
-  Eigen::MatrixXd differences_, difference_sizes_;
+  Eigen::MatrixXd vectors_real_, vector_sizes_, differences_, difference_sizes_;
   double fastest_ = 0.0;
 };
 

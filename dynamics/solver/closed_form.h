@@ -108,8 +108,10 @@ class ClosedFormPiece {
   /// y, ẏ, ÿ at t.
   std::array<double, 3> Motion(double t) const;
   /// The train's state at t with W and D at 0: y and ẏ (one mass), and the coils' lifts and
-  /// velocities (the chain).
-  TrainState MotionState(double t) const;
+  /// velocities (the chain). Without `coil_speeds`, a chain's coils from the second on are
+  /// given no velocity (NaN): what a record reads (the lifts, the spring's force), at about
+  /// half the cost.
+  TrainState MotionState(double t, bool coil_speeds = true) const;
   /// Whether the piece carries a coil chain.
   bool Chain() const { return chain_ != nullptr; }
   /// A chain's homogeneous part at its largest: max over the nodes of Σ_k |V_ik w_k c_k|, for
@@ -215,8 +217,8 @@ class ClosedFormPiece {
     double tau = -1e300, dh = 0.0, dhv = 0.0, ha = 0.0;  // s, m, m/s, m/s²
   };
   const ChainNeedle& ChainAt(double tau) const;
-  // The chain's whole state at τ, W and D at 0.
-  TrainState ChainState(double tau) const;
+  // The chain's whole state at τ, W and D at 0 (MotionState's `coil_speeds`).
+  TrainState ChainState(double tau, bool coil_speeds = true) const;
   // e^{−στ}C − 1 and e^{−στ}S at τ ≥ 0.
   void Basis(double tau, double& ecm1, double& es) const;
   void BasisUncached(double tau, double& ecm1, double& es) const;
@@ -250,8 +252,8 @@ class ClosedFormPiece {
   Eigen::VectorXcd chain_c_, alpha_;
   Eigen::VectorXd chain_h0_;  // the start's homogeneous part [h(0), h′(0)], 2N
   bool chain_rest_ = false;
-  Eigen::MatrixXd chain_real_;         // [Re(V diag(w c)), −Im(V diag(w c))]
-  mutable Eigen::VectorXd grow_, dz_;  // [Re; Im] of e^{λτ} − 1, and the state's change
+  // [Re; Im] of e^{λτ} − 1 and of w c (e^{λτ} − 1), and the state's change.
+  mutable Eigen::VectorXd grow_, terms_, dz_;
   mutable ChainNeedle chain_at_;
   // ChainSampleTimes': the samples' τ and their [Re; Im] of e^{λτ} − 1 (2m × count).
   mutable std::vector<double> sample_tau_;

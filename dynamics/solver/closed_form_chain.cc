@@ -56,12 +56,9 @@ void ClosedFormPiece::StartChain() {
   chain_c_ = (chain_->Inverse() * h0.cast<std::complex<double>>())
                  .cwiseProduct(chain_->Weight().cast<std::complex<double>>());
   alpha_ = chain_->Vectors().row(0).transpose().cwiseProduct(chain_c_);
-  // Re(V diag(w c) g) = [Re(V diag(w c)), −Im(V diag(w c))] [Re g; Im g]: one real product.
   const Eigen::Index m = chain_c_.size();
-  const Eigen::MatrixXcd vc = chain_->Vectors() * chain_c_.asDiagonal();
-  chain_real_.resize(2 * n, 2 * m);
-  chain_real_ << vc.real(), -vc.imag();
   grow_.resize(2 * m);
+  terms_.resize(2 * m);
   dz_.resize(2 * n);
 }
 
@@ -89,18 +86,11 @@ void ClosedFormPiece::ChainSampleTimes(const double* ts, int count) const {
 
 std::array<double, 2> ClosedFormPiece::ChainStartRinging() const {
   if (ringing_) return *ringing_;
+  // Σ_k |V_ik w_k c_k| of every node's lift (rows 0 … N − 1) and velocity (rows N … 2N − 1).
   const int n = chain_->Dofs();
-  const Eigen::Index m = chain_c_.size();
-  std::array<double, 2> most{0.0, 0.0};
-  for (int i = 0; i < 2 * n; ++i) {
-    double sum = 0.0;
-    for (Eigen::Index k = 0; k < m; ++k)
-      sum += Magnitude({chain_real_(i, k), chain_real_(i, m + k)});
-    double& to = most[i < n ? 0 : 1];
-    to = std::max(to, sum);
-  }
-  ringing_ = most;
-  return most;
+  const Eigen::VectorXd sums = chain_->VectorSizes() * chain_c_.cwiseAbs();
+  ringing_ = std::array<double, 2>{sums.head(n).maxCoeff(), sums.tail(n).maxCoeff()};
+  return *ringing_;
 }
 
 const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
@@ -130,11 +120,21 @@ const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
   return chain_at_;
 }
 
-TrainState ClosedFormPiece::ChainState(double tau) const {
+TrainState ClosedFormPiece::ChainState(double tau, bool coil_speeds) const {
   const std::array<double, 2> yv = PositionVelocity(tau);  // fills grow_ at τ
   const int n = chain_->Dofs(), coils = n - 1;
+  // Re(V (w c ∘ g)) = [Re V, −Im V] [Re(w c ∘ g); Im(w c ∘ g)]: one real product.
+  const Eigen::Index m = chain_c_.size();
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const std::complex<double> term = chain_c_[k] * std::complex<double>(grow_[k], grow_[m + k]);
+    terms_[k] = term.real();
+    terms_[m + k] = term.imag();
+  }
+  // Without the coils' speeds: the lifts' rows and the needle's and coil 1's speeds (the
+  // spring's force on the needle).
+  const int rows = coil_speeds ? 2 * n : n + 2;
   Eigen::VectorXd& dz = dz_;
-  dz.noalias() = chain_real_ * grow_;
+  dz.head(rows).noalias() = chain_->VectorsReal().topRows(rows) * terms_;
   TrainState x(x0_.size(), 0.0);
   x[0] = yv[0];
   x[1] = yv[1];
@@ -147,7 +147,8 @@ TrainState ClosedFormPiece::ChainState(double tau) const {
     }
     p *= tau;
     x[3 + i] = x0_[3 + i] + p + dz[i];
-    x[3 + coils + i] = x0_[3 + coils + i] + (dp - chain_p_(i, 1)) + dz[n + i];
+    x[3 + coils + i] = n + i < rows ? x0_[3 + coils + i] + (dp - chain_p_(i, 1)) + dz[n + i]
+                                    : std::numeric_limits<double>::quiet_NaN();
   }
   return x;
 }
@@ -181,20 +182,21 @@ ChainTaylor ClosedFormPiece::ChainTaylorAt(double t_c, double reach, bool coils)
     out.coef(0, 0) = yv[0];
     out.coef(1, 0) = yv[1];
   }
-  // e^{λ_k τ} λ_k^j / j!, [Re; Im] in rows k and m + k, column j − 1.
+  // w_k c_k e^{λ_k τ} λ_k^j / j!, [Re; Im] in rows k and m + k, column j − 1.
   Eigen::MatrixXd e(2 * m, D);
   for (Eigen::Index k = 0; k < m; ++k) {
-    std::complex<double> z(1.0 + grow_[k], grow_[m + k]);
+    std::complex<double> z = chain_c_[k] * std::complex<double>(1.0 + grow_[k], grow_[m + k]);
     for (int j = 1; j <= D; ++j) {
       z *= lambda[k] / static_cast<double>(j);
       e(k, j - 1) = z.real();
       e(m + k, j - 1) = z.imag();
     }
   }
-  // The modal sum's derivatives Re Σ_k vc_ik e^{λτ} λ^j / j! (one product), then the
+  // The modal sum's derivatives Re Σ_k V_ik w_k c_k e^{λτ} λ^j / j! (one product), then the
   // particular solution's.
-  out.coef.block(0, 1, nodes, D).noalias() = chain_real_.topRows(nodes) * e;
-  out.coef.row(nodes).tail(D).noalias() = chain_real_.row(n) * e;
+  const Eigen::MatrixXd& v = chain_->VectorsReal();
+  out.coef.block(0, 1, nodes, D).noalias() = v.topRows(nodes) * e;
+  out.coef.row(nodes).tail(D).noalias() = v.row(n) * e;
   for (int i = 0; i < nodes; ++i) {
     Poly p{};
     for (int j = 0; j <= kMaxDegree; ++j) p[j] = chain_p_(i, j);
@@ -227,8 +229,8 @@ bool ClosedFormPiece::HomogeneousZero() const {
   return chain_ ? chain_rest_ : Y0_ == 0.0 && V0_ == 0.0;
 }
 
-TrainState ClosedFormPiece::MotionState(double t) const {
-  if (chain_) return ChainState(t - t0_);
+TrainState ClosedFormPiece::MotionState(double t, bool coil_speeds) const {
+  if (chain_) return ChainState(t - t0_, coil_speeds);
   const std::array<double, 2> yv = PositionVelocity(t - t0_);
   return {yv[0], yv[1], 0.0, 0.0};
 }

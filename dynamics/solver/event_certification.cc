@@ -212,7 +212,7 @@ StretchRanges EventDriver::SettledRanges(const ClosedFormPiece& piece, double t0
   // extreme of the lift that the covering sample does not set after them.
   *lift_covered = false;
   if (covering) {
-    const double y0 = Motion(t0)[0];
+    const double y0 = system_.RoundTrip(0, piece.LiftAndSpeed(t0)[0]);  // Motion(t0)[0]
     const FormRange rate = piece.Range(LinearForm{0.0, 1.0, 0.0, 0.0, 0.0}, t0, t1);
     const double step = (t1 - t0) / n;
     const double roundoff = kRoundoffFraction * (std::abs(*covering) + lift_scale_);
@@ -265,7 +265,8 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     // A chain's screened sample needs the needle's lift and speed alone; its coils only where
     // the sample is recorded or its compression located.
     const bool needle_only = chain && screen && inside && !chain_gap;
-    TrainState x = needle_only ? ForceState(ts[k]) : Motion(ts[k]);
+    // The record reads the lifts and the spring's force (coil 1's speed), not the other speeds.
+    TrainState x = needle_only ? ForceState(ts[k]) : Motion(ts[k], false);
     f[3][k] = chain_gap ? ExtremeValue(3, ts[k], x) : 0.0;
     if (screen && inside) {
       const std::array<double, 2> in = piece.Input(ts[k]);
@@ -288,7 +289,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
         continue;
       }
     }
-    if (needle_only) x = Motion(ts[k]);
+    if (needle_only) x = Motion(ts[k], false);
     const Contacts c = train_.Evaluate(x, ts[k], phase);
     const double fc = train_.AppliedCamForce(c, phase);
     f[0][k] = -fc;

@@ -75,14 +75,15 @@ class EventDriver {
     stepper_->CalcState(t, z_);
     return system_.FromScaled(z_);
   }
-  // y and ẏ at t (W and D may be left out): for witnesses and samples.
-  TrainState Motion(double t) {
+  // y and ẏ at t (W and D may be left out): for witnesses and samples. Without
+  // `coil_speeds` (a record's sample), a chain's coils from the second on have no velocity (NaN).
+  TrainState Motion(double t, bool coil_speeds = true) {
     if (const ClosedFormPiece* piece = stepper_->ClosedForm()) {
       // The closed form's y and ẏ without ÿ and the state's copies: the bits the backend's
       // scaled state would give (one mass: y, ẏ, and W, D left at 0; the one-mass path kept
       // apart, this is the certified search's hot path).
       if (piece->Chain()) {  // the coils' lifts and velocities too
-        TrainState x = piece->MotionState(t);
+        TrainState x = piece->MotionState(t, coil_speeds);
         for (size_t i = 0; i < x.size(); ++i) x[i] = system_.RoundTrip(static_cast<int>(i), x[i]);
         return x;
       }

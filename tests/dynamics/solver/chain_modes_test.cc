@@ -360,6 +360,28 @@ TEST(ChainModesTest, TheBoundsOfAShortStretchFollowItsStart) {
       });
 }
 
+// A record's sample state (MotionState without the coils' speeds) is the whole state's to the
+// bit where a record reads it, the lifts, the needle's speed and coil 1's (the spring's force on
+// the needle), and carries no other speed: NaN, so a reader of one would show.
+TEST(ChainModesTest, ARecordsSampleStateIsTheWholeStatesLiftsAndSpringForce) {
+  const SurgeChain chain;
+  const NeedleTrain& train = chain.train;
+  const int coils = train.Coils();
+  chain.ForEachPiece(kEveryMode, [&](const ContactMode& mode, const ClosedFormPiece& piece,
+                                     double t0) {
+    for (const double ta : {0.0, 2e-4}) {
+      const TrainState whole = piece.MotionState(t0 + ta);
+      const TrainState sample = piece.MotionState(t0 + ta, false);
+      ASSERT_EQ(sample.size(), whole.size());
+      for (int i = 0; i < 3 + coils + 2; ++i) EXPECT_EQ(sample[i], whole[i]) << i;
+      for (int i = 3 + coils + 2; i < 3 + 2 * coils + 1; ++i) EXPECT_TRUE(std::isnan(sample[i]));
+      EXPECT_EQ(train.Evaluate(sample, t0 + ta, Phase{mode}).spring_N,
+                train.Evaluate(whole, t0 + ta, Phase{mode}).spring_N);
+      EXPECT_EQ(train.LargestSegmentCompression(sample), train.LargestSegmentCompression(whole));
+    }
+  });
+}
+
 // The Taylor polynomials a bracket's search reads (ClosedFormPiece::ChainTaylorAt): over a
 // bracket of two of a stretch's 16 samples they are the closed form's lifts and needle speed to
 // its round-off, at t_c to the bit, in every contact mode; a reach of several oscillations of
