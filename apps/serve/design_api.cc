@@ -132,17 +132,17 @@ nlohmann::json PageSeries(const BoundCase& c, const CheckResult& r) {
                 {"cam_mm", Curve(run, [](const SeriesPoint& p) { return p.cam_m * 1e3; })},
                 {"contact_force_N", Curve(run, force)}};
     // The impacts, at the needle's lift where they happen (the series' first point from there).
-    std::vector<double> at, lift;
+    std::vector<double> at, impact_lift;
     std::vector<std::string> kind;
     for (const Impact& i : r.run->impacts) {
       const auto near = std::lower_bound(
           run.begin(), run.end(), i.crank_rad,
           [](const SeriesPoint& p, double crank_rad) { return p.crank_rad < crank_rad; });
       at.push_back(i.crank_rad / kDeg);
-      lift.push_back((near == run.end() ? run.back() : *near).lift_m * 1e3);
+      impact_lift.push_back((near == run.end() ? run.back() : *near).lift_m * 1e3);
       kind.push_back(i.kind);
     }
-    s["impacts"] = {{"crank_deg", at}, {"lift_mm", lift}, {"kind", kind}};
+    s["impacts"] = {{"crank_deg", at}, {"lift_mm", impact_lift}, {"kind", kind}};
     // The contact force at f·n, the speed the verdict asks the needle to follow the cam at:
     // one more run of the check's scene with the rated run's options.
     if (c.scene && r.overspeed_rpm > 0.0) {
@@ -225,9 +225,9 @@ std::string CaseWithOverrides(const std::string& case_text, const nlohmann::json
       }
       block += key + " = " + text + comment + "\n";
     }
-    const auto header = [&](const toml::table& table) {  // its own "[section]" line
-      const size_t at = table.source().begin.line;
-      if (table.is_inline() || at < 1 || at > lines.size()) return false;
+    const auto header = [&](const toml::table& written) {  // its own "[section]" line
+      const size_t at = written.source().begin.line;
+      if (written.is_inline() || at < 1 || at > lines.size()) return false;
       const std::string& l = lines[at - 1];
       const size_t first = l.find_first_not_of(" \t");
       return first != std::string::npos && l[first] == '[';

@@ -185,11 +185,11 @@ Analysis Analyse(FitModel& model, const StartResult& best, const std::vector<Mea
   r.parameters = Values(model, best.q, cov, identified);
   Analysis a{cov, ScanIntervals(model, best.q, best.cost, s2, cov, o, r.parameters)};
   r.correlation.assign(model.P(), std::vector<double>(model.P(), 0.0));
-  for (int a = 0; a < model.P(); ++a) {
-    for (int c = 0; c < model.P(); ++c) r.correlation[a][c] = CorrelationOf(cov, a, c);
-    for (int c = a + 1; c < model.P(); ++c) {
-      if (std::abs(r.correlation[a][c]) > kUnseparatedCorrelation) {
-        r.unseparated.push_back({a, c, r.correlation[a][c], std::nullopt, 0.0});
+  for (int i = 0; i < model.P(); ++i) {
+    for (int c = 0; c < model.P(); ++c) r.correlation[i][c] = CorrelationOf(cov, i, c);
+    for (int c = i + 1; c < model.P(); ++c) {
+      if (std::abs(r.correlation[i][c]) > kUnseparatedCorrelation) {
+        r.unseparated.push_back({i, c, r.correlation[i][c], std::nullopt, 0.0});
       }
     }
   }

@@ -228,10 +228,15 @@ SizingDuty MakeDuty(const BoundCase& c, const SizingSection& z, const LiftLaw& l
                basu ? *basu * (1.0 - spring.basu_tolerance_percent / 100.0) : 0.0);
   const double omega = OmegaFromRpm(rpm);
   duty.preload = [&law, &spring, gas, m0, basu, omega](double rate, double spring_mass) {
-    PreloadNeed need{spring.safety_factor * gas, "combustion load S F_g"};
+    PreloadNeed need;
+    const auto take = [&need](double preload_N, const char* rule) {
+      need.preload_N = preload_N;
+      need.rule = rule;
+    };
+    take(spring.safety_factor * gas, "combustion load S F_g");
     if (basu) {
       const double b = *basu * (1.0 - spring.basu_tolerance_percent / 100.0);
-      if (b > need.preload_N) need = {b, "Basu's formula less its tolerance"};
+      if (b > need.preload_N) take(b, "Basu's formula less its tolerance");
     }
     RigidTrain t;
     t.mass_kg = m0 + spring_mass / 3.0;
@@ -239,7 +244,7 @@ SizingDuty MakeDuty(const BoundCase& c, const SizingSection& z, const LiftLaw& l
     t.gas_force_N = gas;
     const double inertia =
         RequiredPreloadN(law, t, omega, spring.safety_factor, spring.overspeed_factor);
-    if (inertia > need.preload_N) need = {inertia, "inertia sizing"};
+    if (inertia > need.preload_N) take(inertia, "inertia sizing");
     return need;
   };
   if (z.closed_load_N) {  // a textbook problem: P₁ is stated, and judged against the duty's

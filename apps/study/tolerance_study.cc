@@ -108,7 +108,9 @@ void RecordLiftError(const std::vector<double>& e, ToleranceSample& s) {
 double ScatterInputs(const ToleranceSection& t, const std::array<double, 6>& z, BoundCase& c,
                      ToleranceSample& s) {
   const auto [z_mass, z_preload, z_rate, z_stiffness, z_play, z_speed] = z;
-  const auto scale = [](double fraction, double z) { return std::max(0.0, 1.0 + fraction * z); };
+  const auto scale = [](double fraction, double draw) {
+    return std::max(0.0, 1.0 + fraction * draw);
+  };
   if (c.needle) {
     c.needle->mass_kg *= scale(t.mass_fraction, z_mass);
     s.inputs["mass_deviation"] = t.mass_fraction * z_mass;

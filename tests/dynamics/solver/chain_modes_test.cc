@@ -390,7 +390,7 @@ TEST(ChainModesTest, TheTaylorPolynomialsAreTheClosedFormOverABracket) {
   const SurgeChain chain;
   const NeedleTrain& train = chain.train;
   chain.ForEachPiece(
-      kEveryMode, [&](const ContactMode& mode, const ClosedFormPiece& piece, double t0) {
+      kEveryMode, [&](const ContactMode& /*mode*/, const ClosedFormPiece& piece, double t0) {
         const double reach = piece.LongestStep() / 16.0;  // ρ = π/16
         for (const double tc : {t0, t0 + 3e-4}) {
           for (const bool coils : {false, true}) {
@@ -479,7 +479,9 @@ TEST(ChainModesTest, TheScreenedChainRecordsWhatTheFullRunDoes) {
     o.integrator.leave_out = true;
     const SimulationResult screened = Simulate(s, rpm, o);
     EXPECT_LT(screened.stats.steps, full.stats.steps) << rpm;
-    if (rpm == 125.0) EXPECT_LT(8 * screened.stats.steps, full.stats.steps);
+    if (rpm == 125.0) {
+      EXPECT_LT(8 * screened.stats.steps, full.stats.steps);
+    }
     ASSERT_EQ(full.impacts.size(), screened.impacts.size()) << rpm;
     for (size_t i = 0; i < full.impacts.size(); ++i) {
       EXPECT_EQ(full.impacts[i].kind, screened.impacts[i].kind) << i;
@@ -516,7 +518,9 @@ TEST(ChainModesTest, APieceSolvesTheTrainsOwnEquations) {
     const ClosedFormPiece piece(train, mode, th, t0, x0, &modes);
     const TrainState start = piece.MotionState(t0);
     for (int i = 0; i < train.StateSize(); ++i) {
-      if (i != 2 && i != 3) EXPECT_EQ(start[i], x0[i]) << i;
+      if (i != 2 && i != 3) {
+        EXPECT_EQ(start[i], x0[i]) << i;
+      }
     }
     for (double dt : {3e-6, 4e-5, 2e-4}) {
       const double t = t0 + dt, h = 1e-8;
@@ -568,8 +572,12 @@ TEST(ChainModesTest, TheChainsAuditInClosedFormIsTheQuadratures) {
         const double scale = std::max({std::abs(quad[2]), std::abs(quad[3]), 1e-9});
         EXPECT_NEAR(closed[2], quad[2], 1e-10 * scale) << mode.cam << mode.seat << " " << zeta;
         EXPECT_NEAR(closed[3], quad[3], 1e-10 * scale) << mode.cam << mode.seat << " " << zeta;
-        if (mode.cam) EXPECT_GT(std::abs(quad[2]), 1e-6) << span;  // the cam works
-        if (zeta > 0.0 || mode.cam || mode.seat) EXPECT_GT(std::abs(quad[3]), 1e-9) << span;
+        if (mode.cam) {
+          EXPECT_GT(std::abs(quad[2]), 1e-6) << span;  // the cam works
+        }
+        if (zeta > 0.0 || mode.cam || mode.seat) {
+          EXPECT_GT(std::abs(quad[3]), 1e-9) << span;
+        }
         for (int i = 4; i < train.StateSize(); ++i) EXPECT_EQ(closed[i], quad[i]) << i;
       }
     }
