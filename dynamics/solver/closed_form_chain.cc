@@ -57,6 +57,11 @@ void ClosedFormPiece::StartChain() {
                  .cwiseProduct(chain_->Weight().cast<std::complex<double>>());
   alpha_ = chain_->Vectors().row(0).transpose().cwiseProduct(chain_c_);
   const Eigen::Index m = chain_c_.size();
+  alpha_rates_.resize(m, 2);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    alpha_rates_(k, 0) = alpha_[k] * chain_->Lambda()[k];
+    alpha_rates_(k, 1) = alpha_rates_(k, 0) * chain_->Lambda()[k];
+  }
   grow_.resize(2 * m);
   terms_.resize(2 * m);
   dz_.resize(2 * n);
@@ -111,10 +116,11 @@ const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
                     : ExpMinusOne(lambda[k], tau);
     grow_[k] = g.real();
     grow_[m + k] = g.imag();
-    const std::complex<double> al = alpha_[k] * lambda[k];
-    dh += (alpha_[k] * g).real();
-    dhv += (al * g).real();
-    ha += (al * lambda[k] * (1.0 + g)).real();
+    // Re(α g), Re(αλ g), Re(αλ² (1 + g)), their real parts written out (the same operations).
+    const std::complex<double> a = alpha_[k], al = alpha_rates_(k, 0), all = alpha_rates_(k, 1);
+    dh += a.real() * g.real() - a.imag() * g.imag();
+    dhv += al.real() * g.real() - al.imag() * g.imag();
+    ha += all.real() * (1.0 + g.real()) - all.imag() * g.imag();
   }
   chain_at_ = {tau, dh, dhv, ha};
   return chain_at_;

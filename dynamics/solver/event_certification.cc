@@ -366,7 +366,7 @@ void EventDriver::LocateExtremes(const StretchSamples& samples, const std::array
     const auto best = boost::math::tools::brent_find_minima(
         [&](double d) { return ExtremeValue(which, at(d), state(at(d))); }, 0.0, 1.0,
         std::numeric_limits<double>::digits / 2, iterations);
-    recorder_.Sample(at(best.first), Motion(at(best.first)), system_.phase);
+    recorder_.Sample(at(best.first), Motion(at(best.first), false), system_.phase);
   }
 }
 
