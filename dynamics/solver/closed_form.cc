@@ -157,8 +157,13 @@ std::array<double, 2> ClosedFormPiece::Input(double t) const {
 }
 
 double ClosedFormPiece::FormValue(const LinearForm& form, double t) const {
+  return FormValue(form, t, PositionVelocity(t - t0_));
+}
+
+double ClosedFormPiece::FormValue(const LinearForm& form, double t,
+                                  const std::array<double, 2>& yv) const {
   const double tau = t - t0_;
-  const auto [y, v] = PositionVelocity(tau);
+  const auto [y, v] = yv;
   double w = form.y * y + form.v * v + form.constant;
   if (form.u != 0.0) w += form.u * Eval(u_, degree_u_, tau);
   if (form.u_rate != 0.0) w += form.u_rate * Eval(du_, degree_du_, tau);

@@ -76,6 +76,10 @@ struct ChainTaylor {
   /// The train's state at t: the needle's lift and speed, the coils' lifts where held; the
   /// coils' velocities, W and D at 0 (what a force or a compression does not read).
   TrainState At(double t, size_t state_size) const;
+  /// The needle's lift and speed at t alone.
+  std::array<double, 2> LiftAndSpeed(double t) const;
+  /// Row r's polynomial at t, by Horner.
+  double Row(Eigen::Index r, double t) const;
 };
 
 class ClosedFormPiece {
@@ -125,6 +129,8 @@ class ClosedFormPiece {
   std::array<double, 2> Input(double t) const;
   /// The form's value at t on the piece's own polynomials (no search of the cam's segments).
   double FormValue(const LinearForm& form, double t) const;
+  /// The same with the needle's lift and speed at t given (y, ẏ: a chain's Taylor polynomials).
+  double FormValue(const LinearForm& form, double t, const std::array<double, 2>& yv) const;
   /// The polynomial part of the form, q = form·(P, P′, u, u̇) + nothing of h, in s = t − t_a
   /// (Range and Bounds over an interval that starts at t_a share it).
   Poly FormPolynomial(const LinearForm& form, double t_a) const {

@@ -215,15 +215,21 @@ ChainTaylor ClosedFormPiece::ChainTaylorAt(double t_c, double reach, bool coils)
   return out;
 }
 
-TrainState ChainTaylor::At(double t, size_t state_size) const {
+double ChainTaylor::Row(Eigen::Index r, double t) const {
   const double s = t - t_c;
-  const Eigen::Index nodes = coef.rows() - 1;
   const int degree = static_cast<int>(coef.cols()) - 1;
-  const auto value = [&](Eigen::Index r) {
-    double v = coef(r, degree);
-    for (int j = degree - 1; j >= 0; --j) v = v * s + coef(r, j);
-    return v;
-  };
+  double v = coef(r, degree);
+  for (int j = degree - 1; j >= 0; --j) v = v * s + coef(r, j);
+  return v;
+}
+
+std::array<double, 2> ChainTaylor::LiftAndSpeed(double t) const {
+  return {Row(0, t), Row(coef.rows() - 1, t)};
+}
+
+TrainState ChainTaylor::At(double t, size_t state_size) const {
+  const Eigen::Index nodes = coef.rows() - 1;
+  const auto value = [&](Eigen::Index r) { return Row(r, t); };
   TrainState x(state_size, 0.0);
   x[0] = value(0);
   x[1] = value(nodes);

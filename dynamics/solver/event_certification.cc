@@ -35,12 +35,24 @@ std::optional<double> EventDriver::Certified(const ClosedFormPiece& piece, int i
   value_piece_ = &piece;
   struct Reset {
     EventDriver* d;
-    ~Reset() { d->value_form_ = nullptr; }
+    ~Reset() {
+      d->value_form_ = nullptr;
+      d->value_taylor_ = nullptr;
+    }
   } reset{this};
   const ClosedFormPiece::Poly q0 = piece.FormPolynomial(*form);
   const std::optional<Bracket> bracket = Isolate(piece, *form, q0, i, s, {a, wa, b, wb}, budget);
   if (!bracket) return std::nullopt;
+  // A chain's bracket is searched on its needle's Taylor polynomials about the middle, where
+  // they hold (ChainTaylorAt): O(degree) a value against O(modes) sines and exponentials.
+  ChainTaylor taylor;
+  if (piece.Chain()) {
+    const double half = 0.5 * (bracket->b - bracket->a);
+    taylor = piece.ChainTaylorAt(bracket->a + half, half, false);
+    if (taylor.valid) value_taylor_ = &taylor;
+  }
   const double root = Refine(i, bracket->a, bracket->wa, bracket->b, bracket->wb);
+  value_taylor_ = nullptr;
   // The root must be past the crossing for the train's own evaluation too (the two differ by
   // round-off): else it is refined again on the train's.
   value_form_ = nullptr;

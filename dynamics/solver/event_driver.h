@@ -160,9 +160,16 @@ class EventDriver {
   // machine precision: the side past the crossing.
   double Refine(int i, double a, double fa, double b, double fb) {
     std::uintmax_t iterations = 100;
+    // A chain's search on its Taylor polynomials where Certified made them (the closed form's
+    // values to its round-off, without a mode's sine and exponential a value); the crossing is
+    // then passed on the closed form itself (past).
+    const auto search = [&](double at) {
+      if (value_form_ && value_taylor_)
+        return value_piece_->FormValue(*value_form_, at, value_taylor_->LiftAndSpeed(at));
+      return Value(i, at);
+    };
     const auto r = boost::math::tools::toms748_solve(
-        [&](double at) { return Value(i, at); }, a, b, fa, fb,
-        boost::math::tools::eps_tolerance<double>(52), iterations);
+        search, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(52), iterations);
     // TOMS 748 may end on an exact zero, which counts as the negative side, or inside the
     // round-off band of the function: then the earliest time found past the crossing, by
     // bisection between its answer and b (which is past).
@@ -325,6 +332,7 @@ class EventDriver {
   // While a certified search runs: the witness as a linear form on the piece (Value).
   const LinearForm* value_form_ = nullptr;
   const ClosedFormPiece* value_piece_ = nullptr;
+  const ChainTaylor* value_taylor_ = nullptr;  // Refine's search on a chain (Certified)
   EventValues values_;  // ValuesAt's last answer, at values_t_ in the current step
   double values_t_ = 0.0;
   bool values_valid_ = false;

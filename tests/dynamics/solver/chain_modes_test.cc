@@ -382,7 +382,8 @@ TEST(ChainModesTest, ARecordsSampleStateIsTheWholeStatesLiftsAndSpringForce) {
   });
 }
 
-// The Taylor polynomials a bracket's search reads (ClosedFormPiece::ChainTaylorAt): over a
+// The Taylor polynomials a bracket's search reads (ClosedFormPiece::ChainTaylorAt: an extreme's,
+// and a witness's crossing's before it is passed on the closed form): over a
 // bracket of two of a stretch's 16 samples they are the closed form's lifts and needle speed to
 // its round-off, at t_c to the bit, in every contact mode; a reach of several oscillations of
 // the fastest mode is refused.
@@ -405,6 +406,10 @@ TEST(ChainModesTest, TheTaylorPolynomialsAreTheClosedFormOverABracket) {
               const TrainState a = taylor.At(t, train.StateSize()), x = piece.MotionState(t);
               EXPECT_NEAR(a[0], x[0], 1e-14 * std::abs(x[0]) + 1e-18) << i;
               EXPECT_NEAR(a[1], x[1], 1e-13 * std::abs(x[1]) + 1e-15) << i;
+              // The needle alone (a witness's search, Refine) reads the same polynomials.
+              const std::array<double, 2> yv = taylor.LiftAndSpeed(t);
+              EXPECT_EQ(yv[0], a[0]) << i;
+              EXPECT_EQ(yv[1], a[1]) << i;
               for (int c = 1; c <= train.Coils(); ++c) {
                 if (coils) {
                   EXPECT_NEAR(a[3 + c], x[3 + c], 1e-14 * std::abs(x[3 + c]) + 1e-18) << i << c;
