@@ -257,6 +257,7 @@ class ClosedFormPiece {
   Eigen::MatrixXd chain_p_;
   Eigen::VectorXcd chain_c_, alpha_;
   Eigen::MatrixXcd alpha_rates_;  // α_k λ_k and α_k λ_k², m × 2
+  Eigen::MatrixXd alpha_sizes_;   // |α_k| and |λ_k|, m × 2 (ChainStart)
   Eigen::VectorXd chain_h0_;      // the start's homogeneous part [h(0), h′(0)], 2N
   bool chain_rest_ = false;
   // [Re; Im] of e^{λτ} − 1 and of w c (e^{λτ} − 1), and the state's change.

@@ -58,7 +58,10 @@ void ClosedFormPiece::StartChain() {
   alpha_ = chain_->Vectors().row(0).transpose().cwiseProduct(chain_c_);
   const Eigen::Index m = chain_c_.size();
   alpha_rates_.resize(m, 2);
+  alpha_sizes_.resize(m, 2);
   for (Eigen::Index k = 0; k < m; ++k) {
+    alpha_sizes_(k, 0) = std::abs(alpha_[k]);
+    alpha_sizes_(k, 1) = std::abs(chain_->Lambda()[k]);
     alpha_rates_(k, 0) = alpha_[k] * chain_->Lambda()[k];
     alpha_rates_(k, 1) = alpha_rates_(k, 0) * chain_->Lambda()[k];
   }
@@ -255,8 +258,8 @@ void ClosedFormPiece::ChainStart(double t) const {
   s = HomogeneousStart{t, Y0_ + h.dh, V0_ + h.dhv, h.ha, 0.0, 0.0, 0.0, 0.0};
   const Eigen::VectorXcd& lambda = chain_->Lambda();
   for (Eigen::Index k = 0; k < lambda.size(); ++k) {
-    const double size = std::abs(alpha_[k]) * std::exp(lambda[k].real() * tau);
-    const double l = std::abs(lambda[k]);
+    const double size = alpha_sizes_(k, 0) * std::exp(lambda[k].real() * tau);
+    const double l = alpha_sizes_(k, 1);
     s.lift_amplitude += size;
     s.e1 += size * l;
     s.e2 += size * l * l;
