@@ -112,8 +112,11 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
   for (Eigen::Index j = 0; j < m; ++j) {
     for (int s = 0; s <= dofs_; ++s) {
       const auto lift = [&](int i) { return i < dofs_ ? vectors_(i, j) : std::complex<double>(); };
+      // The force row from the velocity rows, as NeedleTrain::SpringForce reads a state (on the
+      // dense path they are λ times the lift rows only to the eigensolver's residual).
       const std::complex<double> d =
-          s < dofs_ ? lift(s) - lift(s + 1) : (lift(0) - lift(1)) * (k + c * lambda_[j]);
+          s < dofs_ ? lift(s) - lift(s + 1)
+                    : k * (lift(0) - lift(1)) + c * (vectors_(dofs_, j) - vectors_(dofs_ + 1, j));
       differences_(s, j) = d.real();
       differences_(s, m + j) = -d.imag();
       difference_sizes_(s, j) = std::abs(d);

@@ -90,10 +90,10 @@ class ChainModes {
   /// |V_ik|, 2N × count.
   const Eigen::MatrixXd& VectorSizes() const { return vector_sizes_; }
   /// Each mode's vector differenced along the segments, row s − 1 = V_{s−1} − V_s over the lift
-  /// rows (segment s's compression; V_N = 0, the fixed seat), and row N = (V_0 − V_1)(k + cλ_k)
-  /// (the first segment's force k s₁ + c ṡ₁), as the real (N + 1) × 2·count [Re D, −Im D]: a
-  /// free motion of modal coefficients c_k has segment s's compression Re Σ_k D_{s−1,k} c_k e^{λ_k
-  /// τ}.
+  /// rows (segment s's compression; V_N = 0, the fixed seat), and row N = k (V_0 − V_1) +
+  /// c (V̇_0 − V̇_1) from the lift and velocity rows (the first segment's force k s₁ + c ṡ₁), as
+  /// the real (N + 1) × 2·count [Re D, −Im D]: a free motion Re Σ_k V_k w_k c_k e^{λ_k τ} has
+  /// segment s's compression Re Σ_k D_{s−1,k} w_k c_k e^{λ_k τ}.
   const Eigen::MatrixXd& Differences() const { return differences_; }
   /// |D_sk|, (N + 1) × count.
   const Eigen::MatrixXd& DifferenceSizes() const { return difference_sizes_; }

@@ -162,8 +162,9 @@ class ClosedFormPiece {
   /// A coil chain's Taylor polynomials about t_c ≥ t₀: the needle's lift and speed, and with
   /// `coils` the coils' lifts (a segment's compression), of the least degree D whose remainder over
   /// |s| ≤ reach, at most ρ^(D+1)/(D+1)! e^ρ of each mode's size with ρ = |λ_k| reach, is below
-  /// 2⁻⁵³ (ρ ≤ π/16, a bracket of two of a stretch's 16 samples: D = 11); not valid above
-  /// ChainTaylor::kMaxDegree. The value at t_c is the closed form's own.
+  /// 2⁻⁵³ (ρ ≤ π/16, a bracket of two of a stretch's 16 samples: D = 11; a witness's bracket in
+  /// the certified search may reach ρ ≈ 1.4, D = 20); not valid above ChainTaylor::kMaxDegree.
+  /// The value at t_c is the closed form's own.
   ChainTaylor ChainTaylorAt(double t_c, double reach, bool coils) const;
   /// The homogeneous part's energy ½ m h'² + ½ K h² at t ≥ t₀, J, which no later time exceeds
   /// (one mass only: a chain's needle trades energy with its coils; std::logic_error there).
@@ -256,9 +257,10 @@ class ClosedFormPiece {
   const ChainModes* chain_ = nullptr;
   Eigen::MatrixXd chain_p_;
   Eigen::VectorXcd chain_c_, alpha_;
-  Eigen::MatrixXcd alpha_rates_;  // α_k λ_k and α_k λ_k², m × 2
-  Eigen::MatrixXd alpha_sizes_;   // |α_k| and |λ_k|, m × 2 (ChainStart)
-  Eigen::VectorXd chain_h0_;      // the start's homogeneous part [h(0), h′(0)], 2N
+  Eigen::MatrixXcd alpha_rates_;    // α_k λ_k and α_k λ_k², m × 2
+  Eigen::MatrixXd alpha_sizes_;     // |α_k| and |λ_k|, m × 2 (ChainStart)
+  Eigen::VectorXd chain_leftover_;  // h(0) − Re V w c, 2N (ChainUpperBounds)
+  Eigen::VectorXd chain_h0_;        // the start's homogeneous part [h(0), h′(0)], 2N
   bool chain_rest_ = false;
   // [Re; Im] of e^{λτ} − 1 and of w c (e^{λτ} − 1), and the state's change.
   mutable Eigen::VectorXd grow_, terms_, dz_;

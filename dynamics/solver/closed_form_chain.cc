@@ -55,6 +55,15 @@ void ClosedFormPiece::StartChain() {
   chain_h0_ = h0;
   chain_c_ = (chain_->Inverse() * h0.cast<std::complex<double>>())
                  .cwiseProduct(chain_->Weight().cast<std::complex<double>>());
+  // What the modal sum leaves of the start, h(0) − Re V w c (round-off; on the dense path up to
+  // ChainModes::kInverseError): a state built from the start carries it at every τ, the modal
+  // form of ChainUpperBounds does not.
+  {
+    const Eigen::Index m = chain_c_.size();
+    Eigen::VectorXd c(2 * m);
+    c << chain_c_.real(), chain_c_.imag();
+    chain_leftover_ = h0 - chain_->VectorsReal() * c;
+  }
   alpha_ = chain_->Vectors().row(0).transpose().cwiseProduct(chain_c_);
   const Eigen::Index m = chain_c_.size();
   alpha_rates_.resize(m, 2);
@@ -182,7 +191,7 @@ ChainTaylor ClosedFormPiece::ChainTaylorAt(double t_c, double reach, bool coils)
   // form's values at τ (which leave e^{λ_k τ} − 1 in grow_).
   out.coef.setZero(nodes + 1, D + 1);
   if (coils) {
-    const TrainState x = ChainState(tau);
+    const TrainState x = ChainState(tau, false);  // the lifts and the needle's speed
     out.coef(0, 0) = x[0];
     for (int i = 1; i < n; ++i) out.coef(i, 0) = x[3 + i];
     out.coef(nodes, 0) = x[1];
@@ -274,10 +283,11 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
   const Eigen::Index m = lambda.size();
   const double tau = t_a - t0_, span = t_b - t_a;
   // Row r's modal part Re Σ_j B_rj e^{λ_j s} from t_a, B_rj = D_rj c_j e^{λ_j τ_a} (D: the
-  // chain's Differences, c: this start's modal coefficients; 0 ≤ s ≤ span). Each term is bounded
-  // two ways: whole, by |B| (its size never grows, but by round-off in a nearly undamped mode:
-  // g ≥ 1); or from t_a, for a mode slow against the stretch (|λ| span ≤ 1), by Re B + s Re(Bλ)
-  // + |B| |λs|²/2 g (Taylor's remainder), else (|λ| span > 1) by its whole size again.
+  // chain's Differences, c: this start's modal coefficients w c; 0 ≤ s ≤ span). Each term is
+  // bounded two ways: whole, by |B| (its size never grows, but by round-off in a nearly undamped
+  // mode: by e^{max(0, Re λ) span} at most); or from t_a, for a mode slow against the stretch
+  // (|λ| span ≤ 1), by Re B + s Re(Bλ) + |B| |λs|²/2 e^{max(0, Re λ) span} (Taylor's remainder),
+  // else (|λ| span > 1) by its whole size again.
   // Columns: [whole size, remainder] of |D|, and [start, slope] ([Re; Im]) of D.
   Eigen::Matrix<double, Eigen::Dynamic, 2> sizes(m, 2), terms(2 * m, 2);
   bool any_slow = false;
@@ -310,9 +320,15 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
   }
   // Round-off: the samples are sums of terms of these sizes.
   constexpr double kSlack = 1e-12;
+  // The start's leftover in row r (constant along the piece; node N is the fixed seat).
+  const Eigen::VectorXd& left = chain_leftover_;
+  const auto leftover = [&](Eigen::Index r) {
+    if (r < n) return left[r] - (r + 1 < n ? left[r + 1] : 0.0);
+    return k * (left[0] - left[1]) + c * (left[n] - left[n + 1]);
+  };
   // Row r's bound with its polynomial q (the particular solution's part): the lesser of
   // max q + Σ|B| and q(τ_a) + Σ_slow Re B + max(0, span (q′(τ_a) + Σ_slow Re Bλ)) + q's higher
-  // terms + the remainders.
+  // terms + the remainders; and the start's leftover.
   const auto bound = [&](const Poly& q, Eigen::Index r) {
     const Poly s = piece_polynomial::Shift(q, tau);
     double higher = 0.0, power = span;
@@ -327,7 +343,8 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
           std::min(best, s[0] + from_start(r, 0) + std::max(0.0, span * (s[1] + from_start(r, 1))) +
                              higher + modal(r, 1));
     }
-    return best + kSlack * (std::abs(s[0]) + linear + higher + modal(r, 0) + modal(r, 1));
+    return best + leftover(r) +
+           kSlack * (std::abs(s[0]) + linear + higher + modal(r, 0) + modal(r, 1));
   };
   double compression = -std::numeric_limits<double>::infinity(), spring = 0.0;
   for (int s = 1; s <= n; ++s) {

@@ -373,7 +373,7 @@ void EventDriver::LocateExtremes(const StretchSamples& samples, const std::array
     }
     const auto state = [&](double t) {
       if (taylor.valid) return taylor.At(t, train_.StateSize());
-      return which == 3 ? Motion(t) : ForceState(t);
+      return which == 3 ? Motion(t, false) : ForceState(t);
     };
     const auto best = boost::math::tools::brent_find_minima(
         [&](double d) { return ExtremeValue(which, at(d), state(at(d))); }, 0.0, 1.0,

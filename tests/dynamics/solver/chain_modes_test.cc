@@ -327,7 +327,8 @@ TEST(ChainModesTest, TheCompressionAndSpringForceBoundsHold) {
 // stretch reaches, in every mode, at the piece's start and later (the modes decayed): above it
 // by less than the stretch's own change plus 3 % of the coils' ringing, where the modal sum's
 // terms at their full size (a bound from the terms alone) are above it by some of the ringing
-// itself. The record then leaves out the samples of every stretch that stays below it.
+// itself. The record then leaves out the samples of every stretch that stays below it. Over
+// half a step (the fastest modes taken whole) they hold, and follow to 60 % of the ringing.
 TEST(ChainModesTest, TheBoundsOfAShortStretchFollowItsStart) {
   const SurgeChain chain;
   const NeedleTrain& train = chain.train;
@@ -335,34 +336,42 @@ TEST(ChainModesTest, TheBoundsOfAShortStretchFollowItsStart) {
       kEveryMode, [&](const ContactMode& mode, const ClosedFormPiece& piece, double t0) {
         const double ringing = piece.ChainStartRinging()[0];
         for (const double ta : {0.0, 2e-4, 2.0 * piece.LongestStep()}) {
-          const double a = t0 + ta, b = a + piece.LongestStep() / 16.0;
-          const std::array<double, 2> bound = piece.ChainUpperBounds(a, b);
-          double lo = 1e300, hi = -1e300, spring_lo = 1e300, spring_hi = -1e300;
-          for (int i = 0; i <= 200; ++i) {
-            const double t = a + (b - a) * i / 200.0;
-            const TrainState x = piece.MotionState(t);
-            const double s = train.LargestSegmentCompression(x);
-            const double f = train.Evaluate(x, t, Phase{mode}).spring_N;
-            lo = std::min(lo, s);
-            hi = std::max(hi, s);
-            spring_lo = std::min(spring_lo, f);
-            spring_hi = std::max(spring_hi, f);
+          for (const double part : {1.0 / 16.0, 0.5}) {
+            const double a = t0 + ta, b = a + piece.LongestStep() * part;
+            const std::array<double, 2> bound = piece.ChainUpperBounds(a, b);
+            double lo = 1e300, hi = -1e300, spring_lo = 1e300, spring_hi = -1e300;
+            for (int i = 0; i <= 200; ++i) {
+              const double t = a + (b - a) * i / 200.0;
+              const TrainState x = piece.MotionState(t);
+              const double s = train.LargestSegmentCompression(x);
+              const double f = train.Evaluate(x, t, Phase{mode}).spring_N;
+              lo = std::min(lo, s);
+              hi = std::max(hi, s);
+              spring_lo = std::min(spring_lo, f);
+              spring_hi = std::max(spring_hi, f);
+            }
+            const std::string where =
+                std::to_string(mode.cam) + std::to_string(mode.seat) + " " + std::to_string(ta);
+            EXPECT_LE(hi, bound[0]) << where;
+            EXPECT_LE(spring_hi, bound[1]) << where;
+            // Over half a step the fastest modes are bounded by their sizes (|λ| span > 1): within
+            // 60 % of the ringing (cam and seat both pushing, its 5 mm ringing: validity only).
+            const double share = part < 0.1 ? 0.03 : 0.6;
+            if (part > 0.1 && mode.cam && mode.seat) continue;
+            EXPECT_LT(bound[0] - hi, (hi - lo) + share * ringing) << where << " " << part;
+            EXPECT_LT(bound[1] - spring_hi,
+                      (spring_hi - spring_lo) + share * ringing * train.SegmentRateNm())
+                << where << " " << part;
           }
-          const std::string where =
-              std::to_string(mode.cam) + std::to_string(mode.seat) + " " + std::to_string(ta);
-          EXPECT_LE(hi, bound[0]) << where;
-          EXPECT_LE(spring_hi, bound[1]) << where;
-          EXPECT_LT(bound[0] - hi, (hi - lo) + 0.03 * ringing) << where;
-          EXPECT_LT(bound[1] - spring_hi,
-                    (spring_hi - spring_lo) + 0.03 * ringing * train.SegmentRateNm())
-              << where;
         }
       });
 }
 
 // A record's sample state (MotionState without the coils' speeds) is the whole state's to the
 // bit where a record reads it, the lifts, the needle's speed and coil 1's (the spring's force on
-// the needle), and carries no other speed: NaN, so a reader of one would show.
+// the needle), and carries no other speed: NaN (a reader that sums or compares one shows it; one
+// that takes a std::max over them, as NeedleTrain::LargestCoilSpeed, would not: none is reached
+// from a record's sample).
 TEST(ChainModesTest, ARecordsSampleStateIsTheWholeStatesLiftsAndSpringForce) {
   const SurgeChain chain;
   const NeedleTrain& train = chain.train;
@@ -386,7 +395,7 @@ TEST(ChainModesTest, ARecordsSampleStateIsTheWholeStatesLiftsAndSpringForce) {
 // and a witness's crossing's before it is passed on the closed form): over a
 // bracket of two of a stretch's 16 samples they are the closed form's lifts and needle speed to
 // its round-off, at t_c to the bit, in every contact mode; a reach of several oscillations of
-// the fastest mode is refused.
+// the fastest mode is refused; a witness's wider bracket (ρ = 1.3) holds too.
 TEST(ChainModesTest, TheTaylorPolynomialsAreTheClosedFormOverABracket) {
   const SurgeChain chain;
   const NeedleTrain& train = chain.train;
@@ -419,6 +428,19 @@ TEST(ChainModesTest, TheTaylorPolynomialsAreTheClosedFormOverABracket) {
               }
             }
           }
+        }
+        // A witness's bracket in the certified search may be wider: ρ = 1.3, the needle alone.
+        const double wide = 1.3 / kPi * piece.LongestStep();
+        const ChainTaylor taylor = piece.ChainTaylorAt(t0 + wide, wide, false);
+        ASSERT_TRUE(taylor.valid);
+        for (int i = -10; i <= 10; ++i) {
+          const double t = t0 + wide + wide * i / 10.0;
+          const std::array<double, 2> yv = taylor.LiftAndSpeed(t);
+          const TrainState x = piece.MotionState(t);
+          // To round-off of the modal sum's terms (the start's ringing).
+          const std::array<double, 2> ringing = piece.ChainStartRinging();
+          EXPECT_NEAR(yv[0], x[0], 1e-14 * std::abs(x[0]) + 1e-14 * ringing[0]) << i;
+          EXPECT_NEAR(yv[1], x[1], 1e-13 * std::abs(x[1]) + 1e-14 * ringing[1]) << i;
         }
         EXPECT_FALSE(piece.ChainTaylorAt(t0 + 1e-3, 4.0 * piece.LongestStep(), false).valid);
       });
