@@ -107,6 +107,7 @@ ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
   vectors_real_.resize(2 * dofs_, 2 * m);
   vectors_real_ << vectors_.real(), -vectors_.imag();
   vector_sizes_ = vectors_.cwiseAbs();
+  lambda_sizes_ = lambda_.cwiseAbs();
   differences_.resize(dofs_ + 1, 2 * m);
   difference_sizes_.resize(dofs_ + 1, m);
   for (Eigen::Index j = 0; j < m; ++j) {

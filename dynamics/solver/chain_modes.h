@@ -80,6 +80,8 @@ class ChainModes {
   /// one of each conjugate pair (Im λ ≥ 0) with its weight w_k (2 for a pair, 1 for a real one):
   /// z_h = Σ_k w_k Re(V_k c_k e^{λ_k τ}).
   const Eigen::VectorXcd& Lambda() const { return lambda_; }
+  /// |λ_k|, rad/s.
+  const Eigen::VectorXd& LambdaSizes() const { return lambda_sizes_; }
   const Eigen::VectorXd& Weight() const { return weight_; }
   /// V's columns for those λ_k (2N × count; rows: lifts in m, then velocities in m/s, of the
   /// needle and coils 1 … N − 1) and V⁻¹'s rows (count × 2N).
@@ -143,6 +145,7 @@ class ChainModes {
   bool damped_ = false;
   Eigen::MatrixXd responses_;  // w_0 … w_kResponseDegree, N × (kResponseDegree + 1)
   Eigen::VectorXcd lambda_;
+  Eigen::VectorXd lambda_sizes_;
   Eigen::VectorXd weight_;
   Eigen::MatrixXcd vectors_, inverse_;
   Eigen::MatrixXd vectors_real_, vector_sizes_, differences_, difference_sizes_;

@@ -258,7 +258,7 @@ class ClosedFormPiece {
   Eigen::MatrixXd chain_p_;
   Eigen::VectorXcd chain_c_, alpha_;
   Eigen::MatrixXcd alpha_rates_;    // α_k λ_k and α_k λ_k², m × 2
-  Eigen::MatrixXd alpha_sizes_;     // |α_k| and |λ_k|, m × 2 (ChainStart)
+  Eigen::VectorXd alpha_sizes_;     // |α_k| (ChainStart)
   Eigen::VectorXd chain_leftover_;  // h(0) − Re V w c, 2N (ChainUpperBounds)
   Eigen::VectorXd chain_h0_;        // the start's homogeneous part [h(0), h′(0)], 2N
   bool chain_rest_ = false;

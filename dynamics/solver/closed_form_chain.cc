@@ -67,10 +67,8 @@ void ClosedFormPiece::StartChain() {
   alpha_ = chain_->Vectors().row(0).transpose().cwiseProduct(chain_c_);
   const Eigen::Index m = chain_c_.size();
   alpha_rates_.resize(m, 2);
-  alpha_sizes_.resize(m, 2);
+  alpha_sizes_ = alpha_.cwiseAbs();
   for (Eigen::Index k = 0; k < m; ++k) {
-    alpha_sizes_(k, 0) = std::abs(alpha_[k]);
-    alpha_sizes_(k, 1) = std::abs(chain_->Lambda()[k]);
     alpha_rates_(k, 0) = alpha_[k] * chain_->Lambda()[k];
     alpha_rates_(k, 1) = alpha_rates_(k, 0) * chain_->Lambda()[k];
   }
@@ -267,8 +265,8 @@ void ClosedFormPiece::ChainStart(double t) const {
   s = HomogeneousStart{t, Y0_ + h.dh, V0_ + h.dhv, h.ha, 0.0, 0.0, 0.0, 0.0};
   const Eigen::VectorXcd& lambda = chain_->Lambda();
   for (Eigen::Index k = 0; k < lambda.size(); ++k) {
-    const double size = alpha_sizes_(k, 0) * std::exp(lambda[k].real() * tau);
-    const double l = alpha_sizes_(k, 1);
+    const double size = alpha_sizes_[k] * std::exp(lambda[k].real() * tau);
+    const double l = chain_->LambdaSizes()[k];
     s.lift_amplitude += size;
     s.e1 += size * l;
     s.e2 += size * l * l;
@@ -292,9 +290,8 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
   Eigen::Matrix<double, Eigen::Dynamic, 2> sizes(m, 2), terms(2 * m, 2);
   bool any_slow = false;
   for (Eigen::Index j = 0; j < m; ++j) {
-    const double a = lambda[j].real(), l = Magnitude(lambda[j]);
-    const double size =
-        Magnitude(chain_c_[j]) * std::exp(a * tau) * (a > 0.0 ? std::exp(a * span) : 1.0);
+    const double a = lambda[j].real(), l = chain_->LambdaSizes()[j], decay = std::exp(a * tau);
+    const double size = Magnitude(chain_c_[j]) * decay * (a > 0.0 ? std::exp(a * span) : 1.0);
     const bool slow = l * span <= 1.0;
     any_slow = any_slow || slow;
     sizes(j, 0) = size;
@@ -306,7 +303,7 @@ std::array<double, 2> ClosedFormPiece::ChainUpperBounds(double t_a, double t_b) 
     }
     const double phase = lambda[j].imag() * tau;
     const std::complex<double> start =
-        chain_c_[j] * std::exp(a * tau) * std::complex<double>(std::cos(phase), std::sin(phase));
+        chain_c_[j] * decay * std::complex<double>(std::cos(phase), std::sin(phase));
     const std::complex<double> slope = start * lambda[j];
     terms.row(j) << start.real(), slope.real();
     terms.row(m + j) << start.imag(), slope.imag();

@@ -433,12 +433,12 @@ TEST(ChainModesTest, TheTaylorPolynomialsAreTheClosedFormOverABracket) {
         const double wide = 1.3 / kPi * piece.LongestStep();
         const ChainTaylor taylor = piece.ChainTaylorAt(t0 + wide, wide, false);
         ASSERT_TRUE(taylor.valid);
+        // To round-off of the modal sum's terms (the start's ringing).
+        const std::array<double, 2> ringing = piece.ChainStartRinging();
         for (int i = -10; i <= 10; ++i) {
           const double t = t0 + wide + wide * i / 10.0;
           const std::array<double, 2> yv = taylor.LiftAndSpeed(t);
           const TrainState x = piece.MotionState(t);
-          // To round-off of the modal sum's terms (the start's ringing).
-          const std::array<double, 2> ringing = piece.ChainStartRinging();
           EXPECT_NEAR(yv[0], x[0], 1e-14 * std::abs(x[0]) + 1e-14 * ringing[0]) << i;
           EXPECT_NEAR(yv[1], x[1], 1e-13 * std::abs(x[1]) + 1e-14 * ringing[1]) << i;
         }
