@@ -20,6 +20,8 @@
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"
+#include "spring/helical_spring.h"
+#include "spring/resonance.h"
 
 namespace needle::bench {
 
@@ -296,49 +298,68 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
   return md.str();
 }
 
-// The coil chain by method "exact" (issue 53) against the time stepper auto takes (dopri5 at the
-// case's tolerance) and dopri5 at rtol 1e-12: the surge scene's chain of 20 and of 40 coil
-// masses at 520 rpm, forced dynamic, as `needle simulate` runs it; medians of 5 × repeats
-// interleaved runs, with each run's steps, energy residual and least coil gap.
+// The coil chain by method "exact" (issue 53) against dopri5 at the case's tolerance (what auto
+// took for chains before it took exact) and at rtol 1e-12: the two surge scenes' chains at every N
+// the surge study runs (5, 10, 20, 40), at their rated speed, forced dynamic, as `needle simulate`
+// runs them; medians of 5 × repeats interleaved runs (dopri5 at 1e-12: one run), with each run's
+// steps, energy residual and least coil gap.
 std::string LongChainRow(int repeats) {
-  const BoundCase c = BindBundled("basu-example1-surge.toml");
   std::ostringstream md;
   md << "### The coil chain by method exact\n\n"
-     << "`basu-example1-surge` at 520 rpm, forced dynamic, its 4 revolutions; medians of "
-     << 5 * repeats << " interleaved runs.\n\n"
-     << "| coil masses | method | ms | steps | energy residual | least coil gap mm |\n"
-     << "|---|---|---|---|---|---|\n";
-  for (const int masses : {20, 40}) {
-    Scene scene = *c.scene;
-    scene.train.coil_masses = masses;
-    struct Run {
-      std::string method;
-      double rtol;
-      std::vector<double> times;
-      SimulationResult last;
-    };
-    std::vector<Run> runs = {{"auto", c.run.integrator.rtol, {}, {}},
-                             {"dopri5", 1e-12, {}, {}},
-                             {"exact", c.run.integrator.rtol, {}, {}}};
-    for (int r = 0; r < 5 * repeats; ++r) {
-      for (Run& run : runs) {
-        SimulationOptions o = c.run;
-        o.force_dynamic = true;
-        o.method = run.method;
-        o.integrator.rtol = run.rtol;
-        if (run.rtol == 1e-12) o.integrator.atol_m = DefaultAtol(1e-12);
-        const auto t0 = std::chrono::steady_clock::now();
-        run.last = Simulate(scene, 520.0, o);
-        run.times.push_back(
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+     << "The surge study's chains (5, 10, 20, 40 coil masses) at the case's rated speed, forced "
+     << "dynamic, as `needle simulate` runs them: `basu-example1-surge` (520 rpm, 4 revolutions) "
+     << "and `engine-2000rpm-surging-spring` (2000 rpm); medians of " << 5 * repeats
+     << " interleaved runs (dopri5 at 1e-12: one run). auto takes exact for chains.\n\n"
+     << "| case | coil masses | method | ms | steps | energy residual | least coil gap mm |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  struct ChainCase {
+    std::string name;
+    double rpm;
+  };
+  for (const ChainCase& cc : {ChainCase{"basu-example1-surge", 520.0},
+                              ChainCase{"engine-2000rpm-surging-spring", 2000.0}}) {
+    const BoundCase c = BindBundled(cc.name + ".toml");
+    for (const int masses : {5, 10, 20, 40}) {
+      // The chain as the surge study makes it (apps/study/check_scene.cc, StudySurge).
+      Scene scene = *c.scene;
+      scene.train.coil_masses = masses;
+      scene.train.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
+      scene.train.surge_damping_ratio = c.spring->surge_damping_ratio;
+      const HelicalSpringCheck lengths = CheckHelicalSpring(
+          *c.spring->helical, c.spring->preload_N, 0.0, c.engine.speed_rpm, c.engine.cycle);
+      scene.train.coil_travel_m = lengths.length_preload_m - lengths.solid_length_m;
+      struct Run {
+        std::string method;
+        double rtol;
+        int runs;
+        std::vector<double> times;
+        SimulationResult last;
+      };
+      std::vector<Run> runs = {{"dopri5", c.run.integrator.rtol, 5 * repeats, {}, {}},
+                               {"exact", c.run.integrator.rtol, 5 * repeats, {}, {}},
+                               {"dopri5", 1e-12, 1, {}, {}}};
+      for (int r = 0; r < 5 * repeats; ++r) {
+        for (Run& run : runs) {
+          if (r >= run.runs) continue;
+          SimulationOptions o = c.run;
+          o.force_dynamic = true;
+          o.method = run.method;
+          o.integrator.rtol = run.rtol;
+          if (run.rtol == 1e-12) o.integrator.atol_m = DefaultAtol(1e-12);
+          const auto t0 = std::chrono::steady_clock::now();
+          run.last = Simulate(scene, cc.rpm, o);
+          run.times.push_back(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        }
       }
-    }
-    for (Run& run : runs) {
-      std::sort(run.times.begin(), run.times.end());
-      md << "| " << masses << " | " << run.last.method << " rtol " << Num(run.rtol) << " | "
-         << Num(run.times[run.times.size() / 2] * 1e3) << " | " << run.last.stats.steps << " | "
-         << Num(run.last.energy_residual) << " | "
-         << (run.last.min_coil_gap_m ? Num(*run.last.min_coil_gap_m * 1e3, 10) : "–") << " |\n";
+      for (Run& run : runs) {
+        std::sort(run.times.begin(), run.times.end());
+        md << "| " << cc.name << " | " << masses << " | " << run.last.method;
+        if (run.method != "exact") md << " rtol " << Num(run.rtol);
+        md << " | " << Num(run.times[run.times.size() / 2] * 1e3) << " | " << run.last.stats.steps
+           << " | " << Num(run.last.energy_residual) << " | "
+           << (run.last.min_coil_gap_m ? Num(*run.last.min_coil_gap_m * 1e3, 10) : "–") << " |\n";
+      }
     }
   }
   md << "\n";
