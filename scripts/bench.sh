@@ -59,6 +59,13 @@ if /usr/bin/python3 -c 'import scipy' 2>/dev/null; then
     echo "bench: bench/scipy_peer.py failed (bench/log.txt); BENCHMARKS.md keeps the last bench/scipy-peer.md" >&2
 fi
 
+# Issue 53's targets against a build of fdb02a4, the issue's baseline (bench/issue53_targets.py,
+# a minute): only where NEEDLE_FDB02A4 names that build's needle; else the last table is kept.
+if [[ -n ${NEEDLE_FDB02A4:-} ]]; then
+  python3 bench/issue53_targets.py --old "$NEEDLE_FDB02A4" >/dev/null 2>>bench/log.txt ||
+    echo "bench: bench/issue53_targets.py failed (bench/log.txt)" >&2
+fi
+
 {
   cat <<'HEAD'
 # Benchmarks
@@ -83,5 +90,7 @@ HEAD
   if [[ -f bench/python-scene.md ]]; then echo; cat bench/python-scene.md; fi
   # SciPy's solve_ivp against exact (bench/scipy_peer.py).
   if [[ -f bench/scipy-peer.md ]]; then echo; cat bench/scipy-peer.md; fi
+  # Issue 53's targets against fdb02a4's build (bench/issue53_targets.py).
+  if [[ -f bench/issue53-targets.md ]]; then echo; cat bench/issue53-targets.md; fi
 } > BENCHMARKS.md.tmp && mv BENCHMARKS.md.tmp BENCHMARKS.md
 echo "wrote bench/ and BENCHMARKS.md"
