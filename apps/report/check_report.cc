@@ -140,7 +140,8 @@ void CheckReportWriter::RatedRun(const SpringCheckResult& spring, const Simulati
                                                : ", " + Escape(r.status_reason)))
 
     << Row("lift-off at the rated speed",
-           r.liftoff() ? "<span class=\"fail\">yes</span>" + Escape(ShortJumpNote(r)) : "no")
+           r.liftoff() ? "<span class=\"fail\">yes</span>" + Escape(ShortJumpNote(r))
+                       : "no" + Escape(BounceNote(r)))
     << Row("max contact force", Fixed(r.max_contact_force_N, 1) + " N; min during the lift " +
                                     Fixed(r.min_contact_force_during_lift_N, 1) + " N");
   for (const Impact& i : r.impacts) {

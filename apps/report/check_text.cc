@@ -15,8 +15,10 @@ std::string CheckText(const BoundCase& c, const CheckResult& result, const std::
   if (result.profile)
     out << "cam profile: " << (result.profile->undercut ? "UNDERCUT" : "no undercut") << '\n';
   if (result.run)
-    out << "lift-off at " << Fixed(result.speed_rpm, 0)
-        << " rpm: " << (result.run->liftoff() ? "YES" + ShortJumpNote(*result.run) : "no") << '\n';
+    out << "lift-off at " << Fixed(result.speed_rpm, 0) << " rpm: "
+        << (result.run->liftoff() ? "YES" + ShortJumpNote(*result.run)
+                                  : "no" + BounceNote(*result.run))
+        << '\n';
   if (result.sweep) {
     out << "n_qs " << FixedOrNone(result.n_qs_rpm, 1) << " rpm, n_dyn "
         << OverspeedOutcome(*result.sweep) << '\n';

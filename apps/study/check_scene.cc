@@ -43,6 +43,22 @@ std::string ShortJumpNote(const SimulationResult& run) {
          " deg that n_dyn counts: any jump fails at the rated speed)";
 }
 
+std::string BounceNote(const SimulationResult& run) {
+  if (run.liftoff()) return "";
+  int bounces = 0;
+  double first_rad = 0.0, gap_m = 0.0;
+  for (const Episode& e : run.episodes) {
+    if (e.kind != "bounce" || e.cycle < run.judged_from) continue;
+    if (bounces++ == 0) first_rad = e.start_rad;
+    gap_m = std::max(gap_m, e.max_gap_m);
+  }
+  if (bounces == 0) return "";
+  return " (the cam loses the needle in " + std::to_string(bounces) +
+         (bounces == 1 ? " bounce" : " bounces") + " after impacts, from " +
+         Fixed(first_rad / kDeg, 2) + " deg, largest gap " + Fixed(gap_m * 1e3, 4) +
+         " mm: not lift-off, as none reaches the deceleration zone)";
+}
+
 std::vector<std::string> TableEndFailures(const LiftLaw& law, double top_m) {
   std::vector<std::string> failures;
   for (const bool end : {false, true}) {
