@@ -61,14 +61,23 @@ std::string BounceNote(const SimulationResult& run) {
 
 std::vector<std::string> TableEndFailures(const LiftLaw& law, double top_m) {
   std::vector<std::string> failures;
+  const double first = law.Lift(law.start_rad()), last = law.Lift(law.end_rad());
+  // Both ends off the seat at the same lift (within 1 % of the largest): the readings may carry
+  // an offset (a follower's position exported for its lift) rather than a cut.
+  const bool offset = first > kOpenEndFraction * top_m && last > kOpenEndFraction * top_m &&
+                      std::abs(first - last) <= 0.01 * top_m;
   for (const bool end : {false, true}) {
-    const double th = end ? law.end_rad() : law.start_rad(), s = law.Lift(th);
+    const double th = end ? law.end_rad() : law.start_rad(), s = end ? last : first;
     if (top_m > 0.0 && s > kOpenEndFraction * top_m) {
       failures.push_back(std::string("lift table: undecided, it ") + (end ? "ends" : "starts") +
                          " at " + Fixed(s * 1e3, 3) + " mm (" + Fixed(100 * s / top_m, 1) +
                          " % of its largest lift) at " + Fixed(th / kDeg, 2) +
                          " deg, not on the seat: the " + (end ? "closing" : "opening") +
-                         " is not in it; extend the table to where the lift is zero");
+                         " is not in it; " +
+                         (offset ? "both ends stand at this lift: if the readings carry an "
+                                   "offset, take it off them, else extend"
+                                 : "extend") +
+                         " the table to where the lift is zero");
     }
   }
   return failures;

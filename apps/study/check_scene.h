@@ -76,7 +76,8 @@ constexpr double kSurgeConvergence = 0.01;
 /// The failing lines of a table that does not reach the seat at an end (its lift there above
 /// kOpenEndFraction of `top_m`, its largest lift, m): "lift table: undecided, it starts at …".
 /// `needle check` and `needle spring` fail the table so (a follower's position exported for its
-/// lift, 15 mm at the seat, passed `needle spring` with a required preload of 0 N).
+/// lift, 15 mm at the seat, passed `needle spring` with a required preload of 0 N). Where both
+/// ends stand at one lift (within 1 % of `top_m`) the lines say the readings may carry an offset.
 std::vector<std::string> TableEndFailures(const LiftLaw& law, double top_m);
 
 /// Options of CheckScene; every field has a default.
