@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -76,6 +77,12 @@ std::string PlusMinus(double value, const std::optional<ExtremumBand>& band, int
   // The band as the JSON gives it: symmetric as "± h", else its two reaches, "+a/-b".
   if (up.str() == down.str()) return " ± " + up.str();
   return " +" + up.str() + "/-" + down.str();
+}
+
+int AccelerationDecimals(const KinematicsSummary& s) {
+  if (!s.max_acceleration_m_s2) return 2;
+  return DecimalsFor(
+      std::max(std::abs(*s.max_acceleration_m_s2), std::abs(*s.min_acceleration_m_s2)), 2, 2);
 }
 
 std::vector<Field> KinematicsFields(const KinematicsSummary& s) {

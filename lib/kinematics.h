@@ -54,6 +54,10 @@ struct KinematicsSummary {
 /// the JSON's [19.79, 51.96]); empty without a band.
 std::string PlusMinus(double value, const std::optional<ExtremumBand>& band, int decimals);
 
+/// The decimals the two acceleration extremes print with: 2, or as many as show the larger one
+/// to 2 significant digits (a table run at 1 rpm read "0.00 ± 0.00 m/s^2").
+int AccelerationDecimals(const KinematicsSummary& s);
+
 class Kinematics {
  public:
   /// `law` must outlive this object. speed_rpm must be positive and finite

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
@@ -231,6 +232,12 @@ std::string Fixed(double value, int decimals) {
 
 std::string FixedOrNone(double value, int decimals) {
   return std::isfinite(value) ? Fixed(value, decimals) : std::string("none");
+}
+
+int DecimalsFor(double value, int least, int significant) {
+  if (!std::isfinite(value) || value == 0.0) return least;
+  const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(value))));
+  return std::max(least, std::min(15, significant - 1 - magnitude));
 }
 
 std::string Significant(double value, int digits) {

@@ -79,6 +79,11 @@ std::string Fixed(double value, int decimals);
 /// Fixed(value, decimals), or "none" for a value that is not finite.
 std::string FixedOrNone(double value, int decimals);
 
+/// The decimals that print `value` with at least `significant` significant digits, and never
+/// fewer than `least`: 2 for 535.2 (least 2), 4 for 0.0043 (significant 2). `least` for 0 and
+/// non-finite values.
+int DecimalsFor(double value, int least, int significant);
+
 /// `value` to `digits` significant digits, as a stream prints it ("0.001", "3.674", "1e+09").
 std::string Significant(double value, int digits);
 

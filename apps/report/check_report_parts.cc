@@ -67,12 +67,13 @@ std::string SceneTable(const BoundCase& c, const LiftLaw& law, const LiftLawChoi
           << Row("max velocity", Fixed(sum.max_velocity_m_s, 3) + " m/s at " +
                                      Fixed(sum.max_velocity_rad / kDeg, 2) + "°");
   if (sum.max_acceleration_m_s2) {
+    const int d = AccelerationDecimals(sum);
     summary << Row("acceleration",
-                   Fixed(*sum.max_acceleration_m_s2, 2) +
-                       PlusMinus(*sum.max_acceleration_m_s2, sum.max_acceleration_band_m_s2, 2) +
+                   Fixed(*sum.max_acceleration_m_s2, d) +
+                       PlusMinus(*sum.max_acceleration_m_s2, sum.max_acceleration_band_m_s2, d) +
                        " m/s² max at " + Fixed(*sum.max_acceleration_rad / kDeg, 2) + "°, " +
-                       Fixed(*sum.min_acceleration_m_s2, 2) +
-                       PlusMinus(*sum.min_acceleration_m_s2, sum.min_acceleration_band_m_s2, 2) +
+                       Fixed(*sum.min_acceleration_m_s2, d) +
+                       PlusMinus(*sum.min_acceleration_m_s2, sum.min_acceleration_band_m_s2, d) +
                        " m/s² min at " + Fixed(*sum.min_acceleration_rad / kDeg, 2) + "°");
   }
   summary << "</table>";

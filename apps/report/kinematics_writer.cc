@@ -81,11 +81,12 @@ void KinematicsHead(std::ostream& out, const KinematicsTable& table) {
   out << "velocity " << t("max_velocity_m_s") << " max at " << t("max_velocity_deg") << ", "
       << t("min_velocity_m_s") << " min at " << t("min_velocity_deg") << '\n';
   if (sum.max_acceleration_m_s2) {
-    out << "acceleration " << Fixed(*sum.max_acceleration_m_s2, 2)
-        << PlusMinus(*sum.max_acceleration_m_s2, sum.max_acceleration_band_m_s2, 2)
+    const int d = AccelerationDecimals(sum);
+    out << "acceleration " << Fixed(*sum.max_acceleration_m_s2, d)
+        << PlusMinus(*sum.max_acceleration_m_s2, sum.max_acceleration_band_m_s2, d)
         << " m/s^2 max at " << t("max_acceleration_deg") << ", "
-        << Fixed(*sum.min_acceleration_m_s2, 2)
-        << PlusMinus(*sum.min_acceleration_m_s2, sum.min_acceleration_band_m_s2, 2)
+        << Fixed(*sum.min_acceleration_m_s2, d)
+        << PlusMinus(*sum.min_acceleration_m_s2, sum.min_acceleration_band_m_s2, d)
         << " m/s^2 min at " << t("min_acceleration_deg") << '\n';
   } else {
     out << "acceleration unavailable: " << SplineKindName(law.kind())
@@ -96,7 +97,7 @@ void KinematicsHead(std::ostream& out, const KinematicsTable& table) {
                                                               std::abs(*sum.min_acceleration_m_s2))
                                                    : NAN;
     out << "paper: max acceleration " << Fixed(*c.paper->max_acceleration_m_s2, 1)
-        << " m/s^2; computed max |a| " << Fixed(a_abs, 2) << " m/s^2\n";
+        << " m/s^2; computed max |a| " << Fixed(a_abs, DecimalsFor(a_abs, 2, 2)) << " m/s^2\n";
   }
   if (table.paper) {
     const PaperVelocityDeviation& d = *table.paper;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -102,6 +103,20 @@ TEST(OutputTest, FixedNeverPrintsNegativeZero) {
   EXPECT_EQ(Fixed(-0.0001, 2), "0.00");
   EXPECT_EQ(Fixed(-1.005, 1), "-1.0");
   EXPECT_EQ(Fixed(3.14159, 3), "3.142");
+}
+
+// The acceleration of a table run at 1 rpm printed "0.00 ± 0.00 m/s^2" (stop 88's list): the
+// decimals now show two significant digits, and never fewer than asked.
+TEST(OutputTest, DecimalsForShowTheSignificantDigitsAsked) {
+  EXPECT_EQ(DecimalsFor(535.2, 2, 2), 2);
+  EXPECT_EQ(DecimalsFor(-18.13, 2, 2), 2);
+  EXPECT_EQ(DecimalsFor(0.5, 2, 2), 2);
+  EXPECT_EQ(DecimalsFor(0.0433, 2, 2), 3);
+  EXPECT_EQ(DecimalsFor(-0.0012, 2, 2), 4);
+  EXPECT_EQ(Fixed(-0.0012, DecimalsFor(-0.0012, 2, 2)), "-0.0012");
+  EXPECT_EQ(DecimalsFor(0.0, 2, 2), 2);
+  EXPECT_EQ(DecimalsFor(NAN, 2, 2), 2);
+  EXPECT_EQ(DecimalsFor(1e-300, 2, 2), 15);
 }
 
 }  // namespace
