@@ -27,22 +27,34 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
 def Timed(cmd, cwd):
+    """Wall time of `cmd` and its exit code (0 pass or 1 a failing verdict; else it stops)."""
     t0 = time.perf_counter()
-    r = subprocess.run(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        r = subprocess.run(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                           text=True)
+    except OSError as e:
+        sys.exit("issue53_targets: cannot run %s: %s" % (cmd[0], e))
     t = time.perf_counter() - t0
     if r.returncode not in (0, 1):
         sys.exit("issue53_targets: %s failed (%d): %s" % (" ".join(cmd), r.returncode,
                                                          r.stderr.strip()))
-    return t
+    return t, r.returncode
 
 
-def Medians(builds, make_cmd, repeats, cwd):
-    """The median time of each build's command, runs interleaved."""
-    times = {name: [] for name in builds}
+def Medians(builds, make_cmds, repeats, cwd):
+    """Each build's median time of each of `make_cmds` (exe -> command), all runs interleaved;
+    stops when the builds' verdicts (exit codes) differ."""
+    times = {(name, i): [] for name in builds for i in range(len(make_cmds))}
     for _ in range(repeats):
-        for name, exe in builds.items():
-            times[name].append(Timed(make_cmd(exe), cwd))
-    return {name: statistics.median(t) for name, t in times.items()}
+        for i, make_cmd in enumerate(make_cmds):
+            codes = {}
+            for name, exe in builds.items():
+                t, codes[name] = Timed(make_cmd(exe), cwd)
+                times[(name, i)].append(t)
+            if len(set(codes.values())) > 1:
+                sys.exit("issue53_targets: the builds' verdicts differ on %s: %s"
+                         % (" ".join(make_cmd("needle")), codes))
+    return {key: statistics.median(t) for key, t in times.items()}
 
 
 def main():
@@ -53,6 +65,8 @@ def main():
     p.add_argument("--samples", type=int, default=41)
     p.add_argument("--out", default=str(ROOT / "bench" / "issue53-targets.md"))
     a = p.parse_args()
+    if a.samples < 2:
+        sys.exit("issue53_targets: --samples: %d; expected 2 or more" % a.samples)
     builds = {"fdb02a4": os.path.abspath(a.old), "now": os.path.abspath(a.new)}
     pin = ["taskset", "-c", "0"] if shutil.which("taskset") else []
     cases = str(ROOT / "cases")
@@ -60,10 +74,10 @@ def main():
     rows = []
 
     def Row(what, target, make_cmd, per=None):
-        t = Medians(builds, make_cmd, a.repeats, cases)
-        if per:
-            one = Medians(builds, per, a.repeats, cases)
-            t = {k: (t[k] - one[k]) / (a.samples - 1) for k in t}
+        m = Medians(builds, [make_cmd] + ([per] if per else []), a.repeats, cases)
+        t = {name: m[(name, 0)] for name in builds}
+        if per:  # the study of one sample interleaved with the full one, then taken off it
+            t = {name: (t[name] - m[(name, 1)]) / (a.samples - 1) for name in builds}
         rows.append((what, t["fdb02a4"], t["now"], target))
 
     Row("`simulate basu-example1-surge --rpm 520 --dynamic` (the 20-mass chain)", "≥ 10×",
@@ -76,18 +90,23 @@ def main():
                                       str(samples), "--seed", "1", "--threads", "1", "--json"]
         Row("a tolerance sample of `%s` (%d − 1 samples)" % (name, a.samples), target,
             Study(a.samples), per=Study(1))
-    Row("`check basu-example1` with its report, one core", "≤ 50 ms",
-        lambda exe: pin + [exe, "check", "basu-example1.toml", "--out", out_dir])
-    shutil.rmtree(out_dir, ignore_errors=True)
+    try:
+        Row("`check basu-example1` with its report, one core", "≤ 50 ms",
+            lambda exe: pin + [exe, "check", "basu-example1.toml", "--out", out_dir])
+    finally:
+        shutil.rmtree(out_dir, ignore_errors=True)
+
+    def Ms(seconds):
+        return "%.1f" % (seconds * 1e3) if seconds >= 0.01 else "%.2f" % (seconds * 1e3)
 
     md = ["## Issue 53's targets against fdb02a4's build\n",
-          "`python3 bench/issue53_targets.py --old FDB02A4/needle` (whole processes pinned to one "
-          "core, medians of %d interleaved runs; the start and the case's load in every time)."
-          "\n" % a.repeats,
+          "`python3 bench/issue53_targets.py --old FDB02A4/needle` (whole processes%s, medians of "
+          "%d interleaved runs, the two builds' verdicts the same; the start and the case's load "
+          "in every time).\n" % (" pinned to one core" if pin else ", not pinned (no taskset)",
+                                  a.repeats),
           "| what | fdb02a4 ms | now ms | ratio | target |", "|---|---|---|---|---|"]
     for what, old, new, target in rows:
-        md.append("| %s | %.3g | %.3g | %.2f× | %s |" % (what, old * 1e3, new * 1e3, old / new,
-                                                         target))
+        md.append("| %s | %s | %s | %.2f× | %s |" % (what, Ms(old), Ms(new), old / new, target))
     pathlib.Path(a.out).write_text("\n".join(md) + "\n")
     print("\n".join(md))
 

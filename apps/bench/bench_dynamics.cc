@@ -299,17 +299,20 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
 }
 
 // The coil chain by method "exact" (issue 53) against dopri5 at the case's tolerance (what auto
-// took for chains before it took exact) and at rtol 1e-12: the two surge scenes' chains at every N
-// the surge study runs (5, 10, 20, 40), at their rated speed, forced dynamic, as `needle simulate`
-// runs them; medians of 5 × repeats interleaved runs (dopri5 at 1e-12: one run), with each run's
-// steps, energy residual and least coil gap.
+// takes for chains, docs/exact.md) and at rtol 1e-12: the surge study's N (5, 10, 20, 40) on the
+// two chain scenes, `basu-example1-surge` at 520 rpm (near its n_dyn; rated 125 rpm) and
+// `engine-2000rpm-surging-spring` at its rated 2000 rpm, forced dynamic, as `needle simulate`
+// runs them; medians of 5 × repeats interleaved runs (dopri5 at 1e-12: one run), with each
+// run's steps, energy residual and least coil gap.
 std::string LongChainRow(int repeats) {
   std::ostringstream md;
   md << "### The coil chain by method exact\n\n"
-     << "The surge study's chains (5, 10, 20, 40 coil masses) at the case's rated speed, forced "
-     << "dynamic, as `needle simulate` runs them: `basu-example1-surge` (520 rpm, 4 revolutions) "
-     << "and `engine-2000rpm-surging-spring` (2000 rpm); medians of " << 5 * repeats
-     << " interleaved runs (dopri5 at 1e-12: one run). auto takes exact for chains.\n\n"
+     << "The surge study's chains (5, 10, 20, 40 coil masses), forced dynamic, as `needle "
+     << "simulate` runs them: `basu-example1-surge` at 520 rpm (4 revolutions, near its n_dyn; "
+     << "rated 125 rpm) and `engine-2000rpm-surging-spring` at its rated 2000 rpm; medians of "
+     << 5 * repeats
+     << " interleaved runs (dopri5 at 1e-12: one run). auto takes dopri5 for chains "
+        "(docs/exact.md says why).\n\n"
      << "| case | coil masses | method | ms | steps | energy residual | least coil gap mm |\n"
      << "|---|---|---|---|---|---|---|\n";
   struct ChainCase {

@@ -44,19 +44,24 @@ std::string ShortJumpNote(const SimulationResult& run) {
 }
 
 std::string BounceNote(const SimulationResult& run) {
-  if (run.liftoff()) return "";
-  int bounces = 0;
+  // A run cut short (a budget, a needle still moving) may not have shown all its episodes.
+  if (run.liftoff() || (run.status != RunStatus::kComplete && run.status != RunStatus::kStopped))
+    return "";
+  int bounces = 0, first_cycle = 0, last_cycle = 0;
   double first_rad = 0.0, gap_m = 0.0;
   for (const Episode& e : run.episodes) {
-    if (e.kind != "bounce" || e.cycle < run.judged_from) continue;
-    if (bounces++ == 0) first_rad = e.start_rad;
+    if (e.kind != "bounce") continue;
+    if (bounces++ == 0) first_rad = e.start_rad, first_cycle = e.cycle;
+    last_cycle = e.cycle;
     gap_m = std::max(gap_m, e.max_gap_m);
   }
   if (bounces == 0) return "";
+  const int revolutions = last_cycle - first_cycle + 1;
   return " (the cam loses the needle in " + std::to_string(bounces) +
-         (bounces == 1 ? " bounce" : " bounces") + " after impacts, from " +
-         Fixed(first_rad / kDeg, 2) + " deg, largest gap " + Fixed(gap_m * 1e3, 4) +
-         " mm: not lift-off, as none reaches the deceleration zone)";
+         (bounces == 1 ? " bounce after an impact" : " bounces after impacts") +
+         (revolutions > 1 ? " over " + std::to_string(revolutions) + " revolutions" : "") +
+         ", from " + Fixed(first_rad / kDeg, 2) + " deg, largest gap " + Fixed(gap_m * 1e6, 2) +
+         " um: not lift-off, as none reaches the deceleration zone)";
 }
 
 std::vector<std::string> TableEndFailures(const LiftLaw& law, double top_m) {

@@ -164,10 +164,10 @@ CheckResult CheckScene(const BoundCase& c, std::shared_ptr<const LiftLaw> law,
 /// 0.040°, shorter …)" — else empty: the lift-off and an n_dyn above the rated speed agree.
 std::string ShortJumpNote(const SimulationResult& run);
 
-/// Where the rated-speed run does not lift off but its needle leaves the cam after an impact
-/// (bounces: none reaches the deceleration zone, docs/model.md §6), the words that say so —
-/// " (the cam loses the needle in 2 bounces after impacts, from -29.92 deg, …)" — else empty: a
-/// "no" beside a least contact force of 0 N reads as its contradiction without them.
+/// Where the rated-speed run, complete, does not lift off but its needle leaves the cam after
+/// an impact (bounces: none reaches the deceleration zone, docs/model.md §6), the words that say
+/// so — " (the cam loses the needle in 2 bounces after impacts, from -14.91 deg, …)" — else
+/// empty: a "no" beside a least contact force of 0 N reads as its contradiction without them.
 std::string BounceNote(const SimulationResult& run);
 
 /// Whether the coils' dynamics show harm: the surge rows' contact force, jump or stress, or the
