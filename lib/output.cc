@@ -234,6 +234,13 @@ std::string FixedOrNone(double value, int decimals) {
   return std::isfinite(value) ? Fixed(value, decimals) : std::string("none");
 }
 
+int DecimalsApart(double value, double limit, int decimals) {
+  if (!std::isfinite(value) || !std::isfinite(limit)) return decimals;
+  int d = decimals;
+  while (d < 12 && value != limit && Fixed(value, d) == Fixed(limit, d)) ++d;
+  return d;
+}
+
 int DecimalsFor(double value, int least, int significant) {
   if (!std::isfinite(value) || value == 0.0) return least;
   const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(value))));

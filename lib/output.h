@@ -84,6 +84,10 @@ std::string FixedOrNone(double value, int decimals);
 /// non-finite values.
 int DecimalsFor(double value, int least, int significant);
 
+/// At least `decimals`, and more (up to 12) while `value` and `limit` would print the same though
+/// they differ: a surge ratio of 12.97 printed "13.0 below 13" and "13.0 (>= 13) -> FAIL".
+int DecimalsApart(double value, double limit, int decimals);
+
 /// `value` to `digits` significant digits, as a stream prints it ("0.001", "3.674", "1e+09").
 std::string Significant(double value, int digits);
 

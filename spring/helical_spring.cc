@@ -5,6 +5,7 @@
 #include <string>
 
 #include "lib/name_table.h"
+#include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -179,7 +180,7 @@ std::vector<Field> HelicalFields(const HelicalSpringCheck& h) {
       {"min_clearance", kMm, h.min_clearance_m, 2},
       {"surge", kHz, h.surge_hz, 1},
       {"cam", kHz, h.cam_hz, 3},
-      {"surge_ratio", kNone, h.surge_ratio, 1},
+      {"surge_ratio", kNone, h.surge_ratio, DecimalsApart(h.surge_ratio, kMinSurgeRatio, 1)},
       TextField("stress_correction_source", StressFactorSource(h.stress_factor)),
       TextField("fatigue_criterion", CriterionInfo(h.fatigue.criterion).name),
       TextField("fatigue_source", CriterionInfo(h.fatigue.criterion).source),

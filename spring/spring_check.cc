@@ -55,7 +55,9 @@ std::vector<std::string> SpringFailures(const SpringCheckResult& r, bool surge_s
       items.push_back("coil gaps " + Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm below S_a " +
                       Fixed(h.min_clearance_m * 1e3, 2) + " mm");
     if (!h.surge_ok && surge_screen)
-      items.push_back("surge ratio " + Fixed(h.surge_ratio, 1) + " below 13");
+      items.push_back("surge ratio " +
+                      Fixed(h.surge_ratio, DecimalsApart(h.surge_ratio, kMinSurgeRatio, 1)) +
+                      " below 13");
     if (!h.fatigue_ok)
       items.push_back(std::string("fatigue: the working stroke is outside the ") +
                       CriterionInfo(h.fatigue.criterion).title + " line (n_f " +

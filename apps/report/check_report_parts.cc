@@ -115,7 +115,9 @@ std::string SpringTable(const BoundCase& c, const CheckResult& result) {
              Fixed(h.clearance_full_lift_m * 1e3, 2) + " mm, need " +
                  Fixed(h.min_clearance_m * 1e3, 2) + " mm " + Verdict(h.clearance_ok))
       << Row("helical: surge frequency",
-             Fixed(h.surge_hz, 1) + " Hz, " + Fixed(h.surge_ratio, 1) + "× the cam's " +
+             Fixed(h.surge_hz, 1) + " Hz, " +
+                 Fixed(h.surge_ratio, DecimalsApart(h.surge_ratio, kMinSurgeRatio, 1)) +
+                 "× the cam's " +
                  (ScreenWarns(result) ? std::string("warning (the coils' dynamics show no harm)")
                                       : Verdict(h.surge_ok)));
   }
@@ -150,10 +152,11 @@ std::string LimitsTable(const CheckResult& result) {
   for (const LimitRow& x : result.limits) {
     const std::string u = Escape(x.UnitSuffix());
     const bool judged = x.verdict != "not judged";
+    const int d = DecimalsApart(x.value, x.limit, 2);
     t << "<tr><td>" << Escape(x.name) << "</td><td>"
-      << (judged ? FixedOrNone(x.value, 2) + u : std::string("—")) << "</td><td>"
-      << (x.at_most ? "≤ " : "≥ ") << (std::isfinite(x.limit) ? FixedOrNone(x.limit, 2) + u : "—")
-      << "</td><td>" << (judged ? FixedOrNone(x.margin, 2) + u : std::string("—")) << "</td><td>"
+      << (judged ? FixedOrNone(x.value, d) + u : std::string("—")) << "</td><td>"
+      << (x.at_most ? "≤ " : "≥ ") << (std::isfinite(x.limit) ? FixedOrNone(x.limit, d) + u : "—")
+      << "</td><td>" << (judged ? FixedOrNone(x.margin, d) + u : std::string("—")) << "</td><td>"
       << (!judged                  ? std::string("not judged")
           : x.verdict == "warning" ? std::string("warning")
                                    : Verdict(x.verdict == "pass"))

@@ -27,11 +27,12 @@ std::string CheckText(const BoundCase& c, const CheckResult& result, const std::
     out << "limits (value, limit, margin, verdict):\n";
     for (const LimitRow& x : result.limits) {
       const std::string u = x.UnitSuffix();
+      const int d = DecimalsApart(x.value, x.limit, 2);
       out << "  " << x.name << ": "
           << (x.verdict == "not judged"
                   ? "not judged (" + x.note + ")"
-                  : FixedOrNone(x.value, 2) + u + (x.at_most ? " <= " : " >= ") +
-                        FixedOrNone(x.limit, 2) + u + ", margin " + FixedOrNone(x.margin, 2) + u +
+                  : FixedOrNone(x.value, d) + u + (x.at_most ? " <= " : " >= ") +
+                        FixedOrNone(x.limit, d) + u + ", margin " + FixedOrNone(x.margin, d) + u +
                         ", " + x.verdict)
           << '\n';
     }

@@ -33,8 +33,9 @@ std::string RowText(const std::string& name, double value, double limit, bool at
                     double margin, const std::string& unit, const std::string& verdict) {
   const std::string u = unit.empty() ? "" : " " + unit;
   if (!std::isfinite(value)) return "  " + name + ": none at any deflection, " + verdict + "\n";
-  return "  " + name + ": " + Fixed(value, 2) + u + (at_most ? " <= " : " >= ") + Fixed(limit, 2) +
-         u + ", margin " + Fixed(margin, 2) + u + ", " + verdict + "\n";
+  const int d = DecimalsApart(value, limit, 2);
+  return "  " + name + ": " + Fixed(value, d) + u + (at_most ? " <= " : " >= ") + Fixed(limit, d) +
+         u + ", margin " + Fixed(margin, d) + u + ", " + verdict + "\n";
 }
 
 // The JSON object of a sizing (size --json).

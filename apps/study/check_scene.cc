@@ -29,9 +29,10 @@ SweepRange DefaultSweepRange(const BoundCase& c, double rated_rpm, double n_qs_r
 
 std::string FailureLine(const LimitRow& x) {
   const std::string u = x.UnitSuffix();
-  std::string line = "limits: " + x.name + ": measured " + Fixed(x.value, 2) + u + ", limit " +
-                     (x.at_most ? "<= " : ">= ") + Fixed(x.limit, 2) + u + ", margin " +
-                     Fixed(x.margin, 2) + u;
+  const int d = DecimalsApart(x.value, x.limit, 2);
+  std::string line = "limits: " + x.name + ": measured " + Fixed(x.value, d) + u + ", limit " +
+                     (x.at_most ? "<= " : ">= ") + Fixed(x.limit, d) + u + ", margin " +
+                     Fixed(x.margin, d) + u;
   if (!x.note.empty()) line += " (" + x.note + ")";
   return line + "; rule: " + x.source;
 }

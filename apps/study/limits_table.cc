@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 #include <utility>
 
 #include "apps/case/case_profile.h"
@@ -340,8 +341,14 @@ void JudgeSurgeRatio(const Judging& j, const HelicalSpringCheck& h, SpringRows& 
     // are those of its other sub-checks (CheckScene lists them after the limits).
     r.spring->failures = SpringFailures(*r.spring, /*surge_screen=*/false);
     r.spring->pass = r.spring->failures.empty();
-  } else {
-    x.ratio.note += "; the coils' dynamics show harm (the surge rows)";
+  } else {  // name the rows that fail (the coil gap alone was once called "the surge rows")
+    std::vector<std::string> rows;
+    for (const LimitRow* row : {&x.surge_force, &x.surge_jump, &x.surge_stress, &x.gap})
+      if (row->verdict == "fail") rows.push_back(row->name);
+    std::string names;
+    for (size_t i = 0; i < rows.size(); ++i)
+      names += (i == 0 ? "" : i + 1 == rows.size() ? " and " : ", ") + rows[i];
+    x.ratio.note += "; the coils' dynamics show harm (" + names + ")";
   }
 }
 

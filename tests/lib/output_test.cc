@@ -119,6 +119,16 @@ TEST(OutputTest, DecimalsForShowTheSignificantDigitsAsked) {
   EXPECT_EQ(DecimalsFor(1e-300, 2, 2), 15);
 }
 
+// A value beside its limit never prints as the limit ("13.0 below 13" for 12.97).
+TEST(OutputTest, DecimalsApartSetAValueApartFromItsLimit) {
+  EXPECT_EQ(DecimalsApart(12.97, 13.0, 1), 2);
+  EXPECT_EQ(DecimalsApart(12.5, 13.0, 1), 1);
+  EXPECT_EQ(DecimalsApart(13.0, 13.0, 1), 1);
+  EXPECT_EQ(DecimalsApart(30.55551, 30.55559, 2), 4);
+  EXPECT_EQ(DecimalsApart(NAN, 13.0, 2), 2);
+  EXPECT_EQ(DecimalsApart(13.0 - 1e-15, 13.0, 2), 12);
+}
+
 }  // namespace
 }  // namespace needle
 

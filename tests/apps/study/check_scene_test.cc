@@ -543,6 +543,34 @@ TEST(CheckSceneSurgeTest, TheFrequencyScreenFailsWhereTheDynamicsShowHarm) {
        << ratio.value << " below 13";
   EXPECT_NE(std::find(r.failing.begin(), r.failing.end(), item.str()), r.failing.end())
       << item.str();
+  // The rows that show the harm are named (a new user's engine read "the surge rows" where the
+  // coil gap alone failed).
+  EXPECT_EQ(ratio.note,
+            "f_1 87.9 Hz, cam 7.08 Hz; the coils' dynamics show harm (least contact force with "
+            "the coils' surge, % of P0 + k y - F_g, longest jump at f n with the coils' surge and "
+            "coil gap in the run (worst segment x N))");
+}
+
+// A new user's engine (stop 93, helper-57): f_1/f_cam = 12.97 printed "ratio 13.0 (>= 13) ->
+// FAIL" and "surge ratio 13.0 below 13". A value beside its limit prints with the decimals that
+// set them apart: the same spring's 14 coils put f_1/f_cam within 0.05 of 13 here.
+TEST(CheckSceneSurgeTest, ASurgeRatioJustBelow13NeverPrintsAs13) {
+  Case c = LoadCase(kCases + "basu-example1-surge.toml");
+  CheckOptions o;
+  o.record_series = false;
+  const CheckResult nominal = CheckScene(Bind(c), o);
+  const double ratio = Row(nominal, "surge_frequency_ratio").value;
+  o.speed_rpm = 125.0 * ratio / 12.97;  // the cam frequency that makes f_1/f_cam 12.97
+  const CheckResult r = CheckScene(Bind(c), o);
+  const LimitRow& row = Row(r, "surge_frequency_ratio");
+  ASSERT_NEAR(row.value, 12.97, 1e-9);
+  EXPECT_EQ(row.verdict, "fail");
+  EXPECT_TRUE(Contains(r.failing, "spring check: helical spring: surge ratio 12.97 below 13"))
+      << ::testing::PrintToString(r.failing);
+  EXPECT_TRUE(Contains(r.failing,
+                       "limits: first surge mode over the cam frequency f_1/f_cam: measured "
+                       "12.97, limit >= 13.00, margin -0.03"))
+      << ::testing::PrintToString(r.failing);
 }
 
 }  // namespace
