@@ -192,6 +192,13 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
   return false;
 }
 
+double Recorder::ForceShare(double fc, double u, double y) const {
+  if (seated_ || !(u > kSeparationLift_m && y > kSeparationLift_m)) return INFINITY;
+  const TrainParameters& p = train_.parameters();
+  const double hold = RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(y);
+  return hold > 0.0 ? std::max(0.0, fc) / hold : 0.0;
+}
+
 bool Recorder::SampleMayChange(double y, std::optional<double> covering, double u_hi, double fc_lo,
                                double fc_hi, double fs, const StretchRanges& stretch) const {
   // The sample as a stretch of one point; the covering sample stands for its lift where the lift

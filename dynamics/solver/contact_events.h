@@ -219,6 +219,10 @@ class Recorder {
   /// (0 where that load is not positive); NaN when the needle was never lifted. Its crank
   /// angle, rad, and the force there, N.
   double min_contact_force_ratio() const { return lifted_ ? min_ratio_ : NAN; }
+  /// The contact force `fc` (N) over the holding load P₀ + k y − F_g at lift `y` (m), cam input
+  /// `u` (m), as min_contact_force_ratio records it; +inf where it records none (the cam or the
+  /// needle within 1 µm of the seat, or the needle seated past the cam's top).
+  double ForceShare(double fc, double u, double y) const;
   double min_contact_force_ratio_rad() const { return min_ratio_rad_; }
   double min_contact_force_ratio_force_N() const { return min_ratio_force_; }
   /// The largest force of the spring on the needle, N (P₀ + k y, or the chain's S₁).

@@ -291,13 +291,15 @@ class EventDriver {
   // RecordExtremes samples a stretch at this many intervals.
   static constexpr int kStretchSamples = 16;
   // RecordExtremes' samples of a stretch: their times, and at each the values ExtremeValue
-  // takes (which = 0 … 3).
+  // takes (which = 0 … 4).
+  static constexpr int kExtremes = 5;
   struct StretchSamples {
     std::array<double, kStretchSamples + 1> ts;
-    std::array<std::array<double, kStretchSamples + 1>, 4> f;
+    std::array<std::array<double, kStretchSamples + 1>, kExtremes> f;
   };
-  // At x: the three forces, each signed so that its extreme is a minimum, and (which = 3) a
-  // chain's largest segment compression (the least coil gap, where the run reports it), negated.
+  // At x: the three forces, each signed so that its extreme is a minimum, (which = 3) a chain's
+  // largest segment compression (the least coil gap, where the run reports it), negated, and
+  // (which = 4) the contact force's share of the holding load (Recorder::ForceShare).
   double ExtremeValue(int which, double t, const TrainState& x) const;
   // The state the cam and seat forces read at t: Motion(t), or a chain piece's needle alone
   // (Motion()'s bits for y and ẏ, the coils at 0), which is all linear contact laws read.
@@ -305,8 +307,8 @@ class EventDriver {
   // Where a sampled value, which = first … last − 1, passes its record (`record`, signed as
   // ExtremeValue) inside the stretch or next to a chain's end sample: its minimum located by
   // Brent's method between the samples around it, and recorded.
-  void LocateExtremes(const StretchSamples& samples, const std::array<double, 4>& record, int first,
-                      int last);
+  void LocateExtremes(const StretchSamples& samples, const std::array<double, kExtremes>& record,
+                      int first, int last);
   // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
   // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
   // moving sample and the first at rest.
