@@ -247,6 +247,13 @@ int DecimalsFor(double value, int least, int significant) {
   return std::max(least, std::min(15, significant - 1 - magnitude));
 }
 
+std::string ListText(const std::vector<std::string>& items) {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+  return out;
+}
+
 std::string Significant(double value, int digits) {
   std::ostringstream out;
   out << std::setprecision(digits) << value;

@@ -9,6 +9,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace needle {
 
@@ -87,6 +88,9 @@ int DecimalsFor(double value, int least, int significant);
 /// At least `decimals`, and more (up to 12) while `value` and `limit` would print the same though
 /// they differ: a surge ratio of 12.97 printed "13.0 below 13" and "13.0 (>= 13) -> FAIL".
 int DecimalsApart(double value, double limit, int decimals);
+
+/// The items as a sentence lists them: "a", "a and b", "a, b and c".
+std::string ListText(const std::vector<std::string>& items);
 
 /// `value` to `digits` significant digits, as a stream prints it ("0.001", "3.674", "1e+09").
 std::string Significant(double value, int digits);

@@ -20,8 +20,6 @@
 #include "lib/kinematics.h"
 #include "lib/output.h"
 #include "lib/units.h"
-#include "spring/helical_spring.h"
-#include "spring/resonance.h"
 
 namespace needle::bench {
 
@@ -321,16 +319,12 @@ std::string LongChainRow(int repeats) {
   };
   for (const ChainCase& cc : {ChainCase{"basu-example1-surge", 520.0},
                               ChainCase{"engine-2000rpm-surging-spring", 2000.0}}) {
-    const BoundCase c = BindBundled(cc.name + ".toml");
+    Case chain = LoadCase(CaseDir() + cc.name + ".toml");
     for (const int masses : {5, 10, 20, 40}) {
-      // The chain as the surge study makes it (apps/study/check_scene.cc, StudySurge).
-      Scene scene = *c.scene;
-      scene.train.coil_masses = masses;
-      scene.train.spring_mass_kg = ActiveSpringMassKg(*c.spring->helical);
-      scene.train.surge_damping_ratio = c.spring->surge_damping_ratio;
-      const HelicalSpringCheck lengths = CheckHelicalSpring(
-          *c.spring->helical, c.spring->preload_N, 0.0, c.engine.speed_rpm, c.engine.cycle);
-      scene.train.coil_travel_m = lengths.length_preload_m - lengths.solid_length_m;
+      // The chain as a case of `masses` coil masses binds it (its mass, damping and travel).
+      chain.spring->masses = masses;
+      const BoundCase c = Bind(chain);
+      const Scene& scene = *c.scene;
       struct Run {
         std::string method;
         double rtol;

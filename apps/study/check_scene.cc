@@ -52,7 +52,10 @@ std::string BounceNote(const SimulationResult& run) {
   double first_rad = 0.0, gap_m = 0.0;
   for (const Episode& e : run.episodes) {
     if (e.kind != "bounce") continue;
-    if (bounces++ == 0) first_rad = e.start_rad, first_cycle = e.cycle;
+    if (bounces++ == 0) {
+      first_rad = e.start_rad;
+      first_cycle = e.cycle;
+    }
     last_cycle = e.cycle;
     gap_m = std::max(gap_m, e.max_gap_m);
   }
@@ -186,10 +189,7 @@ std::string MissingSections(const BoundCase& c, bool train) {
   if (!c.needle) sections.push_back("[needle]");
   if (!c.spring) sections.push_back("[spring]");
   if (train && !c.train) sections.push_back("[train]");
-  std::string out;
-  for (size_t i = 0; i < sections.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == sections.size() ? " and " : ", ") + sections[i];
-  return "the case has no " + out + (sections.size() > 1 ? " sections" : " section");
+  return "the case has no " + ListText(sections) + (sections.size() > 1 ? " sections" : " section");
 }
 
 // The dynamics: one run at the rated speed, the overspeed sweep and the surge study (beside

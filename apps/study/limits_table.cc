@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "apps/case/case_profile.h"
 #include "lib/output.h"
@@ -345,10 +345,7 @@ void JudgeSurgeRatio(const Judging& j, const HelicalSpringCheck& h, SpringRows& 
     std::vector<std::string> rows;
     for (const LimitRow* row : {&x.surge_force, &x.surge_jump, &x.surge_stress, &x.gap})
       if (row->verdict == "fail") rows.push_back(row->name);
-    std::string names;
-    for (size_t i = 0; i < rows.size(); ++i)
-      names += (i == 0 ? "" : i + 1 == rows.size() ? " and " : ", ") + rows[i];
-    x.ratio.note += "; the coils' dynamics show harm (" + names + ")";
+    x.ratio.note += "; the coils' dynamics show harm (" + ListText(rows) + ")";
   }
 }
 

@@ -182,21 +182,27 @@ bool Recorder::MayChange(const StretchRanges& r, bool lift_covered, bool reporte
     if (!lifted_) return true;
     const double f_lo = std::max(0.0, r.fc_lo);
     if (!seated_ && f_lo < min_fc_lift_) return true;
-    const TrainParameters& p = train_.parameters();
-    const RigidTrain rigid{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N};
-    const double hold_lo = std::min(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
-    const double hold_hi = std::max(rigid.SpringForceN(r.y_lo), rigid.SpringForceN(r.y_hi));
+    const double hold_lo = std::min(HoldingLoadN(r.y_lo), HoldingLoadN(r.y_hi));
+    const double hold_hi = std::max(HoldingLoadN(r.y_lo), HoldingLoadN(r.y_hi));
     const double ratio_lo = hold_lo > 0.0 ? f_lo / hold_hi : 0.0;
     if (all && !seated_ && ratio_lo < min_ratio_) return true;
   }
   return false;
 }
 
+double Recorder::HoldingLoadN(double y) const {
+  const TrainParameters& p = train_.parameters();
+  return RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(y);
+}
+
+double Recorder::HoldShare(double fc, double y) const {
+  const double hold = HoldingLoadN(y);
+  return hold > 0.0 ? std::max(0.0, fc) / hold : 0.0;
+}
+
 double Recorder::ForceShare(double fc, double u, double y) const {
   if (seated_ || !(u > kSeparationLift_m && y > kSeparationLift_m)) return INFINITY;
-  const TrainParameters& p = train_.parameters();
-  const double hold = RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(y);
-  return hold > 0.0 ? std::max(0.0, fc) / hold : 0.0;
+  return HoldShare(fc, y);
 }
 
 bool Recorder::SampleMayChange(double y, std::optional<double> covering, double u_hi, double fc_lo,
@@ -267,10 +273,7 @@ void Recorder::Update(double t, const TrainState& x, const Phase& phase, const C
     lifted_ = true;
     const double f = std::max(0.0, fc);
     if (!seated_) min_fc_lift_ = std::min(min_fc_lift_, f);
-    const TrainParameters& p = train_.parameters();
-    const double hold =
-        RigidTrain{p.mass_kg, p.preload_N, p.rate_N_m, p.gas_force_N}.SpringForceN(x[0]);
-    const double ratio = hold > 0.0 ? f / hold : 0.0;
+    const double ratio = HoldShare(fc, x[0]);
     if (!seated_ && ratio < min_ratio_) {
       min_ratio_ = ratio;
       min_ratio_rad_ = th;

@@ -250,6 +250,11 @@ class Recorder {
   double longest_jump_rad() const;
 
  private:
+  /// The holding load P₀ + k y − F_g at lift `y` (m), N: what the least contact force's share
+  /// is taken of (RigidTrain::SpringForceN).
+  double HoldingLoadN(double y) const;
+  /// `fc` (N, a pulling one as 0) over the holding load at `y`; 0 where that load is not positive.
+  double HoldShare(double fc, double y) const;
   /// A series point: kept (with a sink, until committed); throws std::logic_error for one
   /// before the committed time (a driver that broke its promise).
   void Keep(const SeriesPoint& p);

@@ -119,6 +119,13 @@ TEST(OutputTest, DecimalsForShowTheSignificantDigitsAsked) {
   EXPECT_EQ(DecimalsFor(1e-300, 2, 2), 15);
 }
 
+TEST(OutputTest, ListTextJoinsAsASentenceDoes) {
+  EXPECT_EQ(ListText({}), "");
+  EXPECT_EQ(ListText({"[needle]"}), "[needle]");
+  EXPECT_EQ(ListText({"a", "b"}), "a and b");
+  EXPECT_EQ(ListText({"a", "b", "c"}), "a, b and c");
+}
+
 // A value beside its limit never prints as the limit ("13.0 below 13" for 12.97).
 TEST(OutputTest, DecimalsApartSetAValueApartFromItsLimit) {
   EXPECT_EQ(DecimalsApart(12.97, 13.0, 1), 2);
