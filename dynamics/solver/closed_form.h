@@ -122,6 +122,10 @@ class ClosedFormPiece {
   /// the lifts (m) and the velocities (m/s), which bound |h_i(τ)| and |h_i′(τ)| at every τ ≥ 0
   /// (each mode decays). Made once a piece.
   std::array<double, 2> ChainStartRinging() const;
+  /// A chain's needle: Σ_k |α_k| |λ_k|² and Σ_k |α_k| |λ_k|³, which bound the homogeneous part's
+  /// |h₀″(τ)| (m/s²) and |h₀‴(τ)| (m/s³) at every τ ≥ 0 (each mode decays): under a constant
+  /// forcing, the rates of the needle's speed and acceleration.
+  std::array<double, 2> ChainNeedleRateBounds() const;
   /// y and ẏ at t (Motion's first two, without ÿ).
   std::array<double, 2> LiftAndSpeed(double t) const { return PositionVelocity(t - t0_); }
   /// The cam input u and its rate u̇ at t on the piece's own polynomials (the train's own

@@ -108,6 +108,17 @@ std::array<double, 2> ClosedFormPiece::ChainStartRinging() const {
   return *ringing_;
 }
 
+std::array<double, 2> ClosedFormPiece::ChainNeedleRateBounds() const {
+  const Eigen::VectorXcd& lambda = chain_->Lambda();
+  std::array<double, 2> sums{0.0, 0.0};
+  for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+    const double r = std::abs(lambda[k]), a2 = alpha_sizes_[k] * r * r;
+    sums[0] += a2;
+    sums[1] += a2 * r;
+  }
+  return sums;
+}
+
 const ClosedFormPiece::ChainNeedle& ClosedFormPiece::ChainAt(double tau) const {
   if (tau == chain_at_.tau) return chain_at_;
   const Eigen::VectorXcd& lambda = chain_->Lambda();

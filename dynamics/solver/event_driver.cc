@@ -149,6 +149,10 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
     return recorder_.AtRest(t, Motion(t), phase);
   };
   if (!(hi > lo)) return at_rest(hi) ? std::optional<double>(hi) : std::nullopt;
+  if (chain && piece->ForcingConstant() && piece->InputConstant()) {
+    if (const std::optional<double> rest = FirstChainRest(*piece, lo, hi, phase)) return rest;
+    if (lo > hi) return std::nullopt;  // no time in [lo, hi] at rest
+  }
   constexpr int kSamples = 64;
   double moving = lo;
   for (int k = 0; k <= kSamples; ++k) {
@@ -164,6 +168,37 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
       (at_rest(m) ? b : a) = m;
     }
     return b;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> EventDriver::FirstChainRest(const ClosedFormPiece& piece, double& lo,
+                                                  double hi, const Phase& phase) {
+  // |ẏ| and the net force |m ÿ| change no faster than B₂ and m B₃ (constant forcing: the modal
+  // sums' alone). From t, where |ẏ| exceeds v_r by d_v or |m ÿ| exceeds F_r by d_F, no time
+  // before t + max(d_v / B₂, d_F / (m B₃)) is at rest.
+  const auto [b2, b3] = piece.ChainNeedleRateBounds();
+  const double m = train_.NeedleMassKg(), f_r = recorder_.RestForceTolerance();
+  // A window narrower than 1e-7 of the fastest half oscillation may pass (a needle skimming the
+  // box's edge would take steps without end); inside the box but not at rest (in flight), the
+  // sampled search's step.
+  const double least = 1e-7 * std::min(piece.LongestStep(), hi - lo);
+  const double inside = (hi - lo) / 64.0;
+  constexpr int kMaxSteps = 20000;  // then the sampled search from where this stopped
+  for (int k = 0; k < kMaxSteps && lo <= hi; ++k) {
+    const std::array<double, 3> yva = piece.Motion(lo);
+    const double d_v = std::abs(yva[1]) - kRestSpeed_m_s, d_f = m * std::abs(yva[2]) - f_r;
+    if (!(d_v > 0.0 || d_f > 0.0)) {
+      if (recorder_.AtRest(lo, Motion(lo), phase)) return lo;
+      lo += inside;
+      continue;
+    }
+    const double wait = std::max(d_v > 0.0 ? d_v / b2 : 0.0, d_f > 0.0 ? d_f / (m * b3) : 0.0);
+    if (!(wait < std::numeric_limits<double>::infinity())) {  // never at rest on the piece
+      lo = std::numeric_limits<double>::infinity();
+      return std::nullopt;
+    }
+    lo += std::max(wait, least);
   }
   return std::nullopt;
 }

@@ -311,8 +311,14 @@ class EventDriver {
                       int first, int last);
   // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
   // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
-  // moving sample and the first at rest.
+  // moving sample and the first at rest (a chain's closed form: FirstChainRest first).
   std::optional<double> FirstRest(double lo, double hi, const Phase& phase);
+  // The same on a coil chain's closed form under a constant forcing and input, by steps that
+  // pass no time at rest however briefly (the needle's rate bounds,
+  // ClosedFormPiece::ChainNeedleRateBounds): the time, or nullopt with `lo` moved past hi
+  // (none at rest) or to where its step budget ended.
+  std::optional<double> FirstChainRest(const ClosedFormPiece& piece, double& lo, double hi,
+                                       const Phase& phase);
 
   const NeedleTrain& train_;
   Recorder& recorder_;

@@ -637,6 +637,25 @@ TEST(SimulationTest, AutoTakesATimeStepperForACoilChainAndSaysWhy) {
             "Dormand–Prince)");
 }
 
+TEST(SimulationTest, TheClosedFormFindsAChainsRestWhereDopri5AtRtol1e12Does) {
+  // A needle ringing on its seat enters the rest box (|ẏ| ≤ 1e-4 m/s, |F| ≤ 1e-3 of the load)
+  // for a moment at a corner, cycles before it stays: 64 samples of a closed-form piece passed
+  // such windows (stop 93's new user: a later rest, other records). The rate bounds
+  // (EventDriver::FirstChainRest) step past none. The engine of cases/, lightly damped (seat and
+  // cam ζ 0.02, surge ζ 0.002), 5 coil masses, at 2600 rpm: 64 samples ended at 131.288°.
+  Case c = LoadCase(kCases + "engine-2000rpm-surging-spring.toml");
+  c.spring->masses = 5;
+  c.spring->surge_damping_ratio = 0.002;
+  c.train->contact_damping_ratio = 0.02;
+  c.train->seat_damping_ratio = 0.02;
+  const Scene s = MakeScene(c);
+  const SimulationResult exact = Simulate(s, 2600.0, Options("exact", 1e-8));
+  const SimulationResult reference = Simulate(s, 2600.0, Options("dopri5", 1e-12));
+  ASSERT_EQ(exact.status, RunStatus::kComplete);
+  EXPECT_NEAR(exact.run_end_rad / kDeg, reference.run_end_rad / kDeg, 1e-6);
+  EXPECT_NEAR(exact.run_end_rad / kDeg, 114.75777, 1e-4);
+}
+
 }  // namespace
 }  // namespace needle
 
