@@ -1,6 +1,6 @@
 // Breaks found in a lift table: where s'' jumps between two smooth pieces (FindBreaks,
 // lift_data.h; docs/model.md §2), by cubics fitted on each side of every reading.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -27,7 +27,7 @@ SidePolynomial<Degree> FitSide(const std::vector<double>& x, const std::vector<d
   s.h = h;
   const Eigen::MatrixXd v = SideBasis<Degree>(x, from, to, c, h);
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, static_cast<Eigen::Index>(to - from));
-  s.a = v.colPivHouseholderQr().solve(r);
+  s.a = QrSolve(v, r);
   if (sum_squares) *sum_squares = (v * s.a - r).squaredNorm();
   return s;
 }
@@ -45,8 +45,7 @@ double DerivativeNoise(const std::vector<double>& x, size_t from, size_t to, dou
     for (int j = 0; j < order; ++j) falling *= (m - j);
     d(m) = falling * std::pow(u, m - order) / std::pow(h, order);
   }
-  const Eigen::MatrixXd vtv = v.transpose() * v;
-  const Eigen::VectorXd g = v * vtv.ldlt().solve(d);  // weights on the readings
+  const Eigen::VectorXd g = v * LdltSolve(Gram(v), d);  // weights on the readings
   return g.norm();
 }
 

@@ -1,6 +1,6 @@
 // Dwells of an exact or rounded table (FindDwells, lib/lift_data.h): a run of equal readings at
 // a top or a bottom that one smooth law through it and the readings beside it misfits.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,7 +22,7 @@ bool QuinticMisfits(const std::vector<double>& x, const std::vector<double>& y, 
   const Eigen::MatrixXd v = PowerBasis(x, from, to + 1, c, h, 5);
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + from,
                                             static_cast<Eigen::Index>(to + 1 - from));
-  const Eigen::VectorXd a = v.colPivHouseholderQr().solve(r);
+  const Eigen::VectorXd a = QrSolve(v, r);
   return (v * a - r).cwiseAbs().maxCoeff() > allowed;
 }
 
@@ -55,13 +55,13 @@ bool JumpsIntoDwell(const std::vector<double>& x, const std::vector<double>& y, 
       r(i) = y[from + i] - level;
     }
     const Eigen::MatrixXd with = u.leftCols(3), without = u.rightCols(3);
-    const Eigen::VectorXd a = with.colPivHouseholderQr().solve(r);  // a₂, a₃, a₄
+    const Eigen::VectorXd a = QrSolve(with, r);  // a₂, a₃, a₄
     const double with_jump = (with * a - r).squaredNorm();
     if (with_jump < free) {
       free = with_jump;
       jump = 2.0 * a[0] / (step * step);
     }
-    flat = std::min(flat, (without * without.colPivHouseholderQr().solve(r) - r).squaredNorm());
+    flat = std::min(flat, (without * QrSolve(without, r) - r).squaredNorm());
   }
   const double dof = static_cast<double>(kJumpReadings) - 4.0;  // three coefficients and ξ
   const double span = x[end] - x[far], height = std::abs(level - y[far]);

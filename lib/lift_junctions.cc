@@ -1,6 +1,6 @@
 // Junctions of a coarse exact table (FindJunctions, lib/lift_data.h): where the quintics fitted
 // to the readings on either side of a reading disagree on s''.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
@@ -43,13 +43,12 @@ SideQuintic FitQuintic(const std::vector<double>& x, const std::vector<double>& 
   q.h = std::max(std::abs(x[from] - c), std::abs(x[to - 1] - c));
   const Eigen::MatrixXd v = SideBasis<5>(x, from, to, c, q.h);
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, static_cast<Eigen::Index>(to - from));
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(v);
-  q.a = qr.solve(r);
+  q.a = QrSolve(v, r);
   // s''(c) = 2 a_2 / h²: its weights are row 2 of the pseudo-inverse, (VᵀV)⁻¹Vᵀ.
-  const Eigen::MatrixXd vtv = v.transpose() * v;
   Eigen::Matrix<double, 6, 1> e = Eigen::Matrix<double, 6, 1>::Zero();
   e(2) = 2.0 / (q.h * q.h);
-  q.w2 = v * vtv.ldlt().solve(e);
+  const Eigen::Matrix<double, 6, 1> weights = LdltSolve(Gram(v), e);
+  q.w2 = v * weights;
   return q;
 }
 

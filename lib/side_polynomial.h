@@ -1,11 +1,13 @@
 #pragma once
 /// @file
-/// Internal to lib/'s break search (lift_breaks.cc, lift_junctions.cc) and kink search
-/// (reading_kinks.cc): a polynomial fitted to the readings on one side of a break, the root
-/// finder that meets two of them, and the residuals of polynomials kinked at given angles.
+/// Internal to lib/'s break search (lift_breaks.cc, lift_junctions.cc, lift_dwells.cc) and kink
+/// search (reading_kinks.cc): a polynomial fitted to the readings on one side of a break, the
+/// root finder that meets two of them, and the residuals of polynomials kinked at given angles.
+/// Their dense decompositions (QR, LDLT, the Gram product) are made in side_polynomial.cc, once:
+/// each of the four files instantiated them itself, 28–45 s of clang's time apiece in the fuzz
+/// build (scripts/fuzz.sh), 9 s each without.
 
 #include <Eigen/Core>
-#include <Eigen/QR>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -32,6 +34,14 @@ struct SidePolynomial {
   }
 };
 
+/// The least-squares coefficients a of v a ≈ r (column-pivoting Householder QR). The dense
+/// decompositions of the break search live in side_polynomial.cc, made once for its four users.
+Eigen::VectorXd QrSolve(const Eigen::MatrixXd& v, const Eigen::Ref<const Eigen::VectorXd>& r);
+/// vᵀv.
+Eigen::MatrixXd Gram(const Eigen::MatrixXd& v);
+/// x of a x = b, a symmetric and positive semi-definite (LDLT).
+Eigen::VectorXd LdltSolve(const Eigen::MatrixXd& a, const Eigen::Ref<const Eigen::VectorXd>& b);
+
 /// The basis u^k, k = 0 … `degree`, u = (θ − c)/h, at readings [from, to) of x: a row a reading.
 inline Eigen::MatrixXd PowerBasis(const std::vector<double>& x, size_t from, size_t to, double c,
                                   double h, int degree) {
@@ -56,27 +66,9 @@ Eigen::MatrixXd SideBasis(const std::vector<double>& x, size_t from, size_t to, 
 /// `kinks_rad`, the truncated powers (θ − ξ)ᵏ₊, k = 3 … `kink_degree`: polynomials of degree
 /// `degree` that meet at each ξ with equal s, s' and s'' (a kink of s'', s''' and above jumping).
 /// `kink_degree` ≤ `degree`.
-inline double KinkedSquares(const std::vector<double>& x, const std::vector<double>& y, size_t from,
-                            size_t to, int degree, const std::vector<double>& kinks_rad,
-                            int kink_degree = 3) {
-  const int per_kink = kink_degree - 2;
-  const int columns = degree + 1 + per_kink * static_cast<int>(kinks_rad.size());
-  assert(to >= from + 2 && per_kink >= 1 && to - from >= static_cast<size_t>(columns));
-  const double c = 0.5 * (x[from] + x[to - 1]), h = 0.5 * (x[to - 1] - x[from]);
-  const Eigen::Index n = static_cast<Eigen::Index>(to - from);
-  Eigen::MatrixXd v(n, columns);
-  v.leftCols(degree + 1) = PowerBasis(x, from, to, c, h, degree);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double u = (x[from + static_cast<size_t>(i)] - c) / h;
-    int col = degree + 1;
-    for (const double kink : kinks_rad) {
-      const double past = std::max(0.0, u - (kink - c) / h);
-      for (int k = 0; k < per_kink; ++k) v(i, col++) = std::pow(past, 3 + k);
-    }
-  }
-  const Eigen::Map<const Eigen::VectorXd> r(y.data() + from, n);
-  return (v * v.colPivHouseholderQr().solve(r) - r).squaredNorm();
-}
+double KinkedSquares(const std::vector<double>& x, const std::vector<double>& y, size_t from,
+                     size_t to, int degree, const std::vector<double>& kinks_rad,
+                     int kink_degree = 3);
 
 /// A root of f on [lo, hi] by sampling (64 steps) and bisection; nullopt when f keeps its sign.
 template <class F>
