@@ -55,7 +55,9 @@ Bhandari1011 MakeBhandari1011() {
   b.duty.speed_rpm = 0.0;             // no surge rule
   b.duty.min_gap_m = 7e-3;            // (Nt − 1)·1 mm with Nt = 8
   const double load = b.load_N;
-  b.duty.preload = [load](double, double) { return PreloadNeed{load, "the clutch's load"}; };
+  b.duty.preload = [load](double, double) {
+    return PreloadNeed{load, "the clutch's load", std::nullopt, ""};
+  };
   return b;
 }
 
@@ -102,7 +104,8 @@ SizingDuty ValveDuty() {
   d.preload_floor_N = 300.0;  // the screen before the preload rule
   d.preload = [](double rate, double spring_mass) {
     const double inertia = 1.5 * (0.2 + spring_mass / 3.0) * 2500.0 - rate * 2e-3;
-    return inertia > 300.0 ? PreloadNeed{inertia, "inertia"} : PreloadNeed{300.0, "floor"};
+    return inertia > 300.0 ? PreloadNeed{inertia, "inertia", std::nullopt, ""}
+                           : PreloadNeed{300.0, "floor", std::nullopt, ""};
   };
   return d;
 }

@@ -1186,8 +1186,9 @@ TEST(CaseFileTest, EveryRangeOfTheTableIsEnforcedOnItsKey) {
     // Inside the range (its middle, or its upper end) the fixture itself is taken.
     std::ostringstream v;
     v << (r.lo > 0.0 ? std::sqrt(r.lo * r.hi) : r.lo < 0.0 ? 0.0 : r.hi) / r.unit_si;
-    if (!(section == "lift" && key == "lift_mm") && section != "overspeed")
+    if (!(section == "lift" && key == "lift_mm") && section != "overspeed") {
       EXPECT_EQ(Error(WithKey(k, key + " = " + v.str())), "(no error)") << key << " = " << v.str();
+    }
   }
   EXPECT_GT(tried, 80);
   // Every physical key (a key with unit suffixes) is declared with its range, but those

@@ -244,9 +244,15 @@ TEST(SpringSizingSceneTest, BhandariExample10_4PosedAsADesignProblem) {
   // Judged at P2 = 300 N as the book judges it: tau = K_w 8 P2 D/(pi d^3) = 358.9 MPa.
   const double k_w = 23.0 / 20.0 + 0.615 / 6.0;
   for (const SizingRule& x : s.rules) {
-    if (x.key == "stress") EXPECT_NEAR(x.value, k_w * 8 * 300 * 24 / (kPi * 64), 1e-6);
-    if (x.key == "preload") EXPECT_LT(x.limit, 150.0);  // the light needle's duty asks less
-    if (x.key == "open_load") EXPECT_NEAR(x.value, 150 + s.rate_N_m * 5e-3, 1e-9);
+    if (x.key == "stress") {
+      EXPECT_NEAR(x.value, k_w * 8 * 300 * 24 / (kPi * 64), 1e-6);
+    }
+    if (x.key == "preload") {
+      EXPECT_LT(x.limit, 150.0);  // the light needle's duty asks less
+    }
+    if (x.key == "open_load") {
+      EXPECT_NEAR(x.value, 150 + s.rate_N_m * 5e-3, 1e-9);
+    }
   }
   EXPECT_EQ(r.stroke_m, 5e-3);
   EXPECT_NE(r.space_note.find("the stated wire (R_m 1370 MPa, G 81.4 GPa)"), std::string::npos)
