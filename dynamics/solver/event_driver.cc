@@ -179,26 +179,31 @@ std::optional<double> EventDriver::FirstChainRest(const ClosedFormPiece& piece, 
   // before t + max(d_v / B₂, d_F / (m B₃)) is at rest.
   const auto [b2, b3] = piece.ChainNeedleRateBounds();
   const double m = train_.NeedleMassKg(), f_r = recorder_.RestForceTolerance();
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  if (!phase.mode.cam && !phase.mode.seat) {  // in flight on the whole piece: nothing pushes
+    lo = kNever;
+    return std::nullopt;
+  }
   // A window narrower than 1e-7 of the fastest half oscillation may pass (a needle skimming the
-  // box's edge would take steps without end); inside the box but not at rest (in flight), the
-  // sampled search's step.
+  // box's edge would take steps without end). Inside the box but not at rest (at its edge, where
+  // AtRest's own state and net force differ from Motion's by round-off), the same least step.
   const double least = 1e-7 * std::min(piece.LongestStep(), hi - lo);
-  const double inside = (hi - lo) / 64.0;
   constexpr int kMaxSteps = 20000;  // then the sampled search from where this stopped
   for (int k = 0; k < kMaxSteps && lo <= hi; ++k) {
     const std::array<double, 3> yva = piece.Motion(lo);
     const double d_v = std::abs(yva[1]) - kRestSpeed_m_s, d_f = m * std::abs(yva[2]) - f_r;
     if (!(d_v > 0.0 || d_f > 0.0)) {
       if (recorder_.AtRest(lo, Motion(lo), phase)) return lo;
-      lo += inside;
+      lo += least;
       continue;
     }
-    const double wait = std::max(d_v > 0.0 ? d_v / b2 : 0.0, d_f > 0.0 ? d_f / (m * b3) : 0.0);
-    if (!(wait < std::numeric_limits<double>::infinity())) {  // never at rest on the piece
-      lo = std::numeric_limits<double>::infinity();
+    const double wait_v = d_v > 0.0 ? d_v / b2 : 0.0, wait_f = d_f > 0.0 ? d_f / (m * b3) : 0.0;
+    if (std::isnan(wait_v) || std::isnan(wait_f)) return std::nullopt;  // the samples from lo
+    if (wait_v == kNever || wait_f == kNever) {  // B = 0: that one never comes down
+      lo = kNever;
       return std::nullopt;
     }
-    lo += std::max(wait, least);
+    lo += std::max({wait_v, wait_f, least});
   }
   return std::nullopt;
 }

@@ -289,6 +289,34 @@ TEST(ChainModesTest, TheModalBoundsHoldAlongAPiece) {
       });
 }
 
+// The rates EventDriver::FirstChainRest steps by (ClosedFormPiece::ChainNeedleRateBounds): on a
+// piece under a constant forcing, |ÿ| = |dẏ/dt| ≤ B₂ and |dÿ/dt| ≤ B₃ (the differences of Motion on
+// 2001 points over three of the fastest half oscillations), and not wild guesses.
+TEST(ChainModesTest, TheNeedlesRateBoundsHoldUnderAConstantForcing) {
+  const SurgeChain chain;
+  int pieces = 0;
+  chain.ForEachPiece(kEveryMode,
+                     [&](const ContactMode& mode, const ClosedFormPiece& piece, double t0) {
+                       if (!piece.ForcingConstant()) return;
+                       ++pieces;
+                       const auto [b2, b3] = piece.ChainNeedleRateBounds();
+                       const double dt = 3.0 * piece.LongestStep() / 2000.0;
+                       double acceleration = 0.0, jerk = 0.0;
+                       std::array<double, 3> last = piece.Motion(t0);
+                       for (int i = 1; i <= 2000; ++i) {
+                         const std::array<double, 3> m = piece.Motion(t0 + dt * i);
+                         acceleration = std::max(acceleration, std::abs(m[2]));
+                         jerk = std::max(jerk, std::abs(m[2] - last[2]) / dt);
+                         last = m;
+                       }
+                       EXPECT_LE(acceleration, b2) << mode.cam << mode.seat;
+                       EXPECT_LE(jerk, b3) << mode.cam << mode.seat;
+                       EXPECT_GT(acceleration, 0.01 * b2) << mode.cam << mode.seat;
+                       EXPECT_GT(jerk, 0.01 * b3) << mode.cam << mode.seat;
+                     });
+  EXPECT_GT(pieces, 0);
+}
+
 // The chain's bounds on its largest segment compression and on the spring's force on the needle
 // (ClosedFormPiece::ChainUpperBounds, which let the record leave a stretch's samples out) hold
 // at 2000 points of stretches of one and of three steps, and are not wild guesses.
