@@ -16,6 +16,7 @@
 
 #include "lib/local_join.h"
 #include "lib/reading_kinks.h"
+#include "lib/side_polynomial.h"
 #include "lib/spline_band.h"
 #include "lib/units.h"
 
@@ -177,6 +178,81 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
   return law;
 }
 
+// Where the rise leaves the seat between the seat reading and the next: where the polynomial of
+// `degree` through the `count` readings after the seat reading has s' = 0 (the base circle's
+// slope; a junction's place, as the break finder's sides meet), or nullopt when it has none there.
+std::optional<double> SeatSlopeRoot(const std::vector<double>& x, const std::vector<double>& y,
+                                    bool front, size_t count, int degree) {
+  const size_t n = x.size(), seat = front ? 0 : n - 1;
+  const double h = x[front ? 1 : n - 2] - x[seat];  // signed: the next reading at t = 1
+  Eigen::MatrixXd v(count, degree + 1);
+  Eigen::VectorXd b(count);
+  for (size_t r = 0; r < count; ++r) {
+    const size_t i = front ? 1 + r : n - 2 - r;
+    const double t = (x[i] - x[seat]) / h;
+    double power = 1.0;
+    for (int c = 0; c <= degree; ++c, power *= t) v(r, c) = power;
+    b(r) = y[i];
+  }
+  const Eigen::VectorXd c = v.colPivHouseholderQr().solve(b);
+  const auto slope = [&c, degree](double t) {
+    double d = 0.0;
+    for (int k = degree; k >= 1; --k) d = d * t + k * c(k);
+    return d;
+  };
+  const std::optional<double> t = RootIn(slope, 0.0, 1.0);
+  if (!t || !(*t > 0.0 && *t < 1.0)) return std::nullopt;
+  return x[seat] + *t * h;
+}
+
+// An end piece too short for SeatTrim (under 2 kLocalMinimumPoints + 1 readings) keeps a seat
+// reading that is the base circle's, the rise leaving the seat between it and the next reading:
+// the fit takes its 0 as the law's and reads a peak s'' there short (a harmonic return over
+// 8.47° every 0.7° to 1e-4 mm meeting the seat 0.39 of a step before its last reading: a_max
+// −6.1 %, 2.4 half-widths past its band). The law stays as fitted (the fit without that reading
+// read this one better and others worse: docs/lift-data.md, "A seat between readings"); the
+// piece's end node's band (`own`) reaches what the piece reads with that reading moved to where
+// the rise leaves the seat.
+void ShortSeatBand(const std::vector<double>& x, const std::vector<double>& y,
+                   const SplineOptions& options, const LocalTrim& trim, bool front,
+                   LocalNode* own) {
+  const size_t n = x.size(), seat = front ? 0 : n - 1, next = front ? 1 : n - 2;
+  const size_t k = kLocalMinimumPoints;
+  if (n >= 2 * k + 1 || n < k + 3 || y[seat] > 0.0) return;
+  // The seat reading off the law: missed by the quintic through the next readings by more than
+  // twice the rounding's bound and that quintic's own miss of the next reading (an exact table's
+  // law is no polynomial: DwellTrim's test, whose factor 4 left the trial's table alone).
+  const auto z = [&y](size_t i) { return y[i]; };
+  const auto [misfit, bound] = ExtrapolationMisfit(x, z, options.sigma, seat, front);
+  const double before = ExtrapolationMisfit(x, z, options.sigma, next, front)[0];
+  if (!(misfit > 2.0 * bound + before)) return;
+  // The seat's place from the quintics through 7 and 8 readings and the quartic through 6, when
+  // the three agree to a quarter of a step (a law leaving the seat with s'' = 0 has no single
+  // root of s' there to find); the piece is fitted with its seat reading moved to each, and the
+  // band reaches each fit's s'' at its seat and its band (the places' spread standing for the
+  // seat's own uncertainty).
+  std::vector<double> feet;
+  for (const auto& [count, degree] : {std::pair<size_t, int>{k, 5}, {k + 1, 5}, {k - 1, 4}}) {
+    const std::optional<double> foot = SeatSlopeRoot(x, y, front, count, degree);
+    if (!foot) return;
+    feet.push_back(*foot);
+  }
+  const auto [lo, hi] = std::minmax_element(feet.begin(), feet.end());
+  if (*hi - *lo > 0.25 * std::abs(x[next] - x[seat])) return;
+  const auto x_less = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
+  for (const double foot : feet) {
+    std::vector<double> moved = x;
+    moved[seat] = foot;
+    LiftLawNodes at_foot;
+    BuildPiece(moved, y, options, &at_foot, trim);
+    if (at_foot.ready.empty()) continue;
+    const LocalNode& end =
+        front ? *std::min_element(at_foot.ready.begin(), at_foot.ready.end(), x_less)
+              : *std::max_element(at_foot.ready.begin(), at_foot.ready.end(), x_less);
+    own->band2 = std::max(own->band2, std::abs(end.s[2] - own->s[2]) + end.band2);
+  }
+}
+
 // Piece `piece` of `pieces` (BuildPiece with its PieceTrim); a first or last piece records
 // whether its fit left its seat reading out (LiftLawNodes::seat_left_out); `left_out`, whether
 // it left out its first and its last reading.
@@ -185,9 +261,22 @@ PiecewisePolynomial BuildPart(const std::vector<double>& x, const std::vector<do
                               LiftLawNodes* nodes, std::array<bool, 2>* left_out = nullptr) {
   const LocalTrim trim = PieceTrim(x, y, options, piece, pieces);
   bool trimmed = false;
+  const size_t node_from = nodes->ready.size();
   PiecewisePolynomial part = BuildPiece(x, y, options.spline, nodes, trim, &trimmed);
   if (piece == 0) nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
   if (piece + 1 == pieces) nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
+  if (options.spline.kind == SplineKind::kLocal && nodes->ready.size() > node_from) {
+    const auto first = nodes->ready.begin() + static_cast<std::ptrdiff_t>(node_from);
+    const auto x_less = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
+    if (piece == 0 && trim.front_rad == 0.0) {
+      ShortSeatBand(x, y, options.spline, trim, true,
+                    &*std::min_element(first, nodes->ready.end(), x_less));
+    }
+    if (piece + 1 == pieces && trim.back_rad == 0.0) {
+      ShortSeatBand(x, y, options.spline, trim, false,
+                    &*std::max_element(first, nodes->ready.end(), x_less));
+    }
+  }
   if (left_out) *left_out = {trimmed && trim.front_rad > 0.0, trimmed && trim.back_rad > 0.0};
   return part;
 }
