@@ -94,6 +94,9 @@ struct LiftLawNodes {
   /// Whether a local fit left the open lift's first (last) reading, a seat reading the law does
   /// not start on, out of its windows.
   bool seat_left_out[2] = {false, false};
+  /// A short end piece's s'' at a seat between readings (lift_pieces.cc ShortSeatBand), each with
+  /// its band: the extremes' bands reach them on their unsafe side only.
+  std::vector<LocalNode> seat_reach;
   std::vector<LocalNode> ready;
   std::vector<std::function<std::vector<LocalNode>()>> deferred;
   std::once_flag once;

@@ -210,12 +210,14 @@ std::optional<double> SeatSlopeRoot(const std::vector<double>& x, const std::vec
 // the fit takes its 0 as the law's and reads a peak s'' there short (a harmonic return over
 // 8.47° every 0.7° to 1e-4 mm meeting the seat 0.39 of a step before its last reading: a_max
 // −6.1 %, 2.4 half-widths past its band). The law stays as fitted (the fit without that reading
-// read this one better and others worse: docs/lift-data.md, "A seat between readings"); the
-// piece's end node's band (`own`) reaches what the piece reads with that reading moved to where
-// the rise leaves the seat.
+// read this one better and others worse: docs/lift-data.md, "A seat between readings"); what the
+// piece reads at the seat with that reading moved to where the rise leaves the seat, and its
+// band, go to `reach` (LiftLawNodes::seat_reach, which the extremes' bands reach on their unsafe
+// side: a node's own band widened both ways took a law leaving the seat with s'' = 0, read
+// a step off, to an a_min band of 91 % for 6.5 %).
 void ShortSeatBand(const std::vector<double>& x, const std::vector<double>& y,
                    const SplineOptions& options, const LocalTrim& trim, bool front,
-                   LocalNode* own) {
+                   std::vector<LocalNode>* reach) {
   const size_t n = x.size(), seat = front ? 0 : n - 1, next = front ? 1 : n - 2;
   const size_t k = kLocalMinimumPoints;
   if (n >= 2 * k + 1 || n < k + 3 || y[seat] > 0.0) return;
@@ -249,7 +251,7 @@ void ShortSeatBand(const std::vector<double>& x, const std::vector<double>& y,
     const LocalNode& end =
         front ? *std::min_element(at_foot.ready.begin(), at_foot.ready.end(), x_less)
               : *std::max_element(at_foot.ready.begin(), at_foot.ready.end(), x_less);
-    own->band2 = std::max(own->band2, std::abs(end.s[2] - own->s[2]) + end.band2);
+    reach->push_back(end);
   }
 }
 
@@ -261,21 +263,14 @@ PiecewisePolynomial BuildPart(const std::vector<double>& x, const std::vector<do
                               LiftLawNodes* nodes, std::array<bool, 2>* left_out = nullptr) {
   const LocalTrim trim = PieceTrim(x, y, options, piece, pieces);
   bool trimmed = false;
-  const size_t node_from = nodes->ready.size();
   PiecewisePolynomial part = BuildPiece(x, y, options.spline, nodes, trim, &trimmed);
   if (piece == 0) nodes->seat_left_out[0] = trimmed && trim.front_rad > 0.0;
   if (piece + 1 == pieces) nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
-  if (options.spline.kind == SplineKind::kLocal && nodes->ready.size() > node_from) {
-    const auto first = nodes->ready.begin() + static_cast<std::ptrdiff_t>(node_from);
-    const auto x_less = [](const LocalNode& l, const LocalNode& r) { return l.x < r.x; };
-    if (piece == 0 && trim.front_rad == 0.0) {
-      ShortSeatBand(x, y, options.spline, trim, true,
-                    &*std::min_element(first, nodes->ready.end(), x_less));
-    }
-    if (piece + 1 == pieces && trim.back_rad == 0.0) {
-      ShortSeatBand(x, y, options.spline, trim, false,
-                    &*std::max_element(first, nodes->ready.end(), x_less));
-    }
+  if (options.spline.kind == SplineKind::kLocal) {
+    if (piece == 0 && trim.front_rad == 0.0)
+      ShortSeatBand(x, y, options.spline, trim, true, &nodes->seat_reach);
+    if (piece + 1 == pieces && trim.back_rad == 0.0)
+      ShortSeatBand(x, y, options.spline, trim, false, &nodes->seat_reach);
   }
   if (left_out) *left_out = {trimmed && trim.front_rad > 0.0, trimmed && trim.back_rad > 0.0};
   return part;

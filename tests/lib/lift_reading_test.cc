@@ -1197,6 +1197,17 @@ TEST(LiftReadingTest, ASeatBetweenReadingsInAShortEndPieceIsInItsBand) {
   EXPECT_LT(o.max_band_width, 0.06) << o.choice.reason;  // measured: 5.3 %, as before
 }
 
+// The same reach on the unsafe side only: a modified-sine rise over 13°, its s'' leaving the seat
+// at 0, read every 1.25° half a step off the seat to 1e-4 mm (as bench/export_trial.py's E0340,
+// seed 4), its end piece short. A seat node's own band widened both ways by the refits' distance
+// took a_min's band from 6.5 % to 91 % wide.
+TEST(LiftReadingTest, ASeatsReachWidensNoBandOnItsSafeSide) {
+  const Law law{7.143, 13.0, 31.0, 109.0, ModifiedSine, Harmonic};
+  const Read r = ReadExport(law, Export(law, 1.25, 1e-4, 11.875));
+  EXPECT_TRUE(r.min_in_band) << r.choice.reason;
+  EXPECT_LT(r.min_band_width, 0.15) << r.min_error << " " << r.choice.reason;
+}
+
 }  // namespace
 }  // namespace needle
 
