@@ -185,16 +185,10 @@ std::optional<double> SeatSlopeRoot(const std::vector<double>& x, const std::vec
                                     bool front, size_t count, int degree) {
   const size_t n = x.size(), seat = front ? 0 : n - 1;
   const double h = x[front ? 1 : n - 2] - x[seat];  // signed: the next reading at t = 1
-  Eigen::MatrixXd v(count, degree + 1);
-  Eigen::VectorXd b(count);
-  for (size_t r = 0; r < count; ++r) {
-    const size_t i = front ? 1 + r : n - 2 - r;
-    const double t = (x[i] - x[seat]) / h;
-    double power = 1.0;
-    for (int c = 0; c <= degree; ++c, power *= t) v(r, c) = power;
-    b(r) = y[i];
-  }
-  const Eigen::VectorXd c = v.colPivHouseholderQr().solve(b);
+  const size_t from = front ? 1 : n - 1 - count, to = from + count;
+  const Eigen::VectorXd c =
+      QrSolve(PowerBasis(x, from, to, x[seat], h, degree),
+              Eigen::Map<const Eigen::VectorXd>(y.data() + from, static_cast<Eigen::Index>(count)));
   const auto slope = [&c, degree](double t) {
     double d = 0.0;
     for (int k = degree; k >= 1; --k) d = d * t + k * c(k);
