@@ -1,12 +1,15 @@
 // Google Benchmark micro-benchmarks of needle's hot paths: spline construction per kind,
-// a 1000-row kinematics table, one right-hand-side evaluation, one dynamic run.
+// a 1000-row kinematics table, one right-hand-side evaluation, one dynamic run, a coil chain's
+// modes.
 //   ./build/needle-micro-bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
 #include "apps/case/case_file.h"
 #include "apps/case/case_scene.h"
 #include "dynamics/simulation.h"
+#include "dynamics/solver/chain_modes.h"
 #include "lib/kinematics.h"
+#include "lib/units.h"
 
 namespace needle {
 namespace {
@@ -100,6 +103,28 @@ void BM_Exact(benchmark::State& state) { RunOnce(state, "exact", 1e-8); }
 void BM_Dopri5_1e8(benchmark::State& state) { RunOnce(state, "dopri5", 1e-8); }
 BENCHMARK(BM_Exact)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dopri5_1e8)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+
+// The coil chain's modes in one contact mode (the cam's), as method exact makes them once per
+// chain and thread: `basu-example1-surge`'s spring as 5-40 coil masses, its eigenvalues by
+// Aberth's O(N²) iteration (tridiagonal_qep.h) against the dense O(N³) QR alone (the before).
+void ChainModesOnce(benchmark::State& state, ChainEigenvalues eigenvalues) {
+  static const BoundCase c =
+      Bind(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1-surge.toml"));
+  const Scene& s = *c.scene;
+  TrainParameters p = s.train;
+  p.coil_masses = static_cast<int>(state.range(0));
+  const NeedleTrain train(*s.cam, p, OmegaFromRpm(125), DefaultRunWindow(s).start_rad);
+  for (auto _ : state) benchmark::DoNotOptimize(ChainModes(train, {true, false}, eigenvalues));
+  state.SetLabel(std::to_string(state.range(0)) + " coil masses");
+}
+void BM_ChainModesAberth(benchmark::State& state) {
+  ChainModesOnce(state, ChainEigenvalues::kAberth);
+}
+void BM_ChainModesDense(benchmark::State& state) {
+  ChainModesOnce(state, ChainEigenvalues::kDense);
+}
+BENCHMARK(BM_ChainModesDense)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ChainModesAberth)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace needle

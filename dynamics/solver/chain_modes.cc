@@ -7,11 +7,13 @@
 #include <complex>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "dynamics/solver/tridiagonal_qep.h"
 #include "lib/output.h"
 
 namespace needle {
@@ -32,7 +34,7 @@ class TridiagonalLU {
         swap_(d_.size(), false) {
     const int n = static_cast<int>(d_.size());
     for (int i = 0; i + 1 < n; ++i) {
-      if (std::abs(d_[i]) >= std::abs(l_[i])) {  // no interchange: eliminate l[i]
+      if (std::norm(d_[i]) >= std::norm(l_[i])) {  // no interchange: eliminate l[i]
         if (d_[i] == 0.0) d_[i] = tiny;
         l_[i] /= d_[i];
         d_[i + 1] -= l_[i] * u_[i];
@@ -79,8 +81,9 @@ class TridiagonalLU {
 
 }  // namespace
 
-ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode)
-    : dofs_(train.Coils() + 1) {
+ChainModes::ChainModes(const NeedleTrain& train, const ContactMode& mode,
+                       ChainEigenvalues eigenvalues)
+    : dofs_(train.Coils() + 1), eigenvalues_(eigenvalues) {
   Assemble(train, mode);
   sparse_K_ = K_.sparseView();
   sparse_C_ = C_.sparseView();
@@ -202,13 +205,23 @@ void ChainModes::Decompose() {
   A.bottomLeftCorner(n, n) = -Kt / scale;
   A.bottomRightCorner(n, n) = -Ct;
   const bool undamped = C_.isZero(0.0);
-  // Eigenvalues only, each mode's vectors from the tridiagonal T(λ) in O(N) (QuadraticMode)...
+  // Eigenvalues only, certified by Aberth's iteration on det T(λ) in O(N²) (tridiagonal_qep.h),
+  // else by the balanced A's Hessenberg QR, O(N³); each mode's vectors from the tridiagonal T(λ)
+  // in O(N) (QuadraticMode)...
   {
-    const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A, /*computeEigenvectors=*/false);
-    if (eigen.info() != Eigen::Success) {
-      throw std::invalid_argument("method \"exact\": the coil chain's modes did not converge");
+    std::optional<Eigen::VectorXcd> values;
+    if (eigenvalues_ == ChainEigenvalues::kAberth) {
+      values = TridiagonalQepEigenvalues(
+          {mass_, K_.diagonal(), K_.diagonal(1), C_.diagonal(), C_.diagonal(1)});
     }
-    const std::vector<int> keep = KeepOnePerPair(eigen.eigenvalues(), undamped);
+    if (!values) {
+      const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A, /*computeEigenvectors=*/false);
+      if (eigen.info() != Eigen::Success) {
+        throw std::invalid_argument("method \"exact\": the coil chain's modes did not converge");
+      }
+      values = eigen.eigenvalues();
+    }
+    const std::vector<int> keep = KeepOnePerPair(*values, undamped);
     vectors_.resize(2 * n, static_cast<Eigen::Index>(keep.size()));
     inverse_.resize(static_cast<Eigen::Index>(keep.size()), 2 * n);
     bool all = true;
@@ -299,7 +312,7 @@ bool ChainModes::QuadraticMode(int r) {
   const Eigen::VectorXcd residual =
       (lambda * lambda) * m_phi + lambda * c_phi + sparse_K_.cast<Complex>() * phi;
   if (!(std::abs(d) >= kQuadraticConditioning * terms) ||
-      !(residual.cwiseAbs().maxCoeff() <= kNullResidual * norm)) {
+      !(std::sqrt(residual.cwiseAbs2().maxCoeff()) <= kNullResidual * norm)) {
     return false;
   }
   vectors_.col(r) << phi, lambda * phi;
@@ -328,7 +341,7 @@ Eigen::VectorXcd ChainModes::NullVector(std::complex<double> lambda, double* nor
   for (int iteration = 0; iteration < 2; ++iteration) {
     lu.Solve(x);
     Eigen::Index top = 0;
-    x.cwiseAbs().maxCoeff(&top);
+    x.cwiseAbs2().maxCoeff(&top);
     x /= x[top];
   }
   return x;

@@ -12,8 +12,9 @@
 /// In first-order form z = [q, q̇], ż = A z + f(τ) [0, e₀/m], A = [[0, I], [−M⁻¹K, −M⁻¹C]]. Its
 /// free motion is z_h(τ) = V e^{Λτ} V⁻¹ z_h(0) from A's eigen decomposition (complex: the exact
 /// first-order propagator, for any damping, proportional to the segments' rates or not, as the
-/// contacts' dashpots make it). A's eigenvalues come from Hessenberg QR alone; its vectors from
-/// the tridiagonal T(λ) = λ²M + λC + K: z = [φ, λφ] with T(λ)φ = 0 (inverse iteration, O(N)),
+/// contacts' dashpots make it). A's eigenvalues come from Aberth's iteration on det T(λ), O(N²)
+/// (tridiagonal_qep.h), or where it does not certify them from Hessenberg QR alone; its vectors
+/// from the tridiagonal T(λ) = λ²M + λC + K: z = [φ, λφ] with T(λ)φ = 0 (inverse iteration, O(N)),
 /// and, T being symmetric, V⁻¹'s row [((λM + C)φ)ᵀ, (Mφ)ᵀ] / φᵀ(2λM + C)φ, O(N) too (no O(N³)
 /// vectors or inverse). Where a λ is near another (near critical damping) those rows lose digits
 /// as the square of its conditioning: there A's dense eigenvectors and their inverse are taken.
@@ -42,6 +43,11 @@
 
 namespace needle {
 
+/// How ChainModes finds A's eigenvalues: Aberth's O(N²) iteration on det T(λ), the dense QR
+/// where it does not certify them (kAberth); or the dense QR alone (kDense: the benchmark's
+/// before).
+enum class ChainEigenvalues { kAberth, kDense };
+
 class ChainModes {
  public:
   /// The least reciprocal condition of the eigenvectors taken: below it a mode is at or near
@@ -60,7 +66,8 @@ class ChainModes {
   /// The chain of `train` (Coils() > 0, linear contact laws, no coil clash) in `mode`. Throws
   /// std::invalid_argument, with the reason, when K is not positive definite (a spring without
   /// rate) or a mode is at or near critical damping (kLeastConditioning).
-  ChainModes(const NeedleTrain& train, const ContactMode& mode);
+  ChainModes(const NeedleTrain& train, const ContactMode& mode,
+             ChainEigenvalues eigenvalues = ChainEigenvalues::kAberth);
   /// The same, made once per thread for each set of the numbers it is made of (the coils, their
   /// mass, rate and damping, the needle's mass, the contact laws' stiffness and damping, the
   /// mode) and shared by the thread's later runs of such a chain: a run's passes, a sweep's
@@ -135,6 +142,7 @@ class ChainModes {
   Eigen::VectorXcd NullVector(std::complex<double> lambda, double* norm) const;
 
   int dofs_;
+  ChainEigenvalues eigenvalues_;
   Eigen::MatrixXd K_, C_;
   Eigen::VectorXd mass_;
   // K and C as sparse (tridiagonal) matrices, and K's Cholesky factor (Particular and

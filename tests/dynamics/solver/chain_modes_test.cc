@@ -132,6 +132,28 @@ TEST(ChainModesTest, TheModesGiveTheTrainsJacobianBack) {
   }
 }
 
+// The eigenvalues by Aberth's iteration (tridiagonal_qep.h) are the dense QR's, mode by mode, on
+// the bundled 20-mass chain in every contact mode (its cam and seat at 1e9 N/m, ζ 0.05: damping
+// that is not proportional) and on a 6-mass chain with its coils near critical damping (ζ_s 0.9).
+TEST(ChainModesTest, TheAberthEigenvaluesAreTheDenseQrs) {
+  const SurgeChain surge;
+  const Chain heavy(6, 0.9);
+  const NeedleTrain heavy_train(heavy.cam, heavy.p, 60.0, 0.0);
+  for (const NeedleTrain* train : {&surge.train, &heavy_train}) {
+    for (const ContactMode& mode : kEveryMode) {
+      const ChainModes aberth(*train, mode), dense(*train, mode, ChainEigenvalues::kDense);
+      ASSERT_EQ(aberth.Lambda().size(), dense.Lambda().size());
+      for (Eigen::Index i = 0; i < aberth.Lambda().size(); ++i) {
+        double nearest = INFINITY;
+        for (Eigen::Index j = 0; j < dense.Lambda().size(); ++j)
+          nearest = std::min(nearest, std::abs(aberth.Lambda()[i] - dense.Lambda()[j]));
+        EXPECT_LT(nearest, 1e-12 * dense.Fastest()) << i << " mode " << mode.cam << mode.seat;
+      }
+      EXPECT_EQ(aberth.Weight().sum(), dense.Weight().sum());
+    }
+  }
+}
+
 // ChainModes::Shared: one chain per set of its numbers and mode, on a thread. A train at another
 // speed (the chain does not read it) shares it; one that differs in any number the chain is made
 // of, or in the mode, does not; the kSharedKept chains last asked are kept (the one asked longest
