@@ -126,6 +126,38 @@ void BM_ChainModesDense(benchmark::State& state) {
 BENCHMARK(BM_ChainModesDense)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ChainModesAberth)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMicrosecond);
 
+// One revolution of `basu-example1-surge`'s chain (5-40 coil masses) at its rated 125 rpm and
+// near its n_dyn, 520 rpm, as the surge study runs it (forced dynamic, no series): exact against
+// dopri5 at rtol 1e-8, auto's pick for chains. The modes are made once per thread (Shared): a
+// check pays them once per N, outside these times.
+void SurgeChainRun(benchmark::State& state, const char* method) {
+  static const BoundCase c =
+      Bind(LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/cases/basu-example1-surge.toml"));
+  Scene s = *c.scene;
+  s.train.coil_masses = static_cast<int>(state.range(0));
+  SimulationOptions o = c.run;
+  o.cycles = 1;
+  o.steady_state = false;
+  o.method = method;
+  o.force_dynamic = true;
+  o.record_series = false;
+  long steps = 0;
+  for (auto _ : state) {
+    const SimulationResult r = Simulate(s, static_cast<double>(state.range(1)), o);
+    steps = r.stats.steps;
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetLabel(std::to_string(steps) + " steps");
+}
+void BM_SurgeChainExact(benchmark::State& state) { SurgeChainRun(state, "exact"); }
+void BM_SurgeChainDopri5(benchmark::State& state) { SurgeChainRun(state, "dopri5"); }
+BENCHMARK(BM_SurgeChainExact)
+    ->ArgsProduct({{5, 10, 20, 40}, {125, 520}})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SurgeChainDopri5)
+    ->ArgsProduct({{5, 10, 20, 40}, {125, 520}})
+    ->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 }  // namespace needle
 

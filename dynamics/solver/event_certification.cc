@@ -159,7 +159,13 @@ void EventDriver::RestAllowance(const ClosedFormPiece& piece, StretchRanges& r) 
   r.fc_hi -= moved(cam.ForceStiffness(), cam.ForceDamping());
   r.fs_hi -= moved(seat.ForceStiffness(), seat.ForceDamping());
   r.compression_hi -= 2.0 * moved(1.0, 0.0);
-  r.spring_hi -= 2.0 * moved(train_.SegmentRateNm(), train_.SegmentDampingNsm());
+  // The spring force is a sum of terms of the preload's size (P₀ + k s₁), its bound and its
+  // record each by their own path: they differ by the round-off of P₀ as well (Example 1's
+  // spring as 5 coil masses, at rest on the seat: 7.7e-9 of 7746 N, past k and c's share alone,
+  // which capped each of its 474 seated pieces at half an oscillation).
+  const double preload_roundoff = kRoundoffFraction * std::abs(train_.parameters().preload_N);
+  r.spring_hi -=
+      2.0 * (moved(train_.SegmentRateNm(), train_.SegmentDampingNsm()) + preload_roundoff);
 }
 
 double EventDriver::LongestQuiet(const ClosedFormPiece& piece, double t, double cap,
