@@ -268,6 +268,11 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   // A chain's least coil gap is located only where its bound reaches past the record.
   const bool chain_gap = chain && train_.parameters().coil_travel_m > 0.0 &&
                          !(ranges.compression_hi <= max_compression);
+  // And its largest spring force (on the needle, the surge study's stress) where its bound does:
+  // samples alone read it low, by what passes between them (a surge peak: the 2000 rpm engine's
+  // stress 1.6e-3 MPa under dopri5's at rtol 1e-12).
+  const double max_spring = recorder_.max_spring_force_N();
+  const bool chain_spring = chain && !recorder_.liftoff_only() && !(ranges.spring_hi <= max_spring);
   // The sample screen: the seat force from y and ẏ alone (the train's own bits); the cam force
   // from the piece's input, within kAllowance of the cam's scale (the two inputs differ by
   // round-off, some 1e-16 of it).
@@ -283,10 +288,11 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     const bool inside = k > 0 && k < n;
     // A chain's screened sample needs the needle's lift and speed alone; its coils only where
     // the sample is recorded or its compression located.
-    const bool needle_only = chain && screen && inside && !chain_gap;
+    const bool needle_only = chain && screen && inside && !chain_gap && !chain_spring;
     // The record reads the lifts and the spring's force (coil 1's speed), not the other speeds.
     TrainState x = needle_only ? ForceState(ts[k]) : Motion(ts[k], false);
     f[3][k] = chain_gap ? ExtremeValue(3, ts[k], x) : 0.0;
+    f[5][k] = chain_spring ? ExtremeValue(5, ts[k], x) : 0.0;
     if (screen && inside) {
       const std::array<double, 2> in = piece.Input(ts[k]);
       const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;
@@ -319,14 +325,16 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     if (k > 0 && k < n) recorder_.Sample(ts[k], x, phase, c);
   }
   piece.ChainSampleTimes(nullptr, 0);  // the stretch's own: later times take the closed form
-  const std::array<double, kExtremes> record = {-max_fc, -max_fs, min_fc, -max_compression,
-                                                std::isnan(share) ? INFINITY : share};
+  const std::array<double, kExtremes> record = {
+      -max_fc,    -max_fs, min_fc, -max_compression, std::isnan(share) ? INFINITY : share,
+      -max_spring};
   // A lift-off run locates only the least contact force (Recorder::set_liftoff_only).
   LocateExtremes(samples, record, recorder_.liftoff_only() ? 2 : 0,
                  chain_gap && !recorder_.liftoff_only() ? 4 : 3);
   // The least share of the holding load, where it is not at the least force (stop 93: a new
   // user's engine read 1.9e-5 more margin than dopri5 at rtol 1e-12, from the samples alone).
   if (!recorder_.liftoff_only()) LocateExtremes(samples, record, 4, 5);
+  if (chain_spring) LocateExtremes(samples, record, 5, 6);
 }
 
 TrainState EventDriver::ForceState(double t) {
@@ -346,6 +354,7 @@ double EventDriver::ExtremeValue(int which, double t, const TrainState& x) const
   const Phase& phase = system_.phase;
   if (which == 3) return -train_.LargestSegmentCompression(x);
   const Contacts c = train_.Evaluate(x, t, phase);
+  if (which == 5) return -c.spring_N;
   const double fc = train_.AppliedCamForce(c, phase);
   if (which == 4) return recorder_.ForceShare(fc, c.u, x[0]);
   return which == 0 ? -fc : which == 1 ? -train_.AppliedSeatForce(c, phase) : fc;
@@ -382,12 +391,13 @@ void EventDriver::LocateExtremes(const StretchSamples& samples,
     // modal sum's round-off there): O(N) a point against O(N·m) sines and exponentials. The
     // sample recorded is the closed form's.
     ChainTaylor taylor;
-    if (chain) {
+    // (Not the spring force: it reads coil 1's speed, which the polynomials do not hold.)
+    if (chain && which != 5) {
       taylor = stepper_->ClosedForm()->ChainTaylorAt(base + 0.5 * width, 0.5 * width, which == 3);
     }
     const auto state = [&](double t) {
       if (taylor.valid) return taylor.At(t, train_.StateSize());
-      return which == 3 ? Motion(t, false) : ForceState(t);
+      return which == 3 || which == 5 ? Motion(t, false) : ForceState(t);
     };
     // An end sample that is the least of the bracket next to it as well, by a point 1e-3 of the
     // bracket inside: a value still falling toward the stretch's end (a force still rising) has

@@ -743,7 +743,8 @@ TEST(ChainModesTest, ExactAgreesWithDopri5OnTheBundledChain) {
     // The largest forces: the closed form locates them (Brent between its samples, also next
     // to a stretch's end sample), dopri5 samples them: never below dopri5's, within 1e-6.
     for (const auto& [closed, sampled] : {std::pair{e.max_contact_force_N, d.max_contact_force_N},
-                                          std::pair{e.max_seat_force_N, d.max_seat_force_N}}) {
+                                          std::pair{e.max_seat_force_N, d.max_seat_force_N},
+                                          std::pair{e.max_spring_force_N, d.max_spring_force_N}}) {
       EXPECT_GE(closed, sampled * (1.0 - 1e-9)) << rpm;
       EXPECT_NEAR(closed, sampled, 1e-6 * sampled) << rpm;
     }
