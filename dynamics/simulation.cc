@@ -130,17 +130,9 @@ MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double /*
             "method that restarts at full order after every impact"};
   }
   const std::string stiffness = StiffnessText(oscillations);
-  // The coil chain: "exact" carries it without clash, faster than dopri5 at the case's tolerance
-  // to 20 masses (BENCHMARKS.md, "The coil chain by method exact"), but a new user's engines
-  // (stop 93) found its run ending at a later rest than every time stepper's (a narrow one its
-  // samples of the piece miss), its energy audit losing digits over jumps, and a chain near
-  // critical damping refused where dopri5 runs: auto keeps a time stepper (docs/exact.md).
-  std::optional<std::string> refusal = ExactRefusal(train);
-  if (!refusal && train.Coils() > 0) {
-    refusal =
-        "the spring has coil masses ([spring] masses > 1): method \"exact\" carries them, not "
-        "yet as the time steppers do (its run's end and energy audit, docs/exact.md)";
-  }
+  // A coil chain without clash: "exact" carries it (docs/exact.md, "The coil chain"), unless a
+  // mode is at or near critical damping.
+  const std::optional<std::string> refusal = ExactRefusalWithModes(train);
   if (refusal) {
     const bool stiff = oscillations > kStiffOscillations;
     return {AutoMethodFor(stiff ? AutoCase::kStiff : AutoCase::kNonStiff),

@@ -296,8 +296,8 @@ std::string RunDynamics(const std::string& out_dir, int repeats, bool quick) {
   return md.str();
 }
 
-// The coil chain by method "exact" (issue 53) against dopri5 at the case's tolerance (what auto
-// takes for chains, docs/exact.md) and at rtol 1e-12: the surge study's N (5, 10, 20, 40) on the
+// The coil chain by method "exact" (issue 53; auto's pick for a chain without clash) against
+// dopri5 at the case's tolerance and at rtol 1e-12: the surge study's N (5, 10, 20, 40) on the
 // two chain scenes, `basu-example1-surge` at 520 rpm (near its n_dyn; rated 125 rpm) and
 // `engine-2000rpm-surging-spring` at its rated 2000 rpm, forced dynamic, as `needle simulate`
 // runs them; medians of 5 × repeats interleaved runs (dopri5 at 1e-12: one run), with each
@@ -309,8 +309,8 @@ std::string LongChainRow(int repeats) {
      << "simulate` runs them: `basu-example1-surge` at 520 rpm (4 revolutions, near its n_dyn; "
      << "rated 125 rpm) and `engine-2000rpm-surging-spring` at its rated 2000 rpm; medians of "
      << 5 * repeats
-     << " interleaved runs (dopri5 at 1e-12: one run). auto takes dopri5 for chains "
-        "(docs/exact.md says why).\n\n"
+     << " interleaved runs (dopri5 at 1e-12: one run). auto takes exact for a chain without "
+        "clash (docs/exact.md).\n\n"
      << "| case | coil masses | method | ms | steps | energy residual | least coil gap mm |\n"
      << "|---|---|---|---|---|---|---|\n";
   struct ChainCase {

@@ -111,6 +111,17 @@ std::optional<std::string> ExactRefusal(const NeedleTrain& train) {
   return std::nullopt;
 }
 
+std::optional<std::string> ExactRefusalWithModes(const NeedleTrain& train) {
+  if (std::optional<std::string> why = ExactRefusal(train)) return why;
+  if (train.Coils() == 0) return std::nullopt;
+  try {
+    for (int i = 0; i < 4; ++i) ChainModes::Shared(train, ContactMode{(i & 1) != 0, (i & 2) != 0});
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
 MakeBackend MakeExact;  // checked against the table's type
 
 std::unique_ptr<Stepper> MakeExact(TrainSystem& system, const IntegratorOptions& o) {

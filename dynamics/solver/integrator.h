@@ -78,10 +78,13 @@ enum class AutoCase {
 Method AutoMethodFor(AutoCase c);
 
 /// Why method "exact" cannot solve `train` (a contact law not linear in the gap and its rate, a
-/// coil chain that may clash or has no spring rate), or nullopt when it can. `auto` falls back
-/// to a time stepper then (and for every chain: AutoMethod). A chain whose modes are at or near
-/// critical damping is refused when the run starts (ChainModes).
+/// coil chain that may clash or has no spring rate), or nullopt when it can. A chain whose modes
+/// are at or near critical damping is refused when the run starts (ChainModes).
 std::optional<std::string> ExactRefusal(const NeedleTrain& train);
+/// ExactRefusal, and for a coil chain its modes made in the four contact modes
+/// (ChainModes::Shared: kept for the thread's runs): the reason where one is refused (at or
+/// near critical damping). What `auto` asks before it takes "exact"; a time stepper then.
+std::optional<std::string> ExactRefusalWithModes(const NeedleTrain& train);
 
 /// The relative tolerance's range, [kMinRtol, kMaxRtol].
 constexpr double kMinRtol = 1e-14;

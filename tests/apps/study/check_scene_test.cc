@@ -423,6 +423,11 @@ TEST(CheckSceneSurgeTest, TheSurgeFigureHasTheSeriesOfTheRunTheStudyEndsOn) {
   ASSERT_TRUE(r.surge) << r.surge_reason;
   EXPECT_EQ(r.surge->masses, 10);
   EXPECT_FALSE(r.surge->rated.series.empty());
+  // The chain's runs by dopri5 (its coils may clash: exact refuses them), which 300 steps stop;
+  // the one-mass runs' closed form needs fewer.
+  Case clash = LoadCase(kCases + "basu-example1.toml");
+  clash.spring->coil_clash = true;
+  c = Bind(clash);
   c.run.integrator.max_steps = 300;
   const CheckResult b = CheckScene(c, o);
   ASSERT_TRUE(b.surge) << b.surge_reason;
@@ -605,7 +610,9 @@ namespace {
 TEST(CheckSceneSurgeTest, ASurgeRunStoppedOnItsBudgetIsUndecided) {
   Case c = LoadCase(kCases + "basu-example2.toml");
   c.solver = SolverSection{};
-  // The closed form's run needs far fewer steps; the chain's (dopri5), more.
+  // The closed form's run needs far fewer steps; the chain's, its coils free to clash (dopri5:
+  // exact refuses a clash), more.
+  c.spring->coil_clash = true;
   c.solver->run.integrator.max_steps = 400;
   CheckOptions o;
   o.record_series = false;

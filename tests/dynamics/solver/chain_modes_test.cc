@@ -209,6 +209,26 @@ TEST(ChainModesTest, SharedModesAreMadeOncePerChainOnAThread) {
 // masses, and a flight mode within 1e-12 of critical damping (ζ_s = 0.92224 in this chain: the
 // dense eigenvectors are taken there, and the chain refused as near critical when even they do
 // not invert to 1e-10).
+// auto takes the closed form for a chain it can carry, and a time stepper, saying why, for one
+// with a flight mode within 1e-12 of critical damping (refused above).
+TEST(ChainModesTest, AutoLeavesANearCriticalChainToATimeStepper) {
+  for (const double zeta : {0.05, 0.9222386481970474 * (1 + 1e-12)}) {
+    const Chain c(10, zeta);
+    const NeedleTrain train(c.cam, c.p, 60.0, 0.0);
+    const MethodChoice choice = AutoMethod(train, 100.0, 1e-8);
+    if (zeta < 0.5) {
+      EXPECT_EQ(MethodName(choice.method), "exact");
+      continue;
+    }
+    EXPECT_EQ(MethodName(choice.method), "dopri5");
+    EXPECT_TRUE(std::regex_match(
+        choice.reason, std::regex("auto: method \"exact\": a mode of the coil chain is at or "
+                                  "near critical damping .*; take dopri5; the contact oscillates "
+                                  "100 times per cam event \\(≤ 2000: explicit Dormand–Prince\\)")))
+        << choice.reason;
+  }
+}
+
 TEST(ChainModesTest, TheModesAndTheirInverseRowsInvertEachOther) {
   struct Variant {
     int coils;
