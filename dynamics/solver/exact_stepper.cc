@@ -117,7 +117,13 @@ std::optional<std::string> ExactRefusalWithModes(const NeedleTrain& train) {
   try {
     for (int i = 0; i < 4; ++i) ChainModes::Shared(train, ContactMode{(i & 1) != 0, (i & 2) != 0});
   } catch (const std::invalid_argument& e) {
-    return std::string(e.what());
+    // Without the refusal's advice ("take dopri5"): auto says which time stepper it takes.
+    std::string why = e.what();
+    const std::string advice = "; take dopri5";
+    if (why.size() > advice.size() &&
+        why.compare(why.size() - advice.size(), advice.size(), advice) == 0)
+      why.resize(why.size() - advice.size());
+    return why;
   }
   return std::nullopt;
 }
