@@ -363,54 +363,73 @@ double EventDriver::ExtremeValue(int which, double t, const TrainState& x) const
 void EventDriver::LocateExtremes(const StretchSamples& samples,
                                  const std::array<double, kExtremes>& record, int first, int last) {
   constexpr int n = kStretchSamples;
-  const bool chain = train_.Coils() > 0;
-  const std::array<double, n + 1>& ts = samples.ts;
   for (int which = first; which < last; ++which) {
     const auto& v = samples.f[which];
+    double least = record[which];  // the record, as this stretch's locations move it
     const int k = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
     // Only a new record inside the step, and for the least contact force one while pushing.
     // An extreme may also lie between an end sample and its neighbour: stretches start and end
     // where a break or an event puts them, and a force may peak just past one (at the stretch's
     // start, already the record; at its end, a new one). One mass too since stop 93: a new
     // user's engine read its largest seat force 6.8e-4 low, where this was left to chains.
-    int lo = k - 1, hi = k + 1;
     if (k == 0 || k == n) {
-      const bool edge = k == 0 ? v[0] <= record[which] : v[n] < record[which];
-      if (!edge) continue;
-      lo = k == 0 ? 0 : n - 1;
-      hi = k == 0 ? 1 : n;
-    } else if (!(v[k] < record[which])) {
-      continue;
+      const bool edge = k == 0 ? v[0] <= least : v[n] < least;
+      if (edge) least = std::min(least, LocateExtreme(samples, which, k, least));
+    } else if (v[k] < least) {
+      least = std::min(least, LocateExtreme(samples, which, k, least));
     }
-    if ((which == 2 || which == 4) && !(v[k] > 0.0 && std::isfinite(v[k]))) continue;
-    std::uintmax_t iterations = 60;
-    // In the fraction of the bracket: Brent's tolerance has an absolute part.
-    const double base = ts[lo], width = ts[hi] - ts[lo];
-    const auto at = [&](double d) { return base + d * width; };
-    // A chain's bracket is searched on its Taylor polynomials about the middle (exact to the
-    // modal sum's round-off there): O(N) a point against O(N·m) sines and exponentials. The
-    // sample recorded is the closed form's.
-    ChainTaylor taylor;
-    // (Not the spring force: it reads coil 1's speed, which the polynomials do not hold.)
-    if (chain && which != 5) {
-      taylor = stepper_->ClosedForm()->ChainTaylorAt(base + 0.5 * width, 0.5 * width, which == 3);
+    // Every other dip of the samples (and the least one where it did not pass the record) whose
+    // parabola through it and its neighbours, its depth doubled, reaches past the record: a peak
+    // between two samples may pass it where neither does (helper-59's engines: a chain's contact
+    // force with two near-equal peaks read at the lower one, 6.8e-4 low; a seat force whose
+    // samples fell either side of its peak, 7.8e-4 low).
+    for (int j = 1; j < n; ++j) {
+      if ((j == k && v[k] < record[which]) || !(v[j] <= v[j - 1] && v[j] <= v[j + 1])) continue;
+      const double curvature = v[j - 1] - 2.0 * v[j] + v[j + 1];
+      const double slope = 0.5 * (v[j + 1] - v[j - 1]);
+      const double depth = curvature > 0.0 ? slope * slope / (2.0 * curvature) : 0.0;
+      if (v[j] - 2.0 * depth < least)
+        least = std::min(least, LocateExtreme(samples, which, j, least));
     }
-    const auto state = [&](double t) {
-      if (taylor.valid) return taylor.At(t, train_.StateSize());
-      return which == 3 || which == 5 ? Motion(t, false) : ForceState(t);
-    };
-    // An end sample that is the least of the bracket next to it as well, by a point 1e-3 of the
-    // bracket inside: a value still falling toward the stretch's end (a force still rising) has
-    // its extreme there, at the sample (one evaluation where Brent takes some twenty).
-    if (k == 0 || k == n) {
-      const double d = k == 0 ? 1e-3 : 1.0 - 1e-3;
-      if (v[k] <= ExtremeValue(which, at(d), state(at(d)))) continue;
-    }
-    const auto best = boost::math::tools::brent_find_minima(
-        [&](double d) { return ExtremeValue(which, at(d), state(at(d))); }, 0.0, 1.0,
-        std::numeric_limits<double>::digits / 2, iterations);
-    recorder_.Sample(at(best.first), Motion(at(best.first), false), system_.phase);
   }
+}
+
+double EventDriver::LocateExtreme(const StretchSamples& samples, int which, int k, double record) {
+  constexpr int n = kStretchSamples;
+  const bool chain = train_.Coils() > 0;
+  const std::array<double, n + 1>& ts = samples.ts;
+  const auto& v = samples.f[which];
+  const int lo = k == 0 ? 0 : k == n ? n - 1 : k - 1;
+  const int hi = k == 0 ? 1 : k == n ? n : k + 1;
+  if ((which == 2 || which == 4) && !(v[k] > 0.0 && std::isfinite(v[k]))) return record;
+  std::uintmax_t iterations = 60;
+  // In the fraction of the bracket: Brent's tolerance has an absolute part.
+  const double base = ts[lo], width = ts[hi] - ts[lo];
+  const auto at = [&](double d) { return base + d * width; };
+  // A chain's bracket is searched on its Taylor polynomials about the middle (exact to the
+  // modal sum's round-off there): O(N) a point against O(N·m) sines and exponentials. The
+  // sample recorded is the closed form's.
+  ChainTaylor taylor;
+  // (Not the spring force: it reads coil 1's speed, which the polynomials do not hold.)
+  if (chain && which != 5) {
+    taylor = stepper_->ClosedForm()->ChainTaylorAt(base + 0.5 * width, 0.5 * width, which == 3);
+  }
+  const auto state = [&](double t) {
+    if (taylor.valid) return taylor.At(t, train_.StateSize());
+    return which == 3 || which == 5 ? Motion(t, false) : ForceState(t);
+  };
+  // An end sample that is the least of the bracket next to it as well, by a point 1e-3 of the
+  // bracket inside: a value still falling toward the stretch's end (a force still rising) has
+  // its extreme there, at the sample (one evaluation where Brent takes some twenty).
+  if (k == 0 || k == n) {
+    const double d = k == 0 ? 1e-3 : 1.0 - 1e-3;
+    if (v[k] <= ExtremeValue(which, at(d), state(at(d)))) return record;
+  }
+  const auto best = boost::math::tools::brent_find_minima(
+      [&](double d) { return ExtremeValue(which, at(d), state(at(d))); }, 0.0, 1.0,
+      std::numeric_limits<double>::digits / 2, iterations);
+  recorder_.Sample(at(best.first), Motion(at(best.first), false), system_.phase);
+  return best.second;
 }
 
 }  // namespace internal

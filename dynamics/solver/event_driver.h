@@ -310,6 +310,10 @@ class EventDriver {
   // Brent's method between the samples around it, and recorded.
   void LocateExtremes(const StretchSamples& samples, const std::array<double, kExtremes>& record,
                       int first, int last);
+  // One of them about sample k (its neighbours, or the end's): Brent's least value, recorded;
+  // `record` where nothing is searched (the end sample is the bracket's least, or a least
+  // contact force not while pushing).
+  double LocateExtreme(const StretchSamples& samples, int which, int k, double record);
   // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
   // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
   // moving sample and the first at rest (a chain's closed form: FirstChainRest first).
