@@ -281,7 +281,7 @@ std::vector<int> ChainModes::KeepOnePerPair(const Eigen::VectorXcd& all, bool un
   const int m = static_cast<int>(keep.size());
   lambda_.resize(m);
   weight_.resize(m);
-  fastest_ = 0.0;
+  fastest_ = fastest_oscillation_ = 0.0;
   for (int r = 0; r < m; ++r) {
     const int i = keep[r];
     // Undamped (no dashpot pushes, ζ_s = 0): every λ is imaginary; round-off's real part, of
@@ -289,6 +289,7 @@ std::vector<int> ChainModes::KeepOnePerPair(const Eigen::VectorXcd& all, bool un
     lambda_[r] = undamped ? std::complex<double>(0.0, all[i].imag()) : all[i];
     weight_[r] = all[i].imag() > 0.0 ? 2.0 : 1.0;
     fastest_ = std::max(fastest_, std::abs(all[i]));
+    fastest_oscillation_ = std::max(fastest_oscillation_, std::abs(all[i].imag()));
   }
   return keep;
 }

@@ -108,6 +108,10 @@ class ChainModes {
   const Eigen::MatrixXd& DifferenceSizes() const { return difference_sizes_; }
   /// max |λ_k|, rad/s: the fastest mode.
   double Fastest() const { return fastest_; }
+  /// max |Im λ_k|, rad/s: the fastest oscillation (0 where every mode is overdamped). Far below
+  /// Fastest() an overdamped mode is the fastest, and it caps exact's pieces (auto leaves such a
+  /// chain to a time stepper: AutoMethod).
+  double FastestOscillation() const { return fastest_oscillation_; }
   /// The particular solution's coefficients, N × (degree + 1), for the needle's forcing
   /// coefficients f_j (N/s^j, j = 0 … degree): column j is a_j (m/s^j), node 0 the needle.
   /// a_j = Σ_{i ≥ j} f_i (i!/j!) w_{i−j} from the chain's own responses w_d (K w₀ = e₀,
@@ -157,7 +161,7 @@ class ChainModes {
   Eigen::VectorXd weight_;
   Eigen::MatrixXcd vectors_, inverse_;
   Eigen::MatrixXd vectors_real_, vector_sizes_, differences_, difference_sizes_;
-  double fastest_ = 0.0;
+  double fastest_ = 0.0, fastest_oscillation_ = 0.0;
 };
 
 }  // namespace needle

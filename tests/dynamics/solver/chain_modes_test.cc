@@ -229,6 +229,25 @@ TEST(ChainModesTest, AutoLeavesANearCriticalChainToATimeStepper) {
   }
 }
 
+// auto leaves a chain whose fastest mode is overdamped far past its fastest oscillation to a time
+// stepper (helper-59: 40 masses at surge ζ 0.4 took 3757 pieces of π/|λ| by exact, 15 times the
+// time stepper's run); at surge ζ 0.01 the same chain's fastest mode oscillates: exact.
+TEST(ChainModesTest, AutoLeavesAChainWithAFastOverdampedModeToATimeStepper) {
+  for (const double zeta : {0.01, 0.4}) {
+    const Chain c(40, zeta);
+    const NeedleTrain train(c.cam, c.p, 60.0, 0.0);
+    const MethodChoice choice = AutoMethod(train, 100.0, 1e-8);
+    EXPECT_EQ(MethodName(choice.method), zeta < 0.1 ? "exact" : "dopri5") << zeta;
+    if (zeta < 0.1) continue;
+    EXPECT_TRUE(std::regex_match(
+        choice.reason,
+        std::regex("auto: the coil chain's fastest mode is overdamped \\(\\|λ\\| [0-9.e+]+ 1/s "
+                   "against its fastest oscillation's [0-9.e+]+ rad/s\\), which would cap method "
+                   "\"exact\"'s pieces; the contact oscillates 100 times per cam event .*")))
+        << choice.reason;
+  }
+}
+
 TEST(ChainModesTest, TheModesAndTheirInverseRowsInvertEachOther) {
   struct Variant {
     int coils;
