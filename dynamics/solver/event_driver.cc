@@ -149,7 +149,10 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
     return recorder_.AtRest(t, Motion(t), phase);
   };
   if (!(hi > lo)) return at_rest(hi) ? std::optional<double>(hi) : std::nullopt;
-  if (chain && piece->ForcingConstant() && piece->InputConstant()) {
+  // The closed form under a constant forcing and input, by its rate bounds (one mass too: a new
+  // user's engine ended 2° after every tight time stepper, its 64 samples passing the rest).
+  if (piece && piece->ForcingConstant() && piece->InputConstant() &&
+      (chain || piece->stiffness() > 0.0)) {
     if (const std::optional<double> rest = FirstChainRest(*piece, lo, hi, phase)) return rest;
     if (lo > hi) return std::nullopt;  // no time in [lo, hi] at rest
   }
@@ -161,24 +164,34 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
       moving = tk;
       continue;
     }
-    if (k == 0) return tk;
-    double a = moving, b = tk;  // moving at a, at rest at b
-    for (int i = 0; i < 60 && b - a > 1e-12 * (1.0 + std::abs(b)); ++i) {
-      const double m = 0.5 * (a + b);
-      (at_rest(m) ? b : a) = m;
-    }
-    return b;
+    return k == 0 ? tk : RestOnset(moving, tk, phase);
   }
   return std::nullopt;
+}
+
+double EventDriver::RestOnset(double moving, double rest, const Phase& phase) {
+  const auto at_rest = [&](double t) { return recorder_.AtRest(t, Motion(t), phase); };
+  for (int i = 0; i < 60 && rest - moving > 1e-12 * (1.0 + std::abs(rest)); ++i) {
+    const double mid = 0.5 * (moving + rest);
+    (at_rest(mid) ? rest : moving) = mid;
+  }
+  return rest;
 }
 
 std::optional<double> EventDriver::FirstChainRest(const ClosedFormPiece& piece, double& lo,
                                                   double hi, const Phase& phase) {
   // |ẏ| and the net force |m ÿ| change no faster than B₂ and m B₃ (constant forcing: the modal
-  // sums' alone). From t, where |ẏ| exceeds v_r by d_v or |m ÿ| exceeds F_r by d_F, no time
-  // before t + max(d_v / B₂, d_F / (m B₃)) is at rest.
-  const auto [b2, b3] = piece.ChainNeedleRateBounds();
+  // sums' alone; one mass: H = ½ m h′² + ½ K h² never grows, so |h″| ≤ (K |h|max + c |h′|max)/m
+  // = B₂ and |h‴| ≤ (K |h′|max + c B₂)/m = B₃ from t on). From t, where |ẏ| exceeds v_r by d_v or
+  // |m ÿ| exceeds F_r by d_F, no time before t + max(d_v / B₂, d_F / (m B₃)) is at rest.
   const double m = train_.NeedleMassKg(), f_r = recorder_.RestForceTolerance();
+  const auto bounds = [&](double t) -> std::array<double, 2> {
+    if (piece.Chain()) return piece.ChainNeedleRateBounds();
+    const double K = piece.stiffness(), c = piece.damping(), H = piece.HomogeneousEnergy(t);
+    const double h = std::sqrt(2.0 * H / K), v = std::sqrt(2.0 * H / m);
+    const double b2 = (K * h + c * v) / m;
+    return {b2, (K * v + c * b2) / m};
+  };
   constexpr double kNever = std::numeric_limits<double>::infinity();
   if (!phase.mode.cam && !phase.mode.seat) {  // in flight on the whole piece: nothing pushes
     lo = kNever;
@@ -189,14 +202,20 @@ std::optional<double> EventDriver::FirstChainRest(const ClosedFormPiece& piece, 
   // AtRest's own state and net force differ from Motion's by round-off), the same least step.
   const double least = 1e-7 * std::min(piece.LongestStep(), hi - lo);
   constexpr int kMaxSteps = 20000;  // then the sampled search from where this stopped
+  double moving = lo;               // the last time known not at rest
   for (int k = 0; k < kMaxSteps && lo <= hi; ++k) {
     const std::array<double, 3> yva = piece.Motion(lo);
     const double d_v = std::abs(yva[1]) - kRestSpeed_m_s, d_f = m * std::abs(yva[2]) - f_r;
     if (!(d_v > 0.0 || d_f > 0.0)) {
-      if (recorder_.AtRest(lo, Motion(lo), phase)) return lo;
+      // The step that reached it may have passed its start: bisected back, as the samples are.
+      if (recorder_.AtRest(lo, Motion(lo), phase))
+        return k == 0 ? lo : RestOnset(moving, lo, phase);
+      moving = lo;
       lo += least;
       continue;
     }
+    moving = lo;
+    const auto [b2, b3] = bounds(lo);
     const double wait_v = d_v > 0.0 ? d_v / b2 : 0.0, wait_f = d_f > 0.0 ? d_f / (m * b3) : 0.0;
     if (std::isnan(wait_v) || std::isnan(wait_f)) return std::nullopt;  // the samples from lo
     if (wait_v == kNever || wait_f == kNever) {  // B = 0: that one never comes down

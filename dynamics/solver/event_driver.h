@@ -322,6 +322,9 @@ class EventDriver {
   // pass no time at rest however briefly (the needle's rate bounds,
   // ClosedFormPiece::ChainNeedleRateBounds): the time, or nullopt with `lo` moved past hi
   // (none at rest) or to where its step budget ended.
+  // Between `moving` (not at rest) and `rest` (at rest), the time it comes to rest, by bisection
+  // to 1e-12 of it.
+  double RestOnset(double moving, double rest, const Phase& phase);
   std::optional<double> FirstChainRest(const ClosedFormPiece& piece, double& lo, double hi,
                                        const Phase& phase);
 

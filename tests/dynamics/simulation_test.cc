@@ -637,6 +637,25 @@ TEST(SimulationTest, AutoTakesTheClosedFormForACoilChainAndATimeStepperWhereItCa
             "auto: the train is linear in every contact mode, solved in closed form");
 }
 
+// One mass too: helper-59's engine (tests/data/light3000-chain.toml) with its spring as one mass,
+// lightly damped, at 2200 rpm rings on its seat into the rest box for a moment that 64 samples of
+// a long piece passed: the run ended at 1057.880° where dopri5 at rtol 1e-13, rkf78, cvode-adams
+// and rosenbrock4 end at 1055.914°. The closed form now steps by its energy's rate bounds.
+TEST(SimulationTest, TheClosedFormFindsAOneMassRestWhereTightSteppersDo) {
+  const Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/light3000-chain.toml");
+  Scene s = MakeScene(c);
+  s.train.coil_masses = 1;
+  SimulationOptions o = OptionsFromCase(c);
+  const SimulationResult e = Simulate(s, 2200.0, o);
+  EXPECT_EQ(e.method, "exact");
+  o.method = "dopri5";
+  o.integrator.rtol = 1e-13;
+  o.integrator.atol_m = DefaultAtol(1e-13);
+  const SimulationResult d = Simulate(s, 2200.0, o);
+  EXPECT_NEAR(e.run_end_rad / kDeg, d.run_end_rad / kDeg, 1e-6);
+  EXPECT_NEAR(d.run_end_rad / kDeg, 1055.914, 1e-3);
+}
+
 TEST(SimulationTest, TheClosedFormFindsAChainsRestWhereDopri5AtRtol1e12Does) {
   // A needle ringing on its seat enters the rest box (|ẏ| ≤ 1e-4 m/s, |F| ≤ 1e-3 of the load)
   // for a moment at a corner, cycles before it stays: 64 samples of a closed-form piece passed
