@@ -142,8 +142,7 @@ MethodChoice AutoMethod(const NeedleTrain& train, double oscillations, double /*
   // 3757 pieces, 15 times the time stepper's run).
   if (!refusal && train.Coils() > 0) {
     double fastest = 0.0, oscillation = 0.0;
-    for (int i = 0; i < 4; ++i) {
-      const auto modes = ChainModes::Shared(train, ContactMode{(i & 1) != 0, (i & 2) != 0});
+    for (const auto& modes : ChainModes::SharedEveryMode(train)) {  // made by the refusal's ask
       fastest = std::max(fastest, modes->Fastest());
       oscillation = std::max(oscillation, modes->FastestOscillation());
     }

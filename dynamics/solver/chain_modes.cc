@@ -160,6 +160,13 @@ std::shared_ptr<const ChainModes> ChainModes::Shared(const NeedleTrain& train,
   return made;
 }
 
+std::array<std::shared_ptr<const ChainModes>, 4> ChainModes::SharedEveryMode(
+    const NeedleTrain& train) {
+  std::array<std::shared_ptr<const ChainModes>, 4> modes;
+  for (int i = 0; i < 4; ++i) modes[i] = Shared(train, ContactMode{(i & 1) != 0, (i & 2) != 0});
+  return modes;
+}
+
 void ChainModes::Assemble(const NeedleTrain& train, const ContactMode& mode) {
   const int n = dofs_;
   const double k = train.SegmentRateNm(), c = train.SegmentDampingNsm();

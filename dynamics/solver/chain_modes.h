@@ -36,6 +36,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -76,6 +77,10 @@ class ChainModes {
   static std::shared_ptr<const ChainModes> Shared(const NeedleTrain& train,
                                                   const ContactMode& mode);
   static constexpr int kSharedKept = 8;  // two trains' four contact modes
+  /// Shared in each of the four contact modes (the cam and the seat pushing or not), at
+  /// ModeIndex(mode). Throws as Shared.
+  static std::array<std::shared_ptr<const ChainModes>, 4> SharedEveryMode(const NeedleTrain& train);
+  static int ModeIndex(const ContactMode& mode) { return (mode.cam ? 1 : 0) + (mode.seat ? 2 : 0); }
 
   /// N: the needle and the N − 1 coil masses.
   int Dofs() const { return dofs_; }

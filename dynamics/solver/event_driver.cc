@@ -153,7 +153,7 @@ std::optional<double> EventDriver::FirstRest(double lo, double hi, const Phase& 
   // user's engine ended 2° after every tight time stepper, its 64 samples passing the rest).
   if (piece && piece->ForcingConstant() && piece->InputConstant() &&
       (chain || piece->stiffness() > 0.0)) {
-    if (const std::optional<double> rest = FirstChainRest(*piece, lo, hi, phase)) return rest;
+    if (const std::optional<double> rest = FirstClosedFormRest(*piece, lo, hi, phase)) return rest;
     if (lo > hi) return std::nullopt;  // no time in [lo, hi] at rest
   }
   constexpr int kSamples = 64;
@@ -178,8 +178,8 @@ double EventDriver::RestOnset(double moving, double rest, const Phase& phase) {
   return rest;
 }
 
-std::optional<double> EventDriver::FirstChainRest(const ClosedFormPiece& piece, double& lo,
-                                                  double hi, const Phase& phase) {
+std::optional<double> EventDriver::FirstClosedFormRest(const ClosedFormPiece& piece, double& lo,
+                                                       double hi, const Phase& phase) {
   // |ẏ| and the net force |m ÿ| change no faster than B₂ and m B₃ (constant forcing: the modal
   // sums' alone; one mass: H = ½ m h′² + ½ K h² never grows, so |h″| ≤ (K |h|max + c |h′|max)/m
   // = B₂ and |h‴| ≤ (K |h′|max + c B₂)/m = B₃ from t on). From t, where |ẏ| exceeds v_r by d_v or

@@ -316,17 +316,18 @@ class EventDriver {
   double LocateExtreme(const StretchSamples& samples, int which, int k, double record);
   // The earliest time in [lo, hi] at which the needle is at rest (Recorder::AtRest), on the
   // step's dense output, or nullopt: 64 samples and the end, then bisection between the last
-  // moving sample and the first at rest (a chain's closed form: FirstChainRest first).
+  // moving sample and the first at rest (the closed form under a constant forcing and input:
+  // FirstClosedFormRest first).
   std::optional<double> FirstRest(double lo, double hi, const Phase& phase);
-  // The same on a coil chain's closed form under a constant forcing and input, by steps that
-  // pass no time at rest however briefly (the needle's rate bounds,
-  // ClosedFormPiece::ChainNeedleRateBounds): the time, or nullopt with `lo` moved past hi
-  // (none at rest) or to where its step budget ended.
+  // The same on the closed form under a constant forcing and input, by steps that pass no time
+  // at rest however briefly (the needle's rate bounds: a chain's
+  // ClosedFormPiece::ChainNeedleRateBounds, one mass's from its homogeneous energy): the time,
+  // or nullopt with `lo` moved past hi (none at rest) or to where its step budget ended.
+  std::optional<double> FirstClosedFormRest(const ClosedFormPiece& piece, double& lo, double hi,
+                                            const Phase& phase);
   // Between `moving` (not at rest) and `rest` (at rest), the time it comes to rest, by bisection
   // to 1e-12 of it.
   double RestOnset(double moving, double rest, const Phase& phase);
-  std::optional<double> FirstChainRest(const ClosedFormPiece& piece, double& lo, double hi,
-                                       const Phase& phase);
 
   const NeedleTrain& train_;
   Recorder& recorder_;

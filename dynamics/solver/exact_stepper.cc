@@ -25,10 +25,7 @@ class ExactStepper final : public Stepper {
     // A chain's modes in each of its four contact modes (the cam and the seat pushing or not),
     // made before the run (or kept from the thread's last runs of such a chain): a chain the
     // closed form cannot carry is refused before it starts.
-    if (system_.train().Coils() > 0) {
-      for (int i = 0; i < 4; ++i)
-        modes_[i] = ChainModes::Shared(system_.train(), ContactMode{(i & 1) != 0, (i & 2) != 0});
-    }
+    if (system_.train().Coils() > 0) modes_ = ChainModes::SharedEveryMode(system_.train());
   }
   void Initialize(const TrainState& z, double t, double /*dt*/) override {
     x_ = system_.FromScaled(z);
@@ -77,7 +74,7 @@ class ExactStepper final : public Stepper {
   }
   // The coil chain's modes in `mode`; nullptr for one mass.
   const ChainModes* Modes(const ContactMode& mode) const {
-    return modes_[(mode.cam ? 1 : 0) + (mode.seat ? 2 : 0)].get();
+    return modes_[ChainModes::ModeIndex(mode)].get();
   }
 
   TrainSystem& system_;
@@ -115,7 +112,7 @@ std::optional<std::string> ExactRefusalWithModes(const NeedleTrain& train) {
   if (std::optional<std::string> why = ExactRefusal(train)) return why;
   if (train.Coils() == 0) return std::nullopt;
   try {
-    for (int i = 0; i < 4; ++i) ChainModes::Shared(train, ContactMode{(i & 1) != 0, (i & 2) != 0});
+    ChainModes::SharedEveryMode(train);
   } catch (const std::invalid_argument& e) {
     // Without the refusal's advice ("take dopri5"): auto says which time stepper it takes.
     std::string why = e.what();

@@ -660,8 +660,8 @@ TEST(SimulationTest, TheClosedFormFindsAChainsRestWhereDopri5AtRtol1e12Does) {
   // A needle ringing on its seat enters the rest box (|ẏ| ≤ 1e-4 m/s, |F| ≤ 1e-3 of the load)
   // for a moment at a corner, cycles before it stays: 64 samples of a closed-form piece passed
   // such windows (stop 93's new user: a later rest, other records). The rate bounds
-  // (EventDriver::FirstChainRest) step past none. The engine of cases/, lightly damped (seat and
-  // cam ζ 0.02, surge ζ 0.002), 5 coil masses, at 2600 rpm: 64 samples ended at 131.288°.
+  // (EventDriver::FirstClosedFormRest) step past none. The engine of cases/, lightly damped (seat
+  // and cam ζ 0.02, surge ζ 0.002), 5 coil masses, at 2600 rpm: 64 samples ended at 131.288°.
   Case c = LoadCase(kCases + "engine-2000rpm-surging-spring.toml");
   c.spring->masses = 5;
   c.spring->surge_damping_ratio = 0.002;

@@ -350,9 +350,9 @@ TEST(ChainModesTest, TheModalBoundsHoldAlongAPiece) {
       });
 }
 
-// The rates EventDriver::FirstChainRest steps by (ClosedFormPiece::ChainNeedleRateBounds): on a
-// piece under a constant forcing, |ÿ| = |dẏ/dt| ≤ B₂ and |dÿ/dt| ≤ B₃ (the differences of Motion on
-// 2001 points over three of the fastest half oscillations), and not wild guesses.
+// The rates EventDriver::FirstClosedFormRest steps by (ClosedFormPiece::ChainNeedleRateBounds): on
+// a piece under a constant forcing, |ÿ| = |dẏ/dt| ≤ B₂ and |dÿ/dt| ≤ B₃ (the differences of Motion
+// on 2001 points over three of the fastest half oscillations), and not wild guesses.
 TEST(ChainModesTest, TheNeedlesRateBoundsHoldUnderAConstantForcing) {
   const SurgeChain chain;
   int pieces = 0;
