@@ -197,6 +197,8 @@ class Recorder {
   const std::vector<SeriesPoint>& series() const { return series_; }
   /// Off the cam in the last episode, which is still open (as of the last sample or event).
   bool separated() const { return separated_; }
+  /// The largest gap of the open separation episode, m; 0 where none is open.
+  double open_gap_m() const { return separated_ ? episodes_.back().max_gap_m : 0.0; }
 
   /// Asks integrators to report the state at these times (sorted); empty: none.
   void set_grid(std::vector<double> times) { grid_times_ = std::move(times); }

@@ -291,8 +291,8 @@ class EventDriver {
   // RecordExtremes samples a stretch at this many intervals.
   static constexpr int kStretchSamples = 16;
   // RecordExtremes' samples of a stretch: their times, and at each the values ExtremeValue
-  // takes (which = 0 … 5).
-  static constexpr int kExtremes = 6;
+  // takes (which = 0 … 6).
+  static constexpr int kExtremes = 7;
   struct StretchSamples {
     std::array<double, kStretchSamples + 1> ts;
     std::array<std::array<double, kStretchSamples + 1>, kExtremes> f;
@@ -300,7 +300,9 @@ class EventDriver {
   // At x: the three forces, each signed so that its extreme is a minimum, (which = 3) a chain's
   // largest segment compression (the least coil gap, where the run reports it), negated, and
   // (which = 4) the contact force's share of the holding load (Recorder::ForceShare), (which = 5) a
-  // chain's spring force on the needle (the surge study's peak), negated.
+  // chain's spring force on the needle (the surge study's peak), negated, and (which = 6) the
+  // needle's gap above the cam while separated (the cam not pushing, the lift above 1 µm),
+  // negated; +∞ where it is not separated.
   double ExtremeValue(int which, double t, const TrainState& x) const;
   // The state the cam and seat forces read at t: Motion(t), or a chain piece's needle alone
   // (Motion()'s bits for y and ẏ, the coils at 0), which is all linear contact laws read.

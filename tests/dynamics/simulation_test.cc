@@ -656,6 +656,25 @@ TEST(SimulationTest, TheClosedFormFindsAOneMassRestWhereTightSteppersDo) {
   EXPECT_NEAR(d.run_end_rad / kDeg, 1055.914, 1e-3);
 }
 
+// The largest gap of a separation is located, as the forces' extremes are: helper-59's engine
+// (tests/data/light3000-chain.toml) with undamped contacts at 4000 rpm jumps five times, and its
+// samples alone read the last jump's largest gap 0.06453144 mm against dopri5 at rtol 1e-13's
+// 0.06455109 (3.0e-4 under).
+TEST(SimulationTest, TheClosedFormLocatesASeparationsLargestGap) {
+  Case c = LoadCase(std::string(NEEDLE_SOURCE_DIR) + "/tests/data/light3000-chain.toml");
+  c.train->contact_damping_ratio = 0.0;
+  c.train->seat_damping_ratio = 0.0;
+  const Scene s = MakeScene(c);
+  const SimulationResult exact = Simulate(s, 4000.0, Options("exact", 1e-8));
+  const SimulationResult reference = Simulate(s, 4000.0, Options("dopri5", 1e-13));
+  ASSERT_EQ(exact.episodes.size(), reference.episodes.size());
+  ASSERT_EQ(exact.episodes.size(), 5u);
+  for (size_t i = 0; i < exact.episodes.size(); ++i) {
+    const double truth = reference.episodes[i].max_gap_m;
+    EXPECT_NEAR(exact.episodes[i].max_gap_m, truth, 1e-8 * truth) << i;
+  }
+}
+
 TEST(SimulationTest, TheClosedFormFindsAChainsRestWhereDopri5AtRtol1e12Does) {
   // A needle ringing on its seat enters the rest box (|ẏ| ≤ 1e-4 m/s, |F| ≤ 1e-3 of the load)
   // for a moment at a corner, cycles before it stays: 64 samples of a closed-form piece passed
