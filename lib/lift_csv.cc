@@ -13,6 +13,7 @@
 #include "lib/case_error.h"
 #include "lib/input_file.h"
 #include "lib/lift_data.h"
+#include "lib/output.h"
 #include "lib/units.h"
 
 namespace needle {
@@ -224,6 +225,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
   }
   const std::string_view text_all = std::string_view(text).substr(bom ? 3 : 0);
   int line = 0, last_line = 0;
+  double last_angle = 0.0;  // as written, for a refusal's message
   char separator = ',';
   CsvColumns c;
   LiftTable t;
@@ -278,11 +280,9 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
     const double si[2] = {v[0] * c.angle_scale, v[1] * c.lift_scale};
     CheckPlausible(path, line, c, v, si);
     if (!t.crank_rad.empty() && !(si[0] > t.crank_rad.back())) {
-      std::ostringstream a, b;
-      a << v[0];
-      b << t.crank_rad.back() / c.angle_scale;
+      const auto [a, b] = SignificantApart(v[0], last_angle);
       CsvFail(path, line, c.angle + 1,
-              c.angle_name + " " + a.str() + " does not increase after " + b.str() + " (line " +
+              c.angle_name + " " + a + " does not increase after " + b + " (line " +
                   std::to_string(last_line) + "); angles must increase strictly");
     }
     t.crank_rad.push_back(si[0]);
@@ -290,6 +290,7 @@ LiftTable ParseLiftCsv(const std::string& text, const std::string& path, EngineC
     if (c.time >= 0) time_s->push_back(v[2] * c.time_scale);
     if (lines) lines->push_back(line);
     last_line = line;
+    last_angle = v[0];
   }
   if (c.count == 0) {
     const std::string expected =

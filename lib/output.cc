@@ -260,4 +260,13 @@ std::string Significant(double value, int digits) {
   return out.str();
 }
 
+std::pair<std::string, std::string> SignificantApart(double a, double b, int digits) {
+  std::pair<std::string, std::string> text{Significant(a, digits), Significant(b, digits)};
+  while (a != b && text.first == text.second && digits < 17) {
+    ++digits;
+    text = {Significant(a, digits), Significant(b, digits)};
+  }
+  return text;
+}
+
 }  // namespace needle

@@ -9,6 +9,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace needle {
@@ -94,5 +95,9 @@ std::string ListText(const std::vector<std::string>& items);
 
 /// `value` to `digits` significant digits, as a stream prints it ("0.001", "3.674", "1e+09").
 std::string Significant(double value, int digits);
+
+/// `a` and `b` to `digits` significant digits, and more (up to 17) while they would print the same
+/// though they differ: "123.4567891 does not increase after 123.4567892", not "123.457 … 123.457".
+std::pair<std::string, std::string> SignificantApart(double a, double b, int digits = 6);
 
 }  // namespace needle

@@ -92,9 +92,10 @@ void ReadArrayTable(SectionReader& r, const std::optional<std::vector<double>>& 
   plausible(*values, lift_key, Dimension::kLength, kMaxLiftM, "a lift within ±1 m");
   for (size_t i = 1; i < crank->size(); ++i) {
     if (!((*crank)[i] > (*crank)[i - 1])) {
+      const auto [now, before] = SignificantApart((*crank)[i] / kDeg, (*crank)[i - 1] / kDeg);
       r.Fail("crank_deg", "angles must increase strictly, but entry " + std::to_string(i) + " (" +
-                              Number((*crank)[i] / kDeg) + ") follows entry " +
-                              std::to_string(i - 1) + " (" + Number((*crank)[i - 1] / kDeg) + ")");
+                              now + ") follows entry " + std::to_string(i - 1) + " (" + before +
+                              ")");
     }
   }
   lift.table = {*crank, *values};

@@ -68,8 +68,8 @@ void CheckMeasuredTrace(const MeasuredTrace& t, const BoundCase& b) {
                       " is not a finite number; a trace needs finite angles and lifts");
     }
     if (i > 0 && !(th[i] > th[i - 1])) {
-      throw CaseError(Where(t, i) + ": crank_deg " + Significant(th[i] / kDeg, 6) +
-                      " does not increase after " + Significant(th[i - 1] / kDeg, 6) +
+      const auto [now, before] = SignificantApart(th[i] / kDeg, th[i - 1] / kDeg);
+      throw CaseError(Where(t, i) + ": crank_deg " + now + " does not increase after " + before +
                       "; angles must increase strictly");
     }
   }
@@ -133,8 +133,8 @@ void CheckMeasuredTrace(const MeasuredTrace& t, const BoundCase& b) {
   if (t.time_s.empty()) return;
   for (size_t i = 1; i < t.time_s.size(); ++i) {
     if (!(t.time_s[i] > t.time_s[i - 1])) {
-      throw CaseError(Where(t, i) + ": time: " + Significant(t.time_s[i], 8) +
-                      " s does not increase after " + Significant(t.time_s[i - 1], 8) +
+      const auto [now, before] = SignificantApart(t.time_s[i], t.time_s[i - 1], 8);
+      throw CaseError(Where(t, i) + ": time: " + now + " s does not increase after " + before +
                       " s; a clock must increase strictly");
     }
   }

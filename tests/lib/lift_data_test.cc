@@ -600,6 +600,11 @@ TEST(LiftCsvTest, BadTables) {
   EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1\n2,0\n"),
             "m.csv:4:1: crank_deg 2 does not increase after 2 (line 3); angles must increase "
             "strictly");
+  // Angles apart by less than six digits show: helper-60's 123.4567892 then 123.4567891 read
+  // "123.457 does not increase after 123.457".
+  EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n123.4567892,1\n123.4567891,0\n"),
+            "m.csv:4:1: crank_deg 123.4567891 does not increase after 123.4567892 (line 3); "
+            "angles must increase strictly");
   EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1,3\n"), "m.csv:3: expected 2 fields, got 3");
   // Implausible readings (lib/lift_data.h: |lift| ≤ 1 m, |crank| ≤ 720°), in the column's unit.
   EXPECT_EQ(CsvError("crank_deg,lift_mm\n1,0\n2,1e300\n"),

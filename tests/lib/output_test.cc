@@ -126,6 +126,16 @@ TEST(OutputTest, ListTextJoinsAsASentenceDoes) {
   EXPECT_EQ(ListText({"a", "b", "c"}), "a, b and c");
 }
 
+// Two values that differ never print alike (a refusal of 123.4567891 after 123.4567892).
+TEST(OutputTest, SignificantApartShowsTwoValuesApart) {
+  EXPECT_EQ(SignificantApart(123.4567891, 123.4567892),
+            std::make_pair(std::string("123.4567891"), std::string("123.4567892")));
+  EXPECT_EQ(SignificantApart(2.0, 1.5), std::make_pair(std::string("2"), std::string("1.5")));
+  EXPECT_EQ(SignificantApart(2.0, 2.0), std::make_pair(std::string("2"), std::string("2")));
+  const auto [a, b] = SignificantApart(1.0, std::nextafter(1.0, 2.0));  // 17 digits at most
+  EXPECT_NE(a, b);
+}
+
 // A value beside its limit never prints as the limit ("13.0 below 13" for 12.97).
 TEST(OutputTest, DecimalsApartSetAValueApartFromItsLimit) {
   EXPECT_EQ(DecimalsApart(12.97, 13.0, 1), 2);
