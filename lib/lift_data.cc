@@ -6,6 +6,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "lib/output.h"
 #include "lib/units.h"
@@ -194,9 +195,39 @@ bool PrintedTo(double value, double q) {
   return DistanceToInteger(r) <= 1e-6 * std::max(1.0, 1e-9 * std::abs(r));
 }
 
+// Lifts printed to S significant digits (C's %g: "6.18933", "0.0123457"), in `unit_mm`: the
+// digit of the highest decade that holds kDecadeLeast readings or more, where it and the decade
+// below print one decimal apart (S − 1 − e decimals in decade e: 5 and 6 for %g's six digits);
+// nullopt where the decades print alike (fixed decimals) or too few readings tell.
+std::optional<double> SignificantDigit(const std::vector<double>& lift_m, double unit_mm) {
+  constexpr int kDecadeLeast = 8;
+  std::map<int, std::pair<int, int>> decades;  // e → (readings, most decimals)
+  for (double v : lift_m) {
+    const double x = std::abs(v) * 1e3 / unit_mm;
+    if (!(x > 0.0)) continue;
+    int d = 0;
+    while (d <= 12 && !PrintedTo(x, std::pow(10.0, -d))) ++d;
+    if (d > 12) continue;  // a reading near the seat in %g's exponent form ("3.45815e-11")
+    auto& [count, most] = decades[static_cast<int>(std::floor(std::log10(x)))];
+    ++count;
+    most = std::max(most, d);
+  }
+  std::vector<std::pair<int, int>> told;  // (e, most decimals), highest decade first
+  for (auto it = decades.rbegin(); it != decades.rend(); ++it)
+    if (it->second.first >= kDecadeLeast) told.emplace_back(it->first, it->second.second);
+  if (told.size() < 2 || told[1].first != told[0].first - 1 ||
+      told[1].second != told[0].second + 1) {
+    return std::nullopt;
+  }
+  return std::pow(10.0, -told[0].second) * unit_mm * 1e-3;
+}
+
 }  // namespace
 
 std::optional<double> PrintedResolution(const std::vector<double>& lift_m) {
+  // A table printed to significant digits is rounded to its highest decade's digit.
+  for (const double unit_mm : {kInchMm, 1.0})
+    if (const std::optional<double> q = SignificantDigit(lift_m, unit_mm)) return q;
   // The digits 10^-k of each unit, the inch's first at each k: 1 in, 1 mm, 0.1 in, 0.1 mm, … (a
   // table in inches to 5 decimals is a multiple of 1e-6 mm too, and of 2.54e-4 mm first; a mm
   // table is read in inches only where every lift is a multiple of 127·10^-k mm).

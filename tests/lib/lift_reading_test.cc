@@ -1333,6 +1333,28 @@ TEST(LiftReadingTest, ARoundedCubicBSplinesKnotIsToldByItsSquares) {
   EXPECT_TRUE(r.max_in_band && r.min_in_band);
 }
 
+// Lifts printed to six significant digits, as C's %g writes them ("6.18933", "0.0123457",
+// "3.45815e-05"): every lift is a multiple of 1e-7 mm, but the top decade's only of 1e-5. Read as
+// rounded to 1e-7, 17 of helper-60's 58 such exact exports were taken for measured data (a harmonic
+// rise of 6.19 mm over 32.2° and return over 38.8°, every 0.25°: a_max +4.0 % by a smoothing
+// spline).
+TEST(LiftReadingTest, ATablePrintedToSignificantDigitsIsRoundedAtItsTopDecade) {
+  const Law law{6.190297, 32.194493, 0.0, 38.782872, Harmonic};
+  LiftTable t;
+  for (double deg = -7.746641; deg <= law.end_deg() + 7.9; deg += 0.25) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g", law.At(deg, 0));
+    t.crank_rad.push_back(deg * kDeg);
+    t.lift_m.push_back(std::atof(text) * 1e-3);
+  }
+  ASSERT_EQ(PrintedResolution(t.lift_m).value_or(0.0), 1e-8);
+  const Read r = ReadExport(law, t);
+  EXPECT_FALSE(r.choice.measured) << r.choice.reason;
+  EXPECT_LT(std::abs(r.max_error), 0.01) << r.choice.reason;
+  EXPECT_LT(std::abs(r.min_error), 0.01);
+  EXPECT_TRUE(r.max_in_band && r.min_in_band);
+}
+
 // The lift bench's cubic B-spline (bench/lift_tables.py: 9 equal knots, 3 mm over 24°, a 6°
 // dwell, the return over 30°) every 0.05° and 0.1° to 1e-4 mm: the sides of its peak's knot hold
 // 64 readings and more, which a septic misfits by 1.9 and 5.1 σ² per degree of freedom and the
