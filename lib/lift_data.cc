@@ -6,7 +6,6 @@
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "lib/output.h"
 #include "lib/units.h"
@@ -201,25 +200,50 @@ bool PrintedTo(double value, double q) {
 // nullopt where the decades print alike (fixed decimals) or too few readings tell.
 std::optional<double> SignificantDigit(const std::vector<double>& lift_m, double unit_mm) {
   constexpr int kDecadeLeast = 8;
-  std::map<int, std::pair<int, int>> decades;  // e → (readings, most decimals)
-  for (double v : lift_m) {
-    const double x = std::abs(v) * 1e3 / unit_mm;
-    if (!(x > 0.0)) continue;
-    int d = 0;
-    while (d <= 12 && !PrintedTo(x, std::pow(10.0, -d))) ++d;
-    if (d > 12) continue;  // a reading near the seat in %g's exponent form ("3.45815e-11")
-    auto& [count, most] = decades[static_cast<int>(std::floor(std::log10(x)))];
-    ++count;
-    most = std::max(most, d);
+  // O(n): each reading's decade once, then each of the two decades' digit from its own readings
+  // (the smallest 10^-k all are multiples of, a first misfit ending each k's scan).
+  static const std::array<double, 26> kPow = [] {  // 10^(e − 12), e = 0 … 25
+    std::array<double, 26> p{};
+    for (int e = 0; e < 26; ++e) p[e] = std::pow(10.0, e - 12);
+    return p;
+  }();
+  std::vector<signed char> decade(lift_m.size(), std::numeric_limits<signed char>::min());
+  std::array<int, 25> count{};  // of decades −12 … 12
+  for (size_t i = 0; i < lift_m.size(); ++i) {
+    const double x = std::abs(lift_m[i]) * 1e3 / unit_mm;
+    if (!(x >= kPow[0] && x < kPow[24])) continue;
+    // floor(log10 x) from the binary exponent (log10 2 = 0.30103), then one step either way.
+    int e = std::clamp(static_cast<int>(std::floor(std::ilogb(x) * 0.30103)) + 12, 0, 23);
+    if (x < kPow[e]) --e;
+    if (x >= kPow[e + 1]) ++e;
+    decade[i] = static_cast<signed char>(e - 12);
+    ++count[e];
   }
-  std::vector<std::pair<int, int>> told;  // (e, most decimals), highest decade first
-  for (auto it = decades.rbegin(); it != decades.rend(); ++it)
-    if (it->second.first >= kDecadeLeast) told.emplace_back(it->first, it->second.second);
-  if (told.size() < 2 || told[1].first != told[0].first - 1 ||
-      told[1].second != told[0].second + 1) {
-    return std::nullopt;
+  std::vector<int> told;  // decades of kDecadeLeast readings or more, highest first
+  for (int e = 24; e >= 0 && told.size() < 2; --e)
+    if (count[e] >= kDecadeLeast) told.push_back(e - 12);
+  if (told.size() < 2 || told[1] != told[0] - 1) return std::nullopt;
+  // Decimals of decade e's readings, every `stride`-th of them; 13 where over 12.
+  const auto digits = [&](int e, int stride) {
+    std::vector<double> xs;
+    int seen = 0;
+    for (size_t i = 0; i < lift_m.size(); ++i)
+      if (decade[i] == e && seen++ % stride == 0) xs.push_back(std::abs(lift_m[i]) * 1e3 / unit_mm);
+    int k = 0;
+    for (; k <= 12; ++k) {
+      const double q = std::pow(10.0, -k);
+      if (std::all_of(xs.begin(), xs.end(), [q](double x) { return PrintedTo(x, q); })) break;
+    }
+    return k;
+  };
+  // Some 256 readings of each first (a fixed-decimal table ends here), then all of them.
+  int top = 13;
+  for (const bool all : {false, true}) {
+    const auto stride = [&](int e) { return all ? 1 : std::max(1, count[e + 12] / 256); };
+    top = digits(told[0], stride(told[0]));
+    if (top > 12 || digits(told[1], stride(told[1])) != top + 1) return std::nullopt;
   }
-  return std::pow(10.0, -told[0].second) * unit_mm * 1e-3;
+  return std::pow(10.0, -top) * unit_mm * 1e-3;
 }
 
 }  // namespace
