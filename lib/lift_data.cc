@@ -195,20 +195,22 @@ bool PrintedTo(double value, double q) {
 }
 
 // Lifts printed to S significant digits (C's %g: "6.18933", "0.0123457"), in `unit_mm`: the
-// digit of the highest decade that holds kDecadeLeast readings or more, where it and the decade
-// below print one decimal apart (S − 1 − e decimals in decade e: 5 and 6 for %g's six digits);
-// nullopt where the decades print alike (fixed decimals) or too few readings tell.
+// digit of the highest decade that holds kDecadeLeast distinct readings or more, where it and the
+// decade below print one decimal apart (S − 1 − e decimals in decade e: 5 and 6 for %g's six
+// digits); nullopt where the decades print alike (fixed decimals) or too few readings tell (a
+// fixed-decimal table whose top decade holds only its round peak, 10.0 mm to 0.1 mm, reads one
+// decimal fewer there: helper-61's review).
 std::optional<double> SignificantDigit(const std::vector<double>& lift_m, double unit_mm) {
   constexpr int kDecadeLeast = 8;
   // O(n): each reading's decade once, then each of the two decades' digit from its own readings
-  // (the smallest 10^-k all are multiples of, a first misfit ending each k's scan).
-  static const std::array<double, 26> kPow = [] {  // 10^(e − 12), e = 0 … 25
-    std::array<double, 26> p{};
-    for (int e = 0; e < 26; ++e) p[e] = std::pow(10.0, e - 12);
+  // (the coarsest 10^-k all are multiples of, a first misfit ending each k's scan).
+  static const std::array<double, 25> kPow = [] {  // 10^(e − 12), e = 0 … 24
+    std::array<double, 25> p{};
+    for (int e = 0; e < 25; ++e) p[e] = std::pow(10.0, e - 12);
     return p;
   }();
   std::vector<signed char> decade(lift_m.size(), std::numeric_limits<signed char>::min());
-  std::array<int, 25> count{};  // of decades −12 … 12
+  std::array<int, 24> count{};  // of decades −12 … 11
   for (size_t i = 0; i < lift_m.size(); ++i) {
     const double x = std::abs(lift_m[i]) * 1e3 / unit_mm;
     if (!(x >= kPow[0] && x < kPow[24])) continue;
@@ -220,15 +222,18 @@ std::optional<double> SignificantDigit(const std::vector<double>& lift_m, double
     ++count[e];
   }
   std::vector<int> told;  // decades of kDecadeLeast readings or more, highest first
-  for (int e = 24; e >= 0 && told.size() < 2; --e)
+  for (int e = 23; e >= 0 && told.size() < 2; --e)
     if (count[e] >= kDecadeLeast) told.push_back(e - 12);
   if (told.size() < 2 || told[1] != told[0] - 1) return std::nullopt;
-  // Decimals of decade e's readings, every `stride`-th of them; 13 where over 12.
+  // Decimals of decade e's readings, every `stride`-th of them (13 where over 12), or −1 where
+  // fewer than kDecadeLeast of them differ.
   const auto digits = [&](int e, int stride) {
     std::vector<double> xs;
     int seen = 0;
     for (size_t i = 0; i < lift_m.size(); ++i)
       if (decade[i] == e && seen++ % stride == 0) xs.push_back(std::abs(lift_m[i]) * 1e3 / unit_mm);
+    std::sort(xs.begin(), xs.end());
+    if (std::unique(xs.begin(), xs.end()) - xs.begin() < kDecadeLeast) return -1;
     int k = 0;
     for (; k <= 12; ++k) {
       const double q = std::pow(10.0, -k);
@@ -241,7 +246,7 @@ std::optional<double> SignificantDigit(const std::vector<double>& lift_m, double
   for (const bool all : {false, true}) {
     const auto stride = [&](int e) { return all ? 1 : std::max(1, count[e + 12] / 256); };
     top = digits(told[0], stride(told[0]));
-    if (top > 12 || digits(told[1], stride(told[1])) != top + 1) return std::nullopt;
+    if (top < 0 || top > 12 || digits(told[1], stride(told[1])) != top + 1) return std::nullopt;
   }
   return std::pow(10.0, -top) * unit_mm * 1e-3;
 }

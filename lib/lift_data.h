@@ -306,8 +306,8 @@ constexpr double kInchMm = 25.4;
 
 /// The rounding of the readings, m: the largest 10^-k mm or 10^-k in (k = 0…12) of which every
 /// lift is a multiple (to 1e-6 of it), or, where the lifts are printed to significant digits (%g),
-/// the digit of their highest decade; nullopt when none is (lifts not written in decimal mm or
-/// inches).
+/// the digit of their highest decade of 8 distinct readings or more; nullopt when none is (lifts
+/// not written in decimal mm or inches).
 std::optional<double> PrintedResolution(const std::vector<double>& lift_m);
 
 /// Whether the digit q (m) is 10^-k in rather than 10^-k mm.

@@ -35,14 +35,15 @@ const double kRoundingBound = std::sqrt(3.0);
 constexpr double kSquaresRatio = 4.0;
 // ...and by this many times the rounding's variance per degree of freedom.
 constexpr double kSquaresOverRounding = 3.0;
-// Where both sides hold this many readings or more and the kinked cubic fits them to this many
-// times the rounding's variance per degree of freedom, half those two: with n readings each
-// variance is known to about √(2/n) of itself, and a ratio of 2 at n = 64 lies eight of that off
-// 1. A cubic B-spline's knot every 0.05-0.1° to 1e-4 mm (bench/lift_tables.py's, 64-128
-// readings): the septic 1.9 to 5.1 σ², the kinked cubic 0.9 to 1.5. Where the kinked cubic
-// misfits, other knots lie within the sides and the kink's own s'' is theirs too: in a trial of
-// 200 random B-spline laws (bench/bspline_trial.py seed 7), at 1e-3 mm, kinks taken at ratios
-// of 2 to 4 with the kinked cubic at 2.4 to 8 σ² read their peaks 5 to 14 % high.
+// Where both sides together hold this many readings or more and the kinked cubic fits them to
+// this many times the rounding's variance per degree of freedom, half those two: with n readings
+// each variance is known to about √(2/n) of itself and their ratio to √(4/n), so a ratio of 2 at
+// n = 64 lies four of that off 1. A cubic B-spline's knot every 0.05° and 0.1° to 1e-4 mm
+// (bench/lift_tables.py's, 128 and 73 readings together): the septic 1.9 and 5.1 σ², the kinked
+// cubic 0.9 and 1.5. Where the kinked cubic misfits, other knots lie within the sides and the
+// kink's own s'' is theirs too: in a trial of 200 random B-spline laws (bench/bspline_trial.py
+// seed 7), at 1e-3 mm, kinks taken at ratios of 2 to 4 with the kinked cubic at 2.4 to 8 σ² read
+// their peaks 5 to 14 % high.
 constexpr size_t kSquaresMany = 64;
 constexpr double kSquaresKinkedFits = 2.0;
 // The least readings of both sides for KinkInSquares (a septic's 8 and as many again).

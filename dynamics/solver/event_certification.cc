@@ -275,9 +275,11 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   const bool chain_spring = chain && !recorder_.liftoff_only() && !(ranges.spring_hi <= max_spring);
   // And the largest gap of a separation, which samples alone read low by what passes between
   // them (helper-59's engine at 4000 rpm: a jump's 0.06453 mm against dopri5 at rtol 1e-13's
-  // 0.06455): the cam does not push and the lift may pass 1 µm, so the needle may be off it.
-  const bool gap = !phase.mode.cam && !recorder_.liftoff_only() && ranges.y_hi > kSeparationLift_m;
-  const double max_gap = recorder_.open_gap_m();
+  // 0.06455): where an episode is open (one begins only at an event or a break, where a stretch
+  // begins), the cam does not push and the lift may pass 1 µm.
+  const bool locate_gap = !phase.mode.cam && !recorder_.liftoff_only() &&
+                          ranges.y_hi > kSeparationLift_m && recorder_.separated();
+  const double max_gap_m = recorder_.open_gap_m();
   // The sample screen: the seat force from y and ẏ alone (the train's own bits); the cam force
   // from the piece's input, within kAllowance of the cam's scale (the two inputs differ by
   // round-off, some 1e-16 of it).
@@ -298,7 +300,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
     TrainState x = needle_only ? ForceState(ts[k]) : Motion(ts[k], false);
     f[3][k] = chain_gap ? ExtremeValue(3, ts[k], x) : 0.0;
     f[5][k] = chain_spring ? ExtremeValue(5, ts[k], x) : 0.0;
-    f[6][k] = gap ? ExtremeValue(6, ts[k], x) : 0.0;
+    f[6][k] = locate_gap ? ExtremeValue(6, ts[k], x) : 0.0;
     if (screen && inside) {
       const std::array<double, 2> in = piece.Input(ts[k]);
       const double fs = phase.mode.seat ? seat.Force(-x[0], -x[1]) : 0.0;
@@ -332,8 +334,8 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   }
   piece.ChainSampleTimes(nullptr, 0);  // the stretch's own: later times take the closed form
   const std::array<double, kExtremes> record = {
-      -max_fc,     -max_fs, min_fc, -max_compression, std::isnan(share) ? INFINITY : share,
-      -max_spring, -max_gap};
+      -max_fc,     -max_fs,   min_fc, -max_compression, std::isnan(share) ? INFINITY : share,
+      -max_spring, -max_gap_m};
   // A lift-off run locates only the least contact force (Recorder::set_liftoff_only).
   LocateExtremes(samples, record, recorder_.liftoff_only() ? 2 : 0,
                  chain_gap && !recorder_.liftoff_only() ? 4 : 3);
@@ -341,7 +343,7 @@ void EventDriver::RecordExtremes(double t0, double t1, std::optional<double> cov
   // user's engine read 1.9e-5 more margin than dopri5 at rtol 1e-12, from the samples alone).
   if (!recorder_.liftoff_only()) LocateExtremes(samples, record, 4, 5);
   if (chain_spring) LocateExtremes(samples, record, 5, 6);
-  if (gap) LocateExtremes(samples, record, 6, 7);
+  if (locate_gap) LocateExtremes(samples, record, 6, 7);
 }
 
 TrainState EventDriver::ForceState(double t) {

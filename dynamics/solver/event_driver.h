@@ -302,7 +302,7 @@ class EventDriver {
   // (which = 4) the contact force's share of the holding load (Recorder::ForceShare), (which = 5) a
   // chain's spring force on the needle (the surge study's peak), negated, and (which = 6) the
   // needle's gap above the cam while separated (the cam not pushing, the lift above 1 µm),
-  // negated; +∞ where it is not separated.
+  // negated; +∞ where the cam pushes or the lift is within 1 µm of the seat.
   double ExtremeValue(int which, double t, const TrainState& x) const;
   // The state the cam and seat forces read at t: Motion(t), or a chain piece's needle alone
   // (Motion()'s bits for y and ẏ, the coils at 0), which is all linear contact laws read.

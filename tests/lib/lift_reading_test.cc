@@ -1347,7 +1347,7 @@ TEST(LiftReadingTest, ATablePrintedToSignificantDigitsIsRoundedAtItsTopDecade) {
     t.crank_rad.push_back(deg * kDeg);
     t.lift_m.push_back(std::atof(text) * 1e-3);
   }
-  ASSERT_EQ(PrintedResolution(t.lift_m).value_or(0.0), 1e-8);
+  ASSERT_DOUBLE_EQ(PrintedResolution(t.lift_m).value_or(0.0), 1e-8);
   const Read r = ReadExport(law, t);
   EXPECT_FALSE(r.choice.measured) << r.choice.reason;
   EXPECT_LT(std::abs(r.max_error), 0.01) << r.choice.reason;
@@ -1355,10 +1355,18 @@ TEST(LiftReadingTest, ATablePrintedToSignificantDigitsIsRoundedAtItsTopDecade) {
   EXPECT_TRUE(r.max_in_band && r.min_in_band);
 }
 
+// A fixed-decimal table whose top decade holds only its round peak is no %g table: a harmonic
+// rise to 10.0 mm, a 10° dwell and the return, every 0.25° to 0.1 mm, prints "10" in the top
+// decade and one decimal below it, as %g would (helper-61's review: q 1 mm, ten times the digit).
+TEST(LiftReadingTest, ARoundPeakOfAFixedDecimalTableIsNoSignificantDigitTable) {
+  const Law law{10.0, 40.0, 10.0, 40.0, Harmonic};
+  ASSERT_DOUBLE_EQ(PrintedResolution(Export(law, 0.25, 0.1).lift_m).value_or(0.0), 1e-4);
+}
+
 // The lift bench's cubic B-spline (bench/lift_tables.py: 9 equal knots, 3 mm over 24°, a 6°
 // dwell, the return over 30°) every 0.05° and 0.1° to 1e-4 mm: the sides of its peak's knot hold
-// 64 readings and more, which a septic misfits by 1.9 and 5.1 σ² per degree of freedom and the
-// kinked cubic by 0.9 and 1.5, ratios of 2.1 and 3.5, under the 4 that fewer readings need:
+// 128 and 73 readings together, which a septic misfits by 1.9 and 5.1 σ² per degree of freedom and
+// the kinked cubic by 0.9 and 1.5, ratios of 2.1 and 3.5, under the 4 that fewer readings need:
 // a_max was read 1.7 and 1.9 % short, the truth beyond both bands.
 TEST(LiftReadingTest, ADenselyReadCubicBSplinesKnotIsToldByItsSquares) {
   const Knots even{0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0};
@@ -1374,7 +1382,8 @@ TEST(LiftReadingTest, ADenselyReadCubicBSplinesKnotIsToldByItsSquares) {
 // Where the kinked cubic misfits, other knots lie within the sides, and a kink taken at a ratio
 // under 4 reads its peak from them: a random B-spline law of bench/bspline_trial.py (seed 7, law
 // 122: 7.54 mm, a rise over 48.8° and a return over 102.2°) every 0.5° to 1e-3 mm, its sides 68
-// readings, the septic 24 σ² and the kinked cubic 8: a_max +12.9 % with the ratio halved there.
+// readings together, the septic 24 σ² and the kinked cubic 8: a_max +12.9 % with the ratio halved
+// there.
 TEST(LiftReadingTest, AKinkedCubicThatMisfitsHalvesNoRatio) {
   const Knots knots{0.0, 0.084557, 0.219048, 0.286760, 0.5, 0.713240, 0.780952, 0.915443, 1.0};
   const Law law{7.540291, 48.818375, 0.0, 102.171031, PiecewiseLinearAcceleration(knots)};
