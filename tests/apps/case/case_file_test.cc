@@ -158,6 +158,10 @@ TEST(CaseFileTest, BadValues) {
   EXPECT_EQ(Error(Replace(kGood, "[-10, 0, 10, 20, 30]", "[-10, 0, 10, 5, 30]")),
             "t.toml: [lift] crank_deg: angles must increase strictly, but entry 3 (5) follows "
             "entry 2 (10)");
+  // Angles apart by less than six digits show apart (SignificantApart).
+  EXPECT_EQ(Error(Replace(kGood, "[-10, 0, 10, 20, 30]", "[-10, 0, 10.0000002, 10.0000001, 30]")),
+            "t.toml: [lift] crank_deg: angles must increase strictly, but entry 3 (10.0000001) "
+            "follows entry 2 (10.0000002)");
   // Implausible readings (lib/lift_data.h: |lift| ≤ 1 m, |crank| ≤ 720°), in the key's unit.
   EXPECT_EQ(Error(Replace(kGood, "[0, 1, 2, 1, 0]", "[0, 1, 2e6, 1, 0]")),
             "t.toml: [lift] lift_mm[2]: is 2e+06 mm, outside the plausible range ±1000 mm (a lift "
