@@ -315,7 +315,7 @@ LiftLawChoice ReadDenseTable(const LiftTable& given, const LiftDataOptions& o) {
   for (const LiftDwell& d : dwells) cuts.insert(cuts.end(), {d.from_rad, d.to_rad});
   cuts.push_back(x[first]);
   cuts.push_back(x[last]);
-  c.reading = ReadTable(x, y, first, last, cuts, o.resolution_m);
+  c.reading = ReadTable(x, y, first, last, cuts, q);  // q read once, above
   const TableReading& r = *c.reading;
   c.noise_m = std::max(r.sigma_m, 1e-18);  // positive: a spline's σ must be
   c.law.spline.sigma = c.noise_m;
