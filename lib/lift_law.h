@@ -94,9 +94,11 @@ struct LiftLawNodes {
   /// Whether a local fit left the open lift's first (last) reading, a seat reading the law does
   /// not start on, out of its windows.
   bool seat_left_out[2] = {false, false};
-  /// A short end piece's s'' at a seat between readings (lift_pieces.cc ShortSeatBand), each with
-  /// its band: the extremes' bands reach them on their unsafe side only.
-  std::vector<LocalNode> seat_reach;
+  /// Values s'' may take that the fit does not read, each with its band: a short end piece's at a
+  /// seat between readings (lift_pieces.cc ShortSeatBand) and the sides of a step of s'' near an
+  /// extreme that no break marks (lib/reading_steps.h). The bands of the extremes, of n_qs and of
+  /// the preload required reach them on their unsafe side only.
+  std::vector<LocalNode> reach;
   std::vector<LocalNode> ready;
   std::vector<std::function<std::vector<LocalNode>()>> deferred;
   std::once_flag once;
@@ -158,6 +160,8 @@ class LiftLaw {
   /// The law at `crank_rad` as a node: s, s', s'' there and the half-width of the node nearest
   /// it (a quantity read from s'' may be most unsafe between nodes). Meaningful only with nodes.
   LocalNode NodeAt(double crank_rad) const;
+  /// The values s'' may take that no node carries, on its unsafe side only (LiftLawNodes::reach).
+  const std::vector<LocalNode>& ReachNodes() const { return nodes_->reach; }
   /// The nodes inside the open lift that carry the band of s'' (empty when there is none). An
   /// interpolating spline's are computed when first asked (26 splines a piece: a scene that
   /// reads no band never pays for them); thread-safe.

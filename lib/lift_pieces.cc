@@ -16,6 +16,7 @@
 
 #include "lib/local_join.h"
 #include "lib/reading_kinks.h"
+#include "lib/reading_steps.h"
 #include "lib/side_polynomial.h"
 #include "lib/spline_band.h"
 #include "lib/units.h"
@@ -166,6 +167,9 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
     if (trimmed) *trimmed = fit.trimmed;
     AddLocalFitBias(x, y, options, &fit, trim);
     if (options.quantized) AddReadingKinks(x, y, options.sigma, trim, &fit);
+    const std::vector<LocalNode> steps =
+        HiddenSteps(x, y, options.sigma, options.quantized, fit, trim);
+    nodes->reach.insert(nodes->reach.end(), steps.begin(), steps.end());
     return keep(std::move(fit));
   }
   if (options.kind == SplineKind::kSmoothing) {
@@ -206,7 +210,7 @@ std::optional<double> SeatSlopeRoot(const std::vector<double>& x, const std::vec
 // −6.1 %, 2.4 half-widths past its band). The law stays as fitted (the fit without that reading
 // read this one better and others worse: docs/lift-data.md, "A seat between readings"); what the
 // piece reads at the seat with that reading moved to where the rise leaves the seat, and its
-// band, go to `reach` (LiftLawNodes::seat_reach, which the extremes' bands reach on their unsafe
+// band, go to `reach` (LiftLawNodes::reach, which the extremes' bands reach on their unsafe
 // side: a node's own band widened both ways took a law leaving the seat with s'' = 0, read
 // a step off, to an a_min band of 91 % for 6.5 %).
 void ShortSeatBand(const std::vector<double>& x, const std::vector<double>& y,
@@ -262,9 +266,9 @@ PiecewisePolynomial BuildPart(const std::vector<double>& x, const std::vector<do
   if (piece + 1 == pieces) nodes->seat_left_out[1] = trimmed && trim.back_rad > 0.0;
   if (options.spline.kind == SplineKind::kLocal) {
     if (piece == 0 && trim.front_rad == 0.0)
-      ShortSeatBand(x, y, options.spline, trim, true, &nodes->seat_reach);
+      ShortSeatBand(x, y, options.spline, trim, true, &nodes->reach);
     if (piece + 1 == pieces && trim.back_rad == 0.0)
-      ShortSeatBand(x, y, options.spline, trim, false, &nodes->seat_reach);
+      ShortSeatBand(x, y, options.spline, trim, false, &nodes->reach);
   }
   if (left_out) *left_out = {trimmed && trim.front_rad > 0.0, trimmed && trim.back_rad > 0.0};
   return part;

@@ -1619,5 +1619,19 @@ TEST(LiftReadingTest, ASparseTablesSmoothDwellKeepsOneCubic) {
   EXPECT_EQ(choice.law.spline.kind, SplineKind::kClamped);
 }
 
+// A 2-3 cubic rise and return of 0.05 mm over 26.37° and 32.27°, every 1° to 1e-4 mm from
+// −4.57° (helper-60's tiny_2_033, exported anew): s'' steps by a third at the top, 0.7 of a
+// printed digit at a reading 1° past it, and no break is found. The local fit rounds the step to
+// its sides' mean (a_min −12.7 against −15.5 m/s² at 1000 rpm) and its nodes' band stopped at
+// −13.6; the band reaches the two cubics that meet at the top with equal s and s' now
+// (lib/reading_steps.h), which fit the readings as well as a smooth quintic does.
+
+TEST(LiftReadingTest, AStepOfSecondDerivativeAtTheRoundingsLevelIsInTheBand) {
+  const Law law{0.05, 26.366054, 0.0, 32.271954, Cubic23};
+  const Read r = ReadExport(law, Export(law, 1.0, 1e-4, 4.570588));
+  EXPECT_LT(r.min_error, -0.1) << r.choice.reason;  // the step rounded off: no break found
+  EXPECT_TRUE(r.min_in_band) << "band " << r.min_band_width << "; " << r.choice.reason;
+}
+
 }  // namespace
 }  // namespace needle

@@ -157,5 +157,32 @@ TEST(QuasiStaticTest, TheVerdictsFiguresReachADecelerationPeakOnAKink) {
   EXPECT_NEAR(RequiredPreloadN(law, train, OmegaFromRpm(2000), 1.0, 1.0), 453.80342, 1e-3);
 }
 
+// A step of s'' the break search misses (lib/reading_steps.h) must reach the verdicts' figures as
+// it reaches the a_min band: helper-60's tiny_2_033 (tests/data/README.md), a 2-3 cubic rise and
+// return of 0.05 mm whose s'' steps at the top from −6H/β₁² to −6H/β₂², printed to 1e-4 mm every
+// 1°. The fit reads the step's mean there; with 0.3 kg on 220 N + 20 N/mm at 4917 rpm (S = 1.5,
+// f = 1.2) `needle spring` passed, the preload's unsafe end 198.6 + 15 N against the closed
+// form's 242.4 N. The closed form needs P₀ = S m (fω)² 6H/β₁² − k H (the rise's largest
+// deceleration, at its top), and its n_qs is (60/2π) √((P₀ + k H)/(m 6H/β₁²)).
+TEST(QuasiStaticTest, AStepOfSecondDerivativeTheBreakSearchMissesIsInTheVerdicts) {
+  const LiftLaw law = ReadByDefault("two-three-cubic-0.05mm-1deg.csv");
+  ASSERT_EQ(law.kind(), SplineKind::kLocal);
+  const RigidTrain train{0.3, 220.0, 20e3, 0.0};
+  const double height = 0.05e-3, rise = 26.366054424541492 * kDeg;
+  const double top = 6.0 * height / (rise * rise);  // |s''| at the rise's top, m/rad²
+  const double w = 1.2 * OmegaFromRpm(4917);
+  const double needed = 1.5 * 0.3 * w * w * top - 20e3 * height;
+  ASSERT_NEAR(needed, 242.4, 0.05);
+  EXPECT_LT(RequiredPreloadN(law, train, OmegaFromRpm(4917), 1.5, 1.2), 0.9 * needed);
+  const auto unsafe = RequiredPreloadUnsafeN(law, train, OmegaFromRpm(4917), 1.5, 1.2);
+  ASSERT_TRUE(unsafe);
+  EXPECT_GE(*unsafe, needed);
+  const double n_qs = 60.0 / (2.0 * kPi) * std::sqrt((220.0 + 20e3 * height) / (0.3 * top));
+  EXPECT_GT(QuasiStaticLiftoffRpm(law, train), 1.05 * n_qs);
+  const auto band = QuasiStaticLiftoffBand(law, train);
+  ASSERT_TRUE(band);
+  EXPECT_LE(band->low, n_qs);
+}
+
 }  // namespace
 }  // namespace needle
