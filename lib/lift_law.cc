@@ -236,7 +236,7 @@ std::optional<ExtremumBand> LiftLaw::AccelerationBand(bool largest) const {
   };
   for (const LocalNode& n : nodes()) take(n);
   for (const LocalNode& n : KinkNodes(largest)) take(n);
-  for (const LocalNode& n : nodes_->reach) hi = std::max(hi, sign * n.s[2] + n.band2);
+  for (const LocalNode& n : nodes_->reach[largest]) hi = std::max(hi, sign * n.s[2] + n.band2);
   if (!largest) return ExtremumBand{-hi, -lo};
   return ExtremumBand{lo, hi};
 }

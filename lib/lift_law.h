@@ -12,6 +12,7 @@
 /// band of the seated needle) the spline is built on the whole table and the open lift runs
 /// from the first to the last crossing of h. A case may state θ_open and θ_close itself.
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -95,10 +96,11 @@ struct LiftLawNodes {
   /// not start on, out of its windows.
   bool seat_left_out[2] = {false, false};
   /// Values s'' may take that the fit does not read, each with its band: a short end piece's at a
-  /// seat between readings (lift_pieces.cc ShortSeatBand) and the sides of a step of s'' near an
-  /// extreme that no break marks (lib/reading_steps.h). The bands of the extremes, of n_qs and of
-  /// the preload required reach them on their unsafe side only.
-  std::vector<LocalNode> reach;
+  /// seat between readings (lift_pieces.cc ShortSeatBand; both extremes') and a step's or kink's
+  /// of s'' that no break marks near the largest s'' ([1]) or the least ([0]; lib/reading_steps.h).
+  /// The extreme's band (the least's: n_qs's and the preload's too) reaches them on its unsafe
+  /// side only.
+  std::array<std::vector<LocalNode>, 2> reach;
   std::vector<LocalNode> ready;
   std::vector<std::function<std::vector<LocalNode>()>> deferred;
   std::once_flag once;
@@ -160,8 +162,9 @@ class LiftLaw {
   /// The law at `crank_rad` as a node: s, s', s'' there and the half-width of the node nearest
   /// it (a quantity read from s'' may be most unsafe between nodes). Meaningful only with nodes.
   LocalNode NodeAt(double crank_rad) const;
-  /// The values s'' may take that no node carries, on its unsafe side only (LiftLawNodes::reach).
-  const std::vector<LocalNode>& ReachNodes() const { return nodes_->reach; }
+  /// The values the largest (`largest`) or least s'' may take that no node carries, on its unsafe
+  /// side only (LiftLawNodes::reach).
+  const std::vector<LocalNode>& ReachNodes(bool largest) const { return nodes_->reach[largest]; }
   /// The nodes inside the open lift that carry the band of s'' (empty when there is none). An
   /// interpolating spline's are computed when first asked (26 splines a piece: a scene that
   /// reads no band never pays for them); thread-safe.

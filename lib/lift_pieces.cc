@@ -167,9 +167,11 @@ PiecewisePolynomial BuildPiece(const std::vector<double>& x, const std::vector<d
     if (trimmed) *trimmed = fit.trimmed;
     AddLocalFitBias(x, y, options, &fit, trim);
     if (options.quantized) AddReadingKinks(x, y, options.sigma, trim, &fit);
-    const std::vector<LocalNode> steps =
+    const std::array<std::vector<LocalNode>, 2> steps =
         HiddenSteps(x, y, options.sigma, options.quantized, fit, trim);
-    nodes->reach.insert(nodes->reach.end(), steps.begin(), steps.end());
+    for (const bool largest : {false, true})
+      nodes->reach[largest].insert(nodes->reach[largest].end(), steps[largest].begin(),
+                                   steps[largest].end());
     return keep(std::move(fit));
   }
   if (options.kind == SplineKind::kSmoothing) {
@@ -215,7 +217,7 @@ std::optional<double> SeatSlopeRoot(const std::vector<double>& x, const std::vec
 // a step off, to an a_min band of 91 % for 6.5 %).
 void ShortSeatBand(const std::vector<double>& x, const std::vector<double>& y,
                    const SplineOptions& options, const LocalTrim& trim, bool front,
-                   std::vector<LocalNode>* reach) {
+                   std::array<std::vector<LocalNode>, 2>* reach) {
   const size_t n = x.size(), seat = front ? 0 : n - 1, next = front ? 1 : n - 2;
   const size_t k = kLocalMinimumPoints;
   if (n >= 2 * k + 1 || n < k + 3 || y[seat] > 0.0) return;
@@ -249,7 +251,7 @@ void ShortSeatBand(const std::vector<double>& x, const std::vector<double>& y,
     const LocalNode& end =
         front ? *std::min_element(at_foot.ready.begin(), at_foot.ready.end(), x_less)
               : *std::max_element(at_foot.ready.begin(), at_foot.ready.end(), x_less);
-    reach->push_back(end);
+    for (std::vector<LocalNode>& r : *reach) r.push_back(end);
   }
 }
 

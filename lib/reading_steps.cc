@@ -26,14 +26,20 @@ constexpr double kStepSquaresRatio = 1.5;
 // to 0.4 of the kinked cubic's; a cubic spline law's knot every 1° to 1e-4 mm, in 16 readings,
 // 0.8 to 5. (Two knots in one window can leave less: such a law's band is widened.)
 constexpr double kStepOverKink = 0.5;
+// A cubic kinked at ξ leaves at most this share of a quintic's squares: a kink the readings
+// allow as well as a smooth law. (Half as much took 11 and 8 of the 44 and 50 B-spline extremes
+// beyond their bands in bench/bspline_trial.py seeds 7 and 11 into them, as much 19 and 21; as
+// much widened 55 of bench/export_trial.py's 1200 bands (seed 5), half as much 6.)
+constexpr double kKinkOverQuintic = 1.0;
 // The kinks tried are within this many steps of ξ.
 constexpr double kKinkSteps = 4.0;
 
 // Readings [from, to) of the table and the cubics' least-squares fit to them: an orthonormal
-// basis q of the cubics there (Householder), and the readings less their projection on it. A
-// model of the cubics and more columns e is then fitted by projecting e off q (each column's
-// part the cubics do not hold) and the rest onto those: O(n) a column, no decomposition of the
-// whole model. The quintic's extra columns span the same, wherever u is centred.
+// basis q of the cubics there (v R⁻¹, R the Cholesky factor of vᵀv), and the readings less their
+// projection on it. A model of the cubics and more columns e is then fitted by projecting e off q
+// (each column's part the cubics do not hold) and the rest onto those: O(n) a column, no
+// decomposition of the whole model. The quintic's extra columns span the same, wherever u is
+// centred.
 struct CubicWindow {
   size_t from = 0, to = 0;
   double middle = 0.0, half = 1.0;  // u = (θ − middle)/half on [−1, 1]
@@ -47,6 +53,13 @@ Eigen::VectorXd Beyond(const CubicWindow& w, const Eigen::MatrixX2d& e) {
   const Eigen::MatrixX2d off = e - w.q * (w.q.transpose() * e);
   const Eigen::Matrix2d gram = off.transpose() * off;
   return w.rest - off * gram.ldlt().solve(off.transpose() * w.rest);
+}
+
+// The residuals of the cubics and the column `e` on the window's readings.
+Eigen::VectorXd Beyond(const CubicWindow& w, const Eigen::VectorXd& e) {
+  const Eigen::VectorXd off = e - w.q * (w.q.transpose() * e);
+  const double norm = off.squaredNorm();
+  return norm > 0.0 ? Eigen::VectorXd(w.rest - off * (off.dot(w.rest) / norm)) : w.rest;
 }
 
 // The squares the cubics and the column `e` leave on the window's readings.
@@ -112,20 +125,27 @@ Eigen::MatrixX2d StepColumns(const std::vector<double>& x, const CubicWindow& w,
   return e;
 }
 
-// Each side's s''(ξ) of the two cubics fitted to the window, its error, and s, s' there, as
-// nodes into `steps`.
+// The join's columns at ξ: a step's (θ − ξ)²₊ and (θ − ξ)³₊, a kink's (θ − ξ)³₊ (scaled).
+Eigen::MatrixXd JoinColumns(const std::vector<double>& x, const CubicWindow& w, double xi,
+                            bool step) {
+  if (!step) return TruncatedPower(x, w, xi, 3);
+  return StepColumns(x, w, xi);
+}
+
+// Each side's s''(ξ) of the cubics joined at ξ (a step's two sides; a kink's one s''), fitted to
+// the window, its error, and s, s' there, as nodes into `steps`.
 void AddSides(const std::vector<double>& x, const std::vector<double>& y, const CubicWindow& w,
-              double xi, double sigma_m, bool quantized, std::vector<LocalNode>* steps) {
-  const Eigen::Index n = static_cast<Eigen::Index>(w.to - w.from);
-  Eigen::MatrixXd v(n, 6);
+              double xi, bool step, double sigma_m, bool quantized, std::vector<LocalNode>* steps) {
+  const Eigen::Index n = static_cast<Eigen::Index>(w.to - w.from), extra = step ? 2 : 1;
+  Eigen::MatrixXd v(n, 4 + extra);
   v.leftCols(4) = PowerBasis(x, w.from, w.to, xi, w.half, 3);
-  v.rightCols(2) = StepColumns(x, w, xi);
+  v.rightCols(extra) = JoinColumns(x, w, xi, step);
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + w.from, n);
   // Weights on the readings of the left side's s''(ξ) and the right's (u = (θ − ξ)/half).
-  Eigen::VectorXd d_left = Eigen::VectorXd::Zero(6), d_right;
+  Eigen::VectorXd d_left = Eigen::VectorXd::Zero(4 + extra), d_right;
   d_left(2) = 2.0 / (w.half * w.half);
   d_right = d_left;
-  d_right(4) = d_left(2);
+  if (step) d_right(4) = d_left(2);
   const Eigen::MatrixXd gram = Gram(v);
   const Eigen::VectorXd g_left = v * LdltSolve(gram, d_left);
   const Eigen::VectorXd g_right = v * LdltSolve(gram, d_right);
@@ -143,6 +163,7 @@ void AddSides(const std::vector<double>& x, const std::vector<double>& y, const 
     node.band2 = band;
     node.window = static_cast<int>(n);
     steps->push_back(node);
+    if (!step) return;  // one s'' at a kink
   }
 }
 
@@ -150,7 +171,8 @@ void AddSides(const std::vector<double>& x, const std::vector<double>& y, const 
 // kGapShares, the widest of kStepSideReadings, twice, four and eight times that each side of the
 // gap that the two cubics fit to the rounding's bound; its sides' s'' and errors go to `steps`
 // when one cubic misfits those readings and the two cubics leave no more than a quintic's
-// squares (times kStepSquaresRatio) and a kinked cubic's (times kStepOverKink).
+// squares (times kStepSquaresRatio) and a kinked cubic's (times kStepOverKink); and the same of a
+// kink at ξ, against a quintic's squares (times kKinkOverQuintic).
 void StepsInGap(const std::vector<double>& x, const std::vector<double>& y, size_t first,
                 size_t last, size_t g, double sigma_m, bool quantized,
                 std::vector<LocalNode>* steps) {
@@ -181,20 +203,31 @@ void StepsInGap(const std::vector<double>& x, const std::vector<double>& y, size
       fit = w;
       squares = misfit.squaredNorm();
     }
-    if (!fit || fit->rest.cwiseAbs().maxCoeff() <= bound ||
-        squares > kStepSquaresRatio * fit->quintic_squares ||
-        squares > kStepOverKink * KinkedCubicSquares(x, *fit, xi, h))
-      continue;
-    AddSides(x, y, *fit, xi, sigma_m, quantized, steps);
+    if (fit && fit->rest.cwiseAbs().maxCoeff() > bound &&
+        squares <= kStepSquaresRatio * fit->quintic_squares &&
+        squares <= kStepOverKink * KinkedCubicSquares(x, *fit, xi, h))
+      AddSides(x, y, *fit, xi, true, sigma_m, quantized, steps);
+    // A kink at ξ, where a cubic kinked there fits as a smooth law does not.
+    const CubicWindow* kinked = nullptr;
+    for (size_t k = 0; const CubicWindow* w = window(k); ++k) {
+      const Eigen::VectorXd misfit = Beyond(*w, TruncatedPower(x, *w, xi, 3));
+      if (misfit.cwiseAbs().maxCoeff() > bound) break;
+      kinked = w;
+      squares = misfit.squaredNorm();
+    }
+    if (kinked && kinked->rest.cwiseAbs().maxCoeff() > bound &&
+        squares <= kKinkOverQuintic * kinked->quintic_squares)
+      AddSides(x, y, *kinked, xi, false, sigma_m, quantized, steps);
   }
 }
 
 }  // namespace
 
-std::vector<LocalNode> HiddenSteps(const std::vector<double>& x, const std::vector<double>& y,
-                                   double sigma_m, bool quantized, const LocalFit& fit,
-                                   LocalTrim trim) {
-  std::vector<LocalNode> steps;
+std::array<std::vector<LocalNode>, 2> HiddenSteps(const std::vector<double>& x,
+                                                  const std::vector<double>& y, double sigma_m,
+                                                  bool quantized, const LocalFit& fit,
+                                                  LocalTrim trim) {
+  std::array<std::vector<LocalNode>, 2> steps;
   const auto& nodes = fit.nodes;
   if (x.size() != y.size() || x.size() > static_cast<size_t>(kLocalMaxNodes) || nodes.empty() ||
       !(sigma_m > 0.0)) {
@@ -216,7 +249,7 @@ std::vector<LocalNode> HiddenSteps(const std::vector<double>& x, const std::vect
     const size_t first = std::max(from, at > kStepGaps ? at - kStepGaps : 0);
     const size_t last = std::min(to, at + kStepGaps + 1);
     for (size_t g = first; g + 1 < last; ++g)
-      StepsInGap(x, y, from, to, g, sigma_m, quantized, &steps);
+      StepsInGap(x, y, from, to, g, sigma_m, quantized, &steps[sign > 0.0]);
   }
   return steps;
 }

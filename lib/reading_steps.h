@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Internal to lib/'s local fit (lift_pieces.cc): a step of s'' that no break marks, near an
-/// extreme of the fit, that the band of that extreme must reach.
+/// Internal to lib/'s local fit (lift_pieces.cc): a step of s'' that no break marks, or a kink,
+/// near an extreme of the fit, that the band of that extreme must reach.
 ///
 /// A step of s'' of size J at ξ moves each reading δ past it by J δ²/2. Where that is at the
 /// rounding's level (a 2-3 cubic rise and return of 0.05 mm read every 1° to 1e-4 mm: J δ²/2 is
@@ -20,9 +20,18 @@
 /// times those of a cubic kinked within kKinkSteps steps of ξ (s''' jumping, s'' not). ξ is tried
 /// at each reading and each gap's middle within kStepGaps readings of the fit's extreme node.
 /// Each side's s''(ξ) and its error (q/2 Σ|g_i| for a rounded table, 1.96 σ ‖g‖ otherwise; g its
-/// weights on the readings) is a value the band reaches on its unsafe side (LiftLawNodes::reach),
-/// as n_qs's band and the preload's unsafe end do.
+/// weights on the readings) is a value the band of the extreme it was found near reaches on its
+/// unsafe side (LiftLawNodes::reach), as n_qs's band and the preload's unsafe end do.
+///
+/// A kink (s''' jumps, s'' not: a cubic B-spline's knot) hides the same way where the squares do
+/// not tell it (lib/reading_kinks.h): every window holding it rounds its peak off. At the same ξ
+/// and windows, one cubic kinked there, y_i = p(θ_i) + b₃ (θ_i − ξ)³₊, fitted to the widest run
+/// it fits to the rounding's bound, reads s''(ξ) = p''(ξ), and the band reaches it where one
+/// cubic misfits those readings and the kinked one leaves no more than kKinkOverQuintic times a
+/// quintic's squares (the B-spline of the lift bench, 3 mm over 24° every 0.1–0.5° to 1e-3 mm and
+/// 0.25° to 1e-4 mm: a_min 2.4–5.0 % short, the truth beyond its band).
 
+#include <array>
 #include <vector>
 
 #include "lib/local_fit.h"
@@ -35,12 +44,15 @@ constexpr size_t kStepSideReadings = 8;
 /// fit's extreme node either way.
 constexpr size_t kStepGaps = 8;
 
-/// The sides' s'' (and errors) at each step the readings favour near the largest and least s''
-/// of `fit`, FitLocal's of one piece's readings (x, y) with `sigma_m` (> 0, the rounding's when
-/// `quantized`) and `trim`; none for tables of more than kLocalMaxNodes readings. Each node: x =
-/// ξ, s and s' the two cubics' there, s[2] a side's s''(ξ), band2 its error.
-std::vector<LocalNode> HiddenSteps(const std::vector<double>& x, const std::vector<double>& y,
-                                   double sigma_m, bool quantized, const LocalFit& fit,
-                                   LocalTrim trim = {});
+/// The sides' s'' (and errors) at each step (and kink) the readings favour near the largest s''
+/// of `fit` ([1]) and the least ([0]), FitLocal's of one piece's readings (x, y) with `sigma_m`
+/// (> 0, the rounding's when `quantized`) and `trim`; none for tables of more than
+/// kLocalMaxNodes readings. Each node: x = ξ, s and s' the cubics' there, s[2] a side's s''(ξ),
+/// band2 its error (the rounding's alone: a side whose readings reach past another junction is
+/// biased beyond it, which is why each extreme's band takes only the nodes found near it).
+std::array<std::vector<LocalNode>, 2> HiddenSteps(const std::vector<double>& x,
+                                                  const std::vector<double>& y, double sigma_m,
+                                                  bool quantized, const LocalFit& fit,
+                                                  LocalTrim trim = {});
 
 }  // namespace needle

@@ -135,7 +135,7 @@ std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const Rig
     low = std::min(low, train.SpringReserve(n.s[0], n.s[2] - n.band2));
     high = std::min(high, train.SpringReserve(n.s[0], n.s[2] + n.band2));
   }
-  for (const LocalNode& n : law.ReachNodes())  // the unsafe end only
+  for (const LocalNode& n : law.ReachNodes(false))  // the unsafe end only
     low = std::min(low, train.SpringReserve(n.s[0], n.s[2] - n.band2));
   return ExtremumBand{std::min(RpmOfReserve(low), n_qs), std::max(RpmOfReserve(high), n_qs)};
 }
@@ -150,7 +150,7 @@ std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrai
   const ForceMinimum m = MinMinusRequired(law, train, w, safety_factor);
   double required = RequiredOf(m, train);
   std::vector<LocalNode> nodes = BandNodes(law, m);
-  nodes.insert(nodes.end(), law.ReachNodes().begin(), law.ReachNodes().end());
+  nodes.insert(nodes.end(), law.ReachNodes(false).begin(), law.ReachNodes(false).end());
   for (const LocalNode& n : nodes) {
     const double s2 = n.s[2] - n.band2;  // the deceleration's unsafe end
     if (s2 < 0.0) {

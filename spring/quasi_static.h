@@ -33,13 +33,13 @@ double QuasiStaticLiftoffRpm(const LiftLaw& law, const RigidTrain& train);
 
 /// The 95 % band of n_qs, rpm, from the law's acceleration band (LiftLaw::nodes(): s'' ± its
 /// half-width at each node, at the largest deceleration and at the least spring reserve, those
-/// two with the nearest node's; its unsafe end also at LiftLaw::ReachNodes), always holding
+/// two with the nearest node's; its unsafe end also at LiftLaw::ReachNodes(false)), always holding
 /// QuasiStaticLiftoffRpm; none for a law without one.
 std::optional<ExtremumBand> QuasiStaticLiftoffBand(const LiftLaw& law, const RigidTrain& train);
 
 /// P₀,req (N, ≥ 0) at the acceleration band's unsafe end: RequiredPreloadN with |s''| raised by
 /// its half-width at each node, at the largest deceleration and where the law needs the most
-/// preload (those two with the nearest node's), and at LiftLaw::ReachNodes; none for a law
+/// preload (those two with the nearest node's), and at LiftLaw::ReachNodes(false); none for a law
 /// without a band.
 std::optional<double> RequiredPreloadUnsafeN(const LiftLaw& law, const RigidTrain& train,
                                              double omega, double safety_factor,

@@ -1379,6 +1379,23 @@ TEST(LiftReadingTest, ADenselyReadCubicBSplinesKnotIsToldByItsSquares) {
   }
 }
 
+// The same cam every 0.25° to 1e-4 mm and every 0.1-0.5° to 1e-3 mm: the squares do not tell the
+// knot (too few readings, or too coarse a digit), and the truth lay beyond the band in 5 of these
+// 8 extremes (a_min read 2.4-5.0 % short, a_max 4.0-4.6 %; of the lift bench's 40 B-spline
+// extremes at 1e-4 and 1e-3 mm, 26 before, 10 after).
+// A cubic kinked at ξ near the extreme, over the widest run of readings it fits to the rounding,
+// leaving no more of their squares than a quintic does, reads s''(ξ), and the band reaches it
+// (lib/reading_steps.h): every truth inside now.
+TEST(LiftReadingTest, ARoundedCubicBSplinesKnotIsInItsBand) {
+  const Knots even{0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0};
+  const Law law{3.0, 24.0, 6.0, 30.0, PiecewiseLinearAcceleration(even)};
+  for (const auto& [step, q] : {std::pair{0.25, 1e-4}, {0.1, 1e-3}, {0.25, 1e-3}, {0.5, 1e-3}}) {
+    const Read r = ReadExport(law, Export(law, step, q));
+    EXPECT_TRUE(r.max_in_band) << step << " " << q << ": " << r.max_error;
+    EXPECT_TRUE(r.min_in_band) << step << " " << q << ": " << r.min_error;
+  }
+}
+
 // Where the kinked cubic misfits, other knots lie within the sides, and a kink taken at a ratio
 // under 4 reads its peak from them: a random B-spline law of bench/bspline_trial.py (seed 7, law
 // 122: 7.54 mm, a rise over 48.8° and a return over 102.2°) every 0.5° to 1e-3 mm, its sides 68
@@ -1631,6 +1648,7 @@ TEST(LiftReadingTest, AStepOfSecondDerivativeAtTheRoundingsLevelIsInTheBand) {
   const Read r = ReadExport(law, Export(law, 1.0, 1e-4, 4.570588));
   EXPECT_LT(r.min_error, -0.1) << r.choice.reason;  // the step rounded off: no break found
   EXPECT_TRUE(r.min_in_band) << "band " << r.min_band_width << "; " << r.choice.reason;
+  EXPECT_LT(r.min_band_width, 0.4);  // 0.35: the step's side read to 4 % (0.16 before)
 }
 
 }  // namespace

@@ -161,7 +161,7 @@ TEST(QuasiStaticTest, TheVerdictsFiguresReachADecelerationPeakOnAKink) {
 // it reaches the a_min band: helper-60's tiny_2_033 (tests/data/README.md), a 2-3 cubic rise and
 // return of 0.05 mm whose s'' steps at the top from −6H/β₁² to −6H/β₂², printed to 1e-4 mm every
 // 1°. The fit reads the step's mean there; with 0.3 kg on 220 N + 20 N/mm at 4917 rpm (S = 1.5,
-// f = 1.2) `needle spring` passed, the preload's unsafe end 198.6 + 15 N against the closed
+// f = 1.2) `needle spring` passed, the preload's unsafe end 211.4 N against the closed
 // form's 242.4 N. The closed form needs P₀ = S m (fω)² 6H/β₁² − k H (the rise's largest
 // deceleration, at its top), and its n_qs is (60/2π) √((P₀ + k H)/(m 6H/β₁²)).
 TEST(QuasiStaticTest, AStepOfSecondDerivativeTheBreakSearchMissesIsInTheVerdicts) {
