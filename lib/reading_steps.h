@@ -21,7 +21,8 @@
 /// at each reading and each gap's middle within kStepGaps readings of the fit's extreme node.
 /// Each side's s''(ξ) and its error (q/2 Σ|g_i| for a rounded table, 1.96 σ ‖g‖ otherwise; g its
 /// weights on the readings) is a value the band of the extreme it was found near reaches on its
-/// unsafe side (LiftLawNodes::reach), as n_qs's band and the preload's unsafe end do.
+/// unsafe side (LiftLawNodes::reach); near the least s'', n_qs's band and the preload's unsafe end
+/// reach it too.
 ///
 /// A kink (s''' jumps, s'' not: a cubic B-spline's knot) hides the same way where the squares do
 /// not tell it (lib/reading_kinks.h): every window holding it rounds its peak off. At the same ξ
