@@ -1,4 +1,5 @@
-// Steps of s'' the readings allow near each extreme of a local fit (lib/reading_steps.h).
+// Steps and kinks of s'' the readings allow near each extreme of a local fit
+// (lib/reading_steps.h).
 #include "lib/reading_steps.h"
 
 #include <Eigen/Dense>
@@ -141,29 +142,26 @@ void AddSides(const std::vector<double>& x, const std::vector<double>& y, const 
   v.leftCols(4) = PowerBasis(x, w.from, w.to, xi, w.half, 3);
   v.rightCols(extra) = JoinColumns(x, w, xi, step);
   const Eigen::Map<const Eigen::VectorXd> r(y.data() + w.from, n);
-  // Weights on the readings of the left side's s''(ξ) and the right's (u = (θ − ξ)/half).
-  Eigen::VectorXd d_left = Eigen::VectorXd::Zero(4 + extra), d_right;
-  d_left(2) = 2.0 / (w.half * w.half);
-  d_right = d_left;
-  if (step) d_right(4) = d_left(2);
   const Eigen::MatrixXd gram = Gram(v);
-  const Eigen::VectorXd g_left = v * LdltSolve(gram, d_left);
-  const Eigen::VectorXd g_right = v * LdltSolve(gram, d_right);
-  const auto error = [&](const Eigen::VectorXd& g) {
-    return quantized ? std::sqrt(3.0) * sigma_m * g.lpNorm<1>() : 1.96 * sigma_m * g.norm();
-  };
   const Eigen::VectorXd a = LdltSolve(gram, v.transpose() * r);
-  for (const auto& [s2, band] :
-       {std::pair{g_left.dot(r), error(g_left)}, {g_right.dot(r), error(g_right)}}) {
+  // The side whose s''(ξ) is d·a (u = (θ − ξ)/half): its weights on the readings, its node.
+  const auto add = [&](const Eigen::VectorXd& d) {
+    const Eigen::VectorXd g = v * LdltSolve(gram, d);
     LocalNode node;
     node.x = xi;
     node.s[0] = a(0);
     node.s[1] = a(1) / w.half;
-    node.s[2] = s2;
-    node.band2 = band;
+    node.s[2] = g.dot(r);
+    node.band2 = quantized ? std::sqrt(3.0) * sigma_m * g.lpNorm<1>() : 1.96 * sigma_m * g.norm();
     node.window = static_cast<int>(n);
     steps->push_back(node);
-    if (!step) return;  // one s'' at a kink
+  };
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(4 + extra);
+  d(2) = 2.0 / (w.half * w.half);
+  add(d);  // the left side's (a kink's one s'')
+  if (step) {
+    d(4) = d(2);
+    add(d);  // the right side's: 2 b₂ more
   }
 }
 
@@ -193,31 +191,30 @@ void StepsInGap(const std::vector<double>& x, const std::vector<double>& y, size
     }
     return &windows[k];
   };
+  // The widest window the cubics and `columns(window)` fit to the bound, where one cubic does
+  // not, and the squares they leave there; none where no window is so.
+  const auto widest = [&](const auto& columns) -> std::pair<const CubicWindow*, double> {
+    std::pair<const CubicWindow*, double> fit{nullptr, 0.0};
+    for (size_t k = 0; const CubicWindow* w = window(k); ++k) {
+      const Eigen::VectorXd misfit = Beyond(*w, columns(*w));
+      if (misfit.cwiseAbs().maxCoeff() > bound) break;
+      fit = {w, misfit.squaredNorm()};
+    }
+    if (fit.first && fit.first->rest.cwiseAbs().maxCoeff() <= bound) fit.first = nullptr;
+    return fit;
+  };
   for (const double share : kGapShares) {
     const double xi = x[g] + share * h;
-    const CubicWindow* fit = nullptr;
-    double squares = 0.0;
-    for (size_t k = 0; const CubicWindow* w = window(k); ++k) {
-      const Eigen::VectorXd misfit = Beyond(*w, StepColumns(x, *w, xi));
-      if (misfit.cwiseAbs().maxCoeff() > bound) break;
-      fit = w;
-      squares = misfit.squaredNorm();
-    }
-    if (fit && fit->rest.cwiseAbs().maxCoeff() > bound &&
-        squares <= kStepSquaresRatio * fit->quintic_squares &&
-        squares <= kStepOverKink * KinkedCubicSquares(x, *fit, xi, h))
-      AddSides(x, y, *fit, xi, true, sigma_m, quantized, steps);
+    const auto [step, step_squares] =
+        widest([&](const CubicWindow& w) { return StepColumns(x, w, xi); });
+    if (step && step_squares <= kStepSquaresRatio * step->quintic_squares &&
+        step_squares <= kStepOverKink * KinkedCubicSquares(x, *step, xi, h))
+      AddSides(x, y, *step, xi, true, sigma_m, quantized, steps);
     // A kink at ξ, where a cubic kinked there fits as a smooth law does not.
-    const CubicWindow* kinked = nullptr;
-    for (size_t k = 0; const CubicWindow* w = window(k); ++k) {
-      const Eigen::VectorXd misfit = Beyond(*w, TruncatedPower(x, *w, xi, 3));
-      if (misfit.cwiseAbs().maxCoeff() > bound) break;
-      kinked = w;
-      squares = misfit.squaredNorm();
-    }
-    if (kinked && kinked->rest.cwiseAbs().maxCoeff() > bound &&
-        squares <= kKinkOverQuintic * kinked->quintic_squares)
-      AddSides(x, y, *kinked, xi, false, sigma_m, quantized, steps);
+    const auto [kink, kink_squares] =
+        widest([&](const CubicWindow& w) { return TruncatedPower(x, w, xi, 3); });
+    if (kink && kink_squares <= kKinkOverQuintic * kink->quintic_squares)
+      AddSides(x, y, *kink, xi, false, sigma_m, quantized, steps);
   }
 }
 
