@@ -228,34 +228,6 @@ LocalNode BestNodeAt(const Points& p, double t, double sigma, bool quantized,
   return chosen(best);
 }
 
-// A node between two whose half windows do not meet (the gap longer than kNodeSpacing of the
-// two widths together), at the gap's middle, until none is: the forward pass puts its last node
-// on the last reading where less than half a step is left, so the gap before it may reach 1.5
-// steps of a wide window, and the last node's own window may be narrow (a slow cycloidal rise
-// and a dwell, then a return over 15° to the seat, rounded to 1e-3 mm every 0.7°: nodes at 86°
-// (a window of 56°) and at the seat, 127°, whose window spans 9°; the law between missed the
-// readings by up to 0.28 mm, and a_min read −48 against −653 m/s²). AddNodesWhereTheLawMisses
-// did not see it: its allowance grows with the wider band over the gap squared.
-void AddNodesWhereWindowsDoNotMeet(const Points& p, double sigma, bool quantized,
-                                   const std::vector<size_t>& sizes,
-                                   std::vector<LocalNode>* nodes) {
-  for (size_t k = 0; k + 1 < nodes->size() && nodes->size() < 2 * p.x.size();) {
-    const LocalNode &a = (*nodes)[k], &b = (*nodes)[k + 1];
-    const double mid = 0.5 * (a.x + b.x);
-    if (b.x - a.x <= kNodeSpacing * (a.width + b.width) || !(mid > a.x && mid < b.x)) {
-      ++k;
-      continue;
-    }
-    std::array<size_t, 3> last{};
-    const LocalNode node = BestNodeAt(p, mid, sigma, quantized, sizes, &last);
-    if (!(node.x > a.x && node.x < b.x)) {
-      ++k;
-      continue;
-    }
-    nodes->insert(nodes->begin() + static_cast<std::ptrdiff_t>(k) + 1, node);
-  }
-}
-
 // Where the law between two nodes misses a reading of an exact or rounded table by more than
 // kRefineMisfits times their s'' bands over the interval (band2 L²/8) plus four rounding bounds,
 // a node at the reading it misses most, a quarter of the interval or more from both, until none
@@ -390,11 +362,23 @@ LocalFit FitLocal(const std::vector<double>& x, const std::vector<double>& y, do
     fit.nodes.push_back(BestNodeAt(p, t, sigma_m, quantized, sizes, &last));
     if (t >= x.back()) break;
     const size_t next = std::upper_bound(p.x.begin(), p.x.end(), t) - p.x.begin();
-    double step = kNodeSpacing * fit.nodes.back().width;
+    const LocalNode& before = fit.nodes.back();
+    double step = kNodeSpacing * before.width;
     t = std::max(t + step, next < p.x.size() ? p.x[next] : x.back());
-    if (t > x.back() - 0.5 * step || next >= p.x.size()) t = x.back();
+    if (t < x.back() - 0.5 * step && next < p.x.size()) continue;
+    // Less than half a step left: the last reading's node, where its window and this node's
+    // meet (half of each); else the step as before. A node at 86° whose window spanned 56° and
+    // the seat's 41° past it, its window 9°, left a law that missed the readings by up to
+    // 0.28 mm (export_trial's seed 5, E0327: a cycloidal rise of 0.36 mm over 114°, then a
+    // double-harmonic return over 14°, every 0.7° to 1e-3 mm; a_min −48 against −653 m/s²).
+    std::array<size_t, 3> end_last = last;
+    LocalNode end = BestNodeAt(p, x.back(), sigma_m, quantized, sizes, &end_last);
+    if (t >= x.back() || next >= p.x.size() ||
+        x.back() - before.x <= kNodeSpacing * (before.width + end.width)) {
+      fit.nodes.push_back(std::move(end));
+      break;
+    }
   }
-  AddNodesWhereWindowsDoNotMeet(p, sigma_m, quantized, sizes, &fit.nodes);
   fit.law = QuinticHermite(fit.nodes);
   if (quantized) AddNodesWhereTheLawMisses(p, sigma_m, sizes, &fit);
   if (quantized) AddNodesAtExtremes(p, sigma_m, sizes, &fit);

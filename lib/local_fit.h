@@ -29,10 +29,9 @@
 /// into s'' over the square of the spacing), carry s, s', s'' and a 95 % half-width of s'' (1.96
 /// standard deviations plus the largest change from the narrower windows of at least half its
 /// size, the truncation's scale);
-/// where two nodes' half windows do not meet (the last node of a piece, on its last reading,
-/// may stand 1.5 steps past the one before) a node goes between them (local_fit.cc,
-/// AddNodesWhereWindowsDoNotMeet); between nodes the law is the quintic Hermite interpolant of
-/// (s, s', s''), C². On an exact or
+/// the last on the piece's last reading where less than half a step is left and its window
+/// meets the node before's (half of each); between nodes the law is the quintic Hermite
+/// interpolant of (s, s', s''), C². On an exact or
 /// rounded table a node is added where that law misses a reading by far more than its nodes'
 /// error allows (local_fit.cc, AddNodesWhereTheLawMisses), and where its s'' peaks between two
 /// nodes, unless the law then strays past the three nodes' s'' and bands by more than a band (the

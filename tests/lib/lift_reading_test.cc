@@ -1656,14 +1656,24 @@ TEST(LiftReadingTest, AStepOfSecondDerivativeAtTheRoundingsLevelIsInTheBand) {
 // a double-harmonic return over 14° (s'' = π²/2 (cos πξ − cos 2πξ), −π² at the top), with 10
 // readings of base circle either side, rounded to 1e-3 mm every 0.7°. The forward pass put a
 // node at 86° (a window of 56° across the slow top) and its next on the last reading, the seat,
-// whose window spans 9°: the law between missed the readings by up to 0.28 mm (280 digits) and
-// a_min read −48 against −653 m/s², the truth past its band (AddNodesWhereWindowsDoNotMeet).
+// whose window spans 9°: the law between missed the readings by up to 0.28 mm (280 digits), the
+// largest lift read 0.335 mm and a_min −48 against −653 m/s², the truth past its band.
 TEST(LiftReadingTest, AShortReturnAfterAWideWindowIsRead) {
   const Law law{0.3585199014059752, 114.42802154610203, 0.0,
                 13.971825967737802, Cycloidal,          DoubleHarmonic};
-  const Read r = ReadExport(law, Export(law, 0.7, 1e-3, 6.65));
-  EXPECT_LT(std::abs(r.min_error), 0.35) << r.choice.reason;  // +0.30 (+0.93 before)
+  const LiftTable table = Export(law, 0.7, 1e-3, 6.65);
+  const Read r = ReadExport(law, table);
+  EXPECT_LT(std::abs(r.min_error), 0.02) << r.choice.reason;  // −0.7 % (−93 % before)
   EXPECT_TRUE(r.min_in_band) << "band " << r.min_band_width << "; " << r.choice.reason;
+  // The law through the readings, within two printed digits of each (280 before).
+  const LiftLaw fitted(r.choice.table, r.choice.law);
+  double worst_mm = 0.0;
+  for (size_t i = 0; i < table.crank_rad.size(); ++i) {
+    const double theta = table.crank_rad[i];
+    if (theta < fitted.start_rad() || theta > fitted.end_rad()) continue;
+    worst_mm = std::max(worst_mm, std::abs(fitted.Lift(theta) - table.lift_m[i]) * 1e3);
+  }
+  EXPECT_LT(worst_mm, 2e-3);
 }
 
 }  // namespace
