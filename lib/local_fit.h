@@ -30,15 +30,15 @@
 /// standard deviations plus the largest change from the narrower windows of at least half its
 /// size, the truncation's scale);
 /// the last on the piece's last reading where less than half a step is left and its window
-/// meets the node before's (half of each); between nodes the law is the quintic Hermite
-/// interpolant of (s, s', s''), C². On an exact or
-/// rounded table a node is added where that law misses a reading by far more than its nodes'
-/// error allows (local_fit.cc, AddNodesWhereTheLawMisses), and where its s'' peaks between two
-/// nodes, unless the law then strays past the three nodes' s'' and bands by more than a band (the
-/// node is then left out and its neighbours' bands reach the stray: AddNodesAtExtremes). A table
-/// of more
-/// than kLocalMaxNodes readings is first averaged in bins of consecutive readings (σ/√count each):
-/// the cost is O(n).
+/// meets the node before's (half of each; else the pass steps on, and that node may stand
+/// nearer the end than half a window; with no reading left past the node, as at a trimmed or
+/// binned end, the last reading takes it whatever its window); between nodes the law is the quintic
+/// Hermite interpolant of (s, s', s''), C². On an exact or rounded table a node is added where that
+/// law misses a reading by far more than its nodes' error allows (local_fit.cc,
+/// AddNodesWhereTheLawMisses), and where its s'' peaks between two nodes, unless the law then
+/// strays past the three nodes' s'' and bands by more than a band (the node is then left out and
+/// its neighbours' bands reach the stray: AddNodesAtExtremes). A table of more than kLocalMaxNodes
+/// readings is first averaged in bins of consecutive readings (σ/√count each): the cost is O(n).
 
 #include <array>
 #include <cmath>
