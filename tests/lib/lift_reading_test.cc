@@ -129,6 +129,18 @@ Read ReadExport(const Law& law, const LiftTable& t) {
   return r;
 }
 
+// The largest distance, mm, of the fitted lift from a reading of `t` inside its open lift
+// (the ends included).
+double WorstMissMm(const LiftLaw& fitted, const LiftTable& t) {
+  double worst_mm = 0.0;
+  for (size_t i = 0; i < t.crank_rad.size(); ++i) {
+    const double th = t.crank_rad[i];
+    if (th < fitted.start_rad() || th > fitted.end_rad()) continue;
+    worst_mm = std::max(worst_mm, 1e3 * std::abs(fitted.Lift(th) - t.lift_m[i]));
+  }
+  return worst_mm;
+}
+
 // The targets: within `bound`, or the truth inside a band no wider than twice it.
 void ExpectWithin(const Read& r, double bound, const std::string& what) {
   EXPECT_TRUE(std::abs(r.max_error) <= bound || (r.max_in_band && r.max_band_width <= 2 * bound))
@@ -1031,13 +1043,8 @@ TEST(LiftReadingTest, ReadingsWithinABreaksUncertaintyAreLeftOutOfTheFit) {
   ASSERT_FALSE(r.choice.law.breaks_rad.empty()) << r.choice.reason;
   EXPECT_GT(r.choice.law.break_uncertainty_rad, 0.0);
   const LiftLaw fitted(r.choice.table, r.choice.law);
-  double worst_mm = 0.0;  // the fitted lift against every open reading
-  for (size_t i = 0; i < t.crank_rad.size(); ++i) {
-    const double th = t.crank_rad[i];
-    if (th <= fitted.start_rad() || th >= fitted.end_rad()) continue;
-    worst_mm = std::max(worst_mm, 1e3 * std::abs(fitted.Lift(th) - t.lift_m[i]));
-  }
-  EXPECT_LT(worst_mm, 1e-3);  // ten printed digits (4 by the break: its law is extrapolated)
+  // Ten printed digits (4 by the break: its law is extrapolated).
+  EXPECT_LT(WorstMissMm(fitted, t), 1e-3);
   ExpectWithin(r, 0.02, "harmonic into harmonic to 1e-4 mm");
 }
 
@@ -1666,14 +1673,7 @@ TEST(LiftReadingTest, AShortReturnAfterAWideWindowIsRead) {
   EXPECT_LT(std::abs(r.min_error), 0.02) << r.choice.reason;  // −0.7 % (−93 % before)
   EXPECT_TRUE(r.min_in_band) << "band " << r.min_band_width << "; " << r.choice.reason;
   // The law through the readings, within two printed digits of each (280 before).
-  const LiftLaw fitted(r.choice.table, r.choice.law);
-  double worst_mm = 0.0;
-  for (size_t i = 0; i < table.crank_rad.size(); ++i) {
-    const double theta = table.crank_rad[i];
-    if (theta < fitted.start_rad() || theta > fitted.end_rad()) continue;
-    worst_mm = std::max(worst_mm, std::abs(fitted.Lift(theta) - table.lift_m[i]) * 1e3);
-  }
-  EXPECT_LT(worst_mm, 2e-3);
+  EXPECT_LT(WorstMissMm(LiftLaw(r.choice.table, r.choice.law), table), 2e-3);
 }
 
 }  // namespace
